@@ -1,0 +1,268 @@
+!> The `sloshdyn` executable: reads a namelist input file, validates all of it, runs the requested
+!> analysis, prints a summary and writes CSV files (header line, one quantity per column) into the
+!> output directory. The only place that turns a status into an exit code.
+program sloshdyn_main
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, status_name
+  use sloshdyn_text, only: num2str
+  use sloshdyn_model, only: model_t, require_stable_trivial
+  use sloshdyn_namelist, only: run_config, read_input
+  use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
+                             kappa_for_detuning
+  use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz, STABLE, MARGINAL
+  use sloshdyn_files, only: make_directory, rename_file
+  implicit none
+
+  integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
+  integer, parameter :: exit_usage = 2, exit_input = 3, exit_failure = 4
+  character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (see README.md for the '// &
+                                         'namelist groups and variables)'
+  character(len=4096) :: path
+  character(len=message_len) :: message
+  type(run_config) :: config
+  integer :: status
+  character(len=4200) :: pending(16)   !< result files written under temporary names
+  integer :: n_pending
+
+  if (command_argument_count() /= 1) call die(exit_usage, usage)
+  call get_command_argument(1, path)
+  if (path == '-h' .or. path == '--help') then
+    print '(a)', usage
+    stop
+  end if
+  call read_input(trim(path), config, status, message)
+  if (status /= SD_OK) call die(exit_input, trim(message))
+
+  n_pending = 0
+  select case (config%analysis)
+  case ('linear')
+    call run_linear(config)
+  end select
+
+contains
+
+  subroutine die(code, text)
+    integer, intent(in) :: code
+    character(len=*), intent(in) :: text
+    write (0, '(a)') 'sloshdyn: error: '//text
+    stop code, quiet=.true.
+  end subroutine die
+
+  subroutine check(status, message, context)
+    integer, intent(in) :: status
+    character(len=*), intent(in) :: message, context
+    if (status /= SD_OK) call die(exit_failure, context//': '//status_name(status)//': '//trim(message))
+  end subroutine check
+
+  !> Linear analysis (sec 3.1-3.2): coefficients, natural frequencies, equilibria with their
+  !> eigenvalues and verdicts, Routh-Hurwitz at the trivial equilibrium, kappa for 3:1.
+  subroutine run_linear(config)
+    type(run_config), intent(in) :: config
+    type(model_t) :: model
+    real(wp) :: omega1, omega2, omega1_eig, omega2_eig, k(2, 2)
+    real(wp), allocatable :: theta(:), phi(:), eig_re(:, :), eig_im(:, :)
+    real(wp) :: rh_coefficients(4), hurwitz(4), kappa_roots(max_kappa_roots)
+    integer, allocatable :: verdict(:)
+    logical, allocatable :: physical(:)
+    integer :: n_eq, n_kappa, i, j, trivial, unit
+    logical :: truncated, routh_stable, created
+    character(len=:), allocatable :: dir
+
+    allocate (theta(max_equilibria), phi(max_equilibria), eig_re(4, max_equilibria), &
+              eig_im(4, max_equilibria), verdict(max_equilibria), physical(max_equilibria))
+    model = config%model
+    call require_stable_trivial(model, status, message)
+    if (status /= SD_OK) call die(exit_input, trim(message))
+    call natural_frequencies(model, omega1, omega2, status, message)
+    call check(status, message, 'natural frequencies (eq 28)')
+    call natural_frequencies_eig(model, omega1_eig, omega2_eig, status, message)
+    call check(status, message, 'natural frequencies (dgeev)')
+    k = stiffness_matrix(model)
+    call equilibria(model, theta, phi, physical, eig_re, eig_im, verdict, n_eq, truncated, &
+                    status, message)
+    call check(status, message, 'equilibria (eq 16-18)')
+    call trivial_routh_hurwitz(model, rh_coefficients, hurwitz, routh_stable)
+    trivial = findloc(theta(1:n_eq) == 0 .and. phi(1:n_eq) == 0, .true., dim=1)
+    call kappa_for_detuning(model%s1, model%mu1, config%sigma1, config%kappa_min, &
+                            config%kappa_max, kappa_roots, n_kappa, status, message)
+    call check(status, message, 'kappa for 3:1 internal resonance (eq 51)')
+
+    ! summary
+    call print_model(config)
+    print '(/a)', 'Linear analysis about the trivial equilibrium (sec 3.2)'
+    print '(a)', '  stiffness matrix K (eq 26):  [['//num2str(k(1, 1))//', '//num2str(k(1, 2))// &
+                 '], ['//num2str(k(2, 1))//', '//num2str(k(2, 2))//']]'
+    print '(a)', '  omega1 = '//num2str(omega1)//', omega2 = '//num2str(omega2)//'   (eq 28)'
+    print '(a)', '  omega1 = '//num2str(omega1_eig)//', omega2 = '//num2str(omega2_eig)// &
+                 '   (dgeev of the undamped linearised equations)'
+    print '(a)', '  omega2/omega1 = '//num2str(omega2/omega1)//', omega2 - 3 omega1 = '// &
+                 num2str(omega2 - 3*omega1)
+    print '(/a)', 'Equilibria (eq 16-18): theta [rad], phi [rad], eigenvalues of the Jacobian'
+    print '(a)', '  '//num2str(n_eq)//' equilibria, '//num2str(count(physical(1:n_eq)))// &
+                 ' physical (|theta|, |phi| < pi/2) listed here; all in equilibria.csv'
+    do i = 1, n_eq
+      if (.not. physical(i)) cycle
+      print '(a)', '  theta = '//pad(num2str(theta(i)), 14)//' phi = '//pad(num2str(phi(i)), 14)// &
+                   pad(trim(merge('physical    ', 'non-physical', physical(i))), 13)// &
+                   pad(verdict_name(verdict(i)), 9)//eigen_text(eig_re(:, i), eig_im(:, i))
+    end do
+    if (truncated) print '(a)', '  (roots beyond |angle| = 32 pi were not searched)'
+    print '(/a)', 'Routh-Hurwitz at the trivial equilibrium (eq 20):'
+    print '(a)', '  c1..c4 = '//num2str(rh_coefficients(1))//', '//num2str(rh_coefficients(2))// &
+                 ', '//num2str(rh_coefficients(3))//', '//num2str(rh_coefficients(4))// &
+                 '; Delta2 = '//num2str(hurwitz(2))//', Delta3 = '//num2str(hurwitz(3))
+    print '(a)', '  Routh-Hurwitz: '//trim(merge('stable    ', 'not stable', routh_stable))// &
+                 '; eigenvalues: '//verdict_name(verdict(trivial))
+    print '(/a)', 'kappa giving omega2 - 3 omega1 = sigma1 = '//num2str(config%sigma1)// &
+                  ' (eq 51) for kappa in ('//num2str(max(config%kappa_min, model%s1))//', '// &
+                  num2str(config%kappa_max)//']:'
+    if (n_kappa == 0) print '(a)', '  none'
+    do i = 1, n_kappa
+      print '(a)', '  kappa = '//num2str(kappa_roots(i))
+    end do
+
+    ! CSV files, renamed into place only when all are written
+    dir = trim(config%directory)
+    call make_directory(dir, created)
+    if (.not. created) call die(exit_failure, 'cannot create output directory '''//dir//'''')
+    call write_parameters(config, dir)
+    call open_csv(dir, 'frequencies.csv', unit)
+    write (unit, '(a)') 'omega1,omega2,omega1_dgeev,omega2_dgeev,ratio,k11,k12,k21,k22'
+    write (unit, '(*(es24.16e3, :, ","))') omega1, omega2, omega1_eig, omega2_eig, &
+      omega2/omega1, k(1, 1), -k(1, 2), -k(2, 1), k(2, 2)
+    close (unit)
+    call open_csv(dir, 'equilibria.csv', unit)
+    write (unit, '(a)') 'theta,phi,x1,x2,physical,verdict,re1,im1,re2,im2,re3,im3,re4,im4'
+    do i = 1, n_eq
+      write (unit, '(2(es24.16e3, ","), 2(es24.16e3, ","), i0, ",", a, ",", *(es24.16e3, :, ","))') &
+        theta(i), phi(i), theta(i)/model%theta0, phi(i)/model%theta0, merge(1, 0, physical(i)), &
+        verdict_name(verdict(i)), (eig_re(j, i), eig_im(j, i), j = 1, 4)
+    end do
+    close (unit)
+    call open_csv(dir, 'routh_hurwitz.csv', unit)
+    write (unit, '(a)') 'c1,c2,c3,c4,delta2,delta3,routh_stable,eigenvalue_verdict'
+    write (unit, '(6(es24.16e3, ","), i0, ",", a)') rh_coefficients, hurwitz(2:3), &
+      merge(1, 0, routh_stable), verdict_name(verdict(trivial))
+    close (unit)
+    call open_csv(dir, 'kappa_31.csv', unit)
+    write (unit, '(a)') 'sigma1,kappa'
+    do i = 1, n_kappa
+      write (unit, '(es24.16e3, ",", es24.16e3)') config%sigma1, kappa_roots(i)
+    end do
+    close (unit)
+    call commit_files()
+    print '(/a)', 'Results written to '//dir//'/'
+  end subroutine run_linear
+
+  subroutine print_model(config)
+    type(run_config), intent(in) :: config
+    associate (m => config%model)
+      print '(a)', 'sloshdyn: linear analysis'
+      if (config%dimensional) then
+        print '(/a)', 'Tank (eq 2-3): R = '//num2str(config%radius)//' m, h = '// &
+                      num2str(config%depth)//' m, liquid mass m_F = '//num2str(config%liquid_mass)//' kg'
+        print '(a)', '  pendulum l = '//num2str(config%pendulum_length)//' m, m = '// &
+                     num2str(config%sloshing_mass)//' kg, d1 = '//num2str(config%d1)// &
+                     ' m; rigid m0 = '//num2str(config%rigid_mass)//' kg, d0 = '// &
+                     num2str(config%d0)//' m'
+        print '(a)', '  pendulum frequency omega = sqrt(g/l) = '// &
+                     num2str(sqrt(config%gravity/config%pendulum_length))//' rad/s'
+      end if
+      print '(/a)', 'Dimensionless model (eq 9): s1 = '//num2str(m%s1)//', mu1 = '// &
+                    num2str(m%mu1)//', kappa = '//num2str(m%kappa)//', theta0 = '// &
+                    num2str(m%theta0)//' rad'
+      print '(a)', '  beta = '//num2str(m%beta)//', gamma = '//num2str(m%gamma)//', delta = '// &
+                   num2str(m%delta)//', n = '//num2str(m%n)//', p = '//num2str(m%p)// &
+                   ', kappa_hat = kappa/s1 = '//num2str(m%kappa/m%s1)
+      print '(a)', '  excitation X = A sin(rho tau): A = '//num2str(m%A)//', rho = '//num2str(m%rho)
+      print '(a)', '  a1..a6 (eq 11) = '//list(m%a_coef)
+      print '(a)', '  b1..b6 (eq 11) = '//list(m%b_coef)
+    end associate
+  end subroutine print_model
+
+  subroutine write_parameters(config, dir)
+    type(run_config), intent(in) :: config
+    character(len=*), intent(in) :: dir
+    integer :: unit
+    call open_csv(dir, 'parameters.csv', unit)
+    write (unit, '(a)') 's1,mu1,kappa,theta0,beta,gamma,delta,n,p,A,rho,'// &
+                        'a1,a2,a3,a4,a5,a6,b1,b2,b3,b4,b5,b6'
+    associate (m => config%model)
+      write (unit, '(7(es24.16e3, ","), 2(i0, ","), *(es24.16e3, :, ","))') m%s1, m%mu1, &
+        m%kappa, m%theta0, m%beta, m%gamma, m%delta, m%n, m%p, m%A, m%rho, m%a_coef, m%b_coef
+    end associate
+    close (unit)
+    if (.not. config%dimensional) return
+    call open_csv(dir, 'tank.csv', unit)
+    write (unit, '(a)') 'R,h,m_liquid,l,m,d1,m0,d0,M,L,g,omega'
+    write (unit, '(*(es24.16e3, :, ","))') config%radius, config%depth, config%liquid_mass, &
+      config%pendulum_length, config%sloshing_mass, config%d1, config%rigid_mass, config%d0, &
+      config%total_mass, config%rod_length, config%gravity, &
+      sqrt(config%gravity/config%pendulum_length)
+    close (unit)
+  end subroutine write_parameters
+
+  !> Open `dir/.name.tmp` for writing and remember it for commit_files.
+  subroutine open_csv(dir, name, unit)
+    character(len=*), intent(in) :: dir, name
+    integer, intent(out) :: unit
+    integer :: ios
+    character(len=message_len) :: iomsg
+    open (newunit=unit, file=dir//'/.'//name//'.tmp', status='replace', action='write', &
+          iostat=ios, iomsg=iomsg)
+    if (ios /= 0) call die(exit_failure, 'cannot write '//dir//'/'//name//': '//trim(iomsg))
+    n_pending = n_pending + 1
+    pending(n_pending) = dir//'/'//name
+  end subroutine open_csv
+
+  subroutine commit_files()
+    integer :: i, slash
+    logical :: ok
+    character(len=:), allocatable :: final
+    do i = 1, n_pending
+      final = trim(pending(i))
+      slash = index(final, '/', back=.true.)
+      call rename_file(final(1:slash)//'.'//final(slash + 1:)//'.tmp', final, ok)
+      if (.not. ok) call die(exit_failure, 'cannot rename into '//final)
+    end do
+  end subroutine commit_files
+
+  pure function verdict_name(verdict) result(name)
+    integer, intent(in) :: verdict
+    character(len=:), allocatable :: name
+    if (verdict == STABLE) then
+      name = 'stable'
+    else if (verdict == MARGINAL) then
+      name = 'marginal'
+    else
+      name = 'unstable'
+    end if
+  end function verdict_name
+
+  pure function eigen_text(re, im) result(text)
+    real(wp), intent(in) :: re(:), im(:)
+    character(len=:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, size(re)
+      text = text//' '//num2str(re(i))//merge('+', '-', im(i) >= 0)//num2str(abs(im(i)))//'i'
+    end do
+  end function eigen_text
+
+  pure function list(values) result(text)
+    real(wp), intent(in) :: values(:)
+    character(len=:), allocatable :: text
+    integer :: i
+    text = num2str(values(1))
+    do i = 2, size(values)
+      text = text//', '//num2str(values(i))
+    end do
+  end function list
+
+  pure function pad(text, width) result(padded)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: width
+    character(len=max(width, len(text) + 1)) :: padded
+    padded = text
+  end function pad
+end program sloshdyn_main

@@ -1,0 +1,72 @@
+!> The LAPACK calls of sloshdyn: dgeev for the eigenvalues of every stability Jacobian, dgesv for
+!> Newton steps. Inputs are copied, so callers keep their matrices.
+module sloshdyn_lapack
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_LAPACK_FAILED, SD_SINGULAR
+  use sloshdyn_text, only: num2str
+  implicit none
+  private
+  public :: eigenvalues, solve_linear
+
+  interface
+    subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+      import :: wp
+      character, intent(in) :: jobvl, jobvr
+      integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+      real(wp), intent(inout) :: a(lda, *)
+      real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+      integer, intent(out) :: info
+    end subroutine dgeev
+    subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+      import :: wp
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine dgesv
+  end interface
+
+contains
+
+  !> Eigenvalues wr + i wi of the square matrix a (LAPACK dgeev, no eigenvectors).
+  subroutine eigenvalues(a, wr, wi, status, message)
+    real(wp), intent(in) :: a(:, :)
+    real(wp), intent(out) :: wr(size(a, 1)), wi(size(a, 1))
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: work_matrix(size(a, 1), size(a, 1)), work(8*size(a, 1)), no_left(1, 1), no_right(1, 1)
+    integer :: n, info
+
+    n = size(a, 1)
+    work_matrix = a
+    call dgeev('N', 'N', n, work_matrix, n, wr, wi, no_left, 1, no_right, 1, work, size(work), info)
+    status = SD_OK
+    message = ''
+    if (info /= 0) then
+      status = SD_LAPACK_FAILED
+      message = 'dgeev failed with info = '//num2str(info)
+    end if
+  end subroutine eigenvalues
+
+  !> Solve a x = b (LAPACK dgesv); x overwrites b.
+  subroutine solve_linear(a, b, status, message)
+    real(wp), intent(in) :: a(:, :)
+    real(wp), intent(inout) :: b(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: work_matrix(size(a, 1), size(a, 1))
+    integer :: n, info, pivots(size(a, 1))
+
+    n = size(a, 1)
+    work_matrix = a
+    call dgesv(n, 1, work_matrix, n, pivots, b, n, info)
+    status = SD_OK
+    message = ''
+    if (info > 0) then
+      status = SD_SINGULAR
+      message = 'singular matrix in dgesv (zero pivot '//num2str(info)//')'
+    else if (info < 0) then
+      status = SD_LAPACK_FAILED
+      message = 'dgesv failed with info = '//num2str(info)
+    end if
+  end subroutine solve_linear
+end module sloshdyn_lapack

@@ -1,0 +1,147 @@
+!> Equations of motion of the tank-pendulum system, eq (10), (13)-(15) with the harmonic base
+!> excitation of eq (29)-(31). State y = (x1, x1', x2, x2'), x1 = theta/theta0, x2 = phi/theta0,
+!> ' = d/dtau. No allocation and no I/O: these are called in every integrator step.
+module sloshdyn_motion
+  use sloshdyn_kinds, only: wp
+  use sloshdyn_model, only: model_t
+  implicit none
+  private
+  public :: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, base_acceleration
+
+  !> Trigonometric functions and powers of one state, each evaluated once.
+  type :: state_terms
+    real(wp) :: cos12, sin12       !< cos, sin of theta0 (x1 + x2)
+    real(wp) :: cos1, sin1         !< cos, sin of theta0 x1
+    real(wp) :: cos2, sin2         !< cos, sin of theta0 x2
+    real(wp) :: impact_pow         !< x1^(2n-1)
+    real(wp) :: dissipation_pow    !< x1^(2p)
+    real(wp) :: xdd                !< base acceleration X'' = -A rho^2 sin(rho tau)
+  end type state_terms
+
+contains
+
+  !> X'' for X = A sin(rho tau).
+  elemental real(wp) function base_acceleration(model, tau) result(xdd)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau
+    xdd = -model%A*model%rho**2*sin(model%rho*tau)
+  end function base_acceleration
+
+  pure subroutine evaluate_terms(model, tau, y, t)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau, y(4)
+    type(state_terms), intent(out) :: t
+    real(wp) :: q1, q2
+    q1 = model%theta0*y(1)
+    q2 = model%theta0*y(3)
+    t%cos12 = cos(q1 + q2); t%sin12 = sin(q1 + q2)
+    t%cos1 = cos(q1); t%sin1 = sin(q1)
+    t%cos2 = cos(q2); t%sin2 = sin(q2)
+    t%impact_pow = y(1)**(2*model%n - 1)
+    t%dissipation_pow = y(1)**(2*model%p)
+    t%xdd = base_acceleration(model, tau)
+  end subroutine evaluate_terms
+
+  !> Inertia matrix, eq (13).
+  pure subroutine inertia_matrix(model, y, mass)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4)
+    real(wp), intent(out) :: mass(2, 2)
+    real(wp) :: c
+    c = cos(model%theta0*(y(1) + y(3)))
+    mass = reshape([1.0_wp, model%b_coef(1)*c, model%a_coef(1)*c, 1.0_wp], [2, 2])
+  end subroutine inertia_matrix
+
+  !> Forcing vector, eq (14) with b6 (printed b8) and X'' of eq (31).
+  pure subroutine forcing_vector(model, tau, y, force)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau, y(4)
+    real(wp), intent(out) :: force(2)
+    type(state_terms) :: t
+    call evaluate_terms(model, tau, y, t)
+    force = forcing_from_terms(model, y, t)
+  end subroutine forcing_vector
+
+  pure function forcing_from_terms(model, y, t) result(force)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4)
+    type(state_terms), intent(in) :: t
+    real(wp) :: force(2)
+    associate (a => model%a_coef, b => model%b_coef)
+      force(1) = a(2)*t%sin12*y(4)**2 - a(3)*t%sin1 - a(4)*t%impact_pow &
+                 - a(5)*t%dissipation_pow*y(2) - a(6)*t%cos1*t%xdd
+      force(2) = b(2)*t%sin12*y(2)**2 - b(3)*y(3) + b(4)*t%sin2 - b(5)*y(4) - b(6)*t%xdd*t%cos2
+    end associate
+  end function forcing_from_terms
+
+  !> First-order form of eq (15), Q'' = M^-1 F: dydt = (x1', x1'', x2', x2'').
+  pure subroutine equations_of_motion(model, tau, y, dydt)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau, y(4)
+    real(wp), intent(out) :: dydt(4)
+    type(state_terms) :: t
+    real(wp) :: force(2), qdd(2)
+    call evaluate_terms(model, tau, y, t)
+    force = forcing_from_terms(model, y, t)
+    qdd = solve_inertia(model, t%cos12, force)
+    dydt = [y(2), qdd(1), y(4), qdd(2)]
+  end subroutine equations_of_motion
+
+  !> M^-1 v for the 2x2 inertia matrix of eq (13); det M = 1 - mu1 cos^2 > 0 for mu1 < 1.
+  pure function solve_inertia(model, cos12, v) result(w)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: cos12, v(2)
+    real(wp) :: w(2)
+    real(wp) :: m12, m21, det
+    m12 = model%a_coef(1)*cos12
+    m21 = model%b_coef(1)*cos12
+    det = 1 - m12*m21
+    w = [(v(1) - m12*v(2))/det, (v(2) - m21*v(1))/det]
+  end function solve_inertia
+
+  !> Analytic Jacobian d(dydt)/dy of equations_of_motion:
+  !> dQ''/dz = M^-1 (dF/dz - (dM/dz) Q'').
+  pure subroutine motion_jacobian(model, tau, y, jac)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau, y(4)
+    real(wp), intent(out) :: jac(4, 4)
+    type(state_terms) :: t
+    real(wp) :: force(2), qdd(2), dforce(2, 4), dmass_q(2), lower_pow, column(2)
+    integer :: n, p, j
+
+    call evaluate_terms(model, tau, y, t)
+    force = forcing_from_terms(model, y, t)
+    qdd = solve_inertia(model, t%cos12, force)
+    n = model%n
+    p = model%p
+    associate (a => model%a_coef, b => model%b_coef, t0 => model%theta0)
+      ! x1^(2p-1) only where its coefficient 2p is nonzero
+      lower_pow = 0
+      if (p > 0) lower_pow = 2*p*y(1)**(2*p - 1)
+      ! dF/d(x1, x1', x2, x2')
+      dforce(1, 1) = a(2)*t0*t%cos12*y(4)**2 - a(3)*t0*t%cos1 &
+                     - a(4)*(2*n - 1)*y(1)**(2*n - 2) - a(5)*lower_pow*y(2) &
+                     + a(6)*t0*t%sin1*t%xdd
+      dforce(1, 2) = -a(5)*t%dissipation_pow
+      dforce(1, 3) = a(2)*t0*t%cos12*y(4)**2
+      dforce(1, 4) = 2*a(2)*t%sin12*y(4)
+      dforce(2, 1) = b(2)*t0*t%cos12*y(2)**2
+      dforce(2, 2) = 2*b(2)*t%sin12*y(2)
+      dforce(2, 3) = b(2)*t0*t%cos12*y(2)**2 - b(3) + b(4)*t0*t%cos2 + b(6)*t%xdd*t0*t%sin2
+      dforce(2, 4) = -b(5)
+      ! dM/dx1 = dM/dx2 = -theta0 sin12 [[0, a1], [b1, 0]]; minus it times Q''
+      dmass_q = t0*t%sin12*[a(1)*qdd(2), b(1)*qdd(1)]
+    end associate
+    dforce(:, 1) = dforce(:, 1) + dmass_q
+    dforce(:, 3) = dforce(:, 3) + dmass_q
+
+    jac = 0
+    jac(1, 2) = 1
+    jac(3, 4) = 1
+    do j = 1, 4
+      column = solve_inertia(model, t%cos12, dforce(:, j))
+      jac(2, j) = column(1)
+      jac(4, j) = column(2)
+    end do
+  end subroutine motion_jacobian
+end module sloshdyn_motion

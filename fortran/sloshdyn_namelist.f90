@@ -1,0 +1,450 @@
+!> The input file of the `sloshdyn` executable: Fortran namelist groups, read and validated in
+!> full before anything is computed. The groups and variables are documented in README.md.
+module sloshdyn_namelist
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR
+  use sloshdyn_text, only: num2str
+  use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical, check_real
+  use sloshdyn_tank, only: tank_pendulum
+  implicit none
+  private
+  public :: run_config, read_input, known_analyses
+
+  character(len=*), parameter :: known_groups(6) = &
+    [character(len=10) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output']
+  character(len=*), parameter :: known_analyses(1) = [character(len=8) :: 'linear']
+  integer, parameter :: path_len = 1024
+
+  !> Everything one run needs, validated.
+  type :: run_config
+    type(model_t) :: model
+    logical :: dimensional = .false.     !< model built from &tank and &structure
+    real(wp) :: radius = 0, depth = 0, liquid_mass = 0                 !< &tank (m_F computed)
+    real(wp) :: total_mass = 0, rod_length = 0, gravity = 0            !< &structure
+    real(wp) :: pendulum_length = 0, sloshing_mass = 0, d1 = 0, rigid_mass = 0, d0 = 0  !< eq (2)-(3)
+    character(len=16) :: analysis = 'linear'
+    real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0                 !< 3:1 tuning search
+    character(len=path_len) :: directory = 'sloshdyn_output'
+  end type run_config
+
+contains
+
+  !> Read and validate the whole input file. On failure nothing is returned but a status and a
+  !> message naming the group, the variable, its value and the allowed range.
+  subroutine read_input(path, config, status, message)
+    character(len=*), intent(in) :: path
+    type(run_config), intent(out) :: config
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    logical :: given(size(known_groups))
+    integer :: unit, ios
+    character(len=message_len) :: iomsg
+    real(wp) :: nan
+    ! namelist variables, named as the user writes them
+    real(wp) :: s1, mu1, kappa, theta0, beta, gamma, delta, A, rho
+    real(wp) :: R, h, rho_liquid, m_liquid
+    real(wp) :: M, L, k, c, b, d, g
+    real(wp) :: sigma1, kappa_min, kappa_max
+    integer :: n, p
+    character(len=16) :: kind
+    character(len=path_len) :: directory
+    namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, n, p
+    namelist /tank/ R, h, rho_liquid, m_liquid
+    namelist /structure/ M, L, k, c, b, d, g, theta0, n, p
+    namelist /excitation/ A, rho
+    namelist /analysis/ kind, sigma1, kappa_min, kappa_max
+    namelist /output/ directory
+
+    status = SD_OK
+    message = ''
+    nan = ieee_value(1.0_wp, ieee_quiet_nan)
+    ! NaN marks "not given" for required values
+    s1 = nan; mu1 = nan; kappa = nan; theta0 = nan
+    beta = 0; gamma = 0; delta = 0; n = 6; p = 2
+    A = 0; rho = 0
+    R = nan; h = nan; rho_liquid = 0; m_liquid = 0
+    M = nan; L = nan; k = nan; c = 0; b = 0; d = 0; g = 9.81_wp
+    kind = 'linear'; sigma1 = 0; kappa_min = 0; kappa_max = nan
+    directory = 'sloshdyn_output'
+
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      status = SD_IO_ERROR
+      message = 'cannot open input file '''//trim(path)//''': '//trim(iomsg)
+      return
+    end if
+    call scan_groups(unit, path, given, status, message)
+    if (status == SD_OK .and. given(1)) then
+      read (unit, nml=model, iostat=ios, iomsg=iomsg)
+      call read_failed('model', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(2)) then
+      rewind (unit)
+      read (unit, nml=tank, iostat=ios, iomsg=iomsg)
+      call read_failed('tank', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(3)) then
+      rewind (unit)
+      read (unit, nml=structure, iostat=ios, iomsg=iomsg)
+      call read_failed('structure', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(4)) then
+      rewind (unit)
+      read (unit, nml=excitation, iostat=ios, iomsg=iomsg)
+      call read_failed('excitation', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(5)) then
+      rewind (unit)
+      read (unit, nml=analysis, iostat=ios, iomsg=iomsg)
+      call read_failed('analysis', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(6)) then
+      rewind (unit)
+      read (unit, nml=output, iostat=ios, iomsg=iomsg)
+      call read_failed('output', ios, iomsg)
+    end if
+    close (unit)
+    if (status /= SD_OK) return
+
+    ! which description of the system: dimensionless (&model) or dimensional (&tank + &structure)
+    if (given(1) .and. (given(2) .or. given(3))) then
+      call fail('give either &model (dimensionless) or &tank with &structure (dimensional), '// &
+                'not both')
+    else if (.not. given(1) .and. .not. (given(2) .or. given(3))) then
+      call fail('missing group &model (or &tank with &structure): the system is not described')
+    else if (given(2) .neqv. given(3)) then
+      call fail('&tank and &structure go together: group &'// &
+                trim(merge('structure', 'tank     ', given(2)))//' is missing')
+    end if
+    if (status /= SD_OK) return
+
+    config%dimensional = given(2)
+    if (config%dimensional) then
+      call require('tank', 'R', R)
+      call require('tank', 'h', h)
+      call require('structure', 'M', M)
+      call require('structure', 'L', L)
+      call require('structure', 'k', k)
+      call require('structure', 'theta0', theta0)
+      if (status /= SD_OK) return
+      call tank_pendulum(R, h, rho_liquid, m_liquid, config%pendulum_length, &
+                         config%sloshing_mass, config%d1, config%rigid_mass, config%d0, &
+                         config%liquid_mass, status, message)
+      if (status /= SD_OK) then
+        message = '&tank: '//trim(message)
+        return
+      end if
+      call model_from_physical(M, L, k, c, b, d, g, theta0, config%pendulum_length, &
+                               config%sloshing_mass, s1, mu1, kappa, beta, gamma, delta, &
+                               status, message)
+      if (status /= SD_OK) then
+        message = '&structure: '//trim(message)
+        return
+      end if
+      config%radius = R; config%depth = h
+      config%total_mass = M; config%rod_length = L; config%gravity = g
+    else
+      call require('model', 's1', s1)
+      call require('model', 'mu1', mu1)
+      call require('model', 'kappa', kappa)
+      call require('model', 'theta0', theta0)
+      if (status /= SD_OK) return
+    end if
+    call model_from_arrays([s1, mu1, kappa, theta0, beta, gamma, delta, A, rho], [n, p], &
+                           config%model, status, message)
+    if (status /= SD_OK) then
+      message = trim(merge('&structure ', '&model     ', config%dimensional))//': '//trim(message)
+      return
+    end if
+
+    kind = adjustl(kind)
+    if (.not. any(known_analyses == kind)) then
+      call fail('&analysis: kind = '''//trim(kind)//''' is not known; allowed: '// &
+                join(known_analyses))
+      return
+    end if
+    config%analysis = kind
+    if (ieee_is_nan(kappa_max)) kappa_max = s1 + 1000
+    call check_real('sigma1', sigma1, -huge(1.0_wp), huge(1.0_wp), .false., .false., &
+                    'sigma1 must be finite', status, message)
+    call check_real('kappa_max', kappa_max, s1, huge(1.0_wp), .true., .true., &
+                    'kappa_max must be > s1 = '//num2str(s1), status, message)
+    call check_real('kappa_min', kappa_min, -huge(1.0_wp), kappa_max, .false., .true., &
+                    'kappa_min must be < kappa_max = '//num2str(kappa_max), status, message)
+    if (status /= SD_OK) then
+      message = '&analysis: '//trim(message)
+      return
+    end if
+    config%sigma1 = sigma1; config%kappa_min = kappa_min; config%kappa_max = kappa_max
+    if (len_trim(directory) == 0) then
+      call fail('&output: directory = '''' is empty: give a directory name')
+      return
+    end if
+    config%directory = directory
+
+  contains
+
+    subroutine fail(text)
+      character(len=*), intent(in) :: text
+      if (status /= SD_OK) return
+      status = SD_BAD_INPUT
+      message = text
+    end subroutine fail
+
+    subroutine require(group, name, value)
+      character(len=*), intent(in) :: group, name
+      real(wp), intent(in) :: value
+      if (ieee_is_nan(value)) call fail('&'//group//': required variable '//name//' is missing')
+    end subroutine require
+
+    !> A failed namelist read: find the assignment that fails on its own to name the variable.
+    subroutine read_failed(group, ios, iomsg)
+      character(len=*), intent(in) :: group
+      integer, intent(in) :: ios
+      character(len=*), intent(in) :: iomsg
+      character(len=message_len) :: culprit
+      if (ios == 0) return
+      call find_bad_assignment(path, group, culprit)
+      if (len_trim(culprit) > 0) then
+        call fail('&'//group//' in '''//trim(path)//''': '//trim(culprit))
+      else
+        call fail('&'//group//' in '''//trim(path)//''' cannot be read: '//trim(iomsg))
+      end if
+    end subroutine read_failed
+
+    !> Read `&group <one assignment> /` from an internal file for each assignment of the group.
+    subroutine find_bad_assignment(path, group, culprit)
+      character(len=*), intent(in) :: path, group
+      character(len=*), intent(out) :: culprit
+      character(len=:), allocatable :: text
+      character(len=:), allocatable :: assignment
+      character(len=4096) :: buffer
+      integer :: start, next, ios2, equals
+      character(len=message_len) :: msg2
+
+      culprit = ''
+      assignment = ''
+      call group_text(path, group, text)
+      start = next_assignment(text, 1)
+      do while (start > 0)
+        next = next_assignment(text, start + 1)
+        if (next > 0) then
+          assignment = text(start:next - 1)
+        else
+          assignment = text(start:)
+        end if
+        buffer = '&'//group//' '//trim(assignment)//' /'
+        select case (group)
+        case ('model');      read (buffer, nml=model, iostat=ios2, iomsg=msg2)
+        case ('tank');       read (buffer, nml=tank, iostat=ios2, iomsg=msg2)
+        case ('structure');  read (buffer, nml=structure, iostat=ios2, iomsg=msg2)
+        case ('excitation'); read (buffer, nml=excitation, iostat=ios2, iomsg=msg2)
+        case ('analysis');   read (buffer, nml=analysis, iostat=ios2, iomsg=msg2)
+        case default;        read (buffer, nml=output, iostat=ios2, iomsg=msg2)
+        end select
+        if (ios2 /= 0) then
+          equals = index(assignment, '=')
+          culprit = trim(adjustl(assignment(1:equals - 1)))//' ='//trim(assignment(equals + 1:))// &
+                    ' is not valid: '//expected_type(lower(trim(adjustl(assignment(1:equals - 1)))))
+          return
+        end if
+        start = next
+      end do
+    end subroutine find_bad_assignment
+  end subroutine read_input
+
+  !> What a variable must be, for messages.
+  pure function expected_type(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('n', 'p')
+      text = name//' must be an integer'
+    case ('kind', 'directory')
+      text = name//' must be a quoted string'
+    case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'a', 'rho', 'r', 'h', &
+          'rho_liquid', 'm_liquid', 'm', 'l', 'k', 'c', 'b', 'd', 'g', 'sigma1', 'kappa_min', &
+          'kappa_max')
+      text = name//' must be a real number'
+    case default
+      text = 'unknown variable '''//name//''' (see the namelist reference in README.md)'
+    end select
+  end function expected_type
+
+  !> Find every group name (&name) in the file; unknown or repeated groups are errors.
+  !> Leaves the file rewound.
+  subroutine scan_groups(unit, path, given, status, message)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: path
+    logical, intent(out) :: given(size(known_groups))
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=4096) :: line
+    character(len=:), allocatable :: name
+    integer :: ios, i, j, line_number
+
+    given = .false.
+    line_number = 0
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      line_number = line_number + 1
+      line = adjustl(line)
+      if (line(1:1) /= '&' .and. line(1:1) /= '$') cycle
+      j = 2
+      do while (j <= len_trim(line))
+        if (index('abcdefghijklmnopqrstuvwxyz0123456789_', lower(line(j:j))) == 0) exit
+        j = j + 1
+      end do
+      name = lower(line(2:j - 1))
+      if (name == 'end') cycle
+      do i = size(known_groups), 1, -1
+        if (known_groups(i) == name) exit
+      end do
+      if (i == 0) then
+        status = SD_BAD_INPUT
+        message = 'unknown namelist group &'//name//' in '''//trim(path)//''' (line '// &
+                  num2str(line_number)//'); known groups: &'//join(known_groups, ', &')
+        exit
+      else if (given(i)) then
+        status = SD_BAD_INPUT
+        message = 'namelist group &'//name//' appears twice in '''//trim(path)//''''
+        exit
+      end if
+      given(i) = .true.
+    end do
+    rewind (unit)
+    if (status == SD_OK .and. .not. any(given)) then
+      status = SD_BAD_INPUT
+      message = 'no namelist group found in '''//trim(path)//''' (expected &model ... /)'
+    end if
+  end subroutine scan_groups
+
+  !> The text of group `group` in the file, from after its name to its closing '/', with
+  !> comments removed and lines joined.
+  subroutine group_text(path, group, text)
+    character(len=*), intent(in) :: path, group
+    character(len=:), allocatable, intent(out) :: text
+    character(len=4096) :: line
+    integer :: unit, ios, i
+    logical :: inside, quoted
+    character :: quote
+
+    text = ''
+    inside = .false.
+    quoted = .false.
+    quote = ' '
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios)
+    if (ios /= 0) return
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      if (.not. inside) then
+        line = adjustl(line)
+        if (lower(line(1:len(group) + 1)) == '&'//group .and. &
+            verify(line(len(group) + 2:len(group) + 2), ' ') == 0) then
+          inside = .true.
+          line = line(len(group) + 2:)
+        else
+          cycle
+        end if
+      end if
+      do i = 1, len_trim(line)
+        if (quoted) then
+          if (line(i:i) == quote) quoted = .false.
+        else if (line(i:i) == '"' .or. line(i:i) == '''') then
+          quoted = .true.
+          quote = line(i:i)
+        else if (line(i:i) == '!') then
+          exit
+        else if (line(i:i) == '/') then
+          close (unit)
+          return
+        end if
+        text = text//line(i:i)
+      end do
+      text = text//' '
+    end do
+    close (unit)
+  end subroutine group_text
+
+  !> Position of the next `name =` at or after `from` outside quotes, 0 if none.
+  pure integer function next_assignment(text, from) result(position)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: from
+    integer :: i, j
+    logical :: quoted
+    character :: quote
+
+    position = 0
+    quoted = .false.
+    quote = ' '
+    do i = 1, len(text)
+      if (quoted) then
+        if (text(i:i) == quote) quoted = .false.
+        cycle
+      end if
+      if (text(i:i) == '"' .or. text(i:i) == '''') then
+        quoted = .true.
+        quote = text(i:i)
+        cycle
+      end if
+      if (i < from) cycle
+      if (.not. is_name_start(text(i:i))) cycle
+      if (i > 1) then
+        if (is_name_char(text(i - 1:i - 1))) cycle
+      end if
+      j = i
+      do while (j <= len(text))
+        if (.not. is_name_char(text(j:j))) exit
+        j = j + 1
+      end do
+      do while (j <= len(text))
+        if (text(j:j) /= ' ') exit
+        j = j + 1
+      end do
+      if (j <= len(text)) then
+        if (text(j:j) == '=') then
+          position = i
+          return
+        end if
+      end if
+    end do
+  end function next_assignment
+
+  pure logical function is_name_start(ch)
+    character, intent(in) :: ch
+    is_name_start = index('abcdefghijklmnopqrstuvwxyz', lower(ch)) > 0
+  end function is_name_start
+
+  pure logical function is_name_char(ch)
+    character, intent(in) :: ch
+    is_name_char = index('abcdefghijklmnopqrstuvwxyz0123456789_', lower(ch)) > 0
+  end function is_name_char
+
+  pure function lower(text) result(low)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: low
+    integer :: i
+    low = text
+    do i = 1, len(text)
+      if (text(i:i) >= 'A' .and. text(i:i) <= 'Z') low(i:i) = achar(iachar(text(i:i)) + 32)
+    end do
+  end function lower
+
+  pure function join(items, separator) result(text)
+    character(len=*), intent(in) :: items(:)
+    character(len=*), intent(in), optional :: separator
+    character(len=:), allocatable :: text
+    integer :: i
+    text = trim(items(1))
+    do i = 2, size(items)
+      if (present(separator)) then
+        text = text//separator//trim(items(i))
+      else
+        text = text//', '//trim(items(i))
+      end if
+    end do
+  end function join
+end module sloshdyn_namelist

@@ -1,0 +1,41 @@
+!> Status codes returned by every routine that can fail (0 = success), and their names.
+!> Library code never stops: it returns one of these codes and a message naming the cause.
+module sloshdyn_status
+  implicit none
+  private
+  public :: status_name
+  public :: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_LAPACK_FAILED, &
+            SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, SD_NON_FINITE, SD_IO_ERROR, SD_CAPACITY
+
+  integer, parameter :: SD_OK = 0               !< success
+  integer, parameter :: SD_BAD_INPUT = 1        !< an input value is missing, malformed or out of range
+  integer, parameter :: SD_NOT_CONVERGED = 2    !< an iterative solver did not converge
+  integer, parameter :: SD_SINGULAR = 3         !< a linear system or Jacobian is singular
+  integer, parameter :: SD_LAPACK_FAILED = 4    !< LAPACK returned a nonzero info
+  integer, parameter :: SD_STEP_TOO_SMALL = 5   !< the integrator step fell below its minimum
+  integer, parameter :: SD_TOO_MANY_STEPS = 6   !< the integrator hit its step limit
+  integer, parameter :: SD_NON_FINITE = 7       !< the state became NaN or infinite
+  integer, parameter :: SD_IO_ERROR = 8         !< a file could not be read or written
+  integer, parameter :: SD_CAPACITY = 9         !< a result does not fit the space the caller gave
+
+contains
+
+  !> Short name of a status code, used as the prefix of messages and by the Python exceptions.
+  pure function status_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    select case (code)
+    case (SD_OK);             name = 'ok'
+    case (SD_BAD_INPUT);      name = 'bad input'
+    case (SD_NOT_CONVERGED);  name = 'not converged'
+    case (SD_SINGULAR);       name = 'singular matrix'
+    case (SD_LAPACK_FAILED);  name = 'LAPACK failure'
+    case (SD_STEP_TOO_SMALL); name = 'step size too small'
+    case (SD_TOO_MANY_STEPS); name = 'too many steps'
+    case (SD_NON_FINITE);     name = 'non-finite state'
+    case (SD_IO_ERROR);       name = 'input/output error'
+    case (SD_CAPACITY);       name = 'output capacity exceeded'
+    case default;             name = 'unknown status'
+    end select
+  end function status_name
+end module sloshdyn_status

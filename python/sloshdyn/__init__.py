@@ -1,0 +1,21 @@
+"""sloshdyn: liquid sloshing in a partially filled tank on elastic rods under horizontal ground
+excitation, by the equivalent mechanical model of Farid & Gendelman (a pendulum that hits the
+tank walls through a high-power smooth potential). Numerics run in the Fortran core.
+"""
+
+from ._errors import (CapacityError, ConvergenceError, FileError, InputError, IntegrationError,
+                      LapackError, SingularMatrixError, SloshdynError)
+from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, equilibrium_angles,
+                    equations_of_motion, frequency_ratio, kappa_for_detuning, linear_modes,
+                    natural_frequencies)
+from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "CapacityError", "ConvergenceError", "Equilibria", "Equilibrium", "FileError", "Input",
+    "InputError", "IntegrationError", "LapackError", "LinearModes", "Motion", "Parameters",
+    "SingularMatrixError", "SloshdynError", "TankPendulum", "equilibria", "equilibrium_angles",
+    "equations_of_motion", "frequency_ratio", "kappa_for_detuning", "linear_modes",
+    "natural_frequencies", "read_namelist", "tank_pendulum",
+]
