@@ -230,10 +230,12 @@ contains
       do while (start > 0)
         next = next_assignment(text, start + 1)
         if (next > 0) then
-          assignment = text(start:next - 1)
+          assignment = trim(text(start:next - 1))
         else
-          assignment = text(start:)
+          assignment = trim(text(start:))
         end if
+        ! the separator before the next assignment is not part of this one
+        if (assignment(len(assignment):) == ',') assignment = trim(assignment(:len(assignment) - 1))
         buffer = '&'//group//' '//trim(assignment)//' /'
         select case (group)
         case ('model');      read (buffer, nml=model, iostat=ios2, iomsg=msg2)

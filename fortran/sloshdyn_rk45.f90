@@ -1,8 +1,9 @@
 !> Explicit Runge-Kutta integrator: the Dormand-Prince 5(4) pair as in Hairer's DOPRI5
-!> (Hairer, Norsett & Wanner, Solving Ordinary Differential Equations I, 2nd ed., sec. II.4-II.6,
-!> and the published dopri5.f): FSAL (6 new right-hand sides per step), the stabilised (PI)
-!> step-size control, HINIT's automatic first step, and dense output by the 4th-order continuous
-!> extension (CONTD5), so output times never shorten a step. Integrates forward in time only.
+!> (Hairer, Norsett & Wanner, Solving Ordinary Differential Equations I, 2nd ed.: step-size
+!> control sec. II.4, the pair sec. II.5, dense output sec. II.6; and the published dopri5.f):
+!> FSAL (6 new right-hand sides per step), the stabilised (PI) step-size control, HINIT's
+!> automatic first step, and dense output by the 4th-order continuous extension (CONTD5), so
+!> output times never shorten a step. Integrates forward in time only.
 !>
 !> Step-wise use: rk45_init once, then rk45_step until integ%t == integ%t_bound, reading values
 !> inside the last step [integ%t_old, integ%t] with rk45_dense. rk45_integrate does this for a
@@ -84,7 +85,7 @@ module sloshdyn_rk45
     logical, private :: rejected = .false.    !< the previous trial step was rejected
   end type rk45_integrator
 
-  ! Dormand-Prince 5(4) tableau, as in DOPRI5 (HNW I, sec. II.5, Table 5.2)
+  ! Dormand-Prince 5(4) tableau, as in dopri5.f (HNW I, sec. II.5)
   real(wp), parameter :: c2 = 1.0_wp/5, c3 = 3.0_wp/10, c4 = 4.0_wp/5, c5 = 8.0_wp/9
   real(wp), parameter :: a21 = 1.0_wp/5
   real(wp), parameter :: a31 = 3.0_wp/40, a32 = 9.0_wp/40
@@ -145,7 +146,6 @@ contains
     integ%t_old = t0
     integ%t_bound = t_bound
     integ%y = y0
-    integ%cont = 0
     integ%h_max = merge(options%h_max, t_bound - t0, options%h_max > 0)
 
     call sys%rhs(t0, integ%y, integ%k(:, 1))
@@ -202,8 +202,8 @@ contains
       if (h < step_floor(integ%opt%h_min, integ%t)) then
         if (non_finite_trial) then
           status = SD_NON_FINITE
-          message = 'the state became NaN or infinite at tau = '//num2str(integ%t)// &
-                    ' for every trial step down to '//num2str(h)
+          message = 'the state became NaN or infinite in every trial step from tau = '// &
+                    num2str(integ%t)//', down to h = '//num2str(h/integ%opt%fac1)
         else
           status = SD_STEP_TOO_SMALL
           message = 'step size '//num2str(h)//' below h_min '// &
@@ -525,8 +525,10 @@ contains
       return
     end if
     do i = 1, size(y0)
+      if (abs(y0(i)) <= big) cycle
       call check_real('y0('//num2str(i)//')', y0(i), -big, big, .false., .false., &
                       'the initial state must be finite', status, message)
+      return
     end do
     call check_real('rtol', options%rtol, 10*epsilon(1.0_wp), big, .false., .false., &
                     'rtol must be >= 10*epsilon = '//num2str(10*epsilon(1.0_wp)), status, message)
@@ -536,11 +538,13 @@ contains
         message = 'atol_vector has size '//num2str(size(options%atol_vector))// &
                   '; it must have one entry per component, size(y0) = '//num2str(size(y0))
       end if
+      if (status /= SD_OK) return
       do i = 1, size(options%atol_vector)
+        if (options%atol_vector(i) >= 0 .and. options%atol_vector(i) <= big) cycle
         call check_real('atol_vector('//num2str(i)//')', options%atol_vector(i), 0.0_wp, big, &
                         .false., .false., 'absolute tolerances must be >= 0', status, message)
+        return
       end do
-      if (status /= SD_OK) return
       do i = 1, size(y0)
         if (options%atol_vector(i) == 0 .and. y0(i) == 0) then
           status = SD_BAD_INPUT

@@ -1,0 +1,102 @@
+"""Each input rule: the executable exits non-zero, names the variable, its value and the rule,
+and writes nothing; Python raises InputError with the same information."""
+
+import math
+
+import pytest
+
+import sloshdyn
+from conftest import directory_tree, run, write
+
+MODEL = "&model s1 = 1.5, mu1 = 0.5, kappa = 1.8, theta0 = 0.7853981633974483, gamma = 0.001 /\n"
+OUTPUT = "&output directory = 'out' /\n"
+TANK = "&tank R = 1.5, h = 1.2, rho_liquid = 1000 /\n"
+STRUCTURE = "&structure M = 20000, L = 3, k = 1.5e6, c = 2e4, theta0 = 0.6 /\n"
+
+
+def model_with(**changes):
+    values = dict(s1=1.5, mu1=0.5, kappa=1.8, theta0=0.7853981633974483, gamma=0.001)
+    values.update(changes)
+    body = ", ".join(f"{k} = {v}" for k, v in values.items() if v is not None)
+    return f"&model {body} /\n"
+
+
+CASES = {
+    # name: (namelist text, words the message must contain)
+    "unknown group": (MODEL + "&modell s1 = 1 /\n" + OUTPUT, ["&modell"]),
+    "unknown variable": (MODEL.replace("gamma", "gama") + OUTPUT, ["gama"]),
+    "wrong type real": (model_with(s1="'abc'") + OUTPUT, ["s1", "real number"]),
+    "wrong type integer": (model_with(n=1.5) + OUTPUT, ["n", "integer"]),
+    "required value absent": (model_with(kappa=None) + OUTPUT, ["kappa", "missing"]),
+    "mu1 = 0": (model_with(mu1=0.0) + OUTPUT, ["mu1 = 0", "(0, 1)"]),
+    "mu1 = 1": (model_with(mu1=1.0) + OUTPUT, ["mu1 = 1", "(0, 1)"]),
+    "theta0 = 0": (model_with(theta0=0.0) + OUTPUT, ["theta0 = 0", "(0, pi/2)"]),
+    "theta0 = 1.6": (model_with(theta0=1.6) + OUTPUT, ["theta0 = 1.6", "(0, pi/2)"]),
+    "s1 = 0": (model_with(s1=0.0) + OUTPUT, ["s1 = 0", "> 0"]),
+    "n = 0": (model_with(n=0) + OUTPUT, ["n = 0", ">= 1"]),
+    "p = -1": (model_with(p=-1) + OUTPUT, ["p = -1", ">= 0"]),
+    "gamma < 0": (model_with(gamma=-0.1) + OUTPUT, ["gamma = -0.1", ">= 0"]),
+    "delta < 0": (model_with(delta=-0.1) + OUTPUT, ["delta = -0.1", ">= 0"]),
+    "beta < 0": (model_with(beta=-1.0) + OUTPUT, ["beta = -1", ">= 0"]),
+    "kappa_hat <= 1": (model_with(kappa=1.4) + OUTPUT, ["kappa = 1.4", "kappa_hat"]),
+    "R <= 0": (TANK.replace("R = 1.5", "R = -1.5") + STRUCTURE + OUTPUT, ["R = -1.5", "> 0"]),
+    "h <= 0": (TANK.replace("h = 1.2", "h = 0") + STRUCTURE + OUTPUT, ["h = 0", "> 0"]),
+    "c < 0": (TANK + STRUCTURE.replace("c = 2e4", "c = -2e4") + OUTPUT, ["c = -20000", ">= 0"]),
+    "both descriptions": (MODEL + TANK + STRUCTURE + OUTPUT, ["&model", "not both"]),
+    "tank without structure": (TANK + OUTPUT, ["&structure", "missing"]),
+    "unknown analysis": (MODEL + "&analysis kind = 'nonsense' /\n" + OUTPUT, ["nonsense", "linear"]),
+}
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_executable_rejects(exe, tmp_path, case):
+    text, words = CASES[case]
+    write(tmp_path, text)
+    before = directory_tree(tmp_path)
+    result = run(exe, "input.nml", tmp_path)
+    assert result.returncode != 0
+    for word in words:
+        assert word in result.stderr, (word, result.stderr)
+    assert result.stdout == ""
+    assert directory_tree(tmp_path) == before   # nothing written
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_python_rejects(tmp_path, case):
+    text, words = CASES[case]
+    path = write(tmp_path, text)
+    with pytest.raises(sloshdyn.InputError) as info:
+        inp = sloshdyn.read_namelist(path)
+        sloshdyn.linear_modes(inp.params)   # the linear analysis needs kappa_hat > 1
+    for word in words:
+        assert word in str(info.value), (word, str(info.value))
+
+
+def test_missing_file(exe, tmp_path):
+    result = run(exe, "nowhere.nml", tmp_path)
+    assert result.returncode != 0 and "nowhere.nml" in result.stderr
+    with pytest.raises(sloshdyn.FileError, match="nowhere.nml"):
+        sloshdyn.read_namelist(tmp_path / "nowhere.nml")
+
+
+def test_no_argument(exe, tmp_path):
+    result = run(exe, "--help", tmp_path)
+    assert result.returncode == 0 and "usage" in result.stdout
+
+
+@pytest.mark.parametrize("field,value,words", [
+    ("mu1", 1.2, ["mu1 = 1.2", "(0, 1)"]),
+    ("theta0", -0.1, ["theta0 = -0.1"]),
+    ("n", 0, ["n = 0"]),
+    ("s1", float("nan"), ["s1 = NaN"]),
+])
+def test_parameters_validate(fig12, field, value, words):
+    with pytest.raises(sloshdyn.InputError) as info:
+        fig12.replace(**{field: value})
+    for word in words:
+        assert word in str(info.value)
+
+
+def test_kappa_hat_rule_names_kappa(fig12):
+    with pytest.raises(sloshdyn.InputError, match=r"kappa = 1.4.*kappa_hat"):
+        sloshdyn.natural_frequencies(fig12.replace(kappa=1.4))
