@@ -359,6 +359,10 @@ contains
   !> Each rule on the inputs is reported with the name of the offending input.
   subroutine test_bad_input()
     type(rk45_options) :: opt
+    type(rk45_integrator) :: integ
+    type(riccati) :: ric
+    integer :: status
+    character(len=message_len) :: message
 
     opt%rtol = -1
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'rtol')
@@ -375,6 +379,17 @@ contains
     opt = rk45_options()
     call expect_bad(opt, [1.0_wp, 0.5_wp], 't_out(2)')
     call expect_bad(opt, [-1.0_wp, 0.5_wp], 't_out(1)')
+
+    call rk45_init(integ, ric, 1.0_wp, [1.0_wp], 1.0_wp, opt, status, message)
+    call check_true('t_bound = t0 gives SD_BAD_INPUT: '//trim(message), &
+                    status == SD_BAD_INPUT .and. index(message, 't_bound') == 1)
+    call rk45_step(integ, ric, status, message)
+    call check_true('rk45_step after a failed rk45_init is refused: '//trim(message), &
+                    status == SD_BAD_INPUT)
+    opt%atol = 0
+    call rk45_init(integ, ric, 0.0_wp, [0.0_wp], 1.0_wp, opt, status, message)
+    call check_true('atol = 0 with a zero component of y0 gives SD_BAD_INPUT: '//trim(message), &
+                    status == SD_BAD_INPUT .and. index(message, 'atol') == 1)
   end subroutine test_bad_input
 
   !> rk45_integrate on the riccati problem must return SD_BAD_INPUT with a message that starts
