@@ -3,9 +3,9 @@
 !> tunes the 3:1 internal resonance omega2 = 3 omega1 + sigma1 (eq 51).
 module sloshdyn_linear
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t, require_stable_trivial, check_real
+  use sloshdyn_model, only: model_t, require_stable_trivial
   use sloshdyn_motion, only: motion_jacobian
   use sloshdyn_lapack, only: eigenvalues
   use sloshdyn_roots, only: scalar_function, find_all_roots

@@ -6,12 +6,12 @@
 !>   integer parameters  ipar = [n, p]
 module sloshdyn_model
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   implicit none
   private
   public :: model_t, model_from_arrays, model_to_arrays, model_from_physical, set_coefficients
-  public :: require_stable_trivial, check_real, n_real_params, n_int_params, real_param_names
+  public :: require_stable_trivial, n_real_params, n_int_params, real_param_names
 
   integer, parameter :: n_real_params = 9, n_int_params = 2
   character(len=6), parameter :: real_param_names(n_real_params) = &
@@ -166,36 +166,4 @@ contains
     end if
   end subroutine require_stable_trivial
 
-  !> If no earlier check failed, check lower <(=) value <(=) upper and finiteness; on failure set
-  !> a message naming the variable, its value and the rule.
-  pure subroutine check_real(name, value, lower, upper, lower_open, upper_open, rule, &
-                             status, message)
-    character(len=*), intent(in) :: name, rule
-    real(wp), intent(in) :: value, lower, upper
-    logical, intent(in) :: lower_open, upper_open
-    integer, intent(inout) :: status
-    character(len=message_len), intent(inout) :: message
-    logical :: ok
-
-    if (status /= SD_OK) return
-    ok = value == value .and. abs(value) <= huge(value)
-    if (ok) then
-      if (lower_open) then
-        ok = value > lower
-      else
-        ok = value >= lower
-      end if
-    end if
-    if (ok) then
-      if (upper_open) then
-        ok = value < upper
-      else
-        ok = value <= upper
-      end if
-    end if
-    if (.not. ok) then
-      status = SD_BAD_INPUT
-      message = name//' = '//num2str(value)//' is out of range: '//rule
-    end if
-  end subroutine check_real
 end module sloshdyn_model

@@ -3,9 +3,9 @@
 module sloshdyn_namelist
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR, check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical, check_real
+  use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical
   use sloshdyn_tank, only: tank_pendulum
   implicit none
   private

@@ -12,7 +12,7 @@ module sloshdyn_rk45
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
-                             SD_NON_FINITE
+                             SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
   implicit none
   private
@@ -588,32 +588,4 @@ contains
     call check_real('fixed_step', options%fixed_step, 0.0_wp, big, .false., .false., &
                     'fixed_step must be >= 0 (0 = adaptive)', status, message)
   end subroutine check_setup
-
-  !> Set SD_BAD_INPUT and a message naming the value unless lower < value < upper (bounds
-  !> included unless open); does nothing once status is set, so checks can be chained. NaN fails.
-  pure subroutine check_real(name, value, lower, upper, lower_open, upper_open, rule, status, &
-                             message)
-    character(len=*), intent(in) :: name, rule
-    real(wp), intent(in) :: value, lower, upper
-    logical, intent(in) :: lower_open, upper_open
-    integer, intent(inout) :: status
-    character(len=message_len), intent(inout) :: message
-    logical :: ok
-
-    if (status /= SD_OK) return
-    if (lower_open) then
-      ok = value > lower
-    else
-      ok = value >= lower
-    end if
-    if (upper_open) then
-      ok = ok .and. value < upper
-    else
-      ok = ok .and. value <= upper
-    end if
-    if (.not. ok) then
-      status = SD_BAD_INPUT
-      message = name//' = '//num2str(value)//' is out of range: '//rule
-    end if
-  end subroutine check_real
 end module sloshdyn_rk45

@@ -1,9 +1,12 @@
-!> Status codes returned by every routine that can fail (0 = success), and their names.
+!> Status codes returned by every routine that can fail (0 = success), their names, and the
+!> range check that every input validation uses.
 !> Library code never stops: it returns one of these codes and a message naming the cause.
 module sloshdyn_status
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_text, only: num2str
   implicit none
   private
-  public :: status_name
+  public :: status_name, check_real
   public :: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_LAPACK_FAILED, &
             SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, SD_NON_FINITE, SD_IO_ERROR, SD_CAPACITY
 
@@ -38,4 +41,37 @@ contains
     case default;             name = 'unknown status'
     end select
   end function status_name
+
+  !> If no earlier check failed, check lower <(=) value <(=) upper and finiteness; on failure set
+  !> a message naming the variable, its value and the rule.
+  pure subroutine check_real(name, value, lower, upper, lower_open, upper_open, rule, &
+                             status, message)
+    character(len=*), intent(in) :: name, rule
+    real(wp), intent(in) :: value, lower, upper
+    logical, intent(in) :: lower_open, upper_open
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    logical :: ok
+
+    if (status /= SD_OK) return
+    ok = value == value .and. abs(value) <= huge(value)
+    if (ok) then
+      if (lower_open) then
+        ok = value > lower
+      else
+        ok = value >= lower
+      end if
+    end if
+    if (ok) then
+      if (upper_open) then
+        ok = value < upper
+      else
+        ok = value <= upper
+      end if
+    end if
+    if (.not. ok) then
+      status = SD_BAD_INPUT
+      message = name//' = '//num2str(value)//' is out of range: '//rule
+    end if
+  end subroutine check_real
 end module sloshdyn_status

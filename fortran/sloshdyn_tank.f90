@@ -1,8 +1,7 @@
 !> Equivalent pendulum of the first sloshing mode of a cylindrical tank (Abramson), eq (2)-(3).
 module sloshdyn_tank
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
-  use sloshdyn_model, only: check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   implicit none
   private
   public :: tank_pendulum
