@@ -2,6 +2,10 @@
 !> c_double/c_int cross the boundary; every routine returns status (0 = success) and a fixed-length
 !> message. Parameter layout (see sloshdyn_model):
 !>   rpar(9) = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho], ipar(2) = [n, p]
+!> Integrator settings: integration(6) = [rtol, atol, h_initial, h_max, h_min, max_steps];
+!> steady states: steady(6) = [transient_periods, settle_tol, max_transient_periods,
+!> window_periods, samples_per_period, periodic_tol]; work counts: counts(4) = [rhs
+!> evaluations, accepted steps, rejected steps, tau reached].
 module sloshdyn_bridge
   use, intrinsic :: iso_c_binding, only: c_double, c_int
   implicit none
@@ -201,4 +205,79 @@ contains
     truncated = merge(1, 0, cut)
     status = info
   end subroutine equilibria
+
+  !> Time history at tau_out (ascending, >= tau0): history(9, n_out) rows x1, x1', x2, x2', u1, u2,
+  !> impact force, theta, phi. On failure the columns not reached are NaN.
+  subroutine simulate(rpar, ipar, tau0, y0, n_out, tau_out, integration, history, counts, status, &
+                      message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_rk45, only: rk45_stats
+    use sloshdyn_simulation, only: time_history, integrator_options
+    real(c_double), intent(in) :: rpar(9), tau0, y0(4), tau_out(n_out), integration(6)
+    integer(c_int), intent(in) :: ipar(2), n_out
+    real(c_double), intent(out) :: history(9, n_out), counts(4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(rk45_stats) :: stats
+    integer :: info
+    history = 0
+    counts = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) then
+      call time_history(model, tau0, y0, tau_out, integrator_options(integration), history, &
+                        stats, info, message)
+      counts = [real(stats%n_rhs, c_double), real(stats%n_accepted, c_double), &
+                real(stats%n_rejected, c_double), stats%t_reached]
+    end if
+    status = info
+  end subroutine simulate
+
+  !> Steady state from y0 at tau = 0: summary(11) = [rho, A, max|x1|, max|x2|, max|u1|, max|u2|,
+  !> motion (1 periodic, 2 quasi-periodic, 3 irregular), period, transient periods, spread,
+  !> settled], the window's Poincare points and the final state (at forcing phase 0).
+  subroutine steady_state(rpar, ipar, y0, integration, steady, window, summary, poincare, y_end, &
+                          counts, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_rk45, only: rk45_stats
+    use sloshdyn_simulation, only: core => steady_state, integrator_options, steady_settings
+    real(c_double), intent(in) :: rpar(9), y0(4), integration(6), steady(6)
+    integer(c_int), intent(in) :: ipar(2), window
+    real(c_double), intent(out) :: summary(11), poincare(4, window), y_end(4), counts(4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(rk45_stats) :: stats
+    integer :: info
+    summary = 0; poincare = 0; y_end = 0; counts = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) then
+      call core(model, y0, integrator_options(integration), steady_settings(steady), summary, &
+                poincare, y_end, stats, info, message)
+      counts = [real(stats%n_rhs, c_double), real(stats%n_accepted, c_double), &
+                real(stats%n_rejected, c_double), stats%t_reached]
+    end if
+    status = info
+  end subroutine steady_state
+
+  !> Steady states along values of rho (which = 1) or A (which = 2), each from the previous
+  !> final state; summaries(11, n) as for steady_state, n_done points completed.
+  subroutine parameter_sweep(rpar, ipar, which, n, values, y0, integration, steady, summaries, &
+                             y_final, n_done, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_simulation, only: core => parameter_sweep, integrator_options, steady_settings
+    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(6), steady(6)
+    integer(c_int), intent(in) :: ipar(2), which, n
+    real(c_double), intent(out) :: summaries(11, n), y_final(4)
+    integer(c_int), intent(out) :: n_done, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: info, done
+    summaries = 0; y_final = y0; done = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call core(model, int(which), values, y0, integrator_options(integration), &
+                             steady_settings(steady), summaries, y_final, done, info, message)
+    n_done = done
+    status = info
+  end subroutine parameter_sweep
 end module sloshdyn_bridge

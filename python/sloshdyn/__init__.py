@@ -9,6 +9,9 @@ from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, eq
                     equations_of_motion, frequency_ratio, kappa_for_detuning, linear_modes,
                     natural_frequencies)
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
+from .simulation import (Integration, Simulation, Steady, SteadyState, Sweep, amplitude_sweep,
+                         frequency_sweep, poincare_section, simulate, spectrum, steady_state,
+                         sweep_values)
 
 __version__ = "0.1.0"
 
@@ -18,4 +21,6 @@ __all__ = [
     "SingularMatrixError", "SloshdynError", "TankPendulum", "equilibria", "equilibrium_angles",
     "equations_of_motion", "frequency_ratio", "kappa_for_detuning", "linear_modes",
     "natural_frequencies", "read_namelist", "tank_pendulum",
+    "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
+    "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state", "sweep_values",
 ]

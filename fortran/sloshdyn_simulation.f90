@@ -1,0 +1,367 @@
+!> Direct simulation of the full equations of motion (eq 15 with 29-31) by the RK45 integrator:
+!> time histories, stroboscopic Poincare sections, steady states with their amplitudes and the
+!> kind of motion, and sweeps in rho or A that carry the state from point to point (sec 4.2).
+module sloshdyn_simulation
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use sloshdyn_kinds, only: wp, pi, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_text, only: num2str
+  use sloshdyn_model, only: model_t
+  use sloshdyn_motion, only: equations_of_motion
+  use sloshdyn_linear, only: modal_matrix
+  use sloshdyn_rk45, only: ode_system, rk45_options, rk45_integrator, rk45_stats, rk45_init, &
+                           rk45_step, rk45_dense, rk45_statistics, rk45_integrate
+  implicit none
+  private
+  public :: tank_system, history_rows, time_history, steady_options, steady_state, &
+            parameter_sweep, summary_size, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
+            MOTION_IRREGULAR, SWEEP_RHO, SWEEP_A, integrator_options, steady_settings
+
+  !> Rows of a time history: x1, x1', x2, x2', u1, u2 (eq 34), impact force beta x1^(2n-1)
+  !> (eq 4), theta = theta0 x1, phi = theta0 x2 [rad].
+  integer, parameter :: history_rows = 9
+  !> Kinds of steady motion, judged from the Poincare points of the window.
+  integer, parameter :: MOTION_PERIODIC = 1, MOTION_QUASI_PERIODIC = 2, MOTION_IRREGULAR = 3
+  !> Which parameter a sweep varies.
+  integer, parameter :: SWEEP_RHO = 1, SWEEP_A = 2
+  !> One steady-state summary: [rho, A, max|x1|, max|x2|, max|u1|, max|u2|, motion, period,
+  !> transient periods used, Poincare spread, settled (1/0)].
+  integer, parameter :: summary_size = 11
+  integer, parameter :: max_period = 8
+
+  !> The full equations of motion as an ODE system for the integrator.
+  type, extends(ode_system) :: tank_system
+    type(model_t) :: model
+  contains
+    procedure :: rhs => tank_rhs
+  end type tank_system
+
+  !> How a steady state is reached and measured. Times in forcing periods T = 2 pi/rho.
+  type :: steady_options
+    !> transient integrated before measuring; with settle_tol > 0 it is the minimum
+    real(wp) :: transient_periods = 1000
+    !> > 0: extend the transient until successive Poincare points differ by less than
+    !> settle_tol (relative to the state's size), up to max_transient_periods
+    real(wp) :: settle_tol = 1.0e-7_wp
+    real(wp) :: max_transient_periods = 20000
+    integer :: window_periods = 200          !< periods over which amplitudes are measured
+    integer :: samples_per_period = 128      !< dense-output samples per period for the maxima
+    !> Poincare points closer than this (relative) count as the same point
+    real(wp) :: periodic_tol = 1.0e-4_wp
+  end type steady_options
+
+contains
+
+  subroutine tank_rhs(self, t, y, dydt)
+    class(tank_system), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: dydt(:)
+    call equations_of_motion(self%model, t, y, dydt)
+  end subroutine tank_rhs
+
+  !> y, u, impact force, theta and phi at the times tau_out (ascending, >= tau0) from y0 at tau0.
+  !> On failure the columns reached are filled and the rest are NaN; stats%t_reached says where.
+  subroutine time_history(model, tau0, y0, tau_out, options, history, stats, status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau0, y0(4), tau_out(:)
+    type(rk45_options), intent(in) :: options
+    real(wp), intent(out) :: history(history_rows, size(tau_out))
+    type(rk45_stats), intent(out) :: stats
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    real(wp) :: p_inv(2, 2)
+    integer :: i
+
+    system%model = model
+    call rk45_integrate(system, tau0, y0, tau_out, history(1:4, :), options, stats, status, message)
+    call inverse_modal_matrix(model, p_inv)
+    do i = 1, size(tau_out)
+      history(5:9, i) = derived_quantities(model, p_inv, history(1:4, i))
+    end do
+  end subroutine time_history
+
+  !> P^-1 of eq (34), or NaN where kappa <= s1 has no modes.
+  pure subroutine inverse_modal_matrix(model, p_inv)
+    type(model_t), intent(in) :: model
+    real(wp), intent(out) :: p_inv(2, 2)
+    real(wp) :: p(2, 2)
+    integer :: status
+    character(len=message_len) :: message
+    call modal_matrix(model, p, p_inv, status, message)
+    if (status /= SD_OK) p_inv = ieee_value(1.0_wp, ieee_quiet_nan)
+  end subroutine inverse_modal_matrix
+
+  !> u1, u2 (eq 34), impact force beta x1^(2n-1) (eq 4), theta, phi from y.
+  pure function derived_quantities(model, p_inv, y) result(d)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: p_inv(2, 2), y(4)
+    real(wp) :: d(5)
+    d(1:2) = matmul(p_inv, [y(1), y(3)])
+    d(3) = model%beta*y(1)**(2*model%n - 1)
+    d(4:5) = model%theta0*[y(1), y(3)]
+  end function derived_quantities
+
+  !> Integrate from y0 at tau = 0 through a transient, then measure over a window: the maxima of
+  !> |x1|, |x2|, |u1|, |u2| (dense output, samples_per_period per period), the Poincare points at
+  !> tau = k T (forcing phase 0), and the kind of motion. y_end is the state at the end of the
+  !> window, again at forcing phase 0, so the next point of a sweep can start from it at tau = 0.
+  subroutine steady_state(model, y0, options, steady, summary, poincare, y_end, stats, status, &
+                          message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y0(4)
+    type(rk45_options), intent(in) :: options
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(out) :: summary(summary_size), poincare(:, :)
+    real(wp), intent(out) :: y_end(4)
+    type(rk45_stats), intent(out) :: stats
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    type(rk45_integrator) :: integ
+    real(wp) :: period, p_inv(2, 2), maxima(4), y(4), previous(4), spread, scale
+    real(wp) :: tau_window, transient
+    integer :: k, n_samples, sample, motion, repeat
+    logical :: settled
+
+    summary = 0
+    poincare = 0
+    y_end = y0
+    call check_steady(model, steady, poincare, status, message)
+    if (status /= SD_OK) return
+    system%model = model
+    period = 2*pi/model%rho
+    call inverse_modal_matrix(model, p_inv)
+    call rk45_init(integ, system, 0.0_wp, y0, &
+                   (max(steady%transient_periods, steady%max_transient_periods) + &
+                    steady%window_periods)*period, options, status, message)
+    if (status /= SD_OK) return
+
+    ! transient: whole periods, then (optionally) until the Poincare map settles
+    k = 0
+    previous = y0
+    settled = steady%settle_tol <= 0
+    transient = steady%transient_periods
+    do
+      k = k + 1
+      call advance_to(k*period, y)
+      if (status /= SD_OK) exit
+      if (steady%settle_tol > 0) then
+        settled = norm2(y - previous) <= steady%settle_tol*max(norm2(y), tiny(1.0_wp))
+      end if
+      previous = y
+      if (k >= steady%transient_periods .and. (settled .or. k >= steady%max_transient_periods)) exit
+    end do
+    transient = k
+    if (status == SD_OK) then
+      ! window: maxima from dense output, Poincare points at its period boundaries
+      tau_window = k*period
+      maxima = 0
+      n_samples = steady%window_periods*steady%samples_per_period
+      do sample = 1, n_samples
+        call advance_to(tau_window + sample*period/steady%samples_per_period, y)
+        if (status /= SD_OK) exit
+        maxima = max(maxima, abs([y(1), y(3), matmul(p_inv, [y(1), y(3)])]))
+        if (mod(sample, steady%samples_per_period) == 0) &
+          poincare(:, sample/steady%samples_per_period) = y
+      end do
+    end if
+    stats = rk45_statistics(integ)
+    if (status /= SD_OK) then
+      message = trim(message)//' (steady state at rho = '//num2str(model%rho)//', A = '// &
+                num2str(model%A)//')'
+      return
+    end if
+    y_end = y
+    call classify(poincare(:, 1:steady%window_periods), steady%periodic_tol, motion, repeat, &
+                  spread, scale)
+    summary = [model%rho, model%A, maxima, real(motion, wp), real(repeat, wp), transient, &
+               spread, merge(1.0_wp, 0.0_wp, settled)]
+
+  contains
+
+    !> Step until the integrator passes tau, then read the state at tau by dense output.
+    subroutine advance_to(tau, y)
+      real(wp), intent(in) :: tau
+      real(wp), intent(out) :: y(4)
+      do while (integ%t < tau)
+        call rk45_step(integ, system, status, message)
+        if (status /= SD_OK) return
+      end do
+      call rk45_dense(integ, tau, y)
+    end subroutine advance_to
+  end subroutine steady_state
+
+  pure subroutine check_steady(model, steady, poincare, status, message)
+    type(model_t), intent(in) :: model
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(in) :: poincare(:, :)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    call check_real('rho', model%rho, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'a steady state needs a forcing frequency rho > 0', status, message)
+    call check_real('transient_periods', steady%transient_periods, 0.0_wp, 1.0e9_wp, .false., &
+                    .false., 'transient_periods must lie in [0, 1e9]', status, message)
+    call check_real('settle_tol', steady%settle_tol, 0.0_wp, 1.0_wp, .false., .false., &
+                    'settle_tol must lie in [0, 1] (0 = fixed transient)', status, message)
+    call check_real('max_transient_periods', steady%max_transient_periods, 0.0_wp, 1.0e9_wp, &
+                    .false., .false., 'max_transient_periods must lie in [0, 1e9]', status, message)
+    call check_real('periodic_tol', steady%periodic_tol, 0.0_wp, 1.0_wp, .true., .false., &
+                    'periodic_tol must lie in (0, 1]', status, message)
+    if (status /= SD_OK) return
+    if (steady%window_periods < 2 * max_period .or. size(poincare, 2) < steady%window_periods &
+        .or. size(poincare, 1) /= 4) then
+      status = SD_BAD_INPUT
+      message = 'window_periods = '//num2str(steady%window_periods)//' is out of range: it must '// &
+                'be >= '//num2str(2*max_period)//' (and fit the Poincare array)'
+    else if (steady%samples_per_period < 4) then
+      status = SD_BAD_INPUT
+      message = 'samples_per_period = '//num2str(steady%samples_per_period)// &
+                ' is out of range: it must be >= 4'
+    end if
+  end subroutine check_steady
+
+  !> Kind of motion from the Poincare points (columns, in time order):
+  !> periodic with period k <= 8 forcing periods if every point recurs after k points within
+  !> tol (relative to the largest point); otherwise quasi-periodic if the points lie on one smooth
+  !> closed curve (sorted by angle about their centroid in the (x1, x1') plane the radius varies
+  !> smoothly), else irregular. A heuristic: a curve that winds twice around the centroid, or a
+  !> long transient, can be judged irregular. spread = largest distance of a point from the first, relative.
+  pure subroutine classify(points, tol, motion, period, spread, scale)
+    real(wp), intent(in) :: points(:, :), tol
+    integer, intent(out) :: motion, period
+    real(wp), intent(out) :: spread, scale
+    real(wp) :: centre(2), angle(size(points, 2)), radius(size(points, 2)), jumps(size(points, 2))
+    integer :: n, k, i, order(size(points, 2))
+
+    n = size(points, 2)
+    scale = max(maxval(norm2(points, dim=1)), tiny(1.0_wp))
+    spread = maxval(norm2(points - spread_ref(points), dim=1))/scale
+    motion = MOTION_IRREGULAR
+    period = 0
+    do k = 1, max_period
+      if (all(norm2(points(:, 1 + k:n) - points(:, 1:n - k), dim=1) <= tol*scale)) then
+        motion = MOTION_PERIODIC
+        period = k
+        return
+      end if
+    end do
+    centre = sum(points([1, 2], :), dim=2)/n
+    do i = 1, n
+      angle(i) = atan2(points(2, i) - centre(2), points(1, i) - centre(1))
+      radius(i) = norm2(points([1, 2], i) - centre)
+    end do
+    call sort_index(angle, order)
+    do i = 1, n
+      jumps(i) = abs(radius(order(mod(i, n) + 1)) - radius(order(i)))
+    end do
+    ! a smooth curve sampled at n points: neighbouring radii differ by a small part of the range
+    ! (judged on the 90th percentile, so a few points near the centroid do not decide)
+    call sort_index(jumps, order)
+    if (jumps(order(max(1, (9*n)/10))) <= &
+        0.25_wp*max(maxval(radius) - minval(radius), 0.05_wp*maxval(radius))) &
+      motion = MOTION_QUASI_PERIODIC
+  end subroutine classify
+
+  pure function spread_ref(points) result(ref)
+    real(wp), intent(in) :: points(:, :)
+    real(wp) :: ref(size(points, 1), size(points, 2))
+    ref = spread(points(:, 1), 2, size(points, 2))
+  end function spread_ref
+
+  !> Insertion sort of indices by value (n is a few hundred at most).
+  pure subroutine sort_index(values, order)
+    real(wp), intent(in) :: values(:)
+    integer, intent(out) :: order(size(values))
+    integer :: i, j, tmp
+    order = [(i, i = 1, size(values))]
+    do i = 2, size(values)
+      tmp = order(i)
+      j = i - 1
+      do while (j >= 1)
+        if (values(order(j)) <= values(tmp)) exit
+        order(j + 1) = order(j)
+        j = j - 1
+      end do
+      order(j + 1) = tmp
+    end do
+  end subroutine sort_index
+
+  !> Steady states along values of rho (which = SWEEP_RHO) or A (SWEEP_A), each point starting
+  !> from the previous point's final state (so hysteresis and jumps show), as the paper's
+  !> numerical continuation (sec 4.2). Only summaries are kept: summaries(:, i) for values(i);
+  !> y_final is the state after the last point done (n_done of them).
+  subroutine parameter_sweep(model, which, values, y0, options, steady, summaries, y_final, &
+                             n_done, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: which
+    real(wp), intent(in) :: values(:), y0(4)
+    type(rk45_options), intent(in) :: options
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(out) :: summaries(summary_size, size(values)), y_final(4)
+    integer, intent(out) :: n_done, status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: point
+    real(wp) :: poincare(4, steady%window_periods), y_start(4)
+    type(rk45_stats) :: stats
+    integer :: i
+
+    summaries = 0
+    n_done = 0
+    y_final = y0
+    status = SD_OK
+    message = ''
+    if (which /= SWEEP_RHO .and. which /= SWEEP_A) then
+      status = SD_BAD_INPUT
+      message = 'sweep parameter '//num2str(which)//' is not known: 1 = rho, 2 = A'
+      return
+    end if
+    point = model
+    y_start = y0
+    do i = 1, size(values)
+      if (which == SWEEP_RHO) then
+        point%rho = values(i)
+        call check_real('rho', values(i), 0.0_wp, huge(1.0_wp), .true., .true., &
+                        'sweep values of rho must be > 0', status, message)
+      else
+        point%A = values(i)
+        call check_real('A', values(i), 0.0_wp, huge(1.0_wp), .false., .true., &
+                        'sweep values of A must be >= 0', status, message)
+      end if
+      if (status /= SD_OK) return
+      call steady_state(point, y_start, options, steady, summaries(:, i), poincare, y_final, &
+                        stats, status, message)
+      if (status /= SD_OK) return
+      n_done = i
+      y_start = y_final
+    end do
+  end subroutine parameter_sweep
+
+  !> Integrator settings from [rtol, atol, h_initial, h_max, h_min, max_steps] (the layout the
+  !> bridge and the namelist use).
+  pure function integrator_options(integration) result(options)
+    real(wp), intent(in) :: integration(6)
+    type(rk45_options) :: options
+    options%rtol = integration(1)
+    options%atol = integration(2)
+    options%h_initial = integration(3)
+    options%h_max = integration(4)
+    options%h_min = integration(5)
+    options%max_steps = int(min(max(integration(6), 0.0_wp), real(huge(1), wp)))
+  end function integrator_options
+
+  !> Steady-state settings from [transient_periods, settle_tol, max_transient_periods,
+  !> window_periods, samples_per_period, periodic_tol].
+  pure function steady_settings(steady) result(settings)
+    real(wp), intent(in) :: steady(6)
+    type(steady_options) :: settings
+    settings%transient_periods = steady(1)
+    settings%settle_tol = steady(2)
+    settings%max_transient_periods = steady(3)
+    settings%window_periods = nint(min(max(steady(4), 0.0_wp), 1.0e9_wp))
+    settings%samples_per_period = nint(min(max(steady(5), 0.0_wp), 1.0e9_wp))
+    settings%periodic_tol = steady(6)
+  end function steady_settings
+end module sloshdyn_simulation

@@ -1,0 +1,253 @@
+"""Direct simulation of the full equations (eq 15 with 29-31) by the Fortran RK45 integrator:
+time histories, Poincare sections, steady states and sweeps, and amplitude spectra."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _core
+from ._errors import InputError, IntegrationError, check_status
+from .parameters import Parameters
+
+_bridge = _core.sloshdyn_bridge
+MOTIONS = {1: "periodic", 2: "quasi-periodic", 3: "irregular"}
+
+
+@dataclass(frozen=True)
+class Integration:
+    """Settings of the Dormand-Prince 5(4) integrator (Hairer's DOPRI5 step control)."""
+
+    rtol: float = 1e-9
+    atol: float = 1e-12
+    h_initial: float = 0.0    #: 0 = automatic
+    h_max: float = 0.0        #: 0 = no limit
+    h_min: float = 0.0        #: 0 = 1e-14 max(1, |tau|)
+    max_steps: int = 10**8
+
+    def array(self):
+        return np.array([self.rtol, self.atol, self.h_initial, self.h_max, self.h_min,
+                         self.max_steps], dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class Steady:
+    """How a steady state is reached and measured; times in forcing periods T = 2 pi/rho."""
+
+    transient_periods: float = 1000      #: minimum transient
+    settle_tol: float = 1e-7             #: > 0: extend the transient until successive Poincare
+                                         #: points differ by less (relative); 0: fixed transient
+    max_transient_periods: float = 20000
+    window_periods: int = 200            #: measuring window
+    samples_per_period: int = 128        #: dense-output samples per period for the maxima
+    periodic_tol: float = 1e-4           #: Poincare points this close (relative) coincide
+
+    def array(self):
+        return np.array([self.transient_periods, self.settle_tol, self.max_transient_periods,
+                         self.window_periods, self.samples_per_period, self.periodic_tol],
+                        dtype=np.float64)
+
+
+@dataclass
+class Simulation:
+    """A time history. Arrays run over the output times tau."""
+
+    tau: np.ndarray
+    y: np.ndarray               #: (4, n): x1, x1', x2, x2'
+    u: np.ndarray               #: (2, n): modal coordinates u = P^-1 x (eq 34); NaN if kappa <= s1
+    impact_force: np.ndarray    #: beta x1^(2n-1) (eq 4)
+    theta: np.ndarray           #: theta0 x1 [rad]
+    phi: np.ndarray             #: theta0 x2 [rad]
+    n_rhs: int
+    n_accepted: int
+    n_rejected: int
+    tau_reached: float
+
+    @property
+    def x1(self):
+        return self.y[0]
+
+    @property
+    def x2(self):
+        return self.y[2]
+
+
+def _counts(counts):
+    return int(counts[0]), int(counts[1]), int(counts[2]), float(counts[3])
+
+
+def _state(y0):
+    y0 = np.zeros(4) if y0 is None else np.asarray(y0, dtype=np.float64)
+    if y0.shape != (4,):
+        raise InputError(f"y0 has shape {y0.shape}: it must be (x1, x1', x2, x2'), shape (4,)")
+    return y0
+
+
+def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_start=0.0,
+             integration: Integration = Integration(), **tolerances) -> Simulation:
+    """Integrate from y0 (default: rest) at t_start to t_end; output at tau_out, or at n_out
+    evenly spaced times (default: 20 per forcing or natural period). Tolerances may be given
+    directly: simulate(p, 100, rtol=1e-10, atol=1e-13).
+
+    On failure raises IntegrationError whose ``partial`` attribute holds the history up to
+    where the integration stopped (later columns are NaN)."""
+    if tolerances:
+        integration = Integration(**{**integration.__dict__, **tolerances})
+    if tau_out is None:
+        if n_out is None:
+            period = 2 * math.pi / (params.rho if params.rho > 0 else 1.0)
+            n_out = max(2, int(math.ceil(20 * (t_end - t_start) / period)) + 1)
+        tau_out = np.linspace(t_start, t_end, int(n_out))
+    tau_out = np.ascontiguousarray(tau_out, dtype=np.float64)
+    history, counts, status, message = _bridge.simulate(
+        *params.arrays(), t_start, _state(y0), tau_out, integration.array())
+    result = Simulation(tau_out, history[0:4], history[4:6], history[6], history[7], history[8],
+                        *_counts(counts))
+    if status:
+        try:
+            check_status(status, message, "simulation")
+        except IntegrationError as exc:
+            exc.partial = result
+            raise
+    return result
+
+
+@dataclass
+class SteadyState:
+    """Steady response at one (rho, A): amplitudes over the window and the kind of motion."""
+
+    rho: float
+    A: float
+    max_x1: float
+    max_x2: float
+    max_u1: float
+    max_u2: float
+    motion: str                 #: 'periodic', 'quasi-periodic' or 'irregular' (heuristic)
+    period: int                 #: forcing periods per cycle if periodic, else 0
+    transient_periods: float    #: transient actually integrated
+    spread: float               #: largest distance of a Poincare point from the first, relative
+    settled: bool               #: the settle test passed (always True without settle_tol)
+    poincare: np.ndarray = field(repr=False, default=None)   #: (4, window) points at tau = k T
+    y_end: np.ndarray = field(repr=False, default=None)      #: final state, forcing phase 0
+
+
+def _summary(row, poincare=None, y_end=None):
+    return SteadyState(float(row[0]), float(row[1]), *(float(x) for x in row[2:6]),
+                       MOTIONS[int(row[6])], int(row[7]), float(row[8]), float(row[9]),
+                       bool(row[10]), poincare, y_end)
+
+
+def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),
+                 integration: Integration = Integration()) -> SteadyState:
+    """Integrate through a transient, then measure max|x1|, max|x2|, max|u1|, max|u2| and the
+    Poincare points over a window, and judge the motion from them."""
+    summary, poincare, y_end, counts, status, message = _bridge.steady_state(
+        *params.arrays(), _state(y0), integration.array(), steady.array(), steady.window_periods)
+    check_status(status, message, "steady state")
+    return _summary(summary, poincare, y_end)
+
+
+def poincare_section(params: Parameters, n_points, y0=None, *, transient_periods=0,
+                     integration: Integration = Integration()):
+    """Stroboscopic Poincare section: the states at tau = k 2 pi/rho, k = transient_periods + 1
+    ... transient_periods + n_points (dense output, steps never shortened). Shape (4, n_points)."""
+    if not params.rho > 0:
+        raise InputError(f"rho = {params.rho} is out of range: a Poincare section needs rho > 0")
+    period = 2 * math.pi / params.rho
+    k0 = int(transient_periods)
+    tau = period * np.arange(k0 + 1, k0 + int(n_points) + 1)
+    return simulate(params, tau[-1], y0, tau_out=tau, integration=integration).y
+
+
+@dataclass
+class Sweep:
+    """Steady states along a sweep (only per-point summaries are kept)."""
+
+    parameter: str              #: 'rho' or 'A'
+    points: list                #: SteadyState per value, in sweep order
+    y_final: np.ndarray
+
+    def column(self, name):
+        return np.array([getattr(p, name) for p in self.points])
+
+    @property
+    def values(self):
+        return self.column(self.parameter)
+
+
+def sweep_values(start, stop, n, direction="up"):
+    """Sweep values from start to stop ('up'), back ('down'), or up then down ('both')."""
+    values = np.linspace(min(start, stop), max(start, stop), int(n))
+    if direction == "up":
+        return values
+    if direction == "down":
+        return values[::-1]
+    if direction == "both":
+        return np.concatenate([values, values[-2::-1]])
+    raise InputError(f"direction = {direction!r} is not valid: it must be 'up', 'down' or 'both'")
+
+
+def _sweep(params, parameter, values, y0, steady, integration, progress):
+    which = {"rho": 1, "A": 2}[parameter]
+    values = np.ascontiguousarray(values, dtype=np.float64)
+    y = _state(y0)
+    points = []
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+        bar = tqdm(total=len(values), desc=f"sweep in {parameter}", unit="point")
+    try:
+        # one Fortran call per point so progress can be shown; the state is carried across
+        for value in values:
+            summaries, y, n_done, status, message = _bridge.parameter_sweep(
+                *params.arrays(), which, np.array([value]), y, integration.array(), steady.array())
+            if status:
+                try:
+                    check_status(status, message, f"sweep in {parameter}")
+                except Exception as exc:
+                    exc.partial = Sweep(parameter, points, y)
+                    raise
+            points.append(_summary(summaries[:, 0]))
+            if bar:
+                bar.update()
+    finally:
+        if bar:
+            bar.close()
+    return Sweep(parameter, points, y)
+
+
+def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady = Steady(),
+                    integration: Integration = Integration(), progress=False) -> Sweep:
+    """Steady states along rho_values (ascending = up, descending = down), each starting from
+    the previous point's final state, so jumps and hysteresis show."""
+    return _sweep(params, "rho", rho_values, y0, steady, integration, progress)
+
+
+def amplitude_sweep(params: Parameters, A_values, y0=None, *, steady: Steady = Steady(),
+                    integration: Integration = Integration(), progress=False) -> Sweep:
+    """Steady states along A_values at fixed rho, carrying the state (the paper's numerical
+    continuation, sec 4.2)."""
+    return _sweep(params, "A", A_values, y0, steady, integration, progress)
+
+
+def spectrum(signal, dt, window="hann"):
+    """One-sided amplitude spectrum of an evenly sampled signal: (angular frequencies [rad per
+    unit time], amplitudes). The mean is removed; the window ('hann' or None) is normalised so a
+    sinusoid of amplitude a shows a peak of height about a."""
+    x = np.asarray(signal, dtype=np.float64)
+    if x.ndim != 1 or x.size < 4:
+        raise InputError(f"signal has shape {x.shape}: it must be 1-D with at least 4 samples")
+    if not dt > 0:
+        raise InputError(f"dt = {dt} is out of range: it must be > 0")
+    x = x - x.mean()
+    if window == "hann":
+        w = np.hanning(x.size)
+    elif window is None:
+        w = np.ones(x.size)
+    else:
+        raise InputError(f"window = {window!r} is not valid: it must be 'hann' or None")
+    amplitude = 2 * np.abs(np.fft.rfft(x * w)) / w.sum()
+    omega = 2 * np.pi * np.fft.rfftfreq(x.size, dt)
+    return omega, amplitude
