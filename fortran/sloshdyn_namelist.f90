@@ -5,15 +5,19 @@ module sloshdyn_namelist
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR, check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical
+  use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical, require_stable_trivial
   use sloshdyn_tank, only: tank_pendulum
+  use sloshdyn_rk45, only: rk45_options, rk45_check_setup
+  use sloshdyn_simulation, only: steady_options, check_steady
   implicit none
   private
   public :: run_config, read_input, known_analyses
 
-  character(len=*), parameter :: known_groups(6) = &
-    [character(len=10) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output']
-  character(len=*), parameter :: known_analyses(1) = [character(len=8) :: 'linear']
+  character(len=*), parameter :: known_groups(10) = &
+    [character(len=11) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output', &
+     'integration', 'simulation', 'steady', 'sweep']
+  character(len=*), parameter :: known_analyses(4) = &
+    [character(len=12) :: 'linear', 'simulate', 'steady_state', 'sweep']
   integer, parameter :: path_len = 1024
 
   !> Everything one run needs, validated.
@@ -26,6 +30,14 @@ module sloshdyn_namelist
     character(len=16) :: analysis = 'linear'
     real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0                 !< 3:1 tuning search
     character(len=path_len) :: directory = 'sloshdyn_output'
+    type(rk45_options) :: integration                                  !< &integration
+    real(wp) :: t_end = 0, y0(4) = 0                                   !< &simulation
+    integer :: n_out = 0
+    type(steady_options) :: steady                                     !< &steady
+    character(len=3) :: sweep_parameter = 'rho'                        !< &sweep
+    real(wp) :: sweep_start = 0, sweep_stop = 0
+    integer :: sweep_points = 0
+    character(len=4) :: sweep_direction = 'up'
   end type run_config
 
 contains
@@ -49,12 +61,26 @@ contains
     integer :: n, p
     character(len=16) :: kind
     character(len=path_len) :: directory
+    real(wp) :: rtol, atol, h_initial, h_max, h_min
+    integer :: max_steps
+    real(wp) :: t_end, y0(4)
+    integer :: n_out
+    real(wp) :: transient_periods, settle_tol, max_transient_periods, periodic_tol
+    integer :: window_periods, samples_per_period
+    character(len=16) :: parameter, direction
+    real(wp) :: start, stop
+    integer :: n_points
     namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, n, p
     namelist /tank/ R, h, rho_liquid, m_liquid
     namelist /structure/ M, L, k, c, b, d, g, theta0, n, p
     namelist /excitation/ A, rho
     namelist /analysis/ kind, sigma1, kappa_min, kappa_max
     namelist /output/ directory
+    namelist /integration/ rtol, atol, h_initial, h_max, h_min, max_steps
+    namelist /simulation/ t_end, n_out, y0
+    namelist /steady/ transient_periods, settle_tol, max_transient_periods, window_periods, &
+                      samples_per_period, periodic_tol
+    namelist /sweep/ parameter, start, stop, n_points, direction
 
     status = SD_OK
     message = ''
@@ -67,6 +93,15 @@ contains
     M = nan; L = nan; k = nan; c = 0; b = 0; d = 0; g = 9.81_wp
     kind = 'linear'; sigma1 = 0; kappa_min = 0; kappa_max = nan
     directory = 'sloshdyn_output'
+    rtol = 1.0e-9_wp; atol = 1.0e-12_wp
+    h_initial = 0; h_max = 0; h_min = 0; max_steps = 10**8
+    t_end = nan; n_out = 0; y0 = 0
+    transient_periods = config%steady%transient_periods; settle_tol = config%steady%settle_tol
+    max_transient_periods = config%steady%max_transient_periods
+    window_periods = config%steady%window_periods
+    samples_per_period = config%steady%samples_per_period
+    periodic_tol = config%steady%periodic_tol
+    parameter = 'rho'; start = nan; stop = nan; n_points = 0; direction = 'up'
 
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
@@ -103,6 +138,26 @@ contains
       rewind (unit)
       read (unit, nml=output, iostat=ios, iomsg=iomsg)
       call read_failed('output', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(7)) then
+      rewind (unit)
+      read (unit, nml=integration, iostat=ios, iomsg=iomsg)
+      call read_failed('integration', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(8)) then
+      rewind (unit)
+      read (unit, nml=simulation, iostat=ios, iomsg=iomsg)
+      call read_failed('simulation', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(9)) then
+      rewind (unit)
+      read (unit, nml=steady, iostat=ios, iomsg=iomsg)
+      call read_failed('steady', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(10)) then
+      rewind (unit)
+      read (unit, nml=sweep, iostat=ios, iomsg=iomsg)
+      call read_failed('sweep', ios, iomsg)
     end if
     close (unit)
     if (status /= SD_OK) return
@@ -183,7 +238,97 @@ contains
     end if
     config%directory = directory
 
+    ! integration and the analysis' own settings
+    config%integration%rtol = rtol; config%integration%atol = atol
+    config%integration%h_initial = h_initial; config%integration%h_max = h_max
+    config%integration%h_min = h_min; config%integration%max_steps = max_steps
+    config%y0 = y0
+    call rk45_check_setup(config%integration, [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp], status, message)
+    if (status /= SD_OK) then
+      message = '&integration: '//trim(message)
+      return
+    end if
+    select case (config%analysis)
+    case ('linear')
+      call require_stable_trivial(config%model, status, message)
+      if (status /= SD_OK) return
+    case ('simulate')
+      call require('simulation', 't_end', t_end)
+      if (status /= SD_OK) return
+      call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      't_end must be > 0 (the simulation starts at tau = 0)', status, message)
+      if (status == SD_OK .and. n_out == 0) n_out = 2001
+      if (status == SD_OK .and. (n_out < 2 .or. n_out > 10000000)) then
+        status = SD_BAD_INPUT
+        message = 'n_out = '//num2str(n_out)//' is out of range: it must lie in [2, 10000000]'
+      end if
+      if (status == SD_OK .and. .not. all(abs(y0) <= huge(1.0_wp))) then
+        status = SD_BAD_INPUT
+        message = 'y0 must be finite (x1, x1'', x2, x2'')'
+      end if
+      if (status /= SD_OK) then
+        message = '&simulation: '//trim(message)
+        return
+      end if
+      config%t_end = t_end; config%n_out = n_out
+    case ('steady_state', 'sweep')
+      config%steady%transient_periods = transient_periods; config%steady%settle_tol = settle_tol
+      config%steady%max_transient_periods = max_transient_periods
+      config%steady%window_periods = window_periods
+      config%steady%samples_per_period = samples_per_period
+      config%steady%periodic_tol = periodic_tol
+      if (config%analysis == 'sweep') call read_sweep()
+      if (status /= SD_OK) return
+      call check_steady(config%model, config%steady, status, message)
+      if (status == SD_OK .and. config%analysis == 'sweep' .and. config%sweep_parameter == 'rho') &
+        call check_steady(with_rho(config%model, min(start, stop)), config%steady, status, message)
+      if (status /= SD_OK) then
+        message = trim(merge('&steady    ', '&excitation', index(message, 'rho') /= 1))// &
+                  ': '//trim(message)
+        return
+      end if
+    end select
+
   contains
+
+    subroutine read_sweep()
+      parameter = adjustl(parameter)
+      direction = adjustl(direction)
+      if (parameter /= 'rho' .and. parameter /= 'A' .and. parameter /= 'a') then
+        call fail('&sweep: parameter = '''//trim(parameter)//''' is not known; allowed: rho, A')
+        return
+      end if
+      if (direction /= 'up' .and. direction /= 'down' .and. direction /= 'both') then
+        call fail('&sweep: direction = '''//trim(direction)//''' is not known; allowed: up, '// &
+                  'down, both')
+        return
+      end if
+      call require('sweep', 'start', start)
+      call require('sweep', 'stop', stop)
+      if (status /= SD_OK) return
+      if (parameter == 'rho') then
+        call check_real('start', start, 0.0_wp, huge(1.0_wp), .true., .true., &
+                        'sweep values of rho must be > 0', status, message)
+        call check_real('stop', stop, 0.0_wp, huge(1.0_wp), .true., .true., &
+                        'sweep values of rho must be > 0', status, message)
+      else
+        call check_real('start', start, 0.0_wp, huge(1.0_wp), .false., .true., &
+                        'sweep values of A must be >= 0', status, message)
+        call check_real('stop', stop, 0.0_wp, huge(1.0_wp), .false., .true., &
+                        'sweep values of A must be >= 0', status, message)
+      end if
+      if (status == SD_OK .and. (n_points < 1 .or. n_points > 100000)) then
+        status = SD_BAD_INPUT
+        message = 'n_points = '//num2str(n_points)//' is out of range: it must lie in [1, 100000]'
+      end if
+      if (status /= SD_OK) then
+        message = '&sweep: '//trim(message)
+        return
+      end if
+      config%sweep_parameter = merge('rho', 'A  ', parameter == 'rho')
+      config%sweep_start = start; config%sweep_stop = stop
+      config%sweep_points = n_points; config%sweep_direction = direction(1:4)
+    end subroutine read_sweep
 
     subroutine fail(text)
       character(len=*), intent(in) :: text
@@ -243,7 +388,11 @@ contains
         case ('structure');  read (buffer, nml=structure, iostat=ios2, iomsg=msg2)
         case ('excitation'); read (buffer, nml=excitation, iostat=ios2, iomsg=msg2)
         case ('analysis');   read (buffer, nml=analysis, iostat=ios2, iomsg=msg2)
-        case default;        read (buffer, nml=output, iostat=ios2, iomsg=msg2)
+        case ('output');     read (buffer, nml=output, iostat=ios2, iomsg=msg2)
+        case ('integration'); read (buffer, nml=integration, iostat=ios2, iomsg=msg2)
+        case ('simulation'); read (buffer, nml=simulation, iostat=ios2, iomsg=msg2)
+        case ('steady');     read (buffer, nml=steady, iostat=ios2, iomsg=msg2)
+        case default;        read (buffer, nml=sweep, iostat=ios2, iomsg=msg2)
         end select
         if (ios2 /= 0) then
           equals = index(assignment, '=')
@@ -256,18 +405,29 @@ contains
     end subroutine find_bad_assignment
   end subroutine read_input
 
+  pure function with_rho(model, rho) result(changed)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: rho
+    type(model_t) :: changed
+    changed = model
+    changed%rho = rho
+  end function with_rho
+
   !> What a variable must be, for messages.
   pure function expected_type(name) result(text)
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: text
     select case (name)
-    case ('n', 'p')
+    case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points')
       text = name//' must be an integer'
-    case ('kind', 'directory')
+    case ('kind', 'directory', 'parameter', 'direction')
       text = name//' must be a quoted string'
+    case ('y0')
+      text = 'y0 must be four real numbers (x1, x1'''', x2, x2'''')'
     case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'a', 'rho', 'r', 'h', &
           'rho_liquid', 'm_liquid', 'm', 'l', 'k', 'c', 'b', 'd', 'g', 'sigma1', 'kappa_min', &
-          'kappa_max')
+          'kappa_max', 'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 't_end', &
+          'transient_periods', 'settle_tol', 'max_transient_periods', 'periodic_tol', 'start', 'stop')
       text = name//' must be a real number'
     case default
       text = 'unknown variable '''//name//''' (see the namelist reference in README.md)'

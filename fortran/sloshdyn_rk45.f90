@@ -17,7 +17,8 @@ module sloshdyn_rk45
   implicit none
   private
   public :: ode_system, ode_rhs, rk45_options, rk45_integrator, rk45_stats
-  public :: rk45_init, rk45_step, rk45_dense, rk45_set_state, rk45_statistics, rk45_integrate
+  public :: rk45_init, rk45_step, rk45_dense, rk45_set_state, rk45_statistics, rk45_integrate, &
+            rk45_check_setup
 
   !> A system y' = f(t, y); extend it with the parameters f depends on.
   type, abstract :: ode_system
@@ -126,7 +127,7 @@ contains
 
     status = SD_OK
     message = ''
-    call check_setup(options, y0, status, message)
+    call rk45_check_setup(options, y0, status, message)
     call check_real('t0', t0, -huge(t0), huge(t0), .false., .false., 't0 must be finite', &
                     status, message)
     call check_real('t_bound', t_bound, t0, huge(t0), .true., .false., &
@@ -369,7 +370,7 @@ contains
                       num2str(t_out(j - 1)), status, message)
       exit
     end do
-    call check_setup(options, y0, status, message)
+    call rk45_check_setup(options, y0, status, message)
     if (status /= SD_OK) return
 
     ! outputs at t0 itself need no step
@@ -509,8 +510,9 @@ contains
     h_floor = max(h_floor, 10*epsilon(t)*abs(t))
   end function step_floor
 
-  !> Checks shared by rk45_init and rk45_integrate: the options and the initial state.
-  pure subroutine check_setup(options, y0, status, message)
+  !> Checks shared by rk45_init and rk45_integrate (and by input readers that validate before
+  !> computing): the options and the initial state.
+  pure subroutine rk45_check_setup(options, y0, status, message)
     type(rk45_options), intent(in) :: options
     real(wp), intent(in) :: y0(:)
     integer, intent(inout) :: status
@@ -587,5 +589,5 @@ contains
                     'beta must lie in [0, 0.2]', status, message)
     call check_real('fixed_step', options%fixed_step, 0.0_wp, big, .false., .false., &
                     'fixed_step must be >= 0 (0 = adaptive)', status, message)
-  end subroutine check_setup
+  end subroutine rk45_check_setup
 end module sloshdyn_rk45

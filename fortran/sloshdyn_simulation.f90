@@ -13,15 +13,17 @@ module sloshdyn_simulation
                            rk45_step, rk45_dense, rk45_statistics, rk45_integrate
   implicit none
   private
-  public :: tank_system, history_rows, time_history, steady_options, steady_state, &
+  public :: tank_system, history_rows, time_history, steady_options, steady_state, check_steady, &
             parameter_sweep, summary_size, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
-            MOTION_IRREGULAR, SWEEP_RHO, SWEEP_A, integrator_options, steady_settings
+            MOTION_IRREGULAR, MOTION_SETTLING, SWEEP_RHO, SWEEP_A, integrator_options, steady_settings
 
   !> Rows of a time history: x1, x1', x2, x2', u1, u2 (eq 34), impact force beta x1^(2n-1)
   !> (eq 4), theta = theta0 x1, phi = theta0 x2 [rad].
   integer, parameter :: history_rows = 9
-  !> Kinds of steady motion, judged from the Poincare points of the window.
-  integer, parameter :: MOTION_PERIODIC = 1, MOTION_QUASI_PERIODIC = 2, MOTION_IRREGULAR = 3
+  !> Kinds of steady motion, judged from the Poincare points of the window; MOTION_SETTLING: the
+  !> points still close in on one point (the transient was too short to judge).
+  integer, parameter :: MOTION_PERIODIC = 1, MOTION_QUASI_PERIODIC = 2, MOTION_IRREGULAR = 3, &
+                        MOTION_SETTLING = 4
   !> Which parameter a sweep varies.
   integer, parameter :: SWEEP_RHO = 1, SWEEP_A = 2
   !> One steady-state summary: [rho, A, max|x1|, max|x2|, max|u1|, max|u2|, motion, period,
@@ -127,7 +129,11 @@ contains
     summary = 0
     poincare = 0
     y_end = y0
-    call check_steady(model, steady, poincare, status, message)
+    call check_steady(model, steady, status, message)
+    if (status == SD_OK .and. (size(poincare, 1) /= 4 .or. size(poincare, 2) < steady%window_periods)) then
+      status = SD_BAD_INPUT
+      message = 'the Poincare array must be 4 x window_periods = 4 x '//num2str(steady%window_periods)
+    end if
     if (status /= SD_OK) return
     system%model = model
     period = 2*pi/model%rho
@@ -192,10 +198,10 @@ contains
     end subroutine advance_to
   end subroutine steady_state
 
-  pure subroutine check_steady(model, steady, poincare, status, message)
+  !> The steady-state settings and a forcing frequency: the rules every reader applies.
+  pure subroutine check_steady(model, steady, status, message)
     type(model_t), intent(in) :: model
     type(steady_options), intent(in) :: steady
-    real(wp), intent(in) :: poincare(:, :)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     status = SD_OK
@@ -211,11 +217,10 @@ contains
     call check_real('periodic_tol', steady%periodic_tol, 0.0_wp, 1.0_wp, .true., .false., &
                     'periodic_tol must lie in (0, 1]', status, message)
     if (status /= SD_OK) return
-    if (steady%window_periods < 2 * max_period .or. size(poincare, 2) < steady%window_periods &
-        .or. size(poincare, 1) /= 4) then
+    if (steady%window_periods < 2*max_period .or. steady%window_periods > 1000000) then
       status = SD_BAD_INPUT
       message = 'window_periods = '//num2str(steady%window_periods)//' is out of range: it must '// &
-                'be >= '//num2str(2*max_period)//' (and fit the Poincare array)'
+                'lie in ['//num2str(2*max_period)//', 1000000]'
     else if (steady%samples_per_period < 4) then
       status = SD_BAD_INPUT
       message = 'samples_per_period = '//num2str(steady%samples_per_period)// &
@@ -227,18 +232,20 @@ contains
   !> periodic with period k <= 8 forcing periods if every point recurs after k points within
   !> tol (relative to the largest point); otherwise quasi-periodic if the points lie on one smooth
   !> closed curve (sorted by angle about their centroid in the (x1, x1') plane the radius varies
-  !> smoothly), else irregular. A heuristic: a curve that winds twice around the centroid, or a
-  !> long transient, can be judged irregular. spread = largest distance of a point from the first, relative.
-  pure subroutine classify(points, tol, motion, period, spread, scale)
+  !> smoothly), else irregular; settling if the points still close in on one point (their mean
+  !> distance to the last point halves from the first to the third quarter of the window).
+  !> A heuristic: a curve that winds twice around its centroid can be judged irregular. scatter = largest distance of a point from the first, relative.
+  pure subroutine classify(points, tol, motion, period, scatter, scale)
     real(wp), intent(in) :: points(:, :), tol
     integer, intent(out) :: motion, period
-    real(wp), intent(out) :: spread, scale
+    real(wp), intent(out) :: scatter, scale
     real(wp) :: centre(2), angle(size(points, 2)), radius(size(points, 2)), jumps(size(points, 2))
-    integer :: n, k, i, order(size(points, 2))
+    integer :: n, k, i, order(size(points, 2)), quarter
+    real(wp) :: early, late
 
     n = size(points, 2)
     scale = max(maxval(norm2(points, dim=1)), tiny(1.0_wp))
-    spread = maxval(norm2(points - spread_ref(points), dim=1))/scale
+    scatter = maxval(norm2(points - spread(points(:, 1), 2, n), dim=1))/scale
     motion = MOTION_IRREGULAR
     period = 0
     do k = 1, max_period
@@ -248,6 +255,15 @@ contains
         return
       end if
     end do
+    ! a transient spiralling into a fixed point: distances to the last point keep shrinking
+    quarter = n/4
+    early = sum(norm2(points(:, 1:quarter) - spread(points(:, n), 2, quarter), dim=1))/quarter
+    late = sum(norm2(points(:, 2*quarter + 1:3*quarter) - spread(points(:, n), 2, quarter), &
+                     dim=1))/quarter
+    if (late < 0.5_wp*early) then
+      motion = MOTION_SETTLING
+      return
+    end if
     centre = sum(points([1, 2], :), dim=2)/n
     do i = 1, n
       angle(i) = atan2(points(2, i) - centre(2), points(1, i) - centre(1))
@@ -264,12 +280,6 @@ contains
         0.25_wp*max(maxval(radius) - minval(radius), 0.05_wp*maxval(radius))) &
       motion = MOTION_QUASI_PERIODIC
   end subroutine classify
-
-  pure function spread_ref(points) result(ref)
-    real(wp), intent(in) :: points(:, :)
-    real(wp) :: ref(size(points, 1), size(points, 2))
-    ref = spread(points(:, 1), 2, size(points, 2))
-  end function spread_ref
 
   !> Insertion sort of indices by value (n is a few hundred at most).
   pure subroutine sort_index(values, order)

@@ -5,12 +5,15 @@ program sloshdyn_main
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, status_name
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t, require_stable_trivial
+  use sloshdyn_model, only: model_t
   use sloshdyn_namelist, only: run_config, read_input
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz, STABLE, MARGINAL
   use sloshdyn_files, only: make_directory, rename_file
+  use sloshdyn_rk45, only: rk45_stats
+  use sloshdyn_simulation, only: history_rows, time_history, steady_state, parameter_sweep, &
+                                 summary_size, SWEEP_RHO, SWEEP_A
   implicit none
 
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
@@ -34,9 +37,16 @@ program sloshdyn_main
   if (status /= SD_OK) call die(exit_input, trim(message))
 
   n_pending = 0
+  call print_model(config)
   select case (config%analysis)
   case ('linear')
     call run_linear(config)
+  case ('simulate')
+    call run_simulate(config)
+  case ('steady_state')
+    call run_steady_state(config)
+  case ('sweep')
+    call run_sweep(config)
   end select
 
 contains
@@ -65,14 +75,12 @@ contains
     integer, allocatable :: verdict(:)
     logical, allocatable :: physical(:)
     integer :: n_eq, n_kappa, i, j, trivial, unit
-    logical :: truncated, routh_stable, created
+    logical :: truncated, routh_stable
     character(len=:), allocatable :: dir
 
     allocate (theta(max_equilibria), phi(max_equilibria), eig_re(4, max_equilibria), &
               eig_im(4, max_equilibria), verdict(max_equilibria), physical(max_equilibria))
     model = config%model
-    call require_stable_trivial(model, status, message)
-    if (status /= SD_OK) call die(exit_input, trim(message))
     call natural_frequencies(model, omega1, omega2, status, message)
     call check(status, message, 'natural frequencies (eq 28)')
     call natural_frequencies_eig(model, omega1_eig, omega2_eig, status, message)
@@ -88,7 +96,6 @@ contains
     call check(status, message, 'kappa for 3:1 internal resonance (eq 51)')
 
     ! summary
-    call print_model(config)
     print '(/a)', 'Linear analysis about the trivial equilibrium (sec 3.2)'
     print '(a)', '  stiffness matrix K (eq 26):  [['//num2str(k(1, 1))//', '//num2str(k(1, 2))// &
                  '], ['//num2str(k(2, 1))//', '//num2str(k(2, 2))//']]'
@@ -122,9 +129,7 @@ contains
     end do
 
     ! CSV files, renamed into place only when all are written
-    dir = trim(config%directory)
-    call make_directory(dir, created)
-    if (.not. created) call die(exit_failure, 'cannot create output directory '''//dir//'''')
+    dir = output_directory(config)
     call write_parameters(config, dir)
     call open_csv(dir, 'frequencies.csv', unit)
     write (unit, '(a)') 'omega1,omega2,omega1_dgeev,omega2_dgeev,ratio,k11,k12,k21,k22'
@@ -150,14 +155,165 @@ contains
       write (unit, '(es24.16e3, ",", es24.16e3)') config%sigma1, kappa_roots(i)
     end do
     close (unit)
-    call commit_files()
-    print '(/a)', 'Results written to '//dir//'/'
+    call commit_files(dir)
   end subroutine run_linear
+
+  !> Time history from y0 at tau = 0 to t_end, n_out evenly spaced outputs (RK45, dense output).
+  subroutine run_simulate(config)
+    type(run_config), intent(in) :: config
+    real(wp), allocatable :: tau(:), history(:, :)
+    type(rk45_stats) :: stats
+    integer :: i, unit
+    character(len=:), allocatable :: dir
+
+    allocate (tau(config%n_out), history(history_rows, config%n_out))
+    tau = [(config%t_end*(i - 1)/(config%n_out - 1), i = 1, config%n_out)]
+    call time_history(config%model, 0.0_wp, config%y0, tau, config%integration, history, stats, &
+                      status, message)
+    call check(status, message, 'simulation')
+    print '(/a)', 'Simulation (RK45, eq 15 with 29-31) from tau = 0 to '//num2str(config%t_end)
+    print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
+                 num2str(stats%n_rejected)//', right-hand sides '//num2str(stats%n_rhs)
+    print '(a)', '  max|x1| = '//num2str(maxval(abs(history(1, :))))//', max|x2| = '// &
+                 num2str(maxval(abs(history(3, :))))//' at the output times'
+    dir = output_directory(config)
+    call write_parameters(config, dir)
+    call open_csv(dir, 'history.csv', unit)
+    write (unit, '(a)') 'tau,x1,dx1,x2,dx2,u1,u2,impact_force,theta,phi'
+    do i = 1, config%n_out
+      write (unit, '(*(es24.16e3, :, ","))') tau(i), history(:, i)
+    end do
+    close (unit)
+    call open_csv(dir, 'simulation.csv', unit)
+    write (unit, '(a)') 'n_rhs,n_accepted,n_rejected,tau_reached'
+    write (unit, '(3(i0, ","), es24.16e3)') stats%n_rhs, stats%n_accepted, stats%n_rejected, &
+      stats%t_reached
+    close (unit)
+    call commit_files(dir)
+  end subroutine run_simulate
+
+  !> Steady state at (rho, A) from y0: amplitudes, kind of motion and Poincare points.
+  subroutine run_steady_state(config)
+    type(run_config), intent(in) :: config
+    real(wp) :: summary(summary_size), y_end(4)
+    real(wp), allocatable :: poincare(:, :)
+    type(rk45_stats) :: stats
+    integer :: i, unit
+    character(len=:), allocatable :: dir
+
+    allocate (poincare(4, config%steady%window_periods))
+    call steady_state(config%model, config%y0, config%integration, config%steady, summary, &
+                      poincare, y_end, stats, status, message)
+    call check(status, message, 'steady state')
+    print '(/a)', 'Steady state (RK45) at rho = '//num2str(summary(1))//', A = '//num2str(summary(2))
+    call print_summary(summary)
+    print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
+                 num2str(stats%n_rejected)//', right-hand sides '//num2str(stats%n_rhs)
+    dir = output_directory(config)
+    call write_parameters(config, dir)
+    call open_csv(dir, 'steady_state.csv', unit)
+    call write_summary_header(unit)
+    write (unit, '(*(es24.16e3, :, ","))') summary
+    close (unit)
+    call open_csv(dir, 'poincare.csv', unit)
+    write (unit, '(a)') 'tau,x1,dx1,x2,dx2'
+    do i = 1, config%steady%window_periods
+      write (unit, '(*(es24.16e3, :, ","))') (summary(9) + i)*2*acos(-1.0_wp)/config%model%rho, &
+        poincare(:, i)
+    end do
+    close (unit)
+    call commit_files(dir)
+  end subroutine run_steady_state
+
+  !> Steady states along rho or A, each from the previous final state; a line per point.
+  subroutine run_sweep(config)
+    type(run_config), intent(in) :: config
+    real(wp), allocatable :: values(:), summaries(:, :)
+    real(wp) :: y(4), y_next(4), lower, upper
+    integer :: i, n, n_done, unit, which
+    character(len=:), allocatable :: dir
+
+    n = config%sweep_points
+    lower = min(config%sweep_start, config%sweep_stop)
+    upper = max(config%sweep_start, config%sweep_stop)
+    allocate (values(merge(2*n - 1, n, config%sweep_direction == 'both')))
+    values(1:n) = [(lower + (upper - lower)*(i - 1)/max(n - 1, 1), i = 1, n)]
+    if (config%sweep_direction == 'down') values = values(n:1:-1)
+    if (config%sweep_direction == 'both') values(n + 1:) = values(n - 1:1:-1)
+    which = merge(SWEEP_RHO, SWEEP_A, config%sweep_parameter == 'rho')
+    allocate (summaries(summary_size, size(values)))
+    print '(/a)', 'Sweep in '//trim(config%sweep_parameter)//' ('//trim(config%sweep_direction)// &
+                  ', '//num2str(size(values))//' points), each from the previous final state'
+    print '(a)', '  '//pad(trim(config%sweep_parameter), 14)//pad('max|x1|', 14)// &
+                 pad('max|x2|', 14)//pad('max|u1|', 14)//pad('max|u2|', 14)//'motion'
+    y = config%y0
+    do i = 1, size(values)
+      ! one point per call, so progress shows as the sweep runs
+      call parameter_sweep(config%model, which, values(i:i), y, config%integration, &
+                           config%steady, summaries(:, i:i), y_next, n_done, status, message)
+      call check(status, message, 'sweep')
+      y = y_next
+      print '(a)', '  '//pad(num2str(values(i)), 14)//pad(num2str(summaries(3, i)), 14)// &
+                   pad(num2str(summaries(4, i)), 14)//pad(num2str(summaries(5, i)), 14)// &
+                   pad(num2str(summaries(6, i)), 14)//motion_name(summaries(7, i), summaries(8, i))
+      flush (6)
+    end do
+    dir = output_directory(config)
+    call write_parameters(config, dir)
+    call open_csv(dir, 'sweep.csv', unit)
+    call write_summary_header(unit)
+    do i = 1, size(values)
+      write (unit, '(*(es24.16e3, :, ","))') summaries(:, i)
+    end do
+    close (unit)
+    call commit_files(dir)
+  end subroutine run_sweep
+
+  subroutine print_summary(summary)
+    real(wp), intent(in) :: summary(summary_size)
+    print '(a)', '  max|x1| = '//num2str(summary(3))//', max|x2| = '//num2str(summary(4))// &
+                 ', max|u1| = '//num2str(summary(5))//', max|u2| = '//num2str(summary(6))
+    print '(a)', '  motion: '//motion_name(summary(7), summary(8))//' (Poincare spread '// &
+                 num2str(summary(10))//'); transient '//num2str(summary(9))//' periods'// &
+                 trim(merge('                           ', ', not settled to settle_tol', &
+                 summary(11) > 0))
+  end subroutine print_summary
+
+  subroutine write_summary_header(unit)
+    integer, intent(in) :: unit
+    write (unit, '(a)') 'rho,A,max_x1,max_x2,max_u1,max_u2,motion,period,transient_periods,'// &
+                        'spread,settled'
+  end subroutine write_summary_header
+
+  pure function motion_name(code, period) result(name)
+    real(wp), intent(in) :: code, period
+    character(len=:), allocatable :: name
+    select case (nint(code))
+    case (1)
+      name = 'periodic (period '//num2str(nint(period))//' T)'
+    case (2)
+      name = 'quasi-periodic'
+    case (4)
+      name = 'settling (lengthen the transient)'
+    case default
+      name = 'irregular'
+    end select
+  end function motion_name
+
+  !> Create the output directory (only once all input is known to be valid).
+  function output_directory(config) result(dir)
+    type(run_config), intent(in) :: config
+    character(len=:), allocatable :: dir
+    logical :: created
+    dir = trim(config%directory)
+    call make_directory(dir, created)
+    if (.not. created) call die(exit_failure, 'cannot create output directory '''//dir//'''')
+  end function output_directory
 
   subroutine print_model(config)
     type(run_config), intent(in) :: config
     associate (m => config%model)
-      print '(a)', 'sloshdyn: linear analysis'
+      print '(a)', 'sloshdyn: '//trim(config%analysis)
       if (config%dimensional) then
         print '(/a)', 'Tank (eq 2-3): R = '//num2str(config%radius)//' m, h = '// &
                       num2str(config%depth)//' m, liquid mass m_F = '//num2str(config%liquid_mass)//' kg'
@@ -215,7 +371,8 @@ contains
     pending(n_pending) = dir//'/'//name
   end subroutine open_csv
 
-  subroutine commit_files()
+  subroutine commit_files(dir)
+    character(len=*), intent(in) :: dir
     integer :: i, slash
     logical :: ok
     character(len=:), allocatable :: final
@@ -225,6 +382,7 @@ contains
       call rename_file(final(1:slash)//'.'//final(slash + 1:)//'.tmp', final, ok)
       if (.not. ok) call die(exit_failure, 'cannot rename into '//final)
     end do
+    print '(/a)', 'Results written to '//dir//'/'
   end subroutine commit_files
 
   pure function verdict_name(verdict) result(name)

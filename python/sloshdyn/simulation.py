@@ -13,7 +13,7 @@ from ._errors import InputError, IntegrationError, check_status
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
-MOTIONS = {1: "periodic", 2: "quasi-periodic", 3: "irregular"}
+MOTIONS = {1: "periodic", 2: "quasi-periodic", 3: "irregular", 4: "settling"}
 
 
 @dataclass(frozen=True)
@@ -124,7 +124,8 @@ class SteadyState:
     max_x2: float
     max_u1: float
     max_u2: float
-    motion: str                 #: 'periodic', 'quasi-periodic' or 'irregular' (heuristic)
+    motion: str                 #: 'periodic', 'quasi-periodic', 'irregular' (heuristic), or
+                                #: 'settling' (transient too short to judge)
     period: int                 #: forcing periods per cycle if periodic, else 0
     transient_periods: float    #: transient actually integrated
     spread: float               #: largest distance of a Poincare point from the first, relative
