@@ -87,7 +87,7 @@ contains
     nan = ieee_value(1.0_wp, ieee_quiet_nan)
     ! NaN marks "not given" for required values
     s1 = nan; mu1 = nan; kappa = nan; theta0 = nan
-    beta = 0; gamma = 0; delta = 0; n = 6; p = 2
+    beta = 10; gamma = 0; delta = 0.1_wp; n = 6; p = 2
     A = 0; rho = 0
     R = nan; h = nan; rho_liquid = 0; m_liquid = 0
     M = nan; L = nan; k = nan; c = 0; b = 0; d = 0; g = 9.81_wp

@@ -26,9 +26,9 @@ NAMELIST_SCHEMA = {
         "mu1": ("mu1", float, REQUIRED),
         "kappa": ("kappa", float, REQUIRED),
         "theta0": ("theta0", float, REQUIRED),
-        "beta": ("beta", float, 0.0),
+        "beta": ("beta", float, 10.0),
         "gamma": ("gamma", float, 0.0),
-        "delta": ("delta", float, 0.0),
+        "delta": ("delta", float, 0.1),
         "n": ("n", int, 6),
         "p": ("p", int, 2),
     },
@@ -63,9 +63,38 @@ NAMELIST_SCHEMA = {
     "output": {
         "directory": ("directory", str, "sloshdyn_output"),
     },
+    "integration": {
+        "rtol": ("rtol", float, 1e-9),
+        "atol": ("atol", float, 1e-12),
+        "h_initial": ("h_initial", float, 0.0),
+        "h_max": ("h_max", float, 0.0),
+        "h_min": ("h_min", float, 0.0),
+        "max_steps": ("max_steps", int, 10**8),
+    },
+    "simulation": {
+        "t_end": ("t_end", float, None),
+        "n_out": ("n_out", int, 2001),
+        "y0": ("y0", "state", [0.0, 0.0, 0.0, 0.0]),
+    },
+    "steady": {
+        "transient_periods": ("transient_periods", float, 1000.0),
+        "settle_tol": ("settle_tol", float, 1e-7),
+        "max_transient_periods": ("max_transient_periods", float, 20000.0),
+        "window_periods": ("window_periods", int, 200),
+        "samples_per_period": ("samples_per_period", int, 128),
+        "periodic_tol": ("periodic_tol", float, 1e-4),
+    },
+    "sweep": {
+        "parameter": ("parameter", str, "rho"),
+        "start": ("start", float, None),
+        "stop": ("stop", float, None),
+        "n_points": ("n_points", int, 0),
+        "direction": ("direction", str, "up"),
+    },
 }
-ANALYSES = ("linear",)
-_TYPE_WORDS = {float: "a real number", int: "an integer", str: "a quoted string"}
+ANALYSES = ("linear", "simulate", "steady_state", "sweep")
+_TYPE_WORDS = {float: "a real number", int: "an integer", str: "a quoted string",
+               "state": "four real numbers (x1, x1', x2, x2')"}
 
 
 @dataclass(frozen=True)
@@ -79,9 +108,9 @@ class Parameters:
     mu1: float
     kappa: float
     theta0: float
-    beta: float = 0.0
+    beta: float = 10.0     #: the paper gives none; see README "Impact and dissipation defaults"
     gamma: float = 0.0
-    delta: float = 0.0
+    delta: float = 0.1     #: the paper gives none; see README
     n: int = 6
     p: int = 2
     A: float = 0.0
@@ -188,6 +217,10 @@ class Input:
     directory: str = "sloshdyn_output"
     tank: TankPendulum | None = None
     structure: dict = field(default_factory=dict)
+    integration: dict = field(default_factory=dict)   #: &integration, for simulation.Integration
+    simulation: dict = field(default_factory=dict)    #: &simulation: t_end, n_out, y0
+    steady: dict = field(default_factory=dict)        #: &steady, for simulation.Steady
+    sweep: dict = field(default_factory=dict)         #: &sweep: parameter, start, stop, ...
 
 
 def read_namelist(path):
@@ -265,9 +298,46 @@ def read_namelist(path):
     directory = values.get("output", {"directory": "sloshdyn_output"})["directory"]
     if not directory.strip():
         raise InputError("&output: directory = '' is empty: give a directory name")
+    group = {name: values.get(name, _group_values(name, {}, path))
+             for name in ("integration", "simulation", "steady", "sweep")}
+    named = {name: {NAMELIST_SCHEMA[name][k][0]: v for k, v in g.items()} for name, g in group.items()}
+    if kind == "linear":
+        from .model import linear_modes
+        linear_modes(params)              # needs kappa_hat > 1, checked before any output
+    _check_analysis(kind, params, named, path)
     return Input(params=params, analysis=kind, sigma1=analysis["sigma1"],
                  kappa_min=analysis["kappa_min"], kappa_max=kappa_max,
-                 directory=directory.strip(), tank=tank, structure=structure)
+                 directory=directory.strip(), tank=tank, structure=structure,
+                 integration=named["integration"], simulation=named["simulation"],
+                 steady=named["steady"], sweep=named["sweep"])
+
+
+def _check_analysis(kind, params, named, path):
+    """The rules of &simulation and &sweep (the integrator and steady-state settings are
+    checked by the core when they are used, with the same messages)."""
+    sim, sweep = named["simulation"], named["sweep"]
+    if kind == "simulate":
+        if sim["t_end"] is None:
+            raise InputError("&simulation: required variable t_end is missing")
+        if not (math.isfinite(sim["t_end"]) and sim["t_end"] > 0):
+            raise InputError(f"&simulation: t_end = {sim['t_end']} is out of range: t_end must be > 0 "
+                             "(the simulation starts at tau = 0)")
+        if not 2 <= sim["n_out"] <= 10_000_000:
+            raise InputError(f"&simulation: n_out = {sim['n_out']} is out of range: it must lie in "
+                             "[2, 10000000]")
+    if kind == "sweep":
+        if sweep["parameter"].strip() not in ("rho", "A", "a"):
+            raise InputError(f"&sweep: parameter = '{sweep['parameter'].strip()}' is not known; "
+                             "allowed: rho, A")
+        if sweep["direction"].strip() not in ("up", "down", "both"):
+            raise InputError(f"&sweep: direction = '{sweep['direction'].strip()}' is not known; "
+                             "allowed: up, down, both")
+        for name in ("start", "stop"):
+            if sweep[name] is None:
+                raise InputError(f"&sweep: required variable {name} is missing")
+        if not 1 <= sweep["n_points"] <= 100_000:
+            raise InputError(f"&sweep: n_points = {sweep['n_points']} is out of range: it must lie "
+                             "in [1, 100000]")
 
 
 def _group_values(group, content, path):
@@ -279,6 +349,18 @@ def _group_values(group, content, path):
             raise InputError(f"&{group} in '{path}': unknown variable '{key}' "
                              "(see the namelist reference in README.md)")
         name, kind, _ = schema[key]
+        if kind == "state":
+            value = list(value) if isinstance(value, list) else [value]
+            ok = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+            if ok:
+                # Fortran fills a partly given array from the start and keeps the defaults
+                value = [float(v) for v in value] + [0.0] * (4 - len(value))
+                ok = len(value) == 4
+            if not ok:
+                raise InputError(f"&{group} in '{path}': {name} = {value!r} is not valid: "
+                                 f"{name} must be {_TYPE_WORDS[kind]}")
+            values[key] = value
+            continue
         ok = (isinstance(value, str) if kind is str else
               isinstance(value, int) and not isinstance(value, bool) if kind is int else
               isinstance(value, (int, float)) and not isinstance(value, bool))

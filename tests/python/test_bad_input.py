@@ -45,12 +45,35 @@ CASES = {
     "both descriptions": (MODEL + TANK + STRUCTURE + OUTPUT, ["&model", "not both"]),
     "tank without structure": (TANK + OUTPUT, ["&structure", "missing"]),
     "unknown analysis": (MODEL + "&analysis kind = 'nonsense' /\n" + OUTPUT, ["nonsense", "linear"]),
+    "simulate without t_end": (MODEL + "&analysis kind = 'simulate' /\n" + OUTPUT, ["t_end", "missing"]),
+    "t_end <= 0": (MODEL + "&analysis kind = 'simulate' /\n&simulation t_end = -5 /\n" + OUTPUT,
+                   ["t_end = -5", "> 0"]),
+    "n_out < 2": (MODEL + "&analysis kind = 'simulate' /\n&simulation t_end = 5, n_out = 1 /\n"
+                  + OUTPUT, ["n_out = 1"]),
+    "y0 not numbers": (MODEL + "&analysis kind = 'simulate' /\n&simulation t_end = 5, y0 = 'a' /\n"
+                       + OUTPUT, ["y0", "four real numbers"]),
+    "sweep parameter": (MODEL + "&analysis kind = 'sweep' /\n&sweep parameter = 'kappa', start = 0.5, "
+                        "stop = 0.6, n_points = 3 /\n" + OUTPUT, ["kappa", "rho, A"]),
+    "sweep direction": (MODEL + "&analysis kind = 'sweep' /\n&sweep start = 0.5, stop = 0.6, "
+                        "n_points = 3, direction = 'sideways' /\n" + OUTPUT, ["sideways"]),
+    "sweep n_points": (MODEL + "&analysis kind = 'sweep' /\n&sweep start = 0.5, stop = 0.6, "
+                       "n_points = 0 /\n" + OUTPUT, ["n_points = 0"]),
+}
+
+# rules that the Python reader leaves to the core, which applies them when the analysis runs
+CORE_CASES = {
+    "rtol <= 0": (MODEL + "&excitation rho = 0.5 /\n&analysis kind = 'steady_state' /\n"
+                  "&integration rtol = -1 /\n" + OUTPUT, ["rtol = -1"]),
+    "steady without rho": (MODEL + "&analysis kind = 'steady_state' /\n" + OUTPUT,
+                           ["rho = 0", "rho > 0"]),
+    "window too short": (MODEL + "&excitation rho = 0.5 /\n&analysis kind = 'steady_state' /\n"
+                         "&steady window_periods = 3 /\n" + OUTPUT, ["window_periods = 3"]),
 }
 
 
-@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("case", {**CASES, **CORE_CASES})
 def test_executable_rejects(exe, tmp_path, case):
-    text, words = CASES[case]
+    text, words = {**CASES, **CORE_CASES}[case]
     write(tmp_path, text)
     before = directory_tree(tmp_path)
     result = run(exe, "input.nml", tmp_path)
@@ -68,6 +91,17 @@ def test_python_rejects(tmp_path, case):
     with pytest.raises(sloshdyn.InputError) as info:
         inp = sloshdyn.read_namelist(path)
         sloshdyn.linear_modes(inp.params)   # the linear analysis needs kappa_hat > 1
+    for word in words:
+        assert word in str(info.value), (word, str(info.value))
+
+
+@pytest.mark.parametrize("case", CORE_CASES)
+def test_python_core_rejects(tmp_path, case):
+    text, words = CORE_CASES[case]
+    inp = sloshdyn.read_namelist(write(tmp_path, text))
+    with pytest.raises(sloshdyn.InputError) as info:
+        sloshdyn.steady_state(inp.params, steady=sloshdyn.Steady(**inp.steady),
+                              integration=sloshdyn.Integration(**inp.integration))
     for word in words:
         assert word in str(info.value), (word, str(info.value))
 

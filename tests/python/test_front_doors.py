@@ -80,3 +80,54 @@ def test_tank_pendulum_hand_values():
     assert np.allclose([t.l, t.m, t.d1, t.m0, t.d0], [0.571604, 1357.73, 0.0137169, 1783.86, -0.445500],
                        rtol=1e-5)
     assert math.isclose(t.m_F, 1000 * math.pi)
+
+
+def _analysis_case(tmp_path, analysis, extra):
+    text = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.804897259, theta0 = 0.7853981633974483, "
+            "gamma = 0.001 /\n&excitation A = 0.00075, rho = 0.513 /\n"
+            f"&analysis kind = '{analysis}' /\n&output directory = 'out' /\n"
+            "&integration rtol = 1e-8, atol = 1e-11 /\n" + extra)
+    (tmp_path / "case.nml").write_text(text)
+    return sloshdyn.read_namelist(tmp_path / "case.nml")
+
+
+def test_simulate_same_numbers(exe, tmp_path):
+    inp = _analysis_case(tmp_path, "simulate", "&simulation t_end = 200, n_out = 51, y0 = 0.1 /\n")
+    result = run(exe, "case.nml", tmp_path)
+    assert result.returncode == 0, result.stderr
+    rows = read_csv(tmp_path / "out" / "history.csv")
+    sim = sloshdyn.simulate(inp.params, inp.simulation["t_end"], inp.simulation["y0"],
+                            n_out=inp.simulation["n_out"],
+                            integration=sloshdyn.Integration(**inp.integration))
+    assert [r["x1"] for r in rows] == list(sim.x1)
+    assert [r["u1"] for r in rows] == list(sim.u[0])
+    assert [r["impact_force"] for r in rows] == list(sim.impact_force)
+    counts = read_csv(tmp_path / "out" / "simulation.csv")[0]
+    assert counts["n_accepted"] == sim.n_accepted and counts["n_rhs"] == sim.n_rhs
+
+
+def test_steady_state_and_sweep_same_numbers(exe, tmp_path):
+    steady = "&steady transient_periods = 50, settle_tol = 0, window_periods = 20 /\n"
+    inp = _analysis_case(tmp_path, "steady_state", steady)
+    assert run(exe, "case.nml", tmp_path).returncode == 0
+    row = read_csv(tmp_path / "out" / "steady_state.csv")[0]
+    st = sloshdyn.steady_state(inp.params, steady=sloshdyn.Steady(**inp.steady),
+                               integration=sloshdyn.Integration(**inp.integration))
+    assert (row["max_x1"], row["max_u2"], row["spread"]) == (st.max_x1, st.max_u2, st.spread)
+    points = read_csv(tmp_path / "out" / "poincare.csv")
+    assert [p["x2"] for p in points] == list(st.poincare[2])
+
+    inp = _analysis_case(tmp_path, "sweep", steady + "&sweep parameter = 'A', start = 0.0005, "
+                         "stop = 0.001, n_points = 3, direction = 'down' /\n")
+    assert run(exe, "case.nml", tmp_path).returncode == 0
+    rows = read_csv(tmp_path / "out" / "sweep.csv")
+    sweep = sloshdyn.amplitude_sweep(inp.params, [0.001, 0.00075, 0.0005],
+                                     steady=sloshdyn.Steady(**inp.steady),
+                                     integration=sloshdyn.Integration(**inp.integration))
+    assert [r["A"] for r in rows] == [0.001, 0.00075, 0.0005]
+    assert [r["max_x1"] for r in rows] == list(sweep.column("max_x1"))
+
+
+def test_examples_are_valid():
+    for path in sorted(EXAMPLES.glob("*.nml")):
+        sloshdyn.read_namelist(path)
