@@ -10,13 +10,14 @@ from conftest import ROOT
 README = (ROOT / "README.md").read_text()
 
 
-def test_python_example_runs(tmp_path, monkeypatch):
-    block = re.search(r"```python\n(.*?)```", README, re.S).group(1)
+def test_python_examples_run(tmp_path, monkeypatch):
+    block = "\n".join(re.findall(r"```python\n(.*?)```", README, re.S))
     monkeypatch.chdir(ROOT)
     block = block.replace('"case.nml"', repr(os.fspath(tmp_path / "case.nml")))
     namespace = {}
     exec(compile(block, "README.md", "exec"), namespace)
     assert sloshdyn.read_namelist(tmp_path / "case.nml").params == namespace["p"]
+    assert namespace["st"].motion == "periodic" and round(namespace["st"].max_u1, 4) == 0.0357
 
 
 def test_namelist_reference_matches_the_reader():

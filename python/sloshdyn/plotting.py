@@ -1,0 +1,93 @@
+"""Figures of simulations and sweeps (matplotlib; the Agg backend when there is no display).
+Every function returns the matplotlib Figure; save it with fig.savefig(path)."""
+
+from __future__ import annotations
+
+import os
+
+import matplotlib
+
+if not os.environ.get("DISPLAY") and not os.environ.get("MPLBACKEND"):
+    matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+_LABELS = {"x1": r"$x_1 = \theta/\theta_0$", "x2": r"$x_2 = \varphi/\theta_0$",
+           "u1": r"$u_1$", "u2": r"$u_2$", "theta": r"$\theta$ [rad]", "phi": r"$\varphi$ [rad]",
+           "impact_force": r"impact force $\beta x_1^{2n-1}$"}
+
+
+def signal(sim, name):
+    """A named signal of a Simulation: x1, dx1, x2, dx2, u1, u2, theta, phi, impact_force."""
+    table = {"x1": sim.y[0], "dx1": sim.y[1], "x2": sim.y[2], "dx2": sim.y[3], "u1": sim.u[0],
+             "u2": sim.u[1], "theta": sim.theta, "phi": sim.phi, "impact_force": sim.impact_force}
+    if name not in table:
+        raise ValueError(f"signal {name!r} is not known; choose from {', '.join(table)}")
+    return table[name]
+
+
+def time_history(sim, names=("x1", "x2")):
+    """One panel per signal against tau."""
+    fig, axes = plt.subplots(len(names), 1, sharex=True, figsize=(8, 2.2 * len(names)),
+                             squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        ax.plot(sim.tau, signal(sim, name), lw=0.6, color="k")
+        ax.set_ylabel(_LABELS.get(name, name))
+    axes[-1, 0].set_xlabel(r"$\tau$")
+    fig.tight_layout()
+    return fig
+
+
+def phase_plane(sim, coordinate="u1", poincare=None, rho=None):
+    """The trajectory in the (q, q') plane of x1, x2, u1 or u2, with Poincare points (red):
+    either given (shape (2, k)) or sampled from sim at tau = k 2 pi/rho."""
+    q = signal(sim, coordinate)
+    dq = np.gradient(q, sim.tau)
+    fig, ax = plt.subplots(figsize=(5, 4.5))
+    ax.plot(q, dq, lw=0.4, color="0.5")
+    if poincare is None and rho:
+        period = 2 * np.pi / rho
+        k = np.round(sim.tau / period)
+        on_section = np.isclose(sim.tau, k * period, rtol=0, atol=1e-9 * max(1.0, sim.tau[-1]))
+        poincare = np.vstack([q[on_section], dq[on_section]])
+    if poincare is not None:
+        ax.plot(poincare[0], poincare[1], ".", color="r", ms=3, label="Poincaré section")
+        ax.legend(loc="upper right")
+    ax.set_xlabel(_LABELS.get(coordinate, coordinate))
+    ax.set_ylabel(_LABELS.get(coordinate, coordinate).rstrip("$") + r"'$")
+    fig.tight_layout()
+    return fig
+
+
+def spectrum(omega, amplitude, marks=(), label="amplitude", xmax=None):
+    """An amplitude spectrum against angular frequency, with dotted lines at `marks`."""
+    fig, ax = plt.subplots(figsize=(7, 3))
+    ax.plot(omega, amplitude, lw=0.8, color="k")
+    for w in marks:
+        ax.axvline(w, ls=":", color="r", lw=0.8)
+    ax.set_xlabel(r"angular frequency (per unit $\tau$)")
+    ax.set_ylabel(label)
+    if xmax:
+        ax.set_xlim(0, xmax)
+    fig.tight_layout()
+    return fig
+
+
+def sweep(sw, columns=("max_u1", "max_u2")):
+    """Steady amplitudes along a sweep; the up and down halves of a 'both' sweep are drawn
+    with different markers so jumps show."""
+    values = sw.values
+    turn = int(np.argmax(values))          # the up half ends at the largest value
+    fig, axes = plt.subplots(len(columns), 1, sharex=True, figsize=(7, 2.6 * len(columns)),
+                             squeeze=False)
+    for ax, column in zip(axes[:, 0], columns):
+        y = sw.column(column)
+        if turn > 0:
+            ax.plot(values[:turn + 1], y[:turn + 1], "o-", ms=3, color="k", label="up")
+        if turn < len(values) - 1:
+            ax.plot(values[turn:], y[turn:], "s--", ms=3, mfc="none", color="b", label="down")
+        ax.legend()
+        ax.set_ylabel(column.replace("max_", "max |") + "|")
+    axes[-1, 0].set_xlabel(r"$\rho$" if sw.parameter == "rho" else "A")
+    fig.tight_layout()
+    return fig
