@@ -131,3 +131,13 @@ def test_steady_state_and_sweep_same_numbers(exe, tmp_path):
 def test_examples_are_valid():
     for path in sorted(EXAMPLES.glob("*.nml")):
         sloshdyn.read_namelist(path)
+
+
+def test_failed_integration_writes_nothing(exe, tmp_path):
+    _analysis_case(tmp_path, "simulate", "&simulation t_end = 2000 /\n")
+    text = (tmp_path / "case.nml").read_text().replace("atol = 1e-11", "atol = 1e-11, max_steps = 10")
+    (tmp_path / "case.nml").write_text(text)
+    result = run(exe, "case.nml", tmp_path)
+    assert result.returncode == 4
+    assert "max_steps = 10" in result.stderr and "tau = " in result.stderr
+    assert not (tmp_path / "out").exists()
