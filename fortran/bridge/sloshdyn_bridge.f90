@@ -280,4 +280,50 @@ contains
     n_done = done
     status = info
   end subroutine parameter_sweep
+
+  !> Cubic expansion (eq 32-33) and modal form (eq 35-36). Polynomials are given by their
+  !> coefficients on the 34 monomials of degree 1..3 whose exponents are exponents(:, k), in the
+  !> variables (x1, x2, x1', x2') for g and (u1, u2, u1', u2') for h; the forcing polynomials
+  !> (factor of rho^2 A sin(rho tau)) add a constant term: *_forcing(:, 0).
+  !> scalars = [omega1, omega2, gamma11, gamma22, F11]; c = c11..c23.
+  subroutine modal_expansion(rpar, ipar, scalars, c, exponents, g, g_forcing, h, h_forcing, &
+                             status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_modal, only: modal_coefficients, expand_model
+    use sloshdyn_polynomial, only: monomial_exponents, poly
+    real(c_double), intent(in) :: rpar(9)
+    integer(c_int), intent(in) :: ipar(2)
+    real(c_double), intent(out) :: scalars(5), c(2, 3), g(2, 34), g_forcing(2, 0:34), h(2, 34), &
+                                   h_forcing(2, 0:34)
+    integer(c_int), intent(out) :: exponents(4, 34), status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(modal_coefficients) :: mc
+    integer :: info, r, k, e(4, 34)
+    scalars = 0; c = 0; g = 0; g_forcing = 0; h = 0; h_forcing = 0
+    e = monomial_exponents()
+    exponents = e
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call expand_model(model, mc, info, message)
+    status = info
+    if (info /= 0) return
+    scalars = [mc%omega1, mc%omega2, mc%gamma11, mc%gamma22, mc%F11]
+    c = mc%c
+    do r = 1, 2
+      g_forcing(r, 0) = mc%g_forcing(r)%c(0, 0, 0, 0)
+      h_forcing(r, 0) = mc%h_forcing(r)%c(0, 0, 0, 0)
+      do k = 1, 34
+        g(r, k) = coefficient(mc%g(r), e(:, k))
+        h(r, k) = coefficient(mc%h(r), e(:, k))
+        g_forcing(r, k) = coefficient(mc%g_forcing(r), e(:, k))
+        h_forcing(r, k) = coefficient(mc%h_forcing(r), e(:, k))
+      end do
+    end do
+  contains
+    pure real(c_double) function coefficient(p, ex)
+      type(poly), intent(in) :: p
+      integer, intent(in) :: ex(4)
+      coefficient = p%c(ex(1), ex(2), ex(3), ex(4))
+    end function coefficient
+  end subroutine modal_expansion
 end module sloshdyn_bridge
