@@ -326,4 +326,43 @@ contains
       coefficient = p%c(ex(1), ex(2), ex(3), ex(4))
     end function coefficient
   end subroutine modal_expansion
+
+  !> Slow-flow frequency response (sloshdyn_response): branches in lambda = rho (which = 1) or
+  !> A (which = 2) over [lambda_min, lambda_max], 3:1 internal resonance or none.
+  !> settings = [n_scan, n_amplitudes, n_phases, amplitude_min, amplitude_max, ds, ds_min,
+  !> ds_max, x_scale]; table(28, max_points) and special(9, max_special) as documented in
+  !> sloshdyn_response; complete = 0 if a branch could not be finished (status says where).
+  subroutine frequency_response(rpar, ipar, resonance, which, lambda_min, lambda_max, settings, &
+                                max_points, max_special, table, n_points, special, n_special, &
+                                complete, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_response, only: response_options, core => frequency_response
+    real(c_double), intent(in) :: rpar(9), lambda_min, lambda_max, settings(9)
+    integer(c_int), intent(in) :: ipar(2), resonance, which, max_points, max_special
+    real(c_double), intent(out) :: table(28, max_points), special(9, max_special)
+    integer(c_int), intent(out) :: n_points, n_special, complete, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(response_options) :: options
+    integer :: info, points, specials
+    logical :: done
+    table = 0; special = 0; points = 0; specials = 0; done = .false.
+    options%n_scan = nint(settings(1))
+    options%n_amplitudes = nint(settings(2))
+    options%n_phases = nint(settings(3))
+    options%amplitude_min = settings(4)
+    options%amplitude_max = settings(5)
+    options%continuation%ds = settings(6)
+    options%continuation%ds_min = settings(7)
+    options%continuation%ds_max = settings(8)
+    options%continuation%x_scale = settings(9)
+    options%continuation%max_points = min(max_points, 4000)
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call core(model, resonance == 1, int(which), lambda_min, lambda_max, options, &
+                             table, points, special, specials, done, info, message)
+    n_points = points
+    n_special = specials
+    complete = merge(1, 0, done)
+    status = info
+  end subroutine frequency_response
 end module sloshdyn_bridge

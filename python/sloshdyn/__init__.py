@@ -3,7 +3,8 @@ excitation, by the equivalent mechanical model of Farid & Gendelman (a pendulum 
 tank walls through a high-power smooth potential). Numerics run in the Fortran core.
 """
 
-from .asymptotics import modal_coefficients
+from .asymptotics import (Continuation, FrequencyResponse, SpecialPoint, frequency_response,
+                          modal_coefficients)
 from ._errors import (CapacityError, ConvergenceError, FileError, InputError, IntegrationError,
                       LapackError, SingularMatrixError, SloshdynError)
 from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, equilibrium_angles,
@@ -24,5 +25,5 @@ __all__ = [
     "natural_frequencies", "read_namelist", "tank_pendulum",
     "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
     "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state", "sweep_values",
-    "modal_coefficients",
+    "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
 ]

@@ -3,10 +3,12 @@ modal form and the coefficients of the solvability conditions, computed by the F
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from . import _core
-from ._errors import check_status
+from ._errors import InputError, check_status
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
@@ -81,3 +83,104 @@ def modal_coefficients(params: Parameters) -> dict:
             result.setdefault(name, sign * polys["h_forcing"][r - 1][e])
     result.update(polys)
     return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in result.items()}
+
+
+_COLUMNS = ["branch", "lambda", "rho", "A", "a1", "a2", "phi1", "phi2", "stable", "special",
+            "re1", "re2", "re3", "re4", "im1", "im2", "im3", "im4", "C1", "C2", "C3", "C4",
+            "delta2", "delta3", "re_B1", "im_B1", "re_B2", "im_B2"]
+SPECIAL_KINDS = {1: "fold", 2: "hopf"}
+
+
+@dataclass(frozen=True)
+class SpecialPoint:
+    """A fold (saddle-node) or Hopf point located on a branch of the slow flow."""
+
+    kind: str            #: 'fold' or 'hopf'
+    branch: int
+    rho: float
+    A: float
+    a1: float            #: |u1|
+    a2: float            #: |u2|
+    frequency: float     #: Hopf: sqrt(C3/C1), the frequency of the emerging oscillation of the
+                         #: slow flow (the beat frequency); 0 for folds
+
+
+@dataclass
+class FrequencyResponse:
+    """Branches of steady states of the slow flow with their stability (sec 3.3, 4.1-4.2).
+
+    ``table`` maps column names to arrays over all points, branch after branch, in the order
+    of each branch: lambda (the swept parameter), rho, A, a1 = |u1|, a2 = |u2|, phi1, phi2
+    (eq 54), stable, special (0, 1 fold, 2 hopf), re1..re4 and im1..im4 (eigenvalues of the
+    slow-flow Jacobian), C1..C4, delta2, delta3 (eq 55), re_B1 ... im_B2 (the Cartesian unknowns).
+    """
+
+    parameter: str
+    resonance: str
+    table: dict
+    special_points: list
+    complete: bool
+    message: str = ""
+
+    @property
+    def branches(self):
+        """One table (dict of arrays) per branch."""
+        ids = self.table["branch"]
+        return [{k: v[ids == b] for k, v in self.table.items()} for b in np.unique(ids)]
+
+    @property
+    def eigenvalues(self):
+        return (np.array([self.table[f"re{i}"] for i in range(1, 5)])
+                + 1j * np.array([self.table[f"im{i}"] for i in range(1, 5)])).T
+
+
+@dataclass(frozen=True)
+class Continuation:
+    """Settings of the branch search and continuation."""
+
+    n_scan: int = 5               #: parameter values where steady states are searched
+    n_amplitudes: int = 8         #: Newton starts per mode: log-spaced |B| ...
+    n_phases: int = 6             #: ... times equally spaced phases
+    amplitude_min: float = 1e-4
+    amplitude_max: float = 1.0
+    ds: float = 0.002             #: first pseudo-arclength step
+    ds_min: float = 1e-9
+    ds_max: float = 0.01
+    x_scale: float = 1.0          #: weight of the amplitudes in the arclength norm
+    max_points: int = 20000       #: room in the result table
+
+    def array(self):
+        return np.array([self.n_scan, self.n_amplitudes, self.n_phases, self.amplitude_min,
+                         self.amplitude_max, self.ds, self.ds_min, self.ds_max, self.x_scale],
+                        dtype=np.float64)
+
+
+def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A_range=None,
+                       settings: Continuation = Continuation(), max_special=200):
+    """Steady states of the slow flow (eq 46 without, eq 53 with the 3:1 internal resonance)
+    for rho in rho_range (A from params), or for A in A_range (rho from params): every branch
+    found, with stability and the folds and Hopf points located on it.
+
+    Raises ConvergenceError (with ``partial``, the response computed so far, marked incomplete)
+    if a branch could not be finished."""
+    if resonance not in ("3:1", "none"):
+        raise InputError(f"resonance = {resonance!r} is not valid: it must be '3:1' or 'none'")
+    if (rho_range is None) == (A_range is None):
+        raise InputError("give rho_range or A_range (the parameter to continue in), not both")
+    parameter, (lo, hi) = ("rho", rho_range) if rho_range is not None else ("A", A_range)
+    (table, n_points, special, n_special, complete, status,
+     message) = _bridge.frequency_response(*params.arrays(), 1 if resonance == "3:1" else 0,
+                                           1 if parameter == "rho" else 2, float(lo), float(hi),
+                                           settings.array(), settings.max_points, max_special)
+    columns = {name: table[i, :n_points].copy() for i, name in enumerate(_COLUMNS)}
+    points = [SpecialPoint(SPECIAL_KINDS[int(s[0])], int(s[1]), float(s[3]), float(s[4]),
+                           float(s[5]), float(s[6]), float(s[7])) for s in special[:, :n_special].T]
+    text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message).strip()
+    result = FrequencyResponse(parameter, resonance, columns, points, bool(complete), text)
+    if status:
+        try:
+            check_status(status, message, "frequency response")
+        except Exception as exc:
+            exc.partial = result
+            raise
+    return result

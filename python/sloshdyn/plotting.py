@@ -91,3 +91,34 @@ def sweep(sw, columns=("max_u1", "max_u2")):
     axes[-1, 0].set_xlabel(r"$\rho$" if sw.parameter == "rho" else "A")
     fig.tight_layout()
     return fig
+
+
+def frequency_response(response, columns=("a1", "a2"), simulation=None):
+    """Response curves as in the paper: stable branches solid, unstable dashed; folds as
+    circles, Hopf points as squares; optional direct-simulation points (a Sweep) as crosses."""
+    labels = {"a1": r"$|u_1|$", "a2": r"$|u_2|$"}
+    fig, axes = plt.subplots(len(columns), 1, sharex=True, figsize=(7, 2.8 * len(columns)),
+                             squeeze=False)
+    for ax, column in zip(axes[:, 0], columns):
+        for branch in response.branches:
+            x, y, stable = branch["lambda"], branch[column], branch["stable"] > 0
+            # split into runs of equal stability, sharing the boundary point
+            start = 0
+            for k in range(1, len(x) + 1):
+                if k == len(x) or stable[k] != stable[start]:
+                    end = min(k + 1, len(x))
+                    ax.plot(x[start:end], y[start:end], "-" if stable[start] else "--",
+                            color="k", lw=1.0)
+                    start = k
+        for s in response.special_points:
+            value = getattr(s, column)
+            ax.plot(s.rho if response.parameter == "rho" else s.A, value,
+                    "o" if s.kind == "fold" else "s", mfc="none", color="r", ms=5)
+        if simulation is not None:
+            ax.plot(simulation.values, simulation.column("max_" + column.replace("a", "u")), "x",
+                    color="b", ms=4, label="direct simulation")
+            ax.legend()
+        ax.set_ylabel(labels.get(column, column))
+    axes[-1, 0].set_xlabel(r"$\rho$" if response.parameter == "rho" else "A")
+    fig.tight_layout()
+    return fig
