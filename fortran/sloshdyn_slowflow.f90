@@ -17,10 +17,11 @@ module sloshdyn_slowflow
   use sloshdyn_model, only: model_t
   use sloshdyn_modal, only: modal_coefficients, expand_model
   use sloshdyn_continuation, only: parametrised_system
+  use sloshdyn_lapack, only: eigenvalues
   implicit none
   private
   public :: slow_flow, make_slow_flow, characteristic_coefficients, nonresonant_cubic, &
-            PARAMETER_RHO, PARAMETER_A
+            nonresonant_amplitudes, PARAMETER_RHO, PARAMETER_A
 
   integer, parameter :: PARAMETER_RHO = 1, PARAMETER_A = 2
 
@@ -209,4 +210,59 @@ contains
     forcing = rho**2*amplitude*modal%F11/(2*modal%omega1)
     cubic = [k**2, -2*sigma*k, sigma**2 + (modal%gamma11/2)**2, -forcing**2]
   end function nonresonant_cubic
+
+  !> Every real solution a1 = |u1| > 0 of eq (49) (no internal resonance), ascending: the
+  !> positive real roots z = a1^2 of the cubic, from the eigenvalues of its companion matrix.
+  subroutine nonresonant_amplitudes(modal, rho, amplitude, a1, n_roots, status, message)
+    type(modal_coefficients), intent(in) :: modal
+    real(wp), intent(in) :: rho, amplitude
+    real(wp), intent(out) :: a1(3)
+    integer, intent(out) :: n_roots, status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: cubic(4), companion(3, 3), wr(3), wi(3), z
+    integer :: i
+
+    a1 = 0
+    n_roots = 0
+    status = SD_OK
+    message = ''
+    cubic = nonresonant_cubic(modal, rho, amplitude)
+    if (cubic(1) == 0) then
+      ! c11 = 0: the backbone is straight and eq (49) is linear in z
+      if (cubic(4) /= 0) then
+        n_roots = 1
+        a1(1) = sqrt(-cubic(4)/cubic(3))
+      end if
+      return
+    end if
+    companion = 0
+    companion(1, :) = -cubic(2:4)/cubic(1)
+    companion(2, 1) = 1
+    companion(3, 2) = 1
+    call eigenvalues(companion, wr, wi, status, message)
+    if (status /= SD_OK) return
+    do i = 1, 3
+      z = wr(i)
+      if (abs(wi(i)) > 1.0e-9_wp*max(abs(wr(i)), tiny(1.0_wp)) .or. z <= 0) cycle
+      n_roots = n_roots + 1
+      a1(n_roots) = sqrt(z)
+    end do
+    call sort_ascending(a1(1:n_roots))
+  end subroutine nonresonant_amplitudes
+
+  pure subroutine sort_ascending(v)
+    real(wp), intent(inout) :: v(:)
+    integer :: i, j
+    real(wp) :: tmp
+    do i = 2, size(v)
+      tmp = v(i)
+      j = i - 1
+      do while (j >= 1)
+        if (v(j) <= tmp) exit
+        v(j + 1) = v(j)
+        j = j - 1
+      end do
+      v(j + 1) = tmp
+    end do
+  end subroutine sort_ascending
 end module sloshdyn_slowflow

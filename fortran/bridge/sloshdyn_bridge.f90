@@ -365,4 +365,28 @@ contains
     complete = merge(1, 0, done)
     status = info
   end subroutine frequency_response
+
+  !> Every real solution |u1| of eq (49) at each rho (A from rpar): amplitudes(1:counts(i), i).
+  subroutine nonresonant_amplitudes(rpar, ipar, n, rho, amplitudes, counts, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_modal, only: modal_coefficients, expand_model
+    use sloshdyn_slowflow, only: core => nonresonant_amplitudes
+    real(c_double), intent(in) :: rpar(9), rho(n)
+    integer(c_int), intent(in) :: ipar(2), n
+    real(c_double), intent(out) :: amplitudes(3, n)
+    integer(c_int), intent(out) :: counts(n), status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(modal_coefficients) :: mc
+    integer :: info, i, found
+    amplitudes = 0; counts = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call expand_model(model, mc, info, message)
+    do i = 1, n
+      if (info /= 0) exit
+      call core(mc, rho(i), model%A, amplitudes(:, i), found, info, message)
+      counts(i) = found
+    end do
+    status = info
+  end subroutine nonresonant_amplitudes
 end module sloshdyn_bridge

@@ -4,7 +4,7 @@ tank walls through a high-power smooth potential). Numerics run in the Fortran c
 """
 
 from .asymptotics import (Continuation, FrequencyResponse, SpecialPoint, frequency_response,
-                          modal_coefficients)
+                          modal_coefficients, nonresonant_amplitudes)
 from ._errors import (CapacityError, ConvergenceError, FileError, InputError, IntegrationError,
                       LapackError, SingularMatrixError, SloshdynError)
 from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, equilibrium_angles,
@@ -26,4 +26,5 @@ __all__ = [
     "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
     "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state", "sweep_values",
     "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
+    "nonresonant_amplitudes",
 ]

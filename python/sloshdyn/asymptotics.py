@@ -184,3 +184,12 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
             exc.partial = result
             raise
     return result
+
+
+def nonresonant_amplitudes(params: Parameters, rho):
+    """Every real solution |u1| of eq (49) (no internal resonance) at each rho (A from params):
+    a list of ascending arrays, one per rho (1 or 3 values)."""
+    rho = np.atleast_1d(np.asarray(rho, dtype=np.float64))
+    amplitudes, counts, status, message = _bridge.nonresonant_amplitudes(*params.arrays(), rho)
+    check_status(status, message)
+    return [amplitudes[:c, i].copy() for i, c in enumerate(counts)]
