@@ -9,15 +9,16 @@ module sloshdyn_namelist
   use sloshdyn_tank, only: tank_pendulum
   use sloshdyn_rk45, only: rk45_options, rk45_check_setup
   use sloshdyn_simulation, only: steady_options, check_steady
+  use sloshdyn_response, only: response_options
   implicit none
   private
   public :: run_config, read_input, known_analyses
 
-  character(len=*), parameter :: known_groups(10) = &
+  character(len=*), parameter :: known_groups(11) = &
     [character(len=11) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output', &
-     'integration', 'simulation', 'steady', 'sweep']
-  character(len=*), parameter :: known_analyses(4) = &
-    [character(len=12) :: 'linear', 'simulate', 'steady_state', 'sweep']
+     'integration', 'simulation', 'steady', 'sweep', 'response']
+  character(len=*), parameter :: known_analyses(5) = &
+    [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response']
   integer, parameter :: path_len = 1024
 
   !> Everything one run needs, validated.
@@ -27,7 +28,7 @@ module sloshdyn_namelist
     real(wp) :: radius = 0, depth = 0, liquid_mass = 0                 !< &tank (m_F computed)
     real(wp) :: total_mass = 0, rod_length = 0, gravity = 0            !< &structure
     real(wp) :: pendulum_length = 0, sloshing_mass = 0, d1 = 0, rigid_mass = 0, d0 = 0  !< eq (2)-(3)
-    character(len=16) :: analysis = 'linear'
+    character(len=18) :: analysis = 'linear'
     real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0                 !< 3:1 tuning search
     character(len=path_len) :: directory = 'sloshdyn_output'
     type(rk45_options) :: integration                                  !< &integration
@@ -38,6 +39,8 @@ module sloshdyn_namelist
     real(wp) :: sweep_start = 0, sweep_stop = 0
     integer :: sweep_points = 0
     character(len=4) :: sweep_direction = 'up'
+    type(response_options) :: response                                 !< &response
+    logical :: internal_resonance = .true.
   end type run_config
 
 contains
@@ -59,7 +62,10 @@ contains
     real(wp) :: M, L, k, c, b, d, g
     real(wp) :: sigma1, kappa_min, kappa_max
     integer :: n, p
-    character(len=16) :: kind
+    character(len=18) :: kind
+    character(len=8) :: resonance
+    integer :: n_scan, n_amplitudes, n_phases
+    real(wp) :: amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale
     character(len=path_len) :: directory
     real(wp) :: rtol, atol, h_initial, h_max, h_min
     integer :: max_steps
@@ -81,6 +87,8 @@ contains
     namelist /steady/ transient_periods, settle_tol, max_transient_periods, window_periods, &
                       samples_per_period, periodic_tol
     namelist /sweep/ parameter, start, stop, n_points, direction
+    namelist /response/ resonance, parameter, start, stop, n_scan, n_amplitudes, n_phases, &
+                        amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale
 
     status = SD_OK
     message = ''
@@ -102,6 +110,11 @@ contains
     samples_per_period = config%steady%samples_per_period
     periodic_tol = config%steady%periodic_tol
     parameter = 'rho'; start = nan; stop = nan; n_points = 0; direction = 'up'
+    resonance = '3:1'
+    n_scan = config%response%n_scan; n_amplitudes = config%response%n_amplitudes
+    n_phases = config%response%n_phases; amplitude_min = config%response%amplitude_min
+    amplitude_max = config%response%amplitude_max; ds = 0.002_wp; ds_min = 1.0e-9_wp
+    ds_max = 0.01_wp; x_scale = 1
 
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
@@ -158,6 +171,11 @@ contains
       rewind (unit)
       read (unit, nml=sweep, iostat=ios, iomsg=iomsg)
       call read_failed('sweep', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(11)) then
+      rewind (unit)
+      read (unit, nml=response, iostat=ios, iomsg=iomsg)
+      call read_failed('response', ios, iomsg)
     end if
     close (unit)
     if (status /= SD_OK) return
@@ -287,9 +305,53 @@ contains
                   ': '//trim(message)
         return
       end if
+    case ('frequency_response')
+      call read_response()
+      if (status /= SD_OK) return
+      call require_stable_trivial(config%model, status, message)
+      if (status /= SD_OK) return
     end select
 
   contains
+
+    !> &response: the slow-flow frequency response; the ranges are checked here, the
+    !> continuation settings by the continuation module when the analysis starts (before output).
+    subroutine read_response()
+      resonance = adjustl(resonance)
+      parameter = adjustl(parameter)
+      if (resonance /= '3:1' .and. resonance /= 'none') then
+        call fail('&response: resonance = '''//trim(resonance)//''' is not known; allowed: '// &
+                  '3:1, none')
+        return
+      end if
+      if (parameter /= 'rho' .and. parameter /= 'A' .and. parameter /= 'a') then
+        call fail('&response: parameter = '''//trim(parameter)//''' is not known; allowed: rho, A')
+        return
+      end if
+      call require('response', 'start', start)
+      call require('response', 'stop', stop)
+      if (status /= SD_OK) return
+      call check_real('start', min(start, stop), merge(0.0_wp, -tiny(1.0_wp), parameter == 'rho'), &
+                      huge(1.0_wp), .true., .true., &
+                      trim(merge('rho must be > 0 ', 'A must be >= 0  ', parameter == 'rho')), &
+                      status, message)
+      if (status == SD_OK .and. start == stop) then
+        status = SD_BAD_INPUT
+        message = 'start = stop = '//num2str(start)//': the interval is empty'
+      end if
+      if (status /= SD_OK) then
+        message = '&response: '//trim(message)
+        return
+      end if
+      config%internal_resonance = resonance == '3:1'
+      config%sweep_parameter = merge('rho', 'A  ', parameter == 'rho')
+      config%sweep_start = min(start, stop); config%sweep_stop = max(start, stop)
+      config%response%n_scan = n_scan; config%response%n_amplitudes = n_amplitudes
+      config%response%n_phases = n_phases; config%response%amplitude_min = amplitude_min
+      config%response%amplitude_max = amplitude_max
+      config%response%continuation%ds = ds; config%response%continuation%ds_min = ds_min
+      config%response%continuation%ds_max = ds_max; config%response%continuation%x_scale = x_scale
+    end subroutine read_response
 
     subroutine read_sweep()
       parameter = adjustl(parameter)
@@ -392,7 +454,8 @@ contains
         case ('integration'); read (buffer, nml=integration, iostat=ios2, iomsg=msg2)
         case ('simulation'); read (buffer, nml=simulation, iostat=ios2, iomsg=msg2)
         case ('steady');     read (buffer, nml=steady, iostat=ios2, iomsg=msg2)
-        case default;        read (buffer, nml=sweep, iostat=ios2, iomsg=msg2)
+        case ('sweep');      read (buffer, nml=sweep, iostat=ios2, iomsg=msg2)
+        case default;        read (buffer, nml=response, iostat=ios2, iomsg=msg2)
         end select
         if (ios2 /= 0) then
           equals = index(assignment, '=')
@@ -418,16 +481,18 @@ contains
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: text
     select case (name)
-    case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points')
+    case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
+          'n_scan', 'n_amplitudes', 'n_phases')
       text = name//' must be an integer'
-    case ('kind', 'directory', 'parameter', 'direction')
+    case ('kind', 'directory', 'parameter', 'direction', 'resonance')
       text = name//' must be a quoted string'
     case ('y0')
       text = 'y0 must be four real numbers (x1, x1'''', x2, x2'''')'
     case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'a', 'rho', 'r', 'h', &
           'rho_liquid', 'm_liquid', 'm', 'l', 'k', 'c', 'b', 'd', 'g', 'sigma1', 'kappa_min', &
           'kappa_max', 'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 't_end', &
-          'transient_periods', 'settle_tol', 'max_transient_periods', 'periodic_tol', 'start', 'stop')
+          'transient_periods', 'settle_tol', 'max_transient_periods', 'periodic_tol', 'start', &
+          'stop', 'amplitude_min', 'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale')
       text = name//' must be a real number'
     case default
       text = 'unknown variable '''//name//''' (see the namelist reference in README.md)'

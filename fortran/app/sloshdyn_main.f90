@@ -14,6 +14,9 @@ program sloshdyn_main
   use sloshdyn_rk45, only: rk45_stats
   use sloshdyn_simulation, only: history_rows, time_history, steady_state, parameter_sweep, &
                                  summary_size, SWEEP_RHO, SWEEP_A
+  use sloshdyn_status, only: SD_BAD_INPUT
+  use sloshdyn_response, only: frequency_response, point_rows, special_rows, SPECIAL_FOLD
+  use sloshdyn_slowflow, only: PARAMETER_RHO, PARAMETER_A
   implicit none
 
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
@@ -47,6 +50,8 @@ program sloshdyn_main
     call run_steady_state(config)
   case ('sweep')
     call run_sweep(config)
+  case ('frequency_response')
+    call run_response(config)
   end select
 
 contains
@@ -61,6 +66,7 @@ contains
   subroutine check(status, message, context)
     integer, intent(in) :: status
     character(len=*), intent(in) :: message, context
+    if (status == SD_BAD_INPUT) call die(exit_input, context//': '//trim(message))
     if (status /= SD_OK) call die(exit_failure, context//': '//status_name(status)//': '//trim(message))
   end subroutine check
 
@@ -268,6 +274,59 @@ contains
     close (unit)
     call commit_files(dir)
   end subroutine run_sweep
+
+  !> Slow-flow frequency response (sec 3.3): branches, stability, folds and Hopf points.
+  !> An incomplete branch is an error: nothing is written.
+  subroutine run_response(config)
+    type(run_config), intent(in) :: config
+    real(wp), allocatable :: table(:, :), special(:, :)
+    integer :: n_points, n_special, i, unit
+    logical :: complete
+    character(len=:), allocatable :: dir, name
+
+    allocate (table(point_rows, 20000), special(special_rows, 200))
+    call frequency_response(config%model, config%internal_resonance, &
+                            merge(PARAMETER_RHO, PARAMETER_A, config%sweep_parameter == 'rho'), &
+                            config%sweep_start, config%sweep_stop, config%response, table, &
+                            n_points, special, n_special, complete, status, message)
+    call check(status, message, 'frequency response')
+    name = trim(config%sweep_parameter)
+    print '(/a)', 'Slow-flow frequency response ('//trim(merge('3:1 internal resonance', &
+                  'no internal resonance ', config%internal_resonance))//') for '//name// &
+                  ' in ['//num2str(config%sweep_start)//', '//num2str(config%sweep_stop)//']'
+    print '(a)', '  '//num2str(nint(maxval(table(1, 1:n_points))))//' branches, '// &
+                 num2str(n_points)//' points; special points:'
+    do i = 1, n_special
+      print '(a)', '  '//pad(trim(merge('fold', 'Hopf', nint(special(1, i)) == SPECIAL_FOLD)), 6)// &
+                   name//' = '//pad(num2str(special(3, i)), 14)//'|u1| = '// &
+                   pad(num2str(special(6, i)), 14)//'|u2| = '//pad(num2str(special(7, i)), 14)// &
+                   hopf_frequency(special(:, i))
+    end do
+    dir = output_directory(config)
+    call write_parameters(config, dir)
+    call open_csv(dir, 'response.csv', unit)
+    write (unit, '(a)') 'branch,lambda,rho,A,a1,a2,phi1,phi2,stable,special,re1,re2,re3,re4,'// &
+                        'im1,im2,im3,im4,C1,C2,C3,C4,delta2,delta3,re_B1,im_B1,re_B2,im_B2'
+    do i = 1, n_points
+      write (unit, '(*(es24.16e3, :, ","))') table(:, i)
+    end do
+    close (unit)
+    call open_csv(dir, 'special_points.csv', unit)
+    write (unit, '(a)') 'kind,branch,lambda,rho,A,a1,a2,frequency'
+    do i = 1, n_special
+      write (unit, '(a, ",", *(es24.16e3, :, ","))') &
+        trim(merge('fold', 'hopf', nint(special(1, i)) == SPECIAL_FOLD)), special(2:8, i)
+    end do
+    close (unit)
+    call commit_files(dir)
+  end subroutine run_response
+
+  pure function hopf_frequency(point) result(text)
+    real(wp), intent(in) :: point(:)
+    character(len=:), allocatable :: text
+    text = ''
+    if (nint(point(1)) /= SPECIAL_FOLD) text = 'frequency sqrt(C3/C1) = '//num2str(point(8))
+  end function hopf_frequency
 
   subroutine print_summary(summary)
     real(wp), intent(in) :: summary(summary_size)

@@ -149,6 +149,13 @@ class Continuation:
     x_scale: float = 1.0          #: weight of the amplitudes in the arclength norm
     max_points: int = 20000       #: room in the result table
 
+    @classmethod
+    def from_namelist(cls, response: dict):
+        """The settings of a &response group (as read_namelist gives it)."""
+        names = ("n_scan", "n_amplitudes", "n_phases", "amplitude_min", "amplitude_max", "ds",
+                 "ds_min", "ds_max", "x_scale")
+        return cls(**{name: response[name] for name in names})
+
     def array(self):
         return np.array([self.n_scan, self.n_amplitudes, self.n_phases, self.amplitude_min,
                          self.amplitude_max, self.ds, self.ds_min, self.ds_max, self.x_scale],

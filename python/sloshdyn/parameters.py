@@ -91,8 +91,23 @@ NAMELIST_SCHEMA = {
         "n_points": ("n_points", int, 0),
         "direction": ("direction", str, "up"),
     },
+    "response": {
+        "resonance": ("resonance", str, "3:1"),
+        "parameter": ("parameter", str, "rho"),
+        "start": ("start", float, None),
+        "stop": ("stop", float, None),
+        "n_scan": ("n_scan", int, 5),
+        "n_amplitudes": ("n_amplitudes", int, 8),
+        "n_phases": ("n_phases", int, 6),
+        "amplitude_min": ("amplitude_min", float, 1e-4),
+        "amplitude_max": ("amplitude_max", float, 1.0),
+        "ds": ("ds", float, 0.002),
+        "ds_min": ("ds_min", float, 1e-9),
+        "ds_max": ("ds_max", float, 0.01),
+        "x_scale": ("x_scale", float, 1.0),
+    },
 }
-ANALYSES = ("linear", "simulate", "steady_state", "sweep")
+ANALYSES = ("linear", "simulate", "steady_state", "sweep", "frequency_response")
 _TYPE_WORDS = {float: "a real number", int: "an integer", str: "a quoted string",
                "state": "four real numbers (x1, x1', x2, x2')"}
 
@@ -221,6 +236,7 @@ class Input:
     simulation: dict = field(default_factory=dict)    #: &simulation: t_end, n_out, y0
     steady: dict = field(default_factory=dict)        #: &steady, for simulation.Steady
     sweep: dict = field(default_factory=dict)         #: &sweep: parameter, start, stop, ...
+    response: dict = field(default_factory=dict)      #: &response: resonance, parameter, ...
 
 
 def read_namelist(path):
@@ -299,9 +315,9 @@ def read_namelist(path):
     if not directory.strip():
         raise InputError("&output: directory = '' is empty: give a directory name")
     group = {name: values.get(name, _group_values(name, {}, path))
-             for name in ("integration", "simulation", "steady", "sweep")}
+             for name in ("integration", "simulation", "steady", "sweep", "response")}
     named = {name: {NAMELIST_SCHEMA[name][k][0]: v for k, v in g.items()} for name, g in group.items()}
-    if kind == "linear":
+    if kind in ("linear", "frequency_response"):
         from .model import linear_modes
         linear_modes(params)              # needs kappa_hat > 1, checked before any output
     _check_analysis(kind, params, named, path)
@@ -309,13 +325,13 @@ def read_namelist(path):
                  kappa_min=analysis["kappa_min"], kappa_max=kappa_max,
                  directory=directory.strip(), tank=tank, structure=structure,
                  integration=named["integration"], simulation=named["simulation"],
-                 steady=named["steady"], sweep=named["sweep"])
+                 steady=named["steady"], sweep=named["sweep"], response=named["response"])
 
 
 def _check_analysis(kind, params, named, path):
     """The rules of &simulation and &sweep (the integrator and steady-state settings are
     checked by the core when they are used, with the same messages)."""
-    sim, sweep = named["simulation"], named["sweep"]
+    sim, sweep, response = named["simulation"], named["sweep"], named["response"]
     if kind == "simulate":
         if sim["t_end"] is None:
             raise InputError("&simulation: required variable t_end is missing")
@@ -338,6 +354,16 @@ def _check_analysis(kind, params, named, path):
         if not 1 <= sweep["n_points"] <= 100_000:
             raise InputError(f"&sweep: n_points = {sweep['n_points']} is out of range: it must lie "
                              "in [1, 100000]")
+    if kind == "frequency_response":
+        if response["resonance"].strip() not in ("3:1", "none"):
+            raise InputError(f"&response: resonance = '{response['resonance'].strip()}' is not "
+                             "known; allowed: 3:1, none")
+        if response["parameter"].strip() not in ("rho", "A", "a"):
+            raise InputError(f"&response: parameter = '{response['parameter'].strip()}' is not "
+                             "known; allowed: rho, A")
+        for name in ("start", "stop"):
+            if response[name] is None:
+                raise InputError(f"&response: required variable {name} is missing")
 
 
 def _group_values(group, content, path):

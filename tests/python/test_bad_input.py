@@ -58,6 +58,10 @@ CASES = {
                         "n_points = 3, direction = 'sideways' /\n" + OUTPUT, ["sideways"]),
     "sweep n_points": (MODEL + "&analysis kind = 'sweep' /\n&sweep start = 0.5, stop = 0.6, "
                        "n_points = 0 /\n" + OUTPUT, ["n_points = 0"]),
+    "response resonance": (MODEL + "&analysis kind = 'frequency_response' /\n&response "
+                           "resonance = '2:1', start = 0.5, stop = 0.6 /\n" + OUTPUT, ["2:1", "3:1, none"]),
+    "response range": (MODEL + "&analysis kind = 'frequency_response' /\n&response start = 0.5 /\n"
+                       + OUTPUT, ["stop", "missing"]),
 }
 
 # rules that the Python reader leaves to the core, which applies them when the analysis runs

@@ -141,3 +141,21 @@ def test_failed_integration_writes_nothing(exe, tmp_path):
     assert result.returncode == 4
     assert "max_steps = 10" in result.stderr and "tau = " in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_frequency_response_same_numbers(exe, tmp_path):
+    shutil.copy(EXAMPLES / "fig12_response.nml", tmp_path)
+    result = run(exe, "fig12_response.nml", tmp_path)
+    assert result.returncode == 0, result.stderr
+    inp = sloshdyn.read_namelist(tmp_path / "fig12_response.nml")
+    r = inp.response
+    response = sloshdyn.frequency_response(inp.params, (r["start"], r["stop"]),
+                                           resonance=r["resonance"],
+                                           settings=sloshdyn.Continuation.from_namelist(r))
+    rows = read_csv(tmp_path / inp.directory / "response.csv")
+    assert [row["a1"] for row in rows] == list(response.table["a1"])
+    assert [row["delta3"] for row in rows] == list(response.table["delta3"])
+    special = read_csv(tmp_path / inp.directory / "special_points.csv")
+    assert [(s["kind"], s["rho"]) for s in special] == \
+           [(s.kind, s.rho) for s in response.special_points]
+    assert "Hopf  rho = 0.5092" in result.stdout
