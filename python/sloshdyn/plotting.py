@@ -122,3 +122,21 @@ def frequency_response(response, columns=("a1", "a2"), simulation=None):
     axes[-1, 0].set_xlabel(r"$\rho$" if response.parameter == "rho" else "A")
     fig.tight_layout()
     return fig
+
+
+def routh_delta3(response, zoom=None):
+    """Delta3 of eq (55) along the branches (Fig 13); Hopf points marked. zoom = (lo, hi)
+    limits the horizontal axis."""
+    fig, ax = plt.subplots(figsize=(7, 3))
+    for branch in response.branches:
+        ax.plot(branch["lambda"], branch["delta3"], "-", color="k", lw=1.0)
+    for s in response.special_points:
+        if s.kind == "hopf":
+            ax.axvline(s.rho if response.parameter == "rho" else s.A, ls=":", color="r")
+    ax.axhline(0, color="0.6", lw=0.6)
+    ax.set_xlabel(r"$\rho$" if response.parameter == "rho" else "A")
+    ax.set_ylabel(r"$\Delta_3$")
+    if zoom:
+        ax.set_xlim(*zoom)
+    fig.tight_layout()
+    return fig

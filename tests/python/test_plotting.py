@@ -30,3 +30,17 @@ def test_sweep_plot_separates_up_and_down(fig12):
     up, down = fig.axes[0].lines[:2]
     assert list(up.get_xdata()) == [0.50, 0.51, 0.52]
     assert list(down.get_xdata()) == [0.52, 0.51, 0.50]
+
+
+def test_response_plots_split_stable_and_unstable():
+    p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4,
+                            gamma=0.001, A=0.00075)
+    r = sloshdyn.frequency_response(p, (0.49, 0.53))
+    fig = plotting.frequency_response(r)
+    styles = {line.get_linestyle() for line in fig.axes[0].lines}
+    assert {"-", "--"} <= styles               # both stable and unstable parts are drawn
+    dashed = np.concatenate([l.get_xdata() for l in fig.axes[0].lines if l.get_linestyle() == "--"])
+    unstable = r.table["rho"][r.table["stable"] == 0]
+    assert np.all(np.isin(unstable, dashed))
+    fig = plotting.routh_delta3(r, zoom=(0.508, 0.511))
+    assert len([l for l in fig.axes[0].lines if l.get_linestyle() == ":"]) == 2   # two Hopf points
