@@ -6,7 +6,8 @@ module sloshdyn_motion
   use sloshdyn_model, only: model_t
   implicit none
   private
-  public :: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, base_acceleration
+  public :: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, base_acceleration, &
+            excitation_direction
 
   !> Trigonometric functions and powers of one state, each evaluated once.
   type :: state_terms
@@ -98,6 +99,19 @@ contains
     det = 1 - m12*m21
     w = [(v(1) - m12*v(2))/det, (v(2) - m21*v(1))/det]
   end function solve_inertia
+
+  !> d(dydt)/dX'': the equations of motion are affine in the base acceleration X'' (eq 10, 14),
+  !> dydt = f0(y) + X'' e(y) with e = (0, q1, 0, q2), q = M^-1 (-a6 cos(theta0 x1), -b6 cos(theta0 x2)).
+  !> Parameter sensitivities follow: d(dydt)/dA = e dX''/dA, d(dydt)/drho = e dX''/drho.
+  pure subroutine excitation_direction(model, y, e)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4)
+    real(wp), intent(out) :: e(4)
+    real(wp) :: q(2)
+    q = solve_inertia(model, cos(model%theta0*(y(1) + y(3))), &
+                      [-model%a_coef(6)*cos(model%theta0*y(1)), -model%b_coef(6)*cos(model%theta0*y(3))])
+    e = [0.0_wp, q(1), 0.0_wp, q(2)]
+  end subroutine excitation_direction
 
   !> Analytic Jacobian d(dydt)/dy of equations_of_motion:
   !> dQ''/dz = M^-1 (dF/dz - (dM/dz) Q'').

@@ -3,7 +3,8 @@
 program test_motion
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_model, only: model_t, model_from_arrays
-  use sloshdyn_motion, only: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian
+  use sloshdyn_motion, only: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, &
+                             excitation_direction, base_acceleration
   use checks, only: check_close, check_true, finish
   implicit none
   type(model_t) :: model
@@ -46,6 +47,20 @@ program test_motion
     end do
     call check_close('analytic Jacobian = central differences', worst, 0.0_wp, 0.0_wp, 1.0e-7_wp)
   end do
+
+  ! the equations are affine in X'': dydt(A) - dydt(0) = X'' e(y)
+  block
+    type(model_t) :: unforced
+    real(wp) :: e(4), f0(4)
+    unforced = model
+    unforced%A = 0
+    y = states(:, 2)
+    call equations_of_motion(model, tau, y, dydt)
+    call equations_of_motion(unforced, tau, y, f0)
+    call excitation_direction(model, y, e)
+    call check_close('excitation direction: affine in X''''', &
+                     maxval(abs(dydt - f0 - base_acceleration(model, tau)*e)), 0.0_wp, 0.0_wp, 1.0e-14_wp)
+  end block
 
   ! eq (19): the Jacobian at the trivial equilibrium (p >= 1, so delta does not enter)
   call motion_jacobian(model, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], jac)
