@@ -14,7 +14,7 @@ module sloshdyn_simulation
   implicit none
   private
   public :: tank_system, history_rows, time_history, steady_options, steady_state, check_steady, &
-            parameter_sweep, summary_size, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
+            parameter_sweep, parallel_sweep, summary_size, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
             MOTION_IRREGULAR, MOTION_SETTLING, SWEEP_RHO, SWEEP_A, integrator_options, steady_settings
 
   !> Rows of a time history: x1, x1', x2, x2', u1, u2 (eq 34), impact force beta x1^(2n-1)
@@ -348,6 +348,51 @@ contains
       y_start = y_final
     end do
   end subroutine parameter_sweep
+
+  !> The sweep split into n_threads contiguous chunks run in parallel (OpenMP), each chunk
+  !> starting from y0 and carrying its state from point to point: continuity (and so the
+  !> branch a sweep follows through hysteresis) is broken at chunk starts. Every point is a
+  !> steady state all the same; with n_threads = 1 this is parameter_sweep. status and message
+  !> are those of the first failing chunk; n_done counts the points completed in all chunks.
+  subroutine parallel_sweep(model, which, values, y0, options, steady, n_threads, summaries, &
+                            n_done, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: which, n_threads
+    real(wp), intent(in) :: values(:), y0(4)
+    type(rk45_options), intent(in) :: options
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(out) :: summaries(summary_size, size(values))
+    integer, intent(out) :: n_done, status
+    character(len=message_len), intent(out) :: message
+    integer :: chunk, n_chunks, first, last, done(max(1, n_threads)), chunk_status(max(1, n_threads))
+    character(len=message_len) :: chunk_message(max(1, n_threads))
+    real(wp) :: y_final(4)
+
+    n_chunks = max(1, min(n_threads, size(values)))
+    done = 0
+    chunk_status = SD_OK
+    chunk_message = ''
+    summaries = 0
+    !$omp parallel do num_threads(n_chunks) schedule(static, 1) private(first, last, y_final)
+    do chunk = 1, n_chunks
+      first = (chunk - 1)*size(values)/n_chunks + 1
+      last = chunk*size(values)/n_chunks
+      call parameter_sweep(model, which, values(first:last), y0, options, steady, &
+                           summaries(:, first:last), y_final, done(chunk), chunk_status(chunk), &
+                           chunk_message(chunk))
+    end do
+    !$omp end parallel do
+    n_done = sum(done(1:n_chunks))
+    status = SD_OK
+    message = ''
+    do chunk = 1, n_chunks
+      if (chunk_status(chunk) /= SD_OK) then
+        status = chunk_status(chunk)
+        message = chunk_message(chunk)
+        exit
+      end if
+    end do
+  end subroutine parallel_sweep
 
   !> Integrator settings from [rtol, atol, h_initial, h_max, h_min, max_steps] (the layout the
   !> bridge and the namelist use).

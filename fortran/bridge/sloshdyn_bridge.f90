@@ -389,4 +389,24 @@ contains
     end do
     status = info
   end subroutine nonresonant_amplitudes
+
+  !> parameter_sweep split into n_threads chunks run in parallel (each from y0).
+  subroutine parallel_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
+                            summaries, n_done, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_simulation, only: core => parallel_sweep, integrator_options, steady_settings
+    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(6), steady(6)
+    integer(c_int), intent(in) :: ipar(2), which, n, n_threads
+    real(c_double), intent(out) :: summaries(11, n)
+    integer(c_int), intent(out) :: n_done, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: info, done
+    summaries = 0; done = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call core(model, int(which), values, y0, integrator_options(integration), &
+                             steady_settings(steady), int(n_threads), summaries, done, info, message)
+    n_done = done
+    status = info
+  end subroutine parallel_sweep
 end module sloshdyn_bridge

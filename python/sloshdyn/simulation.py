@@ -190,10 +190,15 @@ def sweep_values(start, stop, n, direction="up"):
     raise InputError(f"direction = {direction!r} is not valid: it must be 'up', 'down' or 'both'")
 
 
-def _sweep(params, parameter, values, y0, steady, integration, progress):
+def _sweep(params, parameter, values, y0, steady, integration, progress, threads=1):
     which = {"rho": 1, "A": 2}[parameter]
     values = np.ascontiguousarray(values, dtype=np.float64)
     y = _state(y0)
+    if threads > 1:
+        summaries, n_done, status, message = _bridge.parallel_sweep(
+            *params.arrays(), which, values, y, integration.array(), steady.array(), int(threads))
+        check_status(status, message, f"parallel sweep in {parameter}")
+        return Sweep(parameter, [_summary(summaries[:, i]) for i in range(len(values))], None)
     points = []
     bar = None
     if progress:
@@ -220,17 +225,21 @@ def _sweep(params, parameter, values, y0, steady, integration, progress):
 
 
 def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady = Steady(),
-                    integration: Integration = Integration(), progress=False) -> Sweep:
+                    integration: Integration = Integration(), progress=False, threads=1) -> Sweep:
     """Steady states along rho_values (ascending = up, descending = down), each starting from
-    the previous point's final state, so jumps and hysteresis show."""
-    return _sweep(params, "rho", rho_values, y0, steady, integration, progress)
+    the previous point's final state, so jumps and hysteresis show.
+
+    threads > 1 splits the values into that many contiguous chunks run in parallel (OpenMP in
+    the core), each chunk starting from y0: faster, but the state is not carried across chunk
+    starts, and there is no per-point progress nor final state (y_final is None)."""
+    return _sweep(params, "rho", rho_values, y0, steady, integration, progress, threads)
 
 
 def amplitude_sweep(params: Parameters, A_values, y0=None, *, steady: Steady = Steady(),
-                    integration: Integration = Integration(), progress=False) -> Sweep:
+                    integration: Integration = Integration(), progress=False, threads=1) -> Sweep:
     """Steady states along A_values at fixed rho, carrying the state (the paper's numerical
-    continuation, sec 4.2)."""
-    return _sweep(params, "A", A_values, y0, steady, integration, progress)
+    continuation, sec 4.2); threads as for frequency_sweep."""
+    return _sweep(params, "A", A_values, y0, steady, integration, progress, threads)
 
 
 def spectrum(signal, dt, window="hann"):

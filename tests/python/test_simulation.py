@@ -124,3 +124,13 @@ def test_sweep_carries_the_state(fig12):
     assert sweep.points[0].max_x1 == first.max_x1
     assert sweep.points[1].max_x1 == second.max_x1         # bit for bit: started from first.y_end
     assert np.array_equal(sweep.y_final, second.y_end)
+
+
+def test_parallel_sweep_equals_serial_chunks(fig12):
+    p = fig12.replace(beta=10.0, delta=0.1)
+    steady = sloshdyn.Steady(transient_periods=100, settle_tol=0, window_periods=16)
+    values = [0.50, 0.505, 0.51, 0.515]
+    parallel = sloshdyn.frequency_sweep(p, values, steady=steady, threads=2)
+    first = sloshdyn.frequency_sweep(p, values[:2], steady=steady)
+    second = sloshdyn.frequency_sweep(p, values[2:], steady=steady)
+    assert list(parallel.column("max_x1")) == list(first.column("max_x1")) + list(second.column("max_x1"))
