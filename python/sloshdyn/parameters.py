@@ -16,6 +16,7 @@ import numpy as np
 
 from . import _core
 from ._errors import FileError, InputError, check_status
+from ._files import atomic_path
 
 REQUIRED = object()
 
@@ -196,7 +197,8 @@ class Parameters:
         }
         nml = f90nml.Namelist(groups)
         nml.float_format = ".17g"
-        _write_atomically(path, lambda tmp: nml.write(tmp, force=True))
+        with atomic_path(path) as tmp:
+            nml.write(tmp, force=True)
 
 
 @dataclass(frozen=True)
@@ -400,16 +402,3 @@ def _group_values(group, content, path):
                 raise InputError(f"&{group}: required variable {name} is missing")
             values[key] = default
     return values
-
-
-def _write_atomically(path, write):
-    """Call write(tmp) on a temporary name beside path, then rename it into place."""
-    path = os.fspath(path)
-    directory = os.path.dirname(os.path.abspath(path))
-    tmp = os.path.join(directory, "." + os.path.basename(path) + ".tmp")
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)

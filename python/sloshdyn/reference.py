@@ -1,0 +1,205 @@
+"""Regression against tabulated reference data (data/reference): the numbers the paper quotes,
+with their place and a tolerance that reflects the printed digits, and tables the project
+computed at tight tolerances and confirmed by an independent method."""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from . import figures
+from .asymptotics import frequency_response, modal_coefficients
+from .model import kappa_for_detuning, natural_frequencies
+from .parameters import Parameters
+from .simulation import spectrum, simulate, steady_state
+
+#: the reference tables shipped with the package (a copy of data/reference)
+PACKAGE_REFERENCE = Path(__file__).parent / "reference"
+
+
+@dataclass
+class Verdict:
+    quantity: str
+    place: str
+    reference: float
+    computed: float
+    tolerance: str
+    passed: bool
+    note: str = ""
+
+
+def load(directory=None):
+    """Rows of paper_values.csv and computed_values.csv (method beside each)."""
+    directory = Path(directory) if directory else PACKAGE_REFERENCE
+    rows = []
+    for name in ("paper_values.csv", "computed_values.csv"):
+        path = directory / name
+        if not path.exists():
+            raise FileNotFoundError(f"reference table {path} is missing")
+        with open(path, newline="") as f:
+            rows.extend(csv.DictReader(f))
+    return rows
+
+
+def judge(row, computed):
+    """Apply the row's tolerance kind to a computed value."""
+    reference = float(row["reference"])
+    kind = row["kind"]
+    tol = float(row["tolerance"]) if row.get("tolerance") else 0.0
+    if computed is None or not math.isfinite(computed):
+        return False, "not computed"
+    if kind == "abs":
+        return abs(computed - reference) <= tol, f"±{tol:g}"
+    if kind == "rel":
+        return abs(computed - reference) <= tol * abs(reference), f"±{tol:g} rel"
+    if kind == "at_least":
+        return computed >= reference, f">= {reference:g}"
+    if kind == "factor":
+        return reference / tol <= computed <= reference * tol, f"within a factor {tol:g}"
+    raise ValueError(f"unknown tolerance kind {kind!r} for {row['quantity']}")
+
+
+def compute(names, quick=True):
+    """Compute the named quantities with the current core."""
+    values = {}
+    groups = {prefix: provider for prefix, provider in _PROVIDERS}
+    for name in names:
+        if name in values:
+            continue
+        for prefix, provider in groups.items():
+            if name.startswith(prefix):
+                values.update(provider(quick))
+                break
+    return values
+
+
+def check(values=None, directory=None, quick=True):
+    """Compare computed values (or compute them) with every reference row."""
+    rows = load(directory)
+    if values is None:
+        values = compute([row["quantity"] for row in rows], quick)
+    verdicts = []
+    for row in rows:
+        computed = values.get(row["quantity"])
+        computed = float(computed) if computed is not None else float("nan")
+        passed, tolerance = judge(row, computed)
+        verdicts.append(Verdict(row["quantity"], row.get("place") or row.get("method", ""),
+                                float(row["reference"]), computed, tolerance, passed,
+                                row.get("note", "")))
+    return verdicts
+
+
+def format_table(verdicts):
+    lines = ["| quantity | place / method | reference | computed | tolerance | verdict |",
+             "|---|---|---|---|---|---|"]
+    for v in verdicts:
+        lines.append(f"| {v.quantity} | {v.place} | {v.reference:.10g} | {v.computed:.10g} | "
+                     f"{v.tolerance} | {'pass' if v.passed else 'FAIL'} |")
+    return "\n".join(lines)
+
+
+# value providers: each computes a group of quantities whose names start with its prefix
+
+def _linear(quick):
+    w1, w2 = natural_frequencies(figures.FIG12)
+    return {"omega1": w1, "omega2": w2,
+            "kappa_31_sigma1_0": kappa_for_detuning(1.5, 0.5, 0.0)[0],
+            "kappa_31_sigma1_0005": kappa_for_detuning(1.5, 0.5, 0.005)[0],
+            "kappa_31_fig14": kappa_for_detuning(1.5, 0.5, 0.005)[0],
+            "sec32_sigma_tilde_31": kappa_for_detuning(1.5, 0.5, 0.0)[0] - 1.5}
+
+
+def _equilibria(quick):
+    from .model import equilibrium_angles
+    values = {"fig4_beta_hat_b": figures._beta_hat_bifurcation(),
+              "fig6_pitchfork_kappa_hat": figures._pitchfork()}
+    for b in (0.005, 0.08):
+        values[f"fig4_equilibria_beta_hat_{b}"] = len(equilibrium_angles(figures._with_beta_hat(b), "theta")[0])
+    for k in (1.3, 0.9):
+        values[f"fig5_equilibria_kappa_hat_{k}"] = len(equilibrium_angles(figures._with_kappa_hat(k), "phi")[0])
+    return values
+
+
+def _c11(quick):
+    return {f"fig9{letter}_c11": modal_coefficients(Parameters(kappa=k, **figures.FIG9))["c11"]
+            for letter, k in (("a", 4.7), ("b", 4.5))}
+
+
+def _fig11(quick):
+    p = figures.FIG12.replace(kappa=float(kappa_for_detuning(1.5, 0.5, 0.0)[0]), gamma=0.0025)
+    return {f"fig11_folds_A_{A}": sum(s.kind == "fold" for s in
+                                      frequency_response(p.replace(A=A), (0.48, 0.54)).special_points)
+            for A in (0.00025, 0.001)}
+
+
+def _hopf(quick):
+    r = frequency_response(figures.FIG12, (0.49, 0.53))
+    hopf = sorted(s.rho for s in r.special_points if s.kind == "hopf")
+    return {f"fig13_hopf_rho_{i + 1}": h for i, h in enumerate(hopf)}
+
+
+def _fig14(quick):
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        return figures.fig14(tmp, quick=True).values
+
+
+def _fig15(quick):
+    p = figures.FIG12.replace(rho=0.513)
+    st = steady_state(p)
+    period = 2 * math.pi / p.rho
+    tau = np.arange(256 * 32 + 1) * period / 32
+    sim = simulate(p, tau[-1], st.y_end, tau_out=tau)
+    omega, amp = spectrum(sim.x1[:-1], period / 32, window=None)
+    top = omega[np.argsort(amp)[::-1][:2]] / p.rho
+    return {"fig15_max_x1": st.max_x1, "fig15_first_line_over_rho": min(top),
+            "fig15_second_line_over_rho": max(top)}
+
+
+def _fig17(quick):
+    p, states = figures._continuation(quick=True)
+    y0, _ = states[2.0]
+    q = p.replace(A=2.0)
+    sim = simulate(q, 128 * 2 * math.pi / q.rho, y0, n_out=128 * 32 + 1)
+    return {"fig17_max_x1": float(np.max(np.abs(sim.x1)))}
+
+
+def _computed(quick):
+    """The quantities of computed_values.csv."""
+    from .model import frequency_ratio
+    p = figures.FIG12
+    response = frequency_response(p, (0.49, 0.53))
+    values = {}
+    for rho in (0.505, 0.508, 0.5105, 0.511):
+        values.update(_slow_flow_point(response, rho))
+    st = steady_state(p.replace(rho=0.513))
+    values["steady_fig15_max_x1"] = st.max_x1
+    values["steady_fig15_max_u1"] = st.max_u1
+    for sigma_t, mu_t in ((0.305, 0.5), (1.0, 0.5), (3.0, 0.1)):
+        values[f"ratio_sigma_{sigma_t}_mu_{mu_t}"] = frequency_ratio(sigma_t, mu_t)
+    return values
+
+
+def _slow_flow_point(response, rho):
+    """a1, a2 of the (single) branch point at rho, by interpolation of the Cartesian unknowns
+    between the bracketing points (the points are dense enough for 1e-6)."""
+    for b in response.branches:
+        x = b["rho"]
+        for k in range(len(x) - 1):
+            if (x[k] - rho) * (x[k + 1] - rho) <= 0 and x[k] != x[k + 1] and b["stable"][k]:
+                w = (rho - x[k]) / (x[k + 1] - x[k])
+                b1 = (1 - w) * (b["re_B1"][k] + 1j * b["im_B1"][k]) + w * (b["re_B1"][k + 1] + 1j * b["im_B1"][k + 1])
+                b2 = (1 - w) * (b["re_B2"][k] + 1j * b["im_B2"][k]) + w * (b["re_B2"][k + 1] + 1j * b["im_B2"][k + 1])
+                return {f"slowflow_rho_{rho}_a1": abs(b1), f"slowflow_rho_{rho}_a2": abs(b2)}
+    return {}
+
+
+_PROVIDERS = [("omega", _linear), ("kappa_31", _linear), ("sec32", _linear),
+              ("fig4", _equilibria), ("fig5", _equilibria), ("fig6", _equilibria),
+              ("fig9", _c11), ("fig11", _fig11), ("fig13", _hopf), ("fig14", _fig14),
+              ("fig15", _fig15), ("fig17", _fig17), ("slowflow", _computed),
+              ("steady", _computed), ("ratio", _computed)]
