@@ -138,9 +138,10 @@ contains
     system%model = model
     period = 2*pi/model%rho
     call inverse_modal_matrix(model, p_inv)
+    ! one spare period: sample times computed in steps must not round past t_bound
     call rk45_init(integ, system, 0.0_wp, y0, &
                    (max(steady%transient_periods, steady%max_transient_periods) + &
-                    steady%window_periods)*period, options, status, message)
+                    steady%window_periods + 1)*period, options, status, message)
     if (status /= SD_OK) return
 
     ! transient: whole periods, then (optionally) until the Poincare map settles
