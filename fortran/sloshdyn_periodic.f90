@@ -17,7 +17,8 @@
 !> max|y1| is sampled by dense output at tau = j T/64 (j = 0 .. 64 k - 1), forcing phase fixed,
 !> so simulations sampled at the same phases reproduce it exactly.
 module sloshdyn_periodic
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan, &
+                                          ieee_positive_inf
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_NON_FINITE, &
                              SD_CAPACITY, check_real
@@ -56,8 +57,7 @@ module sloshdyn_periodic
   integer, parameter :: samples_per_period = 64
   !> Newton's convergence scale is tol*(max|y0| + scale_floor), so that the rest state converges.
   real(wp), parameter :: scale_floor = 1.0e-12_wp
-  !> A branch point is the +1 crossing without a turn in lambda; this is the |mu| tolerance of the
-  !> stable flag (FLOQUET_STABLE) along a branch.
+  !> |mu| tolerance of the stable flag along a branch: stable = FLOQUET_STABLE at this tol.
   real(wp), parameter :: stability_tol = 1.0e-9_wp
 
   !> A T-periodic system y' = f(t, y; lambda) with its analytic Jacobian and the derivatives in
@@ -156,7 +156,7 @@ module sloshdyn_periodic
     logical :: valid = .false.
     real(wp), allocatable :: x_key(:)
     real(wp) :: lambda_key = 0
-    integer :: status = SD_OK                 !< of the last shot
+    integer :: status = SD_OK                 !< of the last shot that failed (SD_OK: none)
     character(len=message_len) :: message = ''
   end type shooting_workspace
 
@@ -197,7 +197,12 @@ contains
   function tank_period(self) result(value)
     class(tank_periodic_problem), intent(in) :: self
     real(wp) :: value
-    value = 2*pi/self%model%rho
+    ! no period without forcing frequency (the inputs check reports it)
+    if (self%model%rho > 0) then
+      value = 2*pi/self%model%rho
+    else
+      value = ieee_value(1.0_wp, ieee_positive_inf)
+    end if
   end function tank_period
 
   !> f is affine in X'' = -A rho^2 sin(rho t) with direction e (excitation_direction), so
@@ -906,9 +911,11 @@ contains
     end if
     call ws%sys%problem%set_parameter(lambda)
     call shoot(ws, x, status, message)
-    ws%status = status
-    ws%message = message
-    if (status /= SD_OK) return
+    if (status /= SD_OK) then
+      ws%status = status
+      ws%message = message
+      return
+    end if
     ws%x_key = x
     ws%lambda_key = lambda
   end subroutine evaluate

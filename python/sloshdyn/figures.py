@@ -337,7 +337,9 @@ def fig13(out, quick=False):
         ax.set_ylabel(r"$\Delta_3$")
         if zoom:
             ax.set_xlim(*zoom)
-            ax.set_ylim(-2e-10, 2e-10)
+            inside = (r.table["rho"] > zoom[0]) & (r.table["rho"] < zoom[1])
+            span = np.max(np.abs(r.table["delta3"][inside]))
+            ax.set_ylim(-1.1 * span, 1.1 * span)
     fig.tight_layout()
     return Figure("13", "a) Routh coefficient Δ3 vs. external forcing frequency, b) zoom-in.",
                   _save(fig, out, "fig13", _response_columns(r)))
@@ -412,6 +414,8 @@ def fig15_17(out, quick=False):
             axes[2].plot(omega, amp, ls, lw=0.8, label=label)
             lines.append((omega, amp))
         axes[2].set_xlim(0, 8 * q.rho)
+        axes[2].set_yscale("log")
+        axes[2].set_ylim(1e-8, None)
         axes[2].set_xlabel("angular frequency")
         axes[2].set_ylabel("FFT amplitude")
         axes[2].legend()
