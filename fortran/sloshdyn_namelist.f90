@@ -10,6 +10,7 @@ module sloshdyn_namelist
   use sloshdyn_rk45, only: rk45_options, rk45_check_setup
   use sloshdyn_simulation, only: steady_options, check_steady
   use sloshdyn_response, only: response_options
+  use sloshdyn_integrator, only: METHOD_RK45, METHOD_DOP853
   implicit none
   private
   public :: run_config, read_input, known_analyses
@@ -32,6 +33,7 @@ module sloshdyn_namelist
     real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0                 !< 3:1 tuning search
     character(len=path_len) :: directory = 'sloshdyn_output'
     type(rk45_options) :: integration                                  !< &integration
+    integer :: method = METHOD_RK45
     real(wp) :: t_end = 0, y0(4) = 0                                   !< &simulation
     integer :: n_out = 0
     type(steady_options) :: steady                                     !< &steady
@@ -69,6 +71,7 @@ contains
     character(len=path_len) :: directory
     real(wp) :: rtol, atol, h_initial, h_max, h_min
     integer :: max_steps
+    character(len=8) :: method
     real(wp) :: t_end, y0(4)
     integer :: n_out
     real(wp) :: transient_periods, settle_tol, max_transient_periods, periodic_tol
@@ -82,7 +85,7 @@ contains
     namelist /excitation/ A, rho
     namelist /analysis/ kind, sigma1, kappa_min, kappa_max
     namelist /output/ directory
-    namelist /integration/ rtol, atol, h_initial, h_max, h_min, max_steps
+    namelist /integration/ rtol, atol, h_initial, h_max, h_min, max_steps, method
     namelist /simulation/ t_end, n_out, y0
     namelist /steady/ transient_periods, settle_tol, max_transient_periods, window_periods, &
                       samples_per_period, periodic_tol
@@ -102,7 +105,7 @@ contains
     kind = 'linear'; sigma1 = 0; kappa_min = 0; kappa_max = nan
     directory = 'sloshdyn_output'
     rtol = 1.0e-9_wp; atol = 1.0e-12_wp
-    h_initial = 0; h_max = 0; h_min = 0; max_steps = 10**8
+    h_initial = 0; h_max = 0; h_min = 0; max_steps = 10**8; method = 'rk45'
     t_end = nan; n_out = 0; y0 = 0
     transient_periods = config%steady%transient_periods; settle_tol = config%steady%settle_tol
     max_transient_periods = config%steady%max_transient_periods
@@ -261,6 +264,12 @@ contains
     config%integration%h_initial = h_initial; config%integration%h_max = h_max
     config%integration%h_min = h_min; config%integration%max_steps = max_steps
     config%y0 = y0
+    method = adjustl(method)
+    if (method /= 'rk45' .and. method /= 'dop853') then
+      call fail('&integration: method = '''//trim(method)//''' is not known; allowed: rk45, dop853')
+      return
+    end if
+    config%method = merge(METHOD_DOP853, METHOD_RK45, method == 'dop853')
     call rk45_check_setup(config%integration, [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp], status, message)
     if (status /= SD_OK) then
       message = '&integration: '//trim(message)
@@ -484,7 +493,7 @@ contains
     case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
           'n_scan', 'n_amplitudes', 'n_phases')
       text = name//' must be an integer'
-    case ('kind', 'directory', 'parameter', 'direction', 'resonance')
+    case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method')
       text = name//' must be a quoted string'
     case ('y0')
       text = 'y0 must be four real numbers (x1, x1'''', x2, x2'''')'

@@ -9,13 +9,15 @@ module sloshdyn_simulation
   use sloshdyn_model, only: model_t
   use sloshdyn_motion, only: equations_of_motion
   use sloshdyn_linear, only: modal_matrix
-  use sloshdyn_rk45, only: ode_system, rk45_options, rk45_integrator, rk45_stats, rk45_init, &
-                           rk45_step, rk45_dense, rk45_statistics, rk45_integrate
+  use sloshdyn_rk45, only: ode_system, rk45_options, rk45_stats
+  use sloshdyn_integrator, only: stepper, stepper_init, stepper_step, stepper_dense, stepper_time, &
+                                 stepper_statistics, integrate, check_method
   implicit none
   private
   public :: tank_system, history_rows, time_history, steady_options, steady_state, check_steady, &
             parameter_sweep, parallel_sweep, summary_size, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
-            MOTION_IRREGULAR, MOTION_SETTLING, SWEEP_RHO, SWEEP_A, integrator_options, steady_settings
+            MOTION_IRREGULAR, MOTION_SETTLING, SWEEP_RHO, SWEEP_A, integrator_options, steady_settings, &
+            integration_method
 
   !> Rows of a time history: x1, x1', x2, x2', u1, u2 (eq 34), impact force beta x1^(2n-1)
   !> (eq 4), theta = theta0 x1, phi = theta0 x2 [rad].
@@ -63,10 +65,12 @@ contains
 
   !> y, u, impact force, theta and phi at the times tau_out (ascending, >= tau0) from y0 at tau0.
   !> On failure the columns reached are filled and the rest are NaN; stats%t_reached says where.
-  subroutine time_history(model, tau0, y0, tau_out, options, history, stats, status, message)
+  subroutine time_history(model, tau0, y0, tau_out, options, method, history, stats, status, &
+                          message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: tau0, y0(4), tau_out(:)
     type(rk45_options), intent(in) :: options
+    integer, intent(in) :: method           !< METHOD_RK45 or METHOD_DOP853
     real(wp), intent(out) :: history(history_rows, size(tau_out))
     type(rk45_stats), intent(out) :: stats
     integer, intent(out) :: status
@@ -76,7 +80,8 @@ contains
     integer :: i
 
     system%model = model
-    call rk45_integrate(system, tau0, y0, tau_out, history(1:4, :), options, stats, status, message)
+    call integrate(method, system, tau0, y0, tau_out, history(1:4, :), options, stats, status, &
+                   message)
     call inverse_modal_matrix(model, p_inv)
     do i = 1, size(tau_out)
       history(5:9, i) = derived_quantities(model, p_inv, history(1:4, i))
@@ -108,11 +113,12 @@ contains
   !> |x1|, |x2|, |u1|, |u2| (dense output, samples_per_period per period), the Poincare points at
   !> tau = k T (forcing phase 0), and the kind of motion. y_end is the state at the end of the
   !> window, again at forcing phase 0, so the next point of a sweep can start from it at tau = 0.
-  subroutine steady_state(model, y0, options, steady, summary, poincare, y_end, stats, status, &
-                          message)
+  subroutine steady_state(model, y0, options, method, steady, summary, poincare, y_end, stats, &
+                          status, message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y0(4)
     type(rk45_options), intent(in) :: options
+    integer, intent(in) :: method
     type(steady_options), intent(in) :: steady
     real(wp), intent(out) :: summary(summary_size), poincare(:, :)
     real(wp), intent(out) :: y_end(4)
@@ -120,7 +126,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(tank_system) :: system
-    type(rk45_integrator) :: integ
+    type(stepper) :: integ
     real(wp) :: period, p_inv(2, 2), maxima(4), y(4), previous(4), spread, scale
     real(wp) :: tau_window, transient
     integer :: k, n_samples, sample, motion, repeat
@@ -139,7 +145,7 @@ contains
     period = 2*pi/model%rho
     call inverse_modal_matrix(model, p_inv)
     ! one spare period: sample times computed in steps must not round past t_bound
-    call rk45_init(integ, system, 0.0_wp, y0, &
+    call stepper_init(integ, method, system, 0.0_wp, y0, &
                    (max(steady%transient_periods, steady%max_transient_periods) + &
                     steady%window_periods + 1)*period, options, status, message)
     if (status /= SD_OK) return
@@ -173,7 +179,7 @@ contains
           poincare(:, sample/steady%samples_per_period) = y
       end do
     end if
-    stats = rk45_statistics(integ)
+    stats = stepper_statistics(integ)
     if (status /= SD_OK) then
       message = trim(message)//' (steady state at rho = '//num2str(model%rho)//', A = '// &
                 num2str(model%A)//')'
@@ -191,11 +197,11 @@ contains
     subroutine advance_to(tau, y)
       real(wp), intent(in) :: tau
       real(wp), intent(out) :: y(4)
-      do while (integ%t < tau)
-        call rk45_step(integ, system, status, message)
+      do while (stepper_time(integ) < tau)
+        call stepper_step(integ, system, status, message)
         if (status /= SD_OK) return
       end do
-      call rk45_dense(integ, tau, y)
+      call stepper_dense(integ, tau, y)
     end subroutine advance_to
   end subroutine steady_state
 
@@ -304,10 +310,10 @@ contains
   !> from the previous point's final state (so hysteresis and jumps show), as the paper's
   !> numerical continuation (sec 4.2). Only summaries are kept: summaries(:, i) for values(i);
   !> y_final is the state after the last point done (n_done of them).
-  subroutine parameter_sweep(model, which, values, y0, options, steady, summaries, y_final, &
-                             n_done, status, message)
+  subroutine parameter_sweep(model, which, values, y0, options, method, steady, summaries, &
+                             y_final, n_done, status, message)
     type(model_t), intent(in) :: model
-    integer, intent(in) :: which
+    integer, intent(in) :: which, method
     real(wp), intent(in) :: values(:), y0(4)
     type(rk45_options), intent(in) :: options
     type(steady_options), intent(in) :: steady
@@ -342,8 +348,8 @@ contains
                         'sweep values of A must be >= 0', status, message)
       end if
       if (status /= SD_OK) return
-      call steady_state(point, y_start, options, steady, summaries(:, i), poincare, y_final, &
-                        stats, status, message)
+      call steady_state(point, y_start, options, method, steady, summaries(:, i), poincare, &
+                        y_final, stats, status, message)
       if (status /= SD_OK) return
       n_done = i
       y_start = y_final
@@ -355,10 +361,10 @@ contains
   !> branch a sweep follows through hysteresis) is broken at chunk starts. Every point is a
   !> steady state all the same; with n_threads = 1 this is parameter_sweep. status and message
   !> are those of the first failing chunk; n_done counts the points completed in all chunks.
-  subroutine parallel_sweep(model, which, values, y0, options, steady, n_threads, summaries, &
-                            n_done, status, message)
+  subroutine parallel_sweep(model, which, values, y0, options, method, steady, n_threads, &
+                            summaries, n_done, status, message)
     type(model_t), intent(in) :: model
-    integer, intent(in) :: which, n_threads
+    integer, intent(in) :: which, method, n_threads
     real(wp), intent(in) :: values(:), y0(4)
     type(rk45_options), intent(in) :: options
     type(steady_options), intent(in) :: steady
@@ -378,7 +384,7 @@ contains
     do chunk = 1, n_chunks
       first = (chunk - 1)*size(values)/n_chunks + 1
       last = chunk*size(values)/n_chunks
-      call parameter_sweep(model, which, values(first:last), y0, options, steady, &
+      call parameter_sweep(model, which, values(first:last), y0, options, method, steady, &
                            summaries(:, first:last), y_final, done(chunk), chunk_status(chunk), &
                            chunk_message(chunk))
     end do
@@ -395,10 +401,10 @@ contains
     end do
   end subroutine parallel_sweep
 
-  !> Integrator settings from [rtol, atol, h_initial, h_max, h_min, max_steps] (the layout the
-  !> bridge and the namelist use).
+  !> Integrator settings from [rtol, atol, h_initial, h_max, h_min, max_steps, method] (the
+  !> layout the bridge uses; the method is read by integration_method).
   pure function integrator_options(integration) result(options)
-    real(wp), intent(in) :: integration(6)
+    real(wp), intent(in) :: integration(7)
     type(rk45_options) :: options
     options%rtol = integration(1)
     options%atol = integration(2)
@@ -407,6 +413,12 @@ contains
     options%h_min = integration(5)
     options%max_steps = int(min(max(integration(6), 0.0_wp), real(huge(1), wp)))
   end function integrator_options
+
+  !> The method of [.., method]: 0 = rk45, 1 = dop853 (see sloshdyn_integrator).
+  pure integer function integration_method(integration) result(method)
+    real(wp), intent(in) :: integration(7)
+    method = nint(min(max(integration(7), -1.0_wp), 2.0_wp))
+  end function integration_method
 
   !> Steady-state settings from [transient_periods, settle_tol, max_transient_periods,
   !> window_periods, samples_per_period, periodic_tol].

@@ -174,8 +174,8 @@ contains
 
     allocate (tau(config%n_out), history(history_rows, config%n_out))
     tau = [(config%t_end*(i - 1)/(config%n_out - 1), i = 1, config%n_out)]
-    call time_history(config%model, 0.0_wp, config%y0, tau, config%integration, history, stats, &
-                      status, message)
+    call time_history(config%model, 0.0_wp, config%y0, tau, config%integration, config%method, &
+                      history, stats, status, message)
     call check(status, message, 'simulation')
     print '(/a)', 'Simulation (RK45, eq 15 with 29-31) from tau = 0 to '//num2str(config%t_end)
     print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
@@ -208,8 +208,8 @@ contains
     character(len=:), allocatable :: dir
 
     allocate (poincare(4, config%steady%window_periods))
-    call steady_state(config%model, config%y0, config%integration, config%steady, summary, &
-                      poincare, y_end, stats, status, message)
+    call steady_state(config%model, config%y0, config%integration, config%method, config%steady, &
+                      summary, poincare, y_end, stats, status, message)
     call check(status, message, 'steady state')
     print '(/a)', 'Steady state (RK45) at rho = '//num2str(summary(1))//', A = '//num2str(summary(2))
     call print_summary(summary)
@@ -255,7 +255,7 @@ contains
     y = config%y0
     do i = 1, size(values)
       ! one point per call, so progress shows as the sweep runs
-      call parameter_sweep(config%model, which, values(i:i), y, config%integration, &
+      call parameter_sweep(config%model, which, values(i:i), y, config%integration, config%method, &
                            config%steady, summaries(:, i:i), y_next, n_done, status, message)
       call check(status, message, 'sweep')
       y = y_next

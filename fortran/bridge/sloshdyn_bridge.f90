@@ -2,7 +2,8 @@
 !> c_double/c_int cross the boundary; every routine returns status (0 = success) and a fixed-length
 !> message. Parameter layout (see sloshdyn_model):
 !>   rpar(9) = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho], ipar(2) = [n, p]
-!> Integrator settings: integration(6) = [rtol, atol, h_initial, h_max, h_min, max_steps];
+!> Integrator settings: integration(7) = [rtol, atol, h_initial, h_max, h_min, max_steps,
+!> method (0 rk45, 1 dop853)];
 !> steady states: steady(6) = [transient_periods, settle_tol, max_transient_periods,
 !> window_periods, samples_per_period, periodic_tol]; work counts: counts(4) = [rhs
 !> evaluations, accepted steps, rejected steps, tau reached].
@@ -212,8 +213,8 @@ contains
                       message)
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_rk45, only: rk45_stats
-    use sloshdyn_simulation, only: time_history, integrator_options
-    real(c_double), intent(in) :: rpar(9), tau0, y0(4), tau_out(n_out), integration(6)
+    use sloshdyn_simulation, only: time_history, integrator_options, integration_method
+    real(c_double), intent(in) :: rpar(9), tau0, y0(4), tau_out(n_out), integration(7)
     integer(c_int), intent(in) :: ipar(2), n_out
     real(c_double), intent(out) :: history(9, n_out), counts(4)
     integer(c_int), intent(out) :: status
@@ -225,8 +226,8 @@ contains
     counts = 0
     call model_from_arrays(rpar, int(ipar), model, info, message)
     if (info == 0) then
-      call time_history(model, tau0, y0, tau_out, integrator_options(integration), history, &
-                        stats, info, message)
+      call time_history(model, tau0, y0, tau_out, integrator_options(integration), &
+                        integration_method(integration), history, stats, info, message)
       counts = [real(stats%n_rhs, c_double), real(stats%n_accepted, c_double), &
                 real(stats%n_rejected, c_double), stats%t_reached]
     end if
@@ -240,8 +241,9 @@ contains
                           counts, status, message)
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_rk45, only: rk45_stats
-    use sloshdyn_simulation, only: core => steady_state, integrator_options, steady_settings
-    real(c_double), intent(in) :: rpar(9), y0(4), integration(6), steady(6)
+    use sloshdyn_simulation, only: core => steady_state, integrator_options, steady_settings, &
+                                   integration_method
+    real(c_double), intent(in) :: rpar(9), y0(4), integration(7), steady(6)
     integer(c_int), intent(in) :: ipar(2), window
     real(c_double), intent(out) :: summary(11), poincare(4, window), y_end(4), counts(4)
     integer(c_int), intent(out) :: status
@@ -252,8 +254,8 @@ contains
     summary = 0; poincare = 0; y_end = 0; counts = 0
     call model_from_arrays(rpar, int(ipar), model, info, message)
     if (info == 0) then
-      call core(model, y0, integrator_options(integration), steady_settings(steady), summary, &
-                poincare, y_end, stats, info, message)
+      call core(model, y0, integrator_options(integration), integration_method(integration), &
+                steady_settings(steady), summary, poincare, y_end, stats, info, message)
       counts = [real(stats%n_rhs, c_double), real(stats%n_accepted, c_double), &
                 real(stats%n_rejected, c_double), stats%t_reached]
     end if
@@ -265,8 +267,9 @@ contains
   subroutine parameter_sweep(rpar, ipar, which, n, values, y0, integration, steady, summaries, &
                              y_final, n_done, status, message)
     use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_simulation, only: core => parameter_sweep, integrator_options, steady_settings
-    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(6), steady(6)
+    use sloshdyn_simulation, only: core => parameter_sweep, integrator_options, steady_settings, &
+                                   integration_method
+    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), steady(6)
     integer(c_int), intent(in) :: ipar(2), which, n
     real(c_double), intent(out) :: summaries(11, n), y_final(4)
     integer(c_int), intent(out) :: n_done, status
@@ -276,7 +279,8 @@ contains
     summaries = 0; y_final = y0; done = 0
     call model_from_arrays(rpar, int(ipar), model, info, message)
     if (info == 0) call core(model, int(which), values, y0, integrator_options(integration), &
-                             steady_settings(steady), summaries, y_final, done, info, message)
+                             integration_method(integration), steady_settings(steady), summaries, &
+                             y_final, done, info, message)
     n_done = done
     status = info
   end subroutine parameter_sweep
@@ -394,8 +398,9 @@ contains
   subroutine parallel_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
                             summaries, n_done, status, message)
     use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_simulation, only: core => parallel_sweep, integrator_options, steady_settings
-    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(6), steady(6)
+    use sloshdyn_simulation, only: core => parallel_sweep, integrator_options, steady_settings, &
+                                   integration_method
+    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), steady(6)
     integer(c_int), intent(in) :: ipar(2), which, n, n_threads
     real(c_double), intent(out) :: summaries(11, n)
     integer(c_int), intent(out) :: n_done, status
@@ -405,7 +410,8 @@ contains
     summaries = 0; done = 0
     call model_from_arrays(rpar, int(ipar), model, info, message)
     if (info == 0) call core(model, int(which), values, y0, integrator_options(integration), &
-                             steady_settings(steady), int(n_threads), summaries, done, info, message)
+                             integration_method(integration), steady_settings(steady), &
+                             int(n_threads), summaries, done, info, message)
     n_done = done
     status = info
   end subroutine parallel_sweep

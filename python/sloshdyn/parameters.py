@@ -71,6 +71,7 @@ NAMELIST_SCHEMA = {
         "h_max": ("h_max", float, 0.0),
         "h_min": ("h_min", float, 0.0),
         "max_steps": ("max_steps", int, 10**8),
+        "method": ("method", str, "rk45"),
     },
     "simulation": {
         "t_end": ("t_end", float, None),
@@ -319,6 +320,10 @@ def read_namelist(path):
     group = {name: values.get(name, _group_values(name, {}, path))
              for name in ("integration", "simulation", "steady", "sweep", "response")}
     named = {name: {NAMELIST_SCHEMA[name][k][0]: v for k, v in g.items()} for name, g in group.items()}
+    named["integration"]["method"] = named["integration"]["method"].strip()
+    if named["integration"]["method"] not in ("rk45", "dop853"):
+        raise InputError(f"&integration: method = '{named['integration']['method']}' is not known; "
+                         "allowed: rk45, dop853")
     if kind in ("linear", "frequency_response"):
         from .model import linear_modes
         linear_modes(params)              # needs kappa_hat > 1, checked before any output

@@ -14,6 +14,7 @@ from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
 MOTIONS = {1: "periodic", 2: "quasi-periodic", 3: "irregular", 4: "settling"}
+METHODS = {"rk45": 0, "dop853": 1}
 
 
 @dataclass(frozen=True)
@@ -26,10 +27,14 @@ class Integration:
     h_max: float = 0.0        #: 0 = no limit
     h_min: float = 0.0        #: 0 = 1e-14 max(1, |tau|)
     max_steps: int = 10**8
+    method: str = "rk45"      #: 'rk45' (Dormand-Prince 5(4)) or 'dop853' (8(5,3), fewer steps
+                              #: at tight tolerances)
 
     def array(self):
+        if self.method not in METHODS:
+            raise InputError(f"method = {self.method!r} is not valid: it must be 'rk45' or 'dop853'")
         return np.array([self.rtol, self.atol, self.h_initial, self.h_max, self.h_min,
-                         self.max_steps], dtype=np.float64)
+                         self.max_steps, METHODS[self.method]], dtype=np.float64)
 
 
 @dataclass(frozen=True)

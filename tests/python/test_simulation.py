@@ -134,3 +134,16 @@ def test_parallel_sweep_equals_serial_chunks(fig12):
     first = sloshdyn.frequency_sweep(p, values[:2], steady=steady)
     second = sloshdyn.frequency_sweep(p, values[2:], steady=steady)
     assert list(parallel.column("max_x1")) == list(first.column("max_x1")) + list(second.column("max_x1"))
+
+
+def test_dop853_method_agrees_with_rk45_in_fewer_steps(fig12):
+    p = fig12.replace(beta=10.0, delta=0.1, A=0.3)
+    t_end = 100 * 2 * math.pi / p.rho
+    tau = np.linspace(0, t_end, 11)
+    rk45 = sloshdyn.simulate(p, t_end, (0.3, 0, 0.1, 0), tau_out=tau, rtol=1e-12, atol=1e-14)
+    dop853 = sloshdyn.simulate(p, t_end, (0.3, 0, 0.1, 0), tau_out=tau, rtol=1e-12, atol=1e-14,
+                               method="dop853")
+    assert np.allclose(dop853.y, rk45.y, rtol=0, atol=1e-8)
+    assert dop853.n_accepted < rk45.n_accepted / 3
+    with pytest.raises(sloshdyn.InputError, match="method"):
+        sloshdyn.simulate(p, 10.0, method="euler")
