@@ -415,4 +415,91 @@ contains
     n_done = done
     status = info
   end subroutine parallel_sweep
+
+  !> A periodic orbit of period k T by shooting from the guess y0 (full equations):
+  !> y_orbit(4), monodromy(4, 4), multipliers(2, 4) = (Re, Im), info(2) = [iterations, max|x1|].
+  subroutine periodic_orbit(rpar, ipar, y0, k, integration, newton_tol, max_iter, y_orbit, &
+                            monodromy, multipliers, info, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_simulation, only: integrator_options
+    use sloshdyn_periodic, only: tank_periodic_problem, shooting_newton
+    real(c_double), intent(in) :: rpar(9), y0(4), integration(7), newton_tol
+    integer(c_int), intent(in) :: ipar(2), k, max_iter
+    real(c_double), intent(out) :: y_orbit(4), monodromy(4, 4), multipliers(2, 4), info(2)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(tank_periodic_problem) :: problem
+    integer :: code, iterations
+    real(c_double) :: re(4), im(4), peak
+    y_orbit = 0; monodromy = 0; multipliers = 0; info = 0; iterations = 0; peak = 0
+    call model_from_arrays(rpar, int(ipar), problem%model, code, message)
+    if (code == 0) call shooting_newton(problem, y0, int(k), integrator_options(integration), &
+                                        newton_tol, int(max_iter), y_orbit, monodromy, re, im, &
+                                        iterations, code, message, peak)
+    if (code == 0) multipliers = transpose(reshape([re, im], [4, 2]))
+    info = [real(iterations, c_double), peak]
+    status = code
+  end subroutine periodic_orbit
+
+  !> Continuation of periodic orbits (period k T) in rho (which = 1) or A (which = 2) from the
+  !> orbit through y0 at the parameters of rpar; settings = [ds, ds_min, ds_max, x_scale,
+  !> direction]; points(7, :) = [lambda, y0(4), max|x1|, stable], multipliers(8, :) =
+  !> [Re(4), Im(4)], special(7, :) = [kind, lambda, y0(4), max|x1|] (kind 1 fold, 2 branch point,
+  !> 3 period doubling, 4 Neimark-Sacker); complete = 0 if the branch stopped early.
+  subroutine periodic_branch(rpar, ipar, which, y0, k, lambda_min, lambda_max, settings, &
+                             integration, max_points, max_special, points, multipliers, n_points, &
+                             special, n_special, complete, status, message)
+    use sloshdyn_model, only: model_from_arrays
+    use sloshdyn_simulation, only: integrator_options
+    use sloshdyn_continuation, only: continuation_options
+    use sloshdyn_periodic, only: tank_periodic_problem, core => periodic_branch
+    real(c_double), intent(in) :: rpar(9), y0(4), lambda_min, lambda_max, settings(5), &
+                                  integration(7)
+    integer(c_int), intent(in) :: ipar(2), which, k, max_points, max_special
+    real(c_double), intent(out) :: points(7, max_points), multipliers(8, max_points), &
+                                   special(7, max_special)
+    integer(c_int), intent(out) :: n_points, n_special, complete, status
+    character(len=256), intent(out) :: message
+    type(tank_periodic_problem) :: problem
+    type(continuation_options) :: options
+    integer :: code, found, found_special
+    logical :: done
+    points = 0; multipliers = 0; special = 0; found = 0; found_special = 0; done = .false.
+    options%ds = settings(1)
+    options%ds_min = settings(2)
+    options%ds_max = settings(3)
+    options%x_scale = settings(4)
+    options%direction = nint(settings(5))
+    options%max_points = max_points
+    problem%which = which
+    call model_from_arrays(rpar, int(ipar), problem%model, code, message)
+    if (code == 0) call core(problem, y0, lambda_min, lambda_max, options, &
+                             integrator_options(integration), points, multipliers, found, special, &
+                             found_special, done, code, message, int(k))
+    n_points = found
+    n_special = found_special
+    complete = merge(1, 0, done)
+    status = code
+  end subroutine periodic_branch
+
+  !> Largest Lyapunov exponent (per unit tau) from y0, with its running estimates history(n_hist).
+  subroutine lyapunov_exponent(rpar, ipar, y0, transient_periods, n_periods, renormalise_every, &
+                               integration, n_hist, exponent, history, status, message)
+    use sloshdyn_model, only: model_from_arrays
+    use sloshdyn_simulation, only: integrator_options
+    use sloshdyn_periodic, only: tank_periodic_problem, largest_lyapunov
+    real(c_double), intent(in) :: rpar(9), y0(4), integration(7)
+    integer(c_int), intent(in) :: ipar(2), transient_periods, n_periods, renormalise_every, n_hist
+    real(c_double), intent(out) :: exponent, history(n_hist)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(tank_periodic_problem) :: problem
+    integer :: code
+    exponent = 0; history = 0
+    call model_from_arrays(rpar, int(ipar), problem%model, code, message)
+    if (code == 0) call largest_lyapunov(problem, y0, int(transient_periods), int(n_periods), &
+                                         int(renormalise_every), integrator_options(integration), &
+                                         exponent, history, code, message)
+    status = code
+  end subroutine lyapunov_exponent
 end module sloshdyn_bridge

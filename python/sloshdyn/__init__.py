@@ -10,6 +10,8 @@ from ._errors import (CapacityError, ConvergenceError, FileError, InputError, In
 from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, equilibrium_angles,
                     equations_of_motion, frequency_ratio, kappa_for_detuning, linear_modes,
                     natural_frequencies)
+from .periodic import (PeriodicBranch, PeriodicOrbit, PeriodicSpecialPoint, lyapunov_exponent,
+                       periodic_orbit, periodic_response)
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
 from .simulation import (Integration, Simulation, Steady, SteadyState, Sweep, amplitude_sweep,
                          frequency_sweep, poincare_section, simulate, spectrum, steady_state,
@@ -26,5 +28,6 @@ __all__ = [
     "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
     "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state", "sweep_values",
     "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
-    "nonresonant_amplitudes",
+    "nonresonant_amplitudes", "PeriodicBranch", "PeriodicOrbit", "PeriodicSpecialPoint",
+    "lyapunov_exponent", "periodic_orbit", "periodic_response",
 ]

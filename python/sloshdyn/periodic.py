@@ -1,0 +1,162 @@
+"""Periodic responses of the full equations of motion (not the slow flow): orbits by shooting
+with the monodromy matrix from the variational equations, Floquet multipliers and stability,
+continuation in rho or A with folds, period doublings and Neimark-Sacker points, and the largest
+Lyapunov exponent. Computed by the Fortran core (sloshdyn_periodic)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core
+from ._errors import InputError, check_status
+from .asymptotics import frequency_response
+from .model import linear_modes
+from .parameters import Parameters
+from .simulation import Integration, Steady, steady_state
+
+_bridge = _core.sloshdyn_bridge
+KINDS = {1: "fold", 2: "branch_point", 3: "period_doubling", 4: "neimark_sacker"}
+
+
+@dataclass
+class PeriodicOrbit:
+    """A periodic orbit of period k T (T = 2 pi/rho), through y0 at forcing phase 0."""
+
+    y0: np.ndarray
+    multipliers: np.ndarray     #: Floquet multipliers, eigenvalues of the monodromy matrix
+    monodromy: np.ndarray
+    max_x1: float               #: max |x1| over the orbit (64 samples per forcing period)
+    iterations: int
+    periods: int
+
+    @property
+    def stable(self):
+        return bool(np.all(np.abs(self.multipliers) < 1))
+
+
+def _integration(integration, rtol):
+    if integration is None:
+        integration = Integration(rtol=rtol, atol=rtol * 1e-3)
+    if integration.method != "rk45":
+        raise InputError("the periodic analyses integrate the variational equations with rk45 only")
+    return integration.array()
+
+
+def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation",
+                   newton_tol=1e-10, max_iter=30, integration: Integration = None) -> PeriodicOrbit:
+    """The periodic orbit near a start: y0, or (y0 None) a steady state of a direct simulation
+    from rest (start='simulation') or the 3:1 slow-flow steady state of smallest |u1|
+    (start='slow_flow', through eq 34 and 42)."""
+    if y0 is None:
+        y0 = start_state(params, start)
+    y0 = np.asarray(y0, dtype=np.float64)
+    y, monodromy, multipliers, info, status, message = _bridge.periodic_orbit(
+        *params.arrays(), y0, int(periods), _integration(integration, 1e-11), newton_tol, max_iter)
+    check_status(status, message, "periodic orbit")
+    return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
+                         int(info[0]), int(periods))
+
+
+def start_state(params: Parameters, start="simulation"):
+    """A starting state at forcing phase 0 for shooting."""
+    if start == "simulation":
+        return steady_state(params, steady=Steady(max_transient_periods=5000)).y_end
+    if start == "slow_flow":
+        r = frequency_response(params, (params.rho * 0.999, params.rho * 1.001))
+        t = r.table
+        k = int(np.argmin(np.abs(t["rho"] - params.rho) + 1e3 * (t["stable"] == 0)))
+        return slow_flow_state(params, t["re_B1"][k] + 1j * t["im_B1"][k],
+                               t["re_B2"][k] + 1j * t["im_B2"][k])
+    raise InputError(f"start = {start!r} is not valid: it must be 'simulation' or 'slow_flow'")
+
+
+def slow_flow_state(params: Parameters, b1, b2):
+    """The full state at tau = 0 of the slow-flow solution u1 = Re(B1 e^{i rho tau}),
+    u2 = Re(B2 e^{3 i rho tau}) (eq 42, 45), mapped to x by x = P u (eq 34)."""
+    p = linear_modes(params).modal
+    u = np.array([b1.real, b2.real])
+    du = np.array([-params.rho * b1.imag, -3 * params.rho * b2.imag])
+    x, dx = p @ u, p @ du
+    return np.array([x[0], dx[0], x[1], dx[1]])
+
+
+@dataclass(frozen=True)
+class PeriodicSpecialPoint:
+    kind: str            #: 'fold', 'branch_point', 'period_doubling' or 'neimark_sacker'
+    rho: float
+    A: float
+    max_x1: float
+    y0: np.ndarray
+
+
+@dataclass
+class PeriodicBranch:
+    """A branch of periodic orbits of the full equations, with Floquet stability."""
+
+    parameter: str
+    table: dict                  #: lambda, rho, A, y1..y4 (the orbit's state at phase 0),
+                                 #: max_x1, stable, and mu1..mu4 (complex multipliers)
+    special_points: list
+    complete: bool
+    message: str = ""
+
+
+def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
+                      start="simulation", from_end="low", ds=0.002, ds_min=1e-9, ds_max=0.01,
+                      x_scale=1.0, max_points=2000, integration: Integration = None) -> PeriodicBranch:
+    """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
+    in A over A_range, starting at the low end (from_end='low') going up, or at the high end
+    going down. Raises ConvergenceError (with ``partial``) if the branch stops before the end
+    of the range or a special point on it could not be located."""
+    if (rho_range is None) == (A_range is None):
+        raise InputError("give rho_range or A_range (the parameter to continue in), not both")
+    if from_end not in ("low", "high"):
+        raise InputError(f"from_end = {from_end!r} is not valid: it must be 'low' or 'high'")
+    parameter, (lo, hi) = ("rho", rho_range) if rho_range is not None else ("A", A_range)
+    first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
+    if y0 is None:
+        y0 = periodic_orbit(first, start_state(first, start), periods=periods,
+                            integration=integration).y0
+    settings = np.array([ds, ds_min, ds_max, x_scale, 1.0 if from_end == "low" else -1.0])
+    points, multipliers, n, special, n_special, complete, status, message = _bridge.periodic_branch(
+        *first.arrays(), 1 if parameter == "rho" else 2, np.asarray(y0, dtype=np.float64),
+        int(periods), float(lo), float(hi), settings, _integration(integration, 1e-11),
+        int(max_points), 100)
+    lam = points[0, :n]
+    table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
+             "A": lam if parameter == "A" else np.full(n, params.A)}
+    for i in range(4):
+        table[f"y{i + 1}"] = points[1 + i, :n]
+        table[f"mu{i + 1}"] = multipliers[i, :n] + 1j * multipliers[4 + i, :n]
+    table["max_x1"] = points[5, :n]
+    table["stable"] = points[6, :n]
+    specials = [PeriodicSpecialPoint(KINDS[int(s[0])], float(s[1]) if parameter == "rho" else params.rho,
+                                     float(s[1]) if parameter == "A" else params.A, float(s[6]),
+                                     s[2:6].copy()) for s in special[:, :n_special].T]
+    text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
+    branch = PeriodicBranch(parameter, table, specials, bool(complete), text)
+    if status:
+        try:
+            check_status(status, message, "periodic branch")
+        except Exception as exc:
+            exc.partial = branch
+            raise
+    return branch
+
+
+def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=500, n_periods=2000,
+                      renormalise_every=1, integration: Integration = None):
+    """Largest Lyapunov exponent per unit tau (Benettin: one tangent vector renormalised every
+    renormalise_every forcing periods), and its running estimate after each renormalisation
+    block (for a convergence check). Negative: a stable periodic response; about 0:
+    quasi-periodic; positive: chaotic."""
+    y0 = np.zeros(4) if y0 is None else np.asarray(y0, dtype=np.float64)
+    blocks = n_periods // renormalise_every
+    exponent, history, status, message = _bridge.lyapunov_exponent(
+        *params.arrays(), y0, int(transient_periods), int(n_periods), int(renormalise_every),
+        _integration(integration, 1e-10), int(blocks))
+    check_status(status, message, "Lyapunov exponent")
+    return float(exponent), history
