@@ -15,11 +15,12 @@ module sloshdyn_namelist
   private
   public :: run_config, read_input, known_analyses
 
-  character(len=*), parameter :: known_groups(11) = &
+  character(len=*), parameter :: known_groups(12) = &
     [character(len=11) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output', &
-     'integration', 'simulation', 'steady', 'sweep', 'response']
-  character(len=*), parameter :: known_analyses(5) = &
-    [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response']
+     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov']
+  character(len=*), parameter :: known_analyses(7) = &
+    [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response', &
+     'periodic_response', 'lyapunov']
   integer, parameter :: path_len = 1024
 
   !> Everything one run needs, validated.
@@ -43,6 +44,7 @@ module sloshdyn_namelist
     character(len=4) :: sweep_direction = 'up'
     type(response_options) :: response                                 !< &response
     logical :: internal_resonance = .true.
+    integer :: lyapunov_transient = 500, lyapunov_periods = 2000, lyapunov_every = 1  !< &lyapunov
   end type run_config
 
 contains
@@ -66,6 +68,7 @@ contains
     integer :: n, p
     character(len=18) :: kind
     character(len=8) :: resonance
+    integer :: renormalise_every
     integer :: n_scan, n_amplitudes, n_phases
     real(wp) :: amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale
     character(len=path_len) :: directory
@@ -78,7 +81,7 @@ contains
     integer :: window_periods, samples_per_period
     character(len=16) :: parameter, direction
     real(wp) :: start, stop
-    integer :: n_points
+    integer :: n_points, n_periods
     namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, n, p
     namelist /tank/ R, h, rho_liquid, m_liquid
     namelist /structure/ M, L, k, c, b, d, g, theta0, n, p
@@ -92,6 +95,7 @@ contains
     namelist /sweep/ parameter, start, stop, n_points, direction
     namelist /response/ resonance, parameter, start, stop, n_scan, n_amplitudes, n_phases, &
                         amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale
+    namelist /lyapunov/ transient_periods, n_periods, renormalise_every
 
     status = SD_OK
     message = ''
@@ -114,6 +118,7 @@ contains
     periodic_tol = config%steady%periodic_tol
     parameter = 'rho'; start = nan; stop = nan; n_points = 0; direction = 'up'
     resonance = '3:1'
+    renormalise_every = 1; n_periods = 2000
     n_scan = config%response%n_scan; n_amplitudes = config%response%n_amplitudes
     n_phases = config%response%n_phases; amplitude_min = config%response%amplitude_min
     amplitude_max = config%response%amplitude_max; ds = 0.002_wp; ds_min = 1.0e-9_wp
@@ -179,6 +184,11 @@ contains
       rewind (unit)
       read (unit, nml=response, iostat=ios, iomsg=iomsg)
       call read_failed('response', ios, iomsg)
+    end if
+    if (status == SD_OK .and. given(12)) then
+      rewind (unit)
+      read (unit, nml=lyapunov, iostat=ios, iomsg=iomsg)
+      call read_failed('lyapunov', ios, iomsg)
     end if
     close (unit)
     if (status /= SD_OK) return
@@ -275,6 +285,11 @@ contains
       message = '&integration: '//trim(message)
       return
     end if
+    config%steady%transient_periods = transient_periods; config%steady%settle_tol = settle_tol
+    config%steady%max_transient_periods = max_transient_periods
+    config%steady%window_periods = window_periods
+    config%steady%samples_per_period = samples_per_period
+    config%steady%periodic_tol = periodic_tol
     select case (config%analysis)
     case ('linear')
       call require_stable_trivial(config%model, status, message)
@@ -299,11 +314,6 @@ contains
       end if
       config%t_end = t_end; config%n_out = n_out
     case ('steady_state', 'sweep')
-      config%steady%transient_periods = transient_periods; config%steady%settle_tol = settle_tol
-      config%steady%max_transient_periods = max_transient_periods
-      config%steady%window_periods = window_periods
-      config%steady%samples_per_period = samples_per_period
-      config%steady%periodic_tol = periodic_tol
       if (config%analysis == 'sweep') call read_sweep()
       if (status /= SD_OK) return
       call check_steady(config%model, config%steady, status, message)
@@ -314,11 +324,38 @@ contains
                   ': '//trim(message)
         return
       end if
-    case ('frequency_response')
+    case ('frequency_response', 'periodic_response')
       call read_response()
       if (status /= SD_OK) return
       call require_stable_trivial(config%model, status, message)
       if (status /= SD_OK) return
+      if (config%analysis == 'periodic_response') then
+        call check_steady(with_rho(config%model, merge(config%sweep_start, config%model%rho, &
+                          config%sweep_parameter == 'rho')), config%steady, status, message)
+        if (status /= SD_OK) then
+          message = '&steady/&excitation: '//trim(message)
+          return
+        end if
+      end if
+    case ('lyapunov')
+      call check_real('rho', config%model%rho, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'the Lyapunov exponent needs a forcing frequency rho > 0', status, message)
+      if (status == SD_OK .and. (nint(transient_periods) < 0 .or. n_periods < 1 .or. &
+                                 renormalise_every < 1)) then
+        status = SD_BAD_INPUT
+        message = 'transient_periods >= 0, n_periods >= 1 and renormalise_every >= 1 are needed'
+      else if (status == SD_OK .and. mod(n_periods, max(renormalise_every, 1)) /= 0) then
+        status = SD_BAD_INPUT
+        message = 'n_periods = '//num2str(n_periods)//' is out of range: it must be a multiple '// &
+                  'of renormalise_every = '//num2str(renormalise_every)
+      end if
+      if (status /= SD_OK) then
+        message = '&lyapunov: '//trim(message)
+        return
+      end if
+      config%lyapunov_transient = nint(transient_periods)
+      config%lyapunov_periods = n_periods
+      config%lyapunov_every = renormalise_every
     end select
 
   contains
@@ -464,7 +501,8 @@ contains
         case ('simulation'); read (buffer, nml=simulation, iostat=ios2, iomsg=msg2)
         case ('steady');     read (buffer, nml=steady, iostat=ios2, iomsg=msg2)
         case ('sweep');      read (buffer, nml=sweep, iostat=ios2, iomsg=msg2)
-        case default;        read (buffer, nml=response, iostat=ios2, iomsg=msg2)
+        case ('response');   read (buffer, nml=response, iostat=ios2, iomsg=msg2)
+        case default;        read (buffer, nml=lyapunov, iostat=ios2, iomsg=msg2)
         end select
         if (ios2 /= 0) then
           equals = index(assignment, '=')
@@ -491,7 +529,7 @@ contains
     character(len=:), allocatable :: text
     select case (name)
     case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
-          'n_scan', 'n_amplitudes', 'n_phases')
+          'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every')
       text = name//' must be an integer'
     case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method')
       text = name//' must be a quoted string'

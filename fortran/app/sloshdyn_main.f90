@@ -17,6 +17,9 @@ program sloshdyn_main
   use sloshdyn_status, only: SD_BAD_INPUT
   use sloshdyn_response, only: frequency_response, point_rows, special_rows, SPECIAL_FOLD
   use sloshdyn_slowflow, only: PARAMETER_RHO, PARAMETER_A
+  use sloshdyn_periodic, only: tank_periodic_problem, shooting_newton, periodic_branch, &
+                               largest_lyapunov
+  use sloshdyn_continuation, only: continuation_options
   implicit none
 
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
@@ -52,6 +55,10 @@ program sloshdyn_main
     call run_sweep(config)
   case ('frequency_response')
     call run_response(config)
+  case ('periodic_response')
+    call run_periodic(config)
+  case ('lyapunov')
+    call run_lyapunov(config)
   end select
 
 contains
@@ -320,6 +327,102 @@ contains
     close (unit)
     call commit_files(dir)
   end subroutine run_response
+
+  !> Periodic orbits of the full equations (shooting, Floquet multipliers) continued in rho or
+  !> A from the steady state reached from y0 at the start of the range.
+  subroutine run_periodic(config)
+    type(run_config), intent(in) :: config
+    type(tank_periodic_problem) :: problem
+    type(continuation_options) :: options
+    real(wp), allocatable :: points(:, :), multipliers(:, :), special(:, :), poincare(:, :)
+    real(wp) :: summary(summary_size), y_start(4), y_orbit(4), monodromy(4, 4), re(4), im(4), peak
+    type(rk45_stats) :: stats
+    integer :: n_points, n_special, iterations, i, unit
+    logical :: complete
+    character(len=:), allocatable :: dir, name
+    character(len=*), parameter :: kinds(4) = [character(len=15) :: 'fold', 'branch_point', &
+                                              'period_doubling', 'neimark_sacker']
+
+    name = trim(config%sweep_parameter)
+    problem%model = config%model
+    problem%which = merge(SWEEP_RHO, SWEEP_A, name == 'rho')
+    if (name == 'rho') then
+      problem%model%rho = config%sweep_start
+    else
+      problem%model%A = config%sweep_start
+    end if
+    allocate (poincare(4, config%steady%window_periods), points(7, 4000), multipliers(8, 4000), &
+              special(7, 100))
+    call steady_state(problem%model, config%y0, config%integration, config%method, &
+                      config%steady, summary, poincare, y_start, stats, status, message)
+    call check(status, message, 'periodic response: start (steady state)')
+    call shooting_newton(problem, y_start, 1, config%integration, 1.0e-10_wp, 30, y_orbit, &
+                         monodromy, re, im, iterations, status, message, peak)
+    call check(status, message, 'periodic response: start (shooting)')
+    options%ds = config%response%continuation%ds
+    options%ds_min = config%response%continuation%ds_min
+    options%ds_max = config%response%continuation%ds_max
+    options%x_scale = config%response%continuation%x_scale
+    options%max_points = size(points, 2)
+    call periodic_branch(problem, y_orbit, config%sweep_start, config%sweep_stop, options, &
+                         config%integration, points, multipliers, n_points, special, n_special, &
+                         complete, status, message)
+    call check(status, message, 'periodic response')
+    print '(/a)', 'Periodic orbits of the full equations (shooting, Floquet multipliers) for '// &
+                  name//' in ['//num2str(config%sweep_start)//', '//num2str(config%sweep_stop)//']'
+    print '(a)', '  '//num2str(n_points)//' orbits; special points:'
+    do i = 1, n_special
+      print '(a)', '  '//pad(trim(kinds(nint(special(1, i)))), 16)//name//' = '// &
+                   pad(num2str(special(2, i)), 14)//'max|x1| = '//num2str(special(7, i))
+    end do
+    dir = output_directory(config)
+    call write_parameters(config, dir)
+    call open_csv(dir, 'periodic_branch.csv', unit)
+    write (unit, '(a)') 'lambda,y1,y2,y3,y4,max_x1,stable,re_mu1,re_mu2,re_mu3,re_mu4,'// &
+                        'im_mu1,im_mu2,im_mu3,im_mu4'
+    do i = 1, n_points
+      write (unit, '(*(es24.16e3, :, ","))') points(:, i), multipliers(:, i)
+    end do
+    close (unit)
+    call open_csv(dir, 'periodic_special_points.csv', unit)
+    write (unit, '(a)') 'kind,lambda,y1,y2,y3,y4,max_x1'
+    do i = 1, n_special
+      write (unit, '(a, ",", *(es24.16e3, :, ","))') trim(kinds(nint(special(1, i)))), special(2:7, i)
+    end do
+    close (unit)
+    call commit_files(dir)
+  end subroutine run_periodic
+
+  !> Largest Lyapunov exponent from y0 with its running estimates.
+  subroutine run_lyapunov(config)
+    type(run_config), intent(in) :: config
+    type(tank_periodic_problem) :: problem
+    real(wp), allocatable :: history(:)
+    real(wp) :: exponent
+    integer :: i, unit
+    character(len=:), allocatable :: dir
+
+    problem%model = config%model
+    allocate (history(config%lyapunov_periods/config%lyapunov_every))
+    call largest_lyapunov(problem, config%y0, config%lyapunov_transient, config%lyapunov_periods, &
+                          config%lyapunov_every, config%integration, exponent, history, status, &
+                          message)
+    call check(status, message, 'Lyapunov exponent')
+    print '(/a)', 'Largest Lyapunov exponent (per unit tau) = '//num2str(exponent)
+    print '(a)', '  running estimate at 1/4, 1/2, 3/4 of the run: '// &
+                 num2str(history(max(1, size(history)/4)))//', '// &
+                 num2str(history(max(1, size(history)/2)))//', '// &
+                 num2str(history(max(1, 3*size(history)/4)))
+    dir = output_directory(config)
+    call write_parameters(config, dir)
+    call open_csv(dir, 'lyapunov.csv', unit)
+    write (unit, '(a)') 'periods,estimate'
+    do i = 1, size(history)
+      write (unit, '(i0, ",", es24.16e3)') i*config%lyapunov_every, history(i)
+    end do
+    close (unit)
+    call commit_files(dir)
+  end subroutine run_lyapunov
 
   pure function hopf_frequency(point) result(text)
     real(wp), intent(in) :: point(:)

@@ -17,6 +17,7 @@ from ._files import atomic_path, save_figure, write_csv
 from .asymptotics import Continuation, frequency_response
 from .model import equilibria, kappa_for_detuning, linear_modes
 from .parameters import read_namelist
+from .periodic import lyapunov_exponent, periodic_orbit, periodic_response
 from .simulation import (Integration, Steady, amplitude_sweep, frequency_sweep, simulate,
                          steady_state, sweep_values)
 
@@ -140,6 +141,39 @@ def run_input(path):
                            progress=True)
         files["sweep.csv"] = _summary_columns(result.points)
         figure = ("sweep.png", plotting.sweep(result))
+    elif inp.analysis == "periodic_response":
+        r = inp.response
+        span = (min(r["start"], r["stop"]), max(r["start"], r["stop"]))
+        first = p.replace(**{r["parameter"].strip().replace("a", "A"): span[0]})
+        start = steady_state(first, inp.simulation["y0"], steady=steady, integration=integration).y_end
+        y0 = periodic_orbit(first, start, integration=integration).y0
+        kwargs = {"rho_range": span} if r["parameter"].strip() == "rho" else {"A_range": span}
+        branch = periodic_response(p, y0=y0, ds=r["ds"], ds_min=r["ds_min"], ds_max=r["ds_max"],
+                                   x_scale=r["x_scale"], max_points=4000, integration=integration,
+                                   **kwargs)
+        t = branch.table
+        for s in branch.special_points:
+            print(f"{s.kind:15s} {branch.parameter} = {s.rho if branch.parameter == 'rho' else s.A:.10g}"
+                  f"  max|x1| = {s.max_x1:.10g}")
+        files["periodic_branch.csv"] = {
+            "lambda": t["lambda"], **{f"y{i}": t[f"y{i}"] for i in range(1, 5)},
+            "max_x1": t["max_x1"], "stable": t["stable"],
+            **{f"re_mu{i}": t[f"mu{i}"].real for i in range(1, 5)},
+            **{f"im_mu{i}": t[f"mu{i}"].imag for i in range(1, 5)}}
+        files["periodic_special_points.csv"] = {
+            "kind": [s.kind for s in branch.special_points],
+            "lambda": [s.rho if branch.parameter == "rho" else s.A for s in branch.special_points],
+            **{f"y{i + 1}": [s.y0[i] for s in branch.special_points] for i in range(4)},
+            "max_x1": [s.max_x1 for s in branch.special_points]}
+    elif inp.analysis == "lyapunov":
+        ly = inp.lyapunov
+        exponent, history = lyapunov_exponent(
+            p, inp.simulation["y0"], transient_periods=int(round(ly["transient_periods"])),
+            n_periods=ly["n_periods"], renormalise_every=ly["renormalise_every"],
+            integration=integration)
+        print(f"largest Lyapunov exponent = {exponent:.10g} per unit tau")
+        files["lyapunov.csv"] = {"periods": [(i + 1) * ly["renormalise_every"] for i in range(len(history))],
+                                 "estimate": history}
     else:
         r = inp.response
         span = (min(r["start"], r["stop"]), max(r["start"], r["stop"]))

@@ -108,8 +108,14 @@ NAMELIST_SCHEMA = {
         "ds_max": ("ds_max", float, 0.01),
         "x_scale": ("x_scale", float, 1.0),
     },
+    "lyapunov": {
+        "transient_periods": ("transient_periods", float, 1000.0),
+        "n_periods": ("n_periods", int, 2000),
+        "renormalise_every": ("renormalise_every", int, 1),
+    },
 }
-ANALYSES = ("linear", "simulate", "steady_state", "sweep", "frequency_response")
+ANALYSES = ("linear", "simulate", "steady_state", "sweep", "frequency_response",
+            "periodic_response", "lyapunov")
 _TYPE_WORDS = {float: "a real number", int: "an integer", str: "a quoted string",
                "state": "four real numbers (x1, x1', x2, x2')"}
 
@@ -240,6 +246,7 @@ class Input:
     steady: dict = field(default_factory=dict)        #: &steady, for simulation.Steady
     sweep: dict = field(default_factory=dict)         #: &sweep: parameter, start, stop, ...
     response: dict = field(default_factory=dict)      #: &response: resonance, parameter, ...
+    lyapunov: dict = field(default_factory=dict)      #: &lyapunov
 
 
 def read_namelist(path):
@@ -318,13 +325,13 @@ def read_namelist(path):
     if not directory.strip():
         raise InputError("&output: directory = '' is empty: give a directory name")
     group = {name: values.get(name, _group_values(name, {}, path))
-             for name in ("integration", "simulation", "steady", "sweep", "response")}
+             for name in ("integration", "simulation", "steady", "sweep", "response", "lyapunov")}
     named = {name: {NAMELIST_SCHEMA[name][k][0]: v for k, v in g.items()} for name, g in group.items()}
     named["integration"]["method"] = named["integration"]["method"].strip()
     if named["integration"]["method"] not in ("rk45", "dop853"):
         raise InputError(f"&integration: method = '{named['integration']['method']}' is not known; "
                          "allowed: rk45, dop853")
-    if kind in ("linear", "frequency_response"):
+    if kind in ("linear", "frequency_response", "periodic_response"):
         from .model import linear_modes
         linear_modes(params)              # needs kappa_hat > 1, checked before any output
     _check_analysis(kind, params, named, path)
@@ -332,7 +339,8 @@ def read_namelist(path):
                  kappa_min=analysis["kappa_min"], kappa_max=kappa_max,
                  directory=directory.strip(), tank=tank, structure=structure,
                  integration=named["integration"], simulation=named["simulation"],
-                 steady=named["steady"], sweep=named["sweep"], response=named["response"])
+                 steady=named["steady"], sweep=named["sweep"], response=named["response"],
+                 lyapunov=named["lyapunov"])
 
 
 def _check_analysis(kind, params, named, path):
@@ -361,7 +369,7 @@ def _check_analysis(kind, params, named, path):
         if not 1 <= sweep["n_points"] <= 100_000:
             raise InputError(f"&sweep: n_points = {sweep['n_points']} is out of range: it must lie "
                              "in [1, 100000]")
-    if kind == "frequency_response":
+    if kind in ("frequency_response", "periodic_response"):
         if response["resonance"].strip() not in ("3:1", "none"):
             raise InputError(f"&response: resonance = '{response['resonance'].strip()}' is not "
                              "known; allowed: 3:1, none")
@@ -371,6 +379,14 @@ def _check_analysis(kind, params, named, path):
         for name in ("start", "stop"):
             if response[name] is None:
                 raise InputError(f"&response: required variable {name} is missing")
+    if kind == "lyapunov":
+        lyap = named["lyapunov"]
+        if lyap["n_periods"] < 1 or lyap["renormalise_every"] < 1 or lyap["transient_periods"] < 0:
+            raise InputError("&lyapunov: transient_periods >= 0, n_periods >= 1 and "
+                             "renormalise_every >= 1 are needed")
+        if lyap["n_periods"] % lyap["renormalise_every"]:
+            raise InputError(f"&lyapunov: n_periods = {lyap['n_periods']} is out of range: it must "
+                             f"be a multiple of renormalise_every = {lyap['renormalise_every']}")
 
 
 def _group_values(group, content, path):

@@ -28,6 +28,8 @@ def test_help(command):
 @pytest.mark.parametrize("example,files", [
     ("fig12_linear.nml", ["frequencies.csv", "equilibria.csv", "kappa_31.csv"]),
     ("fig12_response.nml", ["response.csv", "special_points.csv"]),
+    ("fig12_periodic.nml", ["periodic_branch.csv", "periodic_special_points.csv"]),
+    ("fig17_lyapunov.nml", ["lyapunov.csv"]),
 ])
 def test_run_gives_the_executables_numbers(exe, tmp_path, example, files):
     for sub in ("exe", "py"):
