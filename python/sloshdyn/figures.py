@@ -13,7 +13,9 @@ import numpy as np
 from . import plotting
 from ._files import save_figure, write_csv
 from .asymptotics import frequency_response, modal_coefficients
-from .model import equilibria, equilibrium_angles, frequency_ratio, kappa_for_detuning
+from ._errors import SloshdynError
+from .model import equilibria, equilibrium_angles, frequency_ratio, kappa_for_detuning, linear_modes
+from .periodic import lyapunov_exponent, periodic_response
 from .parameters import Parameters
 from .simulation import Steady, amplitude_sweep, simulate, spectrum, steady_state
 
@@ -448,7 +450,108 @@ def fig15_17(out, quick=False):
     return results
 
 
+def full_model_fig12(out, quick=False):
+    """Periodic orbits of the full equations (shooting) over the slow-flow curves of Fig 12."""
+    slow = frequency_response(FIG12, (0.49, 0.53))
+    full = periodic_response(FIG12.replace(rho=0.50), (0.50, 0.52))
+    modal = linear_modes(FIG12).modal
+    t = slow.table
+    phase = np.linspace(0, 2 * math.pi, 721)[:, None]
+    b1, b2 = t["re_B1"] + 1j * t["im_B1"], t["re_B2"] + 1j * t["im_B2"]
+    slow_x1 = np.max(np.abs(modal[0, 0] * np.real(b1 * np.exp(1j * phase))
+                            + modal[0, 1] * np.real(b2 * np.exp(3j * phase))), axis=0)
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(7, 7))
+    for b in np.unique(t["branch"]):
+        mask = t["branch"] == b
+        _styled(axes[0], t["rho"][mask], slow_x1[mask], t["stable"][mask], "0.6")
+    _styled(axes[0], full.table["rho"], full.table["max_x1"], full.table["stable"], "k")
+    for sp in full.special_points:
+        axes[0].plot(sp.rho, sp.max_x1, "o" if sp.kind == "fold" else "s", mfc="none", color="r")
+    axes[0].set_ylabel(r"max $|x_1|$")
+    mu = np.array([np.abs(full.table[f"mu{i}"]) for i in range(1, 5)])
+    axes[1].plot(full.table["rho"], mu.max(axis=0), "-", color="k")
+    axes[1].axhline(1, color="r", ls=":")
+    axes[1].set_ylabel(r"max $|\mu|$ (Floquet)")
+    axes[1].set_xlabel(r"$\rho$")
+    fig.tight_layout()
+    ns = sorted(sp.rho for sp in full.special_points if sp.kind == "neimark_sacker")
+    folds = sorted(sp.rho for sp in full.special_points if sp.kind == "fold")
+    values = {f"full_ns_rho_{i + 1}": r for i, r in enumerate(ns)}
+    columns = {"rho": full.table["rho"], "max_x1": full.table["max_x1"], "stable": full.table["stable"],
+               "max_abs_mu": mu.max(axis=0)}
+    slow_hopf = sorted(sp.rho for sp in slow.special_points if sp.kind == "hopf")
+    return Figure("12 (full model)", "Not in the paper: the periodic orbits of the full equations "
+                  "(black; shooting, Floquet stability) over the slow-flow curves of Fig 12 (grey), "
+                  "and the largest Floquet multiplier modulus.", _save(fig, out, "full_fig12", columns),
+                  values, "Full-model folds at ρ = " + ", ".join(f"{f:.6f}" for f in folds)
+                  + "; Neimark–Sacker points at ρ = " + ", ".join(f"{r:.6f}" for r in ns)
+                  + " (the slow flow's Hopf points: " + ", ".join(f"{r:.6f}" for r in slow_hopf) + ").")
+
+
+def impact_route(out, quick=False):
+    """The route from small sloshing to impacts at rho = 0.513 (sec 4.2): periodic orbits
+    continued in A, Poincare points of simulations carried along A, Lyapunov exponents."""
+    p = FIG12.replace(rho=0.513)
+    lower = periodic_response(p.replace(A=0.00075), A_range=(0.00075, 0.002))
+    try:
+        upper = periodic_response(p.replace(A=0.0011), A_range=(0.0011, 2.0), ds_max=0.05,
+                                  max_points=3000)
+    except SloshdynError as exc:          # a special point that could not be located
+        upper = exc.partial
+    a_values = np.concatenate([np.geomspace(0.00075, 1.0, 10 if quick else 30),
+                               np.linspace(1.0, 2.0, 6 if quick else 21)[1:]])
+    poincare_a, poincare_x1, lyap, sim_max = [], [], [], []
+    y = np.zeros(4)
+    steady = Steady(max_transient_periods=2000 if quick else 5000, window_periods=50 if quick else 100)
+    for A in a_values:
+        st = steady_state(p.replace(A=float(A)), y, steady=steady)
+        y = st.y_end
+        sim_max.append(st.max_x1)
+        poincare_a.extend([A] * st.poincare.shape[1])
+        poincare_x1.extend(st.poincare[0])
+        lam, _ = lyapunov_exponent(p.replace(A=float(A)), y, transient_periods=0,
+                                   n_periods=200 if quick else 800)
+        lyap.append(lam)
+    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 9))
+    for branch in (lower, upper):
+        _styled(axes[0], branch.table["A"], branch.table["max_x1"], branch.table["stable"], "k")
+        for sp in branch.special_points:
+            marker = {"fold": "o", "neimark_sacker": "s", "period_doubling": "^", "branch_point": "d"}[sp.kind]
+            axes[0].plot(sp.A, sp.max_x1, marker, mfc="none", color="r", ms=6)
+    axes[0].plot(a_values, sim_max, "x", color="b", ms=4, label="simulation carried along A")
+    axes[0].set_xscale("log")
+    axes[0].set_ylabel(r"max $|x_1|$")
+    axes[0].legend(fontsize=8)
+    axes[1].plot(poincare_a, poincare_x1, ".", color="b", ms=1.5)
+    axes[1].set_ylabel(r"$x_1$ at $\tau = kT$ (Poincaré)")
+    axes[2].plot(a_values, lyap, "o-", color="k", ms=3)
+    axes[2].axhline(0, color="0.6", lw=0.6)
+    axes[2].set_ylabel("largest Lyapunov exponent")
+    axes[2].set_xlabel("A")
+    fig.tight_layout()
+    first_loss = next((sp for sp in upper.special_points if sp.kind != "fold"), None)
+    lower_fold = next((sp for sp in lower.special_points if sp.kind == "fold"), None)
+    values = {"impact_route_lower_fold_A": lower_fold.A if lower_fold else float("nan")}
+    if first_loss is not None:
+        values["impact_route_first_ns_A"] = first_loss.A
+    notes = ("At ρ = 0.513 the periodic response from small A loses stability at a fold at A = "
+             f"{lower_fold.A:.6f} (max|x1| = {lower_fold.max_x1:.4f}) and jumps to the upper branch; "
+             "along the upper branch: " + "; ".join(f"{sp.kind} at A = {sp.A:.4g} (max|x1| = "
+                                                    f"{sp.max_x1:.3f})" for sp in upper.special_points)
+             + (" (branch incomplete: " + upper.message + ")" if not upper.complete else "")
+             + f". Lyapunov exponents along the carried simulation: largest {max(lyap):.3g} at A = "
+             f"{a_values[int(np.argmax(lyap))]:.3g}.")
+    files = _save(fig, out, "impact_route", {"A": a_values, "simulation_max_x1": sim_max,
+                                             "lyapunov": lyap})
+    write_csv(Path(out) / "impact_route_poincare.csv", {"A": poincare_a, "x1": poincare_x1})
+    return Figure("15-17 (route to impacts)", "Not in the paper: the periodic orbits of the full "
+                  "equations continued in A at ρ = 0.513 (solid stable, dashed unstable; circles "
+                  "folds, squares Neimark–Sacker points), Poincaré points of simulations carried "
+                  "along A, and the largest Lyapunov exponent.", files + ["impact_route_poincare.csv"],
+                  values, notes)
+
+
 #: in the paper's order; each entry gives one Figure or a list of them
 FIGURES = {"3": fig03, "4": fig04, "5": fig05, "6": fig06, "7": fig07, "8": fig08,
            "9a": fig09a, "9b": fig09b, "10": fig10, "11": fig11, "12": fig12, "13": fig13,
-           "14": fig14, "15-17": fig15_17}
+           "14": fig14, "15-17": fig15_17, "full-12": full_model_fig12, "impact-route": impact_route}
