@@ -31,3 +31,11 @@ __all__ = [
     "nonresonant_amplitudes", "PeriodicBranch", "PeriodicOrbit", "PeriodicSpecialPoint",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
 ]
+
+
+def __getattr__(name):
+    """plotting, figures, reference and cli load matplotlib and friends: import them on use."""
+    if name in ("plotting", "figures", "reference", "cli"):
+        import importlib
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'sloshdyn' has no attribute {name!r}")

@@ -27,3 +27,14 @@ def test_namelist_reference_matches_the_reader():
         assert section, f"&{group} missing from README"
         documented = set(re.findall(r"`(\w+)`", section.group(1)))
         assert {name for name, _, _ in variables.values()} <= documented, group
+
+
+def test_python_examples_run_in_a_fresh_interpreter(tmp_path):
+    """No test-session imports help the README's code: run it alone."""
+    import subprocess
+    import sys
+    block = "\n".join(re.findall(r"```python\n(.*?)```", README, re.S))
+    block = block.replace('"case.nml"', repr(os.fspath(tmp_path / "case.nml")))
+    result = subprocess.run([sys.executable, "-c", block], cwd=ROOT, capture_output=True, text=True,
+                            timeout=300)
+    assert result.returncode == 0, result.stderr
