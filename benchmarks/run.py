@@ -102,7 +102,7 @@ class Report:
 
 
 def _numeric(text):
-    t = text.strip().lstrip("≥≤~<>").replace("x", "").replace("%", "").split(" ")[0]
+    t = text.strip().replace("=tol ", "").lstrip("≥≤~<>").replace("x", "").replace("%", "").split(" ")[0]
     try:
         float(t)
         return True
@@ -413,8 +413,9 @@ class Bench:
         r.table(["rtol", "solver", "time", "rhs evals", "steps", "ns/rhs", "error",
                  "sloshdyn speed-up"], rows)
         notes = ["steps = attempted steps (accepted + rejected); solve_ivp's are (nfev-2)/stages "
-                 "(~); numbalsoda does not report steps (its trajectory and rhs count match "
-                 "sloshdyn dop853's to within 6 evaluations)."]
+                 "(~); numbalsoda does not report steps (it runs the same algorithm as sloshdyn "
+                 "dop853: where rounding differences stay small, as in problem a, its rhs count "
+                 "matches sloshdyn's to within a few evaluations)."]
         if any(x["error"] < 10 * floor for x in runs.values()):
             notes.append(f"* within 10x of the reference's own uncertainty ({floor:.0e}).")
         for s in res["skipped"]:
@@ -446,18 +447,25 @@ class Bench:
                "reach the peer's final-time error, interpolated (log-log) on sloshdyn's ladder "
                "(Pareto front of time vs error). ≥: the peer is less accurate than sloshdyn's "
                "loosest run, the speed-up is at least this; ≤: more accurate than sloshdyn's "
-               "tightest run, at most this.")
+               "tightest run, at most this. =tol: the peer's error is within 10x of the "
+               f"reference's own uncertainty ({floor:.0e}), so accuracies cannot be told apart: "
+               "the sloshdyn time at the same rtol is used instead.")
         rows = []
         for rtol in self.tolerances:
             for name in self.solvers()[2:]:
                 x = runs.get((name, rtol))
                 if x is None:
                     continue
-                cells = [f"{rtol:.0e}", name, fmt_e(x["error"]), fmt_t(x["time"])]
+                unresolved = x["error"] < 10 * floor
+                cells = [f"{rtol:.0e}", name, fmt_e(x["error"]) + ("*" if unresolved else ""),
+                         fmt_t(x["time"])]
                 best = None
                 ea = {}
                 for m in ("rk45", "dop853"):
-                    t, flag = time_at_error(points[m], x["error"])
+                    if unresolved:
+                        t, flag = runs[(f"sloshdyn {m}", rtol)]["time"], "=tol "
+                    else:
+                        t, flag = time_at_error(points[m], x["error"])
                     sp = x["time"] / t
                     ea[m] = (sp, flag)
                     cells += [fmt_t(t), fmt_x(sp, flag)]
@@ -697,40 +705,52 @@ class Bench:
                                       "peer skipped: " + self.numba.reason))
                 continue
             for key, res in self.results.items():
-                worst, where, basis = None, [], ""
-                for rtol in self.tolerances:
-                    x = res["runs"].get((name, rtol))
-                    if x is None:
-                        continue
-                    fam = FAMILY[name]
-                    if res["saturated"]:
-                        basis = "equal tolerance (errors saturate)"
-                        sp = x["time"] / res["runs"][(f"sloshdyn {fam}", rtol)]["time"]
-                        flag = ""
-                    else:
-                        basis = "equal accuracy"
-                        sp, flag = res["equal_accuracy"][(name, rtol)][fam]
-                    where.append(f"{rtol:.0e}: {fmt_x(sp, flag)}")
-                    if worst is None or sp < worst:
-                        worst = sp
-                if worst is None:
+                fam = FAMILY[name]
+                basis = "equal tolerance, errors saturate" if res["saturated"] else "equal accuracy"
+                entries = {}
+                for m in ("rk45", "dop853"):
+                    for rtol in self.tolerances:
+                        x = res["runs"].get((name, rtol))
+                        if x is None:
+                            continue
+                        if res["saturated"]:
+                            sp = x["time"] / res["runs"][(f"sloshdyn {m}", rtol)]["time"]
+                            entries.setdefault(m, []).append((rtol, sp, ""))
+                        else:
+                            sp, flag = res["equal_accuracy"][(name, rtol)][m]
+                            entries.setdefault(m, []).append((rtol, sp, flag))
+                if not entries:
                     continue
+                # same method family (the strict comparison), then the faster sloshdyn method
+                same = entries[fam]
+                worst = min(sp for _, sp, _ in same)
+                if any(flag.startswith("=tol") for m in entries for _, _, flag in entries[m]):
+                    basis += " (=tol: errors at the reference floor, equal tolerance used)"
+                where = ", ".join(f"{rtol:.0e}: {fmt_x(sp, flag)}" for rtol, sp, flag in same)
                 if name == "numbalsoda dop853":
                     label = f"({key}) sloshdyn dop853 no slower than numbalsoda dop853, every rtol"
                 else:
-                    label = (f"({key}) >= {target:.0f}x faster than {name} "
-                             f"(sloshdyn {FAMILY[name]})")
+                    label = f"({key}) >= {target:.0f}x faster than {name}, sloshdyn {fam}"
                 self.verdicts.append((label, fmt_x(worst), worst >= target,
-                                      f"worst of {', '.join(where)}; {basis}; "
-                                      f"{worst / target:.2f} of target"))
-                if name != "numbalsoda dop853" and not res["saturated"]:
-                    best = min(max(res["equal_accuracy"][(name, rtol)][m][0]
-                                   for m in ("rk45", "dop853"))
-                               for rtol in self.tolerances if (name, rtol) in res["runs"])
-                    self.verdicts.append((f"({key}) >= {target:.0f}x faster than {name} "
-                                          "(best sloshdyn method)", fmt_x(best), best >= target,
+                                      f"worst of {where}; {basis}; {worst / target:.2f} of target"))
+                if name != "numbalsoda dop853":
+                    per_rtol = {}
+                    for m in entries:
+                        for rtol, sp, flag in entries[m]:
+                            if rtol not in per_rtol or sp > per_rtol[rtol][0]:
+                                per_rtol[rtol] = (sp, flag)
+                    best = min(sp for sp, _ in per_rtol.values())
+                    where = ", ".join(f"{rtol:.0e}: {fmt_x(sp, flag)}"
+                                      for rtol, (sp, flag) in per_rtol.items())
+                    self.verdicts.append((f"({key}) >= {target:.0f}x faster than {name}, faster "
+                                          "sloshdyn method", fmt_x(best), best >= target,
+                                          f"worst of {where}; {basis}; "
                                           f"{best / target:.2f} of target"))
         r.heading("Targets")
+        if self.quick:
+            r.para("--quick: the sizes are far too small for these verdicts to mean anything "
+                   "(fixed per-call costs dominate 20-period runs); they only show that the "
+                   "script runs. Use the full run.")
         order = self.verdicts + others
         r.table(["target", "measured", "verdict", "note"],
                 [[t, m, "SKIP" if ok is None else ("PASS" if ok else "MISS"), note]
