@@ -35,9 +35,11 @@ contains
     real(wp) :: q1, q2
     q1 = model%theta0*y(1)
     q2 = model%theta0*y(3)
-    t%cos12 = cos(q1 + q2); t%sin12 = sin(q1 + q2)
     t%cos1 = cos(q1); t%sin1 = sin(q1)
     t%cos2 = cos(q2); t%sin2 = sin(q2)
+    ! angle addition instead of a third sine/cosine pair: the right-hand side's costliest part
+    t%cos12 = t%cos1*t%cos2 - t%sin1*t%sin2
+    t%sin12 = t%sin1*t%cos2 + t%cos1*t%sin2
     t%impact_pow = y(1)**(2*model%n - 1)
     t%dissipation_pow = y(1)**(2*model%p)
     t%xdd = base_acceleration(model, tau)

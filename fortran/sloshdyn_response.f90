@@ -37,7 +37,7 @@ module sloshdyn_response
 
   type :: response_options
     integer :: n_scan = 5               !< parameter values where steady states are searched
-    integer :: n_amplitudes = 8         !< Newton starts per mode: log-spaced |B| ...
+    integer :: n_amplitudes = 6         !< Newton starts per mode: log-spaced |B| ...
     integer :: n_phases = 6             !< ... times equally spaced arg B
     real(wp) :: amplitude_min = 1.0e-4_wp, amplitude_max = 1.0_wp   !< range of start |B|
     type(continuation_options) :: continuation   !< lambda_min/max and direction are set here

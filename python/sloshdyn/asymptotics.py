@@ -139,7 +139,7 @@ class Continuation:
     """Settings of the branch search and continuation."""
 
     n_scan: int = 5               #: parameter values where steady states are searched
-    n_amplitudes: int = 8         #: Newton starts per mode: log-spaced |B| ...
+    n_amplitudes: int = 6         #: Newton starts per mode: log-spaced |B| ...
     n_phases: int = 6             #: ... times equally spaced phases
     amplitude_min: float = 1e-4
     amplitude_max: float = 1.0

@@ -99,7 +99,7 @@ NAMELIST_SCHEMA = {
         "start": ("start", float, None),
         "stop": ("stop", float, None),
         "n_scan": ("n_scan", int, 5),
-        "n_amplitudes": ("n_amplitudes", int, 8),
+        "n_amplitudes": ("n_amplitudes", int, 6),
         "n_phases": ("n_phases", int, 6),
         "amplitude_min": ("amplitude_min", float, 1e-4),
         "amplitude_max": ("amplitude_max", float, 1.0),

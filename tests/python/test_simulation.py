@@ -129,11 +129,14 @@ def test_sweep_carries_the_state(fig12):
 def test_parallel_sweep_equals_serial_chunks(fig12):
     p = fig12.replace(beta=10.0, delta=0.1)
     steady = sloshdyn.Steady(transient_periods=100, settle_tol=0, window_periods=16)
-    values = [0.50, 0.505, 0.51, 0.515]
+    values = [0.50, 0.502, 0.504, 0.506, 0.508, 0.51, 0.512, 0.514, 0.516, 0.518, 0.52, 0.522,
+              0.524, 0.526, 0.528, 0.53]
     parallel = sloshdyn.frequency_sweep(p, values, steady=steady, threads=2)
-    first = sloshdyn.frequency_sweep(p, values[:2], steady=steady)
-    second = sloshdyn.frequency_sweep(p, values[2:], steady=steady)
-    assert list(parallel.column("max_x1")) == list(first.column("max_x1")) + list(second.column("max_x1"))
+    # 8 chunks of 2 points, each starting from rest
+    serial = []
+    for k in range(0, 16, 2):
+        serial += list(sloshdyn.frequency_sweep(p, values[k:k + 2], steady=steady).column("max_x1"))
+    assert list(parallel.column("max_x1")) == serial
 
 
 def test_dop853_method_agrees_with_rk45_in_fewer_steps(fig12):
