@@ -356,7 +356,7 @@ contains
     end do
   end subroutine parameter_sweep
 
-  !> The sweep split into 4 n_threads contiguous chunks run in parallel by n_threads threads
+  !> The sweep split into 8 n_threads contiguous chunks run in parallel by n_threads threads
   !> (OpenMP), each chunk starting from y0 and carrying its state from point to point:
   !> continuity (and so the branch a sweep follows through hysteresis) is broken at chunk starts. Every point is a
   !> steady state all the same; with n_threads = 1 this is parameter_sweep. status and message
@@ -371,15 +371,15 @@ contains
     real(wp), intent(out) :: summaries(summary_size, size(values))
     integer, intent(out) :: n_done, status
     character(len=message_len), intent(out) :: message
-    integer :: chunk, n_chunks, first, last, done(max(1, 4*n_threads)), &
-               chunk_status(max(1, 4*n_threads))
-    character(len=message_len) :: chunk_message(max(1, 4*n_threads))
+    integer :: chunk, n_chunks, first, last, done(max(1, 8*n_threads)), &
+               chunk_status(max(1, 8*n_threads))
+    character(len=message_len) :: chunk_message(max(1, 8*n_threads))
     real(wp) :: y_final(4)
 
-    ! four chunks per thread, handed out as threads free up: steady states differ in cost
+    ! eight chunks per thread, handed out as threads free up: steady states differ in cost
     ! (settling, quasi-periodic points), so equal contiguous halves leave a thread idle
     n_chunks = 1
-    if (n_threads > 1) n_chunks = min(4*n_threads, size(values))
+    if (n_threads > 1) n_chunks = min(8*n_threads, size(values))
     done = 0
     chunk_status = SD_OK
     chunk_message = ''

@@ -234,7 +234,7 @@ def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady =
     """Steady states along rho_values (ascending = up, descending = down), each starting from
     the previous point's final state, so jumps and hysteresis show.
 
-    threads > 1 splits the values into 4 x threads contiguous chunks run in parallel by that
+    threads > 1 splits the values into 8 x threads contiguous chunks run in parallel by that
     many threads (OpenMP in the core), each chunk starting from y0: faster, but the state is not
     carried across chunk starts, and there is no per-point progress nor final state (y_final is
     None)."""

@@ -131,11 +131,14 @@ def test_parallel_sweep_equals_serial_chunks(fig12):
     steady = sloshdyn.Steady(transient_periods=100, settle_tol=0, window_periods=16)
     values = [0.50, 0.502, 0.504, 0.506, 0.508, 0.51, 0.512, 0.514, 0.516, 0.518, 0.52, 0.522,
               0.524, 0.526, 0.528, 0.53]
+    values = values + values[::-1][1:-1]      # 30 values: chunks of unequal length
     parallel = sloshdyn.frequency_sweep(p, values, steady=steady, threads=2)
-    # 8 chunks of 2 points, each starting from rest
+    # min(8 x threads, n) = 16 contiguous chunks (as the core splits them), each from rest
+    n, chunks = len(values), 16
     serial = []
-    for k in range(0, 16, 2):
-        serial += list(sloshdyn.frequency_sweep(p, values[k:k + 2], steady=steady).column("max_x1"))
+    for c in range(chunks):
+        serial += list(sloshdyn.frequency_sweep(p, values[c * n // chunks:(c + 1) * n // chunks],
+                                                steady=steady).column("max_x1"))
     assert list(parallel.column("max_x1")) == serial
 
 
