@@ -37,7 +37,7 @@ module sloshdyn_dop853
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
                              SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_rk45, only: ode_system, rk45_options, rk45_stats, rk45_check_setup
+  use sloshdyn_rk45, only: ode_system, rk45_options, rk45_stats, rk45_check_setup, plan_trial
   implicit none
   private
   public :: ode_system, rk45_options, rk45_stats
@@ -252,10 +252,6 @@ module sloshdyn_dop853
     d715 = -0.39177261675615439165231486172e+02_wp, &
     d716 = -0.14972683625798562581422125276e+03_wp
 
-  !> In fixed-step mode a remainder this much longer than the step (relative) is taken as one
-  !> last step, so rounding in tau never leaves a sliver step at t_bound.
-  real(wp), parameter :: fixed_slack = 1.0e-6_wp
-
 contains
 
   !> Validate the inputs, allocate the work arrays and evaluate f(t0, y0); choose the first step.
@@ -326,7 +322,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: h, t_new, err, fac11, fac, h_new
-    logical :: last, finite, fixed, non_finite_trial
+    logical :: finite, fixed, non_finite_trial
 
     status = SD_OK
     message = ''
@@ -344,39 +340,10 @@ contains
     fixed = integ%opt%fixed_step > 0
     non_finite_trial = .false.
     do
-      if (integ%n_accepted + integ%n_rejected >= integ%opt%max_steps) then
-        status = SD_TOO_MANY_STEPS
-        message = 'max_steps = '//num2str(integ%opt%max_steps)//' steps taken at tau = '// &
-                  num2str(integ%t)//', before reaching t_bound = '//num2str(integ%t_bound)
-        return
-      end if
-      h = integ%h
-      ! checked before clipping: a short last step to t_bound is no sign of trouble
-      if (h < step_floor(integ%opt%h_min, integ%t)) then
-        if (non_finite_trial) then
-          status = SD_NON_FINITE
-          message = 'the state became NaN or infinite in every trial step from tau = '// &
-                    num2str(integ%t)//', down to h = '//num2str(h/integ%opt%fac1)
-        else
-          status = SD_STEP_TOO_SMALL
-          message = 'step size '//num2str(h)//' below h_min '// &
-                    num2str(step_floor(integ%opt%h_min, integ%t))//' at tau = '//num2str(integ%t)
-        end if
-        return
-      end if
-
-      if (fixed) then
-        last = integ%t + h*(1 + fixed_slack) >= integ%t_bound
-      else
-        ! DOP853 stretches a step by up to 1 % rather than leave a tiny last step
-        last = integ%t + 1.01_wp*h >= integ%t_bound
-      end if
-      if (last) then
-        h = integ%t_bound - integ%t
-        t_new = integ%t_bound
-      else
-        t_new = integ%t + h
-      end if
+      call plan_trial(integ%opt, integ%t, integ%t_bound, integ%h, &
+                      integ%n_accepted + integ%n_rejected, non_finite_trial, h, t_new, status, &
+                      message)
+      if (status /= SD_OK) return
 
       call trial_step(integ, sys, h, t_new, finite)
       h_new = h
@@ -740,11 +707,4 @@ contains
     if (.not. err <= huge(err)) err = huge(err)
   end function error_norm
 
-  !> Smallest step error control may ask for at time t (see rk45_options%h_min).
-  pure function step_floor(h_min, t) result(h_floor)
-    real(wp), intent(in) :: h_min, t
-    real(wp) :: h_floor
-    h_floor = merge(h_min, 1.0e-14_wp*max(1.0_wp, abs(t)), h_min > 0)
-    h_floor = max(h_floor, 10*epsilon(t)*abs(t))
-  end function step_floor
 end module sloshdyn_dop853

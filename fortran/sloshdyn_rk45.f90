@@ -18,7 +18,7 @@ module sloshdyn_rk45
   private
   public :: ode_system, ode_rhs, rk45_options, rk45_integrator, rk45_stats
   public :: rk45_init, rk45_step, rk45_dense, rk45_set_state, rk45_statistics, rk45_integrate, &
-            rk45_check_setup
+            rk45_check_setup, plan_trial
 
   !> A system y' = f(t, y); extend it with the parameters f depends on.
   type, abstract :: ode_system
@@ -174,7 +174,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: h, t_new, err, fac11, fac, h_new
-    logical :: last, finite, fixed, non_finite_trial
+    logical :: finite, fixed, non_finite_trial
 
     status = SD_OK
     message = ''
@@ -192,39 +192,10 @@ contains
     fixed = integ%opt%fixed_step > 0
     non_finite_trial = .false.
     do
-      if (integ%n_accepted + integ%n_rejected >= integ%opt%max_steps) then
-        status = SD_TOO_MANY_STEPS
-        message = 'max_steps = '//num2str(integ%opt%max_steps)//' steps taken at tau = '// &
-                  num2str(integ%t)//', before reaching t_bound = '//num2str(integ%t_bound)
-        return
-      end if
-      h = integ%h
-      ! checked before clipping: a short last step to t_bound is no sign of trouble
-      if (h < step_floor(integ%opt%h_min, integ%t)) then
-        if (non_finite_trial) then
-          status = SD_NON_FINITE
-          message = 'the state became NaN or infinite in every trial step from tau = '// &
-                    num2str(integ%t)//', down to h = '//num2str(h/integ%opt%fac1)
-        else
-          status = SD_STEP_TOO_SMALL
-          message = 'step size '//num2str(h)//' below h_min '// &
-                    num2str(step_floor(integ%opt%h_min, integ%t))//' at tau = '//num2str(integ%t)
-        end if
-        return
-      end if
-
-      if (fixed) then
-        last = integ%t + h*(1 + fixed_slack) >= integ%t_bound
-      else
-        ! DOPRI5 stretches a step by up to 1 % rather than leave a tiny last step
-        last = integ%t + 1.01_wp*h >= integ%t_bound
-      end if
-      if (last) then
-        h = integ%t_bound - integ%t
-        t_new = integ%t_bound
-      else
-        t_new = integ%t + h
-      end if
+      call plan_trial(integ%opt, integ%t, integ%t_bound, integ%h, &
+                      integ%n_accepted + integ%n_rejected, non_finite_trial, h, t_new, status, &
+                      message)
+      if (status /= SD_OK) return
 
       call trial_step(integ, sys, h, t_new, finite)
       non_finite_trial = .not. finite
@@ -509,6 +480,56 @@ contains
     h_floor = merge(h_min, 1.0e-14_wp*max(1.0_wp, abs(t)), h_min > 0)
     h_floor = max(h_floor, 10*epsilon(t)*abs(t))
   end function step_floor
+
+  !> The next trial step of an embedded Runge-Kutta integrator (rk45 and dop853 share it): the
+  !> step budget and the step floor are checked (the floor before clipping: a short last step to
+  !> t_bound is no sign of trouble), and the step is clipped to end exactly on t_bound; adaptive
+  !> steps are stretched by up to 1 % rather than leave a sliver (as DOPRI5 and DOP853 do).
+  pure subroutine plan_trial(opt, t, t_bound, h_wanted, attempts, non_finite_trial, h, t_new, &
+                             status, message)
+    type(rk45_options), intent(in) :: opt
+    real(wp), intent(in) :: t, t_bound, h_wanted
+    integer, intent(in) :: attempts
+    logical, intent(in) :: non_finite_trial
+    real(wp), intent(out) :: h, t_new
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    logical :: last
+
+    status = SD_OK
+    message = ''
+    h = h_wanted
+    t_new = t
+    if (attempts >= opt%max_steps) then
+      status = SD_TOO_MANY_STEPS
+      message = 'max_steps = '//num2str(opt%max_steps)//' steps taken at tau = '// &
+                num2str(t)//', before reaching t_bound = '//num2str(t_bound)
+      return
+    end if
+    if (h < step_floor(opt%h_min, t)) then
+      if (non_finite_trial) then
+        status = SD_NON_FINITE
+        message = 'the state became NaN or infinite in every trial step from tau = '// &
+                  num2str(t)//', down to h = '//num2str(h/opt%fac1)
+      else
+        status = SD_STEP_TOO_SMALL
+        message = 'step size '//num2str(h)//' below h_min '// &
+                  num2str(step_floor(opt%h_min, t))//' at tau = '//num2str(t)
+      end if
+      return
+    end if
+    if (opt%fixed_step > 0) then
+      last = t + h*(1 + fixed_slack) >= t_bound
+    else
+      last = t + 1.01_wp*h >= t_bound
+    end if
+    if (last) then
+      h = t_bound - t
+      t_new = t_bound
+    else
+      t_new = t + h
+    end if
+  end subroutine plan_trial
 
   !> Checks shared by rk45_init and rk45_integrate (and by input readers that validate before
   !> computing): the options and the initial state.
