@@ -159,46 +159,42 @@ def fig06(out, quick=False):
                   "Stability from the eigenvalues of the 4x4 Jacobian (LAPACK dgeev), γ = 0.01.")
 
 
-def fig07(out, quick=False):
-    sigma = np.linspace(0.01, 10, 1000)
+def _ratio_map(out, name, x, x_label, curves, curve_label, symbol, ratio_of, ylim, zoom_x):
+    """omega2/omega1 along x for three values of the other group (Fig 7, 8): full and zoom."""
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    columns = {"sigma_tilde": sigma}
-    for mu_t, ls in ((0.1, "-"), (0.5, "--"), (1.0, "-.")):
-        ratio = frequency_ratio(sigma, mu_t)
-        columns[f"ratio_mu_tilde_{mu_t}"] = ratio
+    columns = {x_label: x}
+    for value, ls in zip(curves, ("-", "--", "-.")):
+        ratio = ratio_of(value)
+        columns[f"ratio_{curve_label}_{value}"] = ratio
         for ax in axes:
-            ax.plot(sigma, ratio, ls, color="k", label=rf"$\tilde\mu$ = {mu_t}")
-    axes[0].set_ylim(0, 20)
-    axes[1].set_xlim(0, 2)
+            ax.plot(x, ratio, ls, color="k", label=rf"$\tilde\{symbol}$ = {value}")
+    axes[0].set_ylim(0, ylim)
+    axes[1].set_xlim(*zoom_x)
     axes[1].set_ylim(0, 10)
     for ax in axes:
-        ax.set_xlabel(r"$\tilde\sigma = \kappa - s_1$")
+        ax.set_xlabel(r"$\tilde\sigma = \kappa - s_1$" if x_label == "sigma_tilde"
+                      else r"$\tilde\mu = 1 - \mu_1$")
         ax.set_ylabel(r"$\omega_2/\omega_1$")
         ax.legend()
+    return _save(fig, out, name, columns)
+
+
+def fig07(out, quick=False):
+    sigma = np.linspace(0.01, 10, 1000)
+    files = _ratio_map(out, "fig07", sigma, "sigma_tilde", (0.1, 0.5, 1.0), "mu_tilde", "mu",
+                       lambda mu_t: frequency_ratio(sigma, mu_t), 20, (0, 2))
     sigma31 = float(kappa_for_detuning(1.5, 0.5, 0.0)[0] - 1.5)
     return Figure("7", "a) Natural frequencies ratio vs σ̃ for μ̃=0.1 (solid), μ̃=0.5 (dashed) and "
-                  "μ̃=1 (dashed-dotted), b) Zoom-in for 0<σ̃<2.", _save(fig, out, "fig07", columns),
+                  "μ̃=1 (dashed-dotted), b) Zoom-in for 0<σ̃<2.", files,
                   {"sec32_sigma_tilde_31": sigma31})
 
 
 def fig08(out, quick=False):
     mu = np.linspace(0.01, 1.0, 500)
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    columns = {"mu_tilde": mu}
-    for sigma_t, ls in ((0.1, "-"), (0.5, "--"), (1.0, "-.")):
-        ratio = frequency_ratio(sigma_t, mu)
-        columns[f"ratio_sigma_tilde_{sigma_t}"] = ratio
-        for ax in axes:
-            ax.plot(mu, ratio, ls, color="k", label=rf"$\tilde\sigma$ = {sigma_t}")
-    axes[0].set_ylim(0, 30)
-    axes[1].set_xlim(0.4, 1)
-    axes[1].set_ylim(0, 10)
-    for ax in axes:
-        ax.set_xlabel(r"$\tilde\mu = 1 - \mu_1$")
-        ax.set_ylabel(r"$\omega_2/\omega_1$")
-        ax.legend()
+    files = _ratio_map(out, "fig08", mu, "mu_tilde", (0.1, 0.5, 1.0), "sigma_tilde", "sigma",
+                       lambda sigma_t: frequency_ratio(sigma_t, mu), 30, (0.4, 1))
     return Figure("8", "a) Natural frequencies ratio vs. μ̃ for σ̃=0.1 (solid), σ̃=0.5 (dashed) and "
-                  "σ̃=1 (dashed-dotted), b) Zoom-in for 0.4<μ̃<1.", _save(fig, out, "fig08", columns))
+                  "σ̃=1 (dashed-dotted), b) Zoom-in for 0.4<μ̃<1.", files)
 
 
 def _response_columns(response):
@@ -347,13 +343,23 @@ def fig13(out, quick=False):
                   _save(fig, out, "fig13", _response_columns(r)))
 
 
-def fig14(out, quick=False):
+def fig14_beats(quick=False):
+    """The Fig 14 steady motion, a simulation of it, and its beat period in forcing periods
+    (the strongest line of the spectrum of the u1 envelope)."""
     p = FIG12
     st = steady_state(p, steady=Steady(settle_tol=0, transient_periods=2000 if quick else 5000,
                                        window_periods=400))
     period = 2 * math.pi / p.rho
     n_periods = 800 if quick else 3000
     sim = simulate(p, n_periods * period, st.y_end, n_out=n_periods * 32 + 1)
+    envelope = np.abs(sim.u[0][:-1]).reshape(n_periods, 32).max(axis=1)
+    omega, amp = spectrum(envelope, period)
+    beat = 2 * math.pi / omega[1:][np.argmax(amp[1:])] / period
+    return st, sim, beat
+
+
+def fig14(out, quick=False):
+    st, sim, beat = fig14_beats(quick)
     fig, axes = plt.subplots(1, 3, figsize=(14, 4))
     axes[0].plot(sim.tau, sim.u[0], lw=0.3, color="k", label=r"$u_1$")
     axes[0].plot(sim.tau, sim.u[1], lw=0.3, color="r", label=r"$u_2$")
@@ -366,15 +372,12 @@ def fig14(out, quick=False):
         ax.set_xlabel(rf"$u_{row + 1}$")
         ax.set_ylabel(rf"$u_{row + 1}'$")
     fig.tight_layout()
-    envelope = np.abs(sim.u[0][:-1]).reshape(n_periods, 32).max(axis=1)
-    omega, amp = spectrum(envelope, period)
-    beat = 2 * math.pi / omega[1:][np.argmax(amp[1:])]
     files = _save(fig, out, "fig14", {"tau": sim.tau, "u1": sim.u[0], "u2": sim.u[1]})
     return Figure("14", "a) Time history for signals u1 and u2. Beating signals take place. b) "
                   "State-plane and Poincare sections of u1, c) State-plane and Poincare sections of "
                   "u2. μ1=0.5, s1=1.5, σ1=0.005, κ=1.804897259, γ=0.001, A=0.00075, ρ=0.509615",
-                  files, {"fig14_beat_periods": beat / period},
-                  f"Steady motion: {st.motion}; beat period {beat / period:.0f} forcing periods; "
+                  files, {"fig14_beat_periods": beat},
+                  f"Steady motion: {st.motion}; beat period {beat:.0f} forcing periods; "
                   "red dots: Poincaré points (every forcing period).")
 
 

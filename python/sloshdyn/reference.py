@@ -145,9 +145,7 @@ def _hopf(quick):
 
 
 def _fig14(quick):
-    import tempfile
-    with tempfile.TemporaryDirectory() as tmp:
-        return figures.fig14(tmp, quick=True).values
+    return {"fig14_beat_periods": figures.fig14_beats(quick=True)[2]}
 
 
 def _fig15(quick):
