@@ -1,10 +1,10 @@
-!> File-system helpers of the executable: create the output directory, and write every result
-!> file under a temporary name first, renamed only when all are complete (nothing half-written).
+!> File-system calls of the front doors (POSIX, through C): create a directory with its parents,
+!> rename and remove files, and the process id that makes temporary names unique per run.
 module sloshdyn_files
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
   implicit none
   private
-  public :: make_directory, rename_file
+  public :: make_directory, rename_file, remove_file, process_id
 
   interface
     integer(c_int) function c_mkdir(path, mode) bind(c, name='mkdir')
@@ -16,6 +16,13 @@ module sloshdyn_files
       import :: c_char, c_int
       character(kind=c_char), intent(in) :: old(*), new(*)
     end function c_rename
+    integer(c_int) function c_unlink(path) bind(c, name='unlink')
+      import :: c_char, c_int
+      character(kind=c_char), intent(in) :: path(*)
+    end function c_unlink
+    integer(c_int) function c_getpid() bind(c, name='getpid')
+      import :: c_int
+    end function c_getpid
   end interface
 
 contains
@@ -37,4 +44,14 @@ contains
     logical, intent(out) :: ok
     ok = c_rename(trim(old)//c_null_char, trim(new)//c_null_char) == 0
   end subroutine rename_file
+
+  subroutine remove_file(path)
+    character(len=*), intent(in) :: path
+    integer :: ignored
+    ignored = c_unlink(trim(path)//c_null_char)
+  end subroutine remove_file
+
+  integer function process_id()
+    process_id = c_getpid()
+  end function process_id
 end module sloshdyn_files

@@ -2,11 +2,11 @@
 !> c_double/c_int cross the boundary; every routine returns status (0 = success) and a fixed-length
 !> message. Parameter layout (see sloshdyn_model):
 !>   rpar(9) = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho], ipar(2) = [n, p]
-!> Integrator settings: integration(7) = [rtol, atol, h_initial, h_max, h_min, max_steps,
-!> method (0 rk45, 1 dop853)];
-!> steady states: steady(6) = [transient_periods, settle_tol, max_transient_periods,
-!> window_periods, samples_per_period, periodic_tol]; work counts: counts(4) = [rhs
-!> evaluations, accepted steps, rejected steps, tau reached].
+!> Settings arrays (integration, steady, response, lyapunov): the layouts of sloshdyn_layouts;
+!> array sizes are literals here (f2py cannot use another module's constants): the compiler checks
+!> them against the layouts' named sizes where the arrays are converted.
+!> Result tables: the layouts of sloshdyn_tables (names gives the column names); work counts:
+!> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
 module sloshdyn_bridge
   use, intrinsic :: iso_c_binding, only: c_double, c_int
   implicit none
@@ -207,84 +207,6 @@ contains
     status = info
   end subroutine equilibria
 
-  !> Time history at tau_out (ascending, >= tau0): history(9, n_out) rows x1, x1', x2, x2', u1, u2,
-  !> impact force, theta, phi. On failure the columns not reached are NaN.
-  subroutine simulate(rpar, ipar, tau0, y0, n_out, tau_out, integration, history, counts, status, &
-                      message)
-    use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_rk45, only: rk45_stats
-    use sloshdyn_simulation, only: time_history, integrator_options, integration_method
-    real(c_double), intent(in) :: rpar(9), tau0, y0(4), tau_out(n_out), integration(7)
-    integer(c_int), intent(in) :: ipar(2), n_out
-    real(c_double), intent(out) :: history(9, n_out), counts(4)
-    integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
-    type(model_t) :: model
-    type(rk45_stats) :: stats
-    integer :: info
-    history = 0
-    counts = 0
-    call model_from_arrays(rpar, int(ipar), model, info, message)
-    if (info == 0) then
-      call time_history(model, tau0, y0, tau_out, integrator_options(integration), &
-                        integration_method(integration), history, stats, info, message)
-      counts = [real(stats%n_rhs, c_double), real(stats%n_accepted, c_double), &
-                real(stats%n_rejected, c_double), stats%t_reached]
-    end if
-    status = info
-  end subroutine simulate
-
-  !> Steady state from y0 at tau = 0: summary(11) = [rho, A, max|x1|, max|x2|, max|u1|, max|u2|,
-  !> motion (1 periodic, 2 quasi-periodic, 3 irregular), period, transient periods, spread,
-  !> settled], the window's Poincare points and the final state (at forcing phase 0).
-  subroutine steady_state(rpar, ipar, y0, integration, steady, window, summary, poincare, y_end, &
-                          counts, status, message)
-    use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_rk45, only: rk45_stats
-    use sloshdyn_simulation, only: core => steady_state, integrator_options, steady_settings, &
-                                   integration_method
-    real(c_double), intent(in) :: rpar(9), y0(4), integration(7), steady(6)
-    integer(c_int), intent(in) :: ipar(2), window
-    real(c_double), intent(out) :: summary(11), poincare(4, window), y_end(4), counts(4)
-    integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
-    type(model_t) :: model
-    type(rk45_stats) :: stats
-    integer :: info
-    summary = 0; poincare = 0; y_end = 0; counts = 0
-    call model_from_arrays(rpar, int(ipar), model, info, message)
-    if (info == 0) then
-      call core(model, y0, integrator_options(integration), integration_method(integration), &
-                steady_settings(steady), summary, poincare, y_end, stats, info, message)
-      counts = [real(stats%n_rhs, c_double), real(stats%n_accepted, c_double), &
-                real(stats%n_rejected, c_double), stats%t_reached]
-    end if
-    status = info
-  end subroutine steady_state
-
-  !> Steady states along values of rho (which = 1) or A (which = 2), each from the previous
-  !> final state; summaries(11, n) as for steady_state, n_done points completed.
-  subroutine parameter_sweep(rpar, ipar, which, n, values, y0, integration, steady, summaries, &
-                             y_final, n_done, status, message)
-    use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_simulation, only: core => parameter_sweep, integrator_options, steady_settings, &
-                                   integration_method
-    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), steady(6)
-    integer(c_int), intent(in) :: ipar(2), which, n
-    real(c_double), intent(out) :: summaries(11, n), y_final(4)
-    integer(c_int), intent(out) :: n_done, status
-    character(len=256), intent(out) :: message
-    type(model_t) :: model
-    integer :: info, done
-    summaries = 0; y_final = y0; done = 0
-    call model_from_arrays(rpar, int(ipar), model, info, message)
-    if (info == 0) call core(model, int(which), values, y0, integrator_options(integration), &
-                             integration_method(integration), steady_settings(steady), summaries, &
-                             y_final, done, info, message)
-    n_done = done
-    status = info
-  end subroutine parameter_sweep
-
   !> Cubic expansion (eq 32-33) and modal form (eq 35-36). Polynomials are given by their
   !> coefficients on the 34 monomials of degree 1..3 whose exponents are exponents(:, k), in the
   !> variables (x1, x2, x1', x2') for g and (u1, u2, u1', u2') for h; the forcing polynomials
@@ -331,45 +253,6 @@ contains
     end function coefficient
   end subroutine modal_expansion
 
-  !> Slow-flow frequency response (sloshdyn_response): branches in lambda = rho (which = 1) or
-  !> A (which = 2) over [lambda_min, lambda_max], 3:1 internal resonance or none.
-  !> settings = [n_scan, n_amplitudes, n_phases, amplitude_min, amplitude_max, ds, ds_min,
-  !> ds_max, x_scale]; table(28, max_points) and special(9, max_special) as documented in
-  !> sloshdyn_response; complete = 0 if a branch could not be finished (status says where).
-  subroutine frequency_response(rpar, ipar, resonance, which, lambda_min, lambda_max, settings, &
-                                max_points, max_special, table, n_points, special, n_special, &
-                                complete, status, message)
-    use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_response, only: response_options, core => frequency_response
-    real(c_double), intent(in) :: rpar(9), lambda_min, lambda_max, settings(9)
-    integer(c_int), intent(in) :: ipar(2), resonance, which, max_points, max_special
-    real(c_double), intent(out) :: table(28, max_points), special(9, max_special)
-    integer(c_int), intent(out) :: n_points, n_special, complete, status
-    character(len=256), intent(out) :: message
-    type(model_t) :: model
-    type(response_options) :: options
-    integer :: info, points, specials
-    logical :: done
-    table = 0; special = 0; points = 0; specials = 0; done = .false.
-    options%n_scan = nint(settings(1))
-    options%n_amplitudes = nint(settings(2))
-    options%n_phases = nint(settings(3))
-    options%amplitude_min = settings(4)
-    options%amplitude_max = settings(5)
-    options%continuation%ds = settings(6)
-    options%continuation%ds_min = settings(7)
-    options%continuation%ds_max = settings(8)
-    options%continuation%x_scale = settings(9)
-    options%continuation%max_points = min(max_points, 4000)
-    call model_from_arrays(rpar, int(ipar), model, info, message)
-    if (info == 0) call core(model, resonance == 1, int(which), lambda_min, lambda_max, options, &
-                             table, points, special, specials, done, info, message)
-    n_points = points
-    n_special = specials
-    complete = merge(1, 0, done)
-    status = info
-  end subroutine frequency_response
-
   !> Every real solution |u1| of eq (49) at each rho (A from rpar): amplitudes(1:counts(i), i).
   subroutine nonresonant_amplitudes(rpar, ipar, n, rho, amplitudes, counts, status, message)
     use sloshdyn_model, only: model_t, model_from_arrays
@@ -388,19 +271,107 @@ contains
     if (info == 0) call expand_model(model, mc, info, message)
     do i = 1, n
       if (info /= 0) exit
-      call core(mc, rho(i), model%A, amplitudes(:, i), found, info, message)
+      call core(mc, rho(i), model%excitation%A, amplitudes(:, i), found, info, message)
       counts(i) = found
     end do
     status = info
   end subroutine nonresonant_amplitudes
 
-  !> parameter_sweep split into n_threads chunks run in parallel (each from y0).
+  !> Time history at tau_out (ascending, >= tau0): history(9, n_out) in the rows of
+  !> the 'history' table after tau. On failure the columns not reached are NaN.
+  subroutine simulate(rpar, ipar, tau0, y0, n_out, tau_out, integration, history, counts, status, &
+                      message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_ode, only: ode_stats
+    use sloshdyn_simulation, only: time_history
+    use sloshdyn_tables, only: HISTORY_ROWS
+    use sloshdyn_layouts, only: to_ode_options, to_method, counts_array
+    real(c_double), intent(in) :: rpar(9), tau0, y0(4), tau_out(n_out), &
+                                  integration(7)
+    integer(c_int), intent(in) :: ipar(2), n_out
+    real(c_double), intent(out) :: history(9, n_out), counts(4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(ode_stats) :: stats
+    integer :: info
+    history = 0
+    counts = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) then
+      call time_history(model, tau0, y0, tau_out, to_ode_options(integration), &
+                        to_method(integration), history, stats, info, message)
+      counts = counts_array(stats)
+    end if
+    status = info
+  end subroutine simulate
+
+  !> Steady state from y0 at tau = 0: summary in the 'summary' layout, the window's Poincare
+  !> points and the final state (at forcing phase 0).
+  subroutine steady_state(rpar, ipar, y0, integration, steady, window, summary, poincare, y_end, &
+                          counts, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_ode, only: ode_stats
+    use sloshdyn_simulation, only: core => steady_state
+    use sloshdyn_tables, only: SUMMARY_SIZE
+    use sloshdyn_layouts, only: to_ode_options, to_method, &
+                                to_steady, counts_array
+    real(c_double), intent(in) :: rpar(9), y0(4), integration(7), &
+                                  steady(6)
+    integer(c_int), intent(in) :: ipar(2), window
+    real(c_double), intent(out) :: summary(11), poincare(4, window), y_end(4), &
+                                   counts(4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(ode_stats) :: stats
+    integer :: info
+    summary = 0; poincare = 0; y_end = 0; counts = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) then
+      call core(model, y0, to_ode_options(integration), to_method(integration), &
+                to_steady(steady), summary, poincare, y_end, stats, info, message)
+      counts = counts_array(stats)
+    end if
+    status = info
+  end subroutine steady_state
+
+  !> Steady states along values of rho (which = 1) or A (which = 2), each from the previous
+  !> final state; summaries(11, n) as for steady_state, n_done points completed.
+  subroutine parameter_sweep(rpar, ipar, which, n, values, y0, integration, steady, summaries, &
+                             y_final, n_done, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_simulation, only: core => parameter_sweep
+    use sloshdyn_tables, only: SUMMARY_SIZE
+    use sloshdyn_layouts, only: to_ode_options, to_method, &
+                                to_steady
+    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), &
+                                  steady(6)
+    integer(c_int), intent(in) :: ipar(2), which, n
+    real(c_double), intent(out) :: summaries(11, n), y_final(4)
+    integer(c_int), intent(out) :: n_done, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: info, done
+    summaries = 0; y_final = y0; done = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call core(model, int(which), values, y0, to_ode_options(integration), &
+                             to_method(integration), to_steady(steady), summaries, y_final, &
+                             done, info, message)
+    n_done = done
+    status = info
+  end subroutine parameter_sweep
+
+  !> parameter_sweep split into chunks run in parallel by n_threads threads (each from y0).
   subroutine parallel_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
                             summaries, n_done, status, message)
     use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_simulation, only: core => parallel_sweep, integrator_options, steady_settings, &
-                                   integration_method
-    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), steady(6)
+    use sloshdyn_simulation, only: core => parallel_sweep
+    use sloshdyn_tables, only: SUMMARY_SIZE
+    use sloshdyn_layouts, only: to_ode_options, to_method, &
+                                to_steady
+    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), &
+                                  steady(6)
     integer(c_int), intent(in) :: ipar(2), which, n, n_threads
     real(c_double), intent(out) :: summaries(11, n)
     integer(c_int), intent(out) :: n_done, status
@@ -409,33 +380,64 @@ contains
     integer :: info, done
     summaries = 0; done = 0
     call model_from_arrays(rpar, int(ipar), model, info, message)
-    if (info == 0) call core(model, int(which), values, y0, integrator_options(integration), &
-                             integration_method(integration), steady_settings(steady), &
-                             int(n_threads), summaries, done, info, message)
+    if (info == 0) call core(model, int(which), values, y0, to_ode_options(integration), &
+                             to_method(integration), to_steady(steady), int(n_threads), &
+                             summaries, done, info, message)
     n_done = done
     status = info
   end subroutine parallel_sweep
+
+  !> Slow-flow frequency response (sloshdyn_response): branches in lambda = rho (which = 1) or
+  !> A (which = 2) over [lambda_min, lambda_max], 3:1 internal resonance or none. table in the
+  !> 'response' layout (room for max_points points), special in the 'special' layout;
+  !> complete = 0 if a branch could not be finished (status says where).
+  subroutine frequency_response(rpar, ipar, resonance, which, lambda_min, lambda_max, settings, &
+                                max_points, max_special, table, n_points, special, n_special, &
+                                complete, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_response, only: core => frequency_response
+    use sloshdyn_tables, only: SPECIAL_ROWS
+    use sloshdyn_layouts, only: to_response
+    real(c_double), intent(in) :: rpar(9), lambda_min, lambda_max, settings(10)
+    integer(c_int), intent(in) :: ipar(2), resonance, which, max_points, max_special
+    real(c_double), intent(out) :: table(28, max_points), &
+                                   special(9, max_special)
+    integer(c_int), intent(out) :: n_points, n_special, complete, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: info, points, specials
+    logical :: done
+    table = 0; special = 0; points = 0; specials = 0; done = .false.
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call core(model, resonance == 1, int(which), lambda_min, lambda_max, &
+                             to_response(settings), table, points, special, specials, done, &
+                             info, message)
+    n_points = points
+    n_special = specials
+    complete = merge(1, 0, done)
+    status = info
+  end subroutine frequency_response
 
   !> A periodic orbit of period k T by shooting from the guess y0 (full equations):
   !> y_orbit(4), monodromy(4, 4), multipliers(2, 4) = (Re, Im), info(2) = [iterations, max|x1|].
   subroutine periodic_orbit(rpar, ipar, y0, k, integration, newton_tol, max_iter, y_orbit, &
                             monodromy, multipliers, info, status, message)
     use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_simulation, only: integrator_options
-    use sloshdyn_periodic, only: tank_periodic_problem, shooting_newton
+    use sloshdyn_periodic_response, only: core => periodic_orbit
+    use sloshdyn_layouts, only: to_ode_options, to_method
     real(c_double), intent(in) :: rpar(9), y0(4), integration(7), newton_tol
     integer(c_int), intent(in) :: ipar(2), k, max_iter
     real(c_double), intent(out) :: y_orbit(4), monodromy(4, 4), multipliers(2, 4), info(2)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
-    type(tank_periodic_problem) :: problem
+    type(model_t) :: model
     integer :: code, iterations
     real(c_double) :: re(4), im(4), peak
     y_orbit = 0; monodromy = 0; multipliers = 0; info = 0; iterations = 0; peak = 0
-    call model_from_arrays(rpar, int(ipar), problem%model, code, message)
-    if (code == 0) call shooting_newton(problem, y0, int(k), integrator_options(integration), &
-                                        newton_tol, int(max_iter), y_orbit, monodromy, re, im, &
-                                        iterations, code, message, peak)
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, y0, int(k), to_ode_options(integration), &
+                             to_method(integration), newton_tol, int(max_iter), y_orbit, &
+                             monodromy, re, im, iterations, peak, code, message)
     if (code == 0) multipliers = transpose(reshape([re, im], [4, 2]))
     info = [real(iterations, c_double), peak]
     status = code
@@ -444,15 +446,15 @@ contains
   !> Continuation of periodic orbits (period k T) in rho (which = 1) or A (which = 2) from the
   !> orbit through y0 at the parameters of rpar; settings = [ds, ds_min, ds_max, x_scale,
   !> direction]; points(7, :) = [lambda, y0(4), max|x1|, stable], multipliers(8, :) =
-  !> [Re(4), Im(4)], special(7, :) = [kind, lambda, y0(4), max|x1|] (kind 1 fold, 2 branch point,
-  !> 3 period doubling, 4 Neimark-Sacker); complete = 0 if the branch stopped early.
+  !> [Re(4), Im(4)], special(7, :) = [kind, lambda, y0(4), max|x1|] (kinds of sloshdyn_tables);
+  !> complete = 0 if the branch stopped early.
   subroutine periodic_branch(rpar, ipar, which, y0, k, lambda_min, lambda_max, settings, &
                              integration, max_points, max_special, points, multipliers, n_points, &
                              special, n_special, complete, status, message)
-    use sloshdyn_model, only: model_from_arrays
-    use sloshdyn_simulation, only: integrator_options
+    use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_continuation, only: continuation_options
-    use sloshdyn_periodic, only: tank_periodic_problem, core => periodic_branch
+    use sloshdyn_periodic_response, only: periodic_response
+    use sloshdyn_layouts, only: to_ode_options, to_method, to_int
     real(c_double), intent(in) :: rpar(9), y0(4), lambda_min, lambda_max, settings(5), &
                                   integration(7)
     integer(c_int), intent(in) :: ipar(2), which, k, max_points, max_special
@@ -460,7 +462,7 @@ contains
                                    special(7, max_special)
     integer(c_int), intent(out) :: n_points, n_special, complete, status
     character(len=256), intent(out) :: message
-    type(tank_periodic_problem) :: problem
+    type(model_t) :: model
     type(continuation_options) :: options
     integer :: code, found, found_special
     logical :: done
@@ -469,37 +471,187 @@ contains
     options%ds_min = settings(2)
     options%ds_max = settings(3)
     options%x_scale = settings(4)
-    options%direction = nint(settings(5))
+    options%direction = to_int(settings(5))
     options%max_points = max_points
-    problem%which = which
-    call model_from_arrays(rpar, int(ipar), problem%model, code, message)
-    if (code == 0) call core(problem, y0, lambda_min, lambda_max, options, &
-                             integrator_options(integration), points, multipliers, found, special, &
-                             found_special, done, code, message, int(k))
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call periodic_response(model, int(which), y0, int(k), lambda_min, &
+                                          lambda_max, options, to_ode_options(integration), &
+                                          to_method(integration), points, multipliers, found, &
+                                          special, found_special, done, code, message)
     n_points = found
     n_special = found_special
     complete = merge(1, 0, done)
     status = code
   end subroutine periodic_branch
 
-  !> Largest Lyapunov exponent (per unit tau) from y0, with its running estimates history(n_hist).
-  subroutine lyapunov_exponent(rpar, ipar, y0, transient_periods, n_periods, renormalise_every, &
-                               integration, n_hist, exponent, history, status, message)
-    use sloshdyn_model, only: model_from_arrays
-    use sloshdyn_simulation, only: integrator_options
-    use sloshdyn_periodic, only: tank_periodic_problem, largest_lyapunov
-    real(c_double), intent(in) :: rpar(9), y0(4), integration(7)
-    integer(c_int), intent(in) :: ipar(2), transient_periods, n_periods, renormalise_every, n_hist
+  !> Largest Lyapunov exponent (per unit tau) from y0, with its running estimates history(n_hist);
+  !> settings in the lyapunov layout.
+  subroutine lyapunov_exponent(rpar, ipar, y0, settings, integration, n_hist, exponent, history, &
+                               status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_periodic_response, only: core => lyapunov_exponent, lyapunov_options, &
+                                          check_lyapunov
+    use sloshdyn_layouts, only: to_ode_options, to_method, &
+                                to_lyapunov
+    real(c_double), intent(in) :: rpar(9), y0(4), settings(3), &
+                                  integration(7)
+    integer(c_int), intent(in) :: ipar(2), n_hist
     real(c_double), intent(out) :: exponent, history(n_hist)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
-    type(tank_periodic_problem) :: problem
+    type(model_t) :: model
+    type(lyapunov_options) :: options
     integer :: code
     exponent = 0; history = 0
-    call model_from_arrays(rpar, int(ipar), problem%model, code, message)
-    if (code == 0) call largest_lyapunov(problem, y0, int(transient_periods), int(n_periods), &
-                                         int(renormalise_every), integrator_options(integration), &
-                                         exponent, history, code, message)
+    options = to_lyapunov(settings)
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    call check_lyapunov(options, code, message)
+    if (code == 0) call core(model, y0, options%transient_periods, options%n_periods, &
+                             options%renormalise_every, to_ode_options(integration), &
+                             to_method(integration), exponent, history, code, message)
     status = code
   end subroutine lyapunov_exponent
+
+  !> Read and validate a namelist input file (the executable's reader) and return it flattened:
+  !> the model (rpar, ipar); the analysis code (1-based index into the 'analyses' names) with
+  !> analysis_values = [sigma1, kappa_min, kappa_max]; the output directory; tank = [dimensional
+  !> (1/0), R, h, m_liquid, l, m, d1, m0, d0, M, L, g]; integration, steady, response and
+  !> lyapunov in their layouts; simulation = [t_end, n_out, y0(4)]; sweep = [parameter (1 rho,
+  !> 2 A), start, stop, n_points, direction (1 up, 2 down, 3 both)]; response_range =
+  !> [resonance (1 3:1, 0 none), parameter, start, stop].
+  subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, tank, &
+                        integration, steady, response, lyapunov, simulation, sweep, &
+                        response_range, status, message)
+    use sloshdyn_model, only: model_to_arrays
+    use sloshdyn_namelist, only: run_config, core => read_input
+    use sloshdyn_layouts, only: &
+                                from_ode_options, from_steady, from_response, from_lyapunov
+    character(len=*), intent(in) :: path
+    real(c_double), intent(out) :: rpar(9), analysis_values(3), tank(12), &
+                                   integration(7), steady(6), &
+                                   response(10), lyapunov(3), &
+                                   simulation(6), sweep(5), response_range(4)
+    integer(c_int), intent(out) :: ipar(2), analysis, status
+    character(len=4096), intent(out) :: directory
+    character(len=256), intent(out) :: message
+    type(run_config) :: config
+    integer :: info, ints(2)
+    rpar = 0; ipar = 0; analysis = 0; analysis_values = 0; tank = 0; integration = 0
+    steady = 0; response = 0; lyapunov = 0; simulation = 0; sweep = 0; response_range = 0
+    directory = ''
+    call core(path, config, info, message)
+    status = info
+    if (info /= 0) return
+    call model_to_arrays(config%model, rpar, ints)
+    ipar = ints
+    analysis = config%analysis
+    analysis_values = [config%sigma1, config%kappa_min, config%kappa_max]
+    directory = config%directory
+    associate (t => config%tank)
+      tank = [merge(1.0_c_double, 0.0_c_double, config%dimensional), t%radius, t%depth, &
+              t%liquid_mass, t%pendulum_length, t%sloshing_mass, t%d1, t%rigid_mass, t%d0, &
+              t%total_mass, t%rod_length, t%gravity]
+    end associate
+    integration = from_ode_options(config%integration, config%method)
+    steady = from_steady(config%steady)
+    response = from_response(config%response%options)
+    lyapunov = from_lyapunov(config%lyapunov)
+    simulation = [config%simulation%t_end, real(config%simulation%n_out, c_double), &
+                  config%simulation%y0]
+    sweep = [real(config%sweep%parameter, c_double), config%sweep%start, config%sweep%stop, &
+             real(config%sweep%n_points, c_double), real(config%sweep%direction, c_double)]
+    response_range = [merge(1.0_c_double, 0.0_c_double, config%response%internal_resonance), &
+                      real(config%response%parameter, c_double), config%response%start, &
+                      config%response%stop]
+  end subroutine read_input
+
+  !> Read a namelist input file and run it exactly as the executable does (summary on standard
+  !> output, CSV files in its output directory); status 1 for bad input.
+  subroutine run_input(path, status, message)
+    use sloshdyn_namelist, only: run_config, read_input_file => read_input
+    use sloshdyn_driver, only: run_analysis
+    character(len=*), intent(in) :: path
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(run_config) :: config
+    integer :: info
+    call read_input_file(path, config, info, message)
+    if (info == 0) call run_analysis(config, info, message)
+    status = info
+  end subroutine run_input
+
+  !> Every namelist group with its variables and defaults, as written by a namelist write.
+  subroutine namelist_defaults(text)
+    use sloshdyn_namelist, only: core => namelist_defaults
+    character(len=16384), intent(out) :: text
+    character(len=:), allocatable :: written
+    call core(written)
+    text = written
+  end subroutine namelist_defaults
+
+  !> Names: a result table's comma-separated column names (list = 'table:NAME'), the analyses
+  !> (list = 'analyses'), the integration methods ('methods', from code 0), or the kinds of a
+  !> kind list ('special', 'motion', 'verdict'); first = the code of the first name.
+  subroutine names(list, text, first, status, message)
+    use sloshdyn_tables, only: table_header, kind_names
+    use sloshdyn_namelist, only: known_analyses
+    use sloshdyn_integrator, only: method_names
+    character(len=*), intent(in) :: list
+    character(len=1024), intent(out) :: text
+    integer(c_int), intent(out) :: first, status
+    character(len=256), intent(out) :: message
+    character(len=:), allocatable :: joined
+    integer :: code
+    status = 0
+    message = ''
+    code = 1
+    if (index(list, 'table:') == 1) then
+      joined = table_header(list(7:))
+    else if (list == 'analyses') then
+      joined = join(known_analyses)
+    else if (list == 'methods') then
+      joined = join(method_names)
+      code = lbound(method_names, 1)
+    else
+      call kind_names(list, joined, code)
+    end if
+    first = code
+    text = joined
+    if (len(joined) == 0) then
+      status = 1
+      message = "no names for '"//list//"'"
+    end if
+  contains
+    pure function join(items) result(joined_items)
+      character(len=*), intent(in) :: items(:)
+      character(len=:), allocatable :: joined_items
+      integer :: i
+      joined_items = trim(items(1))
+      do i = 2, size(items)
+        joined_items = joined_items//','//trim(items(i))
+      end do
+    end function join
+  end subroutine names
+
+  !> The defaults of the option types: model = [beta, gamma, delta, n, p]; integration, steady,
+  !> response and lyapunov in their layouts; shooting = [newton_tol, max_iter].
+  subroutine defaults(model, integration, steady, response, lyapunov, shooting)
+    use sloshdyn_model, only: model_t
+    use sloshdyn_ode, only: ode_options
+    use sloshdyn_simulation, only: steady_options
+    use sloshdyn_response, only: response_options
+    use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
+    use sloshdyn_integrator, only: METHOD_DOPRI5
+    use sloshdyn_layouts, only: &
+                                from_ode_options, from_steady, from_response, from_lyapunov
+    real(c_double), intent(out) :: model(5), integration(7), steady(6), &
+                                   response(10), lyapunov(3), shooting(2)
+    type(model_t) :: m
+    model = [m%beta, m%gamma, m%delta, real(m%n, c_double), real(m%p, c_double)]
+    integration = from_ode_options(ode_options(), METHOD_DOPRI5)
+    steady = from_steady(steady_options())
+    response = from_response(response_options())
+    lyapunov = from_lyapunov(lyapunov_options())
+    shooting = [newton_tol_default, real(max_iter_default, c_double)]
+  end subroutine defaults
 end module sloshdyn_bridge

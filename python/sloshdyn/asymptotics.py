@@ -3,11 +3,12 @@ modal form and the coefficients of the solvability conditions, computed by the F
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core
+from . import _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters
 
@@ -85,10 +86,12 @@ def modal_coefficients(params: Parameters) -> dict:
     return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in result.items()}
 
 
-_COLUMNS = ["branch", "lambda", "rho", "A", "a1", "a2", "phi1", "phi2", "stable", "special",
-            "re1", "re2", "re3", "re4", "im1", "im2", "im3", "im4", "C1", "C2", "C3", "C4",
-            "delta2", "delta3", "re_B1", "im_B1", "re_B2", "im_B2"]
-SPECIAL_KINDS = {1: "fold", 2: "hopf"}
+_COLUMNS = _tables.columns("response")
+SPECIAL_KINDS = _tables.codes("special")
+_SPECIAL_COLUMNS = _tables.columns("special_points") + ["column"]
+_RESPONSE = _tables.defaults()["response"]
+#: room for the points of all branches and their special points (both front doors)
+MAX_TABLE_POINTS, MAX_SPECIAL_POINTS = 20000, 200
 
 
 @dataclass(frozen=True)
@@ -136,34 +139,32 @@ class FrequencyResponse:
 
 @dataclass(frozen=True)
 class Continuation:
-    """Settings of the branch search and continuation."""
+    """Settings of the branch search and continuation (&response): the fields of the core's
+    layout, in order, with its defaults."""
 
-    n_scan: int = 5               #: parameter values where steady states are searched
-    n_amplitudes: int = 6         #: Newton starts per mode: log-spaced |B| ...
-    n_phases: int = 6             #: ... times equally spaced phases
-    amplitude_min: float = 1e-4
-    amplitude_max: float = 1.0
-    ds: float = 0.002             #: first pseudo-arclength step
-    ds_min: float = 1e-9
-    ds_max: float = 0.01
-    x_scale: float = 1.0          #: weight of the amplitudes in the arclength norm
-    max_points: int = 20000       #: room in the result table
+    n_scan: int = int(_RESPONSE[0])            #: parameter values where steady states are searched
+    n_amplitudes: int = int(_RESPONSE[1])      #: Newton starts per mode: log-spaced |B| ...
+    n_phases: int = int(_RESPONSE[2])          #: ... times equally spaced phases
+    amplitude_min: float = float(_RESPONSE[3])
+    amplitude_max: float = float(_RESPONSE[4])
+    ds: float = float(_RESPONSE[5])            #: first pseudo-arclength step
+    ds_min: float = float(_RESPONSE[6])
+    ds_max: float = float(_RESPONSE[7])
+    x_scale: float = float(_RESPONSE[8])       #: weight of the amplitudes in the arclength norm
+    max_points: int = int(_RESPONSE[9])        #: points per branch and direction at most
 
     @classmethod
     def from_namelist(cls, response: dict):
         """The settings of a &response group (as read_namelist gives it)."""
-        names = ("n_scan", "n_amplitudes", "n_phases", "amplitude_min", "amplitude_max", "ds",
-                 "ds_min", "ds_max", "x_scale")
-        return cls(**{name: response[name] for name in names})
+        return cls(**{f.name: response[f.name] for f in dataclasses.fields(cls)})
 
     def array(self):
-        return np.array([self.n_scan, self.n_amplitudes, self.n_phases, self.amplitude_min,
-                         self.amplitude_max, self.ds, self.ds_min, self.ds_max, self.x_scale],
+        return np.array([getattr(self, f.name) for f in dataclasses.fields(self)],
                         dtype=np.float64)
 
 
 def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A_range=None,
-                       settings: Continuation = Continuation(), max_special=200):
+                       settings: Continuation = Continuation()):
     """Steady states of the slow flow (eq 46 without, eq 53 with the 3:1 internal resonance)
     for rho in rho_range (A from params), or for A in A_range (rho from params): every branch
     found, with stability and the folds and Hopf points located on it.
@@ -178,10 +179,13 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
     (table, n_points, special, n_special, complete, status,
      message) = _bridge.frequency_response(*params.arrays(), 1 if resonance == "3:1" else 0,
                                            1 if parameter == "rho" else 2, float(lo), float(hi),
-                                           settings.array(), settings.max_points, max_special)
+                                           settings.array(), MAX_TABLE_POINTS, MAX_SPECIAL_POINTS)
     columns = {name: table[i, :n_points].copy() for i, name in enumerate(_COLUMNS)}
-    points = [SpecialPoint(SPECIAL_KINDS[int(s[0])], int(s[1]), float(s[3]), float(s[4]),
-                           float(s[5]), float(s[6]), float(s[7])) for s in special[:, :n_special].T]
+    points = []
+    for column in special[:, :n_special].T:
+        row = dict(zip(_SPECIAL_COLUMNS, column))
+        points.append(SpecialPoint(SPECIAL_KINDS[int(row["kind"])], int(row["branch"]),
+                                   *(float(row[k]) for k in ("rho", "A", "a1", "a2", "frequency"))))
     text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message).strip()
     result = FrequencyResponse(parameter, resonance, columns, points, bool(complete), text)
     if status:

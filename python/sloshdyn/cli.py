@@ -3,28 +3,21 @@
 from __future__ import annotations
 
 import argparse
+import csv
 import json
-import math
+import os
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from . import __version__, figures, plotting, reference
-from ._errors import SloshdynError
-from ._files import atomic_path, save_figure, write_csv
-from .asymptotics import Continuation, frequency_response
-from .model import equilibria, kappa_for_detuning, linear_modes
+from . import __version__, _core, figures, plotting, reference
+from ._errors import SloshdynError, check_status
+from ._files import atomic_path, save_figure
+from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
-from .periodic import lyapunov_exponent, periodic_orbit, periodic_response
-from .simulation import (Integration, Steady, amplitude_sweep, frequency_sweep, simulate,
-                         steady_state, sweep_values)
-
-SUMMARY_COLUMNS = ["rho", "A", "max_x1", "max_x2", "max_u1", "max_u2", "motion", "period",
-                   "transient_periods", "spread", "settled"]
-MOTION_CODES = {"periodic": 1, "quasi-periodic": 2, "irregular": 3, "settling": 4}
-
+from .simulation import Simulation, Sweep, _summary
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="sloshdyn-py", description=(
@@ -73,140 +66,55 @@ def main(argv=None):
 
 
 def run_input(path):
+    """Run a namelist file exactly as the executable does (the same reader, driver and writers,
+    through the bridge), then draw the figure of the analysis from the files written."""
     inp = read_namelist(path)
-    p = inp.params
-    out = Path(inp.directory)
-    integration = Integration(**inp.integration)
-    steady = Steady(**inp.steady)
-    print(f"sloshdyn: {inp.analysis}\n\n{p}")
-    params = {name: [getattr(p, name)] for name in
-              ("s1", "mu1", "kappa", "theta0", "beta", "gamma", "delta", "n", "p", "A", "rho")}
-    a, b = p.coefficients()
-    params.update({f"a{i + 1}": [a[i]] for i in range(6)})
-    params.update({f"b{i + 1}": [b[i]] for i in range(6)})
-    files = {"parameters.csv": params}
-    figure = None
-    if inp.analysis == "linear":
-        modes = linear_modes(p)
-        eq = equilibria(p)
-        kappas = kappa_for_detuning(p.s1, p.mu1, inp.sigma1, inp.kappa_min, inp.kappa_max)
-        print(f"omega1 = {modes.omega1:.10g}, omega2 = {modes.omega2:.10g} (eq 28); "
-              f"kappa for sigma1 = {inp.sigma1}: {', '.join(f'{k:.10g}' for k in kappas)}")
-        k = modes.stiffness
-        files["frequencies.csv"] = {
-            "omega1": [modes.omega1], "omega2": [modes.omega2], "omega1_dgeev": [modes.omega1_dgeev],
-            "omega2_dgeev": [modes.omega2_dgeev], "ratio": [modes.ratio], "k11": [k[0, 0]],
-            "k12": [-k[0, 1]], "k21": [-k[1, 0]], "k22": [k[1, 1]]}
-        cols = {"theta": [], "phi": [], "x1": [], "x2": [], "physical": [], "verdict": []}
-        for i in range(1, 5):
-            cols[f"re{i}"], cols[f"im{i}"] = [], []
-        for e in eq:
-            for key, value in (("theta", e.theta), ("phi", e.phi), ("x1", e.theta / p.theta0),
-                               ("x2", e.phi / p.theta0), ("physical", int(e.physical)),
-                               ("verdict", e.verdict)):
-                cols[key].append(value)
-            for i, lam in enumerate(e.eigenvalues, 1):
-                cols[f"re{i}"].append(lam.real)
-                cols[f"im{i}"].append(lam.imag)
-        files["equilibria.csv"] = cols
-        files["routh_hurwitz.csv"] = {
-            **{f"c{i + 1}": [eq.routh_coefficients[i]] for i in range(4)},
-            "delta2": [eq.routh_delta2], "delta3": [eq.routh_delta3],
-            "routh_stable": [int(eq.routh_stable)], "eigenvalue_verdict": [eq.trivial.verdict]}
-        files["kappa_31.csv"] = {"sigma1": [inp.sigma1] * len(kappas), "kappa": kappas}
-    elif inp.analysis == "simulate":
-        sim = simulate(p, inp.simulation["t_end"], inp.simulation["y0"],
-                       n_out=inp.simulation["n_out"], integration=integration)
-        print(f"steps accepted {sim.n_accepted}, rejected {sim.n_rejected}, right-hand sides "
-              f"{sim.n_rhs}; max|x1| = {np.max(np.abs(sim.x1)):.10g}")
-        files["history.csv"] = {"tau": sim.tau, "x1": sim.y[0], "dx1": sim.y[1], "x2": sim.y[2],
-                                "dx2": sim.y[3], "u1": sim.u[0], "u2": sim.u[1],
-                                "impact_force": sim.impact_force, "theta": sim.theta, "phi": sim.phi}
-        files["simulation.csv"] = {"n_rhs": [sim.n_rhs], "n_accepted": [sim.n_accepted],
-                                   "n_rejected": [sim.n_rejected], "tau_reached": [sim.tau_reached]}
-        figure = ("history.png", plotting.time_history(sim, ("x1", "x2", "impact_force")))
-    elif inp.analysis == "steady_state":
-        st = steady_state(p, inp.simulation["y0"], steady=steady, integration=integration)
-        print(f"max|x1| = {st.max_x1:.10g}, max|u1| = {st.max_u1:.10g}, motion: {st.motion}")
-        files["steady_state.csv"] = _summary_columns([st])
-        period = 2 * math.pi / p.rho
-        k = np.arange(1, st.poincare.shape[1] + 1)
-        files["poincare.csv"] = {"tau": (st.transient_periods + k) * period, "x1": st.poincare[0],
-                                 "dx1": st.poincare[1], "x2": st.poincare[2], "dx2": st.poincare[3]}
-    elif inp.analysis == "sweep":
-        sw = inp.sweep
-        values = sweep_values(sw["start"], sw["stop"], sw["n_points"], sw["direction"].strip())
-        run_sweep = frequency_sweep if sw["parameter"].strip() == "rho" else amplitude_sweep
-        result = run_sweep(p, values, inp.simulation["y0"], steady=steady, integration=integration,
-                           progress=True)
-        files["sweep.csv"] = _summary_columns(result.points)
-        figure = ("sweep.png", plotting.sweep(result))
-    elif inp.analysis == "periodic_response":
-        r = inp.response
-        span = (min(r["start"], r["stop"]), max(r["start"], r["stop"]))
-        first = p.replace(**{r["parameter"].strip().replace("a", "A"): span[0]})
-        start = steady_state(first, inp.simulation["y0"], steady=steady, integration=integration).y_end
-        y0 = periodic_orbit(first, start, integration=integration).y0
-        kwargs = {"rho_range": span} if r["parameter"].strip() == "rho" else {"A_range": span}
-        branch = periodic_response(p, y0=y0, ds=r["ds"], ds_min=r["ds_min"], ds_max=r["ds_max"],
-                                   x_scale=r["x_scale"], max_points=4000, integration=integration,
-                                   **kwargs)
-        t = branch.table
-        for s in branch.special_points:
-            print(f"{s.kind:15s} {branch.parameter} = {s.rho if branch.parameter == 'rho' else s.A:.10g}"
-                  f"  max|x1| = {s.max_x1:.10g}")
-        files["periodic_branch.csv"] = {
-            "lambda": t["lambda"], **{f"y{i}": t[f"y{i}"] for i in range(1, 5)},
-            "max_x1": t["max_x1"], "stable": t["stable"],
-            **{f"re_mu{i}": t[f"mu{i}"].real for i in range(1, 5)},
-            **{f"im_mu{i}": t[f"mu{i}"].imag for i in range(1, 5)}}
-        files["periodic_special_points.csv"] = {
-            "kind": [s.kind for s in branch.special_points],
-            "lambda": [s.rho if branch.parameter == "rho" else s.A for s in branch.special_points],
-            **{f"y{i + 1}": [s.y0[i] for s in branch.special_points] for i in range(4)},
-            "max_x1": [s.max_x1 for s in branch.special_points]}
-    elif inp.analysis == "lyapunov":
-        ly = inp.lyapunov
-        exponent, history = lyapunov_exponent(
-            p, inp.simulation["y0"], transient_periods=int(round(ly["transient_periods"])),
-            n_periods=ly["n_periods"], renormalise_every=ly["renormalise_every"],
-            integration=integration)
-        print(f"largest Lyapunov exponent = {exponent:.10g} per unit tau")
-        files["lyapunov.csv"] = {"periods": [(i + 1) * ly["renormalise_every"] for i in range(len(history))],
-                                 "estimate": history}
-    else:
-        r = inp.response
-        span = (min(r["start"], r["stop"]), max(r["start"], r["stop"]))
-        kwargs = {"rho_range": span} if r["parameter"].strip() == "rho" else {"A_range": span}
-        response = frequency_response(p, resonance=r["resonance"].strip(),
-                                      settings=Continuation.from_namelist(r), **kwargs)
-        for s in response.special_points:
-            print(f"{s.kind:5s} rho = {s.rho:.10g}  A = {s.A:.10g}  |u1| = {s.a1:.6g}  "
-                  f"|u2| = {s.a2:.6g}" + (f"  frequency = {s.frequency:.6g}" if s.kind == "hopf" else ""))
-        files["response.csv"] = response.table
-        files["special_points.csv"] = {
-            "kind": [s.kind for s in response.special_points],
-            "branch": [s.branch for s in response.special_points],
-            "lambda": [s.rho if response.parameter == "rho" else s.A for s in response.special_points],
-            "rho": [s.rho for s in response.special_points], "A": [s.A for s in response.special_points],
-            "a1": [s.a1 for s in response.special_points], "a2": [s.a2 for s in response.special_points],
-            "frequency": [s.frequency for s in response.special_points]}
-        figure = ("response.png", plotting.frequency_response(response))
-    for name, columns in files.items():
-        write_csv(out / name, columns)
+    status, message = _core.sloshdyn_bridge.run_input(os.fspath(path))
+    sys.stdout.flush()
+    check_status(status, message)
+    figure = _figure(inp, Path(inp.directory))
     if figure:
-        save_figure(figure[1], out / figure[0])
-    print(f"\nResults written to {out}/")
+        save_figure(figure[1], Path(inp.directory) / figure[0])
     return 0
 
 
-def _summary_columns(points):
-    columns = {name: [] for name in SUMMARY_COLUMNS}
-    for pt in points:
-        for name in SUMMARY_COLUMNS:
-            value = getattr(pt, name)
-            columns[name].append(MOTION_CODES[value] if name == "motion" else float(value))
+def _table(path):
+    """A result CSV as {column: array} (text columns kept as lists of strings)."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    columns = {}
+    for k, name in enumerate(rows[0]):
+        values = [row[k] for row in rows[1:]]
+        try:
+            columns[name] = np.array([float(v) for v in values])
+        except ValueError:
+            columns[name] = values
     return columns
+
+
+def _figure(inp, out):
+    """(file name, Figure) for the analyses that have one, from their result files."""
+    if inp.analysis == "simulate":
+        t = _table(out / "history.csv")
+        sim = Simulation(t["tau"], np.array([t[k] for k in ("x1", "dx1", "x2", "dx2")]),
+                         np.array([t["u1"], t["u2"]]), t["impact_force"], t["theta"], t["phi"],
+                         0, 0, 0, float(t["tau"][-1]))
+        return "history.png", plotting.time_history(sim, ("x1", "x2", "impact_force"))
+    if inp.analysis == "sweep":
+        t = _table(out / "sweep.csv")
+        points = [_summary(np.array([column[k] for column in t.values()]))
+                  for k in range(len(t["rho"]))]
+        return "sweep.png", plotting.sweep(Sweep(inp.sweep["parameter"], points, None))
+    if inp.analysis == "frequency_response":
+        t = _table(out / "response.csv")
+        s = _table(out / "special_points.csv")
+        special = [SpecialPoint(kind, int(b), rho, A, a1, a2, f) for kind, b, rho, A, a1, a2, f
+                   in zip(s["kind"], s["branch"], s["rho"], s["A"], s["a1"], s["a2"],
+                          s["frequency"])]
+        response = FrequencyResponse(inp.response["parameter"], inp.response["resonance"], t,
+                                     special, True)
+        return "response.png", plotting.frequency_response(response)
+    return None
 
 
 def reproduce(out, only=None, quick=False):

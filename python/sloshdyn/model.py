@@ -6,14 +6,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core
+from . import _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
 MAX_EQUILIBRIA = 4096
 MAX_ROOTS = 256
-VERDICTS = {1: "stable", 0: "marginal", -1: "unstable"}
+VERDICTS = _tables.codes("verdict")
 
 
 @dataclass(frozen=True)

@@ -1,123 +1,23 @@
 """Model parameters and the namelist input file.
 
-The namelist groups and variables are the same for the Fortran executable and for Python
-(README.md, "Namelist reference"); both apply the same rules, so one file gives the same
-numbers through either front door.
+A namelist file is read by the Fortran reader of the executable, through the bridge: the groups,
+variables, defaults, rules and messages are the same for both front doors by construction
+(README.md, "Namelist reference").
 """
 
 from __future__ import annotations
 
 import dataclasses
-import math
 import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _core
-from ._errors import FileError, InputError, check_status
+from . import _core, _tables
+from ._errors import InputError, check_status
 from ._files import atomic_path
 
-REQUIRED = object()
-
-# group -> variable (lower case, as f90nml reports it) -> (display name, type, default)
-NAMELIST_SCHEMA = {
-    "model": {
-        "s1": ("s1", float, REQUIRED),
-        "mu1": ("mu1", float, REQUIRED),
-        "kappa": ("kappa", float, REQUIRED),
-        "theta0": ("theta0", float, REQUIRED),
-        "beta": ("beta", float, 10.0),
-        "gamma": ("gamma", float, 0.0),
-        "delta": ("delta", float, 0.1),
-        "n": ("n", int, 6),
-        "p": ("p", int, 2),
-    },
-    "tank": {
-        "r": ("R", float, REQUIRED),
-        "h": ("h", float, REQUIRED),
-        "rho_liquid": ("rho_liquid", float, 0.0),
-        "m_liquid": ("m_liquid", float, 0.0),
-    },
-    "structure": {
-        "m": ("M", float, REQUIRED),
-        "l": ("L", float, REQUIRED),
-        "k": ("k", float, REQUIRED),
-        "c": ("c", float, 0.0),
-        "b": ("b", float, 0.0),
-        "d": ("d", float, 0.0),
-        "g": ("g", float, 9.81),
-        "theta0": ("theta0", float, REQUIRED),
-        "n": ("n", int, 6),
-        "p": ("p", int, 2),
-    },
-    "excitation": {
-        "a": ("A", float, 0.0),
-        "rho": ("rho", float, 0.0),
-    },
-    "analysis": {
-        "kind": ("kind", str, "linear"),
-        "sigma1": ("sigma1", float, 0.0),
-        "kappa_min": ("kappa_min", float, 0.0),
-        "kappa_max": ("kappa_max", float, None),
-    },
-    "output": {
-        "directory": ("directory", str, "sloshdyn_output"),
-    },
-    "integration": {
-        "rtol": ("rtol", float, 1e-9),
-        "atol": ("atol", float, 1e-12),
-        "h_initial": ("h_initial", float, 0.0),
-        "h_max": ("h_max", float, 0.0),
-        "h_min": ("h_min", float, 0.0),
-        "max_steps": ("max_steps", int, 10**8),
-        "method": ("method", str, "rk45"),
-    },
-    "simulation": {
-        "t_end": ("t_end", float, None),
-        "n_out": ("n_out", int, 2001),
-        "y0": ("y0", "state", [0.0, 0.0, 0.0, 0.0]),
-    },
-    "steady": {
-        "transient_periods": ("transient_periods", float, 1000.0),
-        "settle_tol": ("settle_tol", float, 1e-7),
-        "max_transient_periods": ("max_transient_periods", float, 20000.0),
-        "window_periods": ("window_periods", int, 200),
-        "samples_per_period": ("samples_per_period", int, 128),
-        "periodic_tol": ("periodic_tol", float, 1e-4),
-    },
-    "sweep": {
-        "parameter": ("parameter", str, "rho"),
-        "start": ("start", float, None),
-        "stop": ("stop", float, None),
-        "n_points": ("n_points", int, 0),
-        "direction": ("direction", str, "up"),
-    },
-    "response": {
-        "resonance": ("resonance", str, "3:1"),
-        "parameter": ("parameter", str, "rho"),
-        "start": ("start", float, None),
-        "stop": ("stop", float, None),
-        "n_scan": ("n_scan", int, 5),
-        "n_amplitudes": ("n_amplitudes", int, 6),
-        "n_phases": ("n_phases", int, 6),
-        "amplitude_min": ("amplitude_min", float, 1e-4),
-        "amplitude_max": ("amplitude_max", float, 1.0),
-        "ds": ("ds", float, 0.002),
-        "ds_min": ("ds_min", float, 1e-9),
-        "ds_max": ("ds_max", float, 0.01),
-        "x_scale": ("x_scale", float, 1.0),
-    },
-    "lyapunov": {
-        "transient_periods": ("transient_periods", float, 1000.0),
-        "n_periods": ("n_periods", int, 2000),
-        "renormalise_every": ("renormalise_every", int, 1),
-    },
-}
-ANALYSES = ("linear", "simulate", "steady_state", "sweep", "frequency_response",
-            "periodic_response", "lyapunov")
-_TYPE_WORDS = {float: "a real number", int: "an integer", str: "a quoted string",
-               "state": "four real numbers (x1, x1', x2, x2')"}
+_MODEL_DEFAULTS = _tables.defaults()["model"]   # beta, gamma, delta, n, p of the core
 
 
 @dataclass(frozen=True)
@@ -131,11 +31,12 @@ class Parameters:
     mu1: float
     kappa: float
     theta0: float
-    beta: float = 10.0     #: the paper gives none; see README "Impact and dissipation defaults"
-    gamma: float = 0.0
-    delta: float = 0.1     #: the paper gives none; see README
-    n: int = 6
-    p: int = 2
+    beta: float = float(_MODEL_DEFAULTS[0])   #: the paper gives none; see README "Impact and
+                                              #: dissipation defaults"
+    gamma: float = float(_MODEL_DEFAULTS[1])
+    delta: float = float(_MODEL_DEFAULTS[2])  #: the paper gives none; see README
+    n: int = int(_MODEL_DEFAULTS[3])
+    p: int = int(_MODEL_DEFAULTS[4])
     A: float = 0.0
     rho: float = 0.0
 
@@ -250,176 +151,45 @@ class Input:
 
 
 def read_namelist(path):
-    """Read and validate a namelist input file (same rules and messages as the executable)."""
-    import f90nml
-
+    """Read and validate a namelist input file with the executable's reader (same rules, defaults
+    and messages)."""
     path = os.fspath(path)
-    if not os.path.isfile(path):
-        raise FileError(f"cannot open input file '{path}': no such file")
-    try:
-        raw = f90nml.read(path)
-    except Exception as exc:  # f90nml raises several types for malformed text
-        raise InputError(f"'{path}' is not a readable namelist file: {exc}") from exc
-    if not raw:
-        raise InputError(f"no namelist group found in '{path}' (expected &model ... /)")
-    values = {}
-    for group, content in raw.items():
-        if group not in NAMELIST_SCHEMA:
-            known = ", &".join(NAMELIST_SCHEMA)
-            raise InputError(f"unknown namelist group &{group} in '{path}'; known groups: &{known}")
-        if isinstance(content, list):
-            raise InputError(f"namelist group &{group} appears twice in '{path}'")
-        values[group] = _group_values(group, content, path)
-    given = set(values)
-
-    if "model" in given and given & {"tank", "structure"}:
-        raise InputError("give either &model (dimensionless) or &tank with &structure "
-                         "(dimensional), not both")
-    if "model" not in given and not given & {"tank", "structure"}:
-        raise InputError("missing group &model (or &tank with &structure): the system is not described")
-    if ("tank" in given) != ("structure" in given):
-        missing = "structure" if "tank" in given else "tank"
-        raise InputError(f"&tank and &structure go together: group &{missing} is missing")
-
-    excitation = values.get("excitation", _group_values("excitation", {}, path))
-    tank = None
-    structure = {}
-    if "tank" in given:
-        t, s = values["tank"], values["structure"]
-        try:
-            tank = tank_pendulum(t["r"], t["h"], t["rho_liquid"], t["m_liquid"])
-        except InputError as exc:
-            raise InputError(f"&tank: {exc}") from exc
-        structure = {NAMELIST_SCHEMA["structure"][k][0]: v for k, v in s.items()}
-        try:
-            params = Parameters.from_physical(
-                M=s["m"], L=s["l"], k=s["k"], c=s["c"], b=s["b"], d=s["d"], g=s["g"],
-                theta0=s["theta0"], l=tank.l, m=tank.m, n=s["n"], p=s["p"],
-                A=excitation["a"], rho=excitation["rho"])
-        except InputError as exc:
-            raise InputError(f"&structure: {exc}") from exc
-    else:
-        mdl = values["model"]
-        try:
-            params = Parameters(A=excitation["a"], rho=excitation["rho"],
-                                **{k: v for k, v in mdl.items()})
-        except InputError as exc:
-            raise InputError(f"&model: {exc}") from exc
-
-    analysis = values.get("analysis", _group_values("analysis", {}, path))
-    kind = analysis["kind"].strip()
-    if kind not in ANALYSES:
-        raise InputError(f"&analysis: kind = '{kind}' is not known; allowed: {', '.join(ANALYSES)}")
-    kappa_max = analysis["kappa_max"]
-    if kappa_max is None:
-        kappa_max = params.s1 + 1000
-    if not math.isfinite(analysis["sigma1"]):
-        raise InputError(f"&analysis: sigma1 = {analysis['sigma1']} is out of range: sigma1 must be finite")
-    if not (math.isfinite(kappa_max) and kappa_max > params.s1):
-        raise InputError(f"&analysis: kappa_max = {kappa_max} is out of range: kappa_max must be "
-                         f"> s1 = {params.s1}")
-    if not analysis["kappa_min"] < kappa_max:
-        raise InputError(f"&analysis: kappa_min = {analysis['kappa_min']} is out of range: "
-                         f"kappa_min must be < kappa_max = {kappa_max}")
-    directory = values.get("output", {"directory": "sloshdyn_output"})["directory"]
-    if not directory.strip():
-        raise InputError("&output: directory = '' is empty: give a directory name")
-    group = {name: values.get(name, _group_values(name, {}, path))
-             for name in ("integration", "simulation", "steady", "sweep", "response", "lyapunov")}
-    named = {name: {NAMELIST_SCHEMA[name][k][0]: v for k, v in g.items()} for name, g in group.items()}
-    named["integration"]["method"] = named["integration"]["method"].strip()
-    if named["integration"]["method"] not in ("rk45", "dop853"):
-        raise InputError(f"&integration: method = '{named['integration']['method']}' is not known; "
-                         "allowed: rk45, dop853")
-    if kind in ("linear", "frequency_response", "periodic_response"):
-        from .model import linear_modes
-        linear_modes(params)              # needs kappa_hat > 1, checked before any output
-    _check_analysis(kind, params, named, path)
-    return Input(params=params, analysis=kind, sigma1=analysis["sigma1"],
-                 kappa_min=analysis["kappa_min"], kappa_max=kappa_max,
-                 directory=directory.strip(), tank=tank, structure=structure,
-                 integration=named["integration"], simulation=named["simulation"],
-                 steady=named["steady"], sweep=named["sweep"], response=named["response"],
-                 lyapunov=named["lyapunov"])
-
-
-def _check_analysis(kind, params, named, path):
-    """The rules of &simulation and &sweep (the integrator and steady-state settings are
-    checked by the core when they are used, with the same messages)."""
-    sim, sweep, response = named["simulation"], named["sweep"], named["response"]
-    if kind == "simulate":
-        if sim["t_end"] is None:
-            raise InputError("&simulation: required variable t_end is missing")
-        if not (math.isfinite(sim["t_end"]) and sim["t_end"] > 0):
-            raise InputError(f"&simulation: t_end = {sim['t_end']} is out of range: t_end must be > 0 "
-                             "(the simulation starts at tau = 0)")
-        if not 2 <= sim["n_out"] <= 10_000_000:
-            raise InputError(f"&simulation: n_out = {sim['n_out']} is out of range: it must lie in "
-                             "[2, 10000000]")
-    if kind == "sweep":
-        if sweep["parameter"].strip() not in ("rho", "A", "a"):
-            raise InputError(f"&sweep: parameter = '{sweep['parameter'].strip()}' is not known; "
-                             "allowed: rho, A")
-        if sweep["direction"].strip() not in ("up", "down", "both"):
-            raise InputError(f"&sweep: direction = '{sweep['direction'].strip()}' is not known; "
-                             "allowed: up, down, both")
-        for name in ("start", "stop"):
-            if sweep[name] is None:
-                raise InputError(f"&sweep: required variable {name} is missing")
-        if not 1 <= sweep["n_points"] <= 100_000:
-            raise InputError(f"&sweep: n_points = {sweep['n_points']} is out of range: it must lie "
-                             "in [1, 100000]")
-    if kind in ("frequency_response", "periodic_response"):
-        if response["resonance"].strip() not in ("3:1", "none"):
-            raise InputError(f"&response: resonance = '{response['resonance'].strip()}' is not "
-                             "known; allowed: 3:1, none")
-        if response["parameter"].strip() not in ("rho", "A", "a"):
-            raise InputError(f"&response: parameter = '{response['parameter'].strip()}' is not "
-                             "known; allowed: rho, A")
-        for name in ("start", "stop"):
-            if response[name] is None:
-                raise InputError(f"&response: required variable {name} is missing")
-    if kind == "lyapunov":
-        lyap = named["lyapunov"]
-        if lyap["n_periods"] < 1 or lyap["renormalise_every"] < 1 or lyap["transient_periods"] < 0:
-            raise InputError("&lyapunov: transient_periods >= 0, n_periods >= 1 and "
-                             "renormalise_every >= 1 are needed")
-        if lyap["n_periods"] % lyap["renormalise_every"]:
-            raise InputError(f"&lyapunov: n_periods = {lyap['n_periods']} is out of range: it must "
-                             f"be a multiple of renormalise_every = {lyap['renormalise_every']}")
-
-
-def _group_values(group, content, path):
-    """Check names and types of one group's variables; fill defaults; require required ones."""
-    schema = NAMELIST_SCHEMA[group]
-    values = {}
-    for key, value in content.items():
-        if key not in schema:
-            raise InputError(f"&{group} in '{path}': unknown variable '{key}' "
-                             "(see the namelist reference in README.md)")
-        name, kind, _ = schema[key]
-        if kind == "state":
-            value = list(value) if isinstance(value, list) else [value]
-            ok = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
-            if ok:
-                # Fortran fills a partly given array from the start and keeps the defaults
-                value = [float(v) for v in value] + [0.0] * (4 - len(value))
-                ok = len(value) == 4
-            if not ok:
-                raise InputError(f"&{group} in '{path}': {name} = {value!r} is not valid: "
-                                 f"{name} must be {_TYPE_WORDS[kind]}")
-            values[key] = value
-            continue
-        ok = (isinstance(value, str) if kind is str else
-              isinstance(value, int) and not isinstance(value, bool) if kind is int else
-              isinstance(value, (int, float)) and not isinstance(value, bool))
-        if not ok:
-            raise InputError(f"&{group} in '{path}': {name} = {value!r} is not valid: "
-                             f"{name} must be {_TYPE_WORDS[kind]}")
-        values[key] = float(value) if kind is float else value
-    for key, (name, _, default) in schema.items():
-        if key not in values:
-            if default is REQUIRED:
-                raise InputError(f"&{group}: required variable {name} is missing")
-            values[key] = default
-    return values
+    (rpar, ipar, analysis, values, directory, tank, integration, steady, response, lyapunov,
+     simulation, sweep, response_range, status, message) = _core.sloshdyn_bridge.read_input(path)
+    check_status(status, message)
+    s1, mu1, kappa, theta0, beta, gamma, delta, A, rho = (float(x) for x in rpar)
+    params = Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
+                        delta=delta, n=int(ipar[0]), p=int(ipar[1]), A=A, rho=rho)
+    analyses, first = _tables.names("analyses")
+    methods, first_method = _tables.names("methods")
+    pendulum, structure = None, {}
+    if tank[0]:
+        pendulum = TankPendulum(*(float(x) for x in tank[4:9]), m_F=float(tank[3]))
+        structure = {"M": float(tank[9]), "L": float(tank[10]), "g": float(tank[11])}
+    excitation_parameter = {1: "rho", 2: "A"}
+    return Input(
+        params=params, analysis=analyses[int(analysis) - first], sigma1=float(values[0]),
+        kappa_min=float(values[1]), kappa_max=float(values[2]),
+        directory=_tables._text(directory), tank=pendulum, structure=structure,
+        integration={**{name: float(x) for name, x in zip(
+            ("rtol", "atol", "h_initial", "h_max", "h_min"), integration[:5])},
+            "max_steps": int(integration[5]), "method": methods[int(integration[6]) - first_method]},
+        simulation={"t_end": float(simulation[0]), "n_out": int(simulation[1]),
+                    "y0": [float(x) for x in simulation[2:6]]},
+        steady={"transient_periods": float(steady[0]), "settle_tol": float(steady[1]),
+                "max_transient_periods": float(steady[2]), "window_periods": int(steady[3]),
+                "samples_per_period": int(steady[4]), "periodic_tol": float(steady[5])},
+        sweep={"parameter": excitation_parameter[int(sweep[0])], "start": float(sweep[1]),
+               "stop": float(sweep[2]), "n_points": int(sweep[3]),
+               "direction": ("up", "down", "both")[int(sweep[4]) - 1]},
+        response={"resonance": "3:1" if response_range[0] else "none",
+                  "parameter": excitation_parameter[int(response_range[1])],
+                  "start": float(response_range[2]), "stop": float(response_range[3]),
+                  **{name: int(x) for name, x in zip(("n_scan", "n_amplitudes", "n_phases"),
+                                                       response[:3])},
+                  **{name: float(x) for name, x in zip(
+                      ("amplitude_min", "amplitude_max", "ds", "ds_min", "ds_max", "x_scale"),
+                      response[3:9])},
+                  "max_points": int(response[9])},
+        lyapunov={name: int(x) for name, x in zip(
+            ("transient_periods", "n_periods", "renormalise_every"), lyapunov)})

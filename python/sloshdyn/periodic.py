@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core
+from . import _core, _tables
 from ._errors import InputError, check_status
 from .asymptotics import frequency_response
 from .model import linear_modes
@@ -18,7 +18,9 @@ from .parameters import Parameters
 from .simulation import Integration, Steady, steady_state
 
 _bridge = _core.sloshdyn_bridge
-KINDS = {1: "fold", 2: "branch_point", 3: "period_doubling", 4: "neimark_sacker"}
+KINDS = _tables.codes("special")
+_NEWTON_TOL, _MAX_ITER = (float(x) for x in _tables.defaults()["shooting"])
+_LYAPUNOV = _tables.defaults()["lyapunov"]
 
 
 @dataclass
@@ -37,16 +39,11 @@ class PeriodicOrbit:
         return bool(np.all(np.abs(self.multipliers) < 1))
 
 
-def _integration(integration, rtol):
-    if integration is None:
-        integration = Integration(rtol=rtol, atol=rtol * 1e-3)
-    if integration.method != "rk45":
-        raise InputError("the periodic analyses integrate the variational equations with rk45 only")
-    return integration.array()
 
 
 def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation",
-                   newton_tol=1e-10, max_iter=30, integration: Integration = None) -> PeriodicOrbit:
+                   newton_tol=_NEWTON_TOL, max_iter=int(_MAX_ITER),
+                   integration: Integration = Integration()) -> PeriodicOrbit:
     """The periodic orbit near a start: y0, or (y0 None) a steady state of a direct simulation
     from rest (start='simulation') or the 3:1 slow-flow steady state of smallest |u1|
     (start='slow_flow', through eq 34 and 42)."""
@@ -54,7 +51,7 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
         y0 = start_state(params, start)
     y0 = np.asarray(y0, dtype=np.float64)
     y, monodromy, multipliers, info, status, message = _bridge.periodic_orbit(
-        *params.arrays(), y0, int(periods), _integration(integration, 1e-11), newton_tol, max_iter)
+        *params.arrays(), y0, int(periods), integration.array(), newton_tol, max_iter)
     check_status(status, message, "periodic orbit")
     return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
                          int(info[0]), int(periods))
@@ -106,7 +103,8 @@ class PeriodicBranch:
 
 def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
                       start="simulation", from_end="low", ds=0.002, ds_min=1e-9, ds_max=0.01,
-                      x_scale=1.0, max_points=2000, integration: Integration = None) -> PeriodicBranch:
+                      x_scale=1.0, max_points=2000,
+                      integration: Integration = Integration()) -> PeriodicBranch:
     """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
     in A over A_range, starting at the low end (from_end='low') going up, or at the high end
     going down. Raises ConvergenceError (with ``partial``) if the branch stops before the end
@@ -123,7 +121,7 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     settings = np.array([ds, ds_min, ds_max, x_scale, 1.0 if from_end == "low" else -1.0])
     points, multipliers, n, special, n_special, complete, status, message = _bridge.periodic_branch(
         *first.arrays(), 1 if parameter == "rho" else 2, np.asarray(y0, dtype=np.float64),
-        int(periods), float(lo), float(hi), settings, _integration(integration, 1e-11),
+        int(periods), float(lo), float(hi), settings, integration.array(),
         int(max_points), 100)
     lam = points[0, :n]
     table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
@@ -147,16 +145,17 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     return branch
 
 
-def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=500, n_periods=2000,
-                      renormalise_every=1, integration: Integration = None):
+def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=int(_LYAPUNOV[0]),
+                      n_periods=int(_LYAPUNOV[1]), renormalise_every=int(_LYAPUNOV[2]),
+                      integration: Integration = Integration()):
     """Largest Lyapunov exponent per unit tau (Benettin: one tangent vector renormalised every
     renormalise_every forcing periods), and its running estimate after each renormalisation
     block (for a convergence check). Negative: a stable periodic response; about 0:
     quasi-periodic; positive: chaotic."""
     y0 = np.zeros(4) if y0 is None else np.asarray(y0, dtype=np.float64)
-    blocks = n_periods // renormalise_every
+    blocks = max(int(n_periods) // max(int(renormalise_every), 1), 1)
+    settings = np.array([transient_periods, n_periods, renormalise_every], dtype=np.float64)
     exponent, history, status, message = _bridge.lyapunov_exponent(
-        *params.arrays(), y0, int(transient_periods), int(n_periods), int(renormalise_every),
-        _integration(integration, 1e-10), int(blocks))
+        *params.arrays(), y0, settings, integration.array(), blocks)
     check_status(status, message, "Lyapunov exponent")
     return float(exponent), history

@@ -1,4 +1,4 @@
-"""Direct simulation of the full equations (eq 15 with 29-31) by the Fortran RK45 integrator:
+"""Direct simulation of the full equations (eq 15 with 29-31) by the Fortran integrators:
 time histories, Poincare sections, steady states and sweeps, and amplitude spectra."""
 
 from __future__ import annotations
@@ -8,46 +8,53 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _core
+from . import _core, _tables
 from ._errors import InputError, IntegrationError, check_status
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
-MOTIONS = {1: "periodic", 2: "quasi-periodic", 3: "irregular", 4: "settling"}
-METHODS = {"rk45": 0, "dop853": 1}
+MOTIONS = _tables.codes("motion")
+METHODS = {name: code for code, name in _tables.codes("methods").items()}
+SUMMARY_COLUMNS = _tables.columns("summary")
+_INTEGRATION = _tables.defaults()["integration"]
+_STEADY = _tables.defaults()["steady"]
 
 
 @dataclass(frozen=True)
 class Integration:
-    """Settings of the Dormand-Prince 5(4) integrator (Hairer's DOPRI5 step control)."""
+    """Settings of the integrators (&integration): the fields of the core's layout, in order,
+    with the core's defaults."""
 
-    rtol: float = 1e-9
-    atol: float = 1e-12
-    h_initial: float = 0.0    #: 0 = automatic
-    h_max: float = 0.0        #: 0 = no limit
-    h_min: float = 0.0        #: 0 = 1e-14 max(1, |tau|)
-    max_steps: int = 10**8
-    method: str = "rk45"      #: 'rk45' (Dormand-Prince 5(4)) or 'dop853' (8(5,3), fewer steps
-                              #: at tight tolerances)
+    rtol: float = float(_INTEGRATION[0])
+    atol: float = float(_INTEGRATION[1])
+    h_initial: float = float(_INTEGRATION[2])    #: 0 = automatic
+    h_max: float = float(_INTEGRATION[3])        #: 0 = no limit
+    h_min: float = float(_INTEGRATION[4])        #: 0 = 1e-14 max(1, |tau|)
+    max_steps: int = int(_INTEGRATION[5])
+    method: str = _tables.codes("methods")[int(_INTEGRATION[6])]   #: 'rk45' (Dormand-Prince
+    #: 5(4)) or 'dop853' (8(5,3), fewer steps at tight tolerances)
 
     def array(self):
         if self.method not in METHODS:
-            raise InputError(f"method = {self.method!r} is not valid: it must be 'rk45' or 'dop853'")
+            raise InputError(f"method = {self.method!r} is not valid: it must be one of "
+                             f"{', '.join(repr(m) for m in METHODS)}")
         return np.array([self.rtol, self.atol, self.h_initial, self.h_max, self.h_min,
                          self.max_steps, METHODS[self.method]], dtype=np.float64)
 
 
 @dataclass(frozen=True)
 class Steady:
-    """How a steady state is reached and measured; times in forcing periods T = 2 pi/rho."""
+    """How a steady state is reached and measured (&steady); times in forcing periods
+    T = 2 pi/rho. Fields in the core's layout, with its defaults."""
 
-    transient_periods: float = 1000      #: minimum transient
-    settle_tol: float = 1e-7             #: > 0: extend the transient until successive Poincare
-                                         #: points differ by less (relative); 0: fixed transient
-    max_transient_periods: float = 20000
-    window_periods: int = 200            #: measuring window
-    samples_per_period: int = 128        #: dense-output samples per period for the maxima
-    periodic_tol: float = 1e-4           #: Poincare points this close (relative) coincide
+    transient_periods: float = float(_STEADY[0])      #: minimum transient
+    settle_tol: float = float(_STEADY[1])             #: > 0: extend the transient until
+                                                      #: successive Poincare points differ by
+                                                      #: less (relative); 0: fixed transient
+    max_transient_periods: float = float(_STEADY[2])
+    window_periods: int = int(_STEADY[3])             #: measuring window
+    samples_per_period: int = int(_STEADY[4])         #: dense-output samples per period
+    periodic_tol: float = float(_STEADY[5])           #: Poincare points this close coincide
 
     def array(self):
         return np.array([self.transient_periods, self.settle_tol, self.max_transient_periods,
@@ -140,9 +147,11 @@ class SteadyState:
 
 
 def _summary(row, poincare=None, y_end=None):
-    return SteadyState(float(row[0]), float(row[1]), *(float(x) for x in row[2:6]),
-                       MOTIONS[int(row[6])], int(row[7]), float(row[8]), float(row[9]),
-                       bool(row[10]), poincare, y_end)
+    """A SteadyState from one column of the core's 'summary' table (its names are the fields)."""
+    values = dict(zip(SUMMARY_COLUMNS, row))
+    kinds = {"motion": lambda x: MOTIONS[int(x)], "period": int, "settled": bool}
+    return SteadyState(**{name: kinds.get(name, float)(x) for name, x in values.items()},
+                       poincare=poincare, y_end=y_end)
 
 
 def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),

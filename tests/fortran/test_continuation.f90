@@ -2,7 +2,7 @@
 module continuation_test_systems
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp
-  use sloshdyn_continuation, only: parametrised_system, branch_test
+  use sloshdyn_continuation, only: separable_system, branch_test
   implicit none
   private
   public :: circle_and_line, circle, averaged_duffing, walled_line, sine_graph, pitchfork, &
@@ -11,7 +11,7 @@ module continuation_test_systems
 
   !> F = (x1^2 + x2^2 - lambda, x1 - slope x2); for lambda = 4, slope = 1 the roots are
   !> +-(sqrt 2, sqrt 2), and dF/dx = [2 x1, 2 x2; 1, -slope] is singular at x = 0.
-  type, extends(parametrised_system) :: circle_and_line
+  type, extends(separable_system) :: circle_and_line
     real(wp) :: slope = 1
   contains
     procedure :: residual => circle_and_line_residual
@@ -19,7 +19,7 @@ module continuation_test_systems
   end type circle_and_line
 
   !> x^2 + lambda^2 = radius^2 (n = 1): a closed branch with folds at (0, +-radius).
-  type, extends(parametrised_system) :: circle
+  type, extends(separable_system) :: circle
     real(wp) :: radius = 1
   contains
     procedure :: residual => circle_residual
@@ -31,7 +31,7 @@ module continuation_test_systems
   !>   q' = -(g/2) q + (s - k (p^2 + q^2)) p + forcing
   !> At equilibrium, with a^2 = p^2 + q^2 and sigma = s - k a^2, (g/2 + i sigma)(p + i q) =
   !> i forcing, so a^2 ((g/2)^2 + sigma^2) = forcing^2: the classic frequency response.
-  type, extends(parametrised_system) :: averaged_duffing
+  type, extends(separable_system) :: averaged_duffing
     real(wp) :: g = 0.02_wp, k = 1, forcing = 0.01_wp
   contains
     procedure :: residual => duffing_residual
@@ -39,7 +39,7 @@ module continuation_test_systems
   end type averaged_duffing
 
   !> x = slope lambda (n = 1), with F = NaN for lambda > wall: a branch that ends.
-  type, extends(parametrised_system) :: walled_line
+  type, extends(separable_system) :: walled_line
     real(wp) :: slope = 1, wall = huge(1.0_wp)
   contains
     procedure :: residual => walled_line_residual
@@ -48,7 +48,7 @@ module continuation_test_systems
 
   !> x = amplitude sin(lambda) (n = 1): an open branch that passes behind its start point
   !> (0, 0), i.e. crosses the line through it normal to its tangent, far from it.
-  type, extends(parametrised_system) :: sine_graph
+  type, extends(separable_system) :: sine_graph
     real(wp) :: amplitude = 3
   contains
     procedure :: residual => sine_graph_residual
@@ -57,7 +57,7 @@ module continuation_test_systems
 
   !> x (lambda - c x^2) = 0 (n = 1): the trivial branch x = 0 meets x^2 = lambda/c at the
   !> pitchfork (0, 0), a simple branch point.
-  type, extends(parametrised_system) :: pitchfork
+  type, extends(separable_system) :: pitchfork
     real(wp) :: c = 1
   contains
     procedure :: residual => pitchfork_residual

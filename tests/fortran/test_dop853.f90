@@ -3,7 +3,7 @@
 module dop853_test_systems
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp
-  use sloshdyn_rk45, only: ode_system
+  use sloshdyn_ode, only: ode_system
   implicit none
   private
   public :: riccati, oscillator, van_der_pol, nan_beyond
@@ -97,9 +97,9 @@ program test_dop853
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
                              SD_NON_FINITE
   use sloshdyn_text, only: num2str
-  use sloshdyn_rk45, only: rk45_options, rk45_stats, rk45_integrate
-  use sloshdyn_dop853, only: dop853_integrator, dop853_init, dop853_step, dop853_dense, &
-                             dop853_set_state, dop853_statistics, dop853_integrate
+  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_dop853, only: dop853_integrator
+  use sloshdyn_integrator, only: integrate, METHOD_DOPRI5, METHOD_DOP853
   use dop853_test_systems, only: riccati, oscillator, van_der_pol, nan_beyond
   use checks, only: check_close, check_true, finish
   implicit none
@@ -138,8 +138,8 @@ contains
   subroutine test_fixed_step_order()
     type(riccati) :: ric
     type(oscillator) :: osc
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
     real(wp) :: err_ric(0:2), err_osc(0:2), y1(1, 1), y2(2, 1)
     integer :: i, status, n_steps
     character(len=message_len) :: message
@@ -147,7 +147,7 @@ contains
     do i = 0, 2
       n_steps = 4*2**i
       opt%fixed_step = 1.0_wp/n_steps
-      call dop853_integrate(ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
+      call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
       call check_true('fixed steps on riccati: '//num2str(n_steps)//' steps, none rejected', &
                       status == SD_OK .and. stats%n_accepted == n_steps .and. &
                       stats%n_rejected == 0)
@@ -155,7 +155,7 @@ contains
 
       n_steps = 20*2**i
       opt%fixed_step = 10.0_wp/n_steps
-      call dop853_integrate(osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, status, &
+      call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, status, &
                             message)
       call check_true('fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
                       status == SD_OK .and. stats%n_accepted == n_steps)
@@ -179,7 +179,7 @@ contains
   subroutine test_dense_output_order()
     type(riccati) :: ric
     type(dop853_integrator) :: integ
-    type(rk45_options) :: opt
+    type(ode_options) :: opt
     real(wp) :: h, t_mid, err_local(0:3), err_global(0:3), y(1)
     integer :: i, status
     character(len=message_len) :: message
@@ -187,25 +187,25 @@ contains
     do i = 0, 3
       h = 0.4_wp/2**i
       opt%fixed_step = h
-      call dop853_init(integ, ric, 0.0_wp, [1.0_wp], h, opt, status, message)
-      call dop853_step(integ, ric, status, message)
+      call integ%init(ric, 0.0_wp, [1.0_wp], h, opt, status, message)
+      call integ%step(ric, status, message)
       call check_true('one fixed step, h = '//num2str(h), status == SD_OK .and. integ%t == h)
-      call dop853_dense(integ, h/2, y)
+      call integ%dense(h/2, y)
       err_local(i) = abs(y(1) - ric%exact(h/2))
       ! the interpolant passes through both ends of the step
-      call dop853_dense(integ, 0.0_wp, y)
+      call integ%dense(0.0_wp, y)
       call check_close('dense output at the step start, h = '//num2str(h), y(1), 1.0_wp, &
                        0.0_wp, 1.0e-15_wp)
-      call dop853_dense(integ, h, y)
+      call integ%dense(h, y)
       call check_close('dense output at the step end, h = '//num2str(h), y(1), integ%y(1), &
                        0.0_wp, 1.0e-15_wp)
 
-      call dop853_init(integ, ric, 0.0_wp, [1.0_wp], 4.0_wp, opt, status, message)
+      call integ%init(ric, 0.0_wp, [1.0_wp], 4.0_wp, opt, status, message)
       err_global(i) = 0
       do while (status == SD_OK .and. integ%t < integ%t_bound)
-        call dop853_step(integ, ric, status, message)
+        call integ%step(ric, status, message)
         t_mid = (integ%t_old + integ%t)/2
-        call dop853_dense(integ, t_mid, y)
+        call integ%dense(t_mid, y)
         err_global(i) = max(err_global(i), abs(y(1) - ric%exact(t_mid)))
       end do
       call check_true('fixed steps over [0, 4] with dense output, h = '//num2str(h), &
@@ -225,8 +225,8 @@ contains
   subroutine test_adaptive_tolerances()
     type(riccati) :: ric
     type(oscillator) :: osc
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats, stats_rk45
+    type(ode_options) :: opt
+    type(ode_stats) :: stats, stats_rk45
     real(wp), parameter :: rtols(4) = [1.0e-6_wp, 1.0e-8_wp, 1.0e-10_wp, 1.0e-12_wp]
     real(wp) :: t_out(5), y2(2, 5), y1(1, 2), err_osc(4), err_ric(4)
     integer :: i, j, status, steps_osc, steps_ric
@@ -236,7 +236,7 @@ contains
     do i = 1, size(rtols)
       opt%rtol = rtols(i)
       opt%atol = rtols(i)
-      call dop853_integrate(osc, 0.0_wp, osc%exact(0.0_wp), t_out, y2, opt, stats, status, &
+      call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y2, opt, stats, status, &
                             message)
       call check_true('oscillator runs, rtol = '//num2str(rtols(i)), status == SD_OK)
       err_osc(i) = 0
@@ -251,7 +251,7 @@ contains
       call check_true('oscillator reached the last output time', stats%t_reached == 4*pi)
       steps_osc = stats%n_accepted
 
-      call dop853_integrate(ric, 0.0_wp, [1.0_wp], [5.0_wp, 10.0_wp], y1, opt, stats, status, &
+      call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], [5.0_wp, 10.0_wp], y1, opt, stats, status, &
                             message)
       call check_true('riccati runs, rtol = '//num2str(rtols(i)), status == SD_OK)
       err_ric(i) = max(abs(y1(1, 1) - ric%exact(5.0_wp)), abs(y1(1, 2) - ric%exact(10.0_wp)))
@@ -266,13 +266,13 @@ contains
         ', riccati ', steps_ric, ' (rejected ', stats%n_rejected, ')'
 
       if (rtols(i) == 1.0e-10_wp) then
-        call rk45_integrate(osc, 0.0_wp, osc%exact(0.0_wp), t_out, y2, opt, stats_rk45, status, &
+        call integrate(METHOD_DOPRI5, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y2, opt, stats_rk45, status, &
                             message)
         print '(2(a, i0))', '    oscillator at rtol 1e-10: rk45 accepted steps ', &
           stats_rk45%n_accepted, ', dop853 ', steps_osc
         call check_true('oscillator, rtol 1e-10: dop853 takes < 1/3 of the rk45 steps', &
                         status == SD_OK .and. 3*steps_osc < stats_rk45%n_accepted)
-        call rk45_integrate(ric, 0.0_wp, [1.0_wp], [5.0_wp, 10.0_wp], y1, opt, stats_rk45, &
+        call integrate(METHOD_DOPRI5, ric, 0.0_wp, [1.0_wp], [5.0_wp, 10.0_wp], y1, opt, stats_rk45, &
                             status, message)
         print '(2(a, i0))', '    riccati at rtol 1e-10: rk45 accepted steps ', &
           stats_rk45%n_accepted, ', dop853 ', steps_ric
@@ -289,7 +289,7 @@ contains
 
     ! a given first step skips HINIT's evaluation; one output time: no dense stages
     opt%h_initial = 1.0e-3_wp
-    call dop853_integrate(ric, 0.0_wp, [1.0_wp], [10.0_wp], y1(:, 1:1), opt, stats, status, &
+    call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], [10.0_wp], y1(:, 1:1), opt, stats, status, &
                           message)
     call check_true('counters with h_initial and no dense output: '// &
                     'n_rhs = 11 (accepted + rejected) + accepted + 1', status == SD_OK .and. &
@@ -303,8 +303,8 @@ contains
   !> agree to 1e-9 at the step ends and inside steps (dense output of both).
   subroutine test_van_der_pol_against_rk45()
     type(van_der_pol) :: vdp
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats_dop, stats_rk45
+    type(ode_options) :: opt
+    type(ode_stats) :: stats_dop, stats_rk45
     real(wp) :: t_out(41), y_dop(2, 41), y_rk45(2, 41)
     integer :: j, status_dop, status_rk45
     character(len=message_len) :: message
@@ -312,9 +312,9 @@ contains
     t_out = [(0.5_wp*j, j = 0, 40)]
     opt%rtol = 1.0e-12_wp
     opt%atol = 1.0e-12_wp
-    call dop853_integrate(vdp, 0.0_wp, [2.0_wp, 0.0_wp], t_out, y_dop, opt, stats_dop, &
+    call integrate(METHOD_DOP853, vdp, 0.0_wp, [2.0_wp, 0.0_wp], t_out, y_dop, opt, stats_dop, &
                           status_dop, message)
-    call rk45_integrate(vdp, 0.0_wp, [2.0_wp, 0.0_wp], t_out, y_rk45, opt, stats_rk45, &
+    call integrate(METHOD_DOPRI5, vdp, 0.0_wp, [2.0_wp, 0.0_wp], t_out, y_rk45, opt, stats_rk45, &
                         status_rk45, message)
     call check_true('Van der Pol runs with both methods', &
                     status_dop == SD_OK .and. status_rk45 == SD_OK)
@@ -329,8 +329,8 @@ contains
   subroutine test_stepwise_api()
     type(oscillator) :: osc
     type(dop853_integrator) :: integ
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
     real(wp) :: y(2), t_mid, y_out(2, 4)
     integer :: status
     logical :: scaled
@@ -340,46 +340,46 @@ contains
     opt%atol = 1.0e-12_wp
     ! unforced, so after doubling the state the exact solution is twice the old one
     osc%force = 0
-    call dop853_init(integ, osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message)
+    call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message)
     call check_true('dop853_init succeeds', status == SD_OK)
-    call dop853_dense(integ, 0.5_wp, y)
+    call integ%dense(0.5_wp, y)
     call check_close('dense output before any step returns y0', maxval(abs(y - [1, 0])), &
                      0.0_wp, 0.0_wp, 0.0_wp)
     scaled = .false.
     do while (status == SD_OK .and. integ%t < integ%t_bound)
-      call dop853_step(integ, osc, status, message)
+      call integ%step(osc, status, message)
       if (.not. scaled .and. integ%t > 1) then
         t_mid = (integ%t_old + integ%t)/2
-        call dop853_dense(integ, t_mid, y)
+        call integ%dense(t_mid, y)
         call check_close('dense output inside a step', maxval(abs(y - osc%exact(t_mid))), &
                          0.0_wp, 0.0_wp, 1.0e-9_wp)
-        call dop853_set_state(integ, osc, 2*integ%y, status, message)
+        call integ%set_state(osc, 2*integ%y, status, message)
         scaled = .true.
       end if
     end do
     call check_true('stepping reaches t_bound exactly', status == SD_OK .and. integ%t == 3.0_wp)
     call check_close('dop853_set_state: the state follows the doubled solution', &
                      maxval(abs(integ%y - 2*osc%exact(3.0_wp))), 0.0_wp, 0.0_wp, 1.0e-8_wp)
-    stats = dop853_statistics(integ)
+    stats = integ%statistics()
     call check_true('dop853_statistics copies the counters', stats%n_rhs == integ%n_rhs .and. &
                     stats%n_accepted == integ%n_accepted .and. &
                     stats%n_rejected == integ%n_rejected .and. stats%t_reached == 3.0_wp)
-    call dop853_step(integ, osc, status, message)
+    call integ%step(osc, status, message)
     call check_true('a step past t_bound is refused: '//trim(message), status == SD_BAD_INPUT)
-    call dop853_set_state(integ, osc, [1.0_wp], status, message)
+    call integ%set_state(osc, [1.0_wp], status, message)
     call check_true('dop853_set_state with the wrong size is refused: '//trim(message), &
                     status == SD_BAD_INPUT)
 
     ! without dense output only the step end is available
-    call dop853_init(integ, osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message, &
+    call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message, &
                      dense_output=.false.)
-    call dop853_step(integ, osc, status, message)
-    call dop853_dense(integ, integ%t, y)
+    call integ%step(osc, status, message)
+    call integ%dense(integ%t, y)
     call check_true('dense_output = .false.: y at the step end', all(y == integ%y))
-    call dop853_dense(integ, (integ%t_old + integ%t)/2, y)
+    call integ%dense((integ%t_old + integ%t)/2, y)
     call check_true('dense_output = .false.: NaN inside the step', all(ieee_is_nan(y)))
 
-    call dop853_integrate(osc, 0.0_wp, osc%exact(0.0_wp), [0.0_wp, 0.5_wp, 0.5_wp, 2.0_wp], &
+    call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), [0.0_wp, 0.5_wp, 0.5_wp, 2.0_wp], &
                           y_out, opt, stats, status, message)
     call check_true('dop853_integrate with outputs at t0 and a repeated time', status == SD_OK)
     call check_close('output at t0 is y0', maxval(abs(y_out(:, 1) - osc%exact(0.0_wp))), &
@@ -397,8 +397,8 @@ contains
     type(oscillator) :: osc
     type(nan_beyond) :: nb
     type(riccati) :: ric
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
     real(wp) :: t_out(1000), y_out(2, 1000), y_nb(1, 2)
     integer :: j, status
     logical :: partition_ok
@@ -407,7 +407,7 @@ contains
     ! outputs every 0.1 up to 100: ten steps end after a few of them
     t_out = [(0.1_wp*j, j = 1, size(t_out))]
     opt%max_steps = 10
-    call dop853_integrate(osc, 0.0_wp, osc%exact(0.0_wp), t_out, y_out, opt, stats, status, &
+    call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y_out, opt, stats, status, &
                           message)
     print '(a)', '    message: '//trim(message)
     call check_true('max_steps = 10 gives SD_TOO_MANY_STEPS', status == SD_TOO_MANY_STEPS)
@@ -428,8 +428,8 @@ contains
     end do
     call check_true('outputs filled up to t_reached, NaN after', partition_ok)
 
-    opt = rk45_options()
-    call dop853_integrate(nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, &
+    opt = ode_options()
+    call integrate(METHOD_DOP853, nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, &
                           message)
     print '(a)', '    message: '//trim(message)
     call check_true('NaN right-hand side gives SD_NON_FINITE', status == SD_NON_FINITE)
@@ -440,14 +440,14 @@ contains
                      1.0e-6_wp)
 
     opt%fixed_step = 0.3_wp
-    call dop853_integrate(nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, &
+    call integrate(METHOD_DOP853, nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, &
                           message)
     call check_true('NaN in fixed-step mode gives SD_NON_FINITE', status == SD_NON_FINITE)
     call check_close('fixed steps stop at the last step before the edge', stats%t_reached, &
                      0.9_wp, 1.0e-14_wp)
 
-    opt = rk45_options(rtol=1.0e-10_wp, h_min=0.5_wp)
-    call dop853_integrate(ric, 0.0_wp, [1.0_wp], [10.0_wp], y_nb(:, 1:1), opt, stats, status, &
+    opt = ode_options(rtol=1.0e-10_wp, h_min=0.5_wp)
+    call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], [10.0_wp], y_nb(:, 1:1), opt, stats, status, &
                           message)
     print '(a)', '    message: '//trim(message)
     call check_true('h_min = 0.5 gives SD_STEP_TOO_SMALL', status == SD_STEP_TOO_SMALL)
@@ -457,7 +457,7 @@ contains
 
   !> Each rule on the inputs is reported with the name of the offending input.
   subroutine test_bad_input()
-    type(rk45_options) :: opt
+    type(ode_options) :: opt
     type(dop853_integrator) :: integ
     type(riccati) :: ric
     integer :: status
@@ -465,32 +465,32 @@ contains
 
     opt%rtol = -1
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'rtol')
-    opt = rk45_options(rtol=1.0e-17_wp)
+    opt = ode_options(rtol=1.0e-17_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'rtol')
-    opt = rk45_options(atol=-1.0e-3_wp)
+    opt = ode_options(atol=-1.0e-3_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'atol')
-    opt = rk45_options(atol_vector=[1.0e-8_wp, 1.0e-8_wp])
+    opt = ode_options(atol_vector=[1.0e-8_wp, 1.0e-8_wp])
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'atol_vector')
-    opt = rk45_options(fac1=0.0_wp)
+    opt = ode_options(fac1=-0.1_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'fac1')
-    opt = rk45_options(beta=0.5_wp)
+    opt = ode_options(beta=0.5_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'beta')
-    opt = rk45_options(max_steps=0)
+    opt = ode_options(max_steps=0)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'max_steps')
-    opt = rk45_options(fixed_step=-0.1_wp)
+    opt = ode_options(fixed_step=-0.1_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'fixed_step')
-    opt = rk45_options()
+    opt = ode_options()
     call expect_bad(opt, [1.0_wp, 0.5_wp], 't_out(2)')
     call expect_bad(opt, [-1.0_wp, 0.5_wp], 't_out(1)')
 
-    call dop853_init(integ, ric, 1.0_wp, [1.0_wp], 1.0_wp, opt, status, message)
+    call integ%init(ric, 1.0_wp, [1.0_wp], 1.0_wp, opt, status, message)
     call check_true('t_bound = t0 gives SD_BAD_INPUT: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 't_bound') == 1)
-    call dop853_step(integ, ric, status, message)
+    call integ%step(ric, status, message)
     call check_true('dop853_step after a failed dop853_init is refused: '//trim(message), &
                     status == SD_BAD_INPUT)
     opt%atol = 0
-    call dop853_init(integ, ric, 0.0_wp, [0.0_wp], 1.0_wp, opt, status, message)
+    call integ%init(ric, 0.0_wp, [0.0_wp], 1.0_wp, opt, status, message)
     call check_true('atol = 0 with a zero component of y0 gives SD_BAD_INPUT: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'atol') == 1)
   end subroutine test_bad_input
@@ -498,16 +498,16 @@ contains
   !> dop853_integrate on the riccati problem must return SD_BAD_INPUT with a message that
   !> starts with the name of the input, and only NaN outputs.
   subroutine expect_bad(opt, t_out, name)
-    type(rk45_options), intent(in) :: opt
+    type(ode_options), intent(in) :: opt
     real(wp), intent(in) :: t_out(:)
     character(len=*), intent(in) :: name
     type(riccati) :: ric
-    type(rk45_stats) :: stats
+    type(ode_stats) :: stats
     real(wp) :: y_out(1, size(t_out))
     integer :: status
     character(len=message_len) :: message
 
-    call dop853_integrate(ric, 0.0_wp, [1.0_wp], t_out, y_out, opt, stats, status, message)
+    call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], t_out, y_out, opt, stats, status, message)
     call check_true('bad '//name//' gives SD_BAD_INPUT: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, name) == 1)
     call check_true('bad '//name//': all outputs NaN', all(ieee_is_nan(y_out)))

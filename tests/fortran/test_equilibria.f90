@@ -5,8 +5,8 @@ program test_equilibria
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_model, only: model_t, model_from_arrays
   use sloshdyn_motion, only: motion_jacobian
-  use sloshdyn_equilibria, only: theta_roots, phi_roots, equilibria, trivial_routh_hurwitz, &
-                                 STABLE, UNSTABLE, MARGINAL
+  use sloshdyn_equilibria, only: theta_roots, phi_roots, equilibria, trivial_routh_hurwitz
+  use sloshdyn_tables, only: VERDICT_STABLE, VERDICT_UNSTABLE, VERDICT_MARGINAL
   use checks, only: check_close, check_true, finish
   implicit none
   type(model_t) :: model
@@ -64,14 +64,14 @@ program test_equilibria
   ! Fig 5-6: pitchfork at kappa^ = 1; trivial stable iff kappa^ > 1, tilted pair stable below
   call with_kappa_hat(1.3_wp, 0.01_wp)
   call equilibria(model, theta, phi, physical, re, im, verdict, n_eq, truncated, status, message)
-  call check_true('Fig 5: kappa^ = 1.3: one equilibrium, stable', n_eq == 1 .and. verdict(1) == STABLE)
+  call check_true('Fig 5: kappa^ = 1.3: one equilibrium, stable', n_eq == 1 .and. verdict(1) == VERDICT_STABLE)
   call with_kappa_hat(0.9_wp, 0.01_wp)
   call phi_roots(model, roots, n, truncated, status, message)
   call check_true('Fig 5: kappa^ = 0.9: three phi roots', n == 3)
   call check_close('eq 18 residual', sin(roots(3)) - 0.9_wp*roots(3), 0.0_wp, 0.0_wp, 1.0e-13_wp)
   call equilibria(model, theta, phi, physical, re, im, verdict, n_eq, truncated, status, message)
   call check_true('Fig 6: kappa^ = 0.9: trivial unstable, tilted pair stable', n_eq == 3 .and. &
-                  verdict(1) == STABLE .and. verdict(2) == UNSTABLE .and. verdict(3) == STABLE)
+                  verdict(1) == VERDICT_STABLE .and. verdict(2) == VERDICT_UNSTABLE .and. verdict(3) == VERDICT_STABLE)
 
   ! Routh-Hurwitz on eq (20) agrees with dgeev at the trivial equilibrium over a scan
   agree = .true.
@@ -81,8 +81,8 @@ program test_equilibria
       call equilibria(model, theta, phi, physical, re, im, verdict, n_eq, truncated, status, message)
       call trivial_routh_hurwitz(model, coefficients, hurwitz, routh_stable)
       n = minloc(abs(phi(1:n_eq)), dim=1)
-      agree = agree .and. (routh_stable .eqv. verdict(n) == STABLE)
-      if (j == 0 .and. i > 4) agree = agree .and. verdict(n) == MARGINAL
+      agree = agree .and. (routh_stable .eqv. verdict(n) == VERDICT_STABLE)
+      if (j == 0 .and. i > 4) agree = agree .and. verdict(n) == VERDICT_MARGINAL
     end do
   end do
   call check_true('eq 20: Routh-Hurwitz verdict = eigenvalue verdict (kappa^ 0.7..1.5, gamma 0..0.01)', agree)

@@ -4,7 +4,8 @@ program test_motion
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_model, only: model_t, model_from_arrays
   use sloshdyn_motion, only: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, &
-                             excitation_direction, base_acceleration
+                             excitation_direction
+  use sloshdyn_excitation, only: base_acceleration
   use checks, only: check_close, check_true, finish
   implicit none
   type(model_t) :: model
@@ -53,13 +54,13 @@ program test_motion
     type(model_t) :: unforced
     real(wp) :: e(4), f0(4)
     unforced = model
-    unforced%A = 0
+    unforced%excitation%A = 0
     y = states(:, 2)
     call equations_of_motion(model, tau, y, dydt)
     call equations_of_motion(unforced, tau, y, f0)
     call excitation_direction(model, y, e)
     call check_close('excitation direction: affine in X''''', &
-                     maxval(abs(dydt - f0 - base_acceleration(model, tau)*e)), 0.0_wp, 0.0_wp, 1.0e-14_wp)
+                     maxval(abs(dydt - f0 - base_acceleration(model%excitation, tau)*e)), 0.0_wp, 0.0_wp, 1.0e-14_wp)
   end block
 
   ! eq (19): the Jacobian at the trivial equilibrium (p >= 1, so delta does not enter)

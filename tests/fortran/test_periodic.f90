@@ -1,7 +1,7 @@
 !> Test problems with closed-form periodic orbits and Floquet multipliers.
 module periodic_test_systems
   use sloshdyn_kinds, only: wp, pi
-  use sloshdyn_periodic, only: periodic_problem
+  use sloshdyn_shooting, only: periodic_problem
   implicit none
   private
   public :: linear_oscillator, rotating_frame, ROT_LINEAR, ROT_FOLD, ROT_PITCHFORK
@@ -187,16 +187,19 @@ program test_periodic
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, model_from_arrays
   use sloshdyn_linear, only: natural_frequencies, modal_matrix
-  use sloshdyn_rk45, only: rk45_options, rk45_stats, rk45_integrate
+  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_integrator, only: integrate, METHOD_DOPRI5
   use sloshdyn_continuation, only: continuation_options
-  use sloshdyn_simulation, only: tank_system, SWEEP_RHO, SWEEP_A
-  use sloshdyn_periodic, only: tank_periodic_problem, monodromy_matrix, shooting_newton, &
+  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
+  use sloshdyn_system, only: tank_system
+  use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, &
                                floquet_kind, fold_test, period_doubling_test, &
                                neimark_sacker_test, complex_pair_count, periodic_branch, &
-                               largest_lyapunov, FLOQUET_STABLE, FLOQUET_NEUTRAL, &
-                               FLOQUET_UNSTABLE, SPECIAL_FOLD, SPECIAL_BRANCH_POINT, &
-                               SPECIAL_PERIOD_DOUBLING, SPECIAL_NEIMARK_SACKER, &
+                               FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE, &
                                samples_per_period
+  use sloshdyn_lyapunov, only: largest_lyapunov
+  use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
+                             SPECIAL_NEIMARK_SACKER
   use periodic_test_systems, only: linear_oscillator, rotating_frame, ROT_LINEAR, ROT_FOLD, &
                                    ROT_PITCHFORK
   use checks, only: check_close, check_true, finish
@@ -228,7 +231,7 @@ contains
   end function elapsed
 
   function tight() result(opt)
-    type(rk45_options) :: opt
+    type(ode_options) :: opt
     opt%rtol = 1.0e-10_wp
     opt%atol = 1.0e-12_wp
   end function tight
@@ -275,7 +278,7 @@ contains
     character(len=message_len) :: message
 
     osc = linear_oscillator(w=1.0_wp, z=0.05_wp, f=1.0_wp, forcing_frequency=1.3_wp)
-    call shooting_newton(osc, [0.0_wp, 0.0_wp], 1, tight(), 1.0e-11_wp, 10, y, m, re, im, &
+    call shooting_newton(osc, [0.0_wp, 0.0_wp], 1, tight(), METHOD_DOPRI5, 1.0e-11_wp, 10, y, m, re, im, &
                          iterations, status, message, max_x)
     call check_true('linear oscillator: shooting converges: '//trim(message), status == SD_OK)
     call check_true('linear oscillator: a linear map converges in 2 Newton iterations ('// &
@@ -323,7 +326,7 @@ contains
     opt%ds = 0.02_wp
     opt%ds_max = 0.05_wp
     opt%max_points = capacity
-    call periodic_branch(osc, [0.0_wp, 0.0_wp], 0.8_wp, 1.2_wp, opt, tight(), points, mult, &
+    call periodic_branch(osc, [0.0_wp, 0.0_wp], 0.8_wp, 1.2_wp, opt, tight(), METHOD_DOPRI5, points, mult, &
                          n_points, special, n_special, complete, status, message)
     call check_true('oscillator branch: complete: '//trim(message), &
                     status == SD_OK .and. complete)
@@ -368,7 +371,7 @@ contains
                          q1=1.0_wp, q2=-1.0_wp)
     opt%ds = 0.05_wp
     opt%max_points = capacity
-    call periodic_branch(sys, [0.0_wp, 0.0_wp], 0.5_wp, 1.5_wp, opt, tight(), points, mult, &
+    call periodic_branch(sys, [0.0_wp, 0.0_wp], 0.5_wp, 1.5_wp, opt, tight(), METHOD_DOPRI5, points, mult, &
                          n_points, special, n_special, complete, status, message)
     call check_true('period doubling branch: complete: '//trim(message), &
                     status == SD_OK .and. complete)
@@ -407,7 +410,7 @@ contains
                          q1=1.0_wp, q2=1.0_wp)
     opt%ds = 0.05_wp
     opt%max_points = capacity
-    call periodic_branch(sys, [0.0_wp, 0.0_wp], -0.3_wp, 0.3_wp, opt, tight(), points, mult, &
+    call periodic_branch(sys, [0.0_wp, 0.0_wp], -0.3_wp, 0.3_wp, opt, tight(), METHOD_DOPRI5, points, mult, &
                          n_points, special, n_special, complete, status, message)
     call check_true('Neimark-Sacker branch: complete: '//trim(message), &
                     status == SD_OK .and. complete)
@@ -440,7 +443,7 @@ contains
     opt%ds = 0.05_wp
     opt%ds_max = 0.1_wp
     opt%max_points = capacity
-    call periodic_branch(sys, [-2.1_wp, 0.0_wp], -1.0_wp, 1.0_wp, opt, tight(), points, mult, &
+    call periodic_branch(sys, [-2.1_wp, 0.0_wp], -1.0_wp, 1.0_wp, opt, tight(), METHOD_DOPRI5, points, mult, &
                          n_points, special, n_special, complete, status, message)
     call check_true('S branch: complete: '//trim(message), status == SD_OK .and. complete)
     call check_true('S branch: two special points ('//num2str(n_special)//')', n_special == 2)
@@ -487,7 +490,7 @@ contains
     sys = rotating_frame(kind=ROT_PITCHFORK, omega=1.0_wp, lambda=-0.5_wp)
     opt%ds = 0.07_wp
     opt%max_points = capacity
-    call periodic_branch(sys, [0.0_wp, 0.0_wp], -0.5_wp, 0.5_wp, opt, tight(), points, mult, &
+    call periodic_branch(sys, [0.0_wp, 0.0_wp], -0.5_wp, 0.5_wp, opt, tight(), METHOD_DOPRI5, points, mult, &
                          n_points, special, n_special, complete, status, message)
     call check_true('pitchfork branch: complete: '//trim(message), status == SD_OK .and. complete)
     call check_true('pitchfork branch: one special point ('//num2str(n_special)//')', &
@@ -505,7 +508,7 @@ contains
   !> an orbit on the first mode with T = 2 pi/omega1 has a multiplier 1 (and the Lyapunov
   !> exponent is about 0).
   subroutine test_undamped_tank()
-    type(tank_periodic_problem) :: tank
+    type(tank_system) :: tank
     type(model_t) :: model
     real(wp) :: omega1, omega2, period, y_end(4), m(4, 4), re(4), im(4), p(2, 2), p_inv(2, 2), &
                 y0(4), exponent, history(20), phase, expected_phase
@@ -515,16 +518,16 @@ contains
     model = fig12_model(0.7_wp)
     model%gamma = 0
     model%delta = 0
-    model%A = 0
+    model%excitation%A = 0
     model%a_coef(5) = 0
     model%b_coef(5) = 0
     call natural_frequencies(model, omega1, omega2, status, message)
     tank%model = model
-    tank%which = SWEEP_RHO
+    tank%varied = PARAMETER_RHO
 
     ! a fictitious period T = 2 pi/0.7, small generic start
     period = 2*pi/0.7_wp
-    call monodromy_matrix(tank, 1.0e-4_wp*[1.0_wp, 0.3_wp, -0.5_wp, 0.2_wp], 1, tight(), y_end, &
+    call monodromy_matrix(tank, 1.0e-4_wp*[1.0_wp, 0.3_wp, -0.5_wp, 0.2_wp], 1, tight(), METHOD_DOPRI5, y_end, &
                           m, status, message)
     call check_true('undamped tank: monodromy: '//trim(message), status == SD_OK)
     call eigenvalues_of(m, re, im)
@@ -542,10 +545,10 @@ contains
     end do
 
     ! the first linear mode (eq 34, x = P u), T = 2 pi/omega1
-    tank%model%rho = omega1
+    tank%model%excitation%rho = omega1
     call modal_matrix(tank%model, p, p_inv, status, message)
     y0 = 1.0e-4_wp*[p(1, 1), 0.0_wp, p(2, 1), 0.0_wp]/maxval(abs(p(:, 1)))
-    call monodromy_matrix(tank, y0, 1, tight(), y_end, m, status, message)
+    call monodromy_matrix(tank, y0, 1, tight(), METHOD_DOPRI5, y_end, m, status, message)
     call eigenvalues_of(m, re, im)
     print '(a, 4(es12.3))', '  undamped tank, first mode: |mu - 1| = ', &
       abs(cmplx(re - 1, im, wp))
@@ -556,7 +559,7 @@ contains
     call check_true('undamped tank, first mode: all |mu| = 1 (1e-6)', &
                     all(abs(hypot(re, im) - 1) <= 1.0e-6_wp))
 
-    call largest_lyapunov(tank, y0, 0, 200, 10, tight(), exponent, history, status, message)
+    call largest_lyapunov(tank, y0, 0, 200, 10, tight(), METHOD_DOPRI5, exponent, history, status, message)
     print '(a, es12.3)', '  undamped tank: largest Lyapunov exponent ', exponent
     call check_true('undamped tank: Lyapunov runs: '//trim(message), status == SD_OK)
     call check_true('undamped tank: Lyapunov exponent about 0 (|.| < 1e-4)', &
@@ -569,9 +572,9 @@ contains
   !> Floquet exponent log(max|mu|)/T.
   subroutine test_fig12_orbit()
     integer, parameter :: transient = 4000, capacity = 100
-    type(tank_periodic_problem) :: tank
+    type(tank_system) :: tank
     type(tank_system) :: direct
-    type(rk45_stats) :: stats
+    type(ode_stats) :: stats
     type(continuation_options) :: opt
     real(wp) :: y(4), m(4, 4), re(4), im(4), max_x1, period, t_out(samples_per_period + 1), &
                 y_out(4, samples_per_period + 1), direct_max, start, floquet_exponent, &
@@ -582,10 +585,10 @@ contains
     character(len=message_len) :: message
 
     tank%model = fig12_model(0.50_wp)
-    tank%which = SWEEP_RHO
+    tank%varied = PARAMETER_RHO
     period = 2*pi/0.50_wp
     start = elapsed()
-    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), 1.0e-10_wp, 20, y, &
+    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), METHOD_DOPRI5, 1.0e-10_wp, 20, y, &
                          m, re, im, iterations, status, message, max_x1)
     print '(a, i0, a, f8.3, a)', '  Fig 12, rho = 0.5: shooting from rest, ', iterations, &
       ' iterations, ', elapsed() - start, ' s'
@@ -600,7 +603,7 @@ contains
     start = elapsed()
     direct%model = tank%model
     t_out = [(transient*period + j*(period/samples_per_period), j = 0, samples_per_period)]
-    call rk45_integrate(direct, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], t_out, y_out, tight(), &
+    call integrate(METHOD_DOPRI5, direct, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], t_out, y_out, tight(), &
                         stats, status, message)
     direct_max = maxval(abs(y_out(1, 1:samples_per_period)))
     print '(a, i0, a, f8.3, a, 2es20.12)', '  direct simulation over ', transient, ' periods: ', &
@@ -615,7 +618,7 @@ contains
     opt%ds = 0.002_wp
     opt%ds_max = 0.004_wp
     opt%max_points = capacity
-    call periodic_branch(tank, y, 0.50_wp, 0.505_wp, opt, tight(), points, mult, n_points, &
+    call periodic_branch(tank, y, 0.50_wp, 0.505_wp, opt, tight(), METHOD_DOPRI5, points, mult, n_points, &
                          special, n_special, complete, status, message)
     print '(a, i0, a, f8.3, a)', '  continuation rho = 0.5 .. 0.505: ', n_points, ' points, ', &
       elapsed() - start, ' s'
@@ -623,8 +626,8 @@ contains
     call check_true('Fig 12 branch: no special points ('//num2str(n_special)//')', n_special == 0)
     worst_residual = 0
     do j = 1, n_points
-      tank%model%rho = points(1, j)
-      call monodromy_matrix(tank, points(2:5, j), 1, tight(), y_end, m, status, message)
+      tank%model%excitation%rho = points(1, j)
+      call monodromy_matrix(tank, points(2:5, j), 1, tight(), METHOD_DOPRI5, y_end, m, status, message)
       worst_residual = max(worst_residual, maxval(abs(y_end - points(2:5, j))))
       print '(a, f10.6, a, es14.6, a, f12.8)', '    rho ', points(1, j), ' max|x1| ', &
         points(6, j), ' max|mu| ', maxval(hypot(mult(1:4, j), mult(5:8, j)))
@@ -636,9 +639,9 @@ contains
     call check_true('Fig 12 branch: all stable', all(points(7, 1:n_points) == 1))
 
     start = elapsed()
-    tank%model%rho = 0.50_wp
+    tank%model%excitation%rho = 0.50_wp
     floquet_exponent = log(maxval(hypot(re, im)))/period
-    call largest_lyapunov(tank, y, 200, 1000, 10, tight(), exponent, history, status, message)
+    call largest_lyapunov(tank, y, 200, 1000, 10, tight(), METHOD_DOPRI5, exponent, history, status, message)
     print '(a, es14.6, a, es14.6, a, f8.3, a)', '  Fig 12 orbit: Lyapunov exponent ', exponent, &
       ', log(max|mu|)/T ', floquet_exponent, ' (', elapsed() - start, ' s)'
     call check_true('Fig 12 orbit: Lyapunov runs: '//trim(message), status == SD_OK)
@@ -653,24 +656,24 @@ contains
   !> dF/dlambda of the shooting map (sensitivity equations plus the moving end time k T(rho))
   !> against central differences of y(k T) - y0, for lambda = rho and lambda = A.
   subroutine test_parameter_column()
-    type(tank_periodic_problem) :: tank
+    type(tank_system) :: tank
     real(wp), parameter :: y0(4) = [-1.75e-4_wp, 2.4e-3_wp, -7.9e-4_wp, 1.05e-2_wp]
     real(wp) :: column(4), y_plus(4), y_minus(4), m(4, 4), h, difference(4)
     integer :: status, which
     character(len=message_len) :: message
 
-    do which = SWEEP_RHO, SWEEP_A
+    do which = PARAMETER_RHO, PARAMETER_A
       tank%model = fig12_model(0.50_wp)
-      tank%which = which
-      call monodromy_matrix(tank, y0, 2, tight(), y_plus, m, status, message, column)
+      tank%varied = which
+      call monodromy_matrix(tank, y0, 2, tight(), METHOD_DOPRI5, y_plus, m, status, message, column)
       h = 1.0e-6_wp*tank%parameter()
       call tank%set_parameter(tank%parameter() + h)
-      call monodromy_matrix(tank, y0, 2, tight(), y_plus, m, status, message)
+      call monodromy_matrix(tank, y0, 2, tight(), METHOD_DOPRI5, y_plus, m, status, message)
       call tank%set_parameter(tank%parameter() - 2*h)
-      call monodromy_matrix(tank, y0, 2, tight(), y_minus, m, status, message)
+      call monodromy_matrix(tank, y0, 2, tight(), METHOD_DOPRI5, y_minus, m, status, message)
       difference = (y_plus - y_minus)/(2*h)
       print '(a, i0, a, 4es14.6)', '  dF/dlambda (', which, '): ', column
-      call check_true('dF/d'//trim(merge('rho', 'A  ', which == SWEEP_RHO))//' over 2 T = '// &
+      call check_true('dF/d'//trim(merge('rho', 'A  ', which == PARAMETER_RHO))//' over 2 T = '// &
                       'central difference (1e-5 relative): '// &
                       num2str(maxval(abs(column - difference))/maxval(abs(column))), &
                       maxval(abs(column - difference)) <= 1.0e-5_wp*maxval(abs(column)))
@@ -683,7 +686,7 @@ contains
   !> (paper, sec 4.1, Fig 13; equal to the asymptotic accuracy, here 1e-4).
   subroutine test_fig12_resonance()
     integer, parameter :: capacity = 400
-    type(tank_periodic_problem) :: tank
+    type(tank_system) :: tank
     type(continuation_options) :: opt
     real(wp) :: y(4), m(4, 4), re(4), im(4), points(7, capacity), mult(8, capacity), &
                 special(7, 8), start
@@ -692,14 +695,14 @@ contains
     character(len=message_len) :: message
 
     tank%model = fig12_model(0.50_wp)
-    tank%which = SWEEP_RHO
-    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), 1.0e-10_wp, 20, y, &
+    tank%varied = PARAMETER_RHO
+    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), METHOD_DOPRI5, 1.0e-10_wp, 20, y, &
                          m, re, im, iterations, status, message)
     opt%ds = 0.002_wp
     opt%ds_max = 0.01_wp
     opt%max_points = capacity
     start = elapsed()
-    call periodic_branch(tank, y, 0.50_wp, 0.52_wp, opt, tight(), points, mult, n_points, &
+    call periodic_branch(tank, y, 0.50_wp, 0.52_wp, opt, tight(), METHOD_DOPRI5, points, mult, n_points, &
                          special, n_special, complete, status, message)
     print '(a, i0, a, i0, a, f8.3, a)', '  Fig 12 resonance: ', n_points, ' points, ', n_special, &
       ' special points, ', elapsed() - start, ' s'
@@ -734,10 +737,10 @@ contains
 
   !> Each documented rule fails with a message naming the variable.
   subroutine test_bad_input()
-    type(tank_periodic_problem) :: tank
+    type(tank_system) :: tank
     type(linear_oscillator) :: osc
     type(continuation_options) :: opt
-    type(rk45_options) :: rk
+    type(ode_options) :: rk
     real(wp) :: y(4), m(4, 4), re(4), im(4), history(5), exponent, y2(2), m2(2, 2), re2(2), &
                 im2(2), points(5, 3), mult(4, 3), special(5, 2)
     integer :: iterations, status, n_points, n_special
@@ -745,29 +748,29 @@ contains
     character(len=message_len) :: message
 
     tank%model = fig12_model(0.5_wp)
-    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), 1.0e-10_wp, 5, y(1:3), &
+    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), METHOD_DOPRI5, 1.0e-10_wp, 5, y(1:3), &
                          m(1:3, 1:3), re(1:3), im(1:3), iterations, status, message)
     call check_true('bad input: y0 of size 3 for the tank: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'y0') > 0)
-    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 0, tight(), 1.0e-10_wp, 5, y, &
+    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 0, tight(), METHOD_DOPRI5, 1.0e-10_wp, 5, y, &
                          m, re, im, iterations, status, message)
     call check_true('bad input: k = 0: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'k = 0') > 0)
-    tank%model%rho = 0
-    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), 1.0e-10_wp, 5, y, &
+    tank%model%excitation%rho = 0
+    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), METHOD_DOPRI5, 1.0e-10_wp, 5, y, &
                          m, re, im, iterations, status, message)
     call check_true('bad input: rho = 0 (no period): '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'T =') > 0)
-    tank%model%rho = 0.5_wp
-    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), 0.0_wp, 5, y, &
+    tank%model%excitation%rho = 0.5_wp
+    call shooting_newton(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, tight(), METHOD_DOPRI5, 0.0_wp, 5, y, &
                          m, re, im, iterations, status, message)
     call check_true('bad input: newton_tol = 0: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'newton_tol') > 0)
-    call largest_lyapunov(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 0, 25, 10, tight(), exponent, &
+    call largest_lyapunov(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 0, 25, 10, tight(), METHOD_DOPRI5, exponent, &
                           history, status, message)
     call check_true('bad input: n_periods not a multiple of renormalise_every: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'n_periods') > 0)
-    call largest_lyapunov(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 0, 60, 10, tight(), exponent, &
+    call largest_lyapunov(tank, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 0, 60, 10, tight(), METHOD_DOPRI5, exponent, &
                           history, status, message)
     call check_true('bad input: history too short: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'history') > 0)
@@ -775,20 +778,20 @@ contains
     osc = linear_oscillator(w=1.0_wp, z=0.05_wp, f=0.1_wp, forcing_frequency=0.8_wp)
     opt%max_points = 3
     opt%ds = 0.01_wp
-    call periodic_branch(osc, [0.0_wp, 0.0_wp], 0.8_wp, 1.2_wp, opt, tight(), points, mult, &
+    call periodic_branch(osc, [0.0_wp, 0.0_wp], 0.8_wp, 1.2_wp, opt, tight(), METHOD_DOPRI5, points, mult, &
                          n_points, special, n_special, complete, status, message)
     call check_true('branch cut by max_points: SD_CAPACITY, incomplete, 3 points: '// &
                     trim(message), status == SD_CAPACITY .and. .not. complete .and. n_points == 3)
     rk = tight()
     rk%max_steps = 5
-    call periodic_branch(osc, [0.0_wp, 0.0_wp], 0.8_wp, 1.2_wp, opt, rk, points, mult, &
+    call periodic_branch(osc, [0.0_wp, 0.0_wp], 0.8_wp, 1.2_wp, opt, rk, METHOD_DOPRI5, points, mult, &
                          n_points, special, n_special, complete, status, message)
     call check_true('branch with a failing integrator: incomplete, the integrator''s message: '// &
                     trim(message), status /= SD_OK .and. .not. complete .and. &
                     index(message, 'max_steps') > 0)
     ! a free particle x'' = 0 has M = [1 T; 0 1] exactly: M - I is singular (multiplier +1)
     osc = linear_oscillator(w=0.0_wp, z=0.0_wp, f=0.0_wp, forcing_frequency=1.0_wp)
-    call shooting_newton(osc, [1.0_wp, 0.0_wp], 1, tight(), 1.0e-10_wp, 5, y2, m2, re2, im2, &
+    call shooting_newton(osc, [1.0_wp, 0.0_wp], 1, tight(), METHOD_DOPRI5, 1.0e-10_wp, 5, y2, m2, re2, im2, &
                          iterations, status, message)
     call check_true('free particle: M - I singular is reported: '//trim(message), &
                     status == SD_SINGULAR .and. index(message, 'M - I') > 0)

@@ -2,7 +2,7 @@
 module rk45_test_systems
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp
-  use sloshdyn_rk45, only: ode_system
+  use sloshdyn_ode, only: ode_system
   implicit none
   private
   public :: riccati, oscillator, nan_beyond
@@ -83,8 +83,9 @@ program test_rk45
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
                              SD_NON_FINITE
   use sloshdyn_text, only: num2str
-  use sloshdyn_rk45, only: rk45_options, rk45_integrator, rk45_stats, rk45_init, rk45_step, &
-                           rk45_dense, rk45_set_state, rk45_integrate
+  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_dopri5, only: dopri5_integrator
+  use sloshdyn_integrator, only: integrate, METHOD_DOPRI5
   use rk45_test_systems, only: riccati, oscillator, nan_beyond
   use checks, only: check_close, check_true, finish
   implicit none
@@ -121,8 +122,8 @@ contains
   subroutine test_fixed_step_order()
     type(riccati) :: ric
     type(oscillator) :: osc
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
     real(wp) :: err_ric(0:n_halvings), err_osc(0:n_halvings), y1(1, 1), y2(2, 1)
     integer :: i, status, n_steps
     character(len=message_len) :: message
@@ -130,7 +131,7 @@ contains
     do i = 0, n_halvings
       n_steps = 5*2**i
       opt%fixed_step = 1.0_wp/n_steps
-      call rk45_integrate(ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
+      call integrate(METHOD_DOPRI5, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
       call check_true('fixed steps on riccati: '//num2str(n_steps)//' steps, none rejected', &
                       status == SD_OK .and. stats%n_accepted == n_steps .and. &
                       stats%n_rejected == 0)
@@ -138,7 +139,7 @@ contains
 
       n_steps = 20*2**i
       opt%fixed_step = 10.0_wp/n_steps
-      call rk45_integrate(osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, status, &
+      call integrate(METHOD_DOPRI5, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, status, &
                           message)
       call check_true('fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
                       status == SD_OK .and. stats%n_accepted == n_steps)
@@ -156,8 +157,8 @@ contains
   !> t0 = 1.5 because at t0 = 0 the h**5 term of this problem vanishes (exponent 6 seen).
   subroutine test_dense_output_order()
     type(riccati) :: ric
-    type(rk45_integrator) :: integ
-    type(rk45_options) :: opt
+    type(dopri5_integrator) :: integ
+    type(ode_options) :: opt
     real(wp), parameter :: t0 = 1.5_wp
     real(wp) :: h, t_mid, err_local(0:n_halvings), err_global(0:n_halvings), y(1)
     integer :: i, status
@@ -166,26 +167,26 @@ contains
     do i = 0, n_halvings
       h = 0.2_wp/2**i
       opt%fixed_step = h
-      call rk45_init(integ, ric, t0, [ric%exact(t0)], t0 + h, opt, status, message)
-      call rk45_step(integ, ric, status, message)
+      call integ%init(ric, t0, [ric%exact(t0)], t0 + h, opt, status, message)
+      call integ%step(ric, status, message)
       call check_true('one fixed step, h = '//num2str(h), status == SD_OK .and. integ%t == t0 + h)
-      call rk45_dense(integ, t0 + h/2, y)
+      call integ%dense(t0 + h/2, y)
       err_local(i) = abs(y(1) - ric%exact(t0 + h/2))
       ! the interpolant passes through both ends of the step
-      call rk45_dense(integ, t0, y)
+      call integ%dense(t0, y)
       call check_close('dense output at the step start, h = '//num2str(h), y(1), ric%exact(t0), &
                        0.0_wp, 1.0e-15_wp)
-      call rk45_dense(integ, t0 + h, y)
+      call integ%dense(t0 + h, y)
       call check_close('dense output at the step end, h = '//num2str(h), y(1), integ%y(1), &
                        0.0_wp, 1.0e-15_wp)
 
       opt%fixed_step = 0.2_wp/2**i
-      call rk45_init(integ, ric, 0.0_wp, [1.0_wp], 3.0_wp, opt, status, message)
+      call integ%init(ric, 0.0_wp, [1.0_wp], 3.0_wp, opt, status, message)
       err_global(i) = 0
       do while (status == SD_OK .and. integ%t < integ%t_bound)
-        call rk45_step(integ, ric, status, message)
+        call integ%step(ric, status, message)
         t_mid = (integ%t_old + integ%t)/2
-        call rk45_dense(integ, t_mid, y)
+        call integ%dense(t_mid, y)
         err_global(i) = max(err_global(i), abs(y(1) - ric%exact(t_mid)))
       end do
       call check_true('fixed steps over [0, 3] with dense output, h = '// &
@@ -202,8 +203,8 @@ contains
   subroutine test_adaptive_tolerances()
     type(riccati) :: ric
     type(oscillator) :: osc
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
     real(wp), parameter :: rtols(4) = [1.0e-4_wp, 1.0e-6_wp, 1.0e-8_wp, 1.0e-10_wp]
     real(wp) :: t_out(5), y2(2, 5), y1(1, 1), err_osc(4), err_ric(4)
     integer :: i, j, status
@@ -213,7 +214,7 @@ contains
     do i = 1, size(rtols)
       opt%rtol = rtols(i)
       opt%atol = rtols(i)
-      call rk45_integrate(osc, 0.0_wp, osc%exact(0.0_wp), t_out, y2, opt, stats, status, message)
+      call integrate(METHOD_DOPRI5, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y2, opt, stats, status, message)
       call check_true('oscillator runs, rtol = '//num2str(rtols(i)), status == SD_OK)
       err_osc(i) = 0
       do j = 1, size(t_out)
@@ -225,7 +226,7 @@ contains
                       stats%n_rhs == 6*(stats%n_accepted + stats%n_rejected) + 2)
       call check_true('oscillator reached the last output time', stats%t_reached == 4*pi)
 
-      call rk45_integrate(ric, 0.0_wp, [1.0_wp], [10.0_wp], y1, opt, stats, status, message)
+      call integrate(METHOD_DOPRI5, ric, 0.0_wp, [1.0_wp], [10.0_wp], y1, opt, stats, status, message)
       call check_true('riccati runs, rtol = '//num2str(rtols(i)), status == SD_OK)
       err_ric(i) = abs(y1(1, 1) - ric%exact(10.0_wp))
       call check_true('riccati error '//num2str(err_ric(i))//' <= 100 rtol', &
@@ -245,7 +246,7 @@ contains
 
     ! a given first step skips HINIT's evaluation
     opt%h_initial = 1.0e-3_wp
-    call rk45_integrate(ric, 0.0_wp, [1.0_wp], [10.0_wp], y1, opt, stats, status, message)
+    call integrate(METHOD_DOPRI5, ric, 0.0_wp, [1.0_wp], [10.0_wp], y1, opt, stats, status, message)
     call check_true('counters with h_initial: n_rhs = 6 (accepted + rejected) + 1', &
                     status == SD_OK .and. &
                     stats%n_rhs == 6*(stats%n_accepted + stats%n_rejected) + 1)
@@ -254,9 +255,9 @@ contains
   !> Driving the integrator step by step, reading dense output and replacing the state.
   subroutine test_stepwise_api()
     type(oscillator) :: osc
-    type(rk45_integrator) :: integ
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats
+    type(dopri5_integrator) :: integ
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
     real(wp) :: y(2), t_mid, y_out(2, 4)
     integer :: status
     logical :: scaled
@@ -266,27 +267,27 @@ contains
     opt%atol = 1.0e-12_wp
     ! unforced, so after doubling the state the exact solution is twice the old one
     osc%force = 0
-    call rk45_init(integ, osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message)
+    call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message)
     call check_true('rk45_init succeeds', status == SD_OK)
     scaled = .false.
     do while (status == SD_OK .and. integ%t < integ%t_bound)
-      call rk45_step(integ, osc, status, message)
+      call integ%step(osc, status, message)
       if (.not. scaled .and. integ%t > 1) then
         t_mid = (integ%t_old + integ%t)/2
-        call rk45_dense(integ, t_mid, y)
+        call integ%dense(t_mid, y)
         call check_close('dense output inside a step', maxval(abs(y - osc%exact(t_mid))), &
                          0.0_wp, 0.0_wp, 1.0e-9_wp)
-        call rk45_set_state(integ, osc, 2*integ%y, status, message)
+        call integ%set_state(osc, 2*integ%y, status, message)
         scaled = .true.
       end if
     end do
     call check_true('stepping reaches t_bound exactly', status == SD_OK .and. integ%t == 3.0_wp)
     call check_close('rk45_set_state: the state follows the doubled solution', &
                      maxval(abs(integ%y - 2*osc%exact(3.0_wp))), 0.0_wp, 0.0_wp, 1.0e-8_wp)
-    call rk45_step(integ, osc, status, message)
+    call integ%step(osc, status, message)
     call check_true('a step past t_bound is refused: '//trim(message), status == SD_BAD_INPUT)
 
-    call rk45_integrate(osc, 0.0_wp, osc%exact(0.0_wp), [0.0_wp, 0.5_wp, 0.5_wp, 2.0_wp], &
+    call integrate(METHOD_DOPRI5, osc, 0.0_wp, osc%exact(0.0_wp), [0.0_wp, 0.5_wp, 0.5_wp, 2.0_wp], &
                         y_out, opt, stats, status, message)
     call check_true('rk45_integrate with outputs at t0 and a repeated time', status == SD_OK)
     call check_close('output at t0 is y0', maxval(abs(y_out(:, 1) - osc%exact(0.0_wp))), &
@@ -302,8 +303,8 @@ contains
     type(oscillator) :: osc
     type(nan_beyond) :: nb
     type(riccati) :: ric
-    type(rk45_options) :: opt
-    type(rk45_stats) :: stats
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
     real(wp) :: t_out(1000), y_out(2, 1000), y_nb(1, 2)
     integer :: j, status
     logical :: partition_ok
@@ -312,7 +313,7 @@ contains
     ! outputs every 0.1 up to 100: ten steps end after a few of them
     t_out = [(0.1_wp*j, j = 1, size(t_out))]
     opt%max_steps = 10
-    call rk45_integrate(osc, 0.0_wp, osc%exact(0.0_wp), t_out, y_out, opt, stats, status, &
+    call integrate(METHOD_DOPRI5, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y_out, opt, stats, status, &
                         message)
     print '(a)', '    message: '//trim(message)
     call check_true('max_steps = 10 gives SD_TOO_MANY_STEPS', status == SD_TOO_MANY_STEPS)
@@ -333,8 +334,8 @@ contains
     end do
     call check_true('outputs filled up to t_reached, NaN after', partition_ok)
 
-    opt = rk45_options()
-    call rk45_integrate(nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, message)
+    opt = ode_options()
+    call integrate(METHOD_DOPRI5, nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, message)
     print '(a)', '    message: '//trim(message)
     call check_true('NaN right-hand side gives SD_NON_FINITE', status == SD_NON_FINITE)
     call check_true('message names tau', index(message, 'tau') > 0)
@@ -344,11 +345,11 @@ contains
                      1.0e-6_wp)
 
     opt%fixed_step = 0.3_wp
-    call rk45_integrate(nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, message)
+    call integrate(METHOD_DOPRI5, nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, message)
     call check_true('NaN in fixed-step mode gives SD_NON_FINITE', status == SD_NON_FINITE)
 
-    opt = rk45_options(rtol=1.0e-10_wp, h_min=0.5_wp)
-    call rk45_integrate(ric, 0.0_wp, [1.0_wp], [10.0_wp], y_nb(:, 1:1), opt, stats, status, &
+    opt = ode_options(rtol=1.0e-10_wp, h_min=0.5_wp)
+    call integrate(METHOD_DOPRI5, ric, 0.0_wp, [1.0_wp], [10.0_wp], y_nb(:, 1:1), opt, stats, status, &
                         message)
     print '(a)', '    message: '//trim(message)
     call check_true('h_min = 0.5 gives SD_STEP_TOO_SMALL', status == SD_STEP_TOO_SMALL)
@@ -358,36 +359,36 @@ contains
 
   !> Each rule on the inputs is reported with the name of the offending input.
   subroutine test_bad_input()
-    type(rk45_options) :: opt
-    type(rk45_integrator) :: integ
+    type(ode_options) :: opt
+    type(dopri5_integrator) :: integ
     type(riccati) :: ric
     integer :: status
     character(len=message_len) :: message
 
     opt%rtol = -1
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'rtol')
-    opt = rk45_options(atol=-1.0e-3_wp)
+    opt = ode_options(atol=-1.0e-3_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'atol')
-    opt = rk45_options(atol_vector=[1.0e-8_wp, 1.0e-8_wp])
+    opt = ode_options(atol_vector=[1.0e-8_wp, 1.0e-8_wp])
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'atol_vector')
-    opt = rk45_options(beta=0.5_wp)
+    opt = ode_options(beta=0.5_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'beta')
-    opt = rk45_options(max_steps=0)
+    opt = ode_options(max_steps=0)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'max_steps')
-    opt = rk45_options(fixed_step=-0.1_wp)
+    opt = ode_options(fixed_step=-0.1_wp)
     call expect_bad(opt, [0.5_wp, 1.0_wp], 'fixed_step')
-    opt = rk45_options()
+    opt = ode_options()
     call expect_bad(opt, [1.0_wp, 0.5_wp], 't_out(2)')
     call expect_bad(opt, [-1.0_wp, 0.5_wp], 't_out(1)')
 
-    call rk45_init(integ, ric, 1.0_wp, [1.0_wp], 1.0_wp, opt, status, message)
+    call integ%init(ric, 1.0_wp, [1.0_wp], 1.0_wp, opt, status, message)
     call check_true('t_bound = t0 gives SD_BAD_INPUT: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 't_bound') == 1)
-    call rk45_step(integ, ric, status, message)
+    call integ%step(ric, status, message)
     call check_true('rk45_step after a failed rk45_init is refused: '//trim(message), &
                     status == SD_BAD_INPUT)
     opt%atol = 0
-    call rk45_init(integ, ric, 0.0_wp, [0.0_wp], 1.0_wp, opt, status, message)
+    call integ%init(ric, 0.0_wp, [0.0_wp], 1.0_wp, opt, status, message)
     call check_true('atol = 0 with a zero component of y0 gives SD_BAD_INPUT: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'atol') == 1)
   end subroutine test_bad_input
@@ -395,16 +396,16 @@ contains
   !> rk45_integrate on the riccati problem must return SD_BAD_INPUT with a message that starts
   !> with the name of the input, and only NaN outputs.
   subroutine expect_bad(opt, t_out, name)
-    type(rk45_options), intent(in) :: opt
+    type(ode_options), intent(in) :: opt
     real(wp), intent(in) :: t_out(:)
     character(len=*), intent(in) :: name
     type(riccati) :: ric
-    type(rk45_stats) :: stats
+    type(ode_stats) :: stats
     real(wp) :: y_out(1, size(t_out))
     integer :: status
     character(len=message_len) :: message
 
-    call rk45_integrate(ric, 0.0_wp, [1.0_wp], t_out, y_out, opt, stats, status, message)
+    call integrate(METHOD_DOPRI5, ric, 0.0_wp, [1.0_wp], t_out, y_out, opt, stats, status, message)
     call check_true('bad '//name//' gives SD_BAD_INPUT: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, name) == 1)
     call check_true('bad '//name//': all outputs NaN', all(ieee_is_nan(y_out)))

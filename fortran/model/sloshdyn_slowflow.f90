@@ -16,17 +16,17 @@ module sloshdyn_slowflow
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_model, only: model_t
   use sloshdyn_modal, only: modal_coefficients, expand_model
-  use sloshdyn_continuation, only: parametrised_system
+  use sloshdyn_continuation, only: separable_system
   use sloshdyn_lapack, only: eigenvalues
+  use sloshdyn_sort, only: sort_ascending
+  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
   implicit none
   private
   public :: slow_flow, make_slow_flow, characteristic_coefficients, nonresonant_cubic, &
-            nonresonant_amplitudes, PARAMETER_RHO, PARAMETER_A
-
-  integer, parameter :: PARAMETER_RHO = 1, PARAMETER_A = 2
+            nonresonant_amplitudes
 
   !> The steady-state equations F(x; lambda) = 0 of the slow flow, lambda = rho or A.
-  type, extends(parametrised_system) :: slow_flow
+  type, extends(separable_system) :: slow_flow
     type(model_t) :: model                  !< rho and A here are replaced by lambda
     type(modal_coefficients) :: modal
     logical :: internal_resonance = .true.  !< 3:1 (4 unknowns) or none (2 unknowns)
@@ -62,18 +62,18 @@ contains
   end function slow_flow_dimension
 
   !> rho and A at parameter value lambda.
-  pure subroutine excitation(self, lambda, rho, amplitude)
+  pure subroutine rho_and_amplitude(self, lambda, rho, amplitude)
     class(slow_flow), intent(in) :: self
     real(wp), intent(in) :: lambda
     real(wp), intent(out) :: rho, amplitude
-    rho = self%model%rho
-    amplitude = self%model%A
+    rho = self%model%excitation%rho
+    amplitude = self%model%excitation%A
     if (self%parameter == PARAMETER_RHO) then
       rho = lambda
     else
       amplitude = lambda
     end if
-  end subroutine excitation
+  end subroutine rho_and_amplitude
 
   subroutine slow_flow_residual(self, x, lambda, f)
     class(slow_flow), intent(in) :: self
@@ -81,7 +81,7 @@ contains
     real(wp), intent(out) :: f(:)
     complex(wp) :: b1, b2, f1, f2
     real(wp) :: rho, amplitude
-    call excitation(self, lambda, rho, amplitude)
+    call rho_and_amplitude(self, lambda, rho, amplitude)
     b1 = cmplx(x(1), x(2), wp)
     b2 = 0
     if (self%internal_resonance) b2 = cmplx(x(3), x(4), wp)
@@ -120,7 +120,7 @@ contains
     real(wp) :: rho, amplitude, k1, k2, sigma2, sigma1
     integer :: n, row, j
 
-    call excitation(self, lambda, rho, amplitude)
+    call rho_and_amplitude(self, lambda, rho, amplitude)
     n = merge(4, 2, self%internal_resonance)
     b1 = cmplx(x(1), x(2), wp)
     b2 = 0
@@ -249,20 +249,4 @@ contains
     end do
     call sort_ascending(a1(1:n_roots))
   end subroutine nonresonant_amplitudes
-
-  pure subroutine sort_ascending(v)
-    real(wp), intent(inout) :: v(:)
-    integer :: i, j
-    real(wp) :: tmp
-    do i = 2, size(v)
-      tmp = v(i)
-      j = i - 1
-      do while (j >= 1)
-        if (v(j) <= tmp) exit
-        v(j + 1) = v(j)
-        j = j - 1
-      end do
-      v(j + 1) = tmp
-    end do
-  end subroutine sort_ascending
 end module sloshdyn_slowflow

@@ -8,12 +8,11 @@ module sloshdyn_equilibria
   use sloshdyn_motion, only: motion_jacobian
   use sloshdyn_lapack, only: eigenvalues
   use sloshdyn_roots, only: scalar_function, find_all_roots
+  use sloshdyn_tables, only: VERDICT_STABLE, VERDICT_MARGINAL, VERDICT_UNSTABLE
   implicit none
   private
   public :: theta_roots, phi_roots, equilibria, trivial_routh_hurwitz, stability_verdict
-  public :: STABLE, MARGINAL, UNSTABLE, search_limit
-
-  integer, parameter :: STABLE = 1, MARGINAL = 0, UNSTABLE = -1
+  public :: search_limit
   !> Roots beyond |angle| = search_limit are not searched (they exist only for tiny beta^ or
   !> kappa^ and are far outside the physical range |angle| < pi/2).
   real(wp), parameter :: search_limit = 32*pi
@@ -65,7 +64,7 @@ contains
 
   !> All real roots of an odd function f with |root| <= bound: 0, the positive roots and their
   !> mirror images, ascending. truncated = the bound exceeded search_limit.
-  pure subroutine odd_function_roots(f, bound, roots, n_roots, truncated, status, message)
+  subroutine odd_function_roots(f, bound, roots, n_roots, truncated, status, message)
     class(scalar_function), intent(in) :: f
     real(wp), intent(in) :: bound
     real(wp), intent(out) :: roots(:)
@@ -95,7 +94,7 @@ contains
   end subroutine odd_function_roots
 
   !> Real roots theta of eq (17), beta^ = beta/theta0^(2n-1); all lie in |theta| <= beta^^(-1/(2n-1)).
-  pure subroutine theta_roots(model, roots, n_roots, truncated, status, message)
+  subroutine theta_roots(model, roots, n_roots, truncated, status, message)
     type(model_t), intent(in) :: model
     real(wp), intent(out) :: roots(:)
     integer, intent(out) :: n_roots, status
@@ -112,7 +111,7 @@ contains
   end subroutine theta_roots
 
   !> Real roots phi of eq (18), kappa^ = kappa/s1; all lie in |phi| <= 1/kappa^.
-  pure subroutine phi_roots(model, roots, n_roots, truncated, status, message)
+  subroutine phi_roots(model, roots, n_roots, truncated, status, message)
     type(model_t), intent(in) :: model
     real(wp), intent(out) :: roots(:)
     integer, intent(out) :: n_roots, status
@@ -132,11 +131,11 @@ contains
     real(wp) :: tol
     tol = 1.0e-9_wp*max(1.0_wp, maxval(abs(wr)), maxval(abs(wi)))
     if (maxval(wr) < -tol) then
-      verdict = STABLE
+      verdict = VERDICT_STABLE
     else if (maxval(wr) > tol) then
-      verdict = UNSTABLE
+      verdict = VERDICT_UNSTABLE
     else
-      verdict = MARGINAL
+      verdict = VERDICT_MARGINAL
     end if
   end function stability_verdict
 
@@ -168,7 +167,7 @@ contains
       return
     end if
     unforced = model
-    unforced%A = 0
+    unforced%excitation%A = 0
     do i = 1, n_theta
       do j = 1, n_phi
         n_eq = n_eq + 1

@@ -1,5 +1,5 @@
 !> The validated dimensionless model: the groups of eq (9), the coefficients of eq (11), and
-!> the harmonic base excitation X = A sin(rho tau) of eq (29)-(31).
+!> the base excitation (sloshdyn_excitation; harmonic X = A sin(rho tau) of eq (29)-(31)).
 !>
 !> Flat layout used across the f2py bridge (one place defines it, Python mirrors it):
 !>   real    parameters  rpar = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho]
@@ -8,6 +8,7 @@ module sloshdyn_model
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
+  use sloshdyn_excitation, only: excitation_t
   implicit none
   private
   public :: model_t, model_from_arrays, model_to_arrays, model_from_physical, set_coefficients
@@ -22,13 +23,16 @@ module sloshdyn_model
     real(wp) :: mu1 = 0     !< m/M, sloshing to total mass ratio
     real(wp) :: kappa = 0   !< k/(omega^2 L^2 M), rod stiffness
     real(wp) :: theta0 = 0  !< wall angle [rad]
-    real(wp) :: beta = 0    !< impact coefficient b/(omega^2 m l^2)
+    !> impact coefficient b/(omega^2 m l^2); the paper gives none: 10 makes the wall stiff but
+    !> absent from small sloshing (README, "Impact and dissipation defaults")
+    real(wp) :: beta = 10
     real(wp) :: gamma = 0   !< rod damping c/(omega L^2 M)
-    real(wp) :: delta = 0   !< sloshing dissipation d/(omega m l^2)
+    !> sloshing dissipation d/(omega m l^2); the paper gives none: 0.1 is about 5 % of critical
+    !> at the wall and nothing at small amplitude (README)
+    real(wp) :: delta = 0.1_wp
     integer :: n = 6        !< impact exponent, eq (4)
     integer :: p = 2        !< dissipation exponent, eq (5)
-    real(wp) :: A = 0       !< excitation amplitude X = A sin(rho tau), A = u0/L
-    real(wp) :: rho = 0     !< excitation frequency Omega/omega
+    type(excitation_t) :: excitation   !< base motion X(tau)
     real(wp) :: a_coef(6) = 0  !< a1..a6 of eq (11)
     real(wp) :: b_coef(6) = 0  !< b1..b6 of eq (11)
   end type model_t
@@ -47,7 +51,7 @@ contains
     message = ''
     model%s1 = rpar(1); model%mu1 = rpar(2); model%kappa = rpar(3); model%theta0 = rpar(4)
     model%beta = rpar(5); model%gamma = rpar(6); model%delta = rpar(7)
-    model%A = rpar(8); model%rho = rpar(9)
+    model%excitation%A = rpar(8); model%excitation%rho = rpar(9)
     model%n = ipar(1); model%p = ipar(2)
 
     call check_real('s1', model%s1, 0.0_wp, huge(1.0_wp), .true., .true., &
@@ -64,9 +68,9 @@ contains
                     'gamma (rod damping) must be >= 0', status, message)
     call check_real('delta', model%delta, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'delta (sloshing dissipation) must be >= 0', status, message)
-    call check_real('A', model%A, 0.0_wp, huge(1.0_wp), .false., .true., &
+    call check_real('A', model%excitation%A, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'A (excitation amplitude) must be >= 0', status, message)
-    call check_real('rho', model%rho, 0.0_wp, huge(1.0_wp), .false., .true., &
+    call check_real('rho', model%excitation%rho, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'rho (excitation frequency) must be >= 0', status, message)
     if (status == SD_OK .and. model%n < 1) then
       status = SD_BAD_INPUT
@@ -84,7 +88,7 @@ contains
     real(wp), intent(out) :: rpar(n_real_params)
     integer, intent(out) :: ipar(n_int_params)
     rpar = [model%s1, model%mu1, model%kappa, model%theta0, model%beta, model%gamma, &
-            model%delta, model%A, model%rho]
+            model%delta, model%excitation%A, model%excitation%rho]
     ipar = [model%n, model%p]
   end subroutine model_to_arrays
 

@@ -24,9 +24,11 @@ module sloshdyn_continuation
                              SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: solve_linear
+  use sloshdyn_roots, only: bracketed_function, brent_zero
   implicit none
   private
-  public :: parametrised_system, system_residual, system_jacobian, branch_test, branch_test_value
+  public :: parametrised_system, system_evaluate, separable_system, system_residual, &
+            system_jacobian, branch_test, branch_test_value
   public :: newton_options, continuation_options
   public :: newton_solve, continue_branch, correct_at, branch_tangent, locate_fold, &
             locate_zero_on_branch, continuation_check_options, stop_reason_name
@@ -34,26 +36,44 @@ module sloshdyn_continuation
             STOP_X_MAX, STOP_FAILED
 
   !> A system F(x, lambda) = 0 with its Jacobian; extend it with the parameters F depends on.
-  !> n = size(x); f, flambda have size n and fx shape (n, n).
+  !> n = size(x); f, flambda have size n and fx shape (n, n). F and its Jacobian come from one
+  !> evaluation, so a system whose evaluation is costly (shooting) needs no cache.
   type, abstract :: parametrised_system
+  contains
+    procedure(system_evaluate), deferred :: evaluate
+  end type parametrised_system
+
+  abstract interface
+    !> f = F(x, lambda), fx = dF/dx (n x n), flambda = dF/dlambda (n)
+    subroutine system_evaluate(self, x, lambda, f, fx, flambda)
+      import :: wp, parametrised_system
+      class(parametrised_system), intent(in) :: self
+      real(wp), intent(in) :: x(:), lambda
+      real(wp), intent(out) :: f(:), fx(:, :), flambda(:)
+    end subroutine system_evaluate
+  end interface
+
+  !> A system that computes F and its Jacobian separately: evaluate calls both.
+  type, abstract, extends(parametrised_system) :: separable_system
   contains
     procedure(system_residual), deferred :: residual
     procedure(system_jacobian), deferred :: jacobian
-  end type parametrised_system
+    procedure :: evaluate => separable_evaluate
+  end type separable_system
 
   abstract interface
     !> f = F(x, lambda)
     subroutine system_residual(self, x, lambda, f)
-      import :: wp, parametrised_system
-      class(parametrised_system), intent(in) :: self
+      import :: wp, separable_system
+      class(separable_system), intent(in) :: self
       real(wp), intent(in) :: x(:), lambda
       real(wp), intent(out) :: f(:)
     end subroutine system_residual
 
     !> fx = dF/dx (n x n), flambda = dF/dlambda (n)
     subroutine system_jacobian(self, x, lambda, fx, flambda)
-      import :: wp, parametrised_system
-      class(parametrised_system), intent(in) :: self
+      import :: wp, separable_system
+      class(separable_system), intent(in) :: self
       real(wp), intent(in) :: x(:), lambda
       real(wp), intent(out) :: fx(:, :), flambda(:)
     end subroutine system_jacobian
@@ -121,9 +141,8 @@ module sloshdyn_continuation
   real(wp), parameter :: grow_turn_cos = 0.99_wp
   !> locate_fold: |lambda-component of the unit tangent| at which the fold counts as found.
   real(wp), parameter :: fold_tol = 1.0e-10_wp
-  !> locate_zero_on_branch: arclength interval (relative to |ds_total|) and iteration limit.
+  !> locate_zero_on_branch: arclength interval (relative to |ds_total|).
   real(wp), parameter :: arclength_rtol = 1.0e-12_wp
-  integer, parameter :: max_zero_iterations = 200
 
   !> Work arrays, allocated once per public call (never inside a loop).
   type :: workspace
@@ -133,6 +152,18 @@ module sloshdyn_continuation
     real(wp), allocatable :: a(:, :)       !< bordered matrix (n+1, n+1)
     real(wp), allocatable :: r(:)          !< right-hand side, then solution (n+1)
   end type workspace
+
+  !> A branch_test as a function of the pseudo-arclength s from a point (for brent_zero).
+  type, extends(bracketed_function) :: arclength_test
+    class(parametrised_system), allocatable :: sys
+    class(branch_test), allocatable :: test
+    real(wp), allocatable :: z_a(:), t_unit(:), w(:), c(:), z(:), t(:)
+    type(newton_options) :: newton
+    type(workspace) :: ws
+    real(wp) :: s_last = 0
+  contains
+    procedure :: value => arclength_test_value
+  end type arclength_test
 
   !> Fold test: one component of the tangent; index 0 = the last one, lambda.
   type, extends(branch_test) :: tangent_component_test
@@ -469,32 +500,34 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(continuation_options), intent(in), optional :: options
-    type(workspace) :: ws
-    type(newton_options) :: newton
-    real(wp) :: w(size(z_a)), c(size(z_a)), t_unit(size(z_a)), t(size(z_a))
-    real(wp) :: s_a, s_b, s_c, g_a, g_b, g_c, d, e, p, q, r, ratio, tol1, half, s_tol, s_last
-    integer :: iteration
+    type(arclength_test) :: along
+    integer :: m
+    real(wp) :: g_a, g_b, s, g
 
     z_zero = z_a
-    call prepare(z_a, t_a, 'locate_zero_on_branch', options, w, newton, t_unit, status, message)
+    m = size(z_a)
+    allocate (along%w(m), along%t_unit(m), along%c(m), along%z(m), along%t(m))
+    call prepare(z_a, t_a, 'locate_zero_on_branch', options, along%w, along%newton, &
+                 along%t_unit, status, message)
     call check_real('ds_total', ds_total, -huge(ds_total), huge(ds_total), .false., .false., &
                     'ds_total must be finite', status, message)
     if (status == SD_OK .and. ds_total == 0) then
       status = SD_BAD_INPUT
       message = 'ds_total = 0 is out of range: the search interval is empty'
     end if
-    if (status == SD_OK .and. size(z_zero) /= size(z_a)) &
-      call size_error('z_zero', size(z_zero), 'z_a', size(z_a), status, message)
+    if (status == SD_OK .and. size(z_zero) /= m) &
+      call size_error('z_zero', size(z_zero), 'z_a', m, status, message)
     if (status /= SD_OK) return
-    call setup_workspace(ws, size(z_a) - 1)
+    allocate (along%sys, source=sys)
+    allocate (along%test, source=test)
+    along%z_a = z_a
+    call setup_workspace(along%ws, m - 1)
 
-    s_a = 0
-    s_last = 0
-    g_a = test%value(z_a, t_unit)
+    g_a = test%value(z_a, along%t_unit)
     if (abs(g_a) <= test%value_tol) return
-    s_b = ds_total
-    call value_at(s_b, g_b)
+    call along%value(ds_total, g_b, status, message)
     if (status /= SD_OK) return
+    z_zero = along%z
     if (abs(g_b) <= test%value_tol) return
     if (g_a*g_b > 0) then
       status = SD_BAD_INPUT
@@ -503,98 +536,43 @@ contains
       z_zero = z_a
       return
     end if
-
-    ! Brent's zero finder (as in Brent 1973, "zero"), on s
-    s_tol = arclength_rtol*abs(ds_total)
-    s_c = s_a
-    g_c = g_a
-    d = s_b - s_a
-    e = d
-    do iteration = 1, max_zero_iterations
-      if ((g_b > 0 .eqv. g_c > 0) .and. g_c /= 0) then
-        s_c = s_a
-        g_c = g_a
-        d = s_b - s_a
-        e = d
-      end if
-      if (abs(g_c) < abs(g_b)) then
-        s_a = s_b
-        s_b = s_c
-        s_c = s_a
-        g_a = g_b
-        g_b = g_c
-        g_c = g_a
-      end if
-      tol1 = 2*epsilon(1.0_wp)*abs(s_b) + s_tol/2
-      half = (s_c - s_b)/2
-      if (abs(half) <= tol1 .or. abs(g_b) <= test%value_tol) then
-        ! z_zero holds z(s_last); the swap above may have made the other end the answer
-        if (s_b /= s_last) call value_at(s_b, g_b)
-        return
-      end if
-      if (abs(e) >= tol1 .and. abs(g_a) > abs(g_b)) then
-        ratio = g_b/g_a
-        if (s_a == s_c) then
-          p = 2*half*ratio
-          q = 1 - ratio
-        else
-          q = g_a/g_c
-          r = g_b/g_c
-          p = ratio*(2*half*q*(q - r) - (s_b - s_a)*(r - 1))
-          q = (q - 1)*(r - 1)*(ratio - 1)
-        end if
-        if (p > 0) q = -q
-        p = abs(p)
-        if (2*p < min(3*half*q - abs(tol1*q), abs(e*q))) then
-          e = d
-          d = p/q
-        else
-          d = half
-          e = d
-        end if
-      else
-        d = half
-        e = d
-      end if
-      s_a = s_b
-      g_a = g_b
-      if (abs(d) > tol1) then
-        s_b = s_b + d
-      else
-        s_b = s_b + sign(tol1, half)
-      end if
-      call value_at(s_b, g_b)
-      if (status /= SD_OK) return
-    end do
-    status = SD_NOT_CONVERGED
-    message = 'no zero of the test function to arclength '//num2str(s_tol)//' in '// &
-              num2str(max_zero_iterations)//' iterations; last s = '//num2str(s_b)// &
-              ', value = '//num2str(g_b)//', lambda = '//num2str(z_zero(size(z_zero)))
-
-  contains
-
-    !> g = test value at arclength s; z_zero = z(s).
-    subroutine value_at(s, g)
-      real(wp), intent(in) :: s
-      real(wp), intent(out) :: g
-      integer :: iterations
-      g = 0
-      s_last = s
-      if (s == 0) then
-        z_zero = z_a
-        g = test%value(z_a, t_unit)
-        return
-      end if
-      call correct_core(sys, z_a, t_unit, s, w, newton, ws, c, z_zero, iterations, status, &
-                        message)
-      if (status == SD_OK) call tangent_core(sys, z_zero, c, w, ws, t, status, message)
-      if (status /= SD_OK) then
-        message = 'at arclength '//num2str(s)//' from z_a: '//trim(message)
-        return
-      end if
-      g = test%value(z_zero, t)
-    end subroutine value_at
+    call brent_zero(along, 0.0_wp, ds_total, g_a, g_b, arclength_rtol*abs(ds_total), &
+                    test%value_tol, s, g, status, message)
+    ! the point of the last evaluation may be the other end of the bracket
+    if (status == SD_OK .and. s /= along%s_last) call along%value(s, g, status, message)
+    z_zero = along%z
+    if (status /= SD_OK) message = 'locating the zero of the test function along the branch '// &
+                                   '(lambda = '//num2str(along%z(m))//'): '//trim(message)
   end subroutine locate_zero_on_branch
+
+  !> The branch point at arclength s from z_a (predictor z_a + s t_a, bordered corrector) and
+  !> the test value there; z and t keep that point and its tangent.
+  subroutine arclength_test_value(self, x, fx, status, message)
+    class(arclength_test), intent(inout) :: self
+    real(wp), intent(in) :: x
+    real(wp), intent(out) :: fx
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: iterations
+    fx = 0
+    status = SD_OK
+    message = ''
+    self%s_last = x
+    if (x == 0) then
+      self%z = self%z_a
+      fx = self%test%value(self%z_a, self%t_unit)
+      return
+    end if
+    call correct_core(self%sys, self%z_a, self%t_unit, x, self%w, self%newton, self%ws, self%c, &
+                      self%z, iterations, status, message)
+    if (status == SD_OK) call tangent_core(self%sys, self%z, self%c, self%w, self%ws, self%t, &
+                                           status, message)
+    if (status /= SD_OK) then
+      message = 'at arclength '//num2str(x)//' from z_a: '//trim(message)
+      return
+    end if
+    fx = self%test%value(self%z, self%t)
+  end subroutine arclength_test_value
 
   !> Checks of continuation_options shared by continue_branch and input readers.
   pure subroutine continuation_check_options(options, status, message)
@@ -648,6 +626,14 @@ contains
 
   ! ---- private ----------------------------------------------------------------------------
 
+  subroutine separable_evaluate(self, x, lambda, f, fx, flambda)
+    class(separable_system), intent(in) :: self
+    real(wp), intent(in) :: x(:), lambda
+    real(wp), intent(out) :: f(:), fx(:, :), flambda(:)
+    call self%residual(x, lambda, f)
+    call self%jacobian(x, lambda, fx, flambda)
+  end subroutine separable_evaluate
+
   function tangent_component_value(self, z, t) result(g)
     class(tangent_component_test), intent(in) :: self
     real(wp), intent(in) :: z(:), t(:)
@@ -672,7 +658,7 @@ contains
     message = ''
     f_norm = 0
     do iterations = 1, options%max_iter
-      call sys%residual(x, lambda, ws%f)
+      call sys%evaluate(x, lambda, ws%f, ws%fx, ws%flambda)
       f_norm = maxval(abs(ws%f))
       if (.not. all(ieee_is_finite(ws%f))) then
         status = SD_NON_FINITE
@@ -680,7 +666,6 @@ contains
                   ', lambda = '//num2str(lambda)//', max|x| = '//num2str(maxval(abs(x)))
         return
       end if
-      call sys%jacobian(x, lambda, ws%fx, ws%flambda)
       ws%r(1:n) = -ws%f
       call solve_linear(ws%fx, ws%r(1:n), status, message)
       if (status /= SD_OK) then
@@ -724,7 +709,7 @@ contains
     message = ''
     f_norm = 0
     do iterations = 1, options%max_iter
-      call sys%residual(z(1:n), z(m), ws%f)
+      call sys%evaluate(z(1:n), z(m), ws%f, ws%fx, ws%flambda)
       f_norm = maxval(abs(ws%f))
       if (.not. all(ieee_is_finite(ws%f))) then
         status = SD_NON_FINITE
@@ -732,7 +717,6 @@ contains
                   ', max|x| = '//num2str(maxval(abs(z(1:n))))
         return
       end if
-      call sys%jacobian(z(1:n), z(m), ws%fx, ws%flambda)
       ws%a(1:n, 1:n) = ws%fx
       ws%a(1:n, m) = ws%flambda
       ws%a(m, :) = c
@@ -791,7 +775,7 @@ contains
     m = size(z)
     n = m - 1
     t = 0
-    call sys%jacobian(z(1:n), z(m), ws%fx, ws%flambda)
+    call sys%evaluate(z(1:n), z(m), ws%f, ws%fx, ws%flambda)
     ws%a(1:n, 1:n) = ws%fx
     ws%a(1:n, m) = ws%flambda
     ws%a(m, :) = c

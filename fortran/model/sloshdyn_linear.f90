@@ -88,7 +88,7 @@ contains
     undamped = model
     undamped%gamma = 0
     undamped%delta = 0
-    undamped%A = 0
+    undamped%excitation%A = 0
     undamped%b_coef(5) = 0
     undamped%a_coef(5) = 0
     call motion_jacobian(undamped, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], jac)
@@ -142,7 +142,7 @@ contains
   end function detuning_derivative
 
   !> All kappa in (max(kappa_min, s1), kappa_max] with omega2 - 3 omega1 = sigma1, ascending.
-  pure subroutine kappa_for_detuning(s1, mu1, sigma1, kappa_min, kappa_max, roots, n_roots, &
+  subroutine kappa_for_detuning(s1, mu1, sigma1, kappa_min, kappa_max, roots, n_roots, &
                                      status, message)
     real(wp), intent(in) :: s1, mu1, sigma1, kappa_min, kappa_max
     real(wp), intent(out) :: roots(:)

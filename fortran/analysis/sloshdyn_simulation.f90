@@ -1,44 +1,27 @@
-!> Direct simulation of the full equations of motion (eq 15 with 29-31) by the RK45 integrator:
+!> Direct simulation of the full equations of motion (eq 15 with 29-31) by the integrator family:
 !> time histories, stroboscopic Poincare sections, steady states with their amplitudes and the
 !> kind of motion, and sweeps in rho or A that carry the state from point to point (sec 4.2).
 module sloshdyn_simulation
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-  use sloshdyn_kinds, only: wp, pi, message_len
+  use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
-  use sloshdyn_motion, only: equations_of_motion
+  use sloshdyn_excitation, only: forcing_period, PARAMETER_RHO, PARAMETER_A
   use sloshdyn_linear, only: modal_matrix
-  use sloshdyn_rk45, only: ode_system, rk45_options, rk45_stats
-  use sloshdyn_integrator, only: stepper, stepper_init, stepper_step, stepper_dense, stepper_time, &
-                                 stepper_statistics, integrate, check_method
+  use sloshdyn_system, only: tank_system
+  use sloshdyn_ode, only: ode_options, ode_stats, rk_integrator
+  use sloshdyn_integrator, only: new_integrator, integrate
+  use sloshdyn_tables, only: HISTORY_ROWS, SUMMARY_SIZE, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
+                             MOTION_IRREGULAR, MOTION_SETTLING
+  use sloshdyn_sort, only: sort_index
   implicit none
   private
-  public :: tank_system, history_rows, time_history, steady_options, steady_state, check_steady, &
-            parameter_sweep, parallel_sweep, summary_size, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
-            MOTION_IRREGULAR, MOTION_SETTLING, SWEEP_RHO, SWEEP_A, integrator_options, steady_settings, &
-            integration_method
+  public :: time_history, steady_options, steady_state, check_steady, parameter_sweep, &
+            parallel_sweep
 
-  !> Rows of a time history: x1, x1', x2, x2', u1, u2 (eq 34), impact force beta x1^(2n-1)
-  !> (eq 4), theta = theta0 x1, phi = theta0 x2 [rad].
-  integer, parameter :: history_rows = 9
-  !> Kinds of steady motion, judged from the Poincare points of the window; MOTION_SETTLING: the
-  !> points still close in on one point (the transient was too short to judge).
-  integer, parameter :: MOTION_PERIODIC = 1, MOTION_QUASI_PERIODIC = 2, MOTION_IRREGULAR = 3, &
-                        MOTION_SETTLING = 4
-  !> Which parameter a sweep varies.
-  integer, parameter :: SWEEP_RHO = 1, SWEEP_A = 2
-  !> One steady-state summary: [rho, A, max|x1|, max|x2|, max|u1|, max|u2|, motion, period,
-  !> transient periods used, Poincare spread, settled (1/0)].
-  integer, parameter :: summary_size = 11
+  !> Longest period (in forcing periods) the classification of steady motions looks for.
   integer, parameter :: max_period = 8
-
-  !> The full equations of motion as an ODE system for the integrator.
-  type, extends(ode_system) :: tank_system
-    type(model_t) :: model
-  contains
-    procedure :: rhs => tank_rhs
-  end type tank_system
 
   !> How a steady state is reached and measured. Times in forcing periods T = 2 pi/rho.
   type :: steady_options
@@ -56,23 +39,17 @@ module sloshdyn_simulation
 
 contains
 
-  subroutine tank_rhs(self, t, y, dydt)
-    class(tank_system), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    call equations_of_motion(self%model, t, y, dydt)
-  end subroutine tank_rhs
-
-  !> y, u, impact force, theta and phi at the times tau_out (ascending, >= tau0) from y0 at tau0.
-  !> On failure the columns reached are filled and the rest are NaN; stats%t_reached says where.
+  !> y, u, impact force, theta and phi (the rows of the 'history' table after tau) at the times
+  !> tau_out (ascending, >= tau0) from y0 at tau0. On failure the columns reached are filled and
+  !> the rest are NaN; stats%t_reached says where.
   subroutine time_history(model, tau0, y0, tau_out, options, method, history, stats, status, &
                           message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: tau0, y0(4), tau_out(:)
-    type(rk45_options), intent(in) :: options
-    integer, intent(in) :: method           !< METHOD_RK45 or METHOD_DOP853
-    real(wp), intent(out) :: history(history_rows, size(tau_out))
-    type(rk45_stats), intent(out) :: stats
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method           !< METHOD_* of sloshdyn_integrator
+    real(wp), intent(out) :: history(HISTORY_ROWS, size(tau_out))
+    type(ode_stats), intent(out) :: stats
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(tank_system) :: system
@@ -117,16 +94,16 @@ contains
                           status, message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y0(4)
-    type(rk45_options), intent(in) :: options
+    type(ode_options), intent(in) :: options
     integer, intent(in) :: method
     type(steady_options), intent(in) :: steady
-    real(wp), intent(out) :: summary(summary_size), poincare(:, :)
+    real(wp), intent(out) :: summary(SUMMARY_SIZE), poincare(:, :)
     real(wp), intent(out) :: y_end(4)
-    type(rk45_stats), intent(out) :: stats
+    type(ode_stats), intent(out) :: stats
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(tank_system) :: system
-    type(stepper) :: integ
+    class(rk_integrator), allocatable :: integ
     real(wp) :: period, p_inv(2, 2), maxima(4), y(4), previous(4), spread, scale
     real(wp) :: tau_window, transient
     integer :: k, n_samples, sample, motion, repeat
@@ -142,12 +119,14 @@ contains
     end if
     if (status /= SD_OK) return
     system%model = model
-    period = 2*pi/model%rho
+    period = forcing_period(model%excitation)
     call inverse_modal_matrix(model, p_inv)
     ! one spare period: sample times computed in steps must not round past t_bound
-    call stepper_init(integ, method, system, 0.0_wp, y0, &
-                   (max(steady%transient_periods, steady%max_transient_periods) + &
-                    steady%window_periods + 1)*period, options, status, message)
+    call new_integrator(method, integ, status, message)
+    if (status == SD_OK) &
+      call integ%init(system, 0.0_wp, y0, (max(steady%transient_periods, &
+                      steady%max_transient_periods) + steady%window_periods + 1)*period, &
+                      options, status, message)
     if (status /= SD_OK) return
 
     ! transient: whole periods, then (optionally) until the Poincare map settles
@@ -179,16 +158,16 @@ contains
           poincare(:, sample/steady%samples_per_period) = y
       end do
     end if
-    stats = stepper_statistics(integ)
+    stats = integ%statistics()
     if (status /= SD_OK) then
-      message = trim(message)//' (steady state at rho = '//num2str(model%rho)//', A = '// &
-                num2str(model%A)//')'
+      message = trim(message)//' (steady state at rho = '//num2str(model%excitation%rho)// &
+                ', A = '//num2str(model%excitation%A)//')'
       return
     end if
     y_end = y
     call classify(poincare(:, 1:steady%window_periods), steady%periodic_tol, motion, repeat, &
                   spread, scale)
-    summary = [model%rho, model%A, maxima, real(motion, wp), real(repeat, wp), transient, &
+    summary = [model%excitation%rho, model%excitation%A, maxima, real(motion, wp), real(repeat, wp), transient, &
                spread, merge(1.0_wp, 0.0_wp, settled)]
 
   contains
@@ -197,11 +176,11 @@ contains
     subroutine advance_to(tau, y)
       real(wp), intent(in) :: tau
       real(wp), intent(out) :: y(4)
-      do while (stepper_time(integ) < tau)
-        call stepper_step(integ, system, status, message)
+      do while (integ%t < tau)
+        call integ%step(system, status, message)
         if (status /= SD_OK) return
       end do
-      call stepper_dense(integ, tau, y)
+      call integ%dense(tau, y)
     end subroutine advance_to
   end subroutine steady_state
 
@@ -213,7 +192,7 @@ contains
     character(len=message_len), intent(out) :: message
     status = SD_OK
     message = ''
-    call check_real('rho', model%rho, 0.0_wp, huge(1.0_wp), .true., .true., &
+    call check_real('rho', model%excitation%rho, 0.0_wp, huge(1.0_wp), .true., .true., &
                     'a steady state needs a forcing frequency rho > 0', status, message)
     call check_real('transient_periods', steady%transient_periods, 0.0_wp, 1.0e9_wp, .false., &
                     .false., 'transient_periods must lie in [0, 1e9]', status, message)
@@ -288,25 +267,7 @@ contains
       motion = MOTION_QUASI_PERIODIC
   end subroutine classify
 
-  !> Insertion sort of indices by value (n is a few hundred at most).
-  pure subroutine sort_index(values, order)
-    real(wp), intent(in) :: values(:)
-    integer, intent(out) :: order(size(values))
-    integer :: i, j, tmp
-    order = [(i, i = 1, size(values))]
-    do i = 2, size(values)
-      tmp = order(i)
-      j = i - 1
-      do while (j >= 1)
-        if (values(order(j)) <= values(tmp)) exit
-        order(j + 1) = order(j)
-        j = j - 1
-      end do
-      order(j + 1) = tmp
-    end do
-  end subroutine sort_index
-
-  !> Steady states along values of rho (which = SWEEP_RHO) or A (SWEEP_A), each point starting
+  !> Steady states along values of rho (which = PARAMETER_RHO) or A (PARAMETER_A), each point starting
   !> from the previous point's final state (so hysteresis and jumps show), as the paper's
   !> numerical continuation (sec 4.2). Only summaries are kept: summaries(:, i) for values(i);
   !> y_final is the state after the last point done (n_done of them).
@@ -315,14 +276,14 @@ contains
     type(model_t), intent(in) :: model
     integer, intent(in) :: which, method
     real(wp), intent(in) :: values(:), y0(4)
-    type(rk45_options), intent(in) :: options
+    type(ode_options), intent(in) :: options
     type(steady_options), intent(in) :: steady
-    real(wp), intent(out) :: summaries(summary_size, size(values)), y_final(4)
+    real(wp), intent(out) :: summaries(SUMMARY_SIZE, size(values)), y_final(4)
     integer, intent(out) :: n_done, status
     character(len=message_len), intent(out) :: message
     type(model_t) :: point
     real(wp) :: poincare(4, steady%window_periods), y_start(4)
-    type(rk45_stats) :: stats
+    type(ode_stats) :: stats
     integer :: i
 
     summaries = 0
@@ -330,7 +291,7 @@ contains
     y_final = y0
     status = SD_OK
     message = ''
-    if (which /= SWEEP_RHO .and. which /= SWEEP_A) then
+    if (which /= PARAMETER_RHO .and. which /= PARAMETER_A) then
       status = SD_BAD_INPUT
       message = 'sweep parameter '//num2str(which)//' is not known: 1 = rho, 2 = A'
       return
@@ -338,12 +299,12 @@ contains
     point = model
     y_start = y0
     do i = 1, size(values)
-      if (which == SWEEP_RHO) then
-        point%rho = values(i)
+      if (which == PARAMETER_RHO) then
+        point%excitation%rho = values(i)
         call check_real('rho', values(i), 0.0_wp, huge(1.0_wp), .true., .true., &
                         'sweep values of rho must be > 0', status, message)
       else
-        point%A = values(i)
+        point%excitation%A = values(i)
         call check_real('A', values(i), 0.0_wp, huge(1.0_wp), .false., .true., &
                         'sweep values of A must be >= 0', status, message)
       end if
@@ -366,9 +327,9 @@ contains
     type(model_t), intent(in) :: model
     integer, intent(in) :: which, method, n_threads
     real(wp), intent(in) :: values(:), y0(4)
-    type(rk45_options), intent(in) :: options
+    type(ode_options), intent(in) :: options
     type(steady_options), intent(in) :: steady
-    real(wp), intent(out) :: summaries(summary_size, size(values))
+    real(wp), intent(out) :: summaries(SUMMARY_SIZE, size(values))
     integer, intent(out) :: n_done, status
     character(len=message_len), intent(out) :: message
     integer :: chunk, n_chunks, first, last, done(max(1, 8*n_threads)), &
@@ -404,36 +365,4 @@ contains
       end if
     end do
   end subroutine parallel_sweep
-
-  !> Integrator settings from [rtol, atol, h_initial, h_max, h_min, max_steps, method] (the
-  !> layout the bridge uses; the method is read by integration_method).
-  pure function integrator_options(integration) result(options)
-    real(wp), intent(in) :: integration(7)
-    type(rk45_options) :: options
-    options%rtol = integration(1)
-    options%atol = integration(2)
-    options%h_initial = integration(3)
-    options%h_max = integration(4)
-    options%h_min = integration(5)
-    options%max_steps = int(min(max(integration(6), 0.0_wp), real(huge(1), wp)))
-  end function integrator_options
-
-  !> The method of [.., method]: 0 = rk45, 1 = dop853 (see sloshdyn_integrator).
-  pure integer function integration_method(integration) result(method)
-    real(wp), intent(in) :: integration(7)
-    method = nint(min(max(integration(7), -1.0_wp), 2.0_wp))
-  end function integration_method
-
-  !> Steady-state settings from [transient_periods, settle_tol, max_transient_periods,
-  !> window_periods, samples_per_period, periodic_tol].
-  pure function steady_settings(steady) result(settings)
-    real(wp), intent(in) :: steady(6)
-    type(steady_options) :: settings
-    settings%transient_periods = steady(1)
-    settings%settle_tol = steady(2)
-    settings%max_transient_periods = steady(3)
-    settings%window_periods = nint(min(max(steady(4), 0.0_wp), 1.0e9_wp))
-    settings%samples_per_period = nint(min(max(steady(5), 0.0_wp), 1.0e9_wp))
-    settings%periodic_tol = steady(6)
-  end function steady_settings
 end module sloshdyn_simulation

@@ -1,12 +1,13 @@
-!> Equations of motion of the tank-pendulum system, eq (10), (13)-(15) with the harmonic base
-!> excitation of eq (29)-(31). State y = (x1, x1', x2, x2'), x1 = theta/theta0, x2 = phi/theta0,
+!> Equations of motion of the tank-pendulum system, eq (10), (13)-(15), with the base
+!> acceleration X'' of the model's excitation (eq 29-31 for harmonic motion). State y = (x1, x1', x2, x2'), x1 = theta/theta0, x2 = phi/theta0,
 !> ' = d/dtau. No allocation and no I/O: these are called in every integrator step.
 module sloshdyn_motion
   use sloshdyn_kinds, only: wp
   use sloshdyn_model, only: model_t
+  use sloshdyn_excitation, only: base_acceleration
   implicit none
   private
-  public :: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, base_acceleration, &
+  public :: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, &
             excitation_direction
 
   !> Trigonometric functions and powers of one state, each evaluated once.
@@ -16,17 +17,10 @@ module sloshdyn_motion
     real(wp) :: cos2, sin2         !< cos, sin of theta0 x2
     real(wp) :: impact_pow         !< x1^(2n-1)
     real(wp) :: dissipation_pow    !< x1^(2p)
-    real(wp) :: xdd                !< base acceleration X'' = -A rho^2 sin(rho tau)
+    real(wp) :: xdd                !< base acceleration X''
   end type state_terms
 
 contains
-
-  !> X'' for X = A sin(rho tau).
-  elemental real(wp) function base_acceleration(model, tau) result(xdd)
-    type(model_t), intent(in) :: model
-    real(wp), intent(in) :: tau
-    xdd = -model%A*model%rho**2*sin(model%rho*tau)
-  end function base_acceleration
 
   pure subroutine evaluate_terms(model, tau, y, t)
     type(model_t), intent(in) :: model
@@ -42,7 +36,7 @@ contains
     t%sin12 = t%sin1*t%cos2 + t%cos1*t%sin2
     t%impact_pow = y(1)**(2*model%n - 1)
     t%dissipation_pow = y(1)**(2*model%p)
-    t%xdd = base_acceleration(model, tau)
+    t%xdd = base_acceleration(model%excitation, tau)
   end subroutine evaluate_terms
 
   !> Inertia matrix, eq (13).
@@ -104,7 +98,7 @@ contains
 
   !> d(dydt)/dX'': the equations of motion are affine in the base acceleration X'' (eq 10, 14),
   !> dydt = f0(y) + X'' e(y) with e = (0, q1, 0, q2), q = M^-1 (-a6 cos(theta0 x1), -b6 cos(theta0 x2)).
-  !> Parameter sensitivities follow: d(dydt)/dA = e dX''/dA, d(dydt)/drho = e dX''/drho.
+  !> Parameter sensitivities follow: d(dydt)/dlambda = e dX''/dlambda.
   pure subroutine excitation_direction(model, y, e)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y(4)

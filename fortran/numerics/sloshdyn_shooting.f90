@@ -1,58 +1,50 @@
-!> Periodic responses of the full equations of motion (eq 15 with 29-31), not of the slow flow:
-!> single shooting for orbits of period k T (T = forcing period), their Floquet multipliers and
-!> stability, their continuation in a parameter (rho or A) with the detection of folds,
-!> symmetry-breaking branch points, period doublings and Neimark-Sacker points, and the largest
-!> Lyapunov exponent.
+!> Periodic orbits of a periodically forced system y' = f(t, y; lambda) by single shooting: orbits
+!> of period k T (T = forcing period), their Floquet multipliers and stability, and their
+!> continuation in the parameter lambda with the detection of folds, symmetry-breaking branch
+!> points, period doublings and Neimark-Sacker points. Generic: the system comes through the
+!> periodic_problem interface.
 !>
 !> Floquet theory: linearised about a T-periodic orbit, perturbations obey v' = J(t) v; over one
 !> orbit period they are mapped by the monodromy matrix M = Phi(k T), Phi' = J Phi, Phi(0) = I.
 !> Its eigenvalues (the multipliers) decide stability: all |mu| < 1 is asymptotically stable.
-!> M is integrated by the same RK45 as the orbit (variational equations), never by finite
+!> M is integrated with the orbit (variational equations), by the same method, never by finite
 !> differences, so Newton's Jacobian M - I is as accurate as the orbit itself.
+!>
+!> Every shot is a function of its inputs only (the problem, the start, lambda, the integrator
+!> settings): nothing is cached between calls.
 !>
 !> Layouts of the results of periodic_branch (n = size(y0)):
 !>   points(:, j)      = [lambda, y0(1:n), max|y1| over the orbit, stable (1/0)]   (n + 3 rows)
 !>   multipliers(:, j) = [Re mu(1:n), Im mu(1:n)]                                   (2 n rows)
 !>   special(:, j)     = [kind (SPECIAL_*), lambda, y0(1:n), max|y1|]               (n + 3 rows)
-!> max|y1| is sampled by dense output at tau = j T/64 (j = 0 .. 64 k - 1), forcing phase fixed,
+!> max|y1| is sampled by dense output at t = j T/64 (j = 0 .. 64 k - 1), forcing phase fixed,
 !> so simulations sampled at the same phases reproduce it exactly.
-module sloshdyn_periodic
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan, &
-                                          ieee_positive_inf
-  use sloshdyn_kinds, only: wp, pi, message_len
+module sloshdyn_shooting
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+  use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_NON_FINITE, &
                              SD_CAPACITY, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues, solve_linear
-  use sloshdyn_model, only: model_t
-  use sloshdyn_motion, only: equations_of_motion, motion_jacobian, excitation_direction
-  use sloshdyn_rk45, only: ode_system, rk45_options, rk45_integrator, rk45_init, rk45_step, &
-                           rk45_dense, rk45_set_state
+  use sloshdyn_ode, only: ode_system, ode_options, rk_integrator
+  use sloshdyn_integrator, only: new_integrator
   use sloshdyn_continuation, only: parametrised_system, branch_test, continuation_options, &
                                    continue_branch, locate_fold, locate_zero_on_branch, &
                                    stop_reason_name, STOP_LAMBDA_MIN, STOP_LAMBDA_MAX, &
                                    STOP_CLOSED, STOP_MAX_POINTS, STOP_X_MAX
-  use sloshdyn_simulation, only: SWEEP_RHO, SWEEP_A
+  use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
+                             SPECIAL_NEIMARK_SACKER, special_kind_name
   implicit none
   private
-  public :: periodic_problem, tank_periodic_problem
-  public :: periodic_rhs, periodic_jacobian, periodic_scalar, periodic_parameter_derivative, &
-            periodic_set_parameter
+  public :: periodic_problem, periodic_jacobian, periodic_scalar, periodic_parameter_derivative, &
+            periodic_set_parameter, variational_system, shooting_setup, make_setup
   public :: monodromy_matrix, shooting_newton, floquet_kind, fold_test, period_doubling_test, &
-            neimark_sacker_test, complex_pair_count, periodic_branch, largest_lyapunov
+            neimark_sacker_test, complex_pair_count, periodic_branch, check_setup
   public :: FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE
-  public :: SPECIAL_FOLD, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, SPECIAL_NEIMARK_SACKER
   public :: samples_per_period
 
   !> Floquet kinds: all |mu| < 1 - tol; max |mu| within tol of 1; some |mu| > 1 + tol.
   integer, parameter :: FLOQUET_STABLE = 1, FLOQUET_NEUTRAL = 2, FLOQUET_UNSTABLE = 3
-  !> Special points along a branch of periodic orbits:
-  !> fold (a real multiplier crosses +1 and the branch turns back in lambda),
-  !> branch point (a real multiplier crosses +1, the branch goes on: symmetry breaking),
-  !> period doubling (a real multiplier crosses -1), Neimark-Sacker (a complex pair crosses
-  !> |mu| = 1: a torus, quasi-periodic motion, is born).
-  integer, parameter :: SPECIAL_FOLD = 1, SPECIAL_BRANCH_POINT = 2, SPECIAL_PERIOD_DOUBLING = 3, &
-                        SPECIAL_NEIMARK_SACKER = 4
   !> Dense-output samples per forcing period for max|y1| over an orbit.
   integer, parameter :: samples_per_period = 64
   !> Newton's convergence scale is tol*(max|y0| + scale_floor), so that the rest state converges.
@@ -60,11 +52,10 @@ module sloshdyn_periodic
   !> |mu| tolerance of the stable flag along a branch: stable = FLOQUET_STABLE at this tol.
   real(wp), parameter :: stability_tol = 1.0e-9_wp
 
-  !> A T-periodic system y' = f(t, y; lambda) with its analytic Jacobian and the derivatives in
-  !> the parameter lambda that continuation needs. Orbits are sought with period k T.
-  type, abstract :: periodic_problem
+  !> A T-periodic system y' = f(t, y; lambda) (rhs, from ode_system) with its analytic Jacobian
+  !> and the derivatives in the parameter lambda that continuation needs.
+  type, abstract, extends(ode_system) :: periodic_problem
   contains
-    procedure(periodic_rhs), deferred :: rhs                      !< f(t, y)
     procedure(periodic_jacobian), deferred :: jacobian            !< df/dy (n x n)
     procedure(periodic_scalar), deferred :: period                !< forcing period T
     procedure(periodic_parameter_derivative), deferred :: parameter_derivative  !< df/dlambda
@@ -75,13 +66,6 @@ module sloshdyn_periodic
   end type periodic_problem
 
   abstract interface
-    subroutine periodic_rhs(self, t, y, dydt)
-      import :: wp, periodic_problem
-      class(periodic_problem), intent(in) :: self
-      real(wp), intent(in) :: t, y(:)
-      real(wp), intent(out) :: dydt(:)
-    end subroutine periodic_rhs
-
     subroutine periodic_jacobian(self, t, y, jac)
       import :: wp, periodic_problem
       class(periodic_problem), intent(in) :: self
@@ -110,145 +94,48 @@ module sloshdyn_periodic
     end subroutine periodic_set_parameter
   end interface
 
-  !> The tank: equations of motion of sloshdyn_motion, T = 2 pi/rho, lambda = rho (which =
-  !> SWEEP_RHO) or A (SWEEP_A).
-  type, extends(periodic_problem) :: tank_periodic_problem
-    type(model_t) :: model
-    integer :: which = SWEEP_RHO
-  contains
-    procedure :: rhs => tank_rhs
-    procedure :: jacobian => tank_jacobian
-    procedure :: period => tank_period
-    procedure :: parameter_derivative => tank_parameter_derivative
-    procedure :: set_parameter => tank_set_parameter
-    procedure :: parameter => tank_parameter
-    procedure :: period_derivative => tank_period_derivative
-    procedure :: state_size => tank_state_size
-  end type tank_periodic_problem
-
-  !> Scratch of the variational right-hand side; reached through a pointer so that the rhs
-  !> (intent(in) self) can use it without allocating in the integration loop.
-  type :: scratch_t
-    real(wp), allocatable :: jac(:, :), df(:)
-  end type scratch_t
-
   !> y' = f, then `columns` tangent columns V' = J V (V = Phi when columns = n), then, with
   !> sensitivity, s' = J s + df/dlambda. State layout [y, V(:, 1), .., V(:, columns), s].
   type, extends(ode_system) :: variational_system
     class(periodic_problem), allocatable :: problem
     integer :: n = 0, columns = 0
     logical :: sensitivity = .false.
-    type(scratch_t), pointer :: scratch => null()
   contains
     procedure :: rhs => variational_rhs
   end type variational_system
 
-  !> One shooting setup, with the results of the last shot and its key (x, lambda), since the
-  !> continuation asks for F and then dF at the same point.
-  type :: shooting_workspace
+  !> Everything one shot needs: the variational system (with its private copy of the problem),
+  !> the number k of forcing periods, and the integrator method and settings widened to the
+  !> augmented state.
+  type :: shooting_setup
     type(variational_system) :: sys
-    type(scratch_t) :: scratch
-    type(rk45_options) :: rk
-    type(rk45_integrator) :: integ
-    integer :: n = 0, k = 1
-    real(wp), allocatable :: z0(:), sample(:), y_end(:), monodromy(:, :), dlambda(:), f_end(:)
+    integer :: k = 1
+    integer :: method = 0
+    type(ode_options) :: options
+  end type shooting_setup
+
+  !> The results of one shot.
+  type :: shot
+    real(wp), allocatable :: y_end(:), monodromy(:, :), dlambda(:)
     real(wp) :: max_y1 = 0
-    logical :: valid = .false.
-    real(wp), allocatable :: x_key(:)
-    real(wp) :: lambda_key = 0
-    integer :: status = SD_OK                 !< of the last shot that failed (SD_OK: none)
-    character(len=message_len) :: message = ''
-  end type shooting_workspace
+  end type shot
 
   !> F(y0, lambda) = y(k T; y0, lambda) - y0 for sloshdyn_continuation.
   type, extends(parametrised_system) :: shooting_system
-    type(shooting_workspace), pointer :: ws => null()
+    type(shooting_setup) :: setup
   contains
-    procedure :: residual => shooting_residual
-    procedure :: jacobian => shooting_jacobian
+    procedure :: evaluate => shooting_evaluate
   end type shooting_system
 
   !> Multiplier test functions along the branch (det(M - I), det(M + I), Neimark-Sacker).
   type, extends(branch_test) :: multiplier_test
-    type(shooting_workspace), pointer :: ws => null()
+    type(shooting_setup) :: setup
     integer :: kind = SPECIAL_PERIOD_DOUBLING
   contains
     procedure :: value => multiplier_test_value
   end type multiplier_test
 
 contains
-
-  ! ---- the tank -------------------------------------------------------------------------------
-
-  subroutine tank_rhs(self, t, y, dydt)
-    class(tank_periodic_problem), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    call equations_of_motion(self%model, t, y, dydt)
-  end subroutine tank_rhs
-
-  subroutine tank_jacobian(self, t, y, jac)
-    class(tank_periodic_problem), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: jac(:, :)
-    call motion_jacobian(self%model, t, y, jac)
-  end subroutine tank_jacobian
-
-  function tank_period(self) result(value)
-    class(tank_periodic_problem), intent(in) :: self
-    real(wp) :: value
-    ! no period without forcing frequency (the inputs check reports it)
-    if (self%model%rho > 0) then
-      value = 2*pi/self%model%rho
-    else
-      value = ieee_value(1.0_wp, ieee_positive_inf)
-    end if
-  end function tank_period
-
-  !> f is affine in X'' = -A rho^2 sin(rho t) with direction e (excitation_direction), so
-  !> df/dlambda = e dX''/dlambda.
-  subroutine tank_parameter_derivative(self, t, y, df)
-    class(tank_periodic_problem), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: df(:)
-    real(wp) :: e(4), dxdd
-    associate (a => self%model%A, rho => self%model%rho)
-      if (self%which == SWEEP_A) then
-        dxdd = -rho**2*sin(rho*t)
-      else
-        dxdd = -a*(2*rho*sin(rho*t) + rho**2*t*cos(rho*t))
-      end if
-    end associate
-    call excitation_direction(self%model, y, e)
-    df = e*dxdd
-  end subroutine tank_parameter_derivative
-
-  subroutine tank_set_parameter(self, lambda)
-    class(tank_periodic_problem), intent(inout) :: self
-    real(wp), intent(in) :: lambda
-    if (self%which == SWEEP_A) then
-      self%model%A = lambda
-    else
-      self%model%rho = lambda
-    end if
-  end subroutine tank_set_parameter
-
-  function tank_parameter(self) result(value)
-    class(tank_periodic_problem), intent(in) :: self
-    real(wp) :: value
-    value = merge(self%model%A, self%model%rho, self%which == SWEEP_A)
-  end function tank_parameter
-
-  function tank_period_derivative(self) result(value)
-    class(tank_periodic_problem), intent(in) :: self
-    real(wp) :: value
-    value = merge(0.0_wp, -2*pi/self%model%rho**2, self%which == SWEEP_A)
-  end function tank_period_derivative
-
-  integer function tank_state_size(self)
-    class(tank_periodic_problem), intent(in) :: self
-    tank_state_size = 4
-  end function tank_state_size
 
   integer function unknown_state_size(self)
     class(periodic_problem), intent(in) :: self
@@ -257,21 +144,22 @@ contains
 
   ! ---- public analyses ------------------------------------------------------------------------
 
-  !> One shot from y0 at tau = 0 over k forcing periods: y_end = y(k T), the monodromy matrix
+  !> One shot from y0 at t = 0 over k forcing periods: y_end = y(k T), the monodromy matrix
   !> M = Phi(k T) of the variational equations, optionally parameter_column = dF/dlambda of
   !> F = y(k T) - y0 (sensitivity s(k T) plus f(k T) k dT/dlambda) and max_abs_y1 = max|y1|
   !> over the orbit (sampled, see the module header).
-  subroutine monodromy_matrix(problem, y0, k, rk_options, y_end, monodromy, status, message, &
-                              parameter_column, max_abs_y1)
+  subroutine monodromy_matrix(problem, y0, k, options, method, y_end, monodromy, status, &
+                              message, parameter_column, max_abs_y1)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y0(:)
-    integer, intent(in) :: k
-    type(rk45_options), intent(in) :: rk_options
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
     real(wp), intent(out) :: y_end(:), monodromy(:, :)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), intent(out), optional :: parameter_column(:), max_abs_y1
-    type(shooting_workspace), target :: ws
+    type(shooting_setup) :: setup
+    type(shot) :: result
     integer :: n
 
     n = size(y0)
@@ -292,13 +180,13 @@ contains
       end if
     end if
     if (status /= SD_OK) return
-    call setup_workspace(ws, problem, n, k, n, present(parameter_column), rk_options)
-    call shoot(ws, y0, status, message)
+    call make_setup(setup, problem, n, k, n, present(parameter_column), options, method)
+    call shoot(setup, y0, problem%parameter(), result, status, message)
     if (status /= SD_OK) return
-    y_end = ws%y_end
-    monodromy = ws%monodromy
-    if (present(parameter_column)) parameter_column = ws%dlambda
-    if (present(max_abs_y1)) max_abs_y1 = ws%max_y1
+    y_end = result%y_end
+    monodromy = result%monodromy
+    if (present(parameter_column)) parameter_column = result%dlambda
+    if (present(max_abs_y1)) max_abs_y1 = result%max_y1
   end subroutine monodromy_matrix
 
   !> Shooting: Newton on G(y0) = y(k T; y0) - y0 = 0 with the exact Jacobian M - I (dgesv),
@@ -307,20 +195,21 @@ contains
   !> of the last shot (they differ by O(newton_tol)). iterations = shots done.
   !> Fails with SD_SINGULAR when M - I is singular (a multiplier at +1: a fold or branch point,
   !> or an autonomous system), SD_NOT_CONVERGED after max_iter shots, or the integrator's status.
-  subroutine shooting_newton(problem, y0, k, rk_options, newton_tol, max_iter, y_orbit, &
+  subroutine shooting_newton(problem, y0, k, options, method, newton_tol, max_iter, y_orbit, &
                              monodromy, multipliers_re, multipliers_im, iterations, status, &
                              message, max_abs_y1)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y0(:)
-    integer, intent(in) :: k
-    type(rk45_options), intent(in) :: rk_options
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
     real(wp), intent(in) :: newton_tol
     integer, intent(in) :: max_iter
     real(wp), intent(out) :: y_orbit(:), monodromy(:, :), multipliers_re(:), multipliers_im(:)
     integer, intent(out) :: iterations, status
     character(len=message_len), intent(out) :: message
     real(wp), intent(out), optional :: max_abs_y1
-    type(shooting_workspace), target :: ws
+    type(shooting_setup) :: setup
+    type(shot) :: result
     real(wp), allocatable :: y(:), g(:), jac(:, :)
     real(wp) :: g_norm, step_norm, scale
     integer :: n, i
@@ -347,18 +236,20 @@ contains
     end if
     if (status /= SD_OK) return
 
-    call setup_workspace(ws, problem, n, k, n, .false., rk_options)
+    call make_setup(setup, problem, n, k, n, .false., options, method)
     allocate (y(n), g(n), jac(n, n))
     y = y0
+    g_norm = 0
+    step_norm = 0
     do iterations = 1, max_iter
-      call shoot(ws, y, status, message)
+      call shoot(setup, y, problem%parameter(), result, status, message)
       if (status /= SD_OK) then
         message = 'shooting (Newton iteration '//num2str(iterations)//'): '//trim(message)
         return
       end if
-      g = ws%y_end - y
+      g = result%y_end - y
       g_norm = maxval(abs(g))
-      jac = ws%monodromy
+      jac = result%monodromy
       do i = 1, n
         jac(i, i) = jac(i, i) - 1
       end do
@@ -382,8 +273,8 @@ contains
       scale = newton_tol*(maxval(abs(y)) + scale_floor)
       if (g_norm <= scale .and. step_norm <= scale) then
         y_orbit = y
-        monodromy = ws%monodromy
-        if (present(max_abs_y1)) max_abs_y1 = ws%max_y1
+        monodromy = result%monodromy
+        if (present(max_abs_y1)) max_abs_y1 = result%max_y1
         call eigenvalues(monodromy, multipliers_re, multipliers_im, status, message)
         if (status /= SD_OK) message = 'Floquet multipliers: '//trim(message)
         return
@@ -458,19 +349,19 @@ contains
   !> special point was located and stored. Otherwise the points computed so far are returned,
   !> with a message; status /= SD_OK for failures (SD_CAPACITY when max_points or the columns of
   !> special ran out), SD_OK when the branch stopped on options%x_max.
-  subroutine periodic_branch(problem, y0, lambda_min, lambda_max, options, rk_options, points, &
-                             multipliers, n_points, special, n_special, complete, status, &
-                             message, periods)
+  subroutine periodic_branch(problem, y0, lambda_min, lambda_max, options, ode_settings, method, &
+                             points, multipliers, n_points, special, n_special, complete, &
+                             status, message, periods)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y0(:), lambda_min, lambda_max
     type(continuation_options), intent(in) :: options
-    type(rk45_options), intent(in) :: rk_options
+    type(ode_options), intent(in) :: ode_settings
+    integer, intent(in) :: method
     real(wp), intent(out) :: points(:, :), multipliers(:, :), special(:, :)
     integer, intent(out) :: n_points, n_special, status
     logical, intent(out) :: complete
     character(len=message_len), intent(out) :: message
     integer, intent(in), optional :: periods
-    type(shooting_workspace), target :: ws
     type(shooting_system) :: sys
     type(multiplier_test) :: test
     type(continuation_options) :: opt
@@ -507,14 +398,13 @@ contains
     opt%lambda_min = lambda_min
     opt%lambda_max = lambda_max
 
-    call setup_workspace(ws, problem, n, k, n, .true., rk_options)
-    sys%ws => ws
+    call make_setup(sys%setup, problem, n, k, n, .true., ode_settings, method)
+    test%setup = sys%setup
     allocate (z(m, max(options%max_points, 1)), tangents(m, max(options%max_points, 1)), &
               arclength(max(options%max_points, 1)), re(n), im(n), z_special(m))
     call continue_branch(sys, y0, lambda0, opt, z, tangents, arclength, n_points, stop_reason, &
                          status, message)
-    if (status /= SD_OK .and. ws%status /= SD_OK) &
-      message = trim(message)//'; last integration failure: '//trim(ws%message)
+    if (status /= SD_OK) call integration_failure()
     if (status /= SD_OK .and. n_points == 0) return
 
     ! multipliers, max|y1| and the test functions at every point
@@ -536,7 +426,6 @@ contains
     end do
 
     ! special points between consecutive points
-    test%ws => ws
     do j = 1, n_points - 1
       if (tangents(m, j)*tangents(m, j + 1) < 0) then
         call locate_fold(sys, z(:, j), tangents(:, j), z(:, j + 1), tangents(:, j + 1), &
@@ -568,6 +457,20 @@ contains
 
   contains
 
+    !> The continuation sees a failed shot only as NaN: shoot again at its last point (the start
+    !> when it has none) to add the integrator's words to the message.
+    subroutine integration_failure()
+      type(shot) :: result
+      integer :: st
+      character(len=message_len) :: msg
+      if (n_points > 0) then
+        call shoot(sys%setup, z(1:n, n_points), z(m, n_points), result, st, msg)
+      else
+        call shoot(sys%setup, y0, lambda0, result, st, msg)
+      end if
+      if (st /= SD_OK) message = trim(message)//'; '//trim(msg)
+    end subroutine integration_failure
+
     !> Locate a zero of a multiplier test between points j and j + 1 and store it.
     subroutine locate_with(what)
       integer, intent(in) :: what
@@ -587,7 +490,7 @@ contains
       if (locate_status /= SD_OK) then
         if (status == SD_OK) then
           status = locate_status
-          message = 'locating the '//special_name(what)//' between lambda = '// &
+          message = 'locating the '//special_kind_name(what)//' between lambda = '// &
                     num2str(z(m, j))//' and '//num2str(z(m, j + 1))//' failed: '// &
                     trim(locate_message)
         end if
@@ -597,7 +500,7 @@ contains
         if (status == SD_OK) then
           status = SD_CAPACITY
           message = 'special has '//num2str(size(special, 2))//' columns; more special '// &
-                    'points were found (the next: '//special_name(what)//' at lambda = '// &
+                    'points were found (the next: '//special_kind_name(what)//' at lambda = '// &
                     num2str(row(1))//')'
         end if
         return
@@ -614,167 +517,18 @@ contains
       real(wp), intent(out) :: row(:), mult(:)
       integer, intent(out) :: st
       character(len=message_len), intent(out) :: msg
-      call evaluate(ws, zj(1:n), zj(m), st, msg)
-      if (st == SD_OK) call eigenvalues(ws%monodromy, re, im, st, msg)
+      type(shot) :: result
+      call shoot(sys%setup, zj(1:n), zj(m), result, st, msg)
+      if (st == SD_OK) call eigenvalues(result%monodromy, re, im, st, msg)
       if (st /= SD_OK) return
       row(1) = zj(m)
       row(2:n + 1) = zj(1:n)
-      row(n + 2) = ws%max_y1
+      row(n + 2) = result%max_y1
       row(n + 3) = merge(1.0_wp, 0.0_wp, floquet_kind(re, im, stability_tol) == FLOQUET_STABLE)
       mult(1:n) = re
       mult(n + 1:2*n) = im
     end subroutine point_data
   end subroutine periodic_branch
-
-  !> Largest Lyapunov exponent (per unit tau) from y0 at tau = 0: the orbit and one tangent
-  !> vector v' = J v are integrated together; every renormalise_every forcing periods (at the
-  !> first step end on or after each boundary) |v| is reset to 1 by rk45_set_state and log|v|
-  !> is summed (Benettin's method). The first transient_periods are not counted; exponent =
-  !> sum log|v| / measured time over n_periods (a multiple of renormalise_every).
-  !> history(j) = the running estimate after measurement block j (n_periods/renormalise_every
-  !> blocks; entries beyond are NaN). On a periodic orbit it tends to log(max|mu|)/(k T).
-  subroutine largest_lyapunov(problem, y0, transient_periods, n_periods, renormalise_every, &
-                              rk_options, exponent, history, status, message)
-    class(periodic_problem), intent(in) :: problem
-    real(wp), intent(in) :: y0(:)
-    integer, intent(in) :: transient_periods, n_periods, renormalise_every
-    type(rk45_options), intent(in) :: rk_options
-    real(wp), intent(out) :: exponent, history(:)
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    type(shooting_workspace), target :: ws
-    real(wp), allocatable :: z(:)
-    real(wp) :: period, t_end, growth, sum_log, t_start
-    integer :: n, i, next_count, total, n_blocks, blocks_done
-    logical :: measuring
-
-    n = size(y0)
-    exponent = ieee_value(1.0_wp, ieee_quiet_nan)
-    history = ieee_value(1.0_wp, ieee_quiet_nan)
-    call check_setup(problem, y0, 1, status, message)
-    if (status /= SD_OK) return
-    if (transient_periods < 0 .or. n_periods < 1 .or. renormalise_every < 1) then
-      status = SD_BAD_INPUT
-      message = 'transient_periods = '//num2str(transient_periods)//', n_periods = '// &
-                num2str(n_periods)//', renormalise_every = '//num2str(renormalise_every)// &
-                ' are out of range: they must be >= 0, >= 1, >= 1'
-      return
-    end if
-    if (mod(n_periods, renormalise_every) /= 0) then
-      status = SD_BAD_INPUT
-      message = 'n_periods = '//num2str(n_periods)//' is out of range: it must be a multiple '// &
-                'of renormalise_every = '//num2str(renormalise_every)
-      return
-    end if
-    n_blocks = n_periods/renormalise_every
-    if (size(history) < n_blocks) then
-      status = SD_BAD_INPUT
-      message = 'history has size '//num2str(size(history))//'; it needs n_periods/'// &
-                'renormalise_every = '//num2str(n_blocks)//' entries'
-      return
-    end if
-
-    call setup_workspace(ws, problem, n, 1, 1, .false., rk_options)
-    period = ws%sys%problem%period()
-    total = transient_periods + n_periods
-    t_end = total*period
-    allocate (z(2*n))
-    z(1:n) = y0
-    ! a generic start direction (not aligned with any coordinate)
-    z(n + 1:2*n) = [(1.0_wp/i, i = 1, n)]
-    z(n + 1:2*n) = z(n + 1:2*n)/norm2(z(n + 1:2*n))
-    call rk45_init(ws%integ, ws%sys, 0.0_wp, z, t_end, ws%rk, status, message)
-    if (status /= SD_OK) then
-      message = 'Lyapunov exponent: '//trim(message)
-      return
-    end if
-
-    measuring = transient_periods == 0
-    t_start = 0
-    sum_log = 0
-    blocks_done = 0
-    next_count = next_boundary(0)
-    do while (ws%integ%t < t_end)
-      call rk45_step(ws%integ, ws%sys, status, message)
-      if (status /= SD_OK) then
-        message = 'Lyapunov exponent, after '//num2str(blocks_done)//' of '// &
-                  num2str(n_blocks)//' blocks: '//trim(message)
-        return
-      end if
-      if (ws%integ%t < next_count*period) cycle
-      ! renormalise; the growth since the last renormalisation counts once measuring
-      z = ws%integ%y
-      growth = norm2(z(n + 1:2*n))
-      if (.not. (growth > 0 .and. growth <= huge(growth))) then
-        status = SD_NON_FINITE
-        message = 'the tangent vector norm is '//num2str(growth)//' at tau = '// &
-                  num2str(ws%integ%t)//' (renormalise more often)'
-        return
-      end if
-      if (measuring) sum_log = sum_log + log(growth)
-      do while (next_count <= total)
-        if (next_count*period > ws%integ%t) exit
-        if (next_count > transient_periods) then
-          blocks_done = blocks_done + 1
-          history(blocks_done) = sum_log/(ws%integ%t - t_start)
-        end if
-        next_count = next_boundary(next_count)
-      end do
-      if (.not. measuring .and. ws%integ%t >= transient_periods*period) then
-        measuring = .true.
-        t_start = ws%integ%t
-      end if
-      z(n + 1:2*n) = z(n + 1:2*n)/growth
-      call rk45_set_state(ws%integ, ws%sys, z, status, message)
-      if (status /= SD_OK) then
-        message = 'Lyapunov exponent, renormalising at tau = '//num2str(ws%integ%t)//': '// &
-                  trim(message)
-        return
-      end if
-    end do
-    exponent = sum_log/(t_end - t_start)
-
-  contains
-
-    !> The renormalisation boundary (in forcing periods) after count: every renormalise_every
-    !> periods, and the end of the transient.
-    integer function next_boundary(count)
-      integer, intent(in) :: count
-      if (count < transient_periods) then
-        next_boundary = min(count + renormalise_every, transient_periods)
-      else
-        next_boundary = count + renormalise_every
-      end if
-    end function next_boundary
-  end subroutine largest_lyapunov
-
-  ! ---- private --------------------------------------------------------------------------------
-
-  !> Variational equations (Floquet): y' = f, V' = J V, s' = J s + df/dlambda.
-  subroutine variational_rhs(self, t, y, dydt)
-    class(variational_system), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    integer :: n, i, j, offset
-
-    n = self%n
-    call self%problem%rhs(t, y(1:n), dydt(1:n))
-    call self%problem%jacobian(t, y(1:n), self%scratch%jac)
-    do j = 1, self%columns
-      offset = n*j
-      do i = 1, n
-        dydt(offset + i) = dot_product(self%scratch%jac(i, :), y(offset + 1:offset + n))
-      end do
-    end do
-    if (self%sensitivity) then
-      offset = n*(self%columns + 1)
-      call self%problem%parameter_derivative(t, y(1:n), self%scratch%df)
-      do i = 1, n
-        dydt(offset + i) = dot_product(self%scratch%jac(i, :), y(offset + 1:offset + n)) + &
-                           self%scratch%df(i)
-      end do
-    end if
-  end subroutine variational_rhs
 
   !> Inputs every public routine checks: y0 finite and of the problem's size, k >= 1, T > 0.
   subroutine check_setup(problem, y0, k, status, message)
@@ -805,155 +559,155 @@ contains
                     'the forcing period must be finite and > 0 (e.g. rho > 0)', status, message)
   end subroutine check_setup
 
-  !> Allocate everything a shot needs, once: a private copy of the problem (continuation changes
-  !> its parameter), the scratch, the state vectors, and the integrator options widened to the
-  !> augmented state (a per-component atol_vector for y; atol for the variational part).
-  subroutine setup_workspace(ws, problem, n, k, columns, sensitivity, rk_options)
-    type(shooting_workspace), intent(inout), target :: ws
+  ! ---- private --------------------------------------------------------------------------------
+
+  !> Variational equations (Floquet): y' = f, V' = J V, s' = J s + df/dlambda.
+  subroutine variational_rhs(self, t, y, dydt)
+    class(variational_system), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: dydt(:)
+    real(wp) :: jac(self%n, self%n), df(self%n)
+    integer :: n, i, j, offset
+
+    n = self%n
+    call self%problem%rhs(t, y(1:n), dydt(1:n))
+    call self%problem%jacobian(t, y(1:n), jac)
+    do j = 1, self%columns
+      offset = n*j
+      do i = 1, n
+        dydt(offset + i) = dot_product(jac(i, :), y(offset + 1:offset + n))
+      end do
+    end do
+    if (self%sensitivity) then
+      offset = n*(self%columns + 1)
+      call self%problem%parameter_derivative(t, y(1:n), df)
+      do i = 1, n
+        dydt(offset + i) = dot_product(jac(i, :), y(offset + 1:offset + n)) + df(i)
+      end do
+    end if
+  end subroutine variational_rhs
+
+  !> The setup of a shot: a private copy of the problem (shots change its parameter), the
+  !> augmented system, and the integrator options widened to the augmented state (a
+  !> per-component atol_vector for y; atol for the variational part).
+  subroutine make_setup(setup, problem, n, k, columns, sensitivity, options, method)
+    type(shooting_setup), intent(out) :: setup
     class(periodic_problem), intent(in) :: problem
-    integer, intent(in) :: n, k, columns
+    integer, intent(in) :: n, k, columns, method
     logical, intent(in) :: sensitivity
-    type(rk45_options), intent(in) :: rk_options
+    type(ode_options), intent(in) :: options
     integer :: size_z
 
-    ws%n = n
-    ws%k = k
-    allocate (ws%sys%problem, source=problem)
-    ws%sys%n = n
-    ws%sys%columns = columns
-    ws%sys%sensitivity = sensitivity
-    allocate (ws%scratch%jac(n, n), ws%scratch%df(n))
-    ws%sys%scratch => ws%scratch
+    setup%k = k
+    setup%method = method
+    allocate (setup%sys%problem, source=problem)
+    setup%sys%n = n
+    setup%sys%columns = columns
+    setup%sys%sensitivity = sensitivity
     size_z = n*(1 + columns + merge(1, 0, sensitivity))
-    allocate (ws%z0(size_z), ws%sample(size_z), ws%y_end(n), ws%monodromy(n, n), &
-              ws%dlambda(n), ws%f_end(n), ws%x_key(n))
-    ws%rk = rk_options
-    if (allocated(rk_options%atol_vector)) then
-      if (size(rk_options%atol_vector) == n) then
-        deallocate (ws%rk%atol_vector)
-        allocate (ws%rk%atol_vector(size_z))
-        ws%rk%atol_vector = rk_options%atol
-        ws%rk%atol_vector(1:n) = rk_options%atol_vector
+    setup%options = options
+    if (allocated(options%atol_vector)) then
+      if (size(options%atol_vector) == n) then
+        deallocate (setup%options%atol_vector)
+        allocate (setup%options%atol_vector(size_z))
+        setup%options%atol_vector = options%atol
+        setup%options%atol_vector(1:n) = options%atol_vector
       end if
     end if
-    ws%valid = .false.
-  end subroutine setup_workspace
+  end subroutine make_setup
 
-  !> Integrate y, Phi (Phi(0) = I) and, if set up, s (s(0) = 0) from tau = 0 to k T; fill
-  !> y_end, monodromy, max_y1 and dlambda. Failures carry the integrator's message and where.
-  subroutine shoot(ws, x, status, message)
-    type(shooting_workspace), intent(inout) :: ws
-    real(wp), intent(in) :: x(:)
+  !> Integrate y, Phi (Phi(0) = I) and, if set up, s (s(0) = 0) from t = 0 to k T at parameter
+  !> lambda; fill the shot's y_end, monodromy, max_y1 and dlambda. Failures carry the
+  !> integrator's message and where.
+  subroutine shoot(setup, x, lambda, result, status, message)
+    type(shooting_setup), intent(in) :: setup
+    real(wp), intent(in) :: x(:), lambda
+    type(shot), intent(out) :: result
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    type(variational_system) :: sys
+    class(rk_integrator), allocatable :: integ
+    real(wp), allocatable :: z0(:), sample(:), f_end(:)
     real(wp) :: period, t_end, t_sample
-    integer :: n, j, sample, n_samples
+    integer :: n, j, i_sample, n_samples, size_z
 
-    n = ws%n
-    ws%valid = .false.
-    period = ws%sys%problem%period()
-    t_end = ws%k*period
+    n = setup%sys%n
+    sys = setup%sys
+    call sys%problem%set_parameter(lambda)
+    period = sys%problem%period()
+    t_end = setup%k*period
     status = SD_OK
     message = ''
     call check_real('T', period, 0.0_wp, huge(1.0_wp), .true., .true., &
                     'the forcing period must be finite and > 0 (e.g. rho > 0)', status, message)
     if (status /= SD_OK) return
-    ws%z0 = 0
-    ws%z0(1:n) = x
+    size_z = n*(1 + sys%columns + merge(1, 0, sys%sensitivity))
+    allocate (z0(size_z), sample(size_z), f_end(n), result%y_end(n), result%monodromy(n, n), &
+              result%dlambda(n))
+    z0 = 0
+    z0(1:n) = x
     do j = 1, n
-      ws%z0(n*j + j) = 1
+      z0(n*j + j) = 1
     end do
-    call rk45_init(ws%integ, ws%sys, 0.0_wp, ws%z0, t_end, ws%rk, status, message)
-    n_samples = samples_per_period*ws%k
-    ws%max_y1 = abs(x(1))
-    sample = 1
-    do while (status == SD_OK .and. ws%integ%t < t_end)
-      call rk45_step(ws%integ, ws%sys, status, message)
+    call new_integrator(setup%method, integ, status, message)
+    if (status /= SD_OK) return
+    call integ%init(sys, 0.0_wp, z0, t_end, setup%options, status, message)
+    n_samples = samples_per_period*setup%k
+    result%max_y1 = abs(x(1))
+    i_sample = 1
+    do while (status == SD_OK .and. integ%t < t_end)
+      call integ%step(sys, status, message)
       if (status /= SD_OK) exit
-      do while (sample < n_samples)
-        t_sample = sample*(t_end/n_samples)
-        if (t_sample > ws%integ%t) exit
-        call rk45_dense(ws%integ, t_sample, ws%sample)
-        ws%max_y1 = max(ws%max_y1, abs(ws%sample(1)))
-        sample = sample + 1
+      do while (i_sample < n_samples)
+        t_sample = i_sample*(t_end/n_samples)
+        if (t_sample > integ%t) exit
+        call integ%dense(t_sample, sample)
+        result%max_y1 = max(result%max_y1, abs(sample(1)))
+        i_sample = i_sample + 1
       end do
     end do
     if (status /= SD_OK) then
       message = 'integrating the variational equations from tau = 0 to k T = '// &
-                num2str(t_end)//' (lambda = '//num2str(ws%sys%problem%parameter())// &
+                num2str(t_end)//' (lambda = '//num2str(lambda)// &
                 ', max|y0| = '//num2str(maxval(abs(x)))//'): '//trim(message)
       return
     end if
-    ws%y_end = ws%integ%y(1:n)
+    result%y_end = integ%y(1:n)
     do j = 1, n
-      ws%monodromy(:, j) = ws%integ%y(n*j + 1:n*j + n)
+      result%monodromy(:, j) = integ%y(n*j + 1:n*j + n)
     end do
-    if (ws%sys%sensitivity) then
+    result%dlambda = 0
+    if (sys%sensitivity) then
       ! F = y(k T(lambda); lambda) - y0: the end time moves with lambda too
-      call ws%sys%problem%rhs(t_end, ws%y_end, ws%f_end)
-      ws%dlambda = ws%integ%y(n*(n + 1) + 1:n*(n + 2)) + &
-                   ws%f_end*ws%k*ws%sys%problem%period_derivative()
+      call sys%problem%rhs(t_end, result%y_end, f_end)
+      result%dlambda = integ%y(n*(n + 1) + 1:n*(n + 2)) + &
+                       f_end*setup%k*sys%problem%period_derivative()
     end if
-    ws%valid = .true.
   end subroutine shoot
 
-  !> Shot at (x, lambda) unless the last shot was there already.
-  subroutine evaluate(ws, x, lambda, status, message)
-    type(shooting_workspace), intent(inout) :: ws
-    real(wp), intent(in) :: x(:), lambda
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-
-    status = SD_OK
-    message = ''
-    if (ws%valid .and. lambda == ws%lambda_key) then
-      if (all(x == ws%x_key)) return
-    end if
-    call ws%sys%problem%set_parameter(lambda)
-    call shoot(ws, x, status, message)
-    if (status /= SD_OK) then
-      ws%status = status
-      ws%message = message
-      return
-    end if
-    ws%x_key = x
-    ws%lambda_key = lambda
-  end subroutine evaluate
-
-  !> F = y(k T) - y0; NaN when the integration fails (the continuation then shortens its step;
-  !> the integrator's message is kept in the workspace).
-  subroutine shooting_residual(self, x, lambda, f)
+  !> F = y(k T) - y0, dF/dy0 = M - I, dF/dlambda; NaN when the integration fails (the
+  !> continuation then shortens its step).
+  subroutine shooting_evaluate(self, x, lambda, f, fx, flambda)
     class(shooting_system), intent(in) :: self
     real(wp), intent(in) :: x(:), lambda
-    real(wp), intent(out) :: f(:)
-    integer :: status
-    character(len=message_len) :: message
-    call evaluate(self%ws, x, lambda, status, message)
-    if (status /= SD_OK) then
-      f = ieee_value(1.0_wp, ieee_quiet_nan)
-    else
-      f = self%ws%y_end - x
-    end if
-  end subroutine shooting_residual
-
-  subroutine shooting_jacobian(self, x, lambda, fx, flambda)
-    class(shooting_system), intent(in) :: self
-    real(wp), intent(in) :: x(:), lambda
-    real(wp), intent(out) :: fx(:, :), flambda(:)
+    real(wp), intent(out) :: f(:), fx(:, :), flambda(:)
+    type(shot) :: result
     integer :: status, i
     character(len=message_len) :: message
-    call evaluate(self%ws, x, lambda, status, message)
+    call shoot(self%setup, x, lambda, result, status, message)
     if (status /= SD_OK) then
+      f = ieee_value(1.0_wp, ieee_quiet_nan)
       fx = ieee_value(1.0_wp, ieee_quiet_nan)
       flambda = ieee_value(1.0_wp, ieee_quiet_nan)
       return
     end if
-    fx = self%ws%monodromy
+    f = result%y_end - x
+    fx = result%monodromy
     do i = 1, size(x)
       fx(i, i) = fx(i, i) - 1
     end do
-    flambda = self%ws%dlambda
-  end subroutine shooting_jacobian
+    flambda = result%dlambda
+  end subroutine shooting_evaluate
 
   !> Test value at branch point z (the tangent is not needed); NaN if the shot fails, which
   !> stops the zero finder.
@@ -961,14 +715,15 @@ contains
     class(multiplier_test), intent(in) :: self
     real(wp), intent(in) :: z(:), t(:)
     real(wp) :: g
-    real(wp) :: re(self%ws%n), im(self%ws%n)
+    type(shot) :: result
+    real(wp) :: re(self%setup%sys%n), im(self%setup%sys%n)
     integer :: n, status
     character(len=message_len) :: message
 
-    n = self%ws%n
+    n = self%setup%sys%n
     g = ieee_value(1.0_wp, ieee_quiet_nan)
-    call evaluate(self%ws, z(1:n), z(n + 1), status, message)
-    if (status == SD_OK) call eigenvalues(self%ws%monodromy, re, im, status, message)
+    call shoot(self%setup, z(1:n), z(n + 1), result, status, message)
+    if (status == SD_OK) call eigenvalues(result%monodromy, re, im, status, message)
     if (status /= SD_OK) return
     select case (self%kind)
     case (SPECIAL_FOLD, SPECIAL_BRANCH_POINT)
@@ -991,16 +746,4 @@ contains
     end do
     g = real(p, wp)
   end function shifted_product
-
-  pure function special_name(kind) result(name)
-    integer, intent(in) :: kind
-    character(len=:), allocatable :: name
-    select case (kind)
-    case (SPECIAL_FOLD);            name = 'fold'
-    case (SPECIAL_BRANCH_POINT);    name = 'branch point'
-    case (SPECIAL_PERIOD_DOUBLING); name = 'period doubling'
-    case (SPECIAL_NEIMARK_SACKER);  name = 'Neimark-Sacker point'
-    case default;                   name = 'special point'
-    end select
-  end function special_name
-end module sloshdyn_periodic
+end module sloshdyn_shooting

@@ -1,0 +1,156 @@
+!> Periodic responses of the full equations of motion (eq 15 with 29-31), not of the slow flow:
+!> the tank system (sloshdyn_system) handed to the generic shooting, continuation and Lyapunov
+!> code of the numerics layer. Result layouts are those of sloshdyn_shooting (n = 4).
+module sloshdyn_periodic_response
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_text, only: num2str
+  use sloshdyn_model, only: model_t
+  use sloshdyn_system, only: tank_system
+  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_continuation, only: continuation_options
+  use sloshdyn_shooting, only: shooting_newton, periodic_branch
+  use sloshdyn_lyapunov, only: largest_lyapunov
+  use sloshdyn_simulation, only: steady_options, steady_state
+  use sloshdyn_tables, only: SUMMARY_SIZE
+  implicit none
+  private
+  public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest
+  public :: lyapunov_options, check_lyapunov, newton_tol_default, max_iter_default
+
+  !> Shooting's Newton settings unless given: |y(kT) - y0| and the step <= tol (max|y0| + 1e-12).
+  real(wp), parameter :: newton_tol_default = 1.0e-10_wp
+  integer, parameter :: max_iter_default = 30
+
+  !> How a Lyapunov exponent is measured; times in forcing periods.
+  type :: lyapunov_options
+    integer :: transient_periods = 1000   !< integrated before measuring
+    integer :: n_periods = 2000           !< measured; a multiple of renormalise_every
+    integer :: renormalise_every = 1      !< periods between renormalisations of the tangent
+  end type lyapunov_options
+
+contains
+
+  !> The orbit of period k T near y0 by shooting: y_orbit, the monodromy matrix, the Floquet
+  !> multipliers (re, im), Newton iterations and max|x1| over the orbit.
+  subroutine periodic_orbit(model, y0, k, options, method, newton_tol, max_iter, y_orbit, &
+                            monodromy, re, im, iterations, max_x1, status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y0(4), newton_tol
+    integer, intent(in) :: k, method, max_iter
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: y_orbit(4), monodromy(4, 4), re(4), im(4), max_x1
+    integer, intent(out) :: iterations, status
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    system%model = model
+    call shooting_newton(system, y0, k, options, method, newton_tol, max_iter, y_orbit, &
+                         monodromy, re, im, iterations, status, message, max_x1)
+  end subroutine periodic_orbit
+
+  !> Continuation of the orbit through y0 (at the excitation of model) in rho or A
+  !> (parameter = PARAMETER_RHO, PARAMETER_A) over [lambda_min, lambda_max].
+  subroutine periodic_response(model, parameter, y0, k, lambda_min, lambda_max, continuation, &
+                               options, method, points, multipliers, n_points, special, &
+                               n_special, complete, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: parameter, k, method
+    real(wp), intent(in) :: y0(4), lambda_min, lambda_max
+    type(continuation_options), intent(in) :: continuation
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: points(:, :), multipliers(:, :), special(:, :)
+    integer, intent(out) :: n_points, n_special, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    system%model = model
+    system%varied = parameter
+    call periodic_branch(system, y0, lambda_min, lambda_max, continuation, options, method, &
+                         points, multipliers, n_points, special, n_special, complete, status, &
+                         message, k)
+  end subroutine periodic_response
+
+  !> The periodic response over [lambda_min, lambda_max] started from the steady state reached
+  !> from y0 at lambda_min (steady settings), refined by shooting (period T).
+  subroutine periodic_response_from_rest(model, parameter, y0, lambda_min, lambda_max, steady, &
+                                         continuation, options, method, points, multipliers, &
+                                         n_points, special, n_special, complete, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: parameter, method
+    real(wp), intent(in) :: y0(4), lambda_min, lambda_max
+    type(steady_options), intent(in) :: steady
+    type(continuation_options), intent(in) :: continuation
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: points(:, :), multipliers(:, :), special(:, :)
+    integer, intent(out) :: n_points, n_special, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    real(wp) :: summary(SUMMARY_SIZE), y_start(4), y_orbit(4), monodromy(4, 4), re(4), im(4), &
+                max_x1
+    real(wp), allocatable :: poincare(:, :)
+    type(ode_stats) :: stats
+    integer :: iterations
+
+    n_points = 0
+    n_special = 0
+    complete = .false.
+    system%model = model
+    system%varied = parameter
+    call system%set_parameter(lambda_min)
+    allocate (poincare(4, steady%window_periods))
+    call steady_state(system%model, y0, options, method, steady, summary, poincare, y_start, &
+                      stats, status, message)
+    if (status /= SD_OK) then
+      message = 'start (steady state): '//trim(message)
+      return
+    end if
+    call periodic_orbit(system%model, y_start, 1, options, method, newton_tol_default, &
+                        max_iter_default, y_orbit, monodromy, re, im, iterations, max_x1, &
+                        status, message)
+    if (status /= SD_OK) then
+      message = 'start (shooting): '//trim(message)
+      return
+    end if
+    call periodic_branch(system, y_orbit, lambda_min, lambda_max, continuation, options, &
+                         method, points, multipliers, n_points, special, n_special, complete, &
+                         status, message)
+  end subroutine periodic_response_from_rest
+
+  !> The rules of the Lyapunov settings.
+  pure subroutine check_lyapunov(options, status, message)
+    type(lyapunov_options), intent(in) :: options
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    if (status /= SD_OK) return
+    if (options%transient_periods < 0) then
+      status = SD_BAD_INPUT
+      message = 'transient_periods = '//num2str(options%transient_periods)//' is out of '// &
+                'range: it must be >= 0'
+    else if (options%renormalise_every < 1) then
+      status = SD_BAD_INPUT
+      message = 'renormalise_every = '//num2str(options%renormalise_every)//' is out of '// &
+                'range: it must be >= 1'
+    else if (options%n_periods < 1 .or. mod(options%n_periods, options%renormalise_every) /= 0) then
+      status = SD_BAD_INPUT
+      message = 'n_periods = '//num2str(options%n_periods)//' is out of range: it must be '// &
+                '>= 1 and a multiple of renormalise_every = '//num2str(options%renormalise_every)
+    end if
+  end subroutine check_lyapunov
+
+  !> Largest Lyapunov exponent per unit tau from y0, with its running estimates (history).
+  subroutine lyapunov_exponent(model, y0, transient_periods, n_periods, renormalise_every, &
+                               options, method, exponent, history, status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y0(4)
+    integer, intent(in) :: transient_periods, n_periods, renormalise_every, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: exponent, history(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    system%model = model
+    call largest_lyapunov(system, y0, transient_periods, n_periods, renormalise_every, options, &
+                          method, exponent, history, status, message)
+  end subroutine lyapunov_exponent
+end module sloshdyn_periodic_response

@@ -1,0 +1,120 @@
+!> The flat arrays that carry settings and work counts across the f2py bridge, both ways:
+!>   integration(INTEGRATION_SIZE) = [rtol, atol, h_initial, h_max, h_min, max_steps, method]
+!>   steady(STEADY_SIZE)           = [transient_periods, settle_tol, max_transient_periods,
+!>                                    window_periods, samples_per_period, periodic_tol]
+!>   response(RESPONSE_SIZE)       = [n_scan, n_amplitudes, n_phases, amplitude_min,
+!>                                    amplitude_max, ds, ds_min, ds_max, x_scale, max_points]
+!>   lyapunov(LYAPUNOV_SIZE)       = [transient_periods, n_periods, renormalise_every]
+!> Python's Integration, Steady, Continuation and the Lyapunov settings list their fields in
+!> these orders and take their defaults from defaults_* below (through the bridge).
+!> Integer entries are converted by to_int, which keeps out-of-range and NaN values out of range
+!> (so the core's range checks report them) instead of letting them wrap or become 0.
+module sloshdyn_layouts
+  use sloshdyn_kinds, only: wp
+  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_simulation, only: steady_options
+  use sloshdyn_response, only: response_options
+  use sloshdyn_periodic_response, only: lyapunov_options
+  implicit none
+  private
+  public :: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE
+  public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
+  public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
+
+  integer, parameter :: INTEGRATION_SIZE = 7, STEADY_SIZE = 6, RESPONSE_SIZE = 10, &
+                        LYAPUNOV_SIZE = 3
+
+contains
+
+  !> x as an integer; NaN and values beyond the integer range become -huge (out of every range).
+  elemental integer function to_int(x)
+    real(wp), intent(in) :: x
+    if (x == x .and. abs(x) < real(huge(1), wp)) then
+      to_int = nint(x)
+    else
+      to_int = -huge(1)
+    end if
+  end function to_int
+
+  pure function to_ode_options(a) result(options)
+    real(wp), intent(in) :: a(INTEGRATION_SIZE)
+    type(ode_options) :: options
+    options%rtol = a(1)
+    options%atol = a(2)
+    options%h_initial = a(3)
+    options%h_max = a(4)
+    options%h_min = a(5)
+    options%max_steps = to_int(a(6))
+  end function to_ode_options
+
+  pure integer function to_method(a) result(method)
+    real(wp), intent(in) :: a(INTEGRATION_SIZE)
+    method = to_int(a(7))
+  end function to_method
+
+  pure function from_ode_options(options, method) result(a)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    real(wp) :: a(INTEGRATION_SIZE)
+    a = [options%rtol, options%atol, options%h_initial, options%h_max, options%h_min, &
+         real(options%max_steps, wp), real(method, wp)]
+  end function from_ode_options
+
+  pure function to_steady(a) result(options)
+    real(wp), intent(in) :: a(STEADY_SIZE)
+    type(steady_options) :: options
+    options = steady_options(a(1), a(2), a(3), to_int(a(4)), to_int(a(5)), a(6))
+  end function to_steady
+
+  pure function from_steady(options) result(a)
+    type(steady_options), intent(in) :: options
+    real(wp) :: a(STEADY_SIZE)
+    a = [options%transient_periods, options%settle_tol, options%max_transient_periods, &
+         real(options%window_periods, wp), real(options%samples_per_period, wp), &
+         options%periodic_tol]
+  end function from_steady
+
+  pure function to_response(a) result(options)
+    real(wp), intent(in) :: a(RESPONSE_SIZE)
+    type(response_options) :: options
+    options%n_scan = to_int(a(1))
+    options%n_amplitudes = to_int(a(2))
+    options%n_phases = to_int(a(3))
+    options%amplitude_min = a(4)
+    options%amplitude_max = a(5)
+    options%continuation%ds = a(6)
+    options%continuation%ds_min = a(7)
+    options%continuation%ds_max = a(8)
+    options%continuation%x_scale = a(9)
+    options%continuation%max_points = to_int(a(10))
+  end function to_response
+
+  pure function from_response(options) result(a)
+    type(response_options), intent(in) :: options
+    real(wp) :: a(RESPONSE_SIZE)
+    associate (c => options%continuation)
+      a = [real(options%n_scan, wp), real(options%n_amplitudes, wp), &
+           real(options%n_phases, wp), options%amplitude_min, options%amplitude_max, c%ds, &
+           c%ds_min, c%ds_max, c%x_scale, real(c%max_points, wp)]
+    end associate
+  end function from_response
+
+  pure function to_lyapunov(a) result(options)
+    real(wp), intent(in) :: a(LYAPUNOV_SIZE)
+    type(lyapunov_options) :: options
+    options = lyapunov_options(to_int(a(1)), to_int(a(2)), to_int(a(3)))
+  end function to_lyapunov
+
+  pure function from_lyapunov(options) result(a)
+    type(lyapunov_options), intent(in) :: options
+    real(wp) :: a(LYAPUNOV_SIZE)
+    a = real([options%transient_periods, options%n_periods, options%renormalise_every], wp)
+  end function from_lyapunov
+  !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
+  pure function counts_array(stats) result(counts)
+    type(ode_stats), intent(in) :: stats
+    real(wp) :: counts(4)
+    counts = [real(stats%n_rhs, wp), real(stats%n_accepted, wp), real(stats%n_rejected, wp), &
+              stats%t_reached]
+  end function counts_array
+end module sloshdyn_layouts

@@ -1,0 +1,1217 @@
+!> The input file: Fortran namelist groups, read and validated in full before anything is
+!> computed. The only reader: the executable uses it directly and Python through the bridge, so
+!> both front doors apply the same rules, defaults and messages. The groups and variables are
+!> documented in README.md ("Namelist reference").
+!>
+!> The file is first split into groups by a scanner of its own (any line length, several groups
+!> on a line, comments, quotes), which also rejects unknown, repeated or unclosed groups and text
+!> outside groups. Each group then has its own reader with its own local variables, whose
+!> defaults come from the option types of the analyses; it parses its group's text with a
+!> namelist read and, if that fails, parses each assignment alone to name the culprit.
+module sloshdyn_namelist
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR, check_real
+  use sloshdyn_text, only: num2str
+  use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical, require_stable_trivial
+  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
+  use sloshdyn_tank, only: tank_pendulum
+  use sloshdyn_ode, only: ode_options, check_options
+  use sloshdyn_integrator, only: METHOD_DOPRI5, method_names
+  use sloshdyn_simulation, only: steady_options, check_steady
+  use sloshdyn_response, only: response_options, check_response_options
+  use sloshdyn_periodic_response, only: lyapunov_options, check_lyapunov
+  implicit none
+  private
+  public :: run_config, tank_description, simulation_settings, sweep_settings, &
+            response_settings, read_input, namelist_defaults, known_analyses, path_len
+  public :: ANALYSIS_LINEAR, ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
+            ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV
+  public :: DIRECTION_UP, DIRECTION_DOWN, DIRECTION_BOTH, direction_names
+
+  character(len=*), parameter :: known_groups(12) = &
+    [character(len=11) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output', &
+     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov']
+  integer, parameter :: G_MODEL = 1, G_TANK = 2, G_STRUCTURE = 3, G_EXCITATION = 4, &
+                        G_ANALYSIS = 5, G_OUTPUT = 6, G_INTEGRATION = 7, G_SIMULATION = 8, &
+                        G_STEADY = 9, G_SWEEP = 10, G_RESPONSE = 11, G_LYAPUNOV = 12
+  !> The analyses, by code (index).
+  character(len=*), parameter :: known_analyses(7) = &
+    [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response', &
+     'periodic_response', 'lyapunov']
+  integer, parameter :: ANALYSIS_LINEAR = 1, ANALYSIS_SIMULATE = 2, ANALYSIS_STEADY_STATE = 3, &
+                        ANALYSIS_SWEEP = 4, ANALYSIS_FREQUENCY_RESPONSE = 5, &
+                        ANALYSIS_PERIODIC_RESPONSE = 6, ANALYSIS_LYAPUNOV = 7
+  character(len=*), parameter :: direction_names(3) = [character(len=4) :: 'up', 'down', 'both']
+  integer, parameter :: DIRECTION_UP = 1, DIRECTION_DOWN = 2, DIRECTION_BOTH = 3
+  !> Longest output directory name; longer ones are refused, never cut.
+  integer, parameter :: path_len = 4096
+  !> Length of the string variables read (longer values are refused as unknown).
+  integer, parameter :: word_len = 64
+
+  !> The dimensional description of &tank and &structure, with the pendulum of eq (2)-(3).
+  type :: tank_description
+    real(wp) :: radius = 0, depth = 0, liquid_mass = 0                   !< &tank (m_F computed)
+    real(wp) :: total_mass = 0, rod_length = 0, gravity = 0              !< &structure
+    real(wp) :: pendulum_length = 0, sloshing_mass = 0, d1 = 0, rigid_mass = 0, d0 = 0
+  end type tank_description
+
+  !> &simulation: the time history from y0 (also the start of steady states and sweeps).
+  type :: simulation_settings
+    real(wp) :: t_end = 0       !< required for 'simulate'
+    integer :: n_out = 2001
+    real(wp) :: y0(4) = 0
+  end type simulation_settings
+
+  !> &sweep.
+  type :: sweep_settings
+    integer :: parameter = PARAMETER_RHO
+    real(wp) :: start = 0, stop = 0   !< required
+    integer :: n_points = 0           !< required
+    integer :: direction = DIRECTION_UP
+  end type sweep_settings
+
+  !> &response (frequency_response and periodic_response).
+  type :: response_settings
+    logical :: internal_resonance = .true.
+    integer :: parameter = PARAMETER_RHO
+    real(wp) :: start = 0, stop = 0   !< required; start <= stop after reading
+    type(response_options) :: options
+  end type response_settings
+
+  !> Everything one run needs, validated.
+  type :: run_config
+    type(model_t) :: model
+    logical :: dimensional = .false.     !< model built from &tank and &structure
+    type(tank_description) :: tank
+    integer :: analysis = ANALYSIS_LINEAR
+    real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0   !< 3:1 tuning search
+    character(len=path_len) :: directory = 'sloshdyn_output'
+    type(ode_options) :: integration
+    integer :: method = METHOD_DOPRI5
+    type(simulation_settings) :: simulation
+    type(steady_options) :: steady
+    type(sweep_settings) :: sweep
+    type(response_settings) :: response
+    type(lyapunov_options) :: lyapunov
+  end type run_config
+
+  !> The text of one group: its body between the name and the closing '/' (comments removed,
+  !> lines joined), the line it starts on, and the names of the variables it assigns.
+  type :: group_text
+    logical :: given = .false.
+    character(len=:), allocatable :: body, assigned
+    integer :: line = 0
+  end type group_text
+
+  type :: input_file
+    character(len=:), allocatable :: path
+    type(group_text) :: groups(size(known_groups))
+    !> describe instead of read: every group is written with its defaults into description
+    logical :: describing = .false.
+    character(len=:), allocatable :: description
+  end type input_file
+
+  !> Reading one group. The reader loop of every group is
+  !>   call reader%start(file, G_X, status)
+  !>   do while (reader%next())
+  !>     if (reader%describing) then
+  !>       write (reader%written, nml=x, iostat=reader%ios)
+  !>     else
+  !>       read (reader%text, nml=x, iostat=reader%ios, iomsg=reader%iomsg)
+  !>     end if
+  !>     call reader%check(file, status, message)
+  !>   end do
+  !> The whole group is parsed first; if it fails, each assignment alone, to name the culprit.
+  !> Describing, the group is written with its values instead (namelist_defaults).
+  type :: group_reader
+    integer :: group = 0, step = 0, line = 0, next_start = 0, ios = 0
+    logical :: describing = .false., done = .true.
+    character(len=:), allocatable :: name, body, path, text, assignment
+    character(len=message_len) :: iomsg = ''
+    character(len=2*path_len) :: written = ''
+  contains
+    procedure :: start => start_group
+    procedure :: next => next_text
+    procedure :: check => check_text
+  end type group_reader
+
+contains
+
+  !> Read and validate the whole input file. On failure nothing is returned but a status and a
+  !> message naming the group, the variable, its value and the allowed range.
+  subroutine read_input(path, config, status, message)
+    character(len=*), intent(in) :: path
+    type(run_config), intent(out) :: config
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(input_file) :: file
+    real(wp) :: groups(7), A, rho
+    integer :: exponents(2)
+
+    call scan_file(path, file, status, message)
+    if (status /= SD_OK) return
+
+    ! which description of the system: dimensionless (&model) or dimensional (&tank + &structure)
+    associate (g => file%groups)
+      if (g(G_MODEL)%given .and. (g(G_TANK)%given .or. g(G_STRUCTURE)%given)) then
+        call fail(status, message, 'give either &model (dimensionless) or &tank with '// &
+                  '&structure (dimensional), not both')
+      else if (.not. (g(G_MODEL)%given .or. g(G_TANK)%given .or. g(G_STRUCTURE)%given)) then
+        call fail(status, message, 'missing group &model (or &tank with &structure): the '// &
+                  'system is not described')
+      else if (g(G_TANK)%given .neqv. g(G_STRUCTURE)%given) then
+        call fail(status, message, '&tank and &structure go together: group &'// &
+                  trim(merge('structure', 'tank     ', g(G_TANK)%given))//' is missing')
+      end if
+      if (status /= SD_OK) return
+      config%dimensional = g(G_TANK)%given
+    end associate
+
+    call read_excitation(file, A, rho, status, message)
+    if (status /= SD_OK) return
+    if (config%dimensional) then
+      call read_tank_and_structure(file, config%tank, groups, exponents, status, message)
+    else
+      call read_model(file, groups, exponents, status, message)
+    end if
+    if (status /= SD_OK) return
+    call model_from_arrays([groups, A, rho], exponents, config%model, status, message)
+    if (status /= SD_OK) then
+      message = trim(merge('&structure ', '&model     ', config%dimensional))//': '//trim(message)
+      return
+    end if
+
+    call read_analysis(file, config, status, message)
+    if (status == SD_OK) call read_output(file, config%directory, status, message)
+    if (status == SD_OK) call read_integration(file, config%integration, config%method, &
+                                               status, message)
+    if (status == SD_OK) call read_simulation(file, config%analysis == ANALYSIS_SIMULATE, &
+                                              config%simulation, status, message)
+    if (status == SD_OK) call read_steady(file, config%steady, status, message)
+    if (status == SD_OK) call read_sweep(file, config%analysis == ANALYSIS_SWEEP, config%sweep, &
+                                         status, message)
+    if (status == SD_OK) call read_response(file, config%analysis == ANALYSIS_FREQUENCY_RESPONSE &
+                                            .or. config%analysis == ANALYSIS_PERIODIC_RESPONSE, &
+                                            config%response, status, message)
+    if (status == SD_OK) call read_lyapunov(file, config%lyapunov, status, message)
+    if (status == SD_OK) call check_analysis(config, status, message)
+  end subroutine read_input
+
+  !> Every group with its variables and their defaults, as the namelist write statement gives
+  !> them (the source for the documentation's namelist reference and its test). Required
+  !> variables show their placeholder (0).
+  subroutine namelist_defaults(text)
+    character(len=:), allocatable, intent(out) :: text
+    type(input_file) :: file
+    type(run_config) :: config
+    type(tank_description) :: vessel
+    type(ode_options) :: integration
+    type(simulation_settings) :: simulation
+    type(steady_options) :: steady
+    type(sweep_settings) :: sweep
+    type(response_settings) :: response
+    type(lyapunov_options) :: lyapunov
+    character(len=path_len) :: directory
+    real(wp) :: groups(7), A, rho
+    integer :: exponents(2), method, status
+    character(len=message_len) :: message
+
+    file%describing = .true.
+    file%description = ''
+    call read_model(file, groups, exponents, status, message)
+    call read_tank_and_structure(file, vessel, groups, exponents, status, message)
+    call read_excitation(file, A, rho, status, message)
+    call read_analysis(file, config, status, message)
+    call read_output(file, directory, status, message)
+    call read_integration(file, integration, method, status, message)
+    call read_simulation(file, .false., simulation, status, message)
+    call read_steady(file, steady, status, message)
+    call read_sweep(file, .false., sweep, status, message)
+    call read_response(file, .false., response, status, message)
+    call read_lyapunov(file, lyapunov, status, message)
+    text = file%description
+  end subroutine namelist_defaults
+
+  ! ---- the groups ------------------------------------------------------------------------------
+
+  !> &model: groups = [s1, mu1, kappa, theta0, beta, gamma, delta], exponents = [n, p].
+  subroutine read_model(file, groups, exponents, status, message)
+    type(input_file), intent(inout) :: file
+    real(wp), intent(out) :: groups(7)
+    integer, intent(out) :: exponents(2), status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: defaults
+    real(wp) :: s1, mu1, kappa, theta0, beta, gamma, delta
+    integer :: n, p
+    type(group_reader) :: reader
+    namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, n, p
+
+    s1 = 0; mu1 = 0; kappa = 0; theta0 = 0
+    beta = defaults%beta; gamma = defaults%gamma; delta = defaults%delta
+    n = defaults%n; p = defaults%p
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_MODEL, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=model, iostat=reader%ios)
+      else
+        read (reader%text, nml=model, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    call require(file, G_MODEL, 's1', status, message)
+    call require(file, G_MODEL, 'mu1', status, message)
+    call require(file, G_MODEL, 'kappa', status, message)
+    call require(file, G_MODEL, 'theta0', status, message)
+    groups = [s1, mu1, kappa, theta0, beta, gamma, delta]
+    exponents = [n, p]
+  end subroutine read_model
+
+  !> &tank and &structure: the pendulum of eq (2)-(3) and the groups of eq (9).
+  !> &tank and &structure: the pendulum of eq (2)-(3) and the groups of eq (9), as read_model.
+  subroutine read_tank_and_structure(file, vessel, groups, exponents, status, message)
+    type(input_file), intent(inout) :: file
+    type(tank_description), intent(out) :: vessel
+    real(wp), intent(out) :: groups(7)
+    integer, intent(out) :: exponents(2), status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: defaults
+    real(wp) :: R, h, rho_liquid, m_liquid, M, L, k, c, b, d, g, theta0
+    integer :: n, p
+    type(group_reader) :: reader
+    namelist /tank/ R, h, rho_liquid, m_liquid
+    namelist /structure/ M, L, k, c, b, d, g, theta0, n, p
+
+    R = 0; h = 0; rho_liquid = 0; m_liquid = 0
+    M = 0; L = 0; k = 0; c = 0; b = 0; d = 0; g = 9.81_wp; theta0 = 0
+    n = defaults%n; p = defaults%p
+    groups = 0
+    exponents = [n, p]
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_TANK, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=tank, iostat=reader%ios)
+      else
+        read (reader%text, nml=tank, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    call require(file, G_TANK, 'r', status, message)
+    call require(file, G_TANK, 'h', status, message)
+    call reader%start(file, G_STRUCTURE, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=structure, iostat=reader%ios)
+      else
+        read (reader%text, nml=structure, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    call require(file, G_STRUCTURE, 'm', status, message)
+    call require(file, G_STRUCTURE, 'l', status, message)
+    call require(file, G_STRUCTURE, 'k', status, message)
+    call require(file, G_STRUCTURE, 'theta0', status, message)
+    if (status /= SD_OK .or. file%describing) return
+    call tank_pendulum(R, h, rho_liquid, m_liquid, vessel%pendulum_length, vessel%sloshing_mass, &
+                       vessel%d1, vessel%rigid_mass, vessel%d0, vessel%liquid_mass, status, &
+                       message)
+    if (status /= SD_OK) then
+      message = '&tank: '//trim(message)
+      return
+    end if
+    groups(4) = theta0
+    exponents = [n, p]
+    call model_from_physical(M, L, k, c, b, d, g, theta0, vessel%pendulum_length, &
+                             vessel%sloshing_mass, groups(1), groups(2), groups(3), groups(5), &
+                             groups(6), groups(7), status, message)
+    if (status /= SD_OK) then
+      message = '&structure: '//trim(message)
+      return
+    end if
+    vessel%radius = R; vessel%depth = h
+    vessel%total_mass = M; vessel%rod_length = L; vessel%gravity = g
+  end subroutine read_tank_and_structure
+
+  subroutine read_excitation(file, amplitude, frequency, status, message)
+    type(input_file), intent(inout) :: file
+    real(wp), intent(out) :: amplitude, frequency
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: defaults
+    real(wp) :: A, rho
+    type(group_reader) :: reader
+    namelist /excitation/ A, rho
+    A = defaults%excitation%A
+    rho = defaults%excitation%rho
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_EXCITATION, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=excitation, iostat=reader%ios)
+      else
+        read (reader%text, nml=excitation, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    amplitude = A
+    frequency = rho
+  end subroutine read_excitation
+
+  subroutine read_analysis(file, config, status, message)
+    type(input_file), intent(inout) :: file
+    type(run_config), intent(inout) :: config
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=word_len) :: kind
+    real(wp) :: sigma1, kappa_min, kappa_max
+    integer :: i
+    type(group_reader) :: reader
+    namelist /analysis/ kind, sigma1, kappa_min, kappa_max
+
+    kind = known_analyses(ANALYSIS_LINEAR)
+    sigma1 = 0
+    kappa_min = 0
+    kappa_max = config%model%s1 + 1000
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_ANALYSIS, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=analysis, iostat=reader%ios)
+      else
+        read (reader%text, nml=analysis, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK) return
+    config%analysis = 0
+    do i = 1, size(known_analyses)
+      if (known_analyses(i) == adjustl(kind)) config%analysis = i
+    end do
+    if (config%analysis == 0) then
+      call fail(status, message, '&analysis: kind = '''//trim(adjustl(kind))//''' is not '// &
+                'known; allowed: '//join(known_analyses))
+      return
+    end if
+    call check_real('sigma1', sigma1, -huge(1.0_wp), huge(1.0_wp), .false., .false., &
+                    'sigma1 must be finite', status, message)
+    call check_real('kappa_max', kappa_max, config%model%s1, huge(1.0_wp), .true., .true., &
+                    'kappa_max must be > s1 = '//num2str(config%model%s1), status, message)
+    call check_real('kappa_min', kappa_min, -huge(1.0_wp), kappa_max, .false., .true., &
+                    'kappa_min must be < kappa_max = '//num2str(kappa_max), status, message)
+    if (status /= SD_OK) then
+      message = '&analysis: '//trim(message)
+      return
+    end if
+    config%sigma1 = sigma1
+    config%kappa_min = kappa_min
+    config%kappa_max = kappa_max
+  end subroutine read_analysis
+
+  subroutine read_output(file, path, status, message)
+    type(input_file), intent(inout) :: file
+    character(len=path_len), intent(out) :: path
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=path_len + 1) :: directory
+    type(run_config) :: defaults
+    type(group_reader) :: reader
+    namelist /output/ directory
+    directory = defaults%directory
+    path = ''
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_OUTPUT, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=output, iostat=reader%ios)
+      else
+        read (reader%text, nml=output, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK) return
+    if (len_trim(directory) == 0) then
+      call fail(status, message, '&output: directory = '''' is empty: give a directory name')
+    else if (len_trim(directory) > path_len) then
+      call fail(status, message, '&output: directory is too long: it must have at most '// &
+                num2str(path_len)//' characters')
+    else
+      path = directory(1:path_len)
+    end if
+  end subroutine read_output
+
+  subroutine read_integration(file, options, method_code, status, message)
+    type(input_file), intent(inout) :: file
+    type(ode_options), intent(out) :: options
+    integer, intent(out) :: method_code, status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: rtol, atol, h_initial, h_max, h_min
+    integer :: max_steps, i
+    character(len=word_len) :: method
+    type(group_reader) :: reader
+    namelist /integration/ rtol, atol, h_initial, h_max, h_min, max_steps, method
+
+    rtol = options%rtol; atol = options%atol; h_initial = options%h_initial
+    h_max = options%h_max; h_min = options%h_min; max_steps = options%max_steps
+    method = method_names(METHOD_DOPRI5)
+    method_code = METHOD_DOPRI5
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_INTEGRATION, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=integration, iostat=reader%ios)
+      else
+        read (reader%text, nml=integration, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK) return
+    method_code = -1
+    do i = lbound(method_names, 1), ubound(method_names, 1)
+      if (method_names(i) == adjustl(method)) method_code = i
+    end do
+    if (method_code < 0) then
+      call fail(status, message, '&integration: method = '''//trim(adjustl(method))//''' is '// &
+                'not known; allowed: '//join(method_names))
+      return
+    end if
+    options%rtol = rtol; options%atol = atol; options%h_initial = h_initial
+    options%h_max = h_max; options%h_min = h_min; options%max_steps = max_steps
+    call check_options(options, [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp], status, message)
+    if (status /= SD_OK) message = '&integration: '//trim(message)
+  end subroutine read_integration
+
+  subroutine read_simulation(file, needed, settings, status, message)
+    type(input_file), intent(inout) :: file
+    logical, intent(in) :: needed
+    type(simulation_settings), intent(out) :: settings
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: t_end, y0(4)
+    integer :: n_out, i
+    type(group_reader) :: reader
+    namelist /simulation/ t_end, n_out, y0
+
+    t_end = settings%t_end; n_out = settings%n_out; y0 = settings%y0
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_SIMULATION, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=simulation, iostat=reader%ios)
+      else
+        read (reader%text, nml=simulation, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK) return
+    do i = 1, 4
+      call check_real('y0('//num2str(i)//')', y0(i), -huge(1.0_wp), huge(1.0_wp), .false., &
+                      .false., 'the initial state (x1, x1'', x2, x2'') must be finite', status, &
+                      message)
+    end do
+    if (needed) then
+      call require(file, G_SIMULATION, 't_end', status, message)
+      if (status /= SD_OK) return
+      call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      't_end must be > 0 (the simulation starts at tau = 0)', status, message)
+      if (status == SD_OK .and. (n_out < 2 .or. n_out > 10000000)) then
+        status = SD_BAD_INPUT
+        message = 'n_out = '//num2str(n_out)//' is out of range: it must lie in [2, 10000000]'
+      end if
+    end if
+    if (status /= SD_OK) then
+      message = '&simulation: '//trim(message)
+      return
+    end if
+    settings = simulation_settings(t_end, n_out, y0)
+  end subroutine read_simulation
+
+  !> &steady; its rules with the forcing frequency are applied by check_analysis.
+  subroutine read_steady(file, options, status, message)
+    type(input_file), intent(inout) :: file
+    type(steady_options), intent(out) :: options
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: transient_periods, settle_tol, max_transient_periods, periodic_tol
+    integer :: window_periods, samples_per_period
+    type(group_reader) :: reader
+    namelist /steady/ transient_periods, settle_tol, max_transient_periods, window_periods, &
+                      samples_per_period, periodic_tol
+
+    transient_periods = options%transient_periods; settle_tol = options%settle_tol
+    max_transient_periods = options%max_transient_periods
+    window_periods = options%window_periods; samples_per_period = options%samples_per_period
+    periodic_tol = options%periodic_tol
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_STEADY, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=steady, iostat=reader%ios)
+      else
+        read (reader%text, nml=steady, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    options = steady_options(transient_periods, settle_tol, max_transient_periods, &
+                             window_periods, samples_per_period, periodic_tol)
+  end subroutine read_steady
+
+  subroutine read_sweep(file, needed, settings, status, message)
+    type(input_file), intent(inout) :: file
+    logical, intent(in) :: needed
+    type(sweep_settings), intent(out) :: settings
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=word_len) :: parameter, direction
+    real(wp) :: start, stop
+    integer :: n_points, i
+    type(group_reader) :: reader
+    namelist /sweep/ parameter, start, stop, n_points, direction
+
+    parameter = 'rho'; direction = direction_names(settings%direction)
+    start = settings%start; stop = settings%stop; n_points = settings%n_points
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_SWEEP, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=sweep, iostat=reader%ios)
+      else
+        read (reader%text, nml=sweep, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK .or. .not. needed) return
+    call excitation_parameter('sweep', parameter, settings%parameter, status, message)
+    if (status /= SD_OK) return
+    settings%direction = 0
+    do i = 1, size(direction_names)
+      if (direction_names(i) == adjustl(direction)) settings%direction = i
+    end do
+    if (settings%direction == 0) then
+      call fail(status, message, '&sweep: direction = '''//trim(adjustl(direction))//''' is '// &
+                'not known; allowed: '//join(direction_names))
+      return
+    end if
+    call require(file, G_SWEEP, 'start', status, message)
+    call require(file, G_SWEEP, 'stop', status, message)
+    call require(file, G_SWEEP, 'n_points', status, message)
+    if (status /= SD_OK) return
+    if (settings%parameter == PARAMETER_RHO) then
+      call check_real('start', start, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'sweep values of rho must be > 0', status, message)
+      call check_real('stop', stop, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'sweep values of rho must be > 0', status, message)
+    else
+      call check_real('start', start, 0.0_wp, huge(1.0_wp), .false., .true., &
+                      'sweep values of A must be >= 0', status, message)
+      call check_real('stop', stop, 0.0_wp, huge(1.0_wp), .false., .true., &
+                      'sweep values of A must be >= 0', status, message)
+    end if
+    if (status == SD_OK .and. (n_points < 1 .or. n_points > 100000)) then
+      status = SD_BAD_INPUT
+      message = 'n_points = '//num2str(n_points)//' is out of range: it must lie in [1, 100000]'
+    end if
+    if (status /= SD_OK) then
+      message = '&sweep: '//trim(message)
+      return
+    end if
+    settings%start = start
+    settings%stop = stop
+    settings%n_points = n_points
+  end subroutine read_sweep
+
+  !> &response; the interval is stored lower end first.
+  subroutine read_response(file, needed, settings, status, message)
+    type(input_file), intent(inout) :: file
+    logical, intent(in) :: needed
+    type(response_settings), intent(out) :: settings
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=word_len) :: resonance, parameter
+    real(wp) :: start, stop, amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale
+    integer :: n_scan, n_amplitudes, n_phases, max_points
+    type(group_reader) :: reader
+    namelist /response/ resonance, parameter, start, stop, n_scan, n_amplitudes, n_phases, &
+                        amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, max_points
+
+    resonance = '3:1'; parameter = 'rho'; start = 0; stop = 0
+    associate (o => settings%options, c => settings%options%continuation)
+      n_scan = o%n_scan; n_amplitudes = o%n_amplitudes; n_phases = o%n_phases
+      amplitude_min = o%amplitude_min; amplitude_max = o%amplitude_max
+      ds = c%ds; ds_min = c%ds_min; ds_max = c%ds_max; x_scale = c%x_scale
+      max_points = c%max_points
+    end associate
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_RESPONSE, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=response, iostat=reader%ios)
+      else
+        read (reader%text, nml=response, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK .or. .not. needed) return
+    if (adjustl(resonance) /= '3:1' .and. adjustl(resonance) /= 'none') then
+      call fail(status, message, '&response: resonance = '''//trim(adjustl(resonance))// &
+                ''' is not known; allowed: 3:1, none')
+      return
+    end if
+    call excitation_parameter('response', parameter, settings%parameter, status, message)
+    call require(file, G_RESPONSE, 'start', status, message)
+    call require(file, G_RESPONSE, 'stop', status, message)
+    if (status /= SD_OK) return
+    if (start == stop) then
+      status = SD_BAD_INPUT
+      message = '&response: start = stop = '//num2str(start)//': the interval is empty'
+      return
+    end if
+    settings%internal_resonance = adjustl(resonance) == '3:1'
+    settings%start = min(start, stop)
+    settings%stop = max(start, stop)
+    associate (o => settings%options, c => settings%options%continuation)
+      o%n_scan = n_scan; o%n_amplitudes = n_amplitudes; o%n_phases = n_phases
+      o%amplitude_min = amplitude_min; o%amplitude_max = amplitude_max
+      c%ds = ds; c%ds_min = ds_min; c%ds_max = ds_max; c%x_scale = x_scale
+      c%max_points = max_points
+    end associate
+    call check_response_options(settings%options, settings%parameter, settings%start, &
+                                settings%stop, status, message)
+    if (status /= SD_OK) message = '&response: '//trim(message)
+  end subroutine read_response
+
+  subroutine read_lyapunov(file, options, status, message)
+    type(input_file), intent(inout) :: file
+    type(lyapunov_options), intent(out) :: options
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: transient_periods
+    integer :: n_periods, renormalise_every
+    type(group_reader) :: reader
+    namelist /lyapunov/ transient_periods, n_periods, renormalise_every
+    transient_periods = options%transient_periods
+    n_periods = options%n_periods
+    renormalise_every = options%renormalise_every
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_LYAPUNOV, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=lyapunov, iostat=reader%ios)
+      else
+        read (reader%text, nml=lyapunov, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    call check_real('transient_periods', transient_periods, 0.0_wp, 1.0e9_wp, .false., .false., &
+                    'transient_periods must lie in [0, 1e9]', status, message)
+    if (status /= SD_OK) then
+      message = '&lyapunov: '//trim(message)
+      return
+    end if
+    options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every)
+  end subroutine read_lyapunov
+
+  !> The rules that tie the groups to the analysis asked for.
+  subroutine check_analysis(config, status, message)
+    type(run_config), intent(inout) :: config
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    type(model_t) :: first
+
+    select case (config%analysis)
+    case (ANALYSIS_LINEAR)
+      call require_stable_trivial(config%model, status, message)
+    case (ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP)
+      first = config%model
+      if (config%analysis == ANALYSIS_SWEEP .and. config%sweep%parameter == PARAMETER_RHO) &
+        first%excitation%rho = min(config%sweep%start, config%sweep%stop)
+      call check_steady(first, config%steady, status, message)
+      if (status /= SD_OK) message = trim(merge('&excitation', '&steady    ', &
+                                                index(message, 'rho') == 1))//': '//trim(message)
+    case (ANALYSIS_FREQUENCY_RESPONSE)
+      call require_stable_trivial(config%model, status, message)
+    case (ANALYSIS_PERIODIC_RESPONSE)
+      call require_stable_trivial(config%model, status, message)
+      if (status /= SD_OK) return
+      first = config%model
+      if (config%response%parameter == PARAMETER_RHO) first%excitation%rho = config%response%start
+      call check_steady(first, config%steady, status, message)
+      if (status /= SD_OK) message = '&steady/&excitation: '//trim(message)
+    case (ANALYSIS_LYAPUNOV)
+      call check_real('rho', config%model%excitation%rho, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'the Lyapunov exponent needs a forcing frequency rho > 0', status, message)
+      if (status /= SD_OK) then
+        message = '&excitation: '//trim(message)
+        return
+      end if
+      call check_lyapunov(config%lyapunov, status, message)
+      if (status /= SD_OK) message = '&lyapunov: '//trim(message)
+    end select
+  end subroutine check_analysis
+
+  ! ---- reading groups --------------------------------------------------------------------------
+
+  !> Start reading group `group` of the file (nothing to read after an earlier failure).
+  subroutine start_group(reader, file, group, status)
+    class(group_reader), intent(out) :: reader
+    type(input_file), intent(in) :: file
+    integer, intent(in) :: group, status
+    reader%group = group
+    reader%name = trim(known_groups(group))
+    reader%describing = file%describing
+    reader%done = status /= SD_OK .or. .not. (file%describing .or. file%groups(group)%given)
+    if (.not. file%describing .and. .not. reader%done) then
+      reader%body = file%groups(group)%body
+      reader%line = file%groups(group)%line
+      reader%path = file%path
+      reader%next_start = next_assignment(reader%body, 1)
+    end if
+  end subroutine start_group
+
+  !> Whether there is a text to parse (or, describing, the group to write): the whole group
+  !> first; if that fails, each assignment alone, to name the one at fault.
+  logical function next_text(reader)
+    class(group_reader), intent(inout) :: reader
+    integer :: start, next
+    next_text = .false.
+    if (reader%done) return
+    next_text = .true.
+    reader%step = reader%step + 1
+    if (reader%describing) then
+      reader%text = ''
+    else if (reader%step == 1) then
+      reader%text = '&'//reader%name//' '//reader%body//' /'
+    else
+      start = reader%next_start
+      next = next_assignment(reader%body, start + 1)
+      if (next > 0) then
+        reader%assignment = trim(reader%body(start:next - 1))
+      else
+        reader%assignment = trim(reader%body(start:))
+      end if
+      ! the separator before the next assignment is not part of this one
+      if (reader%assignment(len(reader%assignment):) == ',') &
+        reader%assignment = trim(reader%assignment(:len(reader%assignment) - 1))
+      reader%text = '&'//reader%name//' '//reader%assignment//' /'
+      reader%next_start = next
+    end if
+  end function next_text
+
+  !> The outcome of parsing the current text (reader%ios, reader%iomsg of the namelist read), or,
+  !> describing, the group written with its values (reader%written).
+  subroutine check_text(reader, file, status, message)
+    class(group_reader), intent(inout) :: reader
+    type(input_file), intent(inout) :: file
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=:), allocatable :: prefix
+    integer :: equals
+
+    if (reader%describing) then
+      file%description = file%description//trim(reader%written)//new_line('a')
+      reader%done = .true.
+      return
+    end if
+    if (reader%step == 1) then
+      reader%done = reader%ios == 0
+      if (reader%done) return
+      ! text before the first assignment is at fault, or else one of the assignments
+      prefix = reader%body(1:merge(reader%next_start - 1, len(reader%body), &
+                                   reader%next_start > 0))
+      if (len_trim(prefix) > 0) then
+        call fail(status, message, '&'//reader%name//" in '"//reader%path//"' (line "// &
+                  num2str(reader%line)//"): unexpected text '"//trim(adjustl(prefix))// &
+                  "' before the first assignment")
+        reader%done = .true.
+      end if
+    else if (reader%ios /= 0) then
+      equals = index(reader%assignment, '=')
+      call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
+                trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
+                trim(reader%assignment(equals + 1:))//' is not valid: '// &
+                expected_type(variable_name(reader%assignment(1:equals - 1))))
+      reader%done = .true.
+    end if
+    if (.not. reader%done .and. reader%next_start == 0) then
+      ! every assignment parses alone, the group does not
+      call fail(status, message, '&'//reader%name//" in '"//reader%path//"' cannot be read: "// &
+                trim(reader%iomsg))
+      reader%done = .true.
+    end if
+  end subroutine check_text
+
+  !> A required variable must be assigned in its group (an explicit NaN is assigned, and fails
+  !> its range check instead).
+  subroutine require(file, group, name, status, message)
+    type(input_file), intent(in) :: file
+    integer, intent(in) :: group
+    character(len=*), intent(in) :: name
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=:), allocatable :: display
+    if (status /= SD_OK .or. file%describing) return
+    if (file%groups(group)%given) then
+      if (index(file%groups(group)%assigned, ','//name//',') > 0) return
+    end if
+    display = name
+    select case (name)      ! the names the documentation uses
+    case ('r');  display = 'R'
+    case ('m');  display = 'M'
+    case ('l');  display = 'L'
+    end select
+    call fail(status, message, '&'//trim(known_groups(group))//': required variable '// &
+              display//' is missing')
+  end subroutine require
+
+  !> 'rho' or 'A' for the group's parameter.
+  subroutine excitation_parameter(group, text, parameter, status, message)
+    character(len=*), intent(in) :: group, text
+    integer, intent(out) :: parameter
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    parameter = PARAMETER_RHO
+    select case (adjustl(text))
+    case ('rho')
+      parameter = PARAMETER_RHO
+    case ('A', 'a')
+      parameter = PARAMETER_A
+    case default
+      call fail(status, message, '&'//group//': parameter = '''//trim(adjustl(text))// &
+                ''' is not known; allowed: rho, A')
+    end select
+  end subroutine excitation_parameter
+
+  pure subroutine fail(status, message, text)
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=*), intent(in) :: text
+    if (status /= SD_OK) return
+    status = SD_BAD_INPUT
+    message = text
+  end subroutine fail
+
+  !> What a variable must be, for messages.
+  pure function expected_type(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
+          'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points')
+      text = name//' must be an integer'
+    case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method')
+      text = name//' must be a quoted string'
+    case ('y0')
+      text = 'y0 must be four real numbers (x1, x1'', x2, x2''), or y0(i) = one of them, i = 1..4'
+    case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'a', 'rho', 'r', 'h', &
+          'rho_liquid', 'm_liquid', 'm', 'l', 'k', 'c', 'b', 'd', 'g', 'sigma1', 'kappa_min', &
+          'kappa_max', 'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 't_end', 'settle_tol', &
+          'transient_periods', &
+          'max_transient_periods', 'periodic_tol', 'start', 'stop', 'amplitude_min', &
+          'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale')
+      text = name//' must be a real number'
+    case default
+      text = 'unknown variable '''//name//''' (see the namelist reference in README.md)'
+    end select
+  end function expected_type
+
+  ! ---- scanning the file -----------------------------------------------------------------------
+
+  !> Split the file into its groups. Errors: a missing or unreadable file, text outside groups,
+  !> unknown, repeated or unclosed groups, no group at all.
+  subroutine scan_file(path, file, status, message)
+    character(len=*), intent(in) :: path
+    type(input_file), intent(out) :: file
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=:), allocatable :: text, name, body
+    integer :: i, k, n, line, group, start_line
+    logical :: inside_quotes
+    character :: quote
+
+    file%path = path
+    call read_text(path, text, status, message)
+    if (status /= SD_OK) return
+    n = len(text)
+    i = 1
+    line = 1
+    do while (i <= n)
+      select case (text(i:i))
+      case (' ', char(9), char(13))
+        i = i + 1
+      case (char(10))
+        line = line + 1
+        i = i + 1
+      case ('!')
+        call skip_comment()
+      case ('&', '$')
+        ! a group: its name, then its body up to '/' (or &end) outside quotes
+        start_line = line
+        i = i + 1
+        name = ''
+        do while (i <= n)
+          if (.not. is_name_char(text(i:i))) exit
+          name = name//lower(text(i:i))
+          i = i + 1
+        end do
+        group = 0
+        do k = 1, size(known_groups)
+          if (known_groups(k) == name) group = k
+        end do
+        if (len(name) == 0 .or. name == 'end') then
+          call fail(status, message, 'a group name must follow & in '''//path//''' (line '// &
+                    num2str(start_line)//')')
+        else if (group == 0) then
+          call fail(status, message, 'unknown namelist group &'//name//' in '''//path// &
+                    ''' (line '//num2str(start_line)//'); known groups: &'// &
+                    join(known_groups, ', &'))
+        else if (file%groups(group)%given) then
+          call fail(status, message, 'namelist group &'//name//' appears twice in '''//path// &
+                    ''' (lines '//num2str(file%groups(group)%line)//' and '// &
+                    num2str(start_line)//')')
+        end if
+        if (status /= SD_OK) return
+        body = ''
+        inside_quotes = .false.
+        quote = ' '
+        do
+          if (i > n) then
+            call fail(status, message, 'namelist group &'//name//' in '''//path//''' (line '// &
+                      num2str(start_line)//') is not closed: end it with /')
+            return
+          end if
+          if (inside_quotes) then
+            if (text(i:i) == quote) inside_quotes = .false.
+          else if (text(i:i) == '"' .or. text(i:i) == '''') then
+            inside_quotes = .true.
+            quote = text(i:i)
+          else if (text(i:i) == '!') then
+            call skip_comment()
+            body = body//' '
+            cycle
+          else if (text(i:i) == '/') then
+            i = i + 1
+            exit
+          else if (text(i:i) == '&' .or. text(i:i) == '$') then
+            ! &end (or $end, $) closes the group
+            i = i + 1
+            do while (i <= n)
+              if (.not. is_name_char(text(i:i))) exit
+              i = i + 1
+            end do
+            exit
+          end if
+          if (text(i:i) == char(10)) then
+            line = line + 1
+            body = body//' '
+          else if (text(i:i) == char(9) .or. text(i:i) == char(13)) then
+            body = body//' '
+          else
+            body = body//text(i:i)
+          end if
+          i = i + 1
+        end do
+        file%groups(group)%given = .true.
+        file%groups(group)%line = start_line
+        file%groups(group)%body = body
+        file%groups(group)%assigned = assignment_names(body)
+      case default
+        call fail(status, message, 'unexpected text '''//trim(next_word())//''' outside a '// &
+                  'namelist group in '''//path//''' (line '//num2str(line)//'): groups start '// &
+                  'with &name and end with /')
+        return
+      end select
+    end do
+    if (.not. any(file%groups%given)) &
+      call fail(status, message, 'no namelist group found in '''//path//''' (expected &model '// &
+                '... /)')
+
+  contains
+
+    subroutine skip_comment()
+      do while (i <= n)
+        if (text(i:i) == char(10)) exit
+        i = i + 1
+      end do
+    end subroutine skip_comment
+
+    function next_word() result(word)
+      character(len=:), allocatable :: word
+      integer :: j
+      j = i
+      do while (j <= n .and. j < i + 40)
+        if (text(j:j) == ' ' .or. text(j:j) == char(10) .or. text(j:j) == char(13)) exit
+        j = j + 1
+      end do
+      word = text(i:j - 1)
+    end function next_word
+  end subroutine scan_file
+
+  !> The whole file as one string.
+  subroutine read_text(path, text, status, message)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(out) :: text   !< unallocated on failure
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=message_len) :: iomsg
+    integer :: unit, ios, file_size
+    logical :: exists
+
+    status = SD_OK
+    message = ''
+    inquire (file=path, exist=exists)
+    if (exists) inquire (file=trim(path)//'/.', exist=exists)
+    if (exists) then
+      status = SD_IO_ERROR
+      message = 'cannot read input file '''//path//''': it is a directory'
+      return
+    end if
+    open (newunit=unit, file=path, status='old', action='read', access='stream', &
+          form='unformatted', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      status = SD_IO_ERROR
+      message = 'cannot open input file '''//path//''': '//trim(iomsg)
+      return
+    end if
+    inquire (unit=unit, size=file_size)
+    allocate (character(len=max(file_size, 0)) :: text)
+    if (file_size > 0) then
+      read (unit, iostat=ios, iomsg=iomsg) text
+      if (ios /= 0) then
+        status = SD_IO_ERROR
+        message = 'cannot read input file '''//path//''': '//trim(iomsg)
+      end if
+    end if
+    close (unit)
+  end subroutine read_text
+
+  !> ',name1,name2,...,' of the variables assigned in a group body (lower case, indices dropped).
+  pure function assignment_names(body) result(names)
+    character(len=*), intent(in) :: body
+    character(len=:), allocatable :: names
+    integer :: start, equals
+    names = ','
+    start = next_assignment(body, 1)
+    do while (start > 0)
+      equals = start + index(body(start:), '=') - 1
+      names = names//variable_name(body(start:equals - 1))//','
+      start = next_assignment(body, start + 1)
+    end do
+  end function assignment_names
+
+  !> The variable of the left side of an assignment: 'y0(2) ' -> 'y0', lower case.
+  pure function variable_name(left) result(name)
+    character(len=*), intent(in) :: left
+    character(len=:), allocatable :: name
+    integer :: paren
+    name = trim(adjustl(left))
+    paren = index(name, '(')
+    if (paren > 0) name = trim(name(1:paren - 1))
+    name = lower(name)
+  end function variable_name
+
+  !> Position of the next `name =` or `name(index) =` at or after `from` outside quotes, 0 if
+  !> none.
+  pure integer function next_assignment(text, from) result(position)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: from
+    integer :: i, j, k
+    logical :: quoted
+    character :: quote
+
+    position = 0
+    quoted = .false.
+    quote = ' '
+    do i = 1, len(text)
+      if (quoted) then
+        if (text(i:i) == quote) quoted = .false.
+        cycle
+      end if
+      if (text(i:i) == '"' .or. text(i:i) == '''') then
+        quoted = .true.
+        quote = text(i:i)
+        cycle
+      end if
+      if (i < from) cycle
+      if (.not. is_name_start(text(i:i))) cycle
+      if (i > 1) then
+        if (is_name_char(text(i - 1:i - 1))) cycle
+      end if
+      j = i
+      do while (j <= len(text))
+        if (.not. is_name_char(text(j:j))) exit
+        j = j + 1
+      end do
+      j = skip_blanks(text, j)
+      if (j <= len(text)) then
+        if (text(j:j) == '(') then
+          ! an array index: up to the closing parenthesis
+          k = index(text(j:), ')')
+          if (k == 0) cycle
+          j = skip_blanks(text, j + k)
+        end if
+      end if
+      if (j <= len(text)) then
+        if (text(j:j) == '=') then
+          position = i
+          return
+        end if
+      end if
+    end do
+  end function next_assignment
+
+  pure integer function skip_blanks(text, from) result(j)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: from
+    j = from
+    do while (j <= len(text))
+      if (text(j:j) /= ' ') exit
+      j = j + 1
+    end do
+  end function skip_blanks
+
+  pure logical function is_name_start(ch)
+    character, intent(in) :: ch
+    is_name_start = index('abcdefghijklmnopqrstuvwxyz', lower(ch)) > 0
+  end function is_name_start
+
+  pure logical function is_name_char(ch)
+    character, intent(in) :: ch
+    is_name_char = index('abcdefghijklmnopqrstuvwxyz0123456789_', lower(ch)) > 0
+  end function is_name_char
+
+  pure function lower(text) result(low)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: low
+    integer :: i
+    low = text
+    do i = 1, len(text)
+      if (text(i:i) >= 'A' .and. text(i:i) <= 'Z') low(i:i) = achar(iachar(text(i:i)) + 32)
+    end do
+  end function lower
+
+  pure function join(items, separator) result(text)
+    character(len=*), intent(in) :: items(:)
+    character(len=*), intent(in), optional :: separator
+    character(len=:), allocatable :: text
+    integer :: i
+    text = trim(items(1))
+    do i = 2, size(items)
+      if (present(separator)) then
+        text = text//separator//trim(items(i))
+      else
+        text = text//', '//trim(items(i))
+      end if
+    end do
+  end function join
+end module sloshdyn_namelist

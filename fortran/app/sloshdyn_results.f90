@@ -1,0 +1,141 @@
+!> The result files of one run: each table is written as CSV under a temporary name that is
+!> unique to the run (dir/.name.PID.tmp), every write checked, and all are renamed into place by
+!> commit once every one is complete; discard removes them. Headers and column formats come from
+!> sloshdyn_tables, so both front doors write the same files.
+module sloshdyn_results
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_IO_ERROR
+  use sloshdyn_text, only: num2str
+  use sloshdyn_tables, only: table_header, table_formats, special_kind_name, verdict_name
+  use sloshdyn_files, only: make_directory, rename_file, remove_file, process_id
+  implicit none
+  private
+  public :: result_files
+
+  type :: pending_file
+    character(len=:), allocatable :: final, temporary
+  end type pending_file
+
+  type :: result_files
+    character(len=:), allocatable :: directory
+    type(pending_file), allocatable :: files(:)
+  contains
+    procedure :: create => create_directory
+    procedure :: write_table
+    procedure :: commit
+    procedure :: discard
+  end type result_files
+
+contains
+
+  !> Create the output directory (with its parents).
+  subroutine create_directory(self, directory, status, message)
+    class(result_files), intent(inout) :: self
+    character(len=*), intent(in) :: directory
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    logical :: ok
+    status = SD_OK
+    message = ''
+    self%directory = trim(directory)
+    allocate (self%files(0))
+    call make_directory(self%directory, ok)
+    if (.not. ok) then
+      status = SD_IO_ERROR
+      message = 'cannot create output directory '''//self%directory//''''
+    end if
+  end subroutine create_directory
+
+  !> Write data (one column of the array per row of the file) as table `table` into file `name`
+  !> under its temporary name.
+  subroutine write_table(self, name, table, data, status, message)
+    class(result_files), intent(inout) :: self
+    character(len=*), intent(in) :: name, table
+    real(wp), intent(in) :: data(:, :)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=message_len) :: iomsg
+    character(len=:), allocatable :: formats, line
+    character(len=32) :: field
+    type(pending_file) :: file
+    integer :: unit, ios, i, j, length
+
+    status = SD_OK
+    message = ''
+    file%final = self%directory//'/'//name
+    file%temporary = self%directory//'/.'//name//'.'//num2str(process_id())//'.tmp'
+    self%files = [self%files, file]
+    formats = table_formats(table)
+    allocate (character(len=33*size(data, 1)) :: line)
+    open (newunit=unit, file=file%temporary, status='replace', action='write', iostat=ios, &
+          iomsg=iomsg)
+    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
+    do j = 1, size(data, 2)
+      if (ios /= 0) exit
+      length = 0
+      do i = 1, size(data, 1)
+        select case (formats(i:i))
+        case ('i')
+          write (field, '(i0)') nint(data(i, j))
+        case ('s')
+          field = special_kind_name(nint(data(i, j)))
+        case ('v')
+          field = verdict_name(nint(data(i, j)))
+        case default
+          write (field, '(es24.16e3)') data(i, j)
+        end select
+        field = adjustl(field)
+        if (i > 1) then
+          length = length + 1
+          line(length:length) = ','
+        end if
+        line(length + 1:length + len_trim(field)) = trim(field)
+        length = length + len_trim(field)
+      end do
+      write (unit, '(a)', iostat=ios, iomsg=iomsg) line(1:length)
+    end do
+    if (ios == 0) then
+      close (unit, iostat=ios, iomsg=iomsg)
+    else
+      close (unit)
+    end if
+    if (ios /= 0) then
+      status = SD_IO_ERROR
+      message = 'cannot write '//file%final//': '//trim(iomsg)
+    end if
+  end subroutine write_table
+
+  !> Rename every file into place.
+  subroutine commit(self, status, message)
+    class(result_files), intent(inout) :: self
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: i
+    logical :: ok
+    status = SD_OK
+    message = ''
+    do i = 1, size(self%files)
+      call rename_file(self%files(i)%temporary, self%files(i)%final, ok)
+      if (.not. ok) then
+        status = SD_IO_ERROR
+        message = 'cannot rename '//self%files(i)%temporary//' into '//self%files(i)%final
+        call self%discard()
+        return
+      end if
+    end do
+    deallocate (self%files)
+    allocate (self%files(0))
+  end subroutine commit
+
+  !> Remove every file not yet committed.
+  subroutine discard(self)
+    class(result_files), intent(inout) :: self
+    integer :: i
+    if (.not. allocated(self%files)) return
+    do i = 1, size(self%files)
+      call remove_file(self%files(i)%temporary)
+    end do
+    deallocate (self%files)
+    allocate (self%files(0))
+  end subroutine discard
+end module sloshdyn_results

@@ -1,0 +1,218 @@
+!> The layouts of every result table and the names of every kind code, in one place: the
+!> analyses fill arrays in these layouts, the executable writes CSV headers from them, and the
+!> bridge hands them to Python, which names its columns and kinds after them.
+!>
+!> A layout is a comma-separated list of column names; row i of a result array is column i.
+!> Named indices (e.g. SUMMARY_MAX_X1) are given for the columns code reads one at a time.
+module sloshdyn_tables
+  implicit none
+  private
+  public :: table_header, table_formats, table_size, kind_names, special_kind_name, motion_name, verdict_name
+  public :: SPECIAL_FOLD, SPECIAL_HOPF, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
+            SPECIAL_NEIMARK_SACKER
+  public :: MOTION_PERIODIC, MOTION_QUASI_PERIODIC, MOTION_IRREGULAR, MOTION_SETTLING
+  public :: VERDICT_STABLE, VERDICT_MARGINAL, VERDICT_UNSTABLE
+  public :: HISTORY_ROWS, SUMMARY_SIZE, SUMMARY_RHO, SUMMARY_A, SUMMARY_MAX_X1, SUMMARY_MAX_X2, &
+            SUMMARY_MAX_U1, SUMMARY_MAX_U2, SUMMARY_MOTION, SUMMARY_PERIOD, SUMMARY_TRANSIENT, &
+            SUMMARY_SPREAD, SUMMARY_SETTLED
+  public :: POINT_ROWS, POINT_BRANCH, POINT_LAMBDA, POINT_RHO, POINT_A, POINT_A1, POINT_A2, &
+            POINT_STABLE, POINT_SPECIAL, POINT_RE, POINT_IM, POINT_C, POINT_DELTA2, &
+            POINT_DELTA3, POINT_X
+  public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
+            SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
+  public :: ROUTH_SIZE, COUNTS_SIZE
+
+  !> Special points on branches (slow flow and periodic orbits).
+  integer, parameter :: SPECIAL_FOLD = 1, SPECIAL_HOPF = 2, SPECIAL_BRANCH_POINT = 3, &
+                        SPECIAL_PERIOD_DOUBLING = 4, SPECIAL_NEIMARK_SACKER = 5
+  character(len=*), parameter :: special_kinds = &
+    'fold,hopf,branch_point,period_doubling,neimark_sacker'
+  !> Kinds of steady motion judged from Poincare points (sloshdyn_simulation).
+  integer, parameter :: MOTION_PERIODIC = 1, MOTION_QUASI_PERIODIC = 2, MOTION_IRREGULAR = 3, &
+                        MOTION_SETTLING = 4
+  character(len=*), parameter :: motion_kinds = 'periodic,quasi-periodic,irregular,settling'
+  !> Stability verdicts of equilibria, from -1.
+  integer, parameter :: VERDICT_UNSTABLE = -1, VERDICT_MARGINAL = 0, VERDICT_STABLE = 1
+  character(len=*), parameter :: verdict_kinds = 'unstable,marginal,stable'
+
+  !> Time history rows (after tau): state, modal coordinates (eq 34), impact force (eq 4),
+  !> angles [rad].
+  character(len=*), parameter :: history_columns = 'x1,dx1,x2,dx2,u1,u2,impact_force,theta,phi'
+  integer, parameter :: HISTORY_ROWS = 9
+
+  !> One steady-state summary.
+  character(len=*), parameter :: summary_columns = 'rho,A,max_x1,max_x2,max_u1,max_u2,motion,'// &
+    'period,transient_periods,spread,settled'
+  integer, parameter :: SUMMARY_SIZE = 11, SUMMARY_RHO = 1, SUMMARY_A = 2, SUMMARY_MAX_X1 = 3, &
+                        SUMMARY_MAX_X2 = 4, SUMMARY_MAX_U1 = 5, SUMMARY_MAX_U2 = 6, &
+                        SUMMARY_MOTION = 7, SUMMARY_PERIOD = 8, SUMMARY_TRANSIENT = 9, &
+                        SUMMARY_SPREAD = 10, SUMMARY_SETTLED = 11
+
+  !> One point of a slow-flow branch: eigenvalues re1..re4, im1..im4 of its Jacobian, C1..C4 and
+  !> Delta2, Delta3 of eq (55), the Cartesian unknowns x = (Re B1, Im B1, Re B2, Im B2).
+  character(len=*), parameter :: point_columns = 'branch,lambda,rho,A,a1,a2,phi1,phi2,stable,'// &
+    'special,re1,re2,re3,re4,im1,im2,im3,im4,C1,C2,C3,C4,delta2,delta3,re_B1,im_B1,re_B2,im_B2'
+  integer, parameter :: POINT_ROWS = 28, POINT_BRANCH = 1, POINT_LAMBDA = 2, POINT_RHO = 3, &
+                        POINT_A = 4, POINT_A1 = 5, POINT_A2 = 6, POINT_STABLE = 9, &
+                        POINT_SPECIAL = 10, POINT_RE = 11, POINT_IM = 15, POINT_C = 19, &
+                        POINT_DELTA2 = 23, POINT_DELTA3 = 24, POINT_X = 25
+
+  !> A special point of a slow-flow branch; frequency: the Hopf frequency sqrt(C3/C1) (slow
+  !> time; 0 for folds); column: the point's column in the point table.
+  character(len=*), parameter :: special_columns = 'kind,branch,lambda,rho,A,a1,a2,frequency,column'
+  integer, parameter :: SPECIAL_ROWS = 9, SPECIAL_KIND = 1, SPECIAL_BRANCH = 2, &
+                        SPECIAL_LAMBDA = 3, SPECIAL_RHO = 4, SPECIAL_A = 5, SPECIAL_A1 = 6, &
+                        SPECIAL_A2 = 7, SPECIAL_FREQUENCY = 8, SPECIAL_COLUMN = 9
+
+  !> Routh-Hurwitz of eq (20) at the trivial equilibrium; work counts of an integration.
+  integer, parameter :: ROUTH_SIZE = 8, COUNTS_SIZE = 4
+
+contains
+
+  !> The CSV header (column names) of a result table, '' for an unknown name.
+  pure function table_header(name) result(header)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: header
+    select case (name)
+    case ('parameters')
+      header = 's1,mu1,kappa,theta0,beta,gamma,delta,n,p,A,rho,a1,a2,a3,a4,a5,a6,'// &
+               'b1,b2,b3,b4,b5,b6'
+    case ('tank')
+      header = 'R,h,m_liquid,l,m,d1,m0,d0,M,L,g,omega'
+    case ('frequencies')
+      header = 'omega1,omega2,omega1_dgeev,omega2_dgeev,ratio,k11,k12,k21,k22'
+    case ('equilibria')
+      header = 'theta,phi,x1,x2,physical,verdict,re1,im1,re2,im2,re3,im3,re4,im4'
+    case ('routh_hurwitz')
+      header = 'c1,c2,c3,c4,delta2,delta3,routh_stable,eigenvalue_verdict'
+    case ('kappa_31')
+      header = 'sigma1,kappa'
+    case ('history')
+      header = 'tau,'//history_columns
+    case ('simulation')
+      header = 'n_rhs,n_accepted,n_rejected,tau_reached'
+    case ('summary')
+      header = summary_columns
+    case ('poincare')
+      header = 'tau,x1,dx1,x2,dx2'
+    case ('response')
+      header = point_columns
+    case ('special_points')
+      header = special_columns(1:index(special_columns, ',column') - 1)
+    case ('periodic_branch')
+      header = 'lambda,y1,y2,y3,y4,max_x1,stable,re_mu1,re_mu2,re_mu3,re_mu4,'// &
+               'im_mu1,im_mu2,im_mu3,im_mu4'
+    case ('periodic_special_points')
+      header = 'kind,lambda,y1,y2,y3,y4,max_x1'
+    case ('lyapunov')
+      header = 'periods,estimate'
+    case default
+      header = ''
+    end select
+  end function table_header
+
+  !> How each column of a result table is written, one letter per column: r real, i integer,
+  !> s special-point kind name, v verdict name.
+  pure function table_formats(name) result(formats)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: formats
+    select case (name)
+    case ('parameters')
+      formats = 'rrrrrrriirrrrrrrrrrrrrr'
+    case ('equilibria')
+      formats = 'rrrrivrrrrrrrr'
+    case ('routh_hurwitz')
+      formats = 'rrrrrriv'
+    case ('special_points')
+      formats = 'srrrrrrr'
+    case ('periodic_special_points')
+      formats = 'srrrrrr'
+    case ('simulation')
+      formats = 'iiir'
+    case ('lyapunov')
+      formats = 'ir'
+    case default
+      formats = repeat('r', table_size(name))
+    end select
+  end function table_formats
+
+  !> Number of columns of a result table.
+  pure integer function table_size(name) result(columns)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: header
+    integer :: i
+    header = table_header(name)
+    columns = 0
+    if (len(header) > 0) columns = 1
+    do i = 1, len(header)
+      if (header(i:i) == ',') columns = columns + 1
+    end do
+  end function table_size
+
+  !> The names of the codes of a kind list ('special', 'motion', 'verdict'), comma-separated,
+  !> in code order; first = the first code.
+  pure subroutine kind_names(list, names, first)
+    character(len=*), intent(in) :: list
+    character(len=:), allocatable, intent(out) :: names
+    integer, intent(out) :: first
+    select case (list)
+    case ('special')
+      names = special_kinds
+      first = SPECIAL_FOLD
+    case ('motion')
+      names = motion_kinds
+      first = MOTION_PERIODIC
+    case ('verdict')
+      names = verdict_kinds
+      first = VERDICT_UNSTABLE
+    case default
+      names = ''
+      first = 0
+    end select
+  end subroutine kind_names
+
+  pure function special_kind_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    name = item(special_kinds, code - SPECIAL_FOLD + 1)
+  end function special_kind_name
+
+  pure function motion_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    name = item(motion_kinds, code - MOTION_PERIODIC + 1)
+  end function motion_name
+
+  pure function verdict_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    name = item(verdict_kinds, code - VERDICT_UNSTABLE + 1)
+  end function verdict_name
+
+  !> Item i (from 1) of a comma-separated list; 'unknown' outside it.
+  pure function item(list, i) result(name)
+    character(len=*), intent(in) :: list
+    integer, intent(in) :: i
+    character(len=:), allocatable :: name
+    integer :: start, k, next
+    start = 1
+    do k = 1, i - 1
+      next = index(list(start:), ',')
+      if (next == 0 .or. i < 1) then
+        name = 'unknown'
+        return
+      end if
+      start = start + next
+    end do
+    if (i < 1) then
+      name = 'unknown'
+      return
+    end if
+    next = index(list(start:), ',')
+    if (next == 0) then
+      name = list(start:)
+    else
+      name = list(start:start + next - 2)
+    end if
+  end function item
+end module sloshdyn_tables

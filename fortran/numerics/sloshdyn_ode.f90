@@ -1,0 +1,631 @@
+!> The explicit Runge-Kutta integrator family (in the style of rklib): the ODE system interface,
+!> the options and work counts, and one driver shared by every embedded pair -- step planning,
+!> the accept/reject loop with Hairer's stabilised (PI) step-size control, HINIT's automatic
+!> first step, replacing the state, and the dense-output loop over output times. A method is a
+!> small extension of rk_integrator that supplies its tableau (trial), its extra stages after an
+!> accepted error test (finish), its continuous extension (store_dense, dense) and its
+!> properties (order, step-control defaults). Integrates forward in time only.
+!>
+!> References: Hairer, Norsett & Wanner, Solving Ordinary Differential Equations I, 2nd ed.,
+!> sec. II.4 (step-size control), II.5 and II.10 (the pairs), II.6 (dense output); the published
+!> dopri5.f and dop853.f.
+!>
+!> Options follow Hairer's codes: a step-control setting left at 0 takes the method's default
+!> (safety 0.9; fac1, fac2, beta = 0.2, 10, 0.04 for DOPRI5 and 0.333, 6, 0 for DOP853); a
+!> negative beta means beta = 0 (no PI stabilisation). rtol and atol have one default each,
+!> here, for every analysis and both front doors.
+module sloshdyn_ode
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
+                             SD_NON_FINITE, check_real
+  use sloshdyn_text, only: num2str
+  implicit none
+  private
+  public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
+  public :: check_options, integrate_with
+  public :: default_rtol, default_atol, default_max_steps
+
+  real(wp), parameter :: default_rtol = 1.0e-9_wp   !< relative tolerance unless given
+  real(wp), parameter :: default_atol = 1.0e-12_wp  !< absolute tolerance unless given
+  integer, parameter :: default_max_steps = 100000000
+
+  !> A system y' = f(t, y); extend it with the parameters f depends on.
+  type, abstract :: ode_system
+  contains
+    procedure(ode_rhs), deferred :: rhs
+  end type ode_system
+
+  abstract interface
+    subroutine ode_rhs(self, t, y, dydt)
+      import :: wp, ode_system
+      class(ode_system), intent(in) :: self
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: dydt(:)
+    end subroutine ode_rhs
+  end interface
+
+  !> Integrator settings. Step-control settings at 0 take the method's default (see header).
+  type :: ode_options
+    real(wp) :: rtol = default_rtol   !< relative tolerance, >= 10*epsilon
+    real(wp) :: atol = default_atol   !< absolute tolerance for every component, >= 0
+    !> per-component absolute tolerances (size(y0), each >= 0); replace atol when allocated
+    real(wp), allocatable :: atol_vector(:)
+    real(wp) :: h_initial = 0      !< first step; 0 = automatic (HINIT)
+    real(wp) :: h_max = 0          !< largest step; 0 = no limit but t_bound - t0
+    !> smallest step error control may ask for; 0 = 1e-14*max(1, |t|). Any step must also
+    !> exceed ten rounding units of t (10*epsilon*|t|), else t + h == t.
+    real(wp) :: h_min = 0
+    integer :: max_steps = default_max_steps  !< limit on attempted (accepted + rejected) steps
+    real(wp) :: safety = 0         !< safety factor of the step-size formula, in (1e-4, 1)
+    real(wp) :: fac1 = 0           !< fac1 <= h_new/h_old <= fac2, with 0 < fac1 <= 1 <= fac2
+    real(wp) :: fac2 = 0
+    real(wp) :: beta = 0           !< PI (Lund) stabilisation exponent, <= 0.2; < 0 means 0
+    !> > 0: steps of exactly this size, no error control (the last step is shortened to end
+    !> at t_bound); h_initial, h_max and the PI settings are then ignored. 0 = adaptive.
+    real(wp) :: fixed_step = 0
+  end type ode_options
+
+  !> Work counts of an integration and how far it got.
+  type :: ode_stats
+    integer :: n_rhs = 0        !< right-hand side evaluations
+    integer :: n_accepted = 0   !< accepted steps
+    integer :: n_rejected = 0   !< rejected steps (including those before the first acceptance)
+    real(wp) :: t_reached = 0   !< time of the last accepted step
+  end type ode_stats
+
+  !> What distinguishes one pair from another in the shared driver.
+  type :: method_properties
+    character(len=16) :: name = ''
+    integer :: order = 0           !< of the error estimate's reference solution (HINIT's IORD)
+    integer :: stages = 0          !< columns of the stage array k
+    integer :: dense_columns = 0   !< coefficient vectors of the continuous extension
+    !> step control: h_new = h / (err**(expo_base - beta_factor*beta) / err_old**beta / safety)
+    real(wp) :: expo_base = 0, beta_factor = 0
+    real(wp) :: fac1 = 0, fac2 = 0, beta = 0   !< the method's defaults
+  end type method_properties
+
+  !> One integration. The components are public for the methods (extensions in other modules)
+  !> and for reading; change the state only through init, step and set_state.
+  type, abstract :: rk_integrator
+    real(wp) :: t = 0                !< current time (end of the last accepted step)
+    real(wp) :: t_old = 0            !< start of the last accepted step
+    real(wp) :: t_bound = 0          !< final time; the last step is clipped to end exactly here
+    real(wp), allocatable :: y(:)    !< state at t
+    integer :: n_rhs = 0             !< right-hand side evaluations
+    integer :: n_accepted = 0        !< accepted steps
+    integer :: n_rejected = 0        !< rejected steps
+    type(ode_options) :: opt         !< the options, method defaults filled in
+    real(wp), allocatable :: atol(:)      !< absolute tolerance per component
+    real(wp), allocatable :: k(:, :)      !< stages; k(:, 1) = f(t, y) (FSAL)
+    real(wp), allocatable :: y_stage(:), y_new(:), scratch(:)
+    real(wp), allocatable :: cont(:, :)   !< coefficients of the continuous extension
+    real(wp) :: h = 0                !< step to try next
+    real(wp) :: h_done = 0           !< size of the last accepted step (0 = none yet)
+    real(wp) :: h_max = 0            !< options%h_max, or t_bound - t0 when that is 0
+    real(wp) :: fac_old = 1.0e-4_wp  !< previous accepted error norm (FACOLD)
+    logical :: rejected = .false.    !< the previous trial step was rejected
+    logical :: dense_output = .true. !< compute the continuous extension of each step
+  contains
+    procedure :: init => rk_init
+    procedure :: step => rk_step
+    procedure :: set_state => rk_set_state
+    procedure :: statistics => rk_statistics
+    procedure(method_trial), deferred :: trial
+    procedure(method_finish), deferred :: finish
+    procedure(method_store_dense), deferred :: store_dense
+    procedure(method_dense), deferred :: dense
+    procedure(method_info), deferred :: properties
+    procedure(method_allocate), deferred :: allocate_extra
+  end type rk_integrator
+
+  abstract interface
+    !> One trial step of size h from (t, y) to t_new: the stages, y_new and the error norm err
+    !> (scaled so that err <= 1 passes). finite = .false. when any of them is NaN or infinite.
+    subroutine method_trial(self, sys, h, t_new, err, finite)
+      import :: wp, rk_integrator, ode_system
+      class(rk_integrator), intent(inout) :: self
+      class(ode_system), intent(in) :: sys
+      real(wp), intent(in) :: h, t_new
+      real(wp), intent(out) :: err
+      logical, intent(out) :: finite
+    end subroutine method_trial
+
+    !> Stages needed once the error test passed (e.g. f at the new point, dense-output stages);
+    !> finite = .false. when any is NaN or infinite.
+    subroutine method_finish(self, sys, h, t_new, finite)
+      import :: wp, rk_integrator, ode_system
+      class(rk_integrator), intent(inout) :: self
+      class(ode_system), intent(in) :: sys
+      real(wp), intent(in) :: h, t_new
+      logical, intent(out) :: finite
+    end subroutine method_finish
+
+    !> Before the state moves to y_new: the continuous extension over [t, t + h] into cont,
+    !> and the next step's first stage into k(:, 1) (FSAL).
+    pure subroutine method_store_dense(self, h)
+      import :: wp, rk_integrator
+      class(rk_integrator), intent(inout) :: self
+      real(wp), intent(in) :: h
+    end subroutine method_store_dense
+
+    !> Value at t of the continuous extension over the last accepted step [t_old, t].
+    pure subroutine method_dense(self, t, y)
+      import :: wp, rk_integrator
+      class(rk_integrator), intent(in) :: self
+      real(wp), intent(in) :: t
+      real(wp), intent(out) :: y(:)
+    end subroutine method_dense
+
+    pure function method_info(self) result(info)
+      import :: rk_integrator, method_properties
+      class(rk_integrator), intent(in) :: self
+      type(method_properties) :: info
+    end function method_info
+
+    !> Work arrays of the method beyond those of rk_integrator, for n components.
+    pure subroutine method_allocate(self, n)
+      import :: rk_integrator
+      class(rk_integrator), intent(inout) :: self
+      integer, intent(in) :: n
+    end subroutine method_allocate
+  end interface
+
+  !> In fixed-step mode a remainder this much longer than the step (relative) is taken as one
+  !> last step, so rounding in t never leaves a sliver step at t_bound.
+  real(wp), parameter :: fixed_slack = 1.0e-6_wp
+
+contains
+
+  !> Validate the inputs, allocate the work arrays and evaluate f(t0, y0); choose the first step.
+  !> dense_output = .false. (default .true.) lets a method skip the work of its continuous
+  !> extension; dense then returns y at t and NaN elsewhere.
+  subroutine rk_init(self, sys, t0, y0, t_bound, options, status, message, dense_output)
+    class(rk_integrator), intent(out) :: self
+    class(ode_system), intent(in) :: sys
+    real(wp), intent(in) :: t0, y0(:), t_bound
+    type(ode_options), intent(in) :: options
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    logical, intent(in), optional :: dense_output
+    type(method_properties) :: info
+    integer :: n
+
+    status = SD_OK
+    message = ''
+    call check_options(options, y0, status, message)
+    call check_real('t0', t0, -huge(t0), huge(t0), .false., .false., 't0 must be finite', &
+                    status, message)
+    call check_real('t_bound', t_bound, t0, huge(t0), .true., .false., &
+                    't_bound must be finite and > t0 = '//num2str(t0), status, message)
+    if (status /= SD_OK) return
+
+    info = self%properties()
+    n = size(y0)
+    allocate (self%y(n), self%atol(n), self%k(n, info%stages), self%y_stage(n), self%y_new(n), &
+              self%scratch(n), self%cont(n, info%dense_columns))
+    call self%allocate_extra(n)
+    self%opt = with_method_defaults(options, info)
+    if (allocated(options%atol_vector)) then
+      self%atol = options%atol_vector
+    else
+      self%atol = options%atol
+    end if
+    if (present(dense_output)) self%dense_output = dense_output
+    self%t = t0
+    self%t_old = t0
+    self%t_bound = t_bound
+    self%y = y0
+    self%h_max = merge(options%h_max, t_bound - t0, options%h_max > 0)
+
+    call sys%rhs(t0, self%y, self%k(:, 1))
+    self%n_rhs = 1
+    if (.not. all(ieee_is_finite(self%k(:, 1)))) then
+      status = SD_NON_FINITE
+      message = 'the right-hand side is NaN or infinite at the initial state, tau = '//num2str(t0)
+      return
+    end if
+
+    if (options%fixed_step > 0) then
+      self%h = options%fixed_step
+    else if (options%h_initial > 0) then
+      self%h = min(options%h_initial, self%h_max)
+    else
+      call initial_step(self, sys, info%order)
+    end if
+  end subroutine rk_init
+
+  !> Advance by one accepted step (rejected trial steps are retried inside). On failure the
+  !> integrator stays at its last accepted step.
+  subroutine rk_step(self, sys, status, message)
+    class(rk_integrator), intent(inout) :: self
+    class(ode_system), intent(in) :: sys
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(method_properties) :: info
+    real(wp) :: h, t_new, err, fac11, fac, h_new
+    logical :: finite, fixed, non_finite_trial
+
+    status = SD_OK
+    message = ''
+    if (.not. allocated(self%k)) then
+      status = SD_BAD_INPUT
+      message = 'step needs an integrator set up by a successful init'
+      return
+    end if
+    if (self%t >= self%t_bound) then
+      status = SD_BAD_INPUT
+      message = 'the integration already reached t_bound = '//num2str(self%t_bound)
+      return
+    end if
+
+    info = self%properties()
+    fixed = self%opt%fixed_step > 0
+    non_finite_trial = .false.
+    do
+      call plan_trial(self%opt, self%t, self%t_bound, self%h, &
+                      self%n_accepted + self%n_rejected, non_finite_trial, h, t_new, status, &
+                      message)
+      if (status /= SD_OK) return
+
+      call self%trial(sys, h, t_new, err, finite)
+      h_new = h
+      if (finite .and. .not. fixed) then
+        ! Hairer's step-size control: h_new = h*safety/(err**expo1/err_old**beta), clamped
+        fac11 = err**(info%expo_base - info%beta_factor*self%opt%beta)
+        if (err > 1) then
+          ! rejected: the plain (non-PI) formula
+          self%h = h/min(1/self%opt%fac1, fac11/self%opt%safety)
+          self%rejected = .true.
+          self%n_rejected = self%n_rejected + 1
+          non_finite_trial = .false.
+          cycle
+        end if
+        fac = fac11/self%fac_old**self%opt%beta
+        fac = max(1/self%opt%fac2, min(1/self%opt%fac1, fac/self%opt%safety))
+        h_new = h/fac
+      end if
+      if (finite) call self%finish(sys, h, t_new, finite)
+      non_finite_trial = .not. finite
+
+      if (.not. finite) then
+        if (fixed) then
+          status = SD_NON_FINITE
+          message = 'the state became NaN or infinite in the fixed step from tau = '// &
+                    num2str(self%t)//' to '//num2str(t_new)
+          return
+        end if
+        ! the trial left the region where f is defined: retry with the largest allowed cut
+        self%h = h*self%opt%fac1
+        self%rejected = .true.
+        self%n_rejected = self%n_rejected + 1
+        cycle
+      end if
+
+      call self%store_dense(h)
+      self%y = self%y_new
+      self%t_old = self%t
+      self%t = t_new
+      self%h_done = h
+      self%n_accepted = self%n_accepted + 1
+      if (fixed) return
+      self%fac_old = max(err, 1.0e-4_wp)
+      h_new = min(h_new, self%h_max)
+      ! no growth right after a rejection
+      if (self%rejected) h_new = min(h_new, h)
+      self%rejected = .false.
+      self%h = h_new
+      return
+    end do
+  end subroutine rk_step
+
+  !> Replace the state at the current time (e.g. to renormalise variational vectors). This
+  !> re-evaluates f for FSAL and ends dense output of the previous step; the step size is kept.
+  subroutine rk_set_state(self, sys, y, status, message)
+    class(rk_integrator), intent(inout) :: self
+    class(ode_system), intent(in) :: sys
+    real(wp), intent(in) :: y(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+
+    status = SD_OK
+    message = ''
+    if (.not. allocated(self%k)) then
+      status = SD_BAD_INPUT
+      message = 'set_state needs an integrator set up by a successful init'
+      return
+    end if
+    if (size(y) /= size(self%y)) then
+      status = SD_BAD_INPUT
+      message = 'y has size '//num2str(size(y))//'; the integrator state has size '// &
+                num2str(size(self%y))
+      return
+    end if
+    if (.not. all(ieee_is_finite(y))) then
+      status = SD_BAD_INPUT
+      message = 'y is out of range: the new state must be finite'
+      return
+    end if
+    self%y = y
+    call sys%rhs(self%t, self%y, self%k(:, 1))
+    self%n_rhs = self%n_rhs + 1
+    self%t_old = self%t
+    self%h_done = 0
+    if (.not. all(ieee_is_finite(self%k(:, 1)))) then
+      status = SD_NON_FINITE
+      message = 'the right-hand side is NaN or infinite at the new state, tau = '//num2str(self%t)
+    end if
+  end subroutine rk_set_state
+
+  !> Counters of the integration so far and the time reached.
+  pure function rk_statistics(self) result(stats)
+    class(rk_integrator), intent(in) :: self
+    type(ode_stats) :: stats
+    stats = ode_stats(self%n_rhs, self%n_accepted, self%n_rejected, self%t)
+  end function rk_statistics
+
+  !> y at every time of t_out (ascending, all >= t0) by the integrator integ (of any method):
+  !> y_out(:, j) = y(t_out(j)), shape (size(y0), size(t_out)). On failure the columns already
+  !> reached are filled, the rest are NaN, and stats%t_reached says how far the integration got.
+  !> When every output time after t0 is the final one, the continuous extension is skipped.
+  subroutine integrate_with(integ, sys, t0, y0, t_out, y_out, options, stats, status, message)
+    class(rk_integrator), intent(inout) :: integ
+    class(ode_system), intent(in) :: sys
+    real(wp), intent(in) :: t0, y0(:), t_out(:)
+    real(wp), intent(out) :: y_out(:, :)
+    type(ode_options), intent(in) :: options
+    type(ode_stats), intent(out) :: stats
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: j, n_out
+
+    status = SD_OK
+    message = ''
+    stats%t_reached = t0
+    y_out = ieee_value(1.0_wp, ieee_quiet_nan)
+    n_out = size(t_out)
+    if (size(y_out, 1) /= size(y0) .or. size(y_out, 2) /= n_out) then
+      status = SD_BAD_INPUT
+      message = 'y_out has shape ('//num2str(size(y_out, 1))//', '//num2str(size(y_out, 2))// &
+                '); it must be (size(y0), size(t_out)) = ('//num2str(size(y0))//', '// &
+                num2str(n_out)//')'
+      return
+    end if
+    if (n_out > 0) call check_real('t_out(1)', t_out(1), t0, huge(t0), .false., .false., &
+                                   't_out must start at or after t0 = '//num2str(t0), status, &
+                                   message)
+    do j = 2, n_out
+      if (t_out(j) >= t_out(j - 1) .and. t_out(j) <= huge(t0)) cycle
+      call check_real('t_out('//num2str(j)//')', t_out(j), t_out(j - 1), huge(t0), .false., &
+                      .false., 't_out must be ascending, >= t_out('//num2str(j - 1)//') = '// &
+                      num2str(t_out(j - 1)), status, message)
+      exit
+    end do
+    call check_options(options, y0, status, message)
+    if (status /= SD_OK) return
+
+    ! outputs at t0 itself need no step
+    j = 1
+    do while (j <= n_out)
+      if (t_out(j) > t0) exit
+      y_out(:, j) = y0
+      j = j + 1
+    end do
+    if (j > n_out) return
+
+    call integ%init(sys, t0, y0, t_out(n_out), options, status, message, &
+                    dense_output=t_out(j) < t_out(n_out))
+    do while (status == SD_OK .and. j <= n_out)
+      call integ%step(sys, status, message)
+      if (status /= SD_OK) exit
+      do while (j <= n_out)
+        if (t_out(j) > integ%t) exit
+        if (t_out(j) == integ%t) then
+          y_out(:, j) = integ%y
+        else
+          call integ%dense(t_out(j), y_out(:, j))
+        end if
+        j = j + 1
+      end do
+    end do
+    stats = integ%statistics()
+  end subroutine integrate_with
+
+  !> The options with the method's defaults in place of zeros (and beta < 0 as 0).
+  pure function with_method_defaults(options, info) result(opt)
+    type(ode_options), intent(in) :: options
+    type(method_properties), intent(in) :: info
+    type(ode_options) :: opt
+    opt = options
+    if (opt%safety == 0) opt%safety = 0.9_wp
+    if (opt%fac1 == 0) opt%fac1 = info%fac1
+    if (opt%fac2 == 0) opt%fac2 = info%fac2
+    if (opt%beta == 0) then
+      opt%beta = info%beta
+    else if (opt%beta < 0) then
+      opt%beta = 0
+    end if
+  end function with_method_defaults
+
+  !> HINIT of dopri5.f/dop853.f: an explicit Euler step sized so that its increment is small
+  !> against y, then h with h**order * max(|f|, |f'|) = 0.01 in the scaled norm, at most 100
+  !> times the Euler guess. Uses k(:, 2), y_stage and scratch; one right-hand side evaluation.
+  subroutine initial_step(self, sys, order)
+    class(rk_integrator), intent(inout) :: self
+    class(ode_system), intent(in) :: sys
+    integer, intent(in) :: order
+    real(wp) :: dnf, dny, der2, der12, h1, h
+
+    associate (y => self%y, f0 => self%k(:, 1), f1 => self%k(:, 2), y1 => self%y_stage, &
+               sk => self%scratch)
+      sk = self%atol + self%opt%rtol*abs(y)
+      dnf = sum((f0/sk)**2)
+      dny = sum((y/sk)**2)
+      if (dnf <= 1.0e-10_wp .or. dny <= 1.0e-10_wp) then
+        h = 1.0e-6_wp
+      else
+        h = 0.01_wp*sqrt(dny/dnf)
+      end if
+      h = min(h, self%h_max)
+      y1 = y + h*f0
+      call sys%rhs(self%t + h, y1, f1)
+      self%n_rhs = self%n_rhs + 1
+      ! f undefined a small step ahead: keep the cautious Euler guess
+      if (all(ieee_is_finite(f1))) then
+        der2 = sqrt(sum(((f1 - f0)/sk)**2))/h
+        der12 = max(der2, sqrt(dnf))
+        if (der12 <= 1.0e-15_wp) then
+          h1 = max(1.0e-6_wp, h*1.0e-3_wp)
+        else
+          h1 = (0.01_wp/der12)**(1.0_wp/order)
+        end if
+        h = min(100*h, h1, self%h_max)
+      end if
+    end associate
+    self%h = h
+  end subroutine initial_step
+
+  !> Smallest step error control may ask for at time t (see ode_options%h_min).
+  pure function step_floor(h_min, t) result(h_floor)
+    real(wp), intent(in) :: h_min, t
+    real(wp) :: h_floor
+    h_floor = merge(h_min, 1.0e-14_wp*max(1.0_wp, abs(t)), h_min > 0)
+    h_floor = max(h_floor, 10*epsilon(t)*abs(t))
+  end function step_floor
+
+  !> The next trial step: the step budget and the step floor are checked (the floor before
+  !> clipping: a short last step to t_bound is no sign of trouble), and the step is clipped to
+  !> end exactly on t_bound; adaptive steps are stretched by up to 1 % rather than leave a
+  !> sliver (as DOPRI5 and DOP853 do).
+  pure subroutine plan_trial(opt, t, t_bound, h_wanted, attempts, non_finite_trial, h, t_new, &
+                             status, message)
+    type(ode_options), intent(in) :: opt
+    real(wp), intent(in) :: t, t_bound, h_wanted
+    integer, intent(in) :: attempts
+    logical, intent(in) :: non_finite_trial
+    real(wp), intent(out) :: h, t_new
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    logical :: last
+
+    status = SD_OK
+    message = ''
+    h = h_wanted
+    t_new = t
+    if (attempts >= opt%max_steps) then
+      status = SD_TOO_MANY_STEPS
+      message = 'max_steps = '//num2str(opt%max_steps)//' steps taken at tau = '// &
+                num2str(t)//', before reaching t_bound = '//num2str(t_bound)
+      return
+    end if
+    if (h < step_floor(opt%h_min, t)) then
+      if (non_finite_trial) then
+        status = SD_NON_FINITE
+        message = 'the state became NaN or infinite in every trial step from tau = '// &
+                  num2str(t)//', down to h = '//num2str(h/opt%fac1)
+      else
+        status = SD_STEP_TOO_SMALL
+        message = 'step size '//num2str(h)//' below h_min '// &
+                  num2str(step_floor(opt%h_min, t))//' at tau = '//num2str(t)
+      end if
+      return
+    end if
+    if (opt%fixed_step > 0) then
+      last = t + h*(1 + fixed_slack) >= t_bound
+    else
+      last = t + 1.01_wp*h >= t_bound
+    end if
+    if (last) then
+      h = t_bound - t
+      t_new = t_bound
+    else
+      t_new = t + h
+    end if
+  end subroutine plan_trial
+
+  !> The options and the initial state: the checks every integration and every input reader
+  !> applies (readers validate before computing).
+  pure subroutine check_options(options, y0, status, message)
+    type(ode_options), intent(in) :: options
+    real(wp), intent(in) :: y0(:)
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    real(wp), parameter :: big = huge(1.0_wp)
+    integer :: i
+
+    if (status /= SD_OK) return
+    if (size(y0) == 0) then
+      status = SD_BAD_INPUT
+      message = 'y0 is empty: the system needs at least one component'
+      return
+    end if
+    do i = 1, size(y0)
+      if (abs(y0(i)) <= big) cycle
+      call check_real('y0('//num2str(i)//')', y0(i), -big, big, .false., .false., &
+                      'the initial state must be finite', status, message)
+      return
+    end do
+    call check_real('rtol', options%rtol, 10*epsilon(1.0_wp), 1.0_wp, .false., .false., &
+                    'rtol must lie in [10*epsilon, 1] = ['//num2str(10*epsilon(1.0_wp))//', 1]', &
+                    status, message)
+    if (allocated(options%atol_vector)) then
+      if (status == SD_OK .and. size(options%atol_vector) /= size(y0)) then
+        status = SD_BAD_INPUT
+        message = 'atol_vector has size '//num2str(size(options%atol_vector))// &
+                  '; it must have one entry per component, size(y0) = '//num2str(size(y0))
+      end if
+      if (status /= SD_OK) return
+      do i = 1, size(options%atol_vector)
+        if (options%atol_vector(i) >= 0 .and. options%atol_vector(i) <= big) cycle
+        call check_real('atol_vector('//num2str(i)//')', options%atol_vector(i), 0.0_wp, big, &
+                        .false., .false., 'absolute tolerances must be >= 0', status, message)
+        return
+      end do
+      do i = 1, size(y0)
+        if (options%atol_vector(i) == 0 .and. y0(i) == 0) then
+          status = SD_BAD_INPUT
+          message = 'atol_vector('//num2str(i)//') = 0 is out of range: y0('//num2str(i)// &
+                    ') = 0 too, so component '//num2str(i)//' has no error scale; give atol > 0'
+          return
+        end if
+      end do
+    else
+      call check_real('atol', options%atol, 0.0_wp, big, .false., .false., &
+                      'atol must be >= 0', status, message)
+      if (status == SD_OK .and. options%atol == 0 .and. any(y0 == 0)) then
+        status = SD_BAD_INPUT
+        message = 'atol = 0 is out of range: y0 has a zero component, which then has no '// &
+                  'error scale; give atol > 0'
+      end if
+    end if
+    call check_real('h_initial', options%h_initial, 0.0_wp, big, .false., .false., &
+                    'h_initial must be >= 0 (0 = automatic)', status, message)
+    call check_real('h_max', options%h_max, 0.0_wp, big, .false., .false., &
+                    'h_max must be >= 0 (0 = no limit)', status, message)
+    call check_real('h_min', options%h_min, 0.0_wp, big, .false., .false., &
+                    'h_min must be >= 0 (0 = 1e-14*max(1, |tau|))', status, message)
+    if (status == SD_OK .and. options%h_max > 0 .and. options%h_min > options%h_max) then
+      status = SD_BAD_INPUT
+      message = 'h_min = '//num2str(options%h_min)//' is out of range: it must not exceed '// &
+                'h_max = '//num2str(options%h_max)
+    end if
+    if (status == SD_OK .and. options%max_steps < 1) then
+      status = SD_BAD_INPUT
+      message = 'max_steps = '//num2str(options%max_steps)//' is out of range: it must be >= 1'
+    end if
+    if (options%safety /= 0) &
+      call check_real('safety', options%safety, 1.0e-4_wp, 1.0_wp, .true., .true., &
+                      'safety must lie in (1e-4, 1), or be 0 (the default, 0.9)', status, message)
+    if (options%fac1 /= 0) &
+      call check_real('fac1', options%fac1, 0.0_wp, 1.0_wp, .true., .false., &
+                      'fac1 must lie in (0, 1], or be 0 (the method''s default)', status, message)
+    if (options%fac2 /= 0) &
+      call check_real('fac2', options%fac2, 1.0_wp, big, .false., .false., &
+                      'fac2 must be >= 1, or 0 (the method''s default)', status, message)
+    call check_real('beta', options%beta, -big, 0.2_wp, .false., .false., &
+                    'beta must be <= 0.2 (0: the method''s default; < 0: no PI stabilisation)', &
+                    status, message)
+    call check_real('fixed_step', options%fixed_step, 0.0_wp, big, .false., .false., &
+                    'fixed_step must be >= 0 (0 = adaptive)', status, message)
+  end subroutine check_options
+end module sloshdyn_ode
