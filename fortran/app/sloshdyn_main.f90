@@ -3,12 +3,11 @@
 !> and turns the status into an exit code -- the only place that does.
 program sloshdyn_main
   use sloshdyn_kinds, only: message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_status, only: SD_OK, exit_code, EXIT_USAGE
   use sloshdyn_namelist, only: run_config, read_input
   use sloshdyn_driver, only: run_analysis
   implicit none
 
-  integer, parameter :: exit_usage = 2, exit_input = 3, exit_failure = 4
   character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (see README.md for the '// &
                                          'namelist groups and variables)'
   character(len=:), allocatable :: path
@@ -16,7 +15,7 @@ program sloshdyn_main
   type(run_config) :: config
   integer :: status, length
 
-  if (command_argument_count() /= 1) call finish(exit_usage, usage)
+  if (command_argument_count() /= 1) call finish(EXIT_USAGE, usage)
   call get_command_argument(1, length=length)
   allocate (character(len=length) :: path)
   call get_command_argument(1, path)
@@ -25,10 +24,9 @@ program sloshdyn_main
     stop
   end if
   call read_input(path, config, status, message)
-  if (status /= SD_OK) call finish(exit_input, trim(message))
+  if (status /= SD_OK) call finish(exit_code(status, reading=.true.), trim(message))
   call run_analysis(config, status, message)
-  if (status == SD_BAD_INPUT) call finish(exit_input, trim(message))
-  if (status /= SD_OK) call finish(exit_failure, trim(message))
+  if (status /= SD_OK) call finish(exit_code(status, reading=.false.), trim(message))
 
 contains
 

@@ -589,7 +589,11 @@ contains
       end if
       call reader%check(file, status, message)
     end do
-    if (status /= SD_OK .or. .not. needed) return
+    if (status /= SD_OK) return
+    ! what was given is kept; the rules apply when the analysis is a sweep
+    settings%start = start
+    settings%stop = stop
+    settings%n_points = n_points
     call excitation_parameter('sweep', parameter, settings%parameter, status, message)
     if (status /= SD_OK) return
     settings%direction = 0
@@ -601,6 +605,7 @@ contains
                 'not known; allowed: '//join(direction_names))
       return
     end if
+    if (.not. needed) return
     call require(file, G_SWEEP, 'start', status, message)
     call require(file, G_SWEEP, 'stop', status, message)
     call require(file, G_SWEEP, 'n_points', status, message)
@@ -620,13 +625,7 @@ contains
       status = SD_BAD_INPUT
       message = 'n_points = '//num2str(n_points)//' is out of range: it must lie in [1, 100000]'
     end if
-    if (status /= SD_OK) then
-      message = '&sweep: '//trim(message)
-      return
-    end if
-    settings%start = start
-    settings%stop = stop
-    settings%n_points = n_points
+    if (status /= SD_OK) message = '&sweep: '//trim(message)
   end subroutine read_sweep
 
   !> &response; the interval is stored lower end first.
@@ -661,21 +660,15 @@ contains
       end if
       call reader%check(file, status, message)
     end do
-    if (status /= SD_OK .or. .not. needed) return
+    if (status /= SD_OK) return
     if (adjustl(resonance) /= '3:1' .and. adjustl(resonance) /= 'none') then
-      call fail(status, message, '&response: resonance = '''//trim(adjustl(resonance))// &
-                ''' is not known; allowed: 3:1, none')
+      call fail(status, message, "&response: resonance = '"//trim(adjustl(resonance))// &
+                "' is not known; allowed: 3:1, none")
       return
     end if
     call excitation_parameter('response', parameter, settings%parameter, status, message)
-    call require(file, G_RESPONSE, 'start', status, message)
-    call require(file, G_RESPONSE, 'stop', status, message)
     if (status /= SD_OK) return
-    if (start == stop) then
-      status = SD_BAD_INPUT
-      message = '&response: start = stop = '//num2str(start)//': the interval is empty'
-      return
-    end if
+    ! what was given is kept; the rules apply when the analysis uses &response
     settings%internal_resonance = adjustl(resonance) == '3:1'
     settings%start = min(start, stop)
     settings%stop = max(start, stop)
@@ -685,6 +678,15 @@ contains
       c%ds = ds; c%ds_min = ds_min; c%ds_max = ds_max; c%x_scale = x_scale
       c%max_points = max_points
     end associate
+    if (.not. needed) return
+    call require(file, G_RESPONSE, 'start', status, message)
+    call require(file, G_RESPONSE, 'stop', status, message)
+    if (status /= SD_OK) return
+    if (start == stop) then
+      status = SD_BAD_INPUT
+      message = '&response: start = stop = '//num2str(start)//': the interval is empty'
+      return
+    end if
     call check_response_options(settings%options, settings%parameter, settings%start, &
                                 settings%stop, status, message)
     if (status /= SD_OK) message = '&response: '//trim(message)
@@ -815,7 +817,7 @@ contains
     type(input_file), intent(inout) :: file
     integer, intent(inout) :: status
     character(len=message_len), intent(inout) :: message
-    character(len=:), allocatable :: prefix
+    character(len=:), allocatable :: prefix, token
     integer :: equals
 
     if (reader%describing) then
@@ -835,13 +837,22 @@ contains
                   "' before the first assignment")
         reader%done = .true.
       end if
-    else if (reader%ios /= 0) then
+    else
       equals = index(reader%assignment, '=')
-      call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
-                trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
-                trim(reader%assignment(equals + 1:))//' is not valid: '// &
-                expected_type(variable_name(reader%assignment(1:equals - 1))))
-      reader%done = .true.
+      token = bad_value(reader%assignment(equals + 1:))
+      if (len(token) > 0) then
+        call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
+                  trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
+                  trim(reader%assignment(equals + 1:))//": '"//token//"' is not a value "// &
+                  "(a number or a quoted string; a variable needs 'name = value')")
+        reader%done = .true.
+      else if (reader%ios /= 0) then
+        call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
+                  trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
+                  trim(reader%assignment(equals + 1:))//' is not valid: '// &
+                  expected_type(variable_name(reader%assignment(1:equals - 1))))
+        reader%done = .true.
+      end if
     end if
     if (.not. reader%done .and. reader%next_start == 0) then
       ! every assignment parses alone, the group does not
@@ -850,6 +861,116 @@ contains
       reader%done = .true.
     end if
   end subroutine check_text
+
+  !> The first token of an assignment's value text that is no value: values are numbers (with an
+  !> optional repeat count r*), quoted strings or logicals, separated by commas or blanks. A bare
+  !> name there is a variable without '='. '' if every token is a value.
+  pure function bad_value(values) result(token)
+    character(len=*), intent(in) :: values
+    character(len=:), allocatable :: token
+    integer :: i, start, star
+    character :: quote
+
+    token = ''
+    i = 1
+    do while (i <= len(values))
+      if (values(i:i) == ' ' .or. values(i:i) == ',') then
+        i = i + 1
+        cycle
+      end if
+      start = i
+      if (values(i:i) == '''' .or. values(i:i) == '"') then
+        ! a quoted string, doubled quotes inside
+        quote = values(i:i)
+        i = i + 1
+        do while (i <= len(values))
+          if (values(i:i) == quote) then
+            if (i < len(values)) then
+              if (values(i + 1:i + 1) == quote) then
+                i = i + 2
+                cycle
+              end if
+            end if
+            exit
+          end if
+          i = i + 1
+        end do
+        i = i + 1
+        cycle
+      end if
+      do while (i <= len(values))
+        if (values(i:i) == ' ' .or. values(i:i) == ',') exit
+        i = i + 1
+      end do
+      token = values(start:i - 1)
+      star = index(token, '*')
+      if (star > 0) then
+        if (verify(token(1:star - 1), '0123456789') == 0 .and. star > 1) token = token(star + 1:)
+      end if
+      if (len(token) == 0 .or. is_number(lower(token)) .or. is_logical(lower(token))) then
+        token = ''
+      else
+        token = values(start:i - 1)
+        return
+      end if
+    end do
+  end function bad_value
+
+  !> A Fortran real or integer literal, or NaN/Infinity as list-directed input reads them.
+  pure logical function is_number(text)
+    character(len=*), intent(in) :: text
+    integer :: i, digits
+    logical :: exponent
+    is_number = .false.
+    if (text == 'nan' .or. text == 'inf' .or. text == 'infinity' .or. text == '+inf' .or. &
+        text == '-inf' .or. text == '+infinity' .or. text == '-infinity') then
+      is_number = .true.
+      return
+    end if
+    i = 1
+    if (scan(text(1:1), '+-') == 1) i = 2
+    digits = 0
+    do while (i <= len(text))
+      if (index('0123456789', text(i:i)) == 0) exit
+      digits = digits + 1
+      i = i + 1
+    end do
+    if (i <= len(text)) then
+      if (text(i:i) == '.') then
+        i = i + 1
+        do while (i <= len(text))
+          if (index('0123456789', text(i:i)) == 0) exit
+          digits = digits + 1
+          i = i + 1
+        end do
+      end if
+    end if
+    if (digits == 0) return
+    exponent = .false.
+    if (i <= len(text)) then
+      if (scan(text(i:i), 'ed') == 1) then
+        exponent = .true.
+        i = i + 1
+        if (i <= len(text)) then
+          if (scan(text(i:i), '+-') == 1) i = i + 1
+        end if
+        digits = 0
+        do while (i <= len(text))
+          if (index('0123456789', text(i:i)) == 0) exit
+          digits = digits + 1
+          i = i + 1
+        end do
+        if (digits == 0) return
+      end if
+    end if
+    is_number = i > len(text)
+  end function is_number
+
+  pure logical function is_logical(text)
+    character(len=*), intent(in) :: text
+    is_logical = text == 't' .or. text == 'f' .or. text == '.t.' .or. text == '.f.' .or. &
+                 text == '.true.' .or. text == '.false.'
+  end function is_logical
 
   !> A required variable must be assigned in its group (an explicit NaN is assigned, and fails
   !> its range check instead).

@@ -6,7 +6,8 @@ module sloshdyn_status
   use sloshdyn_text, only: num2str
   implicit none
   private
-  public :: status_name, check_real
+  public :: status_name, check_real, exit_code
+  public :: EXIT_SUCCESS, EXIT_USAGE, EXIT_INPUT, EXIT_FAILURE
   public :: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_LAPACK_FAILED, &
             SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, SD_NON_FINITE, SD_IO_ERROR, SD_CAPACITY
 
@@ -21,7 +22,24 @@ module sloshdyn_status
   integer, parameter :: SD_IO_ERROR = 8         !< a file could not be read or written
   integer, parameter :: SD_CAPACITY = 9         !< a result does not fit the space the caller gave
 
+  !> Exit codes of both front doors (the executable and sloshdyn-py): 0 success, 2 usage,
+  !> 3 the input (its file, a value, a rule), 4 the computation or its output failed.
+  integer, parameter :: EXIT_SUCCESS = 0, EXIT_USAGE = 2, EXIT_INPUT = 3, EXIT_FAILURE = 4
+
 contains
+
+  !> The exit code of a status, from reading the input (reading = .true.) or from the run.
+  pure integer function exit_code(code, reading)
+    integer, intent(in) :: code
+    logical, intent(in) :: reading
+    if (code == SD_OK) then
+      exit_code = EXIT_SUCCESS
+    else if (reading .or. code == SD_BAD_INPUT) then
+      exit_code = EXIT_INPUT
+    else
+      exit_code = EXIT_FAILURE
+    end if
+  end function exit_code
 
   !> Short name of a status code, used as the prefix of messages and by the Python exceptions.
   pure function status_name(code) result(name)

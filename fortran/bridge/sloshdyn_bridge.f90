@@ -580,6 +580,15 @@ contains
     status = info
   end subroutine run_input
 
+  !> The exit code of both front doors for a status, from reading the input (reading = 1) or
+  !> from the run (reading = 0).
+  subroutine exit_code(status, reading, code)
+    use sloshdyn_status, only: core => exit_code
+    integer(c_int), intent(in) :: status, reading
+    integer(c_int), intent(out) :: code
+    code = core(int(status), reading /= 0)
+  end subroutine exit_code
+
   !> Every namelist group with its variables and defaults, as written by a namelist write.
   subroutine namelist_defaults(text)
     use sloshdyn_namelist, only: core => namelist_defaults

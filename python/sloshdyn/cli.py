@@ -56,7 +56,10 @@ def main(argv=None):
         if args.command == "reproduce":
             return reproduce(Path(args.out), args.only, args.quick)
         return check(args.dir, args.reference)
-    except (SloshdynError, FileNotFoundError) as exc:
+    except SloshdynError as exc:
+        print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
+        return int(_core.sloshdyn_bridge.exit_code(exc.status or 1, getattr(exc, "reading", False)))
+    except FileNotFoundError as exc:
         print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
         return 3
     except KeyboardInterrupt:
@@ -68,7 +71,11 @@ def main(argv=None):
 def run_input(path):
     """Run a namelist file exactly as the executable does (the same reader, driver and writers,
     through the bridge), then draw the figure of the analysis from the files written."""
-    inp = read_namelist(path)
+    try:
+        inp = read_namelist(path)
+    except SloshdynError as exc:
+        exc.reading = True
+        raise
     status, message = _core.sloshdyn_bridge.run_input(os.fspath(path))
     sys.stdout.flush()
     check_status(status, message)

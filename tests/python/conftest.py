@@ -1,5 +1,4 @@
 import csv
-import math
 import os
 import pathlib
 import subprocess
@@ -23,9 +22,9 @@ def exe():
 
 @pytest.fixture
 def fig12():
-    """The paper's Fig 12 / Fig 14 parameters."""
-    return sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4,
-                               beta=1.0, gamma=0.001, A=0.00075, rho=0.509615)
+    """The paper's Fig 12 / Fig 14 parameters, as the figures use them (beta, delta defaults)."""
+    from sloshdyn.figures import FIG12
+    return FIG12
 
 
 def run(exe, nml_path, cwd):
