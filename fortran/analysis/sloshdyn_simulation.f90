@@ -18,7 +18,7 @@ module sloshdyn_simulation
   implicit none
   private
   public :: time_history, steady_options, steady_state, check_steady, parameter_sweep, &
-            parallel_sweep
+            independent_sweep
 
   !> Longest period (in forcing periods) the classification of steady motions looks for.
   integer, parameter :: max_period = 8
@@ -317,13 +317,13 @@ contains
     end do
   end subroutine parameter_sweep
 
-  !> The sweep split into 8 n_threads contiguous chunks run in parallel by n_threads threads
-  !> (OpenMP), each chunk starting from y0 and carrying its state from point to point:
-  !> continuity (and so the branch a sweep follows through hysteresis) is broken at chunk starts. Every point is a
-  !> steady state all the same; with n_threads = 1 this is parameter_sweep. status and message
-  !> are those of the first failing chunk; n_done counts the points completed in all chunks.
-  subroutine parallel_sweep(model, which, values, y0, options, method, steady, n_threads, &
-                            summaries, n_done, status, message)
+  !> Steady states at values of rho (which = PARAMETER_RHO) or A (PARAMETER_A), each from the
+  !> same initial state y0: the points are independent, so n_threads threads (OpenMP) share them
+  !> out, one point at a time, and each point is computed exactly as by a single thread -- the
+  !> results do not depend on n_threads, bit for bit. n_done counts the points completed;
+  !> status and message are those of the first failing point (in the order of values).
+  subroutine independent_sweep(model, which, values, y0, options, method, steady, n_threads, &
+                               summaries, n_done, status, message)
     type(model_t), intent(in) :: model
     integer, intent(in) :: which, method, n_threads
     real(wp), intent(in) :: values(:), y0(4)
@@ -332,37 +332,35 @@ contains
     real(wp), intent(out) :: summaries(SUMMARY_SIZE, size(values))
     integer, intent(out) :: n_done, status
     character(len=message_len), intent(out) :: message
-    integer :: chunk, n_chunks, first, last, done(max(1, 8*n_threads)), &
-               chunk_status(max(1, 8*n_threads))
-    character(len=message_len) :: chunk_message(max(1, 8*n_threads))
+    integer :: i, point_status(size(values)), point_done(size(values))
+    character(len=message_len) :: point_message(size(values))
     real(wp) :: y_final(4)
 
-    ! eight chunks per thread, handed out as threads free up: steady states differ in cost
-    ! (settling, quasi-periodic points), so equal contiguous halves leave a thread idle
-    n_chunks = 1
-    if (n_threads > 1) n_chunks = min(8*n_threads, size(values))
-    done = 0
-    chunk_status = SD_OK
-    chunk_message = ''
     summaries = 0
-    !$omp parallel do num_threads(max(1, n_threads)) schedule(dynamic, 1) private(first, last, y_final)
-    do chunk = 1, n_chunks
-      first = (chunk - 1)*size(values)/n_chunks + 1
-      last = chunk*size(values)/n_chunks
-      call parameter_sweep(model, which, values(first:last), y0, options, method, steady, &
-                           summaries(:, first:last), y_final, done(chunk), chunk_status(chunk), &
-                           chunk_message(chunk))
-    end do
-    !$omp end parallel do
-    n_done = sum(done(1:n_chunks))
+    n_done = 0
     status = SD_OK
     message = ''
-    do chunk = 1, n_chunks
-      if (chunk_status(chunk) /= SD_OK) then
-        status = chunk_status(chunk)
-        message = chunk_message(chunk)
+    if (n_threads < 1) then
+      status = SD_BAD_INPUT
+      message = 'threads = '//num2str(n_threads)//' is out of range: it must be >= 1'
+      return
+    end if
+    point_status = SD_OK
+    point_message = ''
+    !$omp parallel do num_threads(n_threads) schedule(dynamic, 1) private(y_final)
+    do i = 1, size(values)
+      call parameter_sweep(model, which, values(i:i), y0, options, method, steady, &
+                           summaries(:, i:i), y_final, point_done(i), point_status(i), &
+                           point_message(i))
+    end do
+    !$omp end parallel do
+    n_done = sum(point_done)
+    do i = 1, size(values)
+      if (point_status(i) /= SD_OK) then
+        status = point_status(i)
+        message = point_message(i)
         exit
       end if
     end do
-  end subroutine parallel_sweep
+  end subroutine independent_sweep
 end module sloshdyn_simulation

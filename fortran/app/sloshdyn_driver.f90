@@ -20,7 +20,7 @@ module sloshdyn_driver
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
   use sloshdyn_ode, only: ode_stats
   use sloshdyn_integrator, only: method_name
-  use sloshdyn_simulation, only: time_history, steady_state, parameter_sweep
+  use sloshdyn_simulation, only: time_history, steady_state, parameter_sweep, independent_sweep
   use sloshdyn_response, only: frequency_response
   use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent
   use sloshdyn_namelist, only: run_config, known_analyses, ANALYSIS_LINEAR, ANALYSIS_SIMULATE, &
@@ -252,7 +252,8 @@ contains
     if (direction == DIRECTION_BOTH) values(n + 1:) = values(n - 1:1:-1)
   end function sweep_points
 
-  !> Steady states along rho or A, each from the previous final state; a line per point.
+  !> Steady states along rho or A, each from the previous final state (or each from y0, shared
+  !> out to threads); a line per point as the sweep runs.
   subroutine run_sweep(config, files, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
@@ -260,35 +261,49 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp), allocatable :: values(:), summaries(:, :)
     real(wp) :: y(4), y_next(4)
-    integer :: i, n_done
-    character(len=:), allocatable :: name
+    integer :: first, last, i, n_done, step
+    character(len=:), allocatable :: name, how
 
     associate (sw => config%sweep)
       values = sweep_points(min(sw%start, sw%stop), max(sw%start, sw%stop), sw%n_points, &
                             sw%direction)
       name = trim(merge('rho', 'A  ', sw%parameter == PARAMETER_RHO))
+      how = 'each from the previous final state'
+      if (.not. sw%carry_state) how = 'each from y0, '//num2str(sw%threads)//' thread(s)'
       print '(/a)', 'Sweep in '//name//' ('//trim(direction_names(sw%direction))//', '// &
-                    num2str(size(values))//' points), each from the previous final state'
+                    num2str(size(values))//' points), '//how
+      ! one point per call when the state is carried, four per thread otherwise (threads that
+      ! finish early take the next point), so progress shows as the sweep runs
+      step = merge(1, 4*sw%threads, sw%carry_state)
     end associate
     allocate (summaries(SUMMARY_SIZE, size(values)))
     print '(a)', '  '//pad(name, 14)//pad('max|x1|', 14)//pad('max|x2|', 14)// &
                  pad('max|u1|', 14)//pad('max|u2|', 14)//'motion'
     flush (output_unit)
     y = config%simulation%y0
-    do i = 1, size(values)
-      ! one point per call, so progress shows as the sweep runs
-      call parameter_sweep(config%model, config%sweep%parameter, values(i:i), y, &
-                           config%integration, config%method, config%steady, summaries(:, i:i), &
-                           y_next, n_done, status, message)
+    do first = 1, size(values), step
+      last = min(first + step - 1, size(values))
+      if (config%sweep%carry_state) then
+        call parameter_sweep(config%model, config%sweep%parameter, values(first:last), y, &
+                             config%integration, config%method, config%steady, &
+                             summaries(:, first:last), y_next, n_done, status, message)
+        y = y_next
+      else
+        call independent_sweep(config%model, config%sweep%parameter, values(first:last), y, &
+                               config%integration, config%method, config%steady, &
+                               config%sweep%threads, summaries(:, first:last), n_done, status, &
+                               message)
+      end if
       call in_context('sweep', status, message)
       if (status /= SD_OK) return
-      y = y_next
-      print '(a)', '  '//pad(num2str(values(i)), 14)// &
-                   pad(num2str(summaries(SUMMARY_MAX_X1, i)), 14)// &
-                   pad(num2str(summaries(SUMMARY_MAX_X2, i)), 14)// &
-                   pad(num2str(summaries(SUMMARY_MAX_U1, i)), 14)// &
-                   pad(num2str(summaries(SUMMARY_MAX_U2, i)), 14)// &
-                   motion_text(summaries(SUMMARY_MOTION, i), summaries(SUMMARY_PERIOD, i))
+      do i = first, last
+        print '(a)', '  '//pad(num2str(values(i)), 14)// &
+                     pad(num2str(summaries(SUMMARY_MAX_X1, i)), 14)// &
+                     pad(num2str(summaries(SUMMARY_MAX_X2, i)), 14)// &
+                     pad(num2str(summaries(SUMMARY_MAX_U1, i)), 14)// &
+                     pad(num2str(summaries(SUMMARY_MAX_U2, i)), 14)// &
+                     motion_text(summaries(SUMMARY_MOTION, i), summaries(SUMMARY_PERIOD, i))
+      end do
       flush (output_unit)
     end do
     call begin_files(config, files, status, message)

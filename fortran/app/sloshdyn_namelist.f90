@@ -23,7 +23,8 @@ module sloshdyn_namelist
   implicit none
   private
   public :: run_config, tank_description, simulation_settings, sweep_settings, &
-            response_settings, read_input, namelist_defaults, known_analyses, path_len
+            response_settings, read_input, namelist_defaults, known_analyses, path_len, &
+            check_threads
   public :: ANALYSIS_LINEAR, ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
             ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV
   public :: DIRECTION_UP, DIRECTION_DOWN, DIRECTION_BOTH, direction_names
@@ -68,6 +69,10 @@ module sloshdyn_namelist
     real(wp) :: start = 0, stop = 0   !< required
     integer :: n_points = 0           !< required
     integer :: direction = DIRECTION_UP
+    !> each point from the previous one's final state (so jumps and hysteresis show), or each
+    !> from y0 (independent points, which may share threads)
+    logical :: carry_state = .true.
+    integer :: threads = 1
   end type sweep_settings
 
   !> &response (frequency_response and periodic_response).
@@ -570,14 +575,15 @@ contains
     type(sweep_settings), intent(out) :: settings
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    character(len=word_len) :: parameter, direction
+    character(len=word_len) :: parameter, direction, start_from
     real(wp) :: start, stop
-    integer :: n_points, i
+    integer :: n_points, threads, i
     type(group_reader) :: reader
-    namelist /sweep/ parameter, start, stop, n_points, direction
+    namelist /sweep/ parameter, start, stop, n_points, direction, start_from, threads
 
     parameter = 'rho'; direction = direction_names(settings%direction)
     start = settings%start; stop = settings%stop; n_points = settings%n_points
+    start_from = 'previous'; threads = settings%threads
     status = SD_OK
     message = ''
     call reader%start(file, G_SWEEP, status)
@@ -594,8 +600,19 @@ contains
     settings%start = start
     settings%stop = stop
     settings%n_points = n_points
+    settings%threads = threads
     call excitation_parameter('sweep', parameter, settings%parameter, status, message)
     if (status /= SD_OK) return
+    select case (adjustl(start_from))
+    case ('previous')
+      settings%carry_state = .true.
+    case ('y0')
+      settings%carry_state = .false.
+    case default
+      call fail(status, message, "&sweep: start_from = '"//trim(adjustl(start_from))// &
+                "' is not known; allowed: previous, y0")
+      return
+    end select
     settings%direction = 0
     do i = 1, size(direction_names)
       if (direction_names(i) == adjustl(direction)) settings%direction = i
@@ -625,6 +642,7 @@ contains
       status = SD_BAD_INPUT
       message = 'n_points = '//num2str(n_points)//' is out of range: it must lie in [1, 100000]'
     end if
+    call check_threads(threads, settings%carry_state, status, message)
     if (status /= SD_OK) message = '&sweep: '//trim(message)
   end subroutine read_sweep
 
@@ -995,6 +1013,25 @@ contains
               display//' is missing')
   end subroutine require
 
+  !> Threads for a sweep: any number in [1, 1024] for independent points; one for a sweep that
+  !> carries the state, whose points depend on each other (more would change the answer).
+  pure subroutine check_threads(threads, carry_state, status, message)
+    integer, intent(in) :: threads
+    logical, intent(in) :: carry_state
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    if (status /= SD_OK) return
+    if (threads < 1 .or. threads > 1024) then
+      status = SD_BAD_INPUT
+      message = 'threads = '//num2str(threads)//' is out of range: it must lie in [1, 1024]'
+    else if (carry_state .and. threads > 1) then
+      status = SD_BAD_INPUT
+      message = 'threads = '//num2str(threads)//": a sweep that carries the state "// &
+                "(start_from = 'previous') runs on one thread, each point starting from the "// &
+                "one before; use start_from = 'y0' for independent points, or threads = 1"
+    end if
+  end subroutine check_threads
+
   !> 'rho' or 'A' for the group's parameter.
   subroutine excitation_parameter(group, text, parameter, status, message)
     character(len=*), intent(in) :: group, text
@@ -1028,9 +1065,10 @@ contains
     character(len=:), allocatable :: text
     select case (name)
     case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
-          'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points')
+          'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points', &
+          'threads')
       text = name//' must be an integer'
-    case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method')
+    case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from')
       text = name//' must be a quoted string'
     case ('y0')
       text = 'y0 must be four real numbers (x1, x1'', x2, x2''), or y0(i) = one of them, i = 1..4'

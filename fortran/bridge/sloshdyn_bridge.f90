@@ -362,11 +362,12 @@ contains
     status = info
   end subroutine parameter_sweep
 
-  !> parameter_sweep split into chunks run in parallel by n_threads threads (each from y0).
-  subroutine parallel_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
+  !> Steady states at values of rho (which = 1) or A (which = 2), each from y0 (independent
+  !> points), shared out to n_threads threads; the results do not depend on n_threads.
+  subroutine independent_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
                             summaries, n_done, status, message)
     use sloshdyn_model, only: model_t, model_from_arrays
-    use sloshdyn_simulation, only: core => parallel_sweep
+    use sloshdyn_simulation, only: core => independent_sweep
     use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady
@@ -385,7 +386,7 @@ contains
                              summaries, done, info, message)
     n_done = done
     status = info
-  end subroutine parallel_sweep
+  end subroutine independent_sweep
 
   !> Slow-flow frequency response (sloshdyn_response): branches in lambda = rho (which = 1) or
   !> A (which = 2) over [lambda_min, lambda_max], 3:1 internal resonance or none. table in the
@@ -517,7 +518,8 @@ contains
   !> analysis_values = [sigma1, kappa_min, kappa_max]; the output directory; tank = [dimensional
   !> (1/0), R, h, m_liquid, l, m, d1, m0, d0, M, L, g]; integration, steady, response and
   !> lyapunov in their layouts; simulation = [t_end, n_out, y0(4)]; sweep = [parameter (1 rho,
-  !> 2 A), start, stop, n_points, direction (1 up, 2 down, 3 both)]; response_range =
+  !> 2 A), start, stop, n_points, direction (1 up, 2 down, 3 both), carry_state (1/0),
+  !> threads]; response_range =
   !> [resonance (1 3:1, 0 none), parameter, start, stop].
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, tank, &
                         integration, steady, response, lyapunov, simulation, sweep, &
@@ -530,7 +532,7 @@ contains
     real(c_double), intent(out) :: rpar(9), analysis_values(3), tank(12), &
                                    integration(7), steady(6), &
                                    response(10), lyapunov(3), &
-                                   simulation(6), sweep(5), response_range(4)
+                                   simulation(6), sweep(7), response_range(4)
     integer(c_int), intent(out) :: ipar(2), analysis, status
     character(len=4096), intent(out) :: directory
     character(len=256), intent(out) :: message
@@ -559,7 +561,9 @@ contains
     simulation = [config%simulation%t_end, real(config%simulation%n_out, c_double), &
                   config%simulation%y0]
     sweep = [real(config%sweep%parameter, c_double), config%sweep%start, config%sweep%stop, &
-             real(config%sweep%n_points, c_double), real(config%sweep%direction, c_double)]
+             real(config%sweep%n_points, c_double), real(config%sweep%direction, c_double), &
+             merge(1.0_c_double, 0.0_c_double, config%sweep%carry_state), &
+             real(config%sweep%threads, c_double)]
     response_range = [merge(1.0_c_double, 0.0_c_double, config%response%internal_resonance), &
                       real(config%response%parameter, c_double), config%response%start, &
                       config%response%stop]
@@ -579,6 +583,19 @@ contains
     if (info == 0) call run_analysis(config, info, message)
     status = info
   end subroutine run_input
+
+  !> The rule for the threads of a sweep (carry = 1: the state is carried from point to point).
+  subroutine sweep_threads(threads, carry, status, message)
+    use sloshdyn_namelist, only: check_threads
+    integer(c_int), intent(in) :: threads, carry
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    info = 0
+    message = ''
+    call check_threads(int(threads), carry /= 0, info, message)
+    status = info
+  end subroutine sweep_threads
 
   !> The exit code of both front doors for a status, from reading the input (reading = 1) or
   !> from the run (reading = 0).

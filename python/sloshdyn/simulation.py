@@ -204,57 +204,70 @@ def sweep_values(start, stop, n, direction="up"):
     raise InputError(f"direction = {direction!r} is not valid: it must be 'up', 'down' or 'both'")
 
 
-def _sweep(params, parameter, values, y0, steady, integration, progress, threads=1):
+def _sweep(params, parameter, values, y0, steady, integration, progress, threads, start_from):
+    if start_from not in ("previous", "y0"):
+        raise InputError(f"start_from = {start_from!r} is not valid: it must be 'previous' or 'y0'")
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)):
+        raise InputError(f"threads = {threads!r} is not valid: threads must be an integer")
+    carry = start_from == "previous"
+    status, message = _bridge.sweep_threads(int(threads), int(carry))
+    check_status(status, message)
     which = {"rho": 1, "A": 2}[parameter]
     values = np.ascontiguousarray(values, dtype=np.float64)
     y = _state(y0)
-    if threads > 1:
-        summaries, n_done, status, message = _bridge.parallel_sweep(
-            *params.arrays(), which, values, y, integration.array(), steady.array(), int(threads))
-        check_status(status, message, f"parallel sweep in {parameter}")
-        return Sweep(parameter, [_summary(summaries[:, i]) for i in range(len(values))], None)
     points = []
     bar = None
     if progress:
         from tqdm.auto import tqdm
         bar = tqdm(total=len(values), desc=f"sweep in {parameter}", unit="point")
     try:
-        # one Fortran call per point so progress can be shown; the state is carried across
-        for value in values:
-            summaries, y, n_done, status, message = _bridge.parameter_sweep(
-                *params.arrays(), which, np.array([value]), y, integration.array(), steady.array())
+        # one point per Fortran call when the state is carried, so progress shows; independent
+        # points in one call, or four per thread when progress is shown
+        step = 1 if carry else (4 * int(threads) if bar else max(len(values), 1))
+        for first in range(0, len(values), step):
+            chunk = values[first:first + step]
+            if carry:
+                summaries, y, n_done, status, message = _bridge.parameter_sweep(
+                    *params.arrays(), which, chunk, y, integration.array(), steady.array())
+            else:
+                summaries, n_done, status, message = _bridge.independent_sweep(
+                    *params.arrays(), which, chunk, y, integration.array(), steady.array(),
+                    int(threads))
             if status:
                 try:
                     check_status(status, message, f"sweep in {parameter}")
                 except Exception as exc:
-                    exc.partial = Sweep(parameter, points, y)
+                    exc.partial = Sweep(parameter, points, y if carry else None)
                     raise
-            points.append(_summary(summaries[:, 0]))
+            points.extend(_summary(summaries[:, k]) for k in range(len(chunk)))
             if bar:
-                bar.update()
+                bar.update(len(chunk))
     finally:
         if bar:
             bar.close()
-    return Sweep(parameter, points, y)
+    return Sweep(parameter, points, y if carry else None)
 
 
 def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady = Steady(),
-                    integration: Integration = Integration(), progress=False, threads=1) -> Sweep:
-    """Steady states along rho_values (ascending = up, descending = down), each starting from
-    the previous point's final state, so jumps and hysteresis show.
+                    integration: Integration = Integration(), progress=False, threads=1,
+                    start_from="previous") -> Sweep:
+    """Steady states along rho_values (ascending = up, descending = down).
 
-    threads > 1 splits the values into 8 x threads contiguous chunks run in parallel by that
-    many threads (OpenMP in the core), each chunk starting from y0: faster, but the state is not
-    carried across chunk starts, and there is no per-point progress nor final state (y_final is
-    None)."""
-    return _sweep(params, "rho", rho_values, y0, steady, integration, progress, threads)
+    start_from='previous' (default): each point starts from the previous point's final state,
+    so jumps and hysteresis show; the points depend on each other and run on one thread
+    (threads > 1 is refused: it would change the answer). start_from='y0': every point starts
+    from y0; the points are independent and `threads` threads share them out (OpenMP in the
+    core); the results are the same for any number of threads, bit for bit (y_final is None)."""
+    return _sweep(params, "rho", rho_values, y0, steady, integration, progress, threads,
+                  start_from)
 
 
 def amplitude_sweep(params: Parameters, A_values, y0=None, *, steady: Steady = Steady(),
-                    integration: Integration = Integration(), progress=False, threads=1) -> Sweep:
+                    integration: Integration = Integration(), progress=False, threads=1,
+                    start_from="previous") -> Sweep:
     """Steady states along A_values at fixed rho, carrying the state (the paper's numerical
-    continuation, sec 4.2); threads as for frequency_sweep."""
-    return _sweep(params, "A", A_values, y0, steady, integration, progress, threads)
+    continuation, sec 4.2); start_from and threads as for frequency_sweep."""
+    return _sweep(params, "A", A_values, y0, steady, integration, progress, threads, start_from)
 
 
 def spectrum(signal, dt, window="hann"):

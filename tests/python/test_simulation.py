@@ -126,22 +126,6 @@ def test_sweep_carries_the_state(fig12):
     assert np.array_equal(sweep.y_final, second.y_end)
 
 
-def test_parallel_sweep_equals_serial_chunks(fig12):
-    p = fig12.replace(beta=10.0, delta=0.1)
-    steady = sloshdyn.Steady(transient_periods=100, settle_tol=0, window_periods=16)
-    values = [0.50, 0.502, 0.504, 0.506, 0.508, 0.51, 0.512, 0.514, 0.516, 0.518, 0.52, 0.522,
-              0.524, 0.526, 0.528, 0.53]
-    values = values + values[::-1][1:-1]      # 30 values: chunks of unequal length
-    parallel = sloshdyn.frequency_sweep(p, values, steady=steady, threads=2)
-    # min(8 x threads, n) = 16 contiguous chunks (as the core splits them), each from rest
-    n, chunks = len(values), 16
-    serial = []
-    for c in range(chunks):
-        serial += list(sloshdyn.frequency_sweep(p, values[c * n // chunks:(c + 1) * n // chunks],
-                                                steady=steady).column("max_x1"))
-    assert list(parallel.column("max_x1")) == serial
-
-
 def test_dop853_method_agrees_with_rk45_in_fewer_steps(fig12):
     p = fig12.replace(beta=10.0, delta=0.1, A=0.3)
     t_end = 100 * 2 * math.pi / p.rho
