@@ -1,8 +1,17 @@
 !> The LAPACK calls of sloshdyn: dgeev for the eigenvalues of every stability Jacobian, dgesv for
-!> Newton steps. Inputs are copied, so callers keep their matrices.
+!> Newton steps. Inputs are copied, so callers keep their matrices. A matrix with NaN or
+!> infinite entries is refused before LAPACK sees it, and results that are not finite are an
+!> error, never a result.
+!>
+!> LAPACK reports invalid arguments through XERBLA, whose reference version prints a line and
+!> STOPS the process -- inside Python it would end the interpreter. This file also defines the
+!> project's XERBLA (after the module): it returns, so the LAPACK routine returns with info < 0,
+!> which becomes a status here. Linked into the executable and the extension module, it takes
+!> precedence over the library's.
 module sloshdyn_lapack
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_LAPACK_FAILED, SD_SINGULAR
+  use sloshdyn_status, only: SD_OK, SD_LAPACK_FAILED, SD_SINGULAR, SD_NON_FINITE
   use sloshdyn_text, only: num2str
   implicit none
   private
@@ -37,13 +46,19 @@ contains
     integer :: n, info
 
     n = size(a, 1)
+    wr = 0
+    wi = 0
+    call check_finite('eigenvalues: the matrix', a, status, message)
+    if (status /= SD_OK) return
     work_matrix = a
     call dgeev('N', 'N', n, work_matrix, n, wr, wi, no_left, 1, no_right, 1, work, size(work), info)
-    status = SD_OK
-    message = ''
     if (info /= 0) then
       status = SD_LAPACK_FAILED
       message = 'dgeev failed with info = '//num2str(info)
+    else if (.not. (all(ieee_is_finite(wr)) .and. all(ieee_is_finite(wi)))) then
+      status = SD_NON_FINITE
+      message = 'dgeev gave eigenvalues that are not finite (the matrix is too large in '// &
+                'magnitude: largest entry '//num2str(maxval(abs(a)))//')'
     end if
   end subroutine eigenvalues
 
@@ -57,10 +72,12 @@ contains
     integer :: n, info, pivots(size(a, 1))
 
     n = size(a, 1)
+    call check_finite('solve_linear: the matrix', a, status, message)
+    if (status == SD_OK) call check_finite('solve_linear: the right-hand side', &
+                                           reshape(b, [size(b), 1]), status, message)
+    if (status /= SD_OK) return
     work_matrix = a
     call dgesv(n, 1, work_matrix, n, pivots, b, n, info)
-    status = SD_OK
-    message = ''
     if (info > 0) then
       status = SD_SINGULAR
       message = 'singular matrix in dgesv (zero pivot '//num2str(info)//')'
@@ -69,4 +86,24 @@ contains
       message = 'dgesv failed with info = '//num2str(info)
     end if
   end subroutine solve_linear
+
+  pure subroutine check_finite(what, a, status, message)
+    character(len=*), intent(in) :: what
+    real(wp), intent(in) :: a(:, :)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    if (all(ieee_is_finite(a))) return
+    status = SD_NON_FINITE
+    message = what//' has NaN or infinite entries'
+  end subroutine check_finite
 end module sloshdyn_lapack
+
+!> XERBLA for LAPACK (see the module header): return instead of stopping; the calling routine
+!> then returns info = -(the argument's position), which the wrappers turn into a status.
+subroutine xerbla(srname, info)
+  implicit none
+  character(len=*), intent(in) :: srname
+  integer, intent(in) :: info
+end subroutine xerbla

@@ -258,6 +258,7 @@ contains
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_slowflow, only: core => nonresonant_amplitudes
+    use sloshdyn_text, only: num2str
     real(c_double), intent(in) :: rpar(9), rho(n)
     integer(c_int), intent(in) :: ipar(2), n
     real(c_double), intent(out) :: amplitudes(3, n)
@@ -272,6 +273,7 @@ contains
     do i = 1, n
       if (info /= 0) exit
       call core(mc, rho(i), model%excitation%A, amplitudes(:, i), found, info, message)
+      if (info /= 0) message = 'rho('//num2str(i)//'): '//trim(message)
       counts(i) = found
     end do
     status = info

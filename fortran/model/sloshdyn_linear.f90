@@ -38,14 +38,15 @@ contains
 
   !> omega1 <= omega2 of eq (28) in terms of sigma~ = kappa - s1 and mu~ = 1 - mu1, with
   !> alpha^ = (1 + sigma~)/(2 mu~), beta^ = sigma~/mu~. omega1^2 is written as
-  !> beta^/(alpha^ + sqrt(alpha^2 - beta^)), the same number without the cancellation.
+  !> beta^/(alpha^ + sqrt(alpha^2 - beta^)), the same number without the cancellation, and the
+  !> root as alpha^ sqrt(1 - beta^/alpha^2), which does not overflow for large sigma~.
   elemental subroutine frequencies_from_groups(sigma_t, mu_t, omega1, omega2)
     real(wp), intent(in) :: sigma_t, mu_t
     real(wp), intent(out) :: omega1, omega2
     real(wp) :: alpha_hat, beta_hat, root
     alpha_hat = (1 + sigma_t)/(2*mu_t)
     beta_hat = sigma_t/mu_t
-    root = sqrt(max(alpha_hat**2 - beta_hat, 0.0_wp))
+    root = alpha_hat*sqrt(max(1 - (beta_hat/alpha_hat)/alpha_hat, 0.0_wp))
     omega1 = sqrt(beta_hat/(alpha_hat + root))
     omega2 = sqrt(alpha_hat + root)
   end subroutine frequencies_from_groups

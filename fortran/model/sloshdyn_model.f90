@@ -15,6 +15,12 @@ module sloshdyn_model
   public :: require_stable_trivial, n_real_params, n_int_params, real_param_names
 
   integer, parameter :: n_real_params = 9, n_int_params = 2
+  !> Largest allowed groups: beyond them the equations are stiffer than an explicit integrator can
+  !> follow, or their eigenvalue problems lose all precision (a damping of 1e300 rounds the slow
+  !> eigenvalues to 0); real tanks have groups of order 1.
+  real(wp), parameter :: max_s1 = 1.0e3_wp, max_kappa = 1.0e6_wp, max_beta = 1.0e9_wp, &
+                         max_damping = 1.0e3_wp, max_excitation = 1.0e3_wp
+  integer, parameter :: max_exponent = 50
   character(len=6), parameter :: real_param_names(n_real_params) = &
     [character(len=6) :: 's1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'A', 'rho']
 
@@ -54,31 +60,38 @@ contains
     model%excitation%A = rpar(8); model%excitation%rho = rpar(9)
     model%n = ipar(1); model%p = ipar(2)
 
-    call check_real('s1', model%s1, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    's1 = l/L must be > 0', status, message)
+    call check_real('s1', model%s1, 0.0_wp, max_s1, .true., .false., &
+                    's1 = l/L must be > 0 and at most '//num2str(max_s1), status, message)
     call check_real('mu1', model%mu1, 0.0_wp, 1.0_wp, .true., .true., &
                     'mu1 = m/M must lie in (0, 1)', status, message)
-    call check_real('kappa', model%kappa, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    'kappa must be > 0', status, message)
+    call check_real('kappa', model%kappa, 0.0_wp, max_kappa, .true., .false., &
+                    'kappa must be > 0 and at most '//num2str(max_kappa), status, message)
     call check_real('theta0', model%theta0, 0.0_wp, pi/2, .true., .true., &
                     'theta0 must lie in (0, pi/2) rad', status, message)
-    call check_real('beta', model%beta, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'beta (impact coefficient) must be >= 0', status, message)
-    call check_real('gamma', model%gamma, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'gamma (rod damping) must be >= 0', status, message)
-    call check_real('delta', model%delta, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'delta (sloshing dissipation) must be >= 0', status, message)
-    call check_real('A', model%excitation%A, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'A (excitation amplitude) must be >= 0', status, message)
-    call check_real('rho', model%excitation%rho, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'rho (excitation frequency) must be >= 0', status, message)
-    if (status == SD_OK .and. model%n < 1) then
+    call check_real('beta', model%beta, 0.0_wp, max_beta, .false., .false., &
+                    'beta (impact coefficient) must be >= 0 and at most '//num2str(max_beta), &
+                    status, message)
+    call check_real('gamma', model%gamma, 0.0_wp, max_damping, .false., .false., &
+                    'gamma (rod damping) must be >= 0 and at most '//num2str(max_damping), &
+                    status, message)
+    call check_real('delta', model%delta, 0.0_wp, max_damping, .false., .false., &
+                    'delta (sloshing dissipation) must be >= 0 and at most '// &
+                    num2str(max_damping), status, message)
+    call check_real('A', model%excitation%A, 0.0_wp, max_excitation, .false., .false., &
+                    'A (excitation amplitude) must be >= 0 and at most '//num2str(max_excitation), &
+                    status, message)
+    call check_real('rho', model%excitation%rho, 0.0_wp, max_excitation, .false., .false., &
+                    'rho (excitation frequency) must be >= 0 and at most '// &
+                    num2str(max_excitation), status, message)
+    if (status == SD_OK .and. (model%n < 1 .or. model%n > max_exponent)) then
       status = SD_BAD_INPUT
-      message = 'n = '//num2str(model%n)//' is out of range: the impact exponent n must be >= 1'
+      message = 'n = '//num2str(model%n)//' is out of range: the impact exponent n must lie in '// &
+                '[1, '//num2str(max_exponent)//']'
     end if
-    if (status == SD_OK .and. model%p < 0) then
+    if (status == SD_OK .and. (model%p < 0 .or. model%p > max_exponent)) then
       status = SD_BAD_INPUT
-      message = 'p = '//num2str(model%p)//' is out of range: the dissipation exponent p must be >= 0'
+      message = 'p = '//num2str(model%p)//' is out of range: the dissipation exponent p must '// &
+                'lie in [0, '//num2str(max_exponent)//']'
     end if
     if (status == SD_OK) call set_coefficients(model)
   end subroutine model_from_arrays
@@ -152,6 +165,33 @@ contains
     beta = impact_coef/(omega**2*sloshing_mass*pendulum_length**2)
     gamma = rod_damping/(omega*rod_length**2*total_mass)
     delta = dissipation_coef/(omega*sloshing_mass*pendulum_length**2)
+    ! the groups' ranges (model_from_arrays), told in the dimensional inputs
+    call check_group('s1 = l/L', s1, max_s1, 'l/L with l = '//num2str(pendulum_length)// &
+                     ' m, L = '//num2str(rod_length)//' m', status, message)
+    call check_group('kappa = k/(omega^2 L^2 M)', kappa, max_kappa, 'k = '//num2str(stiffness)// &
+                     ' N m/rad', status, message)
+    call check_group('beta = b/(omega^2 m l^2)', beta, max_beta, 'b = '//num2str(impact_coef)// &
+                     ' N m', status, message)
+    call check_group('gamma = c/(omega L^2 M)', gamma, max_damping, 'c = '// &
+                     num2str(rod_damping)//' N m s/rad', status, message)
+    call check_group('delta = d/(omega m l^2)', delta, max_damping, 'd = '// &
+                     num2str(dissipation_coef)//' N m s', status, message)
+    if (status /= SD_OK) then
+      s1 = 0; mu1 = 0; kappa = 0; beta = 0; gamma = 0; delta = 0
+    end if
+
+  contains
+
+    pure subroutine check_group(group, value, upper, source, status, message)
+      character(len=*), intent(in) :: group, source
+      real(wp), intent(in) :: value, upper
+      integer, intent(inout) :: status
+      character(len=message_len), intent(inout) :: message
+      if (status /= SD_OK .or. (value > 0 .and. value <= upper) .or. value == 0) return
+      status = SD_BAD_INPUT
+      message = source//' gives '//group//' = '//num2str(value)//', out of range: it must '// &
+                'be > 0 and at most '//num2str(upper)
+    end subroutine check_group
   end subroutine model_from_physical
 
   !> Analyses that linearise about the upright tank need the trivial equilibrium stable (sec 3.1.1):

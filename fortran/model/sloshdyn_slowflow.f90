@@ -13,7 +13,7 @@
 !> x = (Re B1, Im B1[, Re B2, Im B2]).
 module sloshdyn_slowflow
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_model, only: model_t
   use sloshdyn_modal, only: modal_coefficients, expand_model
   use sloshdyn_continuation, only: separable_system
@@ -226,6 +226,9 @@ contains
     n_roots = 0
     status = SD_OK
     message = ''
+    call check_real('rho', rho, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'rho (excitation frequency) must be > 0', status, message)
+    if (status /= SD_OK) return
     cubic = nonresonant_cubic(modal, rho, amplitude)
     if (cubic(1) == 0) then
       ! c11 = 0: the backbone is straight and eq (49) is linear in z
