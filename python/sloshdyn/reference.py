@@ -17,7 +17,7 @@ from .model import kappa_for_detuning, natural_frequencies
 from .parameters import Parameters
 from .simulation import spectrum, simulate, steady_state
 
-#: the reference tables shipped with the package (a copy of data/reference)
+#: the reference tables shipped with the package (a copy of data/reference and docs/errata.md)
 PACKAGE_REFERENCE = Path(__file__).parent / "reference"
 
 
