@@ -85,13 +85,13 @@ contains
                     num2str(max_excitation), status, message)
     if (status == SD_OK .and. (model%n < 1 .or. model%n > max_exponent)) then
       status = SD_BAD_INPUT
-      message = 'n = '//num2str(model%n)//' is out of range: the impact exponent n must lie in '// &
-                '[1, '//num2str(max_exponent)//']'
+      message = 'n = '//num2str(model%n)//' is out of range: the impact exponent n must be '// &
+                '>= 1 and at most '//num2str(max_exponent)
     end if
     if (status == SD_OK .and. (model%p < 0 .or. model%p > max_exponent)) then
       status = SD_BAD_INPUT
       message = 'p = '//num2str(model%p)//' is out of range: the dissipation exponent p must '// &
-                'lie in [0, '//num2str(max_exponent)//']'
+                'be >= 0 and at most '//num2str(max_exponent)
     end if
     if (status == SD_OK) call set_coefficients(model)
   end subroutine model_from_arrays
