@@ -1,0 +1,504 @@
+!> Ground-motion record files: the PEER NGA .AT2 format and two-column (time, acceleration)
+!> text/CSV files. Each reader returns the uniform time step dt [s] and the ground acceleration
+!> in m/s^2 (g = 9.80665 m/s^2), or a status and a message naming the file, the line and what is
+!> wrong. Files are opened read-only and never modified.
+!>
+!> .AT2 (PEER NGA): 4 header lines; the 4th gives the number of points and the step, in either
+!> form "NPTS=  5590, DT=   .0050 SEC" (any spacing, either order, with or without the unit) or,
+!> in older files, "5590   0.0050   NPTS, DT"; then the NPTS values in units of g, several per
+!> line, separated by blanks (or commas).
+!>
+!> Two-column files: one sample per line, "time, acceleration" separated by commas, semicolons
+!> or blanks (tabs included); blank lines and lines whose first non-blank character is # are
+!> skipped. The time step must be uniform: every step within 1e-6 (relative) of the first; the
+!> dt returned is the mean step (t_last - t_first)/(n - 1). The caller gives the units of the
+!> acceleration (UNITS_G, UNITS_M_S2, UNITS_CM_S2; units_code maps their names).
+module sloshdyn_records
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR
+  use sloshdyn_text, only: num2str
+  implicit none
+  private
+  public :: read_at2, read_two_column, units_code, units_factor
+  public :: UNITS_G, UNITS_M_S2, UNITS_CM_S2, standard_gravity
+
+  !> Units of an acceleration column.
+  integer, parameter :: UNITS_G = 1, UNITS_M_S2 = 2, UNITS_CM_S2 = 3
+  !> Standard gravity (CGPM 1901) for records in g [m/s^2].
+  real(wp), parameter :: standard_gravity = 9.80665_wp
+  !> Relative tolerance on the uniformity of the time step of two-column files.
+  real(wp), parameter :: step_tolerance = 1.0e-6_wp
+  character(len=*), parameter :: separators = ' ,;'//char(9)
+  character(len=*), parameter :: number_characters = '0123456789+-.eEdD'
+
+contains
+
+  !> Read a PEER NGA .AT2 record: dt [s] and accel [m/s^2] (the file's values in g times
+  !> standard_gravity). accel is unallocated on failure.
+  subroutine read_at2(path, dt, accel, status, message)
+    character(len=*), intent(in) :: path
+    real(wp), intent(out) :: dt
+    real(wp), allocatable, intent(out) :: accel(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=:), allocatable :: text
+    integer :: position, first, last, line_number, npts, count, values_start
+    logical :: found
+
+    dt = 0
+    call read_text(path, text, status, message)
+    if (status /= SD_OK) return
+    position = 1
+    do line_number = 1, 4
+      call next_line(text, position, first, last, found)
+      if (.not. found) then
+        call fail(SD_BAD_INPUT, path, line_number, 'the file ends before the 4 header lines '// &
+                  'of an AT2 record (the 4th gives NPTS and DT)', status, message)
+        return
+      end if
+    end do
+    call parse_at2_header(text(first:last), npts, dt, status, message)
+    if (status /= SD_OK) then
+      message = located(path, 4, trim(message))
+      return
+    end if
+    values_start = position
+    call scan_values(text, values_start, 5, path, count, status, message)
+    if (status /= SD_OK) return
+    if (count /= npts) then
+      call fail(SD_BAD_INPUT, path, 4, 'the header gives NPTS = '//num2str(npts)//' but the '// &
+                'file has '//num2str(count)//' values after it', status, message)
+      return
+    end if
+    if (count < 2) then
+      call fail(SD_BAD_INPUT, path, 0, 'only '//num2str(count)//' sample(s): a record needs '// &
+                'at least 2', status, message)
+      return
+    end if
+    allocate (accel(count))
+    call scan_values(text, values_start, 5, path, count, status, message, accel)
+    accel = accel*standard_gravity
+  end subroutine read_at2
+
+  !> Read a two-column (time [s], acceleration) file; units: UNITS_G, UNITS_M_S2 or UNITS_CM_S2,
+  !> the units of the acceleration column, converted to m/s^2. accel is unallocated on failure.
+  subroutine read_two_column(path, units, dt, accel, status, message)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: units
+    real(wp), intent(out) :: dt
+    real(wp), allocatable, intent(out) :: accel(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=:), allocatable :: text
+    real(wp), allocatable :: time(:)
+    real(wp) :: factor
+    integer :: count
+
+    dt = 0
+    call units_factor(units, factor, status, message)
+    if (status /= SD_OK) return
+    call read_text(path, text, status, message)
+    if (status /= SD_OK) return
+    call scan_columns(text, path, count, status, message)
+    if (status /= SD_OK) return
+    if (count < 2) then
+      call fail(SD_BAD_INPUT, path, 0, 'only '//num2str(count)//' sample(s): a record needs '// &
+                'at least 2', status, message)
+      return
+    end if
+    allocate (time(count), accel(count))
+    call scan_columns(text, path, count, status, message, time, accel)
+    if (status /= SD_OK) then
+      deallocate (accel)
+      return
+    end if
+    dt = (time(count) - time(1))/(count - 1)
+    accel = accel*factor
+  end subroutine read_two_column
+
+  !> The units code of a name: 'g'; 'm/s^2' (also 'm/s2', 'm/s**2'); 'cm/s^2' (also 'cm/s2',
+  !> 'cm/s**2', 'gal'); any case, surrounding blanks ignored.
+  pure subroutine units_code(name, code, status, message)
+    character(len=*), intent(in) :: name
+    integer, intent(out) :: code
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    select case (lower(trim(adjustl(name))))
+    case ('g')
+      code = UNITS_G
+    case ('m/s^2', 'm/s2', 'm/s**2')
+      code = UNITS_M_S2
+    case ('cm/s^2', 'cm/s2', 'cm/s**2', 'gal')
+      code = UNITS_CM_S2
+    case default
+      code = 0
+      status = SD_BAD_INPUT
+      message = 'units = '''//trim(adjustl(name))//''' is unknown: use g, m/s^2 or cm/s^2'
+    end select
+  end subroutine units_code
+
+  !> The factor that turns an acceleration in the given units into m/s^2.
+  pure subroutine units_factor(units, factor, status, message)
+    integer, intent(in) :: units
+    real(wp), intent(out) :: factor
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    select case (units)
+    case (UNITS_G)
+      factor = standard_gravity
+    case (UNITS_M_S2)
+      factor = 1
+    case (UNITS_CM_S2)
+      factor = 0.01_wp
+    case default
+      factor = 0
+      status = SD_BAD_INPUT
+      message = 'units = '//num2str(units)//' is unknown: use UNITS_G (1, g), UNITS_M_S2 '// &
+                '(2, m/s^2) or UNITS_CM_S2 (3, cm/s^2)'
+    end select
+  end subroutine units_factor
+
+  !> NPTS and DT from the 4th header line of an AT2 file (message without the location).
+  pure subroutine parse_at2_header(line, npts, dt, status, message)
+    character(len=*), intent(in) :: line
+    integer, intent(out) :: npts
+    real(wp), intent(out) :: dt
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=:), allocatable :: upper, npts_text, dt_text
+    character(len=*), parameter :: expected = ' (expected e.g. "NPTS=  5590, DT=   .0050 SEC"'// &
+                                              ' or "5590  .0050  NPTS, DT")'
+    integer :: ios, after_npts, after_dt
+
+    status = SD_OK
+    message = ''
+    npts = -1
+    dt = 0
+    upper = upper_case(line)
+    if (value_after(upper, 'NPTS') /= '' .or. value_after(upper, 'DT') /= '') then
+      npts_text = value_after(upper, 'NPTS')
+      dt_text = value_after(upper, 'DT')
+    else
+      ! older form: "5590   0.0050   NPTS, DT"
+      call next_token(upper, 1, npts_text, after_npts)
+      call next_token(upper, after_npts, dt_text, after_dt)
+    end if
+    ios = 1
+    if (len(npts_text) > 0 .and. verify(npts_text, '0123456789') == 0) &
+      read (npts_text, *, iostat=ios) npts
+    if (ios /= 0) then
+      status = SD_BAD_INPUT
+      message = 'malformed AT2 header: no number of points NPTS in '''//trim(line)//''''//expected
+      return
+    end if
+    ios = 1
+    if (len(dt_text) > 0 .and. verify(dt_text, number_characters) == 0) &
+      read (dt_text, *, iostat=ios) dt
+    if (ios /= 0 .or. .not. (dt > 0 .and. dt <= huge(dt))) then
+      status = SD_BAD_INPUT
+      message = 'malformed AT2 header: no time step DT > 0 in '''//trim(line)//''''//expected
+    end if
+  end subroutine parse_at2_header
+
+  !> The number text after "key =" (blanks allowed around =), '' if key = is absent. The text
+  !> ends at the first character that cannot be part of a number.
+  pure function value_after(line, key) result(text)
+    character(len=*), intent(in) :: line, key
+    character(len=:), allocatable :: text
+    integer :: start, i, equals
+    text = ''
+    start = 1
+    do
+      i = index(line(start:), key)
+      if (i == 0) return
+      i = start + i - 1 + len(key)
+      equals = verify(line(i:), ' ')
+      if (equals > 0) then
+        equals = i + equals - 1
+        if (line(equals:equals) == '=') exit
+      end if
+      start = i
+    end do
+    i = equals + 1
+    do while (i <= len(line))
+      if (line(i:i) /= ' ') exit
+      i = i + 1
+    end do
+    start = i
+    do while (i <= len(line))
+      if (index(number_characters, line(i:i)) == 0) exit
+      i = i + 1
+    end do
+    text = line(start:i - 1)
+  end function value_after
+
+  !> The token (separated by blanks, tabs, commas or semicolons) starting at or after position
+  !> from of line, '' if none; after = the position just past it.
+  pure subroutine next_token(line, from, text, after)
+    character(len=*), intent(in) :: line
+    integer, intent(in) :: from
+    character(len=:), allocatable, intent(out) :: text
+    integer, intent(out) :: after
+    integer :: start, stop
+    text = ''
+    after = len(line) + 1
+    if (from > len(line)) return
+    start = verify(line(from:), separators)
+    if (start == 0) return
+    start = from + start - 1
+    stop = scan(line(start:), separators)
+    if (stop == 0) then
+      stop = len(line)
+    else
+      stop = start + stop - 2
+    end if
+    text = line(start:stop)
+    after = stop + 1
+  end subroutine next_token
+
+  !> Count (and store, if values is present) the numbers of text from position start on,
+  !> separated by blanks or commas; first_line = the line number at start (for messages).
+  subroutine scan_values(text, start, first_line, path, count, status, message, values)
+    character(len=*), intent(in) :: text, path
+    integer, intent(in) :: start, first_line
+    integer, intent(out) :: count
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), intent(out), optional :: values(:)
+    integer :: position, first, last, line_number, from, after
+    character(len=:), allocatable :: token
+    real(wp) :: value
+    logical :: found
+
+    status = SD_OK
+    message = ''
+    count = 0
+    position = start
+    line_number = first_line - 1
+    do
+      call next_line(text, position, first, last, found)
+      if (.not. found) exit
+      line_number = line_number + 1
+      from = first
+      do
+        call next_token(text(1:last), from, token, after)
+        if (len(token) == 0) exit
+        call parse_number(token, value, status, message)
+        if (status /= SD_OK) then
+          message = located(path, line_number, 'value '//num2str(count + 1)//': '//trim(message))
+          return
+        end if
+        count = count + 1
+        if (present(values)) values(count) = value
+        from = after
+      end do
+    end do
+  end subroutine scan_values
+
+  !> Count (and store, if time and accel are present) the samples of a two-column file, checking
+  !> the form of every line and, when storing, that time increases in uniform steps.
+  subroutine scan_columns(text, path, count, status, message, time, accel)
+    character(len=*), intent(in) :: text, path
+    integer, intent(out) :: count
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), intent(out), optional :: time(:), accel(:)
+    integer :: position, first, last, line_number, from, after, n_tokens, lead
+    character(len=:), allocatable :: token
+    real(wp) :: pair(2), step, first_step
+    logical :: found
+
+    status = SD_OK
+    message = ''
+    count = 0
+    position = 1
+    line_number = 0
+    first_step = 0
+    do
+      call next_line(text, position, first, last, found)
+      if (.not. found) exit
+      line_number = line_number + 1
+      lead = verify(text(first:last), separators(1:1)//char(9))
+      if (lead == 0) cycle                                   ! blank line
+      if (text(first + lead - 1:first + lead - 1) == '#') cycle   ! comment line
+      n_tokens = 0
+      from = first
+      do
+        call next_token(text(1:last), from, token, after)
+        if (len(token) == 0) exit
+        n_tokens = n_tokens + 1
+        if (n_tokens <= 2) then
+          call parse_number(token, pair(n_tokens), status, message)
+          if (status /= SD_OK) then
+            message = located(path, line_number, trim(merge('time        ', &
+                              'acceleration', n_tokens == 1))//': '//trim(message))
+            return
+          end if
+        end if
+        from = after
+      end do
+      if (n_tokens /= 2) then
+        call fail(SD_BAD_INPUT, path, line_number, 'expected 2 values (time, acceleration), '// &
+                  'found '//num2str(n_tokens), status, message)
+        return
+      end if
+      count = count + 1
+      if (.not. present(time)) cycle
+      time(count) = pair(1)
+      accel(count) = pair(2)
+      if (count < 2) cycle
+      step = time(count) - time(count - 1)
+      if (.not. step > 0) then
+        call fail(SD_BAD_INPUT, path, line_number, 'time does not increase: t = '// &
+                  num2str(time(count))//' s after t = '//num2str(time(count - 1))//' s', &
+                  status, message)
+        return
+      end if
+      if (count == 2) first_step = step
+      if (abs(step - first_step) > step_tolerance*first_step) then
+        call fail(SD_BAD_INPUT, path, line_number, 'non-uniform time step: '//num2str(step)// &
+                  ' s from t = '//num2str(time(count - 1))//' s, but the first step is '// &
+                  num2str(first_step)//' s (tolerance 1e-6 relative)', status, message)
+        return
+      end if
+    end do
+  end subroutine scan_columns
+
+  !> A finite real from a token of digits, signs, point and exponent letters; the message says
+  !> what is wrong (NaN or infinite, not a number, out of range).
+  subroutine parse_number(token, value, status, message)
+    character(len=*), intent(in) :: token
+    real(wp), intent(out) :: value
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: ios
+    character(len=:), allocatable :: word
+
+    status = SD_OK
+    message = ''
+    value = 0
+    word = lower(token)
+    if (index(word, 'nan') > 0 .or. index(word, 'inf') > 0) then
+      status = SD_BAD_INPUT
+      message = ''''//token//''' is not finite (NaN or infinite values are not allowed)'
+      return
+    end if
+    ios = 1
+    if (verify(token, number_characters) == 0 .and. scan(token, '0123456789') > 0) &
+      read (token, *, iostat=ios) value
+    if (ios /= 0) then
+      status = SD_BAD_INPUT
+      message = ''''//token//''' is not a number'
+    else if (.not. abs(value) <= huge(value)) then
+      status = SD_BAD_INPUT
+      message = ''''//token//''' is out of range (not finite)'
+    end if
+  end subroutine parse_number
+
+  !> The whole file as one string, read-only; refuses missing files and directories.
+  subroutine read_text(path, text, status, message)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(out) :: text
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=message_len) :: iomsg
+    integer :: unit, ios, file_size
+    logical :: exists, directory
+
+    status = SD_OK
+    message = ''
+    inquire (file=trim(path), exist=exists)
+    if (.not. exists) then
+      call fail(SD_IO_ERROR, path, 0, 'no such file', status, message)
+      return
+    end if
+    inquire (file=trim(path)//'/.', exist=directory)
+    if (directory) then
+      call fail(SD_IO_ERROR, path, 0, 'it is a directory, not a record file', status, message)
+      return
+    end if
+    open (newunit=unit, file=trim(path), status='old', action='read', access='stream', &
+          form='unformatted', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(SD_IO_ERROR, path, 0, 'cannot open it: '//trim(iomsg), status, message)
+      return
+    end if
+    inquire (unit=unit, size=file_size)
+    allocate (character(len=max(file_size, 0)) :: text)
+    if (file_size > 0) then
+      read (unit, iostat=ios, iomsg=iomsg) text
+      if (ios /= 0) call fail(SD_IO_ERROR, path, 0, 'cannot read it: '//trim(iomsg), status, &
+                              message)
+    end if
+    close (unit)
+  end subroutine read_text
+
+  !> The next line of text from position on (LF, CRLF or CR endings): text(first:last), with
+  !> last = first - 1 for an empty line; position moves past the line ending; found is false
+  !> at the end of the text.
+  pure subroutine next_line(text, position, first, last, found)
+    character(len=*), intent(in) :: text
+    integer, intent(inout) :: position
+    integer, intent(out) :: first, last
+    logical, intent(out) :: found
+    integer :: ending
+    found = position <= len(text)
+    first = position
+    last = position - 1
+    if (.not. found) return
+    ending = scan(text(position:), char(10)//char(13))
+    if (ending == 0) then
+      last = len(text)
+      position = len(text) + 1
+    else
+      last = position + ending - 2
+      position = position + ending
+      if (text(position - 1:position - 1) == char(13) .and. position <= len(text)) then
+        if (text(position:position) == char(10)) position = position + 1
+      end if
+    end if
+  end subroutine next_line
+
+  pure subroutine fail(code, path, line_number, what, status, message)
+    integer, intent(in) :: code, line_number
+    character(len=*), intent(in) :: path, what
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = code
+    message = located(path, line_number, what)
+  end subroutine fail
+
+  !> "record file 'path', line n: what" (no line for line_number 0).
+  pure function located(path, line_number, what) result(text)
+    character(len=*), intent(in) :: path, what
+    integer, intent(in) :: line_number
+    character(len=:), allocatable :: text
+    text = 'record file '''//trim(path)//''''
+    if (line_number > 0) text = text//', line '//num2str(line_number)
+    text = text//': '//what
+  end function located
+
+  pure function lower(text) result(low)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: low
+    integer :: i
+    low = text
+    do i = 1, len(text)
+      if (text(i:i) >= 'A' .and. text(i:i) <= 'Z') low(i:i) = achar(iachar(text(i:i)) + 32)
+    end do
+  end function lower
+
+  pure function upper_case(text) result(up)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: up
+    integer :: i
+    up = text
+    do i = 1, len(text)
+      if (text(i:i) >= 'a' .and. text(i:i) <= 'z') up(i:i) = achar(iachar(text(i:i)) - 32)
+    end do
+  end function upper_case
+end module sloshdyn_records

@@ -1,0 +1,263 @@
+!> Convective (sloshing) and impulsive parameters of a rigid vertical cylindrical tank of radius R
+!> and liquid depth H by three design codes, so that the program can print them beside its own
+!> model: ACI 350.3-06 (Housner's model), API 650 Annex E, and Eurocode 8 Part 4 (EN 1998-4:2006)
+!> Annex A. Each formula carries the clause of its code; the constants are the codes' own
+!> (3.68 or 3.67 for 2 x 1.841, 0.230, 0.866, 2.01 or 1.937 for 2, ...), so the results differ
+!> from potential-flow theory and from each other by those roundings (tests/fortran/
+!> test_design_codes.f90 measures by how much).
+!>
+!> Units: SI throughout (m, s, rad/s); masses are ratios to the liquid mass (W/W_L = m/m_L);
+!> heights are measured from the tank base. D = 2 R is the diameter. EBP: heights of the wall
+!> pressure resultants, excluding the base pressure (for the wall moment); IBP: including it
+!> (for the moment on the foundation).
+!>
+!> The clause and equation numbers below are those of the published codes as cited in design
+!> guides and worked examples; the paid texts themselves (ACI 350.3-06, API 650 12th ed.
+!> Annex E, EN 1998-4:2006) were not at hand to check them against. The constants were checked
+!> against theory and against independent worked examples (see the test).
+module sloshdyn_design_codes
+  use sloshdyn_kinds, only: wp, pi, message_len
+  use sloshdyn_status, only: SD_OK, check_real
+  implicit none
+  private
+  public :: aci350_parameters, api650_parameters, ec8_parameters
+  public :: aci350_circular, aci350_wave_height, api650_circular, api650_wave_height, &
+            ec8_circular, ec8_wave_height
+
+  !> ACI 350.3-06, sec 9.2.2 and 9.2.4 (circular tanks), with H = H_L.
+  type :: aci350_parameters
+    real(wp) :: lambda = 0                 !< eq 9-29: sqrt(3.68 g tanh(3.68 H/D)) [m^0.5/s]
+    real(wp) :: convective_frequency = 0   !< omega_c, eq 9-30: lambda/sqrt(D) [rad/s]
+    real(wp) :: convective_period = 0      !< T_c, eq 9-31: 2 pi/omega_c [s]
+    real(wp) :: impulsive_ratio = 0        !< W_i/W_L, eq 9-15
+    real(wp) :: convective_ratio = 0       !< W_c/W_L, eq 9-16
+    real(wp) :: impulsive_height = 0       !< h_i (EBP), eq 9-17/9-18 [m]
+    real(wp) :: convective_height = 0      !< h_c (EBP), eq 9-19 [m]
+    real(wp) :: impulsive_height_ibp = 0   !< h_i' (IBP), eq 9-20/9-21 [m]
+    real(wp) :: convective_height_ibp = 0  !< h_c' (IBP), eq 9-22 [m]
+  end type aci350_parameters
+
+  !> API 650 Annex E (12th ed.), SI form.
+  type :: api650_parameters
+    real(wp) :: ks = 0                     !< sloshing period coefficient K_s, eq E.4.5.2-c
+    real(wp) :: convective_period = 0      !< T_c = 1.8 K_s sqrt(D), eq E.4.5.2-a [s]
+    real(wp) :: impulsive_ratio = 0        !< W_i/W_p, eq E.6.1.1-1/-2
+    real(wp) :: convective_ratio = 0       !< W_c/W_p, eq E.6.1.1-3
+    real(wp) :: impulsive_height = 0       !< X_i (ringwall moment), eq E.6.1.2.1-1/-2 [m]
+    real(wp) :: convective_height = 0      !< X_c (ringwall moment), eq E.6.1.2.1-3 [m]
+    real(wp) :: impulsive_height_slab = 0  !< X_is (slab moment), eq E.6.1.2.2-1/-2 [m]
+    real(wp) :: convective_height_slab = 0 !< X_cs (slab moment), eq E.6.1.2.2-3 [m]
+  end type api650_parameters
+
+  !> EN 1998-4:2006 Annex A.2.1 (rigid circular tanks), first convective (sloshing) mode, with
+  !> gamma = H/R and lambda_1 = 1.841 (first root of J1').
+  type :: ec8_parameters
+    real(wp) :: convective_frequency = 0   !< omega_c1 = sqrt(g lambda_1/R tanh(lambda_1 gamma)) [rad/s]
+    real(wp) :: convective_period = 0      !< T_c1 = 2 pi/omega_c1 [s]
+    real(wp) :: convective_ratio = 0       !< m_c1/m = 2 tanh(lambda_1 gamma)/(gamma lambda_1 (lambda_1^2 - 1))
+    real(wp) :: convective_height = 0      !< h_c1 (EBP) [m]
+    real(wp) :: convective_height_ibp = 0  !< h_c1' (IBP) [m]
+  end type ec8_parameters
+
+  !> EN 1998-4 Annex A.2.1: the first root of J1' as the code rounds it.
+  real(wp), parameter :: ec8_lambda_1 = 1.841_wp
+  !> Branch points of the ACI and API height and mass formulas (D/H).
+  real(wp), parameter :: squat_from = 1.333_wp, aci_tall_ibp_below = 0.75_wp
+
+contains
+
+  !> ACI 350.3-06 (Housner's model) for a circular tank of radius R [m], liquid depth H [m]
+  !> under gravity g [m/s^2].
+  pure subroutine aci350_circular(radius, depth, gravity, aci, status, message)
+    real(wp), intent(in) :: radius, depth, gravity
+    type(aci350_parameters), intent(out) :: aci
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: diameter, ratio, x, y
+
+    call check_tank(radius, depth, status, message)
+    call check_gravity(gravity, status, message)
+    if (status /= SD_OK) return
+    diameter = 2*radius
+    ratio = diameter/depth                            ! D/H_L
+    x = 3.68_wp*depth/diameter
+    y = 0.866_wp*ratio
+    aci%lambda = sqrt(3.68_wp*gravity*tanh(x))        ! eq 9-29
+    aci%convective_frequency = aci%lambda/sqrt(diameter)   ! eq 9-30
+    aci%convective_period = 2*pi/aci%convective_frequency  ! eq 9-31
+    aci%impulsive_ratio = tanh(y)/y                   ! eq 9-15
+    aci%convective_ratio = 0.230_wp*ratio*tanh(x)     ! eq 9-16
+    if (ratio < squat_from) then
+      aci%impulsive_height = (0.5_wp - 0.09375_wp*ratio)*depth      ! eq 9-17
+    else
+      aci%impulsive_height = 0.375_wp*depth                        ! eq 9-18
+    end if
+    aci%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))      ! eq 9-19
+    if (ratio < aci_tall_ibp_below) then
+      aci%impulsive_height_ibp = 0.45_wp*depth                     ! eq 9-20
+    else
+      aci%impulsive_height_ibp = (y/(2*tanh(y)) - 0.125_wp)*depth  ! eq 9-21
+    end if
+    aci%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.01_wp)) ! eq 9-22
+  end subroutine aci350_circular
+
+  !> ACI 350.3-06 sec 7.1, eq 7-2: maximum vertical displacement of the sloshing wave in a
+  !> circular tank, d_max = (D/2) C_c I, with the convective seismic coefficient C_c taken as the
+  !> spectral acceleration of the 0.5 %-damped spectrum at T_c in units of g:
+  !>     d_max = (D/2) I Sa(T_c)/g = R I Sa(T_c)/g.
+  !> sa_convective = Sa(T_c) [m/s^2] (for the code's own spectrum, sec 9.4.2, Sa = C_c g with
+  !> C_c = 1.5 S_D1/T_c <= 1.5 S_DS or 2.4 S_DS/T_c^2), importance = I, gravity = g [m/s^2].
+  pure subroutine aci350_wave_height(radius, sa_convective, gravity, importance, d_max, status, &
+                                     message)
+    real(wp), intent(in) :: radius, sa_convective, gravity, importance
+    real(wp), intent(out) :: d_max
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+
+    d_max = 0
+    status = SD_OK
+    message = ''
+    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the tank radius must be > 0 [m]', status, message)
+    call check_real('Sa', sa_convective, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the convective spectral acceleration must be >= 0 [m/s^2]', status, message)
+    call check_gravity(gravity, status, message)
+    call check_real('I', importance, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the importance factor must be > 0', status, message)
+    if (status /= SD_OK) return
+    d_max = radius*importance*sa_convective/gravity   ! eq 7-2, D/2 = R
+  end subroutine aci350_wave_height
+
+  !> API 650 Annex E for a tank of radius R [m] and design liquid level H [m] (SI forms: the
+  !> period formula has g built in, D in m gives T_c in s).
+  pure subroutine api650_circular(radius, depth, api, status, message)
+    real(wp), intent(in) :: radius, depth
+    type(api650_parameters), intent(out) :: api
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: diameter, ratio, x, y
+
+    call check_tank(radius, depth, status, message)
+    if (status /= SD_OK) return
+    diameter = 2*radius
+    ratio = diameter/depth                                        ! D/H
+    x = 3.67_wp*depth/diameter
+    y = 0.866_wp*ratio
+    api%ks = 0.578_wp/sqrt(tanh(3.68_wp*depth/diameter))          ! eq E.4.5.2-c
+    api%convective_period = 1.8_wp*api%ks*sqrt(diameter)          ! eq E.4.5.2-a (SI)
+    api%convective_ratio = 0.230_wp*ratio*tanh(x)                 ! eq E.6.1.1-3
+    api%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))     ! eq E.6.1.2.1-3
+    api%convective_height_slab = depth*(1 - cosh_ratio(x, 1.937_wp))   ! eq E.6.1.2.2-3
+    if (ratio >= squat_from) then
+      api%impulsive_ratio = tanh(y)/y                             ! eq E.6.1.1-1
+      api%impulsive_height = 0.375_wp*depth                       ! eq E.6.1.2.1-1
+      api%impulsive_height_slab = 0.375_wp*(1 + 1.333_wp*(y/tanh(y) - 1))*depth  ! E.6.1.2.2-1
+    else
+      api%impulsive_ratio = 1 - 0.218_wp*ratio                    ! eq E.6.1.1-2
+      api%impulsive_height = (0.5_wp - 0.094_wp*ratio)*depth      ! eq E.6.1.2.1-2
+      api%impulsive_height_slab = (0.5_wp + 0.06_wp*ratio)*depth  ! eq E.6.1.2.2-2
+    end if
+  end subroutine api650_circular
+
+  !> API 650 E.7.2, eq E.7.2-1: sloshing wave height delta_s = 0.42 D A_f [m], with A_f the
+  !> acceleration coefficient for the sloshing wave height (in g; eq E.7.2-2 to -5 give it from
+  !> the site spectrum, the importance and T_c).
+  pure subroutine api650_wave_height(radius, af, delta_s, status, message)
+    real(wp), intent(in) :: radius, af
+    real(wp), intent(out) :: delta_s
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+
+    delta_s = 0
+    status = SD_OK
+    message = ''
+    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the tank radius must be > 0 [m]', status, message)
+    call check_real('Af', af, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the sloshing acceleration coefficient must be >= 0 [g]', status, message)
+    if (status /= SD_OK) return
+    delta_s = 0.42_wp*(2*radius)*af                   ! eq E.7.2-1
+  end subroutine api650_wave_height
+
+  !> EN 1998-4:2006 Annex A.2.1 (rigid circular tank, convective component, first mode).
+  !> Frequency and mass as the code gives them; the heights are the resultants of the code's
+  !> first-mode convective pressure (wall pressure ~ cosh(lambda_1 z/R), base pressure
+  !> ~ J1(lambda_1 r/R)), which integrate to
+  !>     h_c1  = H [1 - (cosh(lambda_1 gamma) - 1)/(lambda_1 gamma sinh(lambda_1 gamma))],
+  !>     h_c1' = H [1 - (cosh(lambda_1 gamma) - 2)/(lambda_1 gamma sinh(lambda_1 gamma))].
+  pure subroutine ec8_circular(radius, depth, gravity, ec8, status, message)
+    real(wp), intent(in) :: radius, depth, gravity
+    type(ec8_parameters), intent(out) :: ec8
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: gamma, x
+
+    call check_tank(radius, depth, status, message)
+    call check_gravity(gravity, status, message)
+    if (status /= SD_OK) return
+    gamma = depth/radius
+    x = ec8_lambda_1*gamma
+    ec8%convective_frequency = sqrt(gravity*ec8_lambda_1/radius*tanh(x))
+    ec8%convective_period = 2*pi/ec8%convective_frequency
+    ec8%convective_ratio = 2*tanh(x)/(gamma*ec8_lambda_1*(ec8_lambda_1**2 - 1))
+    ec8%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))
+    ec8%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.0_wp))
+  end subroutine ec8_circular
+
+  !> EN 1998-4:2006 Annex A (A.2.1.4 as cited): maximum vertical displacement of the liquid
+  !> surface at the wall, d_max = 0.84 R Se(T_c1)/g, with Se(T_c1) [m/s^2] the elastic spectral
+  !> acceleration at the first sloshing period (for the damping the code prescribes for the
+  !> convective response). 0.84 is 2/(lambda_1^2 - 1) = 0.837 rounded.
+  pure subroutine ec8_wave_height(radius, se_convective, gravity, d_max, status, message)
+    real(wp), intent(in) :: radius, se_convective, gravity
+    real(wp), intent(out) :: d_max
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+
+    d_max = 0
+    status = SD_OK
+    message = ''
+    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the tank radius must be > 0 [m]', status, message)
+    call check_real('Se', se_convective, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the convective spectral acceleration must be >= 0 [m/s^2]', status, message)
+    call check_gravity(gravity, status, message)
+    if (status /= SD_OK) return
+    d_max = 0.84_wp*radius*se_convective/gravity
+  end subroutine ec8_wave_height
+
+  !> (cosh x - c)/(x sinh x), x > 0, without overflow for deep tanks:
+  !> cosh x - 1 = 2 sinh^2(x/2) and sinh x = 2 sinh(x/2) cosh(x/2) give
+  !> (cosh x - c)/(x sinh x) = tanh(x/2)/x + (1 - c)/(x sinh x), and 1/sinh x = 2 e^{-x} to
+  !> round-off for x > 20.
+  elemental real(wp) function cosh_ratio(x, c) result(ratio)
+    real(wp), intent(in) :: x, c
+    real(wp) :: csch
+    if (x > 20) then
+      csch = 2*exp(-x)
+    else
+      csch = 1/sinh(x)
+    end if
+    ratio = tanh(x/2)/x + (1 - c)*csch/x
+  end function cosh_ratio
+
+  pure subroutine check_tank(radius, depth, status, message)
+    real(wp), intent(in) :: radius, depth
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the tank radius must be > 0 [m]', status, message)
+    call check_real('H', depth, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the liquid depth must be > 0 [m]', status, message)
+  end subroutine check_tank
+
+  pure subroutine check_gravity(gravity, status, message)
+    real(wp), intent(in) :: gravity
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    call check_real('g', gravity, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the gravitational acceleration must be > 0 [m/s^2]', status, message)
+  end subroutine check_gravity
+end module sloshdyn_design_codes
