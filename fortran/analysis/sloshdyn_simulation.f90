@@ -15,10 +15,11 @@ module sloshdyn_simulation
   use sloshdyn_tables, only: HISTORY_ROWS, SUMMARY_SIZE, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
                              MOTION_IRREGULAR, MOTION_SETTLING
   use sloshdyn_sort, only: sort_index
+  use sloshdyn_shooting, only: shooting_newton, floquet_kind, FLOQUET_STABLE
   implicit none
   private
   public :: time_history, steady_options, steady_state, check_steady, parameter_sweep, &
-            independent_sweep
+            independent_sweep, steady_orbit, max_period
 
   !> Longest period (in forcing periods) the classification of steady motions looks for.
   integer, parameter :: max_period = 8
@@ -35,7 +36,36 @@ module sloshdyn_simulation
     integer :: samples_per_period = 128      !< dense-output samples per period for the maxima
     !> Poincare points closer than this (relative) count as the same point
     real(wp) :: periodic_tol = 1.0e-4_wp
+    !> with settle_tol > 0: once the Poincare map contracts, jump to the periodic orbit by
+    !> Newton shooting, kept only if it is stable and the attractor being approached
+    logical :: shooting = .true.
   end type steady_options
+
+  !> The periodic orbit a steady state jumped to by shooting (found = .false. when the
+  !> steady state was reached by integration alone).
+  type :: steady_orbit
+    logical :: found = .false.
+    integer :: periods = 0                  !< k: the orbit's period is k T
+    real(wp) :: y(4) = 0                    !< its state at forcing phase 0 (near the approach)
+    real(wp) :: multipliers_re(4) = 0, multipliers_im(4) = 0   !< Floquet multipliers
+    integer :: attempts = 0                 !< shooting attempts made
+  end type steady_orbit
+
+  !> Shooting inside steady_state: a first try once successive Poincare points (or points k
+  !> periods apart) differ by less than shoot_trigger relative to the state's size and the
+  !> difference is shrinking; at most shoot_attempts tries, the next one only after the
+  !> difference has fallen by another factor shoot_retry_factor or the transient has doubled.
+  real(wp), parameter :: shoot_trigger = 0.25_wp, shoot_retry_factor = 0.1_wp
+  integer, parameter :: shoot_attempts = 8
+  !> Newton's settings of the shots, and the acceptance rules: the largest multiplier below
+  !> 1 - stable_margin, and the last steps of the integration P_j -> P_{j+k} predicted by the
+  !> orbit's linearisation, (P_{j+k} - y*) = M (P_j - y*), within linear_tol of |P_j - y*|.
+  real(wp), parameter :: shoot_newton_tol = 1.0e-10_wp, stable_margin = 1.0e-6_wp, &
+                         linear_tol = 0.1_wp
+  integer, parameter :: shoot_max_iter = 10
+  !> A shot's step budget per forcing period: shoot_step_factor times the steps per period the
+  !> integration has taken so far, at least shoot_min_steps.
+  real(wp), parameter :: shoot_step_factor = 10, shoot_min_steps = 1000
 
 contains
 
@@ -90,8 +120,18 @@ contains
   !> |x1|, |x2|, |u1|, |u2| (dense output, samples_per_period per period), the Poincare points at
   !> tau = k T (forcing phase 0), and the kind of motion. y_end is the state at the end of the
   !> window, again at forcing phase 0, so the next point of a sweep can start from it at tau = 0.
+  !>
+  !> With settle_tol > 0 and steady%shooting, once the Poincare map contracts (points one or k
+  !> forcing periods apart close in, k <= max_period) the transient is cut short: Newton
+  !> shooting from the current Poincare point finds the orbit of period k T, which is accepted
+  !> only if it is stable (every Floquet multiplier inside 1 - stable_margin) and is the
+  !> attractor the integration was approaching (its linearisation predicts the integration's
+  !> last steps). The window is then measured on that orbit (one orbit period, sampled at the
+  !> same phases; its Poincare points repeat). Otherwise (quasi-periodic, irregular, slow or
+  !> no contraction, Newton failing) the integration goes on exactly as without shooting.
+  !> orbit (optional) tells whether and where the jump was made.
   subroutine steady_state(model, y0, options, method, steady, summary, poincare, y_end, stats, &
-                          status, message)
+                          status, message, orbit)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y0(4)
     type(ode_options), intent(in) :: options
@@ -102,12 +142,17 @@ contains
     type(ode_stats), intent(out) :: stats
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    type(steady_orbit), intent(out), optional :: orbit
     type(tank_system) :: system
     class(rk_integrator), allocatable :: integ
     real(wp) :: period, p_inv(2, 2), maxima(4), y(4), previous(4), spread, scale
     real(wp) :: tau_window, transient
     integer :: k, n_samples, sample, motion, repeat
-    logical :: settled
+    logical :: settled, use_shooting
+    ! shooting: the last 2 max_period + 1 Poincare points (ring), the orbit found
+    real(wp) :: recent(4, 0:2*max_period), last_failed_gap
+    integer :: last_failed_k
+    type(steady_orbit) :: jump
 
     summary = 0
     poincare = 0
@@ -134,6 +179,10 @@ contains
     previous = y0
     settled = steady%settle_tol <= 0
     transient = steady%transient_periods
+    use_shooting = steady%shooting .and. steady%settle_tol > 0
+    recent(:, 0) = y0
+    last_failed_k = 0
+    last_failed_gap = huge(1.0_wp)
     do
       k = k + 1
       call advance_to(k*period, y)
@@ -142,10 +191,17 @@ contains
         settled = norm2(y - previous) <= steady%settle_tol*max(norm2(y), tiny(1.0_wp))
       end if
       previous = y
+      if (use_shooting) then
+        recent(:, mod(k, 2*max_period + 1)) = y
+        if (k >= 2*max_period .and. jump%attempts < shoot_attempts) call try_orbit()
+        if (jump%found) exit
+      end if
       if (k >= steady%transient_periods .and. (settled .or. k >= steady%max_transient_periods)) exit
     end do
     transient = k
-    if (status == SD_OK) then
+    if (status == SD_OK .and. jump%found) then
+      call measure_orbit()
+    else if (status == SD_OK) then
       ! window: maxima from dense output, Poincare points at its period boundaries
       tau_window = k*period
       maxima = 0
@@ -159,18 +215,115 @@ contains
       end do
     end if
     stats = integ%statistics()
+    if (present(orbit)) orbit = jump
     if (status /= SD_OK) then
       message = trim(message)//' (steady state at rho = '//num2str(model%excitation%rho)// &
                 ', A = '//num2str(model%excitation%A)//')'
       return
     end if
-    y_end = y
+    if (jump%found) then
+      y_end = poincare(:, steady%window_periods)
+      settled = .true.
+    else
+      y_end = y
+    end if
     call classify(poincare(:, 1:steady%window_periods), steady%periodic_tol, motion, repeat, &
                   spread, scale)
     summary = [model%excitation%rho, model%excitation%A, maxima, real(motion, wp), real(repeat, wp), transient, &
                spread, merge(1.0_wp, 0.0_wp, settled)]
 
   contains
+
+    !> Poincare point j (j >= k - 2 max_period) from the ring.
+    function recent_point(j) result(point)
+      integer, intent(in) :: j
+      real(wp) :: point(4)
+      point = recent(:, mod(j, 2*max_period + 1))
+    end function recent_point
+
+    !> A shooting attempt at period k (the current Poincare point y = P_k), when the map
+    !> contracts: the smallest p <= max_period with |P_k - P_(k-p)| <= shoot_trigger |P| and
+    !> shrinking (below |P_(k-p) - P_(k-2p)|). Accepted orbits end the transient (jump%found).
+    subroutine try_orbit()
+      real(wp) :: size_, gap, gap_before, y_orbit(4), monodromy(4, 4), re(4), im(4)
+      real(wp) :: from(4), to(4), error
+      integer :: p, j, iterations, shot_status
+      character(len=message_len) :: shot_message
+      type(ode_options) :: shot_options
+      size_ = max(norm2(y), tiny(1.0_wp))
+      do p = 1, max_period
+        gap = norm2(y - recent_point(k - p))
+        gap_before = norm2(recent_point(k - p) - recent_point(k - 2*p))
+        if (gap <= shoot_trigger*size_ .and. (gap < gap_before .or. gap <= 1.0e-12_wp*size_)) exit
+      end do
+      if (p > max_period) return
+      ! after a failed attempt: wait until the gap has shrunk a lot or the transient doubled
+      if (last_failed_k > 0 .and. .not. (gap <= shoot_retry_factor*last_failed_gap .or. &
+                                         k >= 2*last_failed_k)) return
+      jump%attempts = jump%attempts + 1
+      ! a shot may take shoot_step_factor times the steps the integration has needed per
+      ! period so far (Newton iterates that wander into the stiff impact regime fail fast)
+      shot_options = options
+      stats = integ%statistics()
+      shot_options%max_steps = int(min(real(options%max_steps, wp), real(p, wp)* &
+                                   max(shoot_min_steps, shoot_step_factor* &
+                                   real(stats%n_accepted + stats%n_rejected, wp)/k)))
+      call shooting_newton(system, y, p, shot_options, method, shoot_newton_tol, &
+                           shoot_max_iter, y_orbit, monodromy, re, im, iterations, shot_status, &
+                           shot_message)
+      if (shot_status == SD_OK) then
+        if (floquet_kind(re, im, stable_margin) == FLOQUET_STABLE) then
+          ! the orbit's linearisation must describe the integration's last two steps
+          shot_status = SD_OK
+          do j = 0, 1
+            from = recent_point(k - (j + 1)*p) - y_orbit
+            to = recent_point(k - j*p) - y_orbit
+            error = norm2(to - matmul(monodromy, from))
+            if (error > linear_tol*norm2(from) + 1.0e2_wp*shoot_newton_tol*size_) &
+              shot_status = SD_BAD_INPUT
+          end do
+          if (shot_status == SD_OK) then
+            jump%found = .true.
+            jump%periods = p
+            jump%y = y_orbit
+            jump%multipliers_re = re
+            jump%multipliers_im = im
+            return
+          end if
+        end if
+      end if
+      last_failed_k = k
+      last_failed_gap = gap
+    end subroutine try_orbit
+
+    !> The window on the orbit found: one orbit period (jump%periods forcing periods) from its
+    !> state at phase 0, sampled at the window's phases for the maxima; its Poincare points
+    !> repeated over the window.
+    subroutine measure_orbit()
+      class(rk_integrator), allocatable :: orbit_integ
+      real(wp) :: z(4), points(4, max_period)
+      integer :: p, i
+      p = jump%periods
+      call new_integrator(method, orbit_integ, status, message)
+      if (status == SD_OK) call orbit_integ%init(system, 0.0_wp, jump%y, (p + 1)*period, &
+                                                 options, status, message)
+      if (status /= SD_OK) return
+      maxima = 0
+      n_samples = p*steady%samples_per_period
+      do sample = 1, n_samples
+        do while (orbit_integ%t < sample*period/steady%samples_per_period)
+          call orbit_integ%step(system, status, message)
+          if (status /= SD_OK) return
+        end do
+        call orbit_integ%dense(sample*period/steady%samples_per_period, z)
+        maxima = max(maxima, abs([z(1), z(3), matmul(p_inv, [z(1), z(3)])]))
+        if (mod(sample, steady%samples_per_period) == 0) &
+          points(:, sample/steady%samples_per_period) = z
+      end do
+      do i = 1, steady%window_periods
+        poincare(:, i) = points(:, mod(i - 1, p) + 1)
+      end do
+    end subroutine measure_orbit
 
     !> Step until the integrator passes tau, then read the state at tau by dense output.
     subroutine advance_to(tau, y)

@@ -1,7 +1,8 @@
 !> The flat arrays that carry settings and work counts across the f2py bridge, both ways:
 !>   integration(INTEGRATION_SIZE) = [rtol, atol, h_initial, h_max, h_min, max_steps, method]
 !>   steady(STEADY_SIZE)           = [transient_periods, settle_tol, max_transient_periods,
-!>                                    window_periods, samples_per_period, periodic_tol]
+!>                                    window_periods, samples_per_period, periodic_tol,
+!>                                    shooting (1/0)]
 !>   response(RESPONSE_SIZE)       = [n_scan, n_amplitudes, n_phases, amplitude_min,
 !>                                    amplitude_max, ds, ds_min, ds_max, x_scale, max_points]
 !>   lyapunov(LYAPUNOV_SIZE)       = [transient_periods, n_periods, renormalise_every]
@@ -21,7 +22,7 @@ module sloshdyn_layouts
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
   public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
 
-  integer, parameter :: INTEGRATION_SIZE = 7, STEADY_SIZE = 6, RESPONSE_SIZE = 10, &
+  integer, parameter :: INTEGRATION_SIZE = 7, STEADY_SIZE = 7, RESPONSE_SIZE = 10, &
                         LYAPUNOV_SIZE = 3
 
 contains
@@ -63,7 +64,7 @@ contains
   pure function to_steady(a) result(options)
     real(wp), intent(in) :: a(STEADY_SIZE)
     type(steady_options) :: options
-    options = steady_options(a(1), a(2), a(3), to_int(a(4)), to_int(a(5)), a(6))
+    options = steady_options(a(1), a(2), a(3), to_int(a(4)), to_int(a(5)), a(6), a(7) /= 0)
   end function to_steady
 
   pure function from_steady(options) result(a)
@@ -71,7 +72,7 @@ contains
     real(wp) :: a(STEADY_SIZE)
     a = [options%transient_periods, options%settle_tol, options%max_transient_periods, &
          real(options%window_periods, wp), real(options%samples_per_period, wp), &
-         options%periodic_tol]
+         options%periodic_tol, merge(1.0_wp, 0.0_wp, options%shooting)]
   end function from_steady
 
   pure function to_response(a) result(options)

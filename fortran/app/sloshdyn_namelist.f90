@@ -546,14 +546,15 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp) :: transient_periods, settle_tol, max_transient_periods, periodic_tol
     integer :: window_periods, samples_per_period
+    logical :: shooting
     type(group_reader) :: reader
     namelist /steady/ transient_periods, settle_tol, max_transient_periods, window_periods, &
-                      samples_per_period, periodic_tol
+                      samples_per_period, periodic_tol, shooting
 
     transient_periods = options%transient_periods; settle_tol = options%settle_tol
     max_transient_periods = options%max_transient_periods
     window_periods = options%window_periods; samples_per_period = options%samples_per_period
-    periodic_tol = options%periodic_tol
+    periodic_tol = options%periodic_tol; shooting = options%shooting
     status = SD_OK
     message = ''
     call reader%start(file, G_STEADY, status)
@@ -566,7 +567,7 @@ contains
       call reader%check(file, status, message)
     end do
     options = steady_options(transient_periods, settle_tol, max_transient_periods, &
-                             window_periods, samples_per_period, periodic_tol)
+                             window_periods, samples_per_period, periodic_tol, shooting)
   end subroutine read_steady
 
   subroutine read_sweep(file, needed, settings, status, message)

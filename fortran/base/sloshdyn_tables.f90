@@ -173,27 +173,29 @@ contains
 
   pure function special_kind_name(code) result(name)
     integer, intent(in) :: code
-    character(len=:), allocatable :: name
+    character(len=len_trim(item(special_kinds, code - SPECIAL_FOLD + 1))) :: name
     name = item(special_kinds, code - SPECIAL_FOLD + 1)
   end function special_kind_name
 
   pure function motion_name(code) result(name)
     integer, intent(in) :: code
-    character(len=:), allocatable :: name
+    character(len=len_trim(item(motion_kinds, code - MOTION_PERIODIC + 1))) :: name
     name = item(motion_kinds, code - MOTION_PERIODIC + 1)
   end function motion_name
 
   pure function verdict_name(code) result(name)
     integer, intent(in) :: code
-    character(len=:), allocatable :: name
+    character(len=len_trim(item(verdict_kinds, code - VERDICT_UNSTABLE + 1))) :: name
     name = item(verdict_kinds, code - VERDICT_UNSTABLE + 1)
   end function verdict_name
 
-  !> Item i (from 1) of a comma-separated list; 'unknown' outside it.
+  !> Item i (from 1) of a comma-separated list; 'unknown' outside it. Fixed length (trimmed by
+  !> the callers' result lengths): a deferred-length result would make gfortran keep its length
+  !> in a static variable shared by threads (see sloshdyn_text).
   pure function item(list, i) result(name)
     character(len=*), intent(in) :: list
     integer, intent(in) :: i
-    character(len=:), allocatable :: name
+    character(len=32) :: name
     integer :: start, k, next
     start = 1
     do k = 1, i - 1

@@ -5,6 +5,13 @@
 !> Settings arrays (integration, steady, response, lyapunov): the layouts of sloshdyn_layouts;
 !> array sizes are literals here (f2py cannot use another module's constants): the compiler checks
 !> them against the layouts' named sizes where the arrays are converted.
+!> Threads: the routines that compute (every one but the namelist reader, the run of an input
+!> file and the name lists of the app layer) carry `!f2py threadsafe`, so f2py releases the GIL
+!> while the Fortran runs and Python threads (e.g. Dask's threaded workers) run them at once.
+!> That is safe because the core keeps no state between calls: no module variables, no `save`,
+!> and no deferred-length function results in the layers below the app (gfortran keeps their
+!> lengths in static variables; see sloshdyn_text). The app layer (reader, driver, writers) has
+!> such statics, so its routines keep the GIL and run one at a time.
 !> Result tables: the layouts of sloshdyn_tables (names gives the column names); work counts:
 !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
 module sloshdyn_bridge
@@ -16,6 +23,7 @@ contains
   !> Equivalent pendulum of a cylindrical tank, eq (2)-(3):
   !> pendulum = [l, m, d1, m0, d0, m_F].
   subroutine tank_pendulum(radius, depth, density, liquid_mass, pendulum, status, message)
+    !f2py threadsafe
     use sloshdyn_tank, only: core => tank_pendulum
     real(c_double), intent(in) :: radius, depth, density, liquid_mass
     real(c_double), intent(out) :: pendulum(6)
@@ -30,6 +38,7 @@ contains
   !> Dimensionless groups of eq (9): physical = [M, L, k, c, b, d, g, theta0, l, m],
   !> groups = [s1, mu1, kappa, beta, gamma, delta].
   subroutine dimensionless_groups(physical, groups, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_from_physical
     real(c_double), intent(in) :: physical(10)
     real(c_double), intent(out) :: groups(6)
@@ -45,6 +54,7 @@ contains
 
   !> Validate the parameters; coefficients a1..a6, b1..b6 of eq (11).
   subroutine model_coefficients(rpar, ipar, a, b, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     real(c_double), intent(in) :: rpar(9)
     integer(c_int), intent(in) :: ipar(2)
@@ -61,6 +71,7 @@ contains
 
   !> Inertia matrix (eq 13), forcing vector (eq 14/31), y' (eq 15) and the Jacobian dy'/dy.
   subroutine equations_of_motion(rpar, ipar, tau, y, mass, force, dydt, jacobian, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_motion, only: inertia_matrix, forcing_vector, core_eom => equations_of_motion, &
                                motion_jacobian
@@ -85,6 +96,7 @@ contains
   !> stiffness K (eq 26), modal matrix P and its inverse (eq 34).
   subroutine natural_frequencies(rpar, ipar, omegas, stiffness, modal, modal_inverse, status, &
                                  message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_linear, only: stiffness_matrix, core => natural_frequencies, &
                                natural_frequencies_eig, modal_matrix
@@ -106,6 +118,7 @@ contains
 
   !> omega2/omega1 at each (sigma~ = kappa - s1 > 0, mu~ = 1 - mu1 in (0, 1]) (Fig 7, 8).
   subroutine frequency_ratios(n, sigma_t, mu_t, ratio, status, message)
+    !f2py threadsafe
     use sloshdyn_linear, only: frequency_ratio
     use sloshdyn_text, only: num2str
     integer(c_int), intent(in) :: n
@@ -135,6 +148,7 @@ contains
   !> All kappa in (max(kappa_min, s1), kappa_max] with omega2 - 3 omega1 = sigma1 (eq 51).
   subroutine kappa_for_detuning(s1, mu1, sigma1, kappa_min, kappa_max, max_roots, roots, &
                                 n_roots, status, message)
+    !f2py threadsafe
     use sloshdyn_linear, only: core => kappa_for_detuning
     real(c_double), intent(in) :: s1, mu1, sigma1, kappa_min, kappa_max
     integer(c_int), intent(in) :: max_roots
@@ -150,6 +164,7 @@ contains
   !> Real roots of eq (17) (which = 1, theta) or eq (18) (which = 2, phi), ascending.
   subroutine equilibrium_angles(rpar, ipar, which, max_roots, roots, n_roots, truncated, &
                                 status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_equilibria, only: theta_roots, phi_roots
     real(c_double), intent(in) :: rpar(9)
@@ -179,6 +194,7 @@ contains
   !> routh = [c1, c2, c3, c4, Delta2, Delta3, stable (1/0)].
   subroutine equilibria(rpar, ipar, max_eq, theta, phi, physical, eig_re, eig_im, verdict, &
                         n_eq, truncated, routh, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_equilibria, only: core => equilibria, trivial_routh_hurwitz
     real(c_double), intent(in) :: rpar(9)
@@ -214,6 +230,7 @@ contains
   !> scalars = [omega1, omega2, gamma11, gamma22, F11]; c = c11..c23.
   subroutine modal_expansion(rpar, ipar, scalars, c, exponents, g, g_forcing, h, h_forcing, &
                              status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_polynomial, only: monomial_exponents, poly
@@ -255,6 +272,7 @@ contains
 
   !> Every real solution |u1| of eq (49) at each rho (A from rpar): amplitudes(1:counts(i), i).
   subroutine nonresonant_amplitudes(rpar, ipar, n, rho, amplitudes, counts, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_slowflow, only: core => nonresonant_amplitudes
@@ -283,6 +301,7 @@ contains
   !> the 'history' table after tau. On failure the columns not reached are NaN.
   subroutine simulate(rpar, ipar, tau0, y0, n_out, tau_out, integration, history, counts, status, &
                       message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_ode, only: ode_stats
     use sloshdyn_simulation, only: time_history
@@ -312,6 +331,7 @@ contains
   !> points and the final state (at forcing phase 0).
   subroutine steady_state(rpar, ipar, y0, integration, steady, window, summary, poincare, y_end, &
                           counts, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_ode, only: ode_stats
     use sloshdyn_simulation, only: core => steady_state
@@ -319,7 +339,7 @@ contains
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady, counts_array
     real(c_double), intent(in) :: rpar(9), y0(4), integration(7), &
-                                  steady(6)
+                                  steady(7)
     integer(c_int), intent(in) :: ipar(2), window
     real(c_double), intent(out) :: summary(11), poincare(4, window), y_end(4), &
                                    counts(4)
@@ -342,13 +362,14 @@ contains
   !> final state; summaries(11, n) as for steady_state, n_done points completed.
   subroutine parameter_sweep(rpar, ipar, which, n, values, y0, integration, steady, summaries, &
                              y_final, n_done, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_simulation, only: core => parameter_sweep
     use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady
     real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), &
-                                  steady(6)
+                                  steady(7)
     integer(c_int), intent(in) :: ipar(2), which, n
     real(c_double), intent(out) :: summaries(11, n), y_final(4)
     integer(c_int), intent(out) :: n_done, status
@@ -368,13 +389,14 @@ contains
   !> points), shared out to n_threads threads; the results do not depend on n_threads.
   subroutine independent_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
                             summaries, n_done, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_simulation, only: core => independent_sweep
     use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady
     real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), &
-                                  steady(6)
+                                  steady(7)
     integer(c_int), intent(in) :: ipar(2), which, n, n_threads
     real(c_double), intent(out) :: summaries(11, n)
     integer(c_int), intent(out) :: n_done, status
@@ -390,6 +412,82 @@ contains
     status = info
   end subroutine independent_sweep
 
+  !> Steady states at the points (rho(i), A(i)) of a study task: each from y0(:, i) (carry = 0)
+  !> or, carry = 1, the first from y0(:, 1) and each next from the previous final state.
+  !> summaries(11, n) in the 'summary' layout, y_end(4, n), orbit(16, n) in the layout of
+  !> sloshdyn_studies, impact(n) = 1 where max|x1| >= 1 (the wall is reached), point_status(n);
+  !> status and message of the first failing point.
+  subroutine steady_path(rpar, ipar, n, rho, A, y0, carry, integration, steady, summaries, &
+                         y_end, orbit, impact, point_status, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_studies, only: core => steady_path, roof_impact
+    use sloshdyn_layouts, only: to_ode_options, to_method, to_steady
+    real(c_double), intent(in) :: rpar(9), rho(n), A(n), y0(4, n), integration(7), steady(7)
+    integer(c_int), intent(in) :: ipar(2), n, carry
+    real(c_double), intent(out) :: summaries(11, n), y_end(4, n), orbit(16, n)
+    integer(c_int), intent(out) :: impact(n), point_status(n), status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: info, statuses(n)
+    summaries = 0; y_end = 0; orbit = 0; impact = 0; statuses = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) then
+      call core(model, rho, A, y0, carry /= 0, to_ode_options(integration), &
+                to_method(integration), to_steady(steady), summaries, y_end, orbit, statuses, &
+                info, message)
+    else
+      statuses = info
+    end if
+    impact = merge(1, 0, roof_impact(summaries(3, :)))
+    point_status = statuses
+    status = info
+  end subroutine steady_path
+
+  !> Steady states from the initial states y0(:, i) at the excitation of rpar, with the orbit
+  !> each periodic one settled on (sloshdyn_studies: orbit(16, n), orbit_points(4, 8, n)).
+  subroutine attractor_points(rpar, ipar, n, y0, integration, steady, summaries, y_end, orbit, &
+                              orbit_points, point_status, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_studies, only: core => attractor_points
+    use sloshdyn_layouts, only: to_ode_options, to_method, to_steady
+    real(c_double), intent(in) :: rpar(9), y0(4, n), integration(7), steady(7)
+    integer(c_int), intent(in) :: ipar(2), n
+    real(c_double), intent(out) :: summaries(11, n), y_end(4, n), orbit(16, n), &
+                                   orbit_points(4, 8, n)
+    integer(c_int), intent(out) :: point_status(n), status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: info, statuses(n)
+    summaries = 0; y_end = 0; orbit = 0; orbit_points = 0; statuses = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) then
+      call core(model, y0, to_ode_options(integration), to_method(integration), &
+                to_steady(steady), summaries, y_end, orbit, orbit_points, statuses, info, message)
+    else
+      statuses = info
+    end if
+    point_status = statuses
+    status = info
+  end subroutine attractor_points
+
+  !> Attractors of a set of runs (sloshdyn_studies%label_attractors): label(n) from 1, 0 for
+  !> failed runs; representative(1:n_attractors) the first run of each.
+  subroutine label_attractors(n, motions, periods, orbit_points, tol, label, n_attractors, &
+                              representative)
+    !f2py threadsafe
+    use sloshdyn_studies, only: core => label_attractors
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: motions(n), periods(n), orbit_points(4, 8, n), tol
+    integer(c_int), intent(out) :: label(n), n_attractors, representative(n)
+    integer :: labels(n), found, first(n)
+    call core(motions, periods, orbit_points, tol, labels, found, first)
+    label = labels
+    n_attractors = found
+    representative = first
+  end subroutine label_attractors
+
   !> Slow-flow frequency response (sloshdyn_response): branches in lambda = rho (which = 1) or
   !> A (which = 2) over [lambda_min, lambda_max], 3:1 internal resonance or none. table in the
   !> 'response' layout (room for max_points points), special in the 'special' layout;
@@ -397,6 +495,7 @@ contains
   subroutine frequency_response(rpar, ipar, resonance, which, lambda_min, lambda_max, settings, &
                                 max_points, max_special, table, n_points, special, n_special, &
                                 complete, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_response, only: core => frequency_response
     use sloshdyn_tables, only: SPECIAL_ROWS
@@ -425,6 +524,7 @@ contains
   !> y_orbit(4), monodromy(4, 4), multipliers(2, 4) = (Re, Im), info(2) = [iterations, max|x1|].
   subroutine periodic_orbit(rpar, ipar, y0, k, integration, newton_tol, max_iter, y_orbit, &
                             monodromy, multipliers, info, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_periodic_response, only: core => periodic_orbit
     use sloshdyn_layouts, only: to_ode_options, to_method
@@ -454,6 +554,7 @@ contains
   subroutine periodic_branch(rpar, ipar, which, y0, k, lambda_min, lambda_max, settings, &
                              integration, max_points, max_special, points, multipliers, n_points, &
                              special, n_special, complete, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_continuation, only: continuation_options
     use sloshdyn_periodic_response, only: periodic_response
@@ -491,6 +592,7 @@ contains
   !> settings in the lyapunov layout.
   subroutine lyapunov_exponent(rpar, ipar, y0, settings, integration, n_hist, exponent, history, &
                                status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_periodic_response, only: core => lyapunov_exponent, lyapunov_options, &
                                           check_lyapunov
@@ -532,7 +634,7 @@ contains
                                 from_ode_options, from_steady, from_response, from_lyapunov
     character(len=*), intent(in) :: path
     real(c_double), intent(out) :: rpar(9), analysis_values(3), tank(12), &
-                                   integration(7), steady(6), &
+                                   integration(7), steady(7), &
                                    response(10), lyapunov(3), &
                                    simulation(6), sweep(7), response_range(4)
     integer(c_int), intent(out) :: ipar(2), analysis, status
@@ -602,6 +704,7 @@ contains
   !> The exit code of both front doors for a status, from reading the input (reading = 1) or
   !> from the run (reading = 0).
   subroutine exit_code(status, reading, code)
+    !f2py threadsafe
     use sloshdyn_status, only: core => exit_code
     integer(c_int), intent(in) :: status, reading
     integer(c_int), intent(out) :: code
@@ -664,6 +767,7 @@ contains
   !> The defaults of the option types: model = [beta, gamma, delta, n, p]; integration, steady,
   !> response and lyapunov in their layouts; shooting = [newton_tol, max_iter].
   subroutine defaults(model, integration, steady, response, lyapunov, shooting)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t
     use sloshdyn_ode, only: ode_options
     use sloshdyn_simulation, only: steady_options
@@ -672,7 +776,7 @@ contains
     use sloshdyn_integrator, only: METHOD_DOPRI5
     use sloshdyn_layouts, only: &
                                 from_ode_options, from_steady, from_response, from_lyapunov
-    real(c_double), intent(out) :: model(5), integration(7), steady(6), &
+    real(c_double), intent(out) :: model(5), integration(7), steady(7), &
                                    response(10), lyapunov(3), shooting(2)
     type(model_t) :: m
     model = [m%beta, m%gamma, m%delta, real(m%n, c_double), real(m%p, c_double)]

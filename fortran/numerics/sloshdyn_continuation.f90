@@ -611,7 +611,15 @@ contains
   !> Words for a STOP_* code.
   pure function stop_reason_name(code) result(name)
     integer, intent(in) :: code
-    character(len=:), allocatable :: name
+    character(len=len_trim(stop_reason_text(code))) :: name
+    name = stop_reason_text(code)
+  end function stop_reason_name
+
+  !> stop_reason_name's words, fixed length: a deferred-length result would keep its length in
+  !> a static variable shared by threads (see sloshdyn_text).
+  pure function stop_reason_text(code) result(name)
+    integer, intent(in) :: code
+    character(len=32) :: name
     select case (code)
     case (STOP_NONE);       name = 'not started'
     case (STOP_LAMBDA_MIN); name = 'reached lambda_min'
@@ -622,7 +630,7 @@ contains
     case (STOP_FAILED);     name = 'step fell below ds_min'
     case default;           name = 'unknown stop reason'
     end select
-  end function stop_reason_name
+  end function stop_reason_text
 
   ! ---- private ----------------------------------------------------------------------------
 

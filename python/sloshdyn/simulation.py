@@ -55,11 +55,17 @@ class Steady:
     window_periods: int = int(_STEADY[3])             #: measuring window
     samples_per_period: int = int(_STEADY[4])         #: dense-output samples per period
     periodic_tol: float = float(_STEADY[5])           #: Poincare points this close coincide
+    shooting: bool = bool(_STEADY[6])                 #: with settle_tol > 0: once the
+    #: Poincare map contracts, jump to the periodic orbit by Newton shooting (kept only if
+    #: stable and the attractor being approached); False: integration only
 
     def array(self):
+        if not isinstance(self.shooting, (bool, np.bool_)):
+            raise InputError(f"shooting = {self.shooting!r} is not valid: it must be True or "
+                             "False")
         return np.array([self.transient_periods, self.settle_tol, self.max_transient_periods,
-                         self.window_periods, self.samples_per_period, self.periodic_tol],
-                        dtype=np.float64)
+                         self.window_periods, self.samples_per_period, self.periodic_tol,
+                         float(self.shooting)], dtype=np.float64)
 
 
 @dataclass
