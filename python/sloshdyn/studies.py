@@ -1,0 +1,693 @@
+"""Parameter studies on Dask: response maps in (forcing frequency, amplitude), basins of
+attraction, and the lognormal fragility fit. Each study is cut into tasks of many points; each
+task calls the Fortran core once (steady states, shooting and the classification stay there;
+the bridge releases the GIL, so threads run at once). Results come back as an xarray Dataset
+whose dimensions are the study's axes, with units and descriptions in the attributes, and are
+written to a Zarr store as tasks finish: rerunning the same study on the same store resumes it
+(finished points are not recomputed), a store made by other settings is refused.
+
+Dask, xarray and Zarr are imported on first use, so `import sloshdyn` stays light.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import hashlib
+import json
+import math
+import os
+import shutil
+import time
+import uuid
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core, _tables
+from ._errors import InputError, SloshdynError
+from .parameters import Parameters
+from .simulation import Integration, Steady
+
+_bridge = _core.sloshdyn_bridge
+SUMMARY_COLUMNS = _tables.columns("summary")
+MOTIONS = _tables.codes("motion")
+#: points per task unless told: measured by benchmarks/studies.py (README, "Studies")
+POINTS_PER_TASK = 32
+#: the default worker kind of an embedded cluster, by measurement (README, "Studies")
+WORKER_KIND = "processes"
+#: how long a scheduler address may take to answer
+CONNECT_TIMEOUT = 5.0
+#: the orbit layout of sloshdyn_studies (bridge steady_path / attractor_points)
+_ORBIT_FOUND, _ORBIT_PERIODS, _ORBIT_ATTEMPTS, _ORBIT_Y, _ORBIT_MAX_MU = 0, 1, 2, slice(3, 7), 15
+_MAX_PERIOD = 8
+
+_MOTION_ATTRS = {
+    "flag_values": [-1, 0] + list(MOTIONS),
+    "flag_meanings": " ".join(["not_computed", "failed"] + [MOTIONS[k].replace("-", "_")
+                                                            for k in MOTIONS]),
+    "units": "1",
+}
+
+
+# ---- the engine ------------------------------------------------------------------------------
+
+@dataclass
+class _Variable:
+    dims: tuple
+    dtype: str
+    fill: object
+    attrs: dict
+
+
+@dataclass
+class _Plan:
+    """A study in index space: its axes, variables, attributes, and tasks (blocks of the grid,
+    aligned with the store's chunks). run(block) is (function, args) for Dask; the function
+    returns {variable: array over the block}."""
+
+    kind: str
+    dims: tuple
+    coords: dict                 #: dim -> (values, attrs)
+    variables: dict              #: name -> _Variable (the 'done' mask is added)
+    attrs: dict
+    spec: dict                   #: what must match to resume (JSON-able)
+    chunks: tuple
+    task: object                 #: block (tuple of slices) -> (function, args)
+
+    def blocks(self):
+        ranges = [range(0, len(self.coords[d][0]), c) for d, c in zip(self.dims, self.chunks)]
+        for corner in np.ndindex(*[len(r) for r in ranges]):
+            yield tuple(slice(r[i], min(r[i] + c, len(self.coords[d][0])))
+                        for r, i, c, d in zip(ranges, corner, self.chunks, self.dims))
+
+    @property
+    def shape(self):
+        return tuple(len(self.coords[d][0]) for d in self.dims)
+
+
+def _version():
+    import sloshdyn
+    return sloshdyn.__version__
+
+
+def _fingerprint(spec):
+    return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()
+
+
+def _check_store(store):
+    """The store path: a string or path-like whose parent directory is (or can be made)
+    writable. Checked before anything is computed."""
+    if not isinstance(store, (str, os.PathLike)) or not os.fspath(store):
+        raise InputError(f"store = {store!r} is not valid: give the path of a Zarr store "
+                         "(a directory)")
+    path = os.path.abspath(os.fspath(store))
+    if os.path.exists(path):
+        if not os.path.isdir(path):
+            raise InputError(f"store = {os.fspath(store)!r} is a file, not a Zarr store "
+                             "(a directory)")
+        if not os.access(path, os.W_OK):
+            raise InputError(f"store = {os.fspath(store)!r} is not writable")
+        return path
+    parent = os.path.dirname(path)
+    existing = parent
+    while not os.path.exists(existing):
+        existing = os.path.dirname(existing)
+    if not os.path.isdir(existing) or not os.access(existing, os.W_OK | os.X_OK):
+        raise InputError(f"store = {os.fspath(store)!r} cannot be created: {existing!r} is not "
+                         "a writable directory")
+    return path
+
+
+def _template(plan):
+    import xarray as xr
+    coords = {d: xr.Variable(d, np.asarray(v), attrs) for d, (v, attrs) in plan.coords.items()}
+    data = {}
+    encoding = {}
+    for name, var in plan.variables.items():
+        shape = tuple(len(plan.coords[d][0]) for d in var.dims)
+        chunks = tuple(dict(zip(plan.dims, plan.chunks)).get(d, len(plan.coords[d][0]))
+                       for d in var.dims)
+        data[name] = xr.Variable(var.dims, np.full(shape, var.fill, dtype=var.dtype), var.attrs)
+        encoding[name] = {"chunks": chunks}
+        if np.dtype(var.dtype).kind == "f":
+            encoding[name]["_FillValue"] = np.nan
+        else:
+            encoding[name]["_FillValue"] = None
+    ds = xr.Dataset(data, coords=coords, attrs=plan.attrs)
+    return ds, encoding
+
+
+def _create_store(plan, path):
+    """Write the empty study (every point not done) under a temporary name, then rename it:
+    a store either exists whole or not at all."""
+    ds, encoding = _template(plan)
+    tmp = f"{path}.creating-{uuid.uuid4().hex[:8]}"
+    try:
+        ds.to_zarr(tmp, mode="w-", encoding=encoding, consolidated=True, zarr_format=2,
+                   compute=True)
+        os.replace(tmp, path)
+    except FileExistsError:
+        raise InputError(f"store = {path!r} appeared while it was being created") from None
+    except OSError as exc:
+        raise InputError(f"store = {path!r} cannot be written: {exc}") from exc
+    finally:
+        if os.path.exists(tmp):
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _check_same_study(plan, path):
+    import zarr
+    try:
+        group = zarr.open_group(path, mode="r")
+        stored = json.loads(group.attrs["study_spec"])
+    except Exception as exc:
+        raise InputError(f"store = {path!r} exists but is not a sloshdyn study store "
+                         f"({type(exc).__name__}: {exc}); give a new path") from None
+    if _fingerprint(stored) != _fingerprint(plan.spec):
+        differ = sorted(k for k in set(stored) | set(plan.spec) if stored.get(k) != plan.spec.get(k))
+        raise InputError(f"store = {path!r} holds a different study (it differs in: "
+                         f"{', '.join(differ)}); it is never mixed with this one: give another "
+                         "store, or delete it to start again")
+    chunks = tuple(group["done"].chunks)
+    return chunks
+
+
+@contextlib.contextmanager
+def _client(client, scheduler, workers, worker_kind):
+    """The Dask client of a study: the one given, one connected to `scheduler`, or an embedded
+    local cluster sized to the machine (closed afterwards)."""
+    from dask.distributed import Client, LocalCluster
+    if client is not None:
+        yield client
+        return
+    if scheduler:
+        try:
+            c = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError) as exc:
+            raise InputError(f"scheduler = {scheduler!r} did not answer within "
+                             f"{CONNECT_TIMEOUT:g} s ({type(exc).__name__}: {exc})") from None
+        try:
+            yield c
+        finally:
+            c.close()
+        return
+    if worker_kind not in ("processes", "threads"):
+        raise InputError(f"worker_kind = {worker_kind!r} is not valid: it must be 'processes' "
+                         "or 'threads'")
+    n = workers or os.cpu_count() or 1
+    processes = worker_kind == "processes"
+    with contextlib.ExitStack() as stack:
+        cluster = stack.enter_context(LocalCluster(
+            n_workers=n if processes else 1, threads_per_worker=1 if processes else n,
+            processes=processes, dashboard_address=None, silence_logs=50))
+        c = stack.enter_context(Client(cluster))
+        yield c
+
+
+def _write_block(group, plan, block, result):
+    for name, values in result.items():
+        var = plan.variables[name]
+        index = tuple(dict(zip(plan.dims, block)).get(d, slice(None)) for d in var.dims)
+        group[name][index] = np.asarray(values, dtype=var.dtype)
+    group["done"][block] = True
+
+
+def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_kind=None,
+             progress=True):
+    """Run a study plan on Dask, storing each task's results in `store` as it finishes; return
+    the whole study as an xarray Dataset (loaded). Already finished points are not recomputed;
+    the returned dataset's attrs['points_computed'] counts the points this call computed."""
+    import xarray as xr
+    import zarr
+
+    path = _check_store(store)
+    if worker_kind is None:
+        worker_kind = WORKER_KIND
+    if os.path.exists(path):
+        chunks = _check_same_study(plan, path)
+        if chunks != tuple(plan.chunks):      # the store's tasks win: its chunks are its tasks
+            plan = dataclasses.replace(plan, chunks=chunks)
+    else:
+        _create_store(plan, path)
+    group = zarr.open_group(path, mode="r+")
+    done = group["done"][...]
+    todo = [b for b in plan.blocks() if not done[b].all()]
+    remaining = int(sum(np.prod([s.stop - s.start for s in b]) for b in todo))
+    computed = 0
+    if todo:
+        from dask.distributed import as_completed
+        bar = None
+        if progress:
+            from tqdm.auto import tqdm
+            bar = tqdm(total=int(np.prod(plan.shape)), initial=int(np.prod(plan.shape)) - remaining,
+                       desc=plan.kind.replace("_", " "), unit="point", smoothing=0.1)
+        try:
+            with _client(client, scheduler, workers, worker_kind) as c:
+                futures = {}
+                for block in todo:
+                    function, args = plan.task(block)
+                    futures[c.submit(function, *args, pure=False)] = block
+                try:
+                    for future in as_completed(futures):
+                        block = futures.pop(future)
+                        _write_block(group, plan, block, future.result())
+                        n = int(np.prod([s.stop - s.start for s in block]))
+                        computed += n
+                        if bar:
+                            bar.update(n)
+                finally:
+                    for future in futures:
+                        future.cancel()
+        except KeyboardInterrupt:
+            raise KeyboardInterrupt(f"study interrupted: {computed} points stored in {path} "
+                                    "this run; rerun the same study on it to resume") from None
+        finally:
+            if bar:
+                bar.close()
+    ds = xr.open_zarr(path, consolidated=True).load()
+    ds.attrs["points_computed"] = computed
+    ds.attrs["store"] = path
+    return ds
+
+
+# ---- inputs ----------------------------------------------------------------------------------
+
+def _axis(name, values, lower, lower_open=True):
+    """A study axis: 1-D, non-empty, finite, > lower (or >= lower), no repeats."""
+    try:
+        a = np.array(values, dtype=np.float64).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"{name} = {values!r} is not valid: give a sequence of numbers") from None
+    if a.size == 0:
+        raise InputError(f"{name} is empty: give at least one value")
+    for i, v in enumerate(a):
+        ok = math.isfinite(v) and (v > lower if lower_open else v >= lower)
+        if not ok:
+            rule = f"> {lower:g}" if lower_open else f">= {lower:g}"
+            raise InputError(f"{name}[{i}] = {v} is not valid: every value must be finite and {rule}")
+    if len(np.unique(a)) != a.size:
+        raise InputError(f"{name} has repeated values: each value must appear once")
+    return a
+
+
+def _positive_int(name, value, lower=1):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lower:
+        raise InputError(f"{name} = {value!r} is not valid: it must be an integer >= {lower}")
+    return int(value)
+
+
+def _settings(steady, integration):
+    if not isinstance(steady, Steady):
+        raise InputError(f"steady = {steady!r} is not valid: give a sloshdyn.Steady")
+    if not isinstance(integration, Integration):
+        raise InputError(f"integration = {integration!r} is not valid: give a sloshdyn.Integration")
+    return steady.array(), integration.array()
+
+
+def _common_attrs(kind, params, steady, integration, extra):
+    return {
+        "title": f"sloshdyn {kind.replace('_', ' ')}",
+        "study": kind,
+        "sloshdyn_version": _version(),
+        "parameters": json.dumps(dataclasses.asdict(params)),
+        "steady": json.dumps(dataclasses.asdict(steady)),
+        "integration": json.dumps(dataclasses.asdict(integration)),
+        **extra,
+    }
+
+
+def _summary_variables(dims, suffix="", what="steady state from rest"):
+    v = {}
+    desc = {"max_x1": "max |x1| = max |theta|/theta0 over the measuring window (pendulum)",
+            "max_x2": "max |x2| = max |phi|/theta0 over the measuring window (tank)",
+            "max_u1": "max |u1|, first modal coordinate (eq 34)",
+            "max_u2": "max |u2|, second modal coordinate (eq 34)"}
+    for name, text in desc.items():
+        v[name + suffix] = _Variable(dims, "f8", np.nan,
+                                     {"units": "1", "long_name": f"{text}; {what}"})
+    v["motion" + suffix] = _Variable(dims, "i1", -1, {
+        **_MOTION_ATTRS, "long_name": f"kind of motion judged from the Poincare points; {what}"})
+    v["period" + suffix] = _Variable(dims, "i2", -1, {
+        "units": "forcing periods", "long_name": f"period of periodic motion (0: not periodic); {what}"})
+    v["roof_impact" + suffix] = _Variable(dims, "i1", -1, {
+        "units": "1", "flag_values": [-1, 0, 1], "flag_meanings": "not_computed no yes",
+        "long_name": f"the liquid reaches the roof: max|x1| >= 1, the pendulum at theta0 "
+                     f"(eq 3-4); {what}"})
+    v["status" + suffix] = _Variable(dims, "i2", -1, {
+        "units": "1", "long_name": f"core status of the point (0 ok, -1 not computed; else "
+                                   f"sloshdyn_status codes); {what}"})
+    return v
+
+
+def _unpack(summaries, orbit, impact, status, shape, suffix="", order="C"):
+    """{variable: array of `shape`} from the bridge's point arrays."""
+    def grid(x):
+        return np.asarray(x).reshape(shape, order=order)
+    col = {name: summaries[k] for k, name in enumerate(SUMMARY_COLUMNS)}
+    ok = np.asarray(status) == 0
+    out = {name + suffix: grid(col[name]) for name in ("max_x1", "max_x2", "max_u1", "max_u2")}
+    out["motion" + suffix] = grid(np.where(ok, np.nan_to_num(col["motion"]), 0).astype(np.int8))
+    out["period" + suffix] = grid(np.where(ok, np.nan_to_num(col["period"]), 0).astype(np.int16))
+    out["roof_impact" + suffix] = grid(np.where(ok, impact, 0).astype(np.int8))
+    out["status" + suffix] = grid(np.asarray(status).astype(np.int16))
+    return out
+
+
+# ---- response map ----------------------------------------------------------------------------
+
+def _response_task(rpar, ipar, rho, A, integration, steady, continuation):
+    """One task of a response map: the block's points from rest, and (continuation) each
+    amplitude column swept up and/or down in frequency carrying the state. Runs on a worker."""
+    shape = rho.shape
+    n = rho.size
+    flat_rho = np.ascontiguousarray(rho.ravel())
+    flat_a = np.ascontiguousarray(A.ravel())
+    summaries, y_end, orbit, impact, status, _, _ = _bridge.steady_path(
+        rpar, ipar, flat_rho, flat_a, np.zeros((4, n), order="F"), 0, integration, steady)
+    out = _unpack(summaries, orbit, impact, status, shape)
+    out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
+    out["shooting"] = np.where(status == 0, orbit[_ORBIT_FOUND], -1).astype(np.int8).reshape(shape)
+    out["max_multiplier"] = orbit[_ORBIT_MAX_MU].reshape(shape)
+    for direction in continuation:
+        parts = []
+        for j in range(shape[1]):
+            order = slice(None) if direction == "up" else slice(None, None, -1)
+            r = np.ascontiguousarray(rho[order, j])
+            a = np.ascontiguousarray(A[order, j])
+            s, _, o, imp, st, _, _ = _bridge.steady_path(
+                rpar, ipar, r, a, np.zeros((4, len(r)), order="F"), 1, integration, steady)
+            part = _unpack(s, o, imp, st, (len(r), 1), suffix=f"_{direction}")
+            parts.append({k: v[order] for k, v in part.items()})
+        for k in parts[0]:
+            out[k] = np.concatenate([p[k] for p in parts], axis=1)
+    return out
+
+
+def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None, scheduler=None,
+                 workers=None, worker_kind=None, steady: Steady = Steady(),
+                 integration: Integration = Integration(), continuation=None,
+                 points_per_task=None, progress=True):
+    """Steady states on a grid of forcing frequency x amplitude, as an xarray Dataset with
+    dimensions (frequency, amplitude) written to the Zarr store `store` as tasks finish.
+
+    params_or_tank: sloshdyn.Parameters; frequencies are rho = Omega/omega and amplitudes the
+    dimensionless A = u0/L. Every point is the steady state from rest with the given settings,
+    equal bit for bit to sloshdyn.steady_state(params.replace(rho=f, A=a), steady=...,
+    integration=...). continuation = 'up', 'down' or 'both' adds, for each amplitude, the sweep
+    along the frequency axis that carries the state from point to point (variables *_up,
+    *_down): where they differ from the points from rest, the response is multi-valued
+    (hysteresis, jumps).
+
+    The study runs on `client` (a dask.distributed Client), on the scheduler at address
+    `scheduler`, or (neither given) on an embedded local cluster of `workers` workers (default:
+    one per core) of kind `worker_kind` ('processes' by default, 'threads'). Rerunning the same
+    study on the same store resumes it; a store made by a different study is refused
+    (InputError). See README, "Studies"."""
+    if isinstance(params_or_tank, Parameters):
+        params = params_or_tank
+    else:
+        raise InputError(f"params_or_tank = {type(params_or_tank).__name__} is not valid: give "
+                         "sloshdyn.Parameters")
+    f = _axis("frequencies", frequencies, 0.0)
+    a = _axis("amplitudes", amplitudes, 0.0, lower_open=False)
+    params.replace(rho=float(f.max()), A=float(a.max()))      # the core's range rules
+    steady_array, integration_array = _settings(steady, integration)
+    if continuation is None or continuation == "none":
+        directions = ()
+    elif continuation in ("up", "down"):
+        directions = (continuation,)
+    elif continuation == "both":
+        directions = ("up", "down")
+    else:
+        raise InputError(f"continuation = {continuation!r} is not valid: it must be None, 'up', "
+                         "'down' or 'both'")
+    ppt = POINTS_PER_TASK if points_per_task is None else _positive_int("points_per_task",
+                                                                         points_per_task)
+    nf, na = len(f), len(a)
+    if directions:                      # a task sweeps whole frequency columns
+        chunks = (nf, max(1, ppt // nf))
+    else:
+        bf = min(nf, ppt)
+        chunks = (bf, max(1, min(na, ppt // bf)))
+    rpar, ipar = params.arrays()
+    rho_grid, a_grid = np.meshgrid(f, a, indexing="ij")
+
+    def task(block):
+        return _response_task, (rpar, ipar, np.ascontiguousarray(rho_grid[block]),
+                                np.ascontiguousarray(a_grid[block]), integration_array,
+                                steady_array, directions)
+
+    dims = ("frequency", "amplitude")
+    variables = _summary_variables(dims)
+    variables["transient_periods"] = _Variable(dims, "f8", np.nan, {
+        "units": "forcing periods", "long_name": "transient integrated before measuring"})
+    variables["shooting"] = _Variable(dims, "i1", -1, {
+        "units": "1", "flag_values": [-1, 0, 1], "flag_meanings": "not_computed no yes",
+        "long_name": "the steady state jumped to its periodic orbit by Newton shooting"})
+    variables["max_multiplier"] = _Variable(dims, "f8", np.nan, {
+        "units": "1", "long_name": "largest Floquet multiplier modulus of the orbit found by "
+                                   "shooting (NaN: no jump)"})
+    for d in directions:
+        variables.update(_summary_variables(dims, f"_{d}", f"sweep {d} in frequency carrying "
+                                                           "the state"))
+    variables["done"] = _Variable(dims, "bool", False, {
+        "long_name": "the point is computed and stored (resumable studies)"})
+    spec = {"kind": "response_map", "parameters": dataclasses.asdict(params),
+            "frequencies": f.tolist(), "amplitudes": a.tolist(),
+            "steady": dataclasses.asdict(steady), "integration": dataclasses.asdict(integration),
+            "continuation": list(directions), "version": _version()}
+    attrs = _common_attrs("response_map", params, steady, integration, {
+        "frequency_axis": "rho = Omega/omega (forcing over pendulum frequency)",
+        "amplitude_axis": "A = u0/L (base displacement amplitude over rod length)",
+        "continuation": ", ".join(directions) or "none",
+        "study_spec": json.dumps(spec, sort_keys=True)})
+    plan = _Plan("response_map", dims, {
+        "frequency": (f, {"units": "1", "long_name": "forcing frequency ratio rho = Omega/omega",
+                          "standard_name": "rho"}),
+        "amplitude": (a, {"units": "1", "long_name": "base displacement amplitude A = u0/L"})},
+        variables, attrs, spec, chunks, task)
+    return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
+                    worker_kind=worker_kind, progress=progress)
+
+
+# ---- basins of attraction --------------------------------------------------------------------
+
+def _basin_task(rpar, ipar, y0, integration, steady):
+    """One task of a basin study: the block's initial states (4, n1, n2) to their attractors."""
+    shape = y0.shape[1:]
+    n = int(np.prod(shape))
+    flat = np.asfortranarray(y0.reshape(4, n))
+    summaries, y_end, orbit, points, status, _, _ = _bridge.attractor_points(
+        rpar, ipar, flat, integration, steady)
+    impact = (summaries[SUMMARY_COLUMNS.index("max_x1")] >= 1).astype(np.int32)
+    out = _unpack(summaries, orbit, impact, status, shape)
+    out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
+    out["orbit_found"] = np.where(status == 0, orbit[_ORBIT_FOUND], -1).astype(np.int8).reshape(shape)
+    out["max_multiplier"] = orbit[_ORBIT_MAX_MU].reshape(shape)
+    out["orbit_state"] = orbit[_ORBIT_Y].reshape((4,) + shape).transpose(1, 2, 0)
+    out["orbit_points"] = points.reshape((4, _MAX_PERIOD) + shape).transpose(2, 3, 1, 0)
+    out["final_state"] = y_end.reshape((4,) + shape).transpose(1, 2, 0)
+    return out
+
+
+def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0, dx2=0.0,
+           client=None, scheduler=None, workers=None, worker_kind=None,
+           steady: Steady = Steady(), integration: Integration = Integration(), tol=1e-3,
+           points_per_task=None, progress=True):
+    """Basins of attraction at fixed forcing (params' rho and A): an n x n grid of initial
+    states (x1, x1') over x1_range x dx1_range with x2 = x2, x2' = dx2, each run to its steady
+    state and classified by the attractor it reaches. Periodic attractors are identified by
+    their orbit through the shooting code (Newton on the orbit of period k T, Floquet
+    multipliers); two runs share an attractor when their orbits' Poincare points coincide
+    within tol (relative); quasi-periodic, irregular and settling runs form one class each.
+
+    Returns a Dataset with dimensions (x1, dx1) [the initial states], the variable 'attractor'
+    (label 1.. per point), and the attractors listed along dimension 'attractor_id' with their
+    kind, period, stability (largest Floquet multiplier), share of the grid and orbit state."""
+    if not isinstance(params, Parameters):
+        raise InputError(f"params = {type(params).__name__} is not valid: give sloshdyn.Parameters")
+    if store is None:
+        raise InputError("store is missing: give the path of a Zarr store for the study")
+    n = _positive_int("n", n, 2)
+    ranges = []
+    for name, r in (("x1_range", x1_range), ("dx1_range", dx1_range)):
+        try:
+            lo, hi = (float(v) for v in r)
+        except (TypeError, ValueError):
+            raise InputError(f"{name} = {r!r} is not valid: give (low, high)") from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+            raise InputError(f"{name} = {r!r} is not valid: low and high must be finite, "
+                             "low < high")
+        ranges.append(np.linspace(lo, hi, n))
+    for name, v in (("x2", x2), ("dx2", dx2), ("tol", tol)):
+        if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v)):
+            raise InputError(f"{name} = {v!r} is not valid: it must be a finite number")
+    if not 0 < tol < 1:
+        raise InputError(f"tol = {tol!r} is not valid: it must lie in (0, 1)")
+    if not params.rho > 0:
+        raise InputError(f"rho = {params.rho} is not valid: basins need a forcing frequency rho > 0")
+    steady_array, integration_array = _settings(steady, integration)
+    ppt = POINTS_PER_TASK if points_per_task is None else _positive_int("points_per_task",
+                                                                         points_per_task)
+    b1 = min(n, ppt)
+    chunks = (b1, max(1, min(n, ppt // b1)))
+    x1, dx1 = ranges
+    grid = np.zeros((4, n, n))
+    grid[0], grid[1] = np.meshgrid(x1, dx1, indexing="ij")
+    grid[2], grid[3] = x2, dx2
+    rpar, ipar = params.arrays()
+
+    def task(block):
+        return _basin_task, (rpar, ipar, np.ascontiguousarray(grid[(slice(None),) + block]),
+                             integration_array, steady_array)
+
+    dims = ("x1", "dx1")
+    variables = _summary_variables(dims, what="steady state from the initial state")
+    variables["transient_periods"] = _Variable(dims, "f8", np.nan, {
+        "units": "forcing periods", "long_name": "transient integrated before measuring"})
+    variables["orbit_found"] = _Variable(dims, "i1", -1, {
+        "units": "1", "flag_values": [-1, 0, 1, 2],
+        "flag_meanings": "not_computed none jumped_by_shooting refined_by_shooting",
+        "long_name": "how the periodic orbit reached was found by the shooting code"})
+    variables["max_multiplier"] = _Variable(dims, "f8", np.nan, {
+        "units": "1", "long_name": "largest Floquet multiplier modulus of the orbit reached"})
+    variables["orbit_state"] = _Variable(dims + ("state",), "f8", np.nan, {
+        "units": "1", "long_name": "state (x1, x1', x2, x2') of the orbit reached at forcing "
+                                   "phase 0, by shooting"})
+    variables["orbit_points"] = _Variable(dims + ("orbit_point", "state"), "f8", np.nan, {
+        "units": "1", "long_name": "Poincare points of the orbit reached over one orbit period "
+                                   "(NaN beyond its period and for other motions)"})
+    variables["final_state"] = _Variable(dims + ("state",), "f8", np.nan, {
+        "units": "1", "long_name": "state at the end of the measuring window (forcing phase 0)"})
+    variables["done"] = _Variable(dims, "bool", False, {
+        "long_name": "the point is computed and stored (resumable studies)"})
+    spec = {"kind": "basins", "parameters": dataclasses.asdict(params), "x1": x1.tolist(),
+            "dx1": dx1.tolist(), "x2": float(x2), "dx2": float(dx2),
+            "steady": dataclasses.asdict(steady), "integration": dataclasses.asdict(integration),
+            "version": _version()}
+    attrs = _common_attrs("basins", params, steady, integration, {
+        "x2": float(x2), "dx2": float(dx2), "tol": float(tol),
+        "study_spec": json.dumps(spec, sort_keys=True)})
+    plan = _Plan("basins", dims, {
+        "x1": (x1, {"units": "1", "long_name": "initial x1 = theta/theta0 (pendulum)"}),
+        "dx1": (dx1, {"units": "1", "long_name": "initial x1' = dx1/dtau, tau = omega t"}),
+        "state": (np.array(["x1", "dx1", "x2", "dx2"]), {"long_name": "state component"}),
+        "orbit_point": (np.arange(1, _MAX_PERIOD + 1), {
+            "units": "1", "long_name": "Poincare point of the orbit, in time order"})},
+        variables, attrs, spec, chunks, task)
+    ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
+                  worker_kind=worker_kind, progress=progress)
+    return _label_basins(ds, tol)
+
+
+def _label_basins(ds, tol):
+    """The attractor of every run (Fortran label_attractors) and the attractor list."""
+    n1, n2 = ds.sizes["x1"], ds.sizes["dx1"]
+    motion = ds["motion"].values.astype(np.float64).ravel()
+    motion[motion <= 0] = np.nan
+    period = ds["period"].values.astype(np.float64).ravel()
+    points = np.asfortranarray(ds["orbit_points"].values.reshape(n1 * n2, _MAX_PERIOD, 4)
+                               .transpose(2, 1, 0))
+    label, count, first = _bridge.label_attractors(motion, period, points, float(tol))
+    ds["attractor"] = (("x1", "dx1"), label.reshape(n1, n2).astype(np.int16), {
+        "units": "1", "long_name": "attractor reached (1.. as listed along attractor_id; 0: "
+                                   "failed run)"})
+    first = first[:count] - 1
+    flat = {name: ds[name].values.reshape(n1 * n2, *ds[name].shape[2:])
+            for name in ("motion", "period", "max_multiplier", "orbit_state", "max_x1")}
+    kinds = [MOTIONS.get(int(flat["motion"][i]), "failed") for i in first]
+    share = np.array([(label == j + 1).sum() for j in range(count)]) / max(1, label.size)
+    mu = flat["max_multiplier"][first]
+    stability = np.array(["stable" if (k == "periodic" and m < 1) else
+                          "unstable" if (k == "periodic" and m >= 1) else
+                          "unknown" if k == "periodic" else "n/a"
+                          for k, m in zip(kinds, mu)])
+    ids = np.arange(1, count + 1)
+    ds = ds.assign_coords(attractor_id=("attractor_id", ids, {"long_name": "attractor label"}))
+    ds["attractor_kind"] = ("attractor_id", np.array(kinds, dtype=object).astype(str),
+                            {"long_name": "kind of motion of the attractor"})
+    ds["attractor_period"] = ("attractor_id", flat["period"][first].astype(np.int16),
+                              {"units": "forcing periods", "long_name": "period (0: not periodic)"})
+    ds["attractor_stability"] = ("attractor_id", stability, {
+        "long_name": "Floquet stability of a periodic attractor (largest |multiplier| < 1)"})
+    ds["attractor_max_multiplier"] = ("attractor_id", mu, {
+        "units": "1", "long_name": "largest Floquet multiplier modulus (NaN: not periodic)"})
+    ds["attractor_share"] = ("attractor_id", share, {
+        "units": "1", "long_name": "fraction of the grid's initial states that reach it"})
+    ds["attractor_max_x1"] = ("attractor_id", flat["max_x1"][first], {
+        "units": "1", "long_name": "max |x1| of the attractor (first run reaching it)"})
+    ds["attractor_state"] = (("attractor_id", "state"), flat["orbit_state"][first], {
+        "units": "1", "long_name": "orbit state at forcing phase 0 (shooting; NaN if not periodic)"})
+    return ds
+
+
+# ---- fragility fit ---------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class FragilityFit:
+    """Lognormal fragility curve P(failure | IM = x) = Phi(ln(x/median)/beta), fitted by
+    maximum likelihood to binary outcomes (Baker 2015), with standard errors from the inverse
+    observed information."""
+
+    median: float
+    beta: float                  #: dispersion (logarithmic standard deviation)
+    median_se: float
+    beta_se: float
+    log_likelihood: float
+    n: int
+
+    def probability(self, x):
+        from scipy.stats import norm
+        return norm.cdf(np.log(np.asarray(x, dtype=float) / self.median) / self.beta)
+
+
+def fit_fragility(intensities, failures, counts=None) -> FragilityFit:
+    """Maximum-likelihood lognormal fragility fit (the incremental dynamic analysis and FEMA
+    P695 practice). intensities: intensity measure per observation (> 0); failures: 0/1 per
+    observation, or the number of failures out of counts at each intensity."""
+    from scipy.optimize import minimize
+    from scipy.stats import norm
+    x = np.asarray(intensities, dtype=float).ravel()
+    y = np.asarray(failures, dtype=float).ravel()
+    m = np.ones_like(y) if counts is None else np.asarray(counts, dtype=float).ravel()
+    if x.size == 0:
+        raise InputError("intensities is empty: give at least one value")
+    bad = np.nonzero(~np.isfinite(x) | (x <= 0))[0]
+    if bad.size:
+        raise InputError(f"intensities[{bad[0]}] = {x[bad[0]]} is not valid: every intensity "
+                         "must be finite and > 0")
+    if y.shape != x.shape or m.shape != x.shape:
+        raise InputError(f"failures has shape {y.shape}: it must match intensities {x.shape}")
+    if np.any((y < 0) | (y > m)) or not np.all(np.isfinite(y)):
+        raise InputError("failures must lie in [0, counts] (0/1 per run)")
+    if y.sum() == 0 or y.sum() == m.sum():
+        raise InputError("failures are all 0 or all 1: the fragility curve cannot be fitted")
+    lx = np.log(x)
+
+    def nll(theta):
+        mu, log_beta = theta
+        z = (lx - mu) / math.exp(log_beta)
+        return -(y * norm.logcdf(z) + (m - y) * norm.logsf(z)).sum()
+
+    start = np.array([np.average(lx, weights=np.maximum(m, 1e-12)), math.log(max(lx.std(), 0.1))])
+    result = minimize(nll, start, method="Nelder-Mead",
+                      options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 20000})
+    mu, log_beta = result.x
+    beta = math.exp(log_beta)
+    # observed information in (mu, beta) by central differences of the log-likelihood
+    def nll_mb(mb):
+        return nll([mb[0], math.log(mb[1])])
+    h = np.array([1e-4 * max(abs(mu), 1.0), 1e-4 * beta])
+    hess = np.zeros((2, 2))
+    theta0 = np.array([mu, beta])
+    for i in range(2):
+        for j in range(2):
+            ei, ej = np.eye(2)[i] * h[i], np.eye(2)[j] * h[j]
+            hess[i, j] = (nll_mb(theta0 + ei + ej) - nll_mb(theta0 + ei - ej)
+                          - nll_mb(theta0 - ei + ej) + nll_mb(theta0 - ei - ej)) / (4 * h[i] * h[j])
+    cov = np.linalg.inv(hess)
+    median = math.exp(mu)
+    return FragilityFit(median=median, beta=beta, median_se=median * math.sqrt(cov[0, 0]),
+                        beta_se=math.sqrt(cov[1, 1]), log_likelihood=-float(result.fun),
+                        n=int(m.sum()))
