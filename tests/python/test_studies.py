@@ -1,0 +1,368 @@
+"""Parameter studies (sloshdyn.studies): each result against an independent source -- a serial
+loop of steady_state, the sweeps that carry the state, the shooting code's orbits, synthetic
+data with known parameters -- and the engine's promises: resumable after SIGKILL, a killed
+worker changes nothing, other studies' stores refused, bad input named before anything is
+written. Grids are tiny and transients short: the long measurements are in
+benchmarks/studies.py."""
+
+import json
+import math
+import os
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import sloshdyn
+from sloshdyn import studies
+from conftest import ROOT
+
+pytest.importorskip("dask.distributed")
+xr = pytest.importorskip("xarray")
+zarr = pytest.importorskip("zarr")
+
+FIG12 = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4,
+                            gamma=0.001, A=0.00075, rho=0.50)
+QUICK = sloshdyn.Steady(max_transient_periods=600, window_periods=32)
+FREQUENCIES = [0.505, 0.513, 0.52]
+AMPLITUDES = [0.0005, 0.00075]
+
+
+@pytest.fixture(scope="module")
+def client():
+    from dask.distributed import Client, LocalCluster
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
+                      dashboard_address=None) as cluster, Client(cluster) as c:
+        yield c
+
+
+def serial(frequencies, amplitudes, steady=QUICK):
+    """The independent source: a plain loop of steady_state over the grid."""
+    return [[sloshdyn.steady_state(FIG12.replace(rho=f, A=a), steady=steady)
+             for a in amplitudes] for f in frequencies]
+
+
+def assert_equals_serial(ds, expected):
+    for i, row in enumerate(expected):
+        for j, st in enumerate(row):
+            point = ds.isel(frequency=i, amplitude=j)
+            for name in ("max_x1", "max_x2", "max_u1", "max_u2", "transient_periods"):
+                assert float(point[name]) == getattr(st, name), (name, i, j)   # bit for bit
+            assert sloshdyn.simulation.MOTIONS[int(point["motion"])] == st.motion
+            assert int(point["period"]) == st.period
+            assert bool(point["roof_impact"]) == (st.max_x1 >= 1)
+
+
+def test_response_map_equals_a_serial_loop_bit_for_bit(client, tmp_path):
+    ds = sloshdyn.response_map(FIG12, FREQUENCIES, AMPLITUDES, tmp_path / "map.zarr",
+                               client=client, steady=QUICK, points_per_task=2, progress=False)
+    assert ds["max_x1"].dims == ("frequency", "amplitude")
+    assert list(ds.frequency.values) == FREQUENCIES and list(ds.amplitude.values) == AMPLITUDES
+    assert_equals_serial(ds, serial(FREQUENCIES, AMPLITUDES))
+    assert bool(ds["done"].all()) and ds.attrs["points_computed"] == 6
+    for name, var in ds.data_vars.items():              # every variable described
+        assert "long_name" in var.attrs, name
+        assert name == "done" or "units" in var.attrs, name
+    assert ds.frequency.attrs["units"] == "1" and "rho" in ds.frequency.attrs["long_name"]
+    assert json.loads(ds.attrs["parameters"])["kappa"] == FIG12.kappa
+    assert json.loads(ds.attrs["steady"])["max_transient_periods"] == 600
+    assert ds.attrs["sloshdyn_version"] == sloshdyn.__version__
+    # the store holds the same, and a rerun returns at once without computing anything
+    stored = xr.open_zarr(tmp_path / "map.zarr").load()
+    assert stored["max_x1"].equals(ds["max_x1"])
+    again = sloshdyn.response_map(FIG12, FREQUENCIES, AMPLITUDES, tmp_path / "map.zarr",
+                                  client=client, steady=QUICK, progress=False)
+    assert again.attrs["points_computed"] == 0 and again["max_x1"].equals(ds["max_x1"])
+
+
+def test_continuation_equals_the_sweeps_that_carry_the_state(client, tmp_path):
+    f = [0.5107, 0.514, 0.517, 0.52]
+    ds = sloshdyn.response_map(FIG12, f, [0.00075], tmp_path / "c.zarr", client=client,
+                               continuation="both", progress=False)
+    up = sloshdyn.frequency_sweep(FIG12, f)
+    down = sloshdyn.frequency_sweep(FIG12, f[::-1])
+    assert list(ds["max_x1_up"].values[:, 0]) == list(up.column("max_x1"))
+    assert list(ds["max_x1_down"].values[::-1, 0]) == list(down.column("max_x1"))
+    # 0.52 is between the folds: from rest the low branch, carried up the large one
+    assert ds["max_x1_up"].values[-1, 0] > 10 * ds["max_x1"].values[-1, 0]
+
+
+def test_a_store_of_another_study_is_refused_and_left_alone(client, tmp_path):
+    store = tmp_path / "s.zarr"
+    sloshdyn.response_map(FIG12, [0.505], [0.0005], store, client=client, steady=QUICK,
+                          progress=False)
+    before = sorted(p.name for p in store.rglob("*"))
+    other = sloshdyn.Steady(max_transient_periods=700, window_periods=32)
+    with pytest.raises(sloshdyn.InputError, match=r"s\.zarr.*different study.*steady"):
+        sloshdyn.response_map(FIG12, [0.505], [0.0005], store, client=client, steady=other,
+                              progress=False)
+    with pytest.raises(sloshdyn.InputError, match="frequencies"):
+        sloshdyn.response_map(FIG12, [0.505, 0.51], [0.0005], store, client=client,
+                              steady=QUICK, progress=False)
+    assert sorted(p.name for p in store.rglob("*")) == before
+
+
+@pytest.mark.parametrize("frequencies, amplitudes, match", [
+    ([], [0.001], "frequencies is empty"),
+    ([0.5], [], "amplitudes is empty"),
+    ([0.5, float("nan")], [0.001], r"frequencies\[1\] = nan"),
+    ([0.5], [-0.001], r"amplitudes\[0\] = -0.001"),
+    ([0.0], [0.001], r"frequencies\[0\] = 0.0"),
+    ([0.5, 0.5], [0.001], "repeated"),
+    ([0.5], [2000.0], "A = 2000"),
+])
+def test_bad_axes_are_named_and_nothing_is_written(tmp_path, frequencies, amplitudes, match):
+    with pytest.raises(sloshdyn.InputError, match=match):
+        sloshdyn.response_map(FIG12, frequencies, amplitudes, tmp_path / "x.zarr",
+                              progress=False)
+    assert not list(tmp_path.iterdir())
+
+
+def test_unwritable_store_and_bad_settings_are_refused_before_anything_runs(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    with pytest.raises(sloshdyn.InputError, match="cannot be created"):
+        sloshdyn.response_map(FIG12, [0.5], [0.001], blocker / "x.zarr", progress=False)
+    with pytest.raises(sloshdyn.InputError, match="is a file"):
+        sloshdyn.response_map(FIG12, [0.5], [0.001], blocker, progress=False)
+    with pytest.raises(sloshdyn.InputError, match="continuation"):
+        sloshdyn.response_map(FIG12, [0.5], [0.001], tmp_path / "y.zarr", continuation="sideways")
+    with pytest.raises(sloshdyn.InputError, match="points_per_task"):
+        sloshdyn.response_map(FIG12, [0.5], [0.001], tmp_path / "y.zarr", points_per_task=0)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+def test_a_scheduler_that_does_not_answer_fails_in_seconds(tmp_path):
+    with socket.socket() as s:          # a port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    start = time.monotonic()
+    with pytest.raises(sloshdyn.InputError, match=f"scheduler = 'tcp://127.0.0.1:{port}' did not answer"):
+        sloshdyn.response_map(FIG12, [0.5], [0.001], tmp_path / "x.zarr",
+                              scheduler=f"tcp://127.0.0.1:{port}", progress=False)
+    assert time.monotonic() - start < 20
+
+
+def test_progress_bar_shows_rate_and_eta(client, tmp_path, capsys):
+    sloshdyn.response_map(FIG12, [0.505, 0.51], [0.0005], tmp_path / "p.zarr", client=client,
+                          steady=QUICK, points_per_task=1, progress=True)
+    err = capsys.readouterr().err
+    assert "response map" in err and "point/s" in err and "<" in err    # rate and ETA
+
+
+def test_the_bridge_releases_the_gil_during_fortran_work():
+    """While a long Fortran call runs, another Python thread keeps counting (with the GIL held
+    it could not count at all between the two reads around the call)."""
+    count = [0]
+    running = [True]
+
+    def counter():
+        while running[0]:
+            count[0] += 1
+
+    thread = threading.Thread(target=counter)
+    thread.start()
+    try:
+        time.sleep(0.01)
+        before = count[0]
+        sloshdyn.steady_state(FIG12.replace(rho=0.513), steady=sloshdyn.Steady(
+            settle_tol=0, transient_periods=1500))
+        during = count[0] - before
+    finally:
+        running[0] = False
+        thread.join()
+    assert during > 1000
+
+
+def test_eight_thread_workers_give_the_serial_answer(tmp_path):
+    ds = sloshdyn.response_map(FIG12, FREQUENCIES, AMPLITUDES, tmp_path / "w8.zarr",
+                               workers=8, worker_kind="threads", steady=QUICK,
+                               points_per_task=1, progress=False)
+    assert_equals_serial(ds, serial(FREQUENCIES, AMPLITUDES))
+
+
+SLOW = sloshdyn.Steady(settle_tol=0, transient_periods=800, window_periods=16, shooting=False)
+SLOW_F = list(np.linspace(0.50, 0.52, 12))
+
+_CHILD = """
+import sys, numpy as np, sloshdyn
+from test_studies import FIG12, SLOW, SLOW_F
+if __name__ == "__main__":
+    sloshdyn.response_map(FIG12, SLOW_F, [0.00075], sys.argv[1], workers=1,
+                          worker_kind="threads", steady=SLOW, points_per_task=1, progress=False)
+"""
+
+
+def done_count(store):
+    try:
+        return int(zarr.open_group(str(store), mode="r")["done"][...].sum())
+    except Exception:
+        return 0
+
+
+def test_a_study_killed_mid_way_resumes_and_recomputes_only_what_was_missing(tmp_path):
+    store = tmp_path / "k.zarr"
+    script = tmp_path / "child.py"
+    script.write_text(_CHILD)
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "tests" / "python")}
+    child = subprocess.Popen([sys.executable, str(script), str(store)], env=env,
+                             start_new_session=True, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 120
+        while done_count(store) < 3 and time.monotonic() < deadline and child.poll() is None:
+            time.sleep(0.02)
+        os.kill(child.pid, signal.SIGKILL)          # the process running the study
+    finally:
+        child.wait()
+    finished = done_count(store)
+    assert 3 <= finished < len(SLOW_F), child.stderr.read().decode()[-2000:]
+    ds = sloshdyn.response_map(FIG12, SLOW_F, [0.00075], store, workers=1,
+                               worker_kind="threads", steady=SLOW, points_per_task=1,
+                               progress=False)
+    assert ds.attrs["points_computed"] == len(SLOW_F) - finished
+    assert_equals_serial(ds, serial(SLOW_F, [0.00075], SLOW))
+
+
+def test_a_worker_killed_mid_study_changes_nothing(tmp_path):
+    from dask.distributed import Client, LocalCluster
+    store = tmp_path / "w.zarr"
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None, silence_logs=50) as cluster, Client(cluster) as c:
+        pids = list(c.run(os.getpid).values())
+        killed = []
+
+        def killer():
+            deadline = time.monotonic() + 60
+            while done_count(store) < 2 and time.monotonic() < deadline:
+                time.sleep(0.02)
+            os.kill(pids[0], signal.SIGKILL)
+            killed.append(done_count(store))
+
+        thread = threading.Thread(target=killer)
+        thread.start()
+        ds = sloshdyn.response_map(FIG12, SLOW_F, [0.00075], store, client=c, steady=SLOW,
+                                   points_per_task=1, progress=False)
+        thread.join()
+    assert killed and killed[0] < len(SLOW_F)       # killed mid-study
+    assert_equals_serial(ds, serial(SLOW_F, [0.00075], SLOW))
+
+
+# ---- basins ----------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def two_orbits():
+    """rho = 0.52 lies between the folds of Fig 12's large branch: the small orbit from rest,
+    the large one carried up from rho = 0.5107 (both by the shooting code)."""
+    p = FIG12.replace(rho=0.52)
+    low = sloshdyn.periodic_orbit(p, sloshdyn.steady_state(p).y_end)
+    sweep = sloshdyn.frequency_sweep(FIG12, np.linspace(0.5107, 0.52, 10))
+    high = sloshdyn.periodic_orbit(p, sweep.y_final)
+    assert low.stable and high.stable and high.max_x1 > 10 * low.max_x1
+    return p, low, high
+
+
+def test_basins_find_both_coexisting_orbits_and_start_on_each_stays_there(client, tmp_path,
+                                                                       two_orbits):
+    p, low, high = two_orbits
+    for name, orbit in (("high", high), ("low", low)):
+        c = orbit.y0
+        ds = sloshdyn.basins(p, (c[0] - 0.1, c[0] + 0.1), (c[1] - 0.1, c[1] + 0.1), n=3,
+                             store=tmp_path / f"{name}.zarr", x2=float(c[2]), dx2=float(c[3]),
+                             client=client, progress=False)
+        centre = ds.isel(x1=1, dx1=1)          # started on the orbit
+        label = int(centre["attractor"])
+        state = ds["attractor_state"].sel(attractor_id=label).values
+        assert np.allclose(state, orbit.y0, rtol=0, atol=1e-8 * np.abs(orbit.y0).max())
+        assert ds["attractor_stability"].sel(attractor_id=label) == "stable"
+        assert float(centre["transient_periods"]) <= 16
+        assert ds["attractor_share"].sum() == pytest.approx(1.0)
+        if name == "high":                     # this grid reaches both attractors
+            assert ds.sizes["attractor_id"] == 2
+            for j in ds.attractor_id.values:
+                s = ds["attractor_state"].sel(attractor_id=j).values
+                shot = sloshdyn.periodic_orbit(p, s)       # the shooting code's orbit
+                assert np.allclose(shot.y0, s, rtol=0, atol=1e-8 * np.abs(s).max())
+                assert max(abs(shot.multipliers)) == pytest.approx(
+                    float(ds["attractor_max_multiplier"].sel(attractor_id=j)), rel=1e-6)
+            states = ds["attractor_state"].values
+            assert any(np.allclose(s, low.y0, atol=1e-8) for s in states)
+
+
+def test_basins_bad_input(tmp_path):
+    with pytest.raises(sloshdyn.InputError, match="x1_range"):
+        sloshdyn.basins(FIG12, (0.1, 0.1), (0, 1), n=3, store=tmp_path / "b.zarr")
+    with pytest.raises(sloshdyn.InputError, match="n = 1"):
+        sloshdyn.basins(FIG12, (0, 1), (0, 1), n=1, store=tmp_path / "b.zarr")
+    with pytest.raises(sloshdyn.InputError, match="store is missing"):
+        sloshdyn.basins(FIG12, (0, 1), (0, 1), n=3)
+    assert not list(tmp_path.iterdir())
+
+
+# ---- fragility fit ---------------------------------------------------------------------------
+
+def synthetic(rng, median, beta, n_levels=10, runs=40):
+    x = np.repeat(np.geomspace(median / 4, median * 4, n_levels), runs)
+    failed = rng.random(x.size) < sloshdyn.FragilityFit(median, beta, 0, 0, 0, 0).probability(x)
+    return x, failed.astype(float)
+
+
+def test_fragility_fit_recovers_median_and_dispersion_within_their_standard_errors():
+    """Synthetic lognormal data with known median and beta: over 200 data sets the estimates
+    fall within one standard error about 68 % of the time and within two about 95 %, as
+    standard errors must (binomial bounds at about 3 sigma)."""
+    rng = np.random.default_rng(13)
+    median, beta = 0.45, 0.4
+    within1, within2 = np.zeros(2), np.zeros(2)
+    trials = 200
+    for _ in range(trials):
+        fit = sloshdyn.fit_fragility(*synthetic(rng, median, beta))
+        err = np.abs([fit.median - median, fit.beta - beta]) / [fit.median_se, fit.beta_se]
+        within1 += err < 1
+        within2 += err < 2
+    assert np.all(np.abs(within1 / trials - 0.683) < 0.1), within1
+    assert np.all(np.abs(within2 / trials - 0.954) < 0.05), within2
+
+
+def test_fragility_fit_counts_form_and_bad_input():
+    x = np.geomspace(0.1, 2, 8)
+    counts = np.full(8, 50)
+    failures = np.round(counts * sloshdyn.FragilityFit(0.5, 0.3, 0, 0, 0, 0).probability(x))
+    fit = sloshdyn.fit_fragility(x, failures, counts)
+    assert fit.median == pytest.approx(0.5, rel=0.05) and fit.beta == pytest.approx(0.3, rel=0.1)
+    with pytest.raises(sloshdyn.InputError, match="all 0 or all 1"):
+        sloshdyn.fit_fragility([0.1, 0.2], [0, 0])
+    with pytest.raises(sloshdyn.InputError, match=r"intensities\[1\] = -0.2"):
+        sloshdyn.fit_fragility([0.1, -0.2], [0, 1])
+
+
+# ---- steady states by shooting (item 6) -----------------------------------------------------
+
+@pytest.mark.parametrize("rho", [0.49, 0.505, 0.513, 0.52])
+def test_shooting_gives_the_integration_only_steady_state_of_periodic_cases(rho):
+    p = FIG12.replace(rho=rho)
+    jump = sloshdyn.steady_state(p)
+    plain = sloshdyn.steady_state(p, steady=sloshdyn.Steady(shooting=False))
+    assert jump.motion == plain.motion == "periodic" and jump.period == plain.period
+    for name in ("max_x1", "max_x2", "max_u1", "max_u2"):
+        # the integration only approaches the orbit: settle_tol/(1 - |mu|) ~ 2e-5 relative
+        assert getattr(jump, name) == pytest.approx(getattr(plain, name), rel=1e-5), name
+    assert jump.transient_periods < plain.transient_periods / 20
+    orbit = sloshdyn.periodic_orbit(p, jump.y_end)       # it ends on the shooting code's orbit
+    assert np.allclose(orbit.y0, jump.y_end, atol=1e-9) and orbit.stable
+
+
+def test_non_periodic_steady_states_are_those_of_the_integration():
+    p = FIG12.replace(rho=0.51)                          # quasi-periodic (Fig 12, between Hopfs)
+    settings = dict(max_transient_periods=1500, window_periods=64)
+    jump = sloshdyn.steady_state(p, steady=sloshdyn.Steady(**settings))
+    plain = sloshdyn.steady_state(p, steady=sloshdyn.Steady(shooting=False, **settings))
+    assert jump.motion in ("quasi-periodic", "settling") and jump.transient_periods == 1500
+    for name in sloshdyn.simulation.SUMMARY_COLUMNS:
+        assert getattr(jump, name) == getattr(plain, name), name
+    assert np.array_equal(jump.poincare, plain.poincare)
