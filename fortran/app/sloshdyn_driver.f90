@@ -261,8 +261,9 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp), allocatable :: values(:), summaries(:, :)
     real(wp) :: y(4), y_next(4)
-    integer :: first, last, i, n_done, step
+    integer :: first, last, i, n_done, step, status_rows
     character(len=:), allocatable :: name, how
+    character(len=message_len) :: message_rows
 
     associate (sw => config%sweep)
       values = sweep_points(min(sw%start, sw%stop), max(sw%start, sw%stop), sw%n_points, &
@@ -277,6 +278,12 @@ contains
       step = merge(1, 4*sw%threads, sw%carry_state)
     end associate
     allocate (summaries(SUMMARY_SIZE, size(values)))
+    ! the points go to sweep.partial.csv as they finish: a failed or killed sweep keeps them
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%begin_rows('sweep.csv', 'summary', status, message)
+    if (status /= SD_OK) return
+    print '(a)', '  (points are written to '//files%partial_path('sweep.csv')//' as they '// &
+                 'finish; renamed to sweep.csv when the sweep is complete)'
     print '(a)', '  '//pad(name, 14)//pad('max|x1|', 14)//pad('max|x2|', 14)// &
                  pad('max|u1|', 14)//pad('max|u2|', 14)//'motion'
     flush (output_unit)
@@ -294,8 +301,20 @@ contains
                                config%sweep%threads, summaries(:, first:last), n_done, status, &
                                message)
       end if
-      call in_context('sweep', status, message)
-      if (status /= SD_OK) return
+      if (status == SD_OK) then
+        call files%append_rows('sweep.csv', 'summary', summaries(:, first:last), status, &
+                               message)
+      else if (config%sweep%carry_state .and. n_done > 0) then
+        call files%append_rows('sweep.csv', 'summary', summaries(:, first:first + n_done - 1), &
+                               status_rows, message_rows)
+      end if
+      if (status /= SD_OK) then
+        call in_context('sweep', status, message)
+        message = trim(message)//'; the '//num2str(first - 1 + merge(n_done, 0, &
+                  config%sweep%carry_state))//' of '//num2str(size(values))// &
+                  ' points completed are kept in '//files%partial_path('sweep.csv')
+        return
+      end if
       do i = first, last
         print '(a)', '  '//pad(num2str(values(i)), 14)// &
                      pad(num2str(summaries(SUMMARY_MAX_X1, i)), 14)// &
@@ -306,9 +325,6 @@ contains
       end do
       flush (output_unit)
     end do
-    call begin_files(config, files, status, message)
-    if (status == SD_OK) call files%write_table('sweep.csv', 'summary', summaries, status, &
-                                                message)
   end subroutine run_sweep
 
   !> Slow-flow frequency response (sec 3.3): branches, stability, folds and Hopf points.

@@ -2,6 +2,11 @@
 !> unique to the run (dir/.name.PID.tmp), every write checked, and all are renamed into place by
 !> commit once every one is complete; discard removes them. Headers and column formats come from
 !> sloshdyn_tables, so both front doors write the same files.
+!>
+!> A table whose rows come one after another as a long computation finishes them (a sweep's
+!> points) is written to dir/stem.partial.ext (begin_rows), each batch appended and flushed as
+!> it is done (append_rows), and renamed to its final name by commit like the others; discard
+!> keeps it, so a failed or killed run leaves the rows it finished.
 module sloshdyn_results
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_IO_ERROR
@@ -14,6 +19,7 @@ module sloshdyn_results
 
   type :: pending_file
     character(len=:), allocatable :: final, temporary
+    logical :: keep = .false.      !< rows of a partial table: kept by discard
   end type pending_file
 
   type :: result_files
@@ -22,6 +28,9 @@ module sloshdyn_results
   contains
     procedure :: create => create_directory
     procedure :: write_table
+    procedure :: begin_rows
+    procedure :: append_rows
+    procedure :: partial_path
     procedure :: commit
     procedure :: discard
   end type result_files
@@ -55,23 +64,43 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     character(len=message_len) :: iomsg
-    character(len=:), allocatable :: formats, line
-    character(len=32) :: field
     type(pending_file) :: file
-    integer :: unit, ios, i, j, length
+    integer :: unit, ios
 
     status = SD_OK
     message = ''
     file%final = self%directory//'/'//name
     file%temporary = self%directory//'/.'//name//'.'//num2str(process_id())//'.tmp'
     self%files = [self%files, file]
-    formats = table_formats(table)
-    allocate (character(len=33*size(data, 1)) :: line)
     open (newunit=unit, file=file%temporary, status='replace', action='write', iostat=ios, &
           iomsg=iomsg)
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
+    if (ios == 0) call write_rows(unit, table, data, ios, iomsg)
+    if (ios == 0) then
+      close (unit, iostat=ios, iomsg=iomsg)
+    else
+      close (unit)
+    end if
+    if (ios /= 0) then
+      status = SD_IO_ERROR
+      message = 'cannot write '//file%final//': '//trim(iomsg)
+    end if
+  end subroutine write_table
+
+  !> The rows of data (one column of the array per row of the file) in table's formats.
+  subroutine write_rows(unit, table, data, ios, iomsg)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: table
+    real(wp), intent(in) :: data(:, :)
+    integer, intent(out) :: ios
+    character(len=message_len), intent(inout) :: iomsg
+    character(len=:), allocatable :: formats, line
+    character(len=32) :: field
+    integer :: i, j, length
+    ios = 0
+    formats = table_formats(table)
+    allocate (character(len=33*size(data, 1)) :: line)
     do j = 1, size(data, 2)
-      if (ios /= 0) exit
       length = 0
       do i = 1, size(data, 1)
         select case (formats(i:i))
@@ -93,7 +122,42 @@ contains
         length = length + len_trim(field)
       end do
       write (unit, '(a)', iostat=ios, iomsg=iomsg) line(1:length)
+      if (ios /= 0) return
     end do
+  end subroutine write_rows
+
+  !> Where the rows of table file `name` gather until commit: dir/stem.partial.ext.
+  function partial_path(self, name) result(path)
+    class(result_files), intent(in) :: self
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: path
+    integer :: dot
+    dot = index(name, '.', back=.true.)
+    if (dot == 0) then
+      path = self%directory//'/'//name//'.partial'
+    else
+      path = self%directory//'/'//name(1:dot - 1)//'.partial'//name(dot:)
+    end if
+  end function partial_path
+
+  !> Start the partial file of table `table` for file `name`: its header, no rows yet.
+  subroutine begin_rows(self, name, table, status, message)
+    class(result_files), intent(inout) :: self
+    character(len=*), intent(in) :: name, table
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=message_len) :: iomsg
+    type(pending_file) :: file
+    integer :: unit, ios
+    status = SD_OK
+    message = ''
+    file%final = self%directory//'/'//name
+    file%temporary = self%partial_path(name)
+    file%keep = .true.
+    self%files = [self%files, file]
+    open (newunit=unit, file=file%temporary, status='replace', action='write', iostat=ios, &
+          iomsg=iomsg)
+    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
     if (ios == 0) then
       close (unit, iostat=ios, iomsg=iomsg)
     else
@@ -101,9 +165,37 @@ contains
     end if
     if (ios /= 0) then
       status = SD_IO_ERROR
-      message = 'cannot write '//file%final//': '//trim(iomsg)
+      message = 'cannot write '//file%temporary//': '//trim(iomsg)
     end if
-  end subroutine write_table
+  end subroutine begin_rows
+
+  !> Append rows to the partial file of `name` (begun by begin_rows); on disk when it returns.
+  subroutine append_rows(self, name, table, data, status, message)
+    class(result_files), intent(inout) :: self
+    character(len=*), intent(in) :: name, table
+    real(wp), intent(in) :: data(:, :)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=message_len) :: iomsg
+    character(len=:), allocatable :: path
+    integer :: unit, ios
+    status = SD_OK
+    message = ''
+    iomsg = ''
+    path = self%partial_path(name)
+    open (newunit=unit, file=path, status='old', position='append', action='write', &
+          iostat=ios, iomsg=iomsg)
+    if (ios == 0) call write_rows(unit, table, data, ios, iomsg)
+    if (ios == 0) then
+      close (unit, iostat=ios, iomsg=iomsg)
+    else
+      close (unit)
+    end if
+    if (ios /= 0) then
+      status = SD_IO_ERROR
+      message = 'cannot append to '//path//': '//trim(iomsg)
+    end if
+  end subroutine append_rows
 
   !> Rename every file into place.
   subroutine commit(self, status, message)
@@ -133,7 +225,7 @@ contains
     integer :: i
     if (.not. allocated(self%files)) return
     do i = 1, size(self%files)
-      call remove_file(self%files(i)%temporary)
+      if (.not. self%files(i)%keep) call remove_file(self%files(i)%temporary)
     end do
     deallocate (self%files)
     allocate (self%files(0))

@@ -366,3 +366,66 @@ def test_non_periodic_steady_states_are_those_of_the_integration():
     for name in sloshdyn.simulation.SUMMARY_COLUMNS:
         assert getattr(jump, name) == getattr(plain, name), name
     assert np.array_equal(jump.poincare, plain.poincare)
+
+
+# ---- sweeps of the executable keep what they finished (item 5) -------------------------------
+
+SWEEP_NML = """
+&model s1 = 1.5, mu1 = 0.5, kappa = 1.804897259, theta0 = 0.7853981633974483, gamma = 0.001 /
+&excitation A = 0.00075, rho = 0.5 /
+&analysis kind = 'sweep' /
+&sweep parameter = 'A', start = 0.00075, stop = 3.0, n_points = 6 /
+&integration max_steps = {max_steps} /
+&steady {steady} /
+&output directory = 'out' /
+"""
+
+
+def sweep_rows(path):
+    from conftest import read_csv
+    return read_csv(path)
+
+
+def test_a_failing_sweep_keeps_the_points_it_finished(exe, tmp_path):
+    from conftest import run, write
+    nml = write(tmp_path, SWEEP_NML.format(max_steps=300000, steady=""))
+    result = run(exe, nml, tmp_path)
+    assert result.returncode == 4                       # the last points need more steps
+    partial = tmp_path / "out" / "sweep.partial.csv"
+    rows = sweep_rows(partial)
+    assert f"the {len(rows)} of 6 points completed are kept in out/sweep.partial.csv" in result.stderr
+    assert 1 <= len(rows) < 6
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["sweep.partial.csv"]
+    # the same points in a sweep that completes: identical rows (the independent source)
+    done = write(tmp_path, SWEEP_NML.format(max_steps=300000, steady="").replace(
+        "stop = 3.0, n_points = 6", f"stop = {rows[-1]['A']!r}, n_points = {len(rows)}")
+        .replace("'out'", "'full'"), "full.nml")
+    assert run(exe, done, tmp_path).returncode == 0
+    assert sweep_rows(tmp_path / "full" / "sweep.csv") == rows
+    assert not (tmp_path / "full" / "sweep.partial.csv").exists()
+
+
+def test_a_killed_sweep_keeps_the_points_it_finished(exe, tmp_path):
+    from conftest import write
+    slow = "settle_tol = 0, transient_periods = 3000, window_periods = 16, shooting = .false."
+    nml = write(tmp_path, SWEEP_NML.format(max_steps=100000000, steady=slow)
+                .replace("stop = 3.0", "stop = 0.00125"))
+    partial = tmp_path / "out" / "sweep.partial.csv"
+    child = subprocess.Popen([exe, str(nml)], cwd=tmp_path, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and child.poll() is None:
+            if partial.exists() and len(partial.read_text().splitlines()) >= 3:
+                break
+            time.sleep(0.02)
+        child.kill()
+    finally:
+        child.wait()
+    rows = sweep_rows(partial)
+    assert 2 <= len(rows) < 6 and all(len(r) == 11 for r in rows)
+    assert "sweep.partial.csv" in child.stdout.read().decode()    # it said where they go
+    # the first point as steady_state computes it from rest (CSV keeps 17 digits: exact)
+    first = sloshdyn.steady_state(FIG12.replace(A=rows[0]["A"]), steady=sloshdyn.Steady(
+        settle_tol=0, transient_periods=3000, window_periods=16, shooting=False))
+    assert rows[0]["max_x1"] == first.max_x1 and rows[0]["max_u2"] == first.max_u2
