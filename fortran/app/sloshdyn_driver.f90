@@ -46,6 +46,12 @@ contains
     character(len=message_len), intent(out) :: message
     type(result_files) :: files
 
+    if (config%study%given) then
+      status = SD_BAD_INPUT
+      message = '&study: this file describes a parameter study, which runs in Python on Dask: '// &
+                'sloshdyn-py study FILE'
+      return
+    end if
     call print_model(config)
     select case (config%analysis)
     case (ANALYSIS_LINEAR)

@@ -23,18 +23,26 @@ module sloshdyn_namelist
   implicit none
   private
   public :: run_config, tank_description, simulation_settings, sweep_settings, &
-            response_settings, read_input, namelist_defaults, known_analyses, path_len, &
+            response_settings, study_settings, study_kinds, worker_kinds, continuation_names, &
+            read_input, namelist_defaults, known_analyses, path_len, &
             check_threads
   public :: ANALYSIS_LINEAR, ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
             ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV
   public :: DIRECTION_UP, DIRECTION_DOWN, DIRECTION_BOTH, direction_names
 
-  character(len=*), parameter :: known_groups(12) = &
+  character(len=*), parameter :: known_groups(13) = &
     [character(len=11) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output', &
-     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov']
+     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov', 'study']
   integer, parameter :: G_MODEL = 1, G_TANK = 2, G_STRUCTURE = 3, G_EXCITATION = 4, &
                         G_ANALYSIS = 5, G_OUTPUT = 6, G_INTEGRATION = 7, G_SIMULATION = 8, &
-                        G_STEADY = 9, G_SWEEP = 10, G_RESPONSE = 11, G_LYAPUNOV = 12
+                        G_STEADY = 9, G_SWEEP = 10, G_RESPONSE = 11, G_LYAPUNOV = 12, &
+                        G_STUDY = 13
+  !> &study: the kinds of study (run by Python, `sloshdyn-py study`), the embedded cluster's
+  !> worker kinds and the continuations of a response map, by code (index).
+  character(len=*), parameter :: study_kinds(2) = [character(len=12) :: 'response_map', 'basins']
+  character(len=*), parameter :: worker_kinds(2) = [character(len=9) :: 'processes', 'threads']
+  character(len=*), parameter :: continuation_names(4) = &
+    [character(len=4) :: 'none', 'up', 'down', 'both']
   !> The analyses, by code (index).
   character(len=*), parameter :: known_analyses(7) = &
     [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response', &
@@ -83,6 +91,23 @@ module sloshdyn_namelist
     type(response_options) :: options
   end type response_settings
 
+  !> &study: a parameter study run by Python on Dask (sloshdyn-py study); read and checked
+  !> here like every group, so both front doors know it (the executable refuses to run it).
+  type :: study_settings
+    logical :: given = .false.
+    integer :: kind = 1                                !< index into study_kinds
+    character(len=path_len) :: store = '', figure = '', scheduler = ''
+    integer :: workers = 0                             !< embedded cluster: 0 = one per core
+    integer :: worker_kind = 1                         !< index into worker_kinds
+    integer :: points_per_task = 0                     !< 0 = the engine's choice
+    real(wp) :: frequency_start = 0, frequency_stop = 0, amplitude_start = 0, amplitude_stop = 0
+    integer :: n_frequencies = 1, n_amplitudes = 1
+    integer :: continuation = 1                        !< index into continuation_names
+    real(wp) :: x1_start = 0, x1_stop = 0, dx1_start = 0, dx1_stop = 0
+    integer :: n_grid = 50
+    real(wp) :: tol = 1.0e-3_wp
+  end type study_settings
+
   !> Everything one run needs, validated.
   type :: run_config
     type(model_t) :: model
@@ -98,6 +123,7 @@ module sloshdyn_namelist
     type(sweep_settings) :: sweep
     type(response_settings) :: response
     type(lyapunov_options) :: lyapunov
+    type(study_settings) :: study
   end type run_config
 
   !> The text of one group: its body between the name and the closing '/' (comments removed,
@@ -199,7 +225,10 @@ contains
                                             .or. config%analysis == ANALYSIS_PERIODIC_RESPONSE, &
                                             config%response, status, message)
     if (status == SD_OK) call read_lyapunov(file, config%lyapunov, status, message)
-    if (status == SD_OK) call check_analysis(config, status, message)
+    if (status == SD_OK) call read_study(file, config, status, message)
+    ! a study file describes no analysis of the executable: the default one is not checked
+    if (status == SD_OK .and. .not. (config%study%given .and. .not. file%groups(G_ANALYSIS)%given)) &
+      call check_analysis(config, status, message)
   end subroutine read_input
 
   !> Every group with its variables and their defaults, as the namelist write statement gives
@@ -217,6 +246,7 @@ contains
     type(response_settings) :: response
     type(lyapunov_options) :: lyapunov
     character(len=path_len) :: directory
+    type(run_config) :: study_config
     real(wp) :: groups(7), A, rho
     integer :: exponents(2), method, status
     character(len=message_len) :: message
@@ -234,6 +264,7 @@ contains
     call read_sweep(file, .false., sweep, status, message)
     call read_response(file, .false., response, status, message)
     call read_lyapunov(file, lyapunov, status, message)
+    call read_study(file, study_config, status, message)
     text = file%description
   end subroutine namelist_defaults
 
@@ -646,6 +677,163 @@ contains
     call check_threads(threads, settings%carry_state, status, message)
     if (status /= SD_OK) message = '&sweep: '//trim(message)
   end subroutine read_sweep
+
+  !> &study (see study_settings). The rules of the kind of study chosen apply.
+  subroutine read_study(file, config, status, message)
+    type(input_file), intent(inout) :: file
+    type(run_config), intent(inout) :: config
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(study_settings) :: defaults
+    character(len=word_len) :: kind, worker_kind, continuation
+    character(len=path_len + 1) :: store, figure, scheduler
+    real(wp) :: frequency_start, frequency_stop, amplitude_start, amplitude_stop, x1_start, &
+                x1_stop, dx1_start, dx1_stop, tol
+    integer :: workers, points_per_task, n_frequencies, n_amplitudes, n_grid
+    type(model_t) :: first
+    type(group_reader) :: reader
+    namelist /study/ kind, store, figure, scheduler, workers, worker_kind, points_per_task, &
+                     frequency_start, frequency_stop, n_frequencies, amplitude_start, &
+                     amplitude_stop, n_amplitudes, continuation, x1_start, x1_stop, dx1_start, &
+                     dx1_stop, n_grid, tol
+
+    kind = study_kinds(defaults%kind); store = ''; figure = ''; scheduler = ''
+    workers = defaults%workers; worker_kind = worker_kinds(defaults%worker_kind)
+    points_per_task = defaults%points_per_task
+    frequency_start = defaults%frequency_start; frequency_stop = defaults%frequency_stop
+    n_frequencies = defaults%n_frequencies; amplitude_start = defaults%amplitude_start
+    amplitude_stop = defaults%amplitude_stop; n_amplitudes = defaults%n_amplitudes
+    continuation = continuation_names(defaults%continuation)
+    x1_start = defaults%x1_start; x1_stop = defaults%x1_stop
+    dx1_start = defaults%dx1_start; dx1_stop = defaults%dx1_stop
+    n_grid = defaults%n_grid; tol = defaults%tol
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_STUDY, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=study, iostat=reader%ios)
+      else
+        read (reader%text, nml=study, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK .or. file%describing) return
+    if (.not. file%groups(G_STUDY)%given) return
+    associate (st => config%study)
+      st%given = .true.
+      call pick('kind', kind, study_kinds, st%kind)
+      call pick('worker_kind', worker_kind, worker_kinds, st%worker_kind)
+      call pick('continuation', continuation, continuation_names, st%continuation)
+      call require(file, G_STUDY, 'store', status, message)
+      if (status /= SD_OK) return
+      if (len_trim(store) == 0) call fail(status, message, &
+        '&study: store = '''' is empty: give the path of the Zarr store')
+      if (len_trim(store) > path_len .or. len_trim(figure) > path_len .or. &
+          len_trim(scheduler) > path_len) call fail(status, message, '&study: store, figure '// &
+        'and scheduler must have at most '//num2str(path_len)//' characters')
+      if (status /= SD_OK) return
+      st%store = store(1:path_len)
+      st%figure = figure(1:path_len)
+      st%scheduler = scheduler(1:path_len)
+      call check_count('workers', workers, 0, 1024)
+      call check_count('points_per_task', points_per_task, 0, 1000000)
+      st%workers = workers
+      st%points_per_task = points_per_task
+      if (status /= SD_OK) return
+      first = config%model
+      select case (st%kind)
+      case (1)     ! response_map
+        call require(file, G_STUDY, 'frequency_start', status, message)
+        call require(file, G_STUDY, 'frequency_stop', status, message)
+        call require(file, G_STUDY, 'amplitude_start', status, message)
+        call require(file, G_STUDY, 'amplitude_stop', status, message)
+        if (status /= SD_OK) return
+        call check_real('frequency_start', frequency_start, 0.0_wp, huge(1.0_wp), .true., &
+                        .true., 'frequencies (rho) must be > 0', status, message)
+        call check_real('frequency_stop', frequency_stop, 0.0_wp, huge(1.0_wp), .true., &
+                        .true., 'frequencies (rho) must be > 0', status, message)
+        call check_real('amplitude_start', amplitude_start, 0.0_wp, huge(1.0_wp), .false., &
+                        .true., 'amplitudes (A) must be >= 0', status, message)
+        call check_real('amplitude_stop', amplitude_stop, 0.0_wp, huge(1.0_wp), .false., &
+                        .true., 'amplitudes (A) must be >= 0', status, message)
+        if (status /= SD_OK) then
+          message = '&study: '//trim(message)
+          return
+        end if
+        call check_count('n_frequencies', n_frequencies, 1, 100000)
+        call check_count('n_amplitudes', n_amplitudes, 1, 100000)
+        if (status == SD_OK .and. n_frequencies > 1 .and. frequency_start == frequency_stop) &
+          call fail(status, message, '&study: frequency_start = frequency_stop with '// &
+                    'n_frequencies > 1 repeats one frequency')
+        if (status == SD_OK .and. n_amplitudes > 1 .and. amplitude_start == amplitude_stop) &
+          call fail(status, message, '&study: amplitude_start = amplitude_stop with '// &
+                    'n_amplitudes > 1 repeats one amplitude')
+        if (status /= SD_OK) return
+        st%frequency_start = frequency_start; st%frequency_stop = frequency_stop
+        st%amplitude_start = amplitude_start; st%amplitude_stop = amplitude_stop
+        st%n_frequencies = n_frequencies; st%n_amplitudes = n_amplitudes
+        first%excitation%rho = min(frequency_start, frequency_stop)
+      case (2)     ! basins
+        call require(file, G_STUDY, 'x1_start', status, message)
+        call require(file, G_STUDY, 'x1_stop', status, message)
+        call require(file, G_STUDY, 'dx1_start', status, message)
+        call require(file, G_STUDY, 'dx1_stop', status, message)
+        if (status /= SD_OK) return
+        call check_real('x1_stop', x1_stop, x1_start, huge(1.0_wp), .true., .true., &
+                        'x1_stop must be > x1_start = '//num2str(x1_start), status, message)
+        call check_real('dx1_stop', dx1_stop, dx1_start, huge(1.0_wp), .true., .true., &
+                        'dx1_stop must be > dx1_start = '//num2str(dx1_start), status, message)
+        call check_real('x1_start', x1_start, -huge(1.0_wp), huge(1.0_wp), .false., .false., &
+                        'x1_start must be finite', status, message)
+        call check_real('dx1_start', dx1_start, -huge(1.0_wp), huge(1.0_wp), .false., .false., &
+                        'dx1_start must be finite', status, message)
+        call check_real('tol', tol, 0.0_wp, 1.0_wp, .true., .true., 'tol must lie in (0, 1)', &
+                        status, message)
+        if (status /= SD_OK) then
+          message = '&study: '//trim(message)
+          return
+        end if
+        call check_count('n_grid', n_grid, 2, 10000)
+        if (status /= SD_OK) return
+        st%x1_start = x1_start; st%x1_stop = x1_stop
+        st%dx1_start = dx1_start; st%dx1_stop = dx1_stop
+        st%n_grid = n_grid; st%tol = tol
+      end select
+      if (file%groups(G_ANALYSIS)%given) then
+        call fail(status, message, 'give &analysis (a run of the executable) or &study (a '// &
+                  'study, sloshdyn-py study), not both')
+        return
+      end if
+      call check_steady(first, config%steady, status, message)
+      if (status /= SD_OK) message = trim(merge('&excitation', '&steady    ', &
+                                                index(message, 'rho') == 1))//': '//trim(message)
+    end associate
+
+  contains
+
+    subroutine pick(name, value, names, code)
+      character(len=*), intent(in) :: name, value, names(:)
+      integer, intent(inout) :: code
+      integer :: i
+      if (status /= SD_OK) return
+      code = 0
+      do i = 1, size(names)
+        if (names(i) == adjustl(value)) code = i
+      end do
+      if (code == 0) call fail(status, message, '&study: '//name//' = '''// &
+                               trim(adjustl(value))//''' is not known; allowed: '//join(names))
+    end subroutine pick
+
+    subroutine check_count(name, value, lower, upper)
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: value, lower, upper
+      if (status /= SD_OK) return
+      if (value < lower .or. value > upper) call fail(status, message, '&study: '//name// &
+        ' = '//num2str(value)//' is out of range: it must lie in ['//num2str(lower)//', '// &
+        num2str(upper)//']')
+    end subroutine check_count
+  end subroutine read_study
 
   !> &response; the interval is stored lower end first.
   subroutine read_response(file, needed, settings, status, message)
@@ -1067,10 +1255,13 @@ contains
     select case (name)
     case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
           'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points', &
-          'threads')
+          'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid')
       text = name//' must be an integer'
-    case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from')
+    case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from', &
+          'store', 'figure', 'scheduler', 'worker_kind', 'continuation')
       text = name//' must be a quoted string'
+    case ('shooting')
+      text = name//' must be .true. or .false.'
     case ('y0')
       text = 'y0 must be four real numbers (x1, x1'', x2, x2''), or y0(i) = one of them, i = 1..4'
     case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'a', 'rho', 'r', 'h', &
@@ -1078,7 +1269,9 @@ contains
           'kappa_max', 'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 't_end', 'settle_tol', &
           'transient_periods', &
           'max_transient_periods', 'periodic_tol', 'start', 'stop', 'amplitude_min', &
-          'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale')
+          'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale', 'frequency_start', &
+          'frequency_stop', 'amplitude_start', 'amplitude_stop', 'x1_start', 'x1_stop', &
+          'dx1_start', 'dx1_stop', 'tol')
       text = name//' must be a real number'
     case default
       text = 'unknown variable '''//name//''' (see the namelist reference in README.md)'

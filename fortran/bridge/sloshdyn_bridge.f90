@@ -625,9 +625,15 @@ contains
   !> 2 A), start, stop, n_points, direction (1 up, 2 down, 3 both), carry_state (1/0),
   !> threads]; response_range =
   !> [resonance (1 3:1, 0 none), parameter, start, stop].
+  !> study = [given (1/0), kind (1 response_map, 2 basins), workers, worker_kind (1 processes,
+  !> 2 threads), points_per_task, frequency_start, frequency_stop, n_frequencies,
+  !> amplitude_start, amplitude_stop, n_amplitudes, continuation (1 none, 2 up, 3 down, 4 both),
+  !> x1_start, x1_stop, dx1_start, dx1_stop, n_grid, tol]; study_store, study_figure,
+  !> study_scheduler the &study strings.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, tank, &
                         integration, steady, response, lyapunov, simulation, sweep, &
-                        response_range, status, message)
+                        response_range, study, study_store, study_figure, study_scheduler, &
+                        status, message)
     use sloshdyn_model, only: model_to_arrays
     use sloshdyn_namelist, only: run_config, core => read_input
     use sloshdyn_layouts, only: &
@@ -636,15 +642,15 @@ contains
     real(c_double), intent(out) :: rpar(9), analysis_values(3), tank(12), &
                                    integration(7), steady(7), &
                                    response(10), lyapunov(3), &
-                                   simulation(6), sweep(7), response_range(4)
+                                   simulation(6), sweep(7), response_range(4), study(18)
     integer(c_int), intent(out) :: ipar(2), analysis, status
-    character(len=4096), intent(out) :: directory
+    character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler
     character(len=256), intent(out) :: message
     type(run_config) :: config
     integer :: info, ints(2)
     rpar = 0; ipar = 0; analysis = 0; analysis_values = 0; tank = 0; integration = 0
     steady = 0; response = 0; lyapunov = 0; simulation = 0; sweep = 0; response_range = 0
-    directory = ''
+    directory = ''; study = 0; study_store = ''; study_figure = ''; study_scheduler = ''
     call core(path, config, info, message)
     status = info
     if (info /= 0) return
@@ -671,6 +677,17 @@ contains
     response_range = [merge(1.0_c_double, 0.0_c_double, config%response%internal_resonance), &
                       real(config%response%parameter, c_double), config%response%start, &
                       config%response%stop]
+    associate (st => config%study)
+      study = [merge(1.0_c_double, 0.0_c_double, st%given), real(st%kind, c_double), &
+               real(st%workers, c_double), real(st%worker_kind, c_double), &
+               real(st%points_per_task, c_double), st%frequency_start, st%frequency_stop, &
+               real(st%n_frequencies, c_double), st%amplitude_start, st%amplitude_stop, &
+               real(st%n_amplitudes, c_double), real(st%continuation, c_double), st%x1_start, &
+               st%x1_stop, st%dx1_start, st%dx1_stop, real(st%n_grid, c_double), st%tol]
+      study_store = st%store
+      study_figure = st%figure
+      study_scheduler = st%scheduler
+    end associate
   end subroutine read_input
 
   !> Read a namelist input file and run it exactly as the executable does (summary on standard

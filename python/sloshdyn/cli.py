@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__, _core, figures, plotting, reference
-from ._errors import SloshdynError, check_status
+from ._errors import InputError, SloshdynError, check_status
 from ._files import atomic_path, save_figure
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
@@ -49,10 +49,27 @@ def main(argv=None):
     chk.add_argument("--reference", help="reference directory (default: the tables installed "
                      "with the package, a copy of data/reference)")
 
+    sty = commands.add_parser("study", help="run a parameter study (&study) on Dask",
+                              description="Run the parameter study of a namelist file's &study "
+                              "group (a response map or basins of attraction) on Dask: results "
+                              "go to its Zarr store as tasks finish (rerun to resume), then a "
+                              "summary and a figure. See README.md, Studies.")
+    sty.add_argument("input", help="namelist file with &model (or &tank + &structure), "
+                     "&excitation, &study and optionally &integration, &steady, &simulation")
+    sty.add_argument("--scheduler", metavar="ADDRESS",
+                     help="a running Dask scheduler (e.g. tcp://host:8786, or one started by "
+                     "dask-jobqueue on SLURM) instead of the embedded local cluster; overrides "
+                     "&study scheduler")
+    sty.add_argument("--workers", type=int, help="workers of the embedded cluster (overrides "
+                     "&study workers; default one per core)")
+    sty.add_argument("--no-progress", action="store_true", help="no progress bar")
+
     args = parser.parse_args(argv)
     try:
         if args.command == "run":
             return run_input(args.input)
+        if args.command == "study":
+            return run_study(args.input, args.scheduler, args.workers, not args.no_progress)
         if args.command == "reproduce":
             return reproduce(Path(args.out), args.only, args.quick)
         return check(args.dir, args.reference)
@@ -62,8 +79,8 @@ def main(argv=None):
     except FileNotFoundError as exc:
         print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
         return 3
-    except KeyboardInterrupt:
-        print("sloshdyn-py: interrupted; files already complete are kept, none is half-written",
+    except KeyboardInterrupt as exc:
+        print(f"sloshdyn-py: interrupted; {exc or 'files already complete are kept, none is half-written'}",
               file=sys.stderr)
         return 130
 
@@ -82,6 +99,60 @@ def run_input(path):
     figure = _figure(inp, Path(inp.directory))
     if figure:
         save_figure(figure[1], Path(inp.directory) / figure[0])
+    return 0
+
+
+def run_study(path, scheduler=None, workers=None, progress=True):
+    """Run the &study of a namelist file (read by the same reader as every input), print a
+    summary and draw its figure (&study figure, default: beside the store)."""
+    from . import plotting, studies
+    from .simulation import Integration, Steady
+    try:
+        inp = read_namelist(path)
+    except SloshdynError as exc:
+        exc.reading = True
+        raise
+    st = inp.study
+    if not st:
+        raise InputError(f"{path}: no &study group: a study file needs one (README.md, Studies)")
+    base = Path(path).resolve().parent
+    store = Path(st["store"]) if os.path.isabs(st["store"]) else base / st["store"]
+    common = dict(client=None, scheduler=scheduler or st["scheduler"] or None,
+                  workers=workers if workers is not None else (st["workers"] or None),
+                  worker_kind=st["worker_kind"], points_per_task=st["points_per_task"] or None,
+                  steady=Steady(**inp.steady), integration=Integration(**inp.integration),
+                  progress=progress)
+    if st["kind"] == "response_map":
+        f = np.linspace(st["frequency_start"], st["frequency_stop"], st["n_frequencies"])
+        a = np.linspace(st["amplitude_start"], st["amplitude_stop"], st["n_amplitudes"])
+        ds = studies.response_map(inp.params, f, a, store, continuation=st["continuation"],
+                                  **common)
+        fig = plotting.response_map(ds)
+        kinds = {studies.MOTIONS.get(int(k), "failed"): int((ds.motion == k).sum())
+                 for k in np.unique(ds.motion.values)}
+        print(f"response map: {ds.sizes['frequency']} frequencies x {ds.sizes['amplitude']} "
+              f"amplitudes, {ds.attrs['points_computed']} points computed now; motions {kinds}; "
+              f"roof impacts {int((ds.roof_impact == 1).sum())}; max |x1| = "
+              f"{float(ds.max_x1.max()):.6g}")
+    else:
+        y0 = inp.simulation["y0"]
+        ds = studies.basins(inp.params, (st["x1_start"], st["x1_stop"]),
+                            (st["dx1_start"], st["dx1_stop"]), n=st["n_grid"], store=store,
+                            x2=y0[2], dx2=y0[3], tol=st["tol"], **common)
+        fig = plotting.basins(ds)
+        print(f"basins: {ds.sizes['x1']} x {ds.sizes['dx1']} initial states, "
+              f"{ds.attrs['points_computed']} computed now; attractors:")
+        for j in range(ds.sizes["attractor_id"]):
+            print(f"  {j + 1}: {ds.attractor_kind.values[j]}, period "
+                  f"{int(ds.attractor_period.values[j])} T, {ds.attractor_stability.values[j]} "
+                  f"(max |mu| = {float(ds.attractor_max_multiplier.values[j]):.6g}), share "
+                  f"{float(ds.attractor_share.values[j]):.3f}, max |x1| = "
+                  f"{float(ds.attractor_max_x1.values[j]):.6g}")
+    figure = Path(st["figure"]) if st["figure"] else store.with_suffix(".png")
+    if not figure.is_absolute() and st["figure"]:
+        figure = base / figure
+    save_figure(fig, figure)
+    print(f"store: {store}\nfigure: {figure}")
     return 0
 
 

@@ -148,6 +148,7 @@ class Input:
     sweep: dict = field(default_factory=dict)         #: &sweep: parameter, start, stop, ...
     response: dict = field(default_factory=dict)      #: &response: resonance, parameter, ...
     lyapunov: dict = field(default_factory=dict)      #: &lyapunov
+    study: dict = field(default_factory=dict)         #: &study (empty if none): kind, store, ...
 
 
 def read_namelist(path):
@@ -155,7 +156,8 @@ def read_namelist(path):
     and messages)."""
     path = os.fspath(path)
     (rpar, ipar, analysis, values, directory, tank, integration, steady, response, lyapunov,
-     simulation, sweep, response_range, status, message) = _core.sloshdyn_bridge.read_input(path)
+     simulation, sweep, response_range, study, store, figure, scheduler, status,
+     message) = _core.sloshdyn_bridge.read_input(path)
     check_status(status, message)
     s1, mu1, kappa, theta0, beta, gamma, delta, A, rho = (float(x) for x in rpar)
     params = Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
@@ -194,4 +196,26 @@ def read_namelist(path):
                       response[3:9])},
                   "max_points": int(response[9])},
         lyapunov={name: int(x) for name, x in zip(
-            ("transient_periods", "n_periods", "renormalise_every"), lyapunov)})
+            ("transient_periods", "n_periods", "renormalise_every"), lyapunov)},
+        study=_study(study, store, figure, scheduler))
+
+
+def _study(values, store, figure, scheduler):
+    """&study as a dict (empty when the file has none)."""
+    if not values[0]:
+        return {}
+    kind = ("response_map", "basins")[int(values[1]) - 1]
+    study = {"kind": kind, "store": _tables._text(store), "figure": _tables._text(figure),
+             "scheduler": _tables._text(scheduler), "workers": int(values[2]),
+             "worker_kind": ("processes", "threads")[int(values[3]) - 1],
+             "points_per_task": int(values[4])}
+    if kind == "response_map":
+        study.update(frequency_start=float(values[5]), frequency_stop=float(values[6]),
+                     n_frequencies=int(values[7]), amplitude_start=float(values[8]),
+                     amplitude_stop=float(values[9]), n_amplitudes=int(values[10]),
+                     continuation=("none", "up", "down", "both")[int(values[11]) - 1])
+    else:
+        study.update(x1_start=float(values[12]), x1_stop=float(values[13]),
+                     dx1_start=float(values[14]), dx1_stop=float(values[15]),
+                     n_grid=int(values[16]), tol=float(values[17]))
+    return study

@@ -140,3 +140,132 @@ def routh_delta3(response, zoom=None):
         ax.set_xlim(*zoom)
     fig.tight_layout()
     return fig
+
+
+# ---- studies -------------------------------------------------------------------------------
+
+_MOTION_COLOURS = {0: "0.85", 1: "#4c72b0", 2: "#dd8452", 3: "#c44e52", 4: "#8172b3"}
+
+
+def _axis_label(coord):
+    """An axis label with its unit from a study coordinate's attributes."""
+    name = coord.attrs.get("long_name", coord.name)
+    units = coord.attrs.get("units", "1")
+    return f"{name} [{'-' if units == '1' else units}]"
+
+
+def response_map(ds, variable="max_x1"):
+    """A response map (sloshdyn.response_map): the steady amplitude (colour, log scale) and the
+    kind of motion in the (frequency, amplitude) plane, roof impacts marked (x); where the
+    sweeps carried up and down in frequency (continuation) differ from the state reached from
+    rest by more than 10 %, the points are marked (up: triangles up, down: down): there the
+    response is multi-valued (hysteresis), the sweep having stayed on another branch."""
+    from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm
+    from matplotlib.patches import Patch
+    f, a = ds["frequency"], ds["amplitude"]
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
+    value = np.ma.masked_invalid(ds[variable].values.T)
+    positive = value.compressed()[value.compressed() > 0]
+    norm = LogNorm(positive.min(), positive.max()) if positive.size and positive.min() < positive.max() else None
+    mesh = axes[0].pcolormesh(f, a, value, shading="nearest", norm=norm, cmap="viridis")
+    fig.colorbar(mesh, ax=axes[0], label=f"{variable.replace('max_', 'max |')}| [-]")
+    codes = sorted(_MOTION_COLOURS)
+    cmap = ListedColormap([_MOTION_COLOURS[c] for c in codes])
+    motion = np.where(ds["motion"].values < 0, 0, ds["motion"].values).T
+    axes[1].pcolormesh(f, a, motion, shading="nearest", cmap=cmap,
+                       norm=BoundaryNorm(np.arange(len(codes) + 1) - 0.5, len(codes)))
+    meanings = ds["motion"].attrs.get("flag_meanings", "").split()
+    flags = ds["motion"].attrs.get("flag_values", [])
+    names = dict(zip(flags, meanings))
+    handles = [Patch(color=_MOTION_COLOURS[c], label=names.get(c, str(c)).replace("_", "-"))
+               for c in codes if (motion == c).any()]
+    if "roof_impact" in ds:
+        hit = ds["roof_impact"].values.T == 1
+        if hit.any():
+            ff, aa = np.meshgrid(f, a)
+            for ax in axes:
+                ax.plot(ff[hit], aa[hit], "x", color="k", ms=4)
+            handles.append(plt.Line2D([], [], ls="", marker="x", color="k", label="roof impact"))
+    ff, aa = np.meshgrid(f, a)
+    for direction, marker in (("up", "^"), ("down", "v")):
+        other = f"{variable}_{direction}"
+        if other in ds:
+            differs = (np.abs(ds[other].values - ds[variable].values)
+                       > 0.1 * np.abs(ds[variable].values)).T
+            for ax in axes:
+                ax.plot(ff[differs], aa[differs], marker, mfc="none", ms=7,
+                        color="w" if ax is axes[0] else "k")
+            handles.append(plt.Line2D([], [], ls="", marker=marker, mfc="none", color="k",
+                                      label=f"sweep {direction} on another branch"))
+    axes[1].legend(handles=handles, loc="upper left", fontsize=8)
+    for ax in axes:
+        ax.set_xlabel(_axis_label(f))
+    axes[0].set_ylabel(_axis_label(a))
+    axes[0].set_title(f"steady {variable.replace('max_', 'max |')}|")
+    axes[1].set_title("kind of motion")
+    fig.tight_layout()
+    return fig
+
+
+def basins(ds):
+    """Basins of attraction (sloshdyn.basins): the attractor reached from each initial state,
+    with the attractors' orbit states (phase 0) marked and listed with kind, period,
+    stability and share of the grid."""
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+    labels = ds["attractor"].values
+    n = int(ds.sizes.get("attractor_id", 0))
+    palette = ["0.85"] + [plt.get_cmap("tab10")(k % 10) for k in range(max(n, 1))]
+    fig, ax = plt.subplots(figsize=(6.5, 5))
+    ax.pcolormesh(ds["x1"], ds["dx1"], labels.T, shading="nearest",
+                  cmap=ListedColormap(palette[:n + 1]),
+                  norm=BoundaryNorm(np.arange(n + 2) - 0.5, n + 1))
+    handles = []
+    for j in range(1, n + 1):
+        kind = str(ds["attractor_kind"].values[j - 1])
+        period = int(ds["attractor_period"].values[j - 1])
+        text = f"{j}: {kind}" + (f" {period}T, {ds['attractor_stability'].values[j - 1]}"
+                                 if kind == "periodic" else "")
+        text += f", {100 * float(ds['attractor_share'].values[j - 1]):.0f} %"
+        handles.append(Patch(color=palette[j], label=text))
+        state = ds["attractor_state"].values[j - 1]
+        if np.isfinite(state[:2]).all():
+            ax.plot(state[0], state[1], "*", ms=14, mec="k", mfc=palette[j])
+    ax.legend(handles=handles, fontsize=8, loc="upper right", title="attractor (★ orbit at phase 0)")
+    ax.set_xlabel(_axis_label(ds["x1"]))
+    ax.set_ylabel(_axis_label(ds["dx1"]))
+    ax.set_title(rf"basins at $\rho$ = {json_value(ds, 'rho'):g}, A = {json_value(ds, 'A'):g}")
+    fig.tight_layout()
+    return fig
+
+
+def json_value(ds, name):
+    import json
+    return json.loads(ds.attrs["parameters"])[name]
+
+
+def fragility(fit, intensities=None, failures=None, unit="g", label="intensity measure"):
+    """A lognormal fragility curve (sloshdyn.fit_fragility) with its median and dispersion,
+    the runs (0/1, slightly jittered) and the observed fraction at each intensity."""
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    upper = fit.median * np.exp(3 * fit.beta)
+    if intensities is not None:
+        upper = max(upper, float(np.max(intensities)))
+    x = np.linspace(upper / 500, upper, 400)
+    ax.plot(x, fit.probability(x), "-", color="k",
+            label=rf"lognormal fit: median {fit.median:.3g} {unit}, $\beta$ = {fit.beta:.2f}")
+    if intensities is not None and failures is not None:
+        xi = np.asarray(intensities, float)
+        yi = np.asarray(failures, float)
+        jitter = (np.random.default_rng(0).random(yi.size) - 0.5) * 0.04
+        ax.plot(xi, yi + jitter, "o", ms=3, mfc="none", color="0.5", label="runs (0/1)")
+        levels = np.unique(xi)
+        ax.plot(levels, [yi[xi == v].mean() for v in levels], "s", color="r", ms=5,
+                label="fraction at each level")
+    ax.axvline(fit.median, ls=":", color="k", lw=0.8)
+    ax.set_xlabel(f"{label} [{unit}]")
+    ax.set_ylabel("probability of roof impact [-]")
+    ax.set_ylim(-0.05, 1.05)
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    return fig

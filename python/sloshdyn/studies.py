@@ -205,12 +205,32 @@ def _client(client, scheduler, workers, worker_kind):
         yield c
 
 
-def _write_block(group, plan, block, result):
-    for name, values in result.items():
-        var = plan.variables[name]
-        index = tuple(dict(zip(plan.dims, block)).get(d, slice(None)) for d in var.dims)
-        group[name][index] = np.asarray(values, dtype=var.dtype)
-    group["done"][block] = True
+class _Writer:
+    """Writes a task's results into the store: every variable's region at once (zarr's async
+    API: the chunk files are written concurrently), then the task's 'done' mask, so a point is
+    marked done only once its results are on disk. Zarr's LocalStore writes each chunk file
+    under a temporary name and renames it, so a killed writer leaves no torn chunk."""
+
+    def __init__(self, path, plan):
+        import zarr.api.asynchronous as za
+        from zarr.core.sync import sync
+        self._sync = sync
+        self.plan = plan
+        group = sync(za.open_group(path, mode="r+"))
+        self.arrays = {name: sync(group.getitem(name)) for name in plan.variables}
+
+    def write(self, block, result):
+        import asyncio
+        where = dict(zip(self.plan.dims, block))
+
+        async def write_all(items):
+            await asyncio.gather(*(self.arrays[name].setitem(
+                tuple(where.get(d, slice(None)) for d in self.plan.variables[name].dims),
+                np.asarray(values, dtype=self.plan.variables[name].dtype))
+                for name, values in items))
+
+        self._sync(write_all(result.items()))
+        self._sync(write_all([("done", np.ones([s.stop - s.start for s in block], bool))]))
 
 
 def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_kind=None,
@@ -230,8 +250,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
             plan = dataclasses.replace(plan, chunks=chunks)
     else:
         _create_store(plan, path)
-    group = zarr.open_group(path, mode="r+")
-    done = group["done"][...]
+    done = zarr.open_group(path, mode="r")["done"][...]
     todo = [b for b in plan.blocks() if not done[b].all()]
     remaining = int(sum(np.prod([s.stop - s.start for s in b]) for b in todo))
     computed = 0
@@ -243,6 +262,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
             bar = tqdm(total=int(np.prod(plan.shape)), initial=int(np.prod(plan.shape)) - remaining,
                        desc=plan.kind.replace("_", " "), unit="point", smoothing=0.1)
         try:
+            writer = _Writer(path, plan)
             with _client(client, scheduler, workers, worker_kind) as c:
                 futures = {}
                 for block in todo:
@@ -251,7 +271,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                 try:
                     for future in as_completed(futures):
                         block = futures.pop(future)
-                        _write_block(group, plan, block, future.result())
+                        writer.write(block, future.result())
                         n = int(np.prod([s.stop - s.start for s in block]))
                         computed += n
                         if bar:
@@ -265,7 +285,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
         finally:
             if bar:
                 bar.close()
-    ds = xr.open_zarr(path, consolidated=True).load()
+    ds = xr.open_zarr(path, consolidated=True, chunks=None).load()
     ds.attrs["points_computed"] = computed
     ds.attrs["store"] = path
     return ds

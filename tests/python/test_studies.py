@@ -429,3 +429,53 @@ def test_a_killed_sweep_keeps_the_points_it_finished(exe, tmp_path):
     first = sloshdyn.steady_state(FIG12.replace(A=rows[0]["A"]), steady=sloshdyn.Steady(
         settle_tol=0, transient_periods=3000, window_periods=16, shooting=False))
     assert rows[0]["max_x1"] == first.max_x1 and rows[0]["max_u2"] == first.max_u2
+
+
+# ---- the command line and &study ---------------------------------------------------------------
+
+STUDY_NML = """
+&model s1 = 1.5, mu1 = 0.5, kappa = 1.804897259, theta0 = 0.7853981633974483, gamma = 0.001 /
+&excitation A = 0.00075, rho = 0.52 /
+&steady max_transient_periods = 600, window_periods = 32 /
+&study kind = 'response_map', store = 'map.zarr', frequency_start = 0.505,
+  frequency_stop = 0.52, n_frequencies = 3, amplitude_start = 0.0005, amplitude_stop = 0.00075,
+  n_amplitudes = 2, workers = 1, worker_kind = 'threads' {extra} /
+"""
+
+
+def test_study_command_runs_the_namelist_study_and_draws_it(tmp_path):
+    from conftest import write
+    nml = write(tmp_path, STUDY_NML.format(extra=""))
+    result = subprocess.run([sys.executable, "-m", "sloshdyn", "study", str(nml), "--no-progress"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert "6 points computed now" in result.stdout
+    assert (tmp_path / "map.png").stat().st_size > 10000
+    ds = xr.open_zarr(tmp_path / "map.zarr").load()
+    assert_equals_serial(ds, serial(np.linspace(0.505, 0.52, 3), AMPLITUDES))
+    # the executable refuses a study file, naming the front door that runs it
+    from conftest import run
+    import sysconfig
+    exe = os.path.join(sysconfig.get_path("scripts"), "sloshdyn")
+    refused = run(exe, nml, tmp_path)
+    assert refused.returncode == 3 and "sloshdyn-py study" in refused.stderr
+
+
+@pytest.mark.parametrize("extra, match", [
+    (", kind = 'fragile'", "kind = 'fragile' is not known"),
+    (", continuation = 'left'", "continuation = 'left' is not known"),
+    (", worker_kind = 'gpus'", "worker_kind = 'gpus' is not known"),
+    (", n_frequencies = 0", r"n_frequencies = 0 is out of range"),
+    (", workers = -1", r"workers = -1 is out of range"),
+    (", frequency_start = -0.1", "frequency_start = -0.1"),
+    (", store = ''", "store = '' is empty"),
+])
+def test_study_group_rules_name_the_variable(tmp_path, extra, match):
+    from conftest import write
+    nml = write(tmp_path, STUDY_NML.format(extra=extra))
+    with pytest.raises(sloshdyn.InputError, match="&study: " + match):
+        sloshdyn.read_namelist(nml)
+    result = subprocess.run([sys.executable, "-m", "sloshdyn", "study", str(nml)], cwd=tmp_path,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 3 and match.replace("\\", "") in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["input.nml"]
