@@ -41,6 +41,8 @@ CONNECT_TIMEOUT = 5.0
 #: the orbit layout of sloshdyn_studies (bridge steady_path / attractor_points)
 _ORBIT_FOUND, _ORBIT_PERIODS, _ORBIT_ATTEMPTS, _ORBIT_Y, _ORBIT_MAX_MU = 0, 1, 2, slice(3, 7), 15
 _MAX_PERIOD = 8
+#: a task's result entry (not stored) with the seconds the task computed
+_SECONDS = "_compute_seconds"
 
 _MOTION_ATTRS = {
     "flag_values": [-1, 0] + list(MOTIONS),
@@ -229,7 +231,7 @@ class _Writer:
                 np.asarray(values, dtype=self.plan.variables[name].dtype))
                 for name, values in items))
 
-        self._sync(write_all(result.items()))
+        self._sync(write_all([(k, v) for k, v in result.items() if k != _SECONDS]))
         self._sync(write_all([("done", np.ones([s.stop - s.start for s in block], bool))]))
 
 
@@ -237,7 +239,8 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
              progress=True):
     """Run a study plan on Dask, storing each task's results in `store` as it finishes; return
     the whole study as an xarray Dataset (loaded). Already finished points are not recomputed;
-    the returned dataset's attrs['points_computed'] counts the points this call computed."""
+    the returned dataset's attrs['points_computed'] counts the points this call computed and
+    attrs['compute_seconds'] the time its tasks spent computing (summed over workers)."""
     import xarray as xr
     import zarr
 
@@ -254,6 +257,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
     todo = [b for b in plan.blocks() if not done[b].all()]
     remaining = int(sum(np.prod([s.stop - s.start for s in b]) for b in todo))
     computed = 0
+    compute_seconds = 0.0
     if todo:
         from dask.distributed import as_completed
         bar = None
@@ -271,7 +275,9 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                 try:
                     for future in as_completed(futures):
                         block = futures.pop(future)
-                        writer.write(block, future.result())
+                        result = future.result()
+                        compute_seconds += result.get(_SECONDS, 0.0)
+                        writer.write(block, result)
                         n = int(np.prod([s.stop - s.start for s in block]))
                         computed += n
                         if bar:
@@ -287,6 +293,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                 bar.close()
     ds = xr.open_zarr(path, consolidated=True, chunks=None).load()
     ds.attrs["points_computed"] = computed
+    ds.attrs["compute_seconds"] = compute_seconds     #: inside the tasks, summed over workers
     ds.attrs["store"] = path
     return ds
 
@@ -379,6 +386,7 @@ def _unpack(summaries, orbit, impact, status, shape, suffix="", order="C"):
 def _response_task(rpar, ipar, rho, A, integration, steady, continuation):
     """One task of a response map: the block's points from rest, and (continuation) each
     amplitude column swept up and/or down in frequency carrying the state. Runs on a worker."""
+    start = time.perf_counter()
     shape = rho.shape
     n = rho.size
     flat_rho = np.ascontiguousarray(rho.ravel())
@@ -401,6 +409,7 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation):
             parts.append({k: v[order] for k, v in part.items()})
         for k in parts[0]:
             out[k] = np.concatenate([p[k] for p in parts], axis=1)
+    out[_SECONDS] = time.perf_counter() - start
     return out
 
 
@@ -495,6 +504,7 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
 
 def _basin_task(rpar, ipar, y0, integration, steady):
     """One task of a basin study: the block's initial states (4, n1, n2) to their attractors."""
+    start = time.perf_counter()
     shape = y0.shape[1:]
     n = int(np.prod(shape))
     flat = np.asfortranarray(y0.reshape(4, n))
@@ -508,6 +518,7 @@ def _basin_task(rpar, ipar, y0, integration, steady):
     out["orbit_state"] = orbit[_ORBIT_Y].reshape((4,) + shape).transpose(1, 2, 0)
     out["orbit_points"] = points.reshape((4, _MAX_PERIOD) + shape).transpose(2, 3, 1, 0)
     out["final_state"] = y_end.reshape((4,) + shape).transpose(1, 2, 0)
+    out[_SECONDS] = time.perf_counter() - start
     return out
 
 
