@@ -11,18 +11,27 @@ module sloshdyn_text
 
 contains
 
-  !> Shortest readable form of a real: up to 10 significant digits, no trailing zeros.
-  pure function real2str(x) result(text)
+  !> Shortest readable form of a real: up to 10 decimals (or 10 significant digits in
+  !> exponent form), no trailing zeros; rounded to `significant` digits first if given.
+  pure recursive function real2str(x, significant) result(text)
     real(wp), intent(in) :: x
+    integer, intent(in), optional :: significant
     character(len=:), allocatable :: text
     character(len=40) :: buffer
     integer :: cut, epos
+    real(wp) :: rounded
 
     if (x /= x) then
       text = 'NaN'
       return
     else if (abs(x) > huge(x)) then
       text = merge('+Infinity', '-Infinity', x > 0)
+      return
+    end if
+    if (present(significant)) then
+      write (buffer, '(es40.'//int2str(max(significant, 1) - 1)//'e3)') x
+      read (buffer, *) rounded
+      text = real2str(rounded)
       return
     end if
     if (x == 0 .or. (abs(x) >= 1.0e-4_wp .and. abs(x) < 1.0e9_wp)) then
