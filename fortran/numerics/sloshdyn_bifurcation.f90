@@ -76,8 +76,8 @@ module sloshdyn_bifurcation
   public :: two_parameter_field, field_evaluate, field_jacobian_derivative, &
             field_second_derivative, field_third_derivative
   public :: curve_options, bifurcation_curve, codim2_point
-  public :: fold_curve, hopf_curve, first_lyapunov_coefficient, check_curve_options, &
-            codim2_name, curve_end_name
+  public :: fold_curve, hopf_curve, first_lyapunov_coefficient, correct_to_curve, &
+            curve_crossings, check_curve_options, codim2_name, curve_end_name
   public :: CURVE_FOLD, CURVE_HOPF, CODIM2_BT, CODIM2_CUSP, CODIM2_ZH, CODIM2_GH, &
             END_START, END_BOX, END_CLOSED, END_X_MAX, END_BT, END_MAX_POINTS, END_FAILED
 
@@ -212,6 +212,7 @@ module sloshdyn_bifurcation
   contains
     procedure(system_refresh), deferred :: refresh
     procedure(system_diagnose), deferred :: diagnose
+    procedure(system_alignment), deferred :: alignment
   end type curve_system
 
   abstract interface
@@ -223,6 +224,16 @@ module sloshdyn_bifurcation
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
     end subroutine system_refresh
+
+    !> How far the border / reference vectors have turned from the null vectors at the point z:
+    !> 1/cos of the angle (1 at the start of a segment; infinite where the bordered system is
+    !> singular).
+    function system_alignment(self, z) result(growth)
+      import :: wp, curve_system
+      class(curve_system), intent(in) :: self
+      real(wp), intent(in) :: z(:)
+      real(wp) :: growth
+    end function system_alignment
 
     !> Eigenvalues of J, the three test functions, omega and l1 at the point z = (.., lambda).
     subroutine system_diagnose(self, z, re, im, tests, omega, l1, status, message)
@@ -241,6 +252,7 @@ module sloshdyn_bifurcation
     procedure :: evaluate => fold_evaluate
     procedure :: refresh => fold_refresh
     procedure :: diagnose => fold_diagnose
+    procedure :: alignment => fold_alignment
   end type fold_system
 
   type, extends(curve_system) :: hopf_system
@@ -250,6 +262,7 @@ module sloshdyn_bifurcation
     procedure :: evaluate => hopf_evaluate
     procedure :: refresh => hopf_refresh
     procedure :: diagnose => hopf_diagnose
+    procedure :: alignment => hopf_alignment
   end type hopf_system
 
   !> A test function along a curve segment: tests(which) of the point, or (which = 0) the
@@ -272,6 +285,10 @@ module sloshdyn_bifurcation
     character(len=message_len) :: unlocated_message = ''
   end type curve_buffer
 
+  !> A segment ends before the point where the null vectors have turned by more than 60 degrees
+  !> from its border / reference vectors (alignment > 2): beyond, the bordered system nears a
+  !> singularity where v changes sign (and the test functions with it).
+  real(wp), parameter :: max_alignment = 2
   !> A segment restarts at its last point whose tangent has a parameter component at least
   !> this large (the tangent is a unit vector in the scaled variables), so lambda is well defined.
   real(wp), parameter :: tangent_floor = 0.05_wp
@@ -298,28 +315,7 @@ contains
     type(bifurcation_curve), intent(out) :: curve
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(fold_system) :: proto
-    real(wp) :: f(size(x0)), fx(size(x0), size(x0)), fp(size(x0), 2), v(size(x0)), w(size(x0))
-    integer :: n
-
-    n = size(x0)
-    curve%kind = CURVE_FOLD
-    curve%n = n
-    call check_start(x0, p0, options, status, message)
-    if (status /= SD_OK) return
-    call field%evaluate(x0, p0, f, fx, fp)
-    call inverse_iteration(fx, max(maxval(abs(fx)), tiny(1.0_wp)), v, status, message)
-    if (status == SD_OK) call inverse_iteration(transpose(fx), max(maxval(abs(fx)), &
-                                                tiny(1.0_wp)), w, status, message)
-    if (status /= SD_OK) then
-      message = 'fold_curve: no null vector of df/dx at the start point: '//trim(message)
-      return
-    end if
-    allocate (proto%field, source=field)
-    call setup_system(proto, n, 0, p0, options)
-    proto%c = v
-    proto%b = w
-    call trace_curve(proto, [x0, p0], options, curve, status, message)
+    call any_curve(field, CURVE_FOLD, x0, p0, options, curve, status, message)
     if (status /= SD_OK) message = 'fold_curve: '//trim(message)
   end subroutine fold_curve
 
@@ -332,31 +328,113 @@ contains
     type(bifurcation_curve), intent(out) :: curve
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(hopf_system) :: proto
-    real(wp) :: fx(size(x0), size(x0)), v(size(x0)), omega
-    integer :: n
-
-    n = size(x0)
-    curve%kind = CURVE_HOPF
-    curve%n = n
-    call check_start(x0, p0, options, status, message)
-    if (status == SD_OK .and. n < 2) then
-      status = SD_BAD_INPUT
-      message = 'hopf_curve: x0 has size 1; a Hopf point needs n >= 2'
-    end if
-    if (status /= SD_OK) return
-    call hopf_start(field, x0, p0, fx, omega, v, status, message)
-    if (status /= SD_OK) then
-      message = 'hopf_curve: '//trim(message)
-      return
-    end if
-    allocate (proto%field, source=field)
-    call setup_system(proto, n, n + 1, p0, options)
-    proto%kappa_scale = omega**2
-    allocate (proto%v_ref(n), proto%u_ref(n))
-    call trace_curve(proto, [x0, v, 1.0_wp, p0], options, curve, status, message)
+    call any_curve(field, CURVE_HOPF, x0, p0, options, curve, status, message)
     if (status /= SD_OK) message = 'hopf_curve: '//trim(message)
   end subroutine hopf_curve
+
+  !> The fold (kind = CURVE_FOLD) or Hopf point (CURVE_HOPF) near (x_guess, p_guess) with
+  !> p(fixed) = p_guess(fixed): Newton on the defining system with the other parameter free
+  !> (options gives the scales and the Newton settings). omega: the Hopf frequency (0 for a fold).
+  subroutine correct_to_curve(field, kind, x_guess, p_guess, fixed, options, x, p, omega, &
+                              status, message)
+    class(two_parameter_field), intent(in) :: field
+    integer, intent(in) :: kind, fixed
+    real(wp), intent(in) :: x_guess(:), p_guess(2)
+    type(curve_options), intent(in) :: options
+    real(wp), intent(out) :: x(:), p(2), omega
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    class(curve_system), allocatable :: proto, sys
+    real(wp), allocatable :: s0(:), s(:)
+    integer :: n
+
+    n = size(x_guess)
+    x = x_guess
+    p = p_guess
+    omega = 0
+    call check_start(x_guess, p_guess, options, status, message)
+    if (status == SD_OK .and. (fixed < 1 .or. fixed > 2)) then
+      status = SD_BAD_INPUT
+      message = 'fixed = '//num2str(fixed)//' is out of range: it must be 1 or 2'
+    end if
+    if (status == SD_OK .and. (kind /= CURVE_FOLD .and. kind /= CURVE_HOPF)) then
+      status = SD_BAD_INPUT
+      message = 'kind = '//num2str(kind)//' is out of range: CURVE_FOLD (1) or CURVE_HOPF (2)'
+    end if
+    if (status == SD_OK) call make_proto(field, kind, x_guess, p_guess, options, proto, s0, &
+                                         status, message)
+    if (status == SD_OK) call correct_state(proto, s0, [fixed], options, sys, s, status, message)
+    if (status /= SD_OK) then
+      message = 'correct_to_curve: '//trim(message)
+      return
+    end if
+    x = s(1:n)
+    p = s(size(s) - 1:size(s))
+    if (kind == CURVE_HOPF) omega = sqrt(max(s(2*n + 1)*curve_kappa_scale(proto), 0.0_wp))
+  end subroutine correct_to_curve
+
+  !> The points of a computed curve where p(k) = level, each corrected onto the curve
+  !> (correct_to_curve from the interpolation between the columns around it): x(:, 1:n_found),
+  !> p(:, 1:n_found). x needs curve%n rows; more crossings than columns of x: SD_CAPACITY (the
+  !> first ones are returned).
+  subroutine curve_crossings(field, curve, k, level, options, x, p, n_found, status, message)
+    class(two_parameter_field), intent(in) :: field
+    type(bifurcation_curve), intent(in) :: curve
+    integer, intent(in) :: k
+    real(wp), intent(in) :: level
+    type(curve_options), intent(in) :: options
+    real(wp), intent(out) :: x(:, :), p(:, :)
+    integer, intent(out) :: n_found, status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: a, b, theta, xg(curve%n), pg(2), omega
+    integer :: j
+
+    n_found = 0
+    status = SD_OK
+    message = ''
+    if (k < 1 .or. k > 2) then
+      status = SD_BAD_INPUT
+      message = 'k = '//num2str(k)//' is out of range: it must be 1 or 2'
+      return
+    end if
+    if (size(x, 1) /= curve%n .or. size(p, 1) /= 2 .or. size(p, 2) < size(x, 2)) then
+      status = SD_BAD_INPUT
+      message = 'x needs n = '//num2str(curve%n)//' rows and p 2 rows and as many columns'
+      return
+    end if
+    do j = 1, curve%n_points
+      a = curve%p(k, j) - level
+      b = a
+      if (j < curve%n_points) b = curve%p(k, j + 1) - level
+      if (a == 0) then
+        theta = 0
+      else if (j < curve%n_points .and. a*b < 0) then
+        theta = a/(a - b)
+      else
+        cycle
+      end if
+      if (n_found == size(x, 2)) then
+        status = SD_CAPACITY
+        message = 'curve_crossings: more than '//num2str(size(x, 2))//' crossings'
+        return
+      end if
+      xg = curve%x(:, j)
+      pg = curve%p(:, j)
+      if (theta > 0) then
+        xg = xg + theta*(curve%x(:, j + 1) - xg)
+        pg = pg + theta*(curve%p(:, j + 1) - pg)
+      end if
+      pg(k) = level
+      call correct_to_curve(field, curve%kind, xg, pg, k, options, x(:, n_found + 1), &
+                            p(:, n_found + 1), omega, status, message)
+      if (status /= SD_OK) then
+        message = 'curve_crossings: at p'//achar(iachar('0') + k)//' = '//num2str(level)// &
+                  ' (column '//num2str(j)//'): '//trim(message)
+        return
+      end if
+      n_found = n_found + 1
+    end do
+  end subroutine curve_crossings
 
   !> The first Lyapunov coefficient l1 (see the module header) at the Hopf point (x, p), with
   !> omega > 0 of the complex pair of J closest to the imaginary axis.
@@ -547,11 +625,13 @@ contains
     end do
   end subroutine check_start
 
-  subroutine setup_system(sys, n, n_extra, p0, options)
+  subroutine setup_system(sys, field, n, n_extra, p0, options)
     class(curve_system), intent(inout) :: sys
+    class(two_parameter_field), intent(in) :: field
     integer, intent(in) :: n, n_extra
     real(wp), intent(in) :: p0(2)
     type(curve_options), intent(in) :: options
+    allocate (sys%field, source=field)
     sys%n = n
     sys%n_extra = n_extra
     sys%x_scale = options%x_scale
@@ -609,28 +689,104 @@ contains
     ts(k + sys%lam) = t(k + 2)
   end function state_tangent
 
-  !> Correct the start, find the tangent, trace both halves (or one) and assemble the curve.
-  subroutine trace_curve(proto, s0, options, curve, status, message)
-    class(curve_system), intent(inout) :: proto
-    real(wp), intent(in) :: s0(:)
+  !> Check, set up the defining system, trace the curve.
+  subroutine any_curve(field, kind, x0, p0, options, curve, status, message)
+    class(two_parameter_field), intent(in) :: field
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x0(:), p0(2)
     type(curve_options), intent(in) :: options
     type(bifurcation_curve), intent(inout) :: curve
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    class(curve_system), allocatable :: sys
-    type(curve_buffer) :: ahead, behind
-    real(wp) :: s(size(s0)), z(size(s0)), t(size(s0)), e(size(s0)), ts(size(s0)), q_min(2), &
-                q_max(2)
-    integer :: m, k, attempt, iterations, reason_ahead, reason_behind, status_behind, sense
-    character(len=message_len) :: message_behind
+    class(curve_system), allocatable :: proto
+    real(wp), allocatable :: s0(:)
 
-    m = size(s0) - 1           ! unknowns besides lambda
+    curve%kind = kind
+    curve%n = size(x0)
+    call check_start(x0, p0, options, status, message)
+    if (status /= SD_OK) return
+    call make_proto(field, kind, x0, p0, options, proto, s0, status, message)
+    if (status /= SD_OK) return
+    call trace_curve(proto, s0, options, curve, status, message)
+  end subroutine any_curve
+
+  !> The defining system of a fold or Hopf curve with its first borders / reference data, and
+  !> the start state s0 = (x0, [v, kappa/kappa_scale,] p0).
+  subroutine make_proto(field, kind, x0, p0, options, proto, s0, status, message)
+    class(two_parameter_field), intent(in) :: field
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x0(:), p0(2)
+    type(curve_options), intent(in) :: options
+    class(curve_system), allocatable, intent(out) :: proto
+    real(wp), allocatable, intent(out) :: s0(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: f(size(x0)), fx(size(x0), size(x0)), fp(size(x0), 2), v(size(x0)), &
+                w(size(x0)), omega, scale
+    integer :: n
+
+    n = size(x0)
+    if (kind == CURVE_FOLD) then
+      call field%evaluate(x0, p0, f, fx, fp)
+      scale = max(maxval(abs(fx)), tiny(1.0_wp))
+      call inverse_iteration(fx, scale, v, status, message)
+      if (status == SD_OK) call inverse_iteration(transpose(fx), scale, w, status, message)
+      if (status /= SD_OK) then
+        message = 'no null vector of df/dx at the start point: '//trim(message)
+        return
+      end if
+      allocate (fold_system :: proto)
+      select type (proto)
+      type is (fold_system)
+        proto%c = v
+        proto%b = w
+      end select
+      call setup_system(proto, field, n, 0, p0, options)
+      s0 = [x0, p0]
+    else
+      if (n < 2) then
+        status = SD_BAD_INPUT
+        message = 'x0 has size 1; a Hopf point needs n >= 2'
+        return
+      end if
+      call hopf_start(field, x0, p0, fx, omega, v, status, message)
+      if (status /= SD_OK) return
+      allocate (hopf_system :: proto)
+      select type (proto)
+      type is (hopf_system)
+        proto%kappa_scale = omega**2
+        allocate (proto%v_ref(n), proto%u_ref(n))
+      end select
+      call setup_system(proto, field, n, n + 1, p0, options)
+      s0 = [x0, v, 1.0_wp, p0]
+    end if
+  end subroutine make_proto
+
+  !> Newton on the defining system from the state s0 with lambda = p(fixed(1)) fixed (then
+  !> fixed(2), ... if it fails); sys is the system that converged, s the corrected state. A Hopf
+  !> point must have kappa > 0.
+  subroutine correct_state(proto, s0, fixed, options, sys, s, status, message)
+    class(curve_system), intent(in) :: proto
+    real(wp), intent(in) :: s0(:)
+    integer, intent(in) :: fixed(:)
+    type(curve_options), intent(in) :: options
+    class(curve_system), allocatable, intent(out) :: sys
+    real(wp), allocatable, intent(out) :: s(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: z(size(s0))
+    integer :: m, k, attempt, iterations
+
+    m = size(s0) - 1
     k = proto%n + proto%n_extra
-    do attempt = 1, 2
+    s = s0
+    status = SD_NOT_CONVERGED
+    message = 'no attempt'
+    do attempt = 1, size(fixed)
       if (allocated(sys)) deallocate (sys)
       allocate (sys, source=proto)
-      sys%lam = 3 - attempt    ! p2 fixed first, then p1
-      sys%other = attempt
+      sys%lam = fixed(attempt)
+      sys%other = 3 - fixed(attempt)
       s = s0
       call sys%refresh(s, status, message)
       if (status /= SD_OK) exit
@@ -640,20 +796,43 @@ contains
       if (status == SD_OK) exit
     end do
     if (status /= SD_OK) then
-      message = 'the start point is not near a '// &
-                merge('fold', 'Hopf', curve%kind == CURVE_FOLD)//' point: '//trim(message)
+      message = 'the point is not near a '//merge('fold', 'Hopf', proto%n_extra == 0)// &
+                ' point: '//trim(message)
       return
     end if
     s = unpack_state(sys, z)
     if (proto%n_extra > 0 .and. .not. options%neutral_saddles) then
       if (.not. s(2*proto%n + 1) > 0) then
         status = SD_BAD_INPUT
-        message = 'the start point converged to a neutral saddle (real eigenvalues +-mu, '// &
-                  'kappa = '//num2str(s(2*proto%n + 1)*curve_kappa_scale(proto))// &
-                  ' < 0) at p = ('//num2str(s(k + 1))//', '//num2str(s(k + 2))// &
-                  '), not to a Hopf point'
+        message = 'the point converged to a neutral saddle (real eigenvalues +-mu, kappa = '// &
+                  num2str(s(2*proto%n + 1)*curve_kappa_scale(proto))//' < 0) at p = ('// &
+                  num2str(s(k + 1))//', '//num2str(s(k + 2))//'), not to a Hopf point'
         return
       end if
+    end if
+  end subroutine correct_state
+
+  !> Correct the start, find the tangent, trace both halves (or one) and assemble the curve.
+  subroutine trace_curve(proto, s0, options, curve, status, message)
+    class(curve_system), intent(in) :: proto
+    real(wp), intent(in) :: s0(:)
+    type(curve_options), intent(in) :: options
+    type(bifurcation_curve), intent(inout) :: curve
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    class(curve_system), allocatable :: sys
+    type(curve_buffer) :: ahead, behind
+    real(wp), allocatable :: s(:)
+    real(wp) :: z(size(s0)), t(size(s0)), e(size(s0)), ts(size(s0)), q_min(2), q_max(2)
+    integer :: m, k, reason_ahead, reason_behind, status_behind, sense
+    character(len=message_len) :: message_behind
+
+    m = size(s0) - 1           ! unknowns besides lambda
+    k = proto%n + proto%n_extra
+    call correct_state(proto, s0, [2, 1], options, sys, s, status, message)
+    if (status /= SD_OK) then
+      message = 'at the start point: '//trim(message)
+      return
     end if
     call sys%refresh(s, status, message)
     if (status /= SD_OK) return
@@ -741,7 +920,7 @@ contains
                 c0(start%n + 2), tc0(start%n + 2), c_prev(start%n + 2), c_new(start%n + 2), &
                 g_prev, g_new, theta
     integer :: n, k, m, np, stop_reason, j, r, info, n_found
-    logical :: done, on_boundary, capacity_reached
+    logical :: done, on_boundary, capacity_reached, truncated
     character(len=message_len) :: info_message
 
     n = start%n
@@ -807,10 +986,32 @@ contains
         exit
       end if
 
-      ! the restart point: the last one whose tangent has a clear parameter component
+      ! the segment ends before its border vectors turn too far from the null vectors; if
+      ! already its first step turns them too far, it is tried again with a shorter step
       r = np
-      if (stop_reason == STOP_MAX_POINTS .and. .not. capacity_reached) then
-        do j = np, 2, -1
+      truncated = .false.
+      do j = 2, np
+        if (.not. sys%alignment(pts(:, j)) <= max_alignment) then
+          r = j - 1
+          truncated = .true.
+          exit
+        end if
+      end do
+      if (truncated .and. r == 1) then
+        if (opts%ds <= opts%ds_min) then
+          reason = END_FAILED
+          status = SD_NOT_CONVERGED
+          message = 'the null vectors turn by more than 60 degrees within a step of ds_min = '// &
+                    num2str(opts%ds_min)//' at p = ('//num2str(s(k + 1))//', '// &
+                    num2str(s(k + 2))//')'
+          exit
+        end if
+        ds = max(opts%ds/4, opts%ds_min)
+        cycle
+      end if
+      ! the restart point: the last one whose tangent has a clear parameter component
+      if ((stop_reason == STOP_MAX_POINTS .or. truncated) .and. .not. capacity_reached) then
+        do j = r, 2, -1
           if (max(abs(tans(m, j)), abs(tans(m + 1, j))) >= tangent_floor) exit
         end do
         if (j >= 2) r = j
@@ -887,6 +1088,7 @@ contains
       end do
       if (done) exit
 
+      if (truncated) stop_reason = STOP_MAX_POINTS
       select case (stop_reason)
       case (STOP_LAMBDA_MIN, STOP_LAMBDA_MAX)
         reason = END_BOX
@@ -897,7 +1099,9 @@ contains
       case (STOP_FAILED)
         reason = END_FAILED
         status = info
-        message = info_message
+        message = 'no continuation step converged beyond p = ('// &
+                  num2str(buf%p(1, buf%count))//', '//num2str(buf%p(2, buf%count))// &
+                  ') (lambda, x: scaled): '//trim(info_message)
         exit
       case (STOP_MAX_POINTS)
         if (buf%count >= capacity) then
@@ -1284,6 +1488,21 @@ contains
     tests(3) = pair_sum_product(re, im)
   end subroutine fold_diagnose
 
+  !> max(|v|, |w|) with <c, v> = <b, w> = 1 and unit borders.
+  function fold_alignment(self, z) result(growth)
+    class(fold_system), intent(in) :: self
+    real(wp), intent(in) :: z(:)
+    real(wp) :: growth
+    real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), v(self%n), &
+                w(self%n), g
+    integer :: info
+    call point_x_p(self, z, xx, p)
+    call self%field%evaluate(xx, p, ff, jj, fp)
+    call bordered_vectors(jj, self%b, self%c, v, w, g, info)
+    growth = huge(1.0_wp)
+    if (info == SD_OK) growth = max(norm2(v), norm2(w))
+  end function fold_alignment
+
   !> v, w and g of the bordered systems [J b; c^T 0] (v; g) = e and its transpose.
   subroutine bordered_vectors(jj, b, c, v, w, g, status)
     real(wp), intent(in) :: jj(:, :), b(:), c(:)
@@ -1406,6 +1625,14 @@ contains
     self%u_ref = u/norm2(u)
     s(n + 1:2*n) = v
   end subroutine hopf_refresh
+
+  !> |v| with <v_ref, v> = 1.
+  function hopf_alignment(self, z) result(growth)
+    class(hopf_system), intent(in) :: self
+    real(wp), intent(in) :: z(:)
+    real(wp) :: growth
+    growth = norm2(z(self%n + 1:2*self%n))
+  end function hopf_alignment
 
   !> Tests (BT = kappa, ZH = det J, GH = l1); omega = sign(kappa) sqrt|kappa|.
   subroutine hopf_diagnose(self, z, re, im, tests, omega, l1, status, message)

@@ -7,7 +7,7 @@ module bifurcation_test_fields
   implicit none
   private
   public :: hopf_normal_form, bt_normal_form, cusp_normal_form, bautin_normal_form, &
-            fold_hopf_normal_form, cm_example, fd_cm_example, circle_hopf
+            fold_hopf_normal_form, cm_example, fd_cm_example, circle_hopf, walled_bt
 
   !> x' = b x - omega y + l x r^2, y' = omega x + b y + l y r^2, p = (b, l). In z = x + i y:
   !> z' = (b + i omega) z + l z |z|^2.
@@ -27,6 +27,13 @@ module bifurcation_test_fields
     procedure :: jacobian_derivative => bt_jd
     procedure :: third_derivative => bt_c
   end type bt_normal_form
+
+  !> The BT normal form, undefined (NaN) beyond b2 = wall: a curve that cannot be finished.
+  type, extends(bt_normal_form) :: walled_bt
+    real(wp) :: wall = 0.7_wp
+  contains
+    procedure :: evaluate => walled_evaluate
+  end type walled_bt
 
   !> Cusp: x' = b1 + b2 x - x^3, p = (b1, b2).
   type, extends(two_parameter_field) :: cusp_normal_form
@@ -150,6 +157,15 @@ contains
     fp(1, :) = 0
     fp(2, :) = [1.0_wp, x(1)]
   end subroutine bt_evaluate
+
+  subroutine walled_evaluate(self, x, p, f, fx, fp)
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    class(walled_bt), intent(in) :: self
+    real(wp), intent(in) :: x(:), p(2)
+    real(wp), intent(out) :: f(:), fx(:, :), fp(:, :)
+    call self%bt_normal_form%evaluate(x, p, f, fx, fp)
+    if (p(2) > self%wall) f = ieee_value(1.0_wp, ieee_quiet_nan)
+  end subroutine walled_evaluate
 
   subroutine bt_jd(self, x, p, u, hx, hp)
     class(bt_normal_form), intent(in) :: self
@@ -351,7 +367,7 @@ program test_bifurcation
                                   fold_curve, hopf_curve, first_lyapunov_coefficient, &
                                   codim2_name, curve_end_name, CODIM2_BT, CODIM2_CUSP, &
                                   CODIM2_ZH, CODIM2_GH, END_BOX, END_BT, END_MAX_POINTS, &
-                                  END_CLOSED
+                                  END_CLOSED, END_START, END_X_MAX, END_FAILED
   use bifurcation_test_fields
   use checks, only: check_close, check_true, finish
   implicit none
@@ -365,6 +381,7 @@ program test_bifurcation
   call test_bautin()
   call test_fold_hopf()
   call test_incomplete()
+  call test_curve_ends()
   call test_closed_hopf()
   call test_bad_input()
   call finish()
@@ -709,6 +726,68 @@ contains
                     .not. curve%complete .and. any(curve%end_reason == END_MAX_POINTS) .and. &
                     curve%n_points == 12)
   end subroutine test_incomplete
+
+  !> One way only; through a BT point into the neutral-saddle curve; x_max; a field that fails.
+  subroutine test_curve_ends()
+    type(bt_normal_form) :: bt
+    type(walled_bt) :: walled
+    type(cusp_normal_form) :: cusp
+    type(bifurcation_curve) :: curve
+    type(curve_options) :: opt
+    integer :: status, j, column
+    character(len=message_len) :: message
+    real(wp) :: worst, x0
+
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt%direction = 1
+    call fold_curve(bt, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
+    call check_true('direction = +1: one way, p2 increasing, to the box', status == SD_OK .and. &
+                    curve%complete .and. curve%start_index == 1 .and. &
+                    all(curve%end_reason == [END_START, END_BOX]) .and. &
+                    curve%p(2, 2) > curve%p(2, 1) .and. &
+                    abs(curve%p(2, curve%n_points) - 1) < 1.0e-12_wp)
+    opt%direction = -1
+    call fold_curve(bt, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
+    call check_true('direction = -1: one way, p2 decreasing, through BT to the box', &
+                    status == SD_OK .and. curve%complete .and. curve%p(2, 2) < curve%p(2, 1) .and. &
+                    abs(curve%p(2, curve%n_points) + 1) < 1.0e-12_wp .and. curve%n_codim2 == 1)
+
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt%neutral_saddles = .true.
+    call hopf_curve(bt, [0.0_wp, 0.0_wp], [0.0_wp, -0.5_wp], opt, curve, status, message)
+    call report('BT Hopf curve with neutral saddles', curve)
+    worst = 0
+    do j = 1, curve%n_points
+      worst = max(worst, abs(curve%p(1, j)), maxval(abs(curve%x(:, j))), &
+                  abs(sign(curve%omega(j)**2, curve%omega(j)) + curve%p(2, j)))
+    end do
+    j = find_codim2(curve, CODIM2_BT, column)
+    call check_true('neutral_saddles: through the BT point to b2 = 1, both ends on the box', &
+                    status == SD_OK .and. curve%complete .and. &
+                    all(curve%end_reason == END_BOX) .and. &
+                    maxval(curve%p(2, 1:curve%n_points)) > 0.999_wp .and. j == 1)
+    call check_true('neutral_saddles: b1 = 0, x = 0 and kappa = sign(omega) omega^2 = -b2 (1e-10)', &
+                    worst < 1.0e-10_wp)
+
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt%x_max = 0.3_wp
+    x0 = sqrt(0.08_wp/3)
+    call fold_curve(cusp, [x0], [-2*x0**3, 0.08_wp], opt, curve, status, message)
+    call check_true('x_max: both ends just beyond |x| = 0.3, complete', status == SD_OK .and. &
+                    curve%complete .and. all(curve%end_reason == END_X_MAX) .and. &
+                    abs(curve%x(1, 1)) > 0.3_wp .and. abs(curve%x(1, curve%n_points)) > 0.3_wp .and. &
+                    maxval(abs(curve%x(1, 2:curve%n_points - 1))) <= 0.3_wp)
+
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    call fold_curve(walled, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
+    print '(a)', '    walled field: '//trim(message)
+    call check_true('a failing field: not complete, a status and a message, the points kept', &
+                    status /= SD_OK .and. len_trim(message) > 0 .and. .not. curve%complete .and. &
+                    any(curve%end_reason == END_FAILED) .and. &
+                    maxval(curve%p(2, 1:curve%n_points)) <= 0.7_wp .and. &
+                    maxval(curve%p(2, 1:curve%n_points)) > 0.69_wp .and. &
+                    minval(curve%p(2, 1:curve%n_points)) < -0.999_wp)
+  end subroutine test_curve_ends
 
   !> A closed Hopf curve p1^2 + p2^2 = 1/4 (no box): it ends where it started.
   subroutine test_closed_hopf()
