@@ -30,13 +30,17 @@
 !> borders), and lambda is the parameter with the larger component of the curve's tangent, so a
 !> segment never starts where the curve is vertical in its lambda. continue_branch passes turning
 !> points of lambda inside a segment (the cusp, where the fold curve turns back in parameter
-!> space, is one). Variables are scaled, x = x_scale y and p = p0 + p_scale q, so that the
-!> arclength weighs state and parameters alike; kappa is scaled by its start value.
+!> space, is one). A segment also ends before the null vectors have turned by more than 60 degrees
+!> from its borders (|v| > 2 with <c, v> = 1): further on, the bordered matrix would pass a
+!> singularity where v, and with it the test functions, change sign (a step that turns them
+!> that far at once is retried shorter). Variables are scaled, x = x_scale y and
+!> p = p0 + p_scale q, so that the arclength weighs state and parameters alike; kappa is scaled
+!> by its start value.
 !>
 !> Codimension-2 points, as zeros of test functions between consecutive points, located by
 !> locate_zero_on_branch (Brent's method on the arclength, to 1e-12 of the step):
 !>   on fold curves  (tests(1:3) of each point)
-!>     Bogdanov-Takens (BT)  <w, v>/(|w| |v|)            (zero eigenvalue of algebraic multiplicity 2)
+!>     Bogdanov-Takens (BT)  <w, v>/(|w| |v|) (the zero eigenvalue has algebraic multiplicity 2)
 !>     cusp (CP)             <w^, B(v^, v^)>, unit v^, w^ (the quadratic normal-form coefficient
 !>                           a = <p, B(q, q)>/2, <p, q> = 1, vanishes)
 !>     zero-Hopf (ZH)        prod_{i<j} (mu_i + mu_j) over the eigenvalues but the one closest
@@ -46,7 +50,10 @@
 !>     Bogdanov-Takens (BT)  kappa = omega^2
 !>     zero-Hopf (ZH)        det J (with kappa > 0)
 !>     generalised Hopf (GH) l1 (Bautin point)
-!> with B(u, v) = D^2_x f[u, v], C(u, v, w) = D^3_x f[u, v, w].
+!> with B(u, v) = D^2_x f[u, v], C(u, v, w) = D^3_x f[u, v, w]. A located zero must be small
+!> against the values at the ends of its bracket (l1 changes sign through a pole at a zero-Hopf
+!> point); on a Hopf curve, the zero of det J at a Bogdanov-Takens point (det J = kappa times the
+!> other eigenvalues) is that BT point. Double-Hopf points are not detected.
 !>
 !> First Lyapunov coefficient (Kuznetsov eq. (3.20) of the 3rd edition, (5.39) of the 2nd):
 !>   l1 = Re[ <p, C(q, q, conj q)> - 2 <p, B(q, J^-1 B(q, conj q))>
@@ -59,6 +66,13 @@
 !> Curves end on the parameter box, as closed loops, beyond x_max, or (Hopf, unless
 !> neutral_saddles) at a Bogdanov-Takens point; a curve that stops for any other reason (a failed
 !> step, max_points) comes back with complete = .false., a nonzero status and the reason.
+!>
+!> Public: the field type two_parameter_field (evaluate; jacobian_derivative, second_derivative,
+!> third_derivative with finite-difference defaults), curve_options, bifurcation_curve (with its
+!> codim2_point list), fold_curve and hopf_curve (a curve through a start point),
+!> first_lyapunov_coefficient, correct_to_curve (a fold or Hopf point at a fixed parameter),
+!> curve_crossings (where a computed curve crosses p_k = level), check_curve_options, and the
+!> CURVE_*, CODIM2_* and END_* codes with codim2_name and curve_end_name.
 module sloshdyn_bifurcation
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -193,6 +207,9 @@ module sloshdyn_bifurcation
     !> how the first and the last column came about (END_*)
     integer :: end_reason(2) = END_START
     logical :: complete = .false.
+    !> the status and message the curve routine returned (why it is not complete)
+    integer :: status = SD_OK
+    character(len=message_len) :: message = ''
     !> sign changes of a test function whose zero could not be located, and why (the first)
     integer :: n_unlocated = 0
     character(len=message_len) :: unlocated_message = ''
@@ -317,6 +334,8 @@ contains
     character(len=message_len), intent(out) :: message
     call any_curve(field, CURVE_FOLD, x0, p0, options, curve, status, message)
     if (status /= SD_OK) message = 'fold_curve: '//trim(message)
+    curve%status = status
+    curve%message = message
   end subroutine fold_curve
 
   !> The Hopf curve through (x0, p0), a Hopf point of equilibria (approximately: corrected as for
@@ -330,6 +349,8 @@ contains
     character(len=message_len), intent(out) :: message
     call any_curve(field, CURVE_HOPF, x0, p0, options, curve, status, message)
     if (status /= SD_OK) message = 'hopf_curve: '//trim(message)
+    curve%status = status
+    curve%message = message
   end subroutine hopf_curve
 
   !> The fold (kind = CURVE_FOLD) or Hopf point (CURVE_HOPF) near (x_guess, p_guess) with
@@ -670,12 +691,18 @@ contains
     class(curve_system), intent(in) :: sys
     real(wp), intent(in) :: z(:)
     real(wp), intent(out) :: x(:), p(2)
-    integer :: m
-    m = size(z)
-    x = sys%x_scale*z(1:sys%n)
-    p(sys%other) = sys%p_ref(sys%other) + sys%p_scale(sys%other)*z(m - 1)
-    p(sys%lam) = sys%p_ref(sys%lam) + sys%p_scale(sys%lam)*z(m)
+    call split_x_p(sys, z(1:size(z) - 1), z(size(z)), x, p)
   end subroutine point_x_p
+
+  !> x and p of the unknowns y = (.., q_other) and lambda (no temporary in evaluate).
+  pure subroutine split_x_p(sys, y, lambda, x, p)
+    class(curve_system), intent(in) :: sys
+    real(wp), intent(in) :: y(:), lambda
+    real(wp), intent(out) :: x(:), p(2)
+    x = sys%x_scale*y(1:sys%n)
+    p(sys%other) = sys%p_ref(sys%other) + sys%p_scale(sys%other)*y(size(y))
+    p(sys%lam) = sys%p_ref(sys%lam) + sys%p_scale(sys%lam)*lambda
+  end subroutine split_x_p
 
   !> Tangent of a segment (in its z, lambda) as a tangent of the scaled state (y, extra, q1, q2).
   pure function state_tangent(sys, t) result(ts)
@@ -1416,7 +1443,7 @@ contains
     n = self%n
     o = self%other
     l = self%lam
-    call point_x_p(self, [x, lambda], xx, p)
+    call split_x_p(self, x, lambda, xx, p)
     call self%field%evaluate(xx, p, ff, jj, fp)
     call bordered_vectors(jj, self%b, self%c, v, w, g, info)
     if (info /= SD_OK) then
@@ -1565,7 +1592,7 @@ contains
     o = self%other
     l = self%lam
     ks = self%kappa_scale
-    call point_x_p(self, [x, lambda], xx, p)
+    call split_x_p(self, x, lambda, xx, p)
     v = x(n + 1:2*n)
     kappa = ks*x(2*n + 1)
     call self%field%evaluate(xx, p, ff, jj, fp)

@@ -720,8 +720,8 @@ contains
     opt%max_points = 12
     call fold_curve(bt, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
     call check_true('max_points: status SD_CAPACITY ('//trim(message)//')', status == SD_CAPACITY)
-    print '(a, i0, 2(1x, a))', '    max_points: ', curve%n_points, curve_end_name(curve%end_reason(1)), &
-      curve_end_name(curve%end_reason(2))
+    print '(a, i0, 2(1x, a))', '    max_points: ', curve%n_points, &
+      curve_end_name(curve%end_reason(1)), curve_end_name(curve%end_reason(2))
     call check_true('max_points: not complete, end reason given, points kept', &
                     .not. curve%complete .and. any(curve%end_reason == END_MAX_POINTS) .and. &
                     curve%n_points == 12)
@@ -766,7 +766,7 @@ contains
                     status == SD_OK .and. curve%complete .and. &
                     all(curve%end_reason == END_BOX) .and. &
                     maxval(curve%p(2, 1:curve%n_points)) > 0.999_wp .and. j == 1)
-    call check_true('neutral_saddles: b1 = 0, x = 0 and kappa = sign(omega) omega^2 = -b2 (1e-10)', &
+    call check_true('neutral_saddles: b1 = 0, x = 0, kappa = sign(omega) omega^2 = -b2 (1e-10)', &
                     worst < 1.0e-10_wp)
 
     opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
@@ -775,7 +775,8 @@ contains
     call fold_curve(cusp, [x0], [-2*x0**3, 0.08_wp], opt, curve, status, message)
     call check_true('x_max: both ends just beyond |x| = 0.3, complete', status == SD_OK .and. &
                     curve%complete .and. all(curve%end_reason == END_X_MAX) .and. &
-                    abs(curve%x(1, 1)) > 0.3_wp .and. abs(curve%x(1, curve%n_points)) > 0.3_wp .and. &
+                    abs(curve%x(1, 1)) > 0.3_wp .and. &
+                    abs(curve%x(1, curve%n_points)) > 0.3_wp .and. &
                     maxval(abs(curve%x(1, 2:curve%n_points - 1))) <= 0.3_wp)
 
     opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
@@ -783,6 +784,7 @@ contains
     print '(a)', '    walled field: '//trim(message)
     call check_true('a failing field: not complete, a status and a message, the points kept', &
                     status /= SD_OK .and. len_trim(message) > 0 .and. .not. curve%complete .and. &
+                    curve%status == status .and. curve%message == message .and. &
                     any(curve%end_reason == END_FAILED) .and. &
                     maxval(curve%p(2, 1:curve%n_points)) <= 0.7_wp .and. &
                     maxval(curve%p(2, 1:curve%n_points)) > 0.69_wp .and. &

@@ -55,7 +55,8 @@ program test_slowflow_chart
   use sloshdyn_tables, only: POINT_ROWS, SPECIAL_ROWS, POINT_X, SPECIAL_KIND, SPECIAL_RHO, &
                              SPECIAL_A, SPECIAL_COLUMN, SPECIAL_FOLD, SPECIAL_HOPF
   use sloshdyn_bifurcation, only: curve_options, bifurcation_curve, fold_curve, hopf_curve, &
-                                  curve_crossings, first_lyapunov_coefficient, codim2_name, curve_end_name, CURVE_FOLD, &
+                                  curve_crossings, first_lyapunov_coefficient, codim2_name, &
+                                  curve_end_name, CURVE_FOLD, &
                                   CURVE_HOPF, CODIM2_CUSP
   use sloshdyn_slowflow_chart, only: slow_flow_field, make_slow_flow_field, CHART_RHO, &
                                      CHART_A, CHART_GAMMA
@@ -452,7 +453,7 @@ contains
     call check_true('Fig 11: a cusp between A = 0.00025 and 0.0005', &
                     count(curve%codim2%kind == CODIM2_CUSP) == 1 .and. a_cusp > 0.00025_wp .and. &
                     a_cusp < 0.0005_wp)
-    call check_true('Fig 11 fold curve: A >= A_cusp everywhere on it (the fold pair is born there)', &
+    call check_true('Fig 11 fold curve: A >= A_cusp on all of it (the fold pair is born there)', &
                     minval(curve%p(2, 1:curve%n_points)) >= a_cusp*(1 - 1.0e-12_wp))
 
     ! bisection on the number of folds of the one-parameter continuation (near rho_cusp)
@@ -473,11 +474,11 @@ contains
     call check_true('Fig 11: the cusp lies in the bracket of the bisection', &
                     a_low <= a_cusp .and. a_cusp <= a_high)
     call special_points(kappa11, gamma11, a_cusp*(1 - 1.0e-3_wp), rho_cusp - 0.01_wp, &
-                        rho_cusp + 0.01_wp, fine, 5, folds, n_low, hopfs, n_hopfs, table, special, &
-                        n_special)
+                        rho_cusp + 0.01_wp, fine, 5, folds, n_low, hopfs, n_hopfs, table, &
+                        special, n_special)
     call special_points(kappa11, gamma11, a_cusp*(1 + 1.0e-3_wp), rho_cusp - 0.01_wp, &
-                        rho_cusp + 0.01_wp, fine, 5, folds, n_high, hopfs, n_hopfs, table, special, &
-                        n_special)
+                        rho_cusp + 0.01_wp, fine, 5, folds, n_high, hopfs, n_hopfs, table, &
+                        special, n_special)
     print '(a, i0, a, i0, a, 2f13.9)', '  Fig 11: folds at A_cusp (1 -+ 1e-3): ', n_low, ', ', &
       n_high, ' at rho ', folds(1:n_high)
     call check_true('Fig 11: no fold just below the cusp, two just above', &
@@ -536,8 +537,9 @@ contains
   end subroutine test_lyapunov_by_simulation
 
   !> Without internal resonance (Fig 9: kappa = 4.5 hardening, 4.7 softening; gamma = 0.0025)
-  !> the steady states solve eq (49), a cubic in z = a1^2, k^2 z^3 - 2 sigma k z^2 + (sigma^2 + g^2) z
-  !> - F^2 = 0 (k = c11/(8 omega1), g = gamma11/2, sigma = rho - omega1, F = rho^2 A F11/(2 omega1)).
+  !> the steady states solve eq (49), a cubic in z = a1^2,
+  !>   k^2 z^3 - 2 sigma k z^2 + (sigma^2 + g^2) z - F^2 = 0
+  !> (k = c11/(8 omega1), g = gamma11/2, sigma = rho - omega1, F = rho^2 A F11/(2 omega1)).
   !> A fold is a double root, the cusp a triple root: sigma^2 = 3 g^2 with sign(sigma) = sign(k),
   !> z0 = 2 sigma/(3 k), F^2 = k^2 z0^3. Every point of the fold curve is a double root of the
   !> cubic, and its cusp is that point.
