@@ -7,7 +7,8 @@ module sloshdyn_simulation
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
-  use sloshdyn_excitation, only: forcing_period, PARAMETER_RHO, PARAMETER_A
+  use sloshdyn_excitation, only: forcing_period, breakpoint_step, record_end, &
+                                 set_excitation_parameter
   use sloshdyn_linear, only: modal_matrix
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, ode_stats, rk_integrator
@@ -83,11 +84,16 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(tank_system) :: system
+    type(ode_options) :: settings
     real(wp) :: p_inv(2, 2)
     integer :: i
 
     system%model = model
-    call integrate(method, system, tau0, y0, tau_out, history(1:4, :), options, stats, status, &
+    ! a record's samples are kinks of the right-hand side: no step crosses one
+    settings = options
+    settings%breakpoint_step = breakpoint_step(model%excitation)
+    settings%breakpoint_end = record_end(model%excitation)
+    call integrate(method, system, tau0, y0, tau_out, history(1:4, :), settings, stats, status, &
                    message)
     call inverse_modal_matrix(model, p_inv)
     do i = 1, size(tau_out)
@@ -420,7 +426,8 @@ contains
       motion = MOTION_QUASI_PERIODIC
   end subroutine classify
 
-  !> Steady states along values of rho (which = PARAMETER_RHO) or A (PARAMETER_A), each point starting
+  !> Steady states along values of rho, A or rho at constant acceleration (which, see
+  !> set_excitation_parameter), each point starting
   !> from the previous point's final state (so hysteresis and jumps show), as the paper's
   !> numerical continuation (sec 4.2). Only summaries are kept: summaries(:, i) for values(i);
   !> y_final is the state after the last point done (n_done of them).
@@ -444,23 +451,11 @@ contains
     y_final = y0
     status = SD_OK
     message = ''
-    if (which /= PARAMETER_RHO .and. which /= PARAMETER_A) then
-      status = SD_BAD_INPUT
-      message = 'sweep parameter '//num2str(which)//' is not known: 1 = rho, 2 = A'
-      return
-    end if
     point = model
     y_start = y0
     do i = 1, size(values)
-      if (which == PARAMETER_RHO) then
-        point%excitation%rho = values(i)
-        call check_real('rho', values(i), 0.0_wp, huge(1.0_wp), .true., .true., &
-                        'sweep values of rho must be > 0', status, message)
-      else
-        point%excitation%A = values(i)
-        call check_real('A', values(i), 0.0_wp, huge(1.0_wp), .false., .true., &
-                        'sweep values of A must be >= 0', status, message)
-      end if
+      point%excitation = model%excitation   ! each point from the model's (no drift in A)
+      call set_excitation_parameter(point%excitation, which, values(i), status, message)
       if (status /= SD_OK) return
       call steady_state(point, y_start, options, method, steady, summaries(:, i), poincare, &
                         y_final, stats, status, message)
@@ -470,7 +465,7 @@ contains
     end do
   end subroutine parameter_sweep
 
-  !> Steady states at values of rho (which = PARAMETER_RHO) or A (PARAMETER_A), each from the
+  !> Steady states at values of the parameter `which` (as parameter_sweep), each from the
   !> same initial state y0: the points are independent, so n_threads threads (OpenMP) share them
   !> out, one point at a time, and each point is computed exactly as by a single thread -- the
   !> results do not depend on n_threads, bit for bit. n_done counts the points completed;

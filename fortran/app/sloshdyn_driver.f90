@@ -8,13 +8,16 @@ module sloshdyn_driver
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, status_name
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
-  use sloshdyn_excitation, only: forcing_period, PARAMETER_RHO
+  use sloshdyn_excitation, only: forcing_period, PARAMETER_RHO, PARAMETER_A, &
+                                 PARAMETER_FREQUENCY, EXCITATION_RECORD
   use sloshdyn_tables, only: HISTORY_ROWS, SUMMARY_SIZE, SUMMARY_RHO, SUMMARY_A, SUMMARY_MAX_X1, &
                              SUMMARY_MAX_X2, SUMMARY_MAX_U1, SUMMARY_MAX_U2, SUMMARY_MOTION, &
                              SUMMARY_PERIOD, SUMMARY_TRANSIENT, SUMMARY_SPREAD, SUMMARY_SETTLED, &
                              POINT_ROWS, SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_A1, &
                              SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_HOPF, POINT_BRANCH, &
-                             MOTION_PERIODIC, motion_name, special_kind_name, verdict_name
+                             MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
+                             SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, &
+                             TANK_SI_SIZE, HARMONIC_SWEEP_ROWS
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
@@ -25,9 +28,13 @@ module sloshdyn_driver
   use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent
   use sloshdyn_namelist, only: run_config, known_analyses, ANALYSIS_LINEAR, ANALYSIS_SIMULATE, &
                                ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, ANALYSIS_FREQUENCY_RESPONSE, &
-                               ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, DIRECTION_DOWN, &
+                               ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, &
+                               DIRECTION_DOWN, &
                                DIRECTION_BOTH, direction_names
   use sloshdyn_results, only: result_files
+  use sloshdyn_seismic, only: seismic_response, seismic_defaults, design_code_checks, &
+                              tank_summary, harmonic_sweep
+  use sloshdyn_ground, only: ground_duration, GROUND_RECORD
   use sloshdyn_layouts, only: counts_array
   implicit none
   private
@@ -68,6 +75,8 @@ contains
       call run_periodic(config, files, status, message)
     case (ANALYSIS_LYAPUNOV)
       call run_lyapunov(config, files, status, message)
+    case (ANALYSIS_SEISMIC)
+      call run_seismic(config, files, status, message)
     end select
     if (status == SD_OK) call files%commit(status, message)
     if (status == SD_OK) then
@@ -265,38 +274,51 @@ contains
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp), allocatable :: values(:), summaries(:, :)
+    real(wp), allocatable :: values(:), summaries(:, :), si(:, :)
     real(wp) :: y(4), y_next(4)
     integer :: first, last, i, n_done, step, status_rows
-    character(len=:), allocatable :: name, how
+    logical :: in_frequency
+    character(len=:), allocatable :: name, how, line
     character(len=message_len) :: message_rows
 
     associate (sw => config%sweep)
       values = sweep_points(min(sw%start, sw%stop), max(sw%start, sw%stop), sw%n_points, &
                             sw%direction)
-      name = trim(merge('rho', 'A  ', sw%parameter == PARAMETER_RHO))
+      in_frequency = sw%parameter == PARAMETER_FREQUENCY
+      name = parameter_label(sw%parameter)
       how = 'each from the previous final state'
       if (.not. sw%carry_state) how = 'each from y0, '//num2str(sw%threads)//' thread(s)'
       print '(/a)', 'Sweep in '//name//' ('//trim(direction_names(sw%direction))//', '// &
                     num2str(size(values))//' points), '//how
+      if (in_frequency) print '(a)', '  at the constant peak ground acceleration '// &
+                                     num2str(config%ground%peak_acceleration)//' m/s^2'
       ! one point per call when the state is carried, four per thread otherwise (threads that
       ! finish early take the next point), so progress shows as the sweep runs
       step = merge(1, 4*sw%threads, sw%carry_state)
     end associate
-    allocate (summaries(SUMMARY_SIZE, size(values)))
+    allocate (summaries(SUMMARY_SIZE, size(values)), si(HARMONIC_SWEEP_ROWS, size(values)))
     ! the points go to sweep.partial.csv as they finish: a failed or killed sweep keeps them
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%begin_rows('sweep.csv', 'summary', status, message)
     if (status /= SD_OK) return
     print '(a)', '  (points are written to '//files%partial_path('sweep.csv')//' as they '// &
                  'finish; renamed to sweep.csv when the sweep is complete)'
-    print '(a)', '  '//pad(name, 14)//pad('max|x1|', 14)//pad('max|x2|', 14)// &
-                 pad('max|u1|', 14)//pad('max|u2|', 14)//'motion'
+    line = '  '//pad(name, 14)//pad('max|x1|', 14)//pad('max|x2|', 14)//pad('max|u1|', 14)// &
+           pad('max|u2|', 14)
+    if (in_frequency) line = line//pad('wave [m]', 14)
+    print '(a)', line//'motion'
     flush (output_unit)
     y = config%simulation%y0
     do first = 1, size(values), step
       last = min(first + step - 1, size(values))
-      if (config%sweep%carry_state) then
+      if (in_frequency) then
+        call harmonic_sweep(config%tank, config%ground, values(first:last), y, &
+                            config%integration, config%method, config%steady, &
+                            config%sweep%carry_state, config%sweep%threads, &
+                            summaries(:, first:last), si(:, first:last), y_next, n_done, status, &
+                            message)
+        if (config%sweep%carry_state) y = y_next
+      else if (config%sweep%carry_state) then
         call parameter_sweep(config%model, config%sweep%parameter, values(first:last), y, &
                              config%integration, config%method, config%steady, &
                              summaries(:, first:last), y_next, n_done, status, message)
@@ -322,15 +344,18 @@ contains
         return
       end if
       do i = first, last
-        print '(a)', '  '//pad(num2str(values(i)), 14)// &
-                     pad(num2str(summaries(SUMMARY_MAX_X1, i)), 14)// &
-                     pad(num2str(summaries(SUMMARY_MAX_X2, i)), 14)// &
-                     pad(num2str(summaries(SUMMARY_MAX_U1, i)), 14)// &
-                     pad(num2str(summaries(SUMMARY_MAX_U2, i)), 14)// &
-                     motion_text(summaries(SUMMARY_MOTION, i), summaries(SUMMARY_PERIOD, i))
+        line = '  '//pad(num2str(values(i)), 14)// &
+               pad(num2str(summaries(SUMMARY_MAX_X1, i)), 14)// &
+               pad(num2str(summaries(SUMMARY_MAX_X2, i)), 14)// &
+               pad(num2str(summaries(SUMMARY_MAX_U1, i)), 14)// &
+               pad(num2str(summaries(SUMMARY_MAX_U2, i)), 14)
+        if (in_frequency) line = line//pad(num2str(si(3, i)), 14)
+        print '(a)', line//motion_text(summaries(SUMMARY_MOTION, i), summaries(SUMMARY_PERIOD, i))
       end do
       flush (output_unit)
     end do
+    if (in_frequency) &
+      call files%write_table('harmonic_sweep.csv', 'harmonic_sweep', si, status, message)
   end subroutine run_sweep
 
   !> Slow-flow frequency response (sec 3.3): branches, stability, folds and Hopf points.
@@ -352,7 +377,7 @@ contains
                               message)
       call in_context('frequency response', status, message)
       if (status /= SD_OK) return
-      name = trim(merge('rho', 'A  ', r%parameter == PARAMETER_RHO))
+      name = parameter_label(r%parameter)
       print '(/a)', 'Slow-flow response ('//trim(merge('3:1 internal resonance', &
                     'no internal resonance ', r%internal_resonance))//') for '//name// &
                     ' in ['//num2str(r%start)//', '//num2str(r%stop)//']'
@@ -394,7 +419,7 @@ contains
                                        n_points, special, n_special, complete, status, message)
       call in_context('periodic response', status, message)
       if (status /= SD_OK) return
-      name = trim(merge('rho', 'A  ', r%parameter == PARAMETER_RHO))
+      name = parameter_label(r%parameter)
       print '(/a)', 'Periodic orbits of the full equations (shooting, Floquet multipliers; '// &
                     method_name(config%method)//') for '//name//' in ['//num2str(r%start)// &
                     ', '//num2str(r%stop)//']'
@@ -413,6 +438,49 @@ contains
                                                 'periodic_special_points', &
                                                 special(:, 1:n_special), status, message)
   end subroutine run_periodic
+
+  !> A tank under its ground motion (sloshdyn_seismic): SI time histories and their peaks.
+  subroutine run_seismic(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), allocatable :: table(:, :)
+    real(wp) :: peaks(PEAKS_SIZE), t_end
+    integer :: n_out, i
+    character(len=*), parameter :: loads(SEISMIC_LOADS - 1) = [character(len=22) :: &
+      'ground acceleration', 'sloshing displacement', 'wave height', 'pendulum angle', &
+      'tank drift', 'impact force', 'base shear', 'overturning moment']
+    character(len=*), parameter :: units(SEISMIC_LOADS - 1) = [character(len=6) :: &
+      'm/s^2', 'm', 'm', 'rad', 'm', 'N', 'N', 'N m']
+
+    t_end = config%seismic_t_end
+    n_out = config%seismic_n_out
+    call seismic_defaults(config%tank_props, config%ground, t_end, n_out)
+    allocate (table(SEISMIC_ROWS, n_out))
+    call seismic_response(config%tank, config%ground, t_end, n_out, config%integration, &
+                          config%method, table, peaks, status, message)
+    call in_context('seismic response', status, message)
+    if (status /= SD_OK) return
+    print '(/a)', 'Seismic response ('//method_name(config%method)//') from rest, t = 0 to '// &
+                  num2str(t_end)//' s, '//num2str(n_out)//' outputs; peaks:'
+    do i = 1, SEISMIC_LOADS - 1
+      print '(a)', '  '//pad(trim(loads(i)), 24)//pad(num2str(peaks(2*i - 1))//' '// &
+                   trim(units(i)), 26)//'at t = '//num2str(peaks(2*i))//' s'
+    end do
+    if (peaks(2*SEISMIC_LOADS - 1) > 0) then
+      print '(a)', '  the wave reaches the roof: first at t = '// &
+                   num2str(peaks(2*SEISMIC_LOADS))//' s, '// &
+                   num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s)'
+    else
+      print '(a)', '  the wave does not reach the roof (peak wave height '// &
+                   num2str(peaks(5))//' m < freeboard '//num2str(config%tank%freeboard)//' m)'
+    end if
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
+    if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks', &
+                                                reshape(peaks, [PEAKS_SIZE, 1]), status, message)
+  end subroutine run_seismic
 
   !> Largest Lyapunov exponent from y0 with its running estimates.
   subroutine run_lyapunov(config, files, status, message)
@@ -445,56 +513,166 @@ contains
     end associate
   end subroutine run_lyapunov
 
-  !> Create the output directory (only once the analysis succeeded) and write the parameters.
+  !> Create the output directory (only once the analysis succeeded) and write the parameters
+  !> (and, for a tank, its properties and the design-code cross-check).
   subroutine begin_files(config, files, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp) :: row(TANK_SI_SIZE), codes(CODES_COLUMNS, CODES_ROWS)
+    integer :: i
     call files%create(config%directory, status, message)
     if (status /= SD_OK) return
     associate (m => config%model)
       call files%write_table('parameters.csv', 'parameters', reshape([m%s1, m%mu1, m%kappa, &
-                             m%theta0, m%beta, m%gamma, m%delta, real(m%n, wp), real(m%p, wp), &
-                             m%excitation%A, m%excitation%rho, m%a_coef, m%b_coef], [23, 1]), &
-                             status, message)
+                             m%theta0, m%beta, m%gamma, m%delta, m%zeta, real(m%n, wp), &
+                             real(m%p, wp), m%excitation%A, m%excitation%rho, m%a_coef, &
+                             m%b_coef], [24, 1]), status, message)
     end associate
     if (status /= SD_OK .or. .not. config%dimensional) return
-    associate (t => config%tank)
-      call files%write_table('tank.csv', 'tank', reshape([t%radius, t%depth, t%liquid_mass, &
-                             t%pendulum_length, t%sloshing_mass, t%d1, t%rigid_mass, t%d0, &
-                             t%total_mass, t%rod_length, t%gravity, &
-                             sqrt(t%gravity/t%pendulum_length)], [12, 1]), status, message)
-    end associate
+    call tank_summary(config%tank, config%tank_props, config%model, row)
+    call files%write_table('tank.csv', 'tank_si', reshape(row, [TANK_SI_SIZE, 1]), status, &
+                           message)
+    if (status == SD_OK) call design_code_checks(config%tank, config%ground, config%has_ground, &
+                                                 codes, status, message)
+    if (status == SD_OK) call files%write_table('design_codes.csv', 'design_codes', &
+                                                reshape([(real(i, wp), codes(:, i), &
+                                                i = 1, CODES_ROWS)], &
+                                                [CODES_COLUMNS + 1, CODES_ROWS]), status, message)
   end subroutine begin_files
 
   subroutine print_model(config)
     type(run_config), intent(in) :: config
     print '(a)', 'sloshdyn: '//trim(known_analyses(config%analysis))
-    if (config%dimensional) then
-      associate (t => config%tank)
-        print '(/a)', 'Tank (eq 2-3): R = '//num2str(t%radius)//' m, h = '//num2str(t%depth)// &
-                      ' m, liquid mass m_F = '//num2str(t%liquid_mass)//' kg'
-        print '(a)', '  pendulum l = '//num2str(t%pendulum_length)//' m, m = '// &
-                     num2str(t%sloshing_mass)//' kg, d1 = '//num2str(t%d1)//' m; rigid m0 = '// &
-                     num2str(t%rigid_mass)//' kg, d0 = '//num2str(t%d0)//' m'
-        print '(a)', '  pendulum frequency omega = sqrt(g/l) = '// &
-                     num2str(sqrt(t%gravity/t%pendulum_length))//' rad/s'
-      end associate
-    end if
+    if (config%dimensional) call print_tank(config)
     associate (m => config%model)
       print '(/a)', 'Dimensionless model (eq 9): s1 = '//num2str(m%s1)//', mu1 = '// &
                     num2str(m%mu1)//', kappa = '//num2str(m%kappa)//', theta0 = '// &
                     num2str(m%theta0)//' rad'
       print '(a)', '  beta = '//num2str(m%beta)//', gamma = '//num2str(m%gamma)//', delta = '// &
-                   num2str(m%delta)//', n = '//num2str(m%n)//', p = '//num2str(m%p)// &
+                   num2str(m%delta)//', zeta = '//num2str(m%zeta)//', n = '//num2str(m%n)// &
+                   ', p = '//num2str(m%p)// &
                    ', kappa_hat = kappa/s1 = '//num2str(m%kappa/m%s1)
-      print '(a)', '  excitation X = A sin(rho tau): A = '//num2str(m%excitation%A)// &
-                   ', rho = '//num2str(m%excitation%rho)
+      if (m%excitation%kind == EXCITATION_RECORD) then
+        print '(a)', '  excitation: a record of '//num2str(size(m%excitation%samples))// &
+                     ' samples of X'''' every '//num2str(m%excitation%step)//' in tau'
+      else
+        print '(a)', '  excitation X = A sin(rho tau): A = '//num2str(m%excitation%A)// &
+                     ', rho = '//num2str(m%excitation%rho)
+      end if
       print '(a)', '  a1..a6 (eq 11) = '//list(m%a_coef)
       print '(a)', '  b1..b6 (eq 11) = '//list(m%b_coef)
     end associate
   end subroutine print_model
+
+  !> The tank in SI, its ground motion, and its sloshing parameters beside the design codes'.
+  subroutine print_tank(config)
+    type(run_config), intent(in) :: config
+    real(wp) :: codes(CODES_COLUMNS, CODES_ROWS)
+    integer :: status, i, j
+    character(len=message_len) :: message
+    character(len=*), parameter :: quantities(CODES_COLUMNS) = [character(len=24) :: &
+      'convective period [s]', 'convective mass [kg]', 'impulsive mass [kg]', &
+      'convective height [m]', 'impulsive height [m]', 'wave height [m]']
+    character(len=:), allocatable :: line
+
+    associate (t => config%tank, p => config%tank_props)
+      print '(/a)', 'Tank (SI): radius R = '//num2str(t%radius)//' m, liquid depth h = '// &
+                    num2str(t%liquid_depth)//' m, freeboard = '//num2str(t%freeboard)//' m'
+      print '(a)', '  liquid '//num2str(p%liquid_mass)//' kg, tank (shell, roof) '// &
+                   num2str(t%tank_mass)//' kg, total M = '//num2str(p%total_mass)//' kg'
+      print '(a)', '  sloshing (eq 2-3): pendulum l = '//num2str(p%pendulum_length)// &
+                   ' m, convective mass m = '//num2str(p%sloshing_mass)//' kg at '// &
+                   num2str(p%convective_height)//' m, impulsive m0 = '// &
+                   num2str(p%rigid_mass)//' kg at '//num2str(p%impulsive_height)// &
+                   ' m above the bottom; sloshing period '//num2str(p%sloshing_period)//' s'
+      print '(a)', '  supports: L = '//num2str(p%rod_length)//' m, k = '// &
+                   num2str(p%stiffness)//' N m/rad, c = '//num2str(p%damping)// &
+                   ' N m s/rad; sloshing damping '//num2str(100*t%sloshing_damping)// &
+                   ' % of critical'
+      print '(a)', '  roof: the wave at the wall, 2 R sin(theta)/(xi^2 - 1) = '// &
+                   num2str(p%wave_factor)//' m sin(theta), reaches the freeboard at theta0 = '// &
+                   num2str(p%theta0)//' rad'
+    end associate
+    if (config%has_ground) then
+      associate (g => config%ground)
+        if (g%kind == GROUND_RECORD) then
+          print '(a)', 'Ground motion: a record of '//num2str(size(g%acceleration))// &
+                       ' samples every '//num2str(g%dt)//' s ('//num2str(ground_duration(g))// &
+                       ' s), peak '//num2str(maxval(abs(g%acceleration)))//' m/s^2 = '// &
+                       num2str(maxval(abs(g%acceleration))/config%tank%gravity)//' g'
+        else
+          print '(a)', 'Ground motion: harmonic, peak '//num2str(g%peak_acceleration)// &
+                       ' m/s^2 = '//num2str(g%peak_acceleration/config%tank%gravity)//' g at '// &
+                       num2str(g%frequency)//' Hz'
+        end if
+      end associate
+    end if
+    call design_code_checks(config%tank, config%ground, config%has_ground, codes, status, &
+                            message)
+    if (status /= SD_OK) then
+      print '(a)', '  (design-code cross-check not available: '//trim(message)//')'
+      return
+    end if
+    if (config%has_ground) then
+      print '(/a)', 'Design-code cross-check (difference from sloshdyn in %; wave heights from '// &
+                    'the ground motion''s spectrum at '// &
+                    num2str(100*config%tank%sloshing_damping)//' % damping)'
+    else
+      print '(/a)', 'Design-code cross-check (difference from sloshdyn in %; no ground motion, '// &
+                    'so no wave heights)'
+    end if
+    print '(a)', '  '//pad('', 24)//pad('sloshdyn', 14)//pad('API 650', 22)//pad('EC8-4', 22)// &
+                 'ACI 350.3'
+    do i = 1, CODES_COLUMNS
+      line = '  '//pad(trim(quantities(i)), 24)//pad(value_text(codes(i, 1)), 14)
+      do j = 2, CODES_ROWS
+        line = line//pad(value_text(codes(i, j))//difference(codes(i, j), codes(i, 1)), 22)
+      end do
+      print '(a)', trim(line)
+    end do
+  end subroutine print_tank
+
+  !> The name of a swept or continued parameter.
+  pure function parameter_label(parameter) result(label)
+    integer, intent(in) :: parameter
+    character(len=:), allocatable :: label
+    select case (parameter)
+    case (PARAMETER_RHO)
+      label = 'rho'
+    case (PARAMETER_A)
+      label = 'A'
+    case default
+      label = 'f [Hz]'
+    end select
+  end function parameter_label
+
+  pure function value_text(x) result(text)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: text
+    if (x /= x) then
+      text = '-'
+    else
+      text = num2str(x, significant=6)
+    end if
+  end function value_text
+
+  pure function difference(x, reference) result(text)
+    real(wp), intent(in) :: x, reference
+    character(len=:), allocatable :: text
+    text = ''
+    if (x == x .and. reference == reference .and. reference /= 0) &
+      text = ' ('//trim(percent(100*(x - reference)/reference))//')'
+  end function difference
+
+  pure function percent(x) result(text)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: text
+    character(len=16) :: buffer
+    write (buffer, '(sp, f16.1)') x
+    text = trim(adjustl(buffer))//'%'
+  end function percent
 
   subroutine print_summary(summary)
     real(wp), intent(in) :: summary(SUMMARY_SIZE)

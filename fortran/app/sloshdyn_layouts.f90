@@ -6,6 +6,8 @@
 !>   response(RESPONSE_SIZE)       = [n_scan, n_amplitudes, n_phases, amplitude_min,
 !>                                    amplitude_max, ds, ds_min, ds_max, x_scale, max_points]
 !>   lyapunov(LYAPUNOV_SIZE)       = [transient_periods, n_periods, renormalise_every]
+!>   tank(TANK_SIZE)               = tank_t's components in order (sloshdyn_vessel)
+!>   ground(GROUND_SIZE)           = [kind, peak_acceleration, frequency, dt] (+ the samples)
 !> Python's Integration, Steady, Continuation and the Lyapunov settings list their fields in
 !> these orders and take their defaults from defaults_* below (through the bridge).
 !> Integer entries are converted by to_int, which keeps out-of-range and NaN values out of range
@@ -16,14 +18,17 @@ module sloshdyn_layouts
   use sloshdyn_simulation, only: steady_options
   use sloshdyn_response, only: response_options
   use sloshdyn_periodic_response, only: lyapunov_options
+  use sloshdyn_vessel, only: tank_t
+  use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, GROUND_RECORD
   implicit none
   private
-  public :: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE
+  public :: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, TANK_SIZE, GROUND_SIZE
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
   public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
+  public :: to_tank, from_tank, to_ground, from_ground
 
   integer, parameter :: INTEGRATION_SIZE = 7, STEADY_SIZE = 7, RESPONSE_SIZE = 10, &
-                        LYAPUNOV_SIZE = 3
+                        LYAPUNOV_SIZE = 3, TANK_SIZE = 17, GROUND_SIZE = 4
 
 contains
 
@@ -111,6 +116,43 @@ contains
     real(wp) :: a(LYAPUNOV_SIZE)
     a = real([options%transient_periods, options%n_periods, options%renormalise_every], wp)
   end function from_lyapunov
+
+  !> tank(TANK_SIZE) in the order of tank_t's components (n and p as reals).
+  pure function to_tank(a) result(tank)
+    real(wp), intent(in) :: a(TANK_SIZE)
+    type(tank_t) :: tank
+    tank = tank_t(a(1), a(2), a(3), a(4), a(5), a(6), a(7), a(8), a(9), a(10), a(11), a(12), &
+                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17))
+  end function to_tank
+
+  pure function from_tank(tank) result(a)
+    type(tank_t), intent(in) :: tank
+    real(wp) :: a(TANK_SIZE)
+    a = [tank%radius, tank%liquid_depth, tank%freeboard, tank%liquid_density, tank%liquid_mass, &
+         tank%tank_mass, tank%support_frequency, tank%support_damping, tank%support_stiffness, &
+         tank%support_damping_coefficient, tank%support_height, tank%sloshing_damping, &
+         tank%impact_stiffness, tank%impact_damping, real(tank%n, wp), real(tank%p, wp), &
+         tank%gravity]
+  end function from_tank
+
+  !> ground(GROUND_SIZE) = [kind (GROUND_HARMONIC, GROUND_RECORD), peak_acceleration [m/s^2],
+  !> frequency [Hz], dt [s]] and, for a record, its samples [m/s^2].
+  pure function to_ground(a, samples) result(ground)
+    real(wp), intent(in) :: a(GROUND_SIZE), samples(:)
+    type(ground_motion_t) :: ground
+    if (to_int(a(1)) == GROUND_RECORD) then
+      ground = record_ground(a(4), samples)
+    else
+      ground = harmonic_ground(a(2), a(3))
+    end if
+  end function to_ground
+
+  pure function from_ground(ground) result(a)
+    type(ground_motion_t), intent(in) :: ground
+    real(wp) :: a(GROUND_SIZE)
+    a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt]
+  end function from_ground
+
   !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
   pure function counts_array(stats) result(counts)
     type(ode_stats), intent(in) :: stats

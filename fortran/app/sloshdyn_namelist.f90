@@ -9,12 +9,17 @@
 !> defaults come from the option types of the analyses; it parses its group's text with a
 !> namelist read and, if that fails, parses each assignment alone to name the culprit.
 module sloshdyn_namelist
-  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical, require_stable_trivial
-  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
-  use sloshdyn_tank, only: tank_pendulum
+  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A, PARAMETER_FREQUENCY, &
+                                 set_excitation_parameter
+  use sloshdyn_vessel, only: tank_t, tank_properties, tank_model
+  use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, ground_excitation, &
+                             scale_ground, GROUND_RECORD
+  use sloshdyn_records, only: load_record, units_code, units_factor
+  use sloshdyn_seismic, only: max_seismic_outputs
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_DOPRI5, method_names
   use sloshdyn_simulation, only: steady_options, check_steady
@@ -22,21 +27,22 @@ module sloshdyn_namelist
   use sloshdyn_periodic_response, only: lyapunov_options, check_lyapunov
   implicit none
   private
-  public :: run_config, tank_description, simulation_settings, sweep_settings, &
+  public :: run_config, simulation_settings, sweep_settings, &
             response_settings, study_settings, study_kinds, worker_kinds, continuation_names, &
             read_input, namelist_defaults, known_analyses, path_len, &
             check_threads
   public :: ANALYSIS_LINEAR, ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
-            ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV
+            ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, &
+            ANALYSIS_SEISMIC
   public :: DIRECTION_UP, DIRECTION_DOWN, DIRECTION_BOTH, direction_names
 
-  character(len=*), parameter :: known_groups(13) = &
-    [character(len=11) :: 'model', 'tank', 'structure', 'excitation', 'analysis', 'output', &
-     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov', 'study']
-  integer, parameter :: G_MODEL = 1, G_TANK = 2, G_STRUCTURE = 3, G_EXCITATION = 4, &
+  character(len=*), parameter :: known_groups(14) = &
+    [character(len=13) :: 'model', 'tank', 'ground_motion', 'excitation', 'analysis', 'output', &
+     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov', 'seismic', 'study']
+  integer, parameter :: G_MODEL = 1, G_TANK = 2, G_GROUND_MOTION = 3, G_EXCITATION = 4, &
                         G_ANALYSIS = 5, G_OUTPUT = 6, G_INTEGRATION = 7, G_SIMULATION = 8, &
                         G_STEADY = 9, G_SWEEP = 10, G_RESPONSE = 11, G_LYAPUNOV = 12, &
-                        G_STUDY = 13
+                        G_SEISMIC = 13, G_STUDY = 14
   !> &study: the kinds of study (run by Python, `sloshdyn-py study`), the embedded cluster's
   !> worker kinds and the continuations of a response map, by code (index).
   character(len=*), parameter :: study_kinds(2) = [character(len=12) :: 'response_map', 'basins']
@@ -44,25 +50,21 @@ module sloshdyn_namelist
   character(len=*), parameter :: continuation_names(4) = &
     [character(len=4) :: 'none', 'up', 'down', 'both']
   !> The analyses, by code (index).
-  character(len=*), parameter :: known_analyses(7) = &
+  character(len=*), parameter :: known_analyses(8) = &
     [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response', &
-     'periodic_response', 'lyapunov']
+     'periodic_response', 'lyapunov', 'seismic']
   integer, parameter :: ANALYSIS_LINEAR = 1, ANALYSIS_SIMULATE = 2, ANALYSIS_STEADY_STATE = 3, &
                         ANALYSIS_SWEEP = 4, ANALYSIS_FREQUENCY_RESPONSE = 5, &
-                        ANALYSIS_PERIODIC_RESPONSE = 6, ANALYSIS_LYAPUNOV = 7
+                        ANALYSIS_PERIODIC_RESPONSE = 6, ANALYSIS_LYAPUNOV = 7, &
+                        ANALYSIS_SEISMIC = 8
   character(len=*), parameter :: direction_names(3) = [character(len=4) :: 'up', 'down', 'both']
   integer, parameter :: DIRECTION_UP = 1, DIRECTION_DOWN = 2, DIRECTION_BOTH = 3
   !> Longest output directory name; longer ones are refused, never cut.
   integer, parameter :: path_len = 4096
+  !> Longest store, figure and scheduler of &study; longer ones are refused, never cut.
+  integer, parameter :: study_text_len = 1024
   !> Length of the string variables read (longer values are refused as unknown).
   integer, parameter :: word_len = 64
-
-  !> The dimensional description of &tank and &structure, with the pendulum of eq (2)-(3).
-  type :: tank_description
-    real(wp) :: radius = 0, depth = 0, liquid_mass = 0                   !< &tank (m_F computed)
-    real(wp) :: total_mass = 0, rod_length = 0, gravity = 0              !< &structure
-    real(wp) :: pendulum_length = 0, sloshing_mass = 0, d1 = 0, rigid_mass = 0, d0 = 0
-  end type tank_description
 
   !> &simulation: the time history from y0 (also the start of steady states and sweeps).
   type :: simulation_settings
@@ -111,8 +113,13 @@ module sloshdyn_namelist
   !> Everything one run needs, validated.
   type :: run_config
     type(model_t) :: model
-    logical :: dimensional = .false.     !< model built from &tank and &structure
-    type(tank_description) :: tank
+    logical :: dimensional = .false.     !< model built from &tank (SI)
+    type(tank_t) :: tank
+    type(tank_properties) :: tank_props
+    logical :: has_ground = .false.      !< &ground_motion given (with &tank)
+    type(ground_motion_t) :: ground
+    real(wp) :: seismic_t_end = 0        !< &seismic [s]; 0 = default
+    integer :: seismic_n_out = 0
     integer :: analysis = ANALYSIS_LINEAR
     real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0   !< 3:1 tuning search
     character(len=path_len) :: directory = 'sloshdyn_output'
@@ -176,40 +183,62 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(input_file) :: file
-    real(wp) :: groups(7), A, rho
+    real(wp) :: groups(8), A, rho
     integer :: exponents(2)
 
     call scan_file(path, file, status, message)
     if (status /= SD_OK) return
 
-    ! which description of the system: dimensionless (&model) or dimensional (&tank + &structure)
+    ! which description of the system: dimensionless (&model) or a tank in SI (&tank)
     associate (g => file%groups)
-      if (g(G_MODEL)%given .and. (g(G_TANK)%given .or. g(G_STRUCTURE)%given)) then
-        call fail(status, message, 'give either &model (dimensionless) or &tank with '// &
-                  '&structure (dimensional), not both')
-      else if (.not. (g(G_MODEL)%given .or. g(G_TANK)%given .or. g(G_STRUCTURE)%given)) then
-        call fail(status, message, 'missing group &model (or &tank with &structure): the '// &
-                  'system is not described')
-      else if (g(G_TANK)%given .neqv. g(G_STRUCTURE)%given) then
-        call fail(status, message, '&tank and &structure go together: group &'// &
-                  trim(merge('structure', 'tank     ', g(G_TANK)%given))//' is missing')
+      if (g(G_MODEL)%given .and. g(G_TANK)%given) then
+        call fail(status, message, 'give either &model (dimensionless) or &tank (a tank in '// &
+                  'SI units), not both')
+      else if (.not. (g(G_MODEL)%given .or. g(G_TANK)%given)) then
+        call fail(status, message, 'missing group &model (or &tank): the system is not described')
+      else if (g(G_MODEL)%given .and. g(G_GROUND_MOTION)%given) then
+        call fail(status, message, '&ground_motion goes with &tank (SI units); with &model, '// &
+                  'give the dimensionless excitation in &excitation')
+      else if (g(G_TANK)%given .and. g(G_EXCITATION)%given) then
+        call fail(status, message, '&excitation goes with &model (dimensionless); with &tank, '// &
+                  'give the ground motion in &ground_motion (SI units)')
       end if
       if (status /= SD_OK) return
       config%dimensional = g(G_TANK)%given
+      config%has_ground = g(G_GROUND_MOTION)%given
     end associate
 
-    call read_excitation(file, A, rho, status, message)
-    if (status /= SD_OK) return
     if (config%dimensional) then
-      call read_tank_and_structure(file, config%tank, groups, exponents, status, message)
+      call read_tank(file, config%tank, status, message)
+      if (status /= SD_OK) return
+      call tank_model(config%tank, config%model, config%tank_props, status, message)
+      if (status /= SD_OK) then
+        message = '&tank: '//trim(message)
+        return
+      end if
+      call read_ground_motion(file, config%tank_props, frequency_of_sweep(file), config%ground, &
+                              status, message)
+      if (status /= SD_OK) return
+      if (config%has_ground) then
+        call ground_excitation(config%ground, config%tank_props%omega, &
+                               config%tank_props%rod_length, config%model%excitation, status, &
+                               message)
+        if (status /= SD_OK) then
+          message = '&ground_motion: '//trim(message)
+          return
+        end if
+      end if
     else
+      call read_excitation(file, A, rho, status, message)
+      if (status /= SD_OK) return
       call read_model(file, groups, exponents, status, message)
-    end if
-    if (status /= SD_OK) return
-    call model_from_arrays([groups, A, rho], exponents, config%model, status, message)
-    if (status /= SD_OK) then
-      message = trim(merge('&structure ', '&model     ', config%dimensional))//': '//trim(message)
-      return
+      if (status /= SD_OK) return
+      call model_from_arrays([groups(1:7), A, rho, groups(8)], exponents, config%model, status, &
+                             message)
+      if (status /= SD_OK) then
+        message = '&model: '//trim(message)
+        return
+      end if
     end if
 
     call read_analysis(file, config, status, message)
@@ -225,6 +254,8 @@ contains
                                             .or. config%analysis == ANALYSIS_PERIODIC_RESPONSE, &
                                             config%response, status, message)
     if (status == SD_OK) call read_lyapunov(file, config%lyapunov, status, message)
+    if (status == SD_OK) call read_seismic(file, config%seismic_t_end, config%seismic_n_out, &
+                                           status, message)
     if (status == SD_OK) call read_study(file, config, status, message)
     ! a study file describes no analysis of the executable: the default one is not checked
     if (status == SD_OK .and. .not. (config%study%given .and. .not. file%groups(G_ANALYSIS)%given)) &
@@ -238,7 +269,9 @@ contains
     character(len=:), allocatable, intent(out) :: text
     type(input_file) :: file
     type(run_config) :: config
-    type(tank_description) :: vessel
+    type(tank_t) :: tank
+    type(tank_properties) :: props
+    type(ground_motion_t) :: ground
     type(ode_options) :: integration
     type(simulation_settings) :: simulation
     type(steady_options) :: steady
@@ -247,14 +280,17 @@ contains
     type(lyapunov_options) :: lyapunov
     character(len=path_len) :: directory
     type(run_config) :: study_config
-    real(wp) :: groups(7), A, rho
-    integer :: exponents(2), method, status
+    real(wp) :: groups(8), A, rho, t_end
+    integer :: exponents(2), method, status, n_out
     character(len=message_len) :: message
 
     file%describing = .true.
     file%description = ''
+    t_end = 0
+    n_out = 0
     call read_model(file, groups, exponents, status, message)
-    call read_tank_and_structure(file, vessel, groups, exponents, status, message)
+    call read_tank(file, tank, status, message)
+    call read_ground_motion(file, props, -1.0_wp, ground, status, message)
     call read_excitation(file, A, rho, status, message)
     call read_analysis(file, config, status, message)
     call read_output(file, directory, status, message)
@@ -264,26 +300,27 @@ contains
     call read_sweep(file, .false., sweep, status, message)
     call read_response(file, .false., response, status, message)
     call read_lyapunov(file, lyapunov, status, message)
+    call read_seismic(file, t_end, n_out, status, message)
     call read_study(file, study_config, status, message)
     text = file%description
   end subroutine namelist_defaults
 
   ! ---- the groups ------------------------------------------------------------------------------
 
-  !> &model: groups = [s1, mu1, kappa, theta0, beta, gamma, delta], exponents = [n, p].
+  !> &model: groups = [s1, mu1, kappa, theta0, beta, gamma, delta, zeta], exponents = [n, p].
   subroutine read_model(file, groups, exponents, status, message)
     type(input_file), intent(inout) :: file
-    real(wp), intent(out) :: groups(7)
+    real(wp), intent(out) :: groups(8)
     integer, intent(out) :: exponents(2), status
     character(len=message_len), intent(out) :: message
     type(model_t) :: defaults
-    real(wp) :: s1, mu1, kappa, theta0, beta, gamma, delta
+    real(wp) :: s1, mu1, kappa, theta0, beta, gamma, delta, zeta
     integer :: n, p
     type(group_reader) :: reader
-    namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, n, p
+    namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, zeta, n, p
 
     s1 = 0; mu1 = 0; kappa = 0; theta0 = 0
-    beta = defaults%beta; gamma = defaults%gamma; delta = defaults%delta
+    beta = defaults%beta; gamma = defaults%gamma; delta = defaults%delta; zeta = defaults%zeta
     n = defaults%n; p = defaults%p
     status = SD_OK
     message = ''
@@ -300,30 +337,35 @@ contains
     call require(file, G_MODEL, 'mu1', status, message)
     call require(file, G_MODEL, 'kappa', status, message)
     call require(file, G_MODEL, 'theta0', status, message)
-    groups = [s1, mu1, kappa, theta0, beta, gamma, delta]
+    groups = [s1, mu1, kappa, theta0, beta, gamma, delta, zeta]
     exponents = [n, p]
   end subroutine read_model
 
-  !> &tank and &structure: the pendulum of eq (2)-(3) and the groups of eq (9).
-  !> &tank and &structure: the pendulum of eq (2)-(3) and the groups of eq (9), as read_model.
-  subroutine read_tank_and_structure(file, vessel, groups, exponents, status, message)
+  !> &tank: a cylindrical tank on supports in SI units (sloshdyn_vessel), defaults from tank_t.
+  subroutine read_tank(file, vessel, status, message)
     type(input_file), intent(inout) :: file
-    type(tank_description), intent(out) :: vessel
-    real(wp), intent(out) :: groups(7)
-    integer, intent(out) :: exponents(2), status
+    type(tank_t), intent(out) :: vessel
+    integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: defaults
-    real(wp) :: R, h, rho_liquid, m_liquid, M, L, k, c, b, d, g, theta0
+    real(wp) :: radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
+                support_frequency, support_damping, support_stiffness, &
+                support_damping_coefficient, support_height, sloshing_damping, &
+                impact_stiffness, impact_damping, gravity
     integer :: n, p
     type(group_reader) :: reader
-    namelist /tank/ R, h, rho_liquid, m_liquid
-    namelist /structure/ M, L, k, c, b, d, g, theta0, n, p
+    namelist /tank/ radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
+                    support_frequency, support_damping, support_stiffness, &
+                    support_damping_coefficient, support_height, sloshing_damping, &
+                    impact_stiffness, impact_damping, n, p, gravity
 
-    R = 0; h = 0; rho_liquid = 0; m_liquid = 0
-    M = 0; L = 0; k = 0; c = 0; b = 0; d = 0; g = 9.81_wp; theta0 = 0
-    n = defaults%n; p = defaults%p
-    groups = 0
-    exponents = [n, p]
+    radius = vessel%radius; liquid_depth = vessel%liquid_depth; freeboard = vessel%freeboard
+    liquid_density = vessel%liquid_density; liquid_mass = vessel%liquid_mass
+    tank_mass = vessel%tank_mass; support_frequency = vessel%support_frequency
+    support_damping = vessel%support_damping; support_stiffness = vessel%support_stiffness
+    support_damping_coefficient = vessel%support_damping_coefficient
+    support_height = vessel%support_height; sloshing_damping = vessel%sloshing_damping
+    impact_stiffness = vessel%impact_stiffness; impact_damping = vessel%impact_damping
+    n = vessel%n; p = vessel%p; gravity = vessel%gravity
     status = SD_OK
     message = ''
     call reader%start(file, G_TANK, status)
@@ -335,41 +377,140 @@ contains
       end if
       call reader%check(file, status, message)
     end do
-    call require(file, G_TANK, 'r', status, message)
-    call require(file, G_TANK, 'h', status, message)
-    call reader%start(file, G_STRUCTURE, status)
+    call require(file, G_TANK, 'radius', status, message)
+    call require(file, G_TANK, 'liquid_depth', status, message)
+    call require(file, G_TANK, 'freeboard', status, message)
+    call require(file, G_TANK, 'tank_mass', status, message)
+    vessel = tank_t(radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
+                    support_frequency, support_damping, support_stiffness, &
+                    support_damping_coefficient, support_height, sloshing_damping, &
+                    impact_stiffness, impact_damping, n, p, gravity)
+  end subroutine read_tank
+
+  !> &ground_motion: a record file (PEER NGA .AT2, or two columns time, acceleration) or harmonic
+  !> motion (peak_acceleration, frequency), scaled by a factor, to a peak ground acceleration,
+  !> or to a pseudo-spectral acceleration at target_period (default: the tank's sloshing period)
+  !> for target_damping; accelerations in `units` ('g', 'm/s^2', 'cm/s^2'). A sweep in
+  !> frequency gives the frequency (sweep_frequency >= 0, its first [Hz]; < 0: no such sweep)
+  !> when none is given.
+  subroutine read_ground_motion(file, props, sweep_frequency, ground, status, message)
+    type(input_file), intent(inout) :: file
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(in) :: sweep_frequency
+    type(ground_motion_t), intent(out) :: ground
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=path_len) :: record
+    character(len=word_len) :: format, units
+    real(wp) :: peak_acceleration, frequency, scale_factor, target_pga, target_sa, &
+                target_period, target_damping, to_si, dt
+    real(wp), allocatable :: acceleration(:)
+    integer :: unit_code
+    type(group_reader) :: reader
+    namelist /ground_motion/ record, format, units, peak_acceleration, frequency, scale_factor, &
+                             target_pga, target_sa, target_period, target_damping
+
+    record = ''; format = 'auto'; units = 'g'
+    peak_acceleration = 0; frequency = 0; scale_factor = 1; target_pga = 0; target_sa = 0
+    target_period = 0; target_damping = 0.05_wp
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_GROUND_MOTION, status)
     do while (reader%next())
       if (reader%describing) then
-        write (reader%written, nml=structure, iostat=reader%ios)
+        write (reader%written, nml=ground_motion, iostat=reader%ios)
       else
-        read (reader%text, nml=structure, iostat=reader%ios, iomsg=reader%iomsg)
+        read (reader%text, nml=ground_motion, iostat=reader%ios, iomsg=reader%iomsg)
       end if
       call reader%check(file, status, message)
     end do
-    call require(file, G_STRUCTURE, 'm', status, message)
-    call require(file, G_STRUCTURE, 'l', status, message)
-    call require(file, G_STRUCTURE, 'k', status, message)
-    call require(file, G_STRUCTURE, 'theta0', status, message)
-    if (status /= SD_OK .or. file%describing) return
-    call tank_pendulum(R, h, rho_liquid, m_liquid, vessel%pendulum_length, vessel%sloshing_mass, &
-                       vessel%d1, vessel%rigid_mass, vessel%d0, vessel%liquid_mass, status, &
-                       message)
-    if (status /= SD_OK) then
-      message = '&tank: '//trim(message)
-      return
+    if (status /= SD_OK .or. file%describing .or. .not. file%groups(G_GROUND_MOTION)%given) return
+
+    call units_code(units, unit_code, status, message)
+    if (status == SD_OK) call units_factor(unit_code, to_si, status, message)
+    ! the signs in the user's units, so that messages show the values as written
+    call check_real('peak_acceleration', peak_acceleration, 0.0_wp, huge(1.0_wp), .false., &
+                    .true., 'the peak ground acceleration must be >= 0 ['//trim(units)//']', &
+                    status, message)
+    call check_real('target_pga', target_pga, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'target_pga must be >= 0 ['//trim(units)//'] (0: not scaled to a PGA)', &
+                    status, message)
+    call check_real('target_sa', target_sa, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'target_sa must be >= 0 ['//trim(units)//'] (0: not scaled to a spectral '// &
+                    'acceleration)', status, message)
+    if (status == SD_OK) then
+      if (len_trim(record) > 0) then
+        call load_record(beside(file%path, trim(record)), format, units, dt, acceleration, &
+                         status, message)
+        if (status == SD_OK) ground = record_ground(dt, acceleration)
+      else
+        call require(file, G_GROUND_MOTION, 'peak_acceleration', status, message)
+        ! a sweep in frequency sets it (a start <= 0 is &sweep's error, reported there)
+        if (sweep_frequency >= 0 .and. .not. given(file, G_GROUND_MOTION, 'frequency')) &
+          frequency = merge(sweep_frequency, 1.0_wp, sweep_frequency > 0)
+        if (sweep_frequency < 0) call require(file, G_GROUND_MOTION, 'frequency', status, &
+                                              message)
+        if (status == SD_OK) ground = harmonic_ground(peak_acceleration*to_si, frequency)
+      end if
     end if
-    groups(4) = theta0
-    exponents = [n, p]
-    call model_from_physical(M, L, k, c, b, d, g, theta0, vessel%pendulum_length, &
-                             vessel%sloshing_mass, groups(1), groups(2), groups(3), groups(5), &
-                             groups(6), groups(7), status, message)
-    if (status /= SD_OK) then
-      message = '&structure: '//trim(message)
-      return
+    if (status == SD_OK) then
+      if (target_period <= 0) target_period = props%sloshing_period
+      call scale_ground(ground, scale_factor, target_pga*to_si, target_sa*to_si, target_period, &
+                        target_damping, status, message)
     end if
-    vessel%radius = R; vessel%depth = h
-    vessel%total_mass = M; vessel%rod_length = L; vessel%gravity = g
-  end subroutine read_tank_and_structure
+    if (status /= SD_OK .and. index(message, '&ground_motion') /= 1) &
+      message = '&ground_motion: '//trim(message)
+  end subroutine read_ground_motion
+
+  !> A path relative to the folder of the input file (absolute paths as they are).
+  pure function beside(input_path, path) result(full)
+    character(len=*), intent(in) :: input_path, path
+    character(len=:), allocatable :: full
+    integer :: slash
+    slash = index(input_path, '/', back=.true.)
+    if (path(1:1) == '/' .or. slash == 0) then
+      full = path
+    else
+      full = input_path(1:slash)//path
+    end if
+  end function beside
+
+  !> &seismic: the duration [s] and number of outputs of a seismic response (0: the defaults of
+  !> sloshdyn_seismic).
+  subroutine read_seismic(file, t_end, n_out, status, message)
+    type(input_file), intent(inout) :: file
+    real(wp), intent(inout) :: t_end
+    integer, intent(inout) :: n_out
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(group_reader) :: reader
+    namelist /seismic/ t_end, n_out
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_SEISMIC, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=seismic, iostat=reader%ios)
+      else
+        read (reader%text, nml=seismic, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    't_end must be >= 0 [s] (0: the record plus 5 sloshing periods)', status, &
+                    message)
+    if (status == SD_OK .and. (n_out < 0 .or. n_out > max_seismic_outputs)) then
+      status = SD_BAD_INPUT
+      message = 'n_out = '//num2str(n_out)//' is out of range: it must lie in [2, '// &
+                num2str(max_seismic_outputs)//'] (0: the default)'
+    end if
+    if (status == SD_OK .and. n_out == 1) then
+      status = SD_BAD_INPUT
+      message = 'n_out = 1 is out of range: it must lie in [2, '//num2str(max_seismic_outputs)// &
+                '] (0: the default)'
+    end if
+    if (status /= SD_OK) message = '&seismic: '//trim(message)
+  end subroutine read_seismic
 
   subroutine read_excitation(file, amplitude, frequency, status, message)
     type(input_file), intent(inout) :: file
@@ -664,6 +805,11 @@ contains
                       'sweep values of rho must be > 0', status, message)
       call check_real('stop', stop, 0.0_wp, huge(1.0_wp), .true., .true., &
                       'sweep values of rho must be > 0', status, message)
+    else if (settings%parameter == PARAMETER_FREQUENCY) then
+      call check_real('start', start, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'sweep frequencies must be > 0 [Hz]', status, message)
+      call check_real('stop', stop, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'sweep frequencies must be > 0 [Hz]', status, message)
     else
       call check_real('start', start, 0.0_wp, huge(1.0_wp), .false., .true., &
                       'sweep values of A must be >= 0', status, message)
@@ -686,7 +832,7 @@ contains
     character(len=message_len), intent(out) :: message
     type(study_settings) :: defaults
     character(len=word_len) :: kind, worker_kind, continuation
-    character(len=path_len + 1) :: store, figure, scheduler
+    character(len=study_text_len + 1) :: store, figure, scheduler
     real(wp) :: frequency_start, frequency_stop, amplitude_start, amplitude_stop, x1_start, &
                 x1_stop, dx1_start, dx1_stop, tol
     integer :: workers, points_per_task, n_frequencies, n_amplitudes, n_grid
@@ -729,13 +875,13 @@ contains
       if (status /= SD_OK) return
       if (len_trim(store) == 0) call fail(status, message, &
         '&study: store = '''' is empty: give the path of the Zarr store')
-      if (len_trim(store) > path_len .or. len_trim(figure) > path_len .or. &
-          len_trim(scheduler) > path_len) call fail(status, message, '&study: store, figure '// &
-        'and scheduler must have at most '//num2str(path_len)//' characters')
+      if (len_trim(store) > study_text_len .or. len_trim(figure) > study_text_len .or. &
+          len_trim(scheduler) > study_text_len) call fail(status, message, '&study: store, '// &
+        'figure and scheduler must have at most '//num2str(study_text_len)//' characters')
       if (status /= SD_OK) return
-      st%store = store(1:path_len)
-      st%figure = figure(1:path_len)
-      st%scheduler = scheduler(1:path_len)
+      st%store = store(1:study_text_len)
+      st%figure = figure(1:study_text_len)
+      st%scheduler = scheduler(1:study_text_len)
       call check_count('workers', workers, 0, 1024)
       call check_count('points_per_task', points_per_task, 0, 1000000)
       st%workers = workers
@@ -938,6 +1084,19 @@ contains
     character(len=message_len), intent(inout) :: message
     type(model_t) :: first
 
+    if (config%analysis == ANALYSIS_SEISMIC .and. .not. (config%dimensional .and. &
+                                                         config%has_ground)) then
+      call fail(status, message, "&analysis: kind = 'seismic' needs a tank (&tank) and its "// &
+                'ground motion (&ground_motion)')
+      return
+    end if
+    if (config%has_ground .and. config%ground%kind == GROUND_RECORD .and. .not. any( &
+        config%analysis == [ANALYSIS_SEISMIC, ANALYSIS_SIMULATE, ANALYSIS_LINEAR])) then
+      call fail(status, message, "&analysis: kind = '"//trim(known_analyses(config%analysis))// &
+                "' needs harmonic ground motion (peak_acceleration, frequency), not a record")
+      return
+    end if
+
     select case (config%analysis)
     case (ANALYSIS_LINEAR)
       call require_stable_trivial(config%model, status, message)
@@ -945,6 +1104,17 @@ contains
       first = config%model
       if (config%analysis == ANALYSIS_SWEEP .and. config%sweep%parameter == PARAMETER_RHO) &
         first%excitation%rho = min(config%sweep%start, config%sweep%stop)
+      if (config%analysis == ANALYSIS_SWEEP .and. &
+          config%sweep%parameter == PARAMETER_FREQUENCY) then
+        if (.not. (config%dimensional .and. config%has_ground)) then
+          call fail(status, message, "&sweep: parameter = 'frequency' sweeps a tank's harmonic "// &
+                    'ground motion: it needs &tank and &ground_motion')
+          return
+        end if
+        call set_excitation_parameter(first%excitation, PARAMETER_FREQUENCY, &
+                                      2*pi*min(config%sweep%start, config%sweep%stop)/ &
+                                      config%tank_props%omega, status, message)
+      end if
       call check_steady(first, config%steady, status, message)
       if (status /= SD_OK) message = trim(merge('&excitation', '&steady    ', &
                                                 index(message, 'rho') == 1))//': '//trim(message)
@@ -1189,18 +1359,35 @@ contains
     character(len=message_len), intent(inout) :: message
     character(len=:), allocatable :: display
     if (status /= SD_OK .or. file%describing) return
-    if (file%groups(group)%given) then
-      if (index(file%groups(group)%assigned, ','//name//',') > 0) return
-    end if
+    if (given(file, group, name)) return
     display = name
-    select case (name)      ! the names the documentation uses
-    case ('r');  display = 'R'
-    case ('m');  display = 'M'
-    case ('l');  display = 'L'
-    end select
     call fail(status, message, '&'//trim(known_groups(group))//': required variable '// &
               display//' is missing')
   end subroutine require
+
+  !> Whether the file assigns the variable in the group.
+  pure logical function given(file, group, name)
+    type(input_file), intent(in) :: file
+    integer, intent(in) :: group
+    character(len=*), intent(in) :: name
+    given = .false.
+    if (file%groups(group)%given) given = index(file%groups(group)%assigned, ','//name//',') > 0
+  end function given
+
+  !> The first frequency [Hz] of a sweep in frequency (parameter = 'frequency'); -1 if there is
+  !> none or &sweep cannot be read (its own reading reports why).
+  function frequency_of_sweep(file) result(frequency)
+    type(input_file), intent(inout) :: file
+    real(wp) :: frequency
+    type(sweep_settings) :: sweep
+    integer :: status
+    character(len=message_len) :: message
+    frequency = -1
+    if (.not. file%groups(G_SWEEP)%given) return
+    call read_sweep(file, .false., sweep, status, message)
+    if (status == SD_OK .and. sweep%parameter == PARAMETER_FREQUENCY) &
+      frequency = max(min(sweep%start, sweep%stop), 0.0_wp)
+  end function frequency_of_sweep
 
   !> Threads for a sweep: any number in [1, 1024] for independent points; one for a sweep that
   !> carries the state, whose points depend on each other (more would change the answer).
@@ -1221,7 +1408,8 @@ contains
     end if
   end subroutine check_threads
 
-  !> 'rho' or 'A' for the group's parameter.
+  !> 'rho' or 'A' for the group's parameter; &sweep also 'frequency' (a tank's harmonic ground
+  !> motion at constant peak acceleration, in Hz).
   subroutine excitation_parameter(group, text, parameter, status, message)
     character(len=*), intent(in) :: group, text
     integer, intent(out) :: parameter
@@ -1233,9 +1421,17 @@ contains
       parameter = PARAMETER_RHO
     case ('A', 'a')
       parameter = PARAMETER_A
+    case ('frequency')
+      if (group == 'sweep') then
+        parameter = PARAMETER_FREQUENCY
+      else
+        call fail(status, message, '&'//group//": parameter = 'frequency' is for &sweep only; "// &
+                  'allowed here: rho, A')
+      end if
     case default
       call fail(status, message, '&'//group//': parameter = '''//trim(adjustl(text))// &
-                ''' is not known; allowed: rho, A')
+                ''' is not known; allowed: rho, A'//trim(merge(', frequency', '           ', &
+                                                              group == 'sweep')))
     end select
   end subroutine excitation_parameter
 
@@ -1258,15 +1454,21 @@ contains
           'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid')
       text = name//' must be an integer'
     case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from', &
-          'store', 'figure', 'scheduler', 'worker_kind', 'continuation')
+          'record', 'format', 'units', 'store', 'figure', 'scheduler', 'worker_kind', &
+          'continuation')
       text = name//' must be a quoted string'
     case ('shooting')
       text = name//' must be .true. or .false.'
     case ('y0')
       text = 'y0 must be four real numbers (x1, x1'', x2, x2''), or y0(i) = one of them, i = 1..4'
-    case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'a', 'rho', 'r', 'h', &
-          'rho_liquid', 'm_liquid', 'm', 'l', 'k', 'c', 'b', 'd', 'g', 'sigma1', 'kappa_min', &
+    case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'zeta', 'a', 'rho', &
+          'sigma1', 'kappa_min', &
           'kappa_max', 'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 't_end', 'settle_tol', &
+          'radius', 'liquid_depth', 'freeboard', 'liquid_density', 'liquid_mass', 'tank_mass', &
+          'support_frequency', 'support_damping', 'support_stiffness', &
+          'support_damping_coefficient', 'support_height', 'sloshing_damping', &
+          'impact_stiffness', 'impact_damping', 'gravity', 'peak_acceleration', 'frequency', &
+          'scale_factor', 'target_pga', 'target_sa', 'target_period', 'target_damping', &
           'transient_periods', &
           'max_transient_periods', 'periodic_tol', 'start', 'stop', 'amplitude_min', &
           'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale', 'frequency_start', &
@@ -1324,6 +1526,12 @@ contains
         if (len(name) == 0 .or. name == 'end') then
           call fail(status, message, 'a group name must follow & in '''//path//''' (line '// &
                     num2str(start_line)//')')
+        else if (group == 0 .and. name == 'structure') then
+          call fail(status, message, 'namelist group &structure in '''//path//''' (line '// &
+                    num2str(start_line)//') is no longer read: &tank describes the whole '// &
+                    'tank in SI units, its supports by support_frequency and '// &
+                    'support_damping (or support_stiffness, support_damping_coefficient, '// &
+                    'support_height); README.md, "Namelist reference"')
         else if (group == 0) then
           call fail(status, message, 'unknown namelist group &'//name//' in '''//path// &
                     ''' (line '//num2str(start_line)//'); known groups: &'// &

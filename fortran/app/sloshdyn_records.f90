@@ -19,7 +19,7 @@ module sloshdyn_records
   use sloshdyn_text, only: num2str
   implicit none
   private
-  public :: read_at2, read_two_column, units_code, units_factor
+  public :: read_at2, read_two_column, load_record, units_code, units_factor
   public :: UNITS_G, UNITS_M_S2, UNITS_CM_S2, standard_gravity
 
   !> Units of an acceleration column.
@@ -115,6 +115,38 @@ contains
     dt = (time(count) - time(1))/(count - 1)
     accel = accel*factor
   end subroutine read_two_column
+
+  !> Read a record file by its format: 'at2' (PEER NGA, in g), 'columns' (time, acceleration in
+  !> the given units) or 'auto' (.AT2 by its extension, any case; otherwise columns). The
+  !> acceleration in m/s^2; unallocated on failure.
+  subroutine load_record(path, format, units, dt, accel, status, message)
+    character(len=*), intent(in) :: path, format, units
+    real(wp), intent(out) :: dt
+    real(wp), allocatable, intent(out) :: accel(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=:), allocatable :: kind
+    integer :: code
+    dt = 0
+    call units_code(units, code, status, message)
+    if (status /= SD_OK) return
+    kind = lower(trim(adjustl(format)))
+    if (kind == 'auto') then
+      kind = 'columns'
+      if (len_trim(path) > 4) then
+        if (lower(path(len_trim(path) - 3:len_trim(path))) == '.at2') kind = 'at2'
+      end if
+    end if
+    select case (kind)
+    case ('at2')
+      call read_at2(path, dt, accel, status, message)
+    case ('columns')
+      call read_two_column(path, code, dt, accel, status, message)
+    case default
+      status = SD_BAD_INPUT
+      message = 'format = '''//trim(adjustl(format))//''' is not known: use auto, at2 or columns'
+    end select
+  end subroutine load_record
 
   !> The units code of a name: 'g'; 'm/s^2' (also 'm/s2', 'm/s**2'); 'cm/s^2' (also 'cm/s2',
   !> 'cm/s**2', 'gal'); any case, surrounding blanks ignored.

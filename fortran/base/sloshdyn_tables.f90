@@ -7,7 +7,8 @@
 module sloshdyn_tables
   implicit none
   private
-  public :: table_header, table_formats, table_size, kind_names, special_kind_name, motion_name, verdict_name
+  public :: table_header, table_formats, table_size, kind_names, special_kind_name, motion_name, &
+            verdict_name, source_name
   public :: SPECIAL_FOLD, SPECIAL_HOPF, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
             SPECIAL_NEIMARK_SACKER
   public :: MOTION_PERIODIC, MOTION_QUASI_PERIODIC, MOTION_IRREGULAR, MOTION_SETTLING
@@ -21,6 +22,8 @@ module sloshdyn_tables
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
   public :: ROUTH_SIZE, COUNTS_SIZE
+  public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+            HARMONIC_SWEEP_ROWS
 
   !> Special points on branches (slow flow and periodic orbits).
   integer, parameter :: SPECIAL_FOLD = 1, SPECIAL_HOPF = 2, SPECIAL_BRANCH_POINT = 3, &
@@ -67,6 +70,38 @@ module sloshdyn_tables
   !> Routh-Hurwitz of eq (20) at the trivial equilibrium; work counts of an integration.
   integer, parameter :: ROUTH_SIZE = 8, COUNTS_SIZE = 4
 
+  !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
+  !> output time, then x1 and x2; the peaks of the loads (value, time) with the roof's strikes;
+  !> the design-code cross-check (one row per source); the tank's properties.
+  character(len=*), parameter :: seismic_columns = 't [s],ground_acceleration [m/s^2],'// &
+    'sloshing_displacement [m],wave_height [m],pendulum_angle [rad],tank_drift [m],'// &
+    'impact_force [N],base_shear [N],overturning_moment [N m],x1,x2'
+  integer, parameter :: SEISMIC_LOADS = 9, SEISMIC_ROWS = 11
+  character(len=*), parameter :: peaks_columns = 'peak_ground_acceleration [m/s^2],'// &
+    'time_ground_acceleration [s],peak_sloshing_displacement [m],time_sloshing_displacement [s],'// &
+    'peak_wave_height [m],time_wave_height [s],peak_pendulum_angle [rad],'// &
+    'time_pendulum_angle [s],peak_tank_drift [m],time_tank_drift [s],peak_impact_force [N],'// &
+    'time_impact_force [s],peak_base_shear [N],time_base_shear [s],'// &
+    'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
+    'first_roof_time [s],roof_impacts'
+  integer, parameter :: PEAKS_SIZE = 19
+  character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
+    'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
+    'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
+  integer, parameter :: HARMONIC_SWEEP_ROWS = 9
+  character(len=*), parameter :: codes_columns_names = 'source,convective_period [s],'// &
+    'convective_mass [kg],impulsive_mass [kg],convective_height [m],impulsive_height [m],'// &
+    'wave_height [m]'
+  integer, parameter :: CODES_COLUMNS = 6, CODES_ROWS = 4
+  character(len=*), parameter :: code_sources = 'sloshdyn,API 650,EC8-4,ACI 350.3'
+  character(len=*), parameter :: tank_si_columns = 'radius [m],liquid_depth [m],freeboard [m],'// &
+    'liquid_mass [kg],tank_mass [kg],total_mass [kg],pendulum_length [m],sloshing_mass [kg],'// &
+    'd1 [m],rigid_mass [kg],d0 [m],convective_height [m],impulsive_height [m],'// &
+    'sloshing_period [s],omega [rad/s],support_height [m],support_stiffness [N m/rad],'// &
+    'support_damping_coefficient [N m s/rad],theta0 [rad],wave_factor [m],'// &
+    'impact_coefficient [N m],s1,mu1,kappa,beta,gamma,delta,zeta'
+  integer, parameter :: TANK_SI_SIZE = 28
+
 contains
 
   !> The CSV header (column names) of a result table, '' for an unknown name.
@@ -75,7 +110,7 @@ contains
     character(len=:), allocatable :: header
     select case (name)
     case ('parameters')
-      header = 's1,mu1,kappa,theta0,beta,gamma,delta,n,p,A,rho,a1,a2,a3,a4,a5,a6,'// &
+      header = 's1,mu1,kappa,theta0,beta,gamma,delta,zeta,n,p,A,rho,a1,a2,a3,a4,a5,a6,'// &
                'b1,b2,b3,b4,b5,b6'
     case ('tank')
       header = 'R,h,m_liquid,l,m,d1,m0,d0,M,L,g,omega'
@@ -106,19 +141,29 @@ contains
       header = 'kind,lambda,y1,y2,y3,y4,max_x1'
     case ('lyapunov')
       header = 'periods,estimate'
+    case ('seismic')
+      header = seismic_columns
+    case ('seismic_peaks')
+      header = peaks_columns
+    case ('design_codes')
+      header = codes_columns_names
+    case ('harmonic_sweep')
+      header = harmonic_sweep_columns
+    case ('tank_si')
+      header = tank_si_columns
     case default
       header = ''
     end select
   end function table_header
 
   !> How each column of a result table is written, one letter per column: r real, i integer,
-  !> s special-point kind name, v verdict name.
+  !> s special-point kind name, v verdict name, c the source of a design-code row.
   pure function table_formats(name) result(formats)
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: formats
     select case (name)
     case ('parameters')
-      formats = 'rrrrrrriirrrrrrrrrrrrrr'
+      formats = 'rrrrrrrriirrrrrrrrrrrrrr'
     case ('equilibria')
       formats = 'rrrrivrrrrrrrr'
     case ('routh_hurwitz')
@@ -131,6 +176,12 @@ contains
       formats = 'iiir'
     case ('lyapunov')
       formats = 'ir'
+    case ('seismic_peaks')
+      formats = repeat('r', 16)//'iri'
+    case ('design_codes')
+      formats = 'c'//repeat('r', CODES_COLUMNS)
+    case ('harmonic_sweep')
+      formats = 'rrrrrriir'
     case default
       formats = repeat('r', table_size(name))
     end select
@@ -165,6 +216,9 @@ contains
     case ('verdict')
       names = verdict_kinds
       first = VERDICT_UNSTABLE
+    case ('source')
+      names = code_sources
+      first = 1
     case default
       names = ''
       first = 0
@@ -182,6 +236,12 @@ contains
     character(len=len_trim(item(motion_kinds, code - MOTION_PERIODIC + 1))) :: name
     name = item(motion_kinds, code - MOTION_PERIODIC + 1)
   end function motion_name
+
+  pure function source_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    name = item(code_sources, code)
+  end function source_name
 
   pure function verdict_name(code) result(name)
     integer, intent(in) :: code

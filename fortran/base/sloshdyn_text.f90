@@ -13,14 +13,15 @@ module sloshdyn_text
   public :: num2str
 
   interface num2str
-    module procedure real2str, int2str
+    module procedure real2str, rounded2str, int2str
   end interface num2str
 
   integer, parameter :: buffer_len = 64
 
 contains
 
-  !> Shortest readable form of a real: up to 10 significant digits, no trailing zeros.
+  !> Shortest readable form of a real: up to 10 decimals (or 10 significant digits in
+  !> exponent form), no trailing zeros.
   pure function real2str(x) result(text)
     real(wp), intent(in) :: x
     character(len=real_width(x)) :: text
@@ -30,11 +31,32 @@ contains
     text = buffer(1:length)
   end function real2str
 
+  !> The same, rounded to `significant` digits first (num2str(x, significant)).
+  pure function rounded2str(x, significant) result(text)
+    real(wp), intent(in) :: x
+    integer, intent(in) :: significant
+    character(len=real_width(rounded_to(x, significant))) :: text
+    text = real2str(rounded_to(x, significant))
+  end function rounded2str
+
   pure integer function real_width(x)
     real(wp), intent(in) :: x
     character(len=buffer_len) :: buffer
     call format_real(x, buffer, real_width)
   end function real_width
+
+  !> x rounded to `significant` digits (NaN and infinities unchanged).
+  pure real(wp) function rounded_to(x, significant)
+    real(wp), intent(in) :: x
+    integer, intent(in) :: significant
+    character(len=40) :: buffer
+    character(len=20) :: form
+    rounded_to = x
+    if (x /= x .or. abs(x) > huge(x)) return
+    write (form, '(a, i0, a)') '(es40.', max(significant, 1) - 1, 'e3)'
+    write (buffer, form) x
+    read (buffer, *) rounded_to
+  end function rounded_to
 
   !> The text of real2str in buffer(1:length).
   pure subroutine format_real(x, text, length)

@@ -1,7 +1,7 @@
 !> The f2py bridge: the only Fortran that Python sees. Scalars and explicit-shape arrays of
 !> c_double/c_int cross the boundary; every routine returns status (0 = success) and a fixed-length
 !> message. Parameter layout (see sloshdyn_model):
-!>   rpar(9) = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho], ipar(2) = [n, p]
+!>   rpar(10) = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta], ipar(2) = [n, p]
 !> Settings arrays (integration, steady, response, lyapunov): the layouts of sloshdyn_layouts;
 !> array sizes are literals here (f2py cannot use another module's constants): the compiler checks
 !> them against the layouts' named sizes where the arrays are converted.
@@ -56,7 +56,7 @@ contains
   subroutine model_coefficients(rpar, ipar, a, b, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
-    real(c_double), intent(in) :: rpar(9)
+    real(c_double), intent(in) :: rpar(10)
     integer(c_int), intent(in) :: ipar(2)
     real(c_double), intent(out) :: a(6), b(6)
     integer(c_int), intent(out) :: status
@@ -75,7 +75,7 @@ contains
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_motion, only: inertia_matrix, forcing_vector, core_eom => equations_of_motion, &
                                motion_jacobian
-    real(c_double), intent(in) :: rpar(9), tau, y(4)
+    real(c_double), intent(in) :: rpar(10), tau, y(4)
     integer(c_int), intent(in) :: ipar(2)
     real(c_double), intent(out) :: mass(2, 2), force(2), dydt(4), jacobian(4, 4)
     integer(c_int), intent(out) :: status
@@ -100,7 +100,7 @@ contains
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_linear, only: stiffness_matrix, core => natural_frequencies, &
                                natural_frequencies_eig, modal_matrix
-    real(c_double), intent(in) :: rpar(9)
+    real(c_double), intent(in) :: rpar(10)
     integer(c_int), intent(in) :: ipar(2)
     real(c_double), intent(out) :: omegas(4), stiffness(2, 2), modal(2, 2), modal_inverse(2, 2)
     integer(c_int), intent(out) :: status
@@ -167,7 +167,7 @@ contains
     !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_equilibria, only: theta_roots, phi_roots
-    real(c_double), intent(in) :: rpar(9)
+    real(c_double), intent(in) :: rpar(10)
     integer(c_int), intent(in) :: ipar(2), which, max_roots
     real(c_double), intent(out) :: roots(max_roots)
     integer(c_int), intent(out) :: n_roots, truncated, status
@@ -197,7 +197,7 @@ contains
     !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_equilibria, only: core => equilibria, trivial_routh_hurwitz
-    real(c_double), intent(in) :: rpar(9)
+    real(c_double), intent(in) :: rpar(10)
     integer(c_int), intent(in) :: ipar(2), max_eq
     real(c_double), intent(out) :: theta(max_eq), phi(max_eq), eig_re(4, max_eq), &
                                    eig_im(4, max_eq), routh(7)
@@ -234,7 +234,7 @@ contains
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_polynomial, only: monomial_exponents, poly
-    real(c_double), intent(in) :: rpar(9)
+    real(c_double), intent(in) :: rpar(10)
     integer(c_int), intent(in) :: ipar(2)
     real(c_double), intent(out) :: scalars(5), c(2, 3), g(2, 34), g_forcing(2, 0:34), h(2, 34), &
                                    h_forcing(2, 0:34)
@@ -277,7 +277,7 @@ contains
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_slowflow, only: core => nonresonant_amplitudes
     use sloshdyn_text, only: num2str
-    real(c_double), intent(in) :: rpar(9), rho(n)
+    real(c_double), intent(in) :: rpar(10), rho(n)
     integer(c_int), intent(in) :: ipar(2), n
     real(c_double), intent(out) :: amplitudes(3, n)
     integer(c_int), intent(out) :: counts(n), status
@@ -307,7 +307,7 @@ contains
     use sloshdyn_simulation, only: time_history
     use sloshdyn_tables, only: HISTORY_ROWS
     use sloshdyn_layouts, only: to_ode_options, to_method, counts_array
-    real(c_double), intent(in) :: rpar(9), tau0, y0(4), tau_out(n_out), &
+    real(c_double), intent(in) :: rpar(10), tau0, y0(4), tau_out(n_out), &
                                   integration(7)
     integer(c_int), intent(in) :: ipar(2), n_out
     real(c_double), intent(out) :: history(9, n_out), counts(4)
@@ -338,7 +338,7 @@ contains
     use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady, counts_array
-    real(c_double), intent(in) :: rpar(9), y0(4), integration(7), &
+    real(c_double), intent(in) :: rpar(10), y0(4), integration(7), &
                                   steady(7)
     integer(c_int), intent(in) :: ipar(2), window
     real(c_double), intent(out) :: summary(11), poincare(4, window), y_end(4), &
@@ -368,7 +368,7 @@ contains
     use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady
-    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), &
+    real(c_double), intent(in) :: rpar(10), values(n), y0(4), integration(7), &
                                   steady(7)
     integer(c_int), intent(in) :: ipar(2), which, n
     real(c_double), intent(out) :: summaries(11, n), y_final(4)
@@ -395,7 +395,7 @@ contains
     use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady
-    real(c_double), intent(in) :: rpar(9), values(n), y0(4), integration(7), &
+    real(c_double), intent(in) :: rpar(10), values(n), y0(4), integration(7), &
                                   steady(7)
     integer(c_int), intent(in) :: ipar(2), which, n, n_threads
     real(c_double), intent(out) :: summaries(11, n)
@@ -423,7 +423,7 @@ contains
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_studies, only: core => steady_path, roof_impact
     use sloshdyn_layouts, only: to_ode_options, to_method, to_steady
-    real(c_double), intent(in) :: rpar(9), rho(n), A(n), y0(4, n), integration(7), steady(7)
+    real(c_double), intent(in) :: rpar(10), rho(n), A(n), y0(4, n), integration(7), steady(7)
     integer(c_int), intent(in) :: ipar(2), n, carry
     real(c_double), intent(out) :: summaries(11, n), y_end(4, n), orbit(16, n)
     integer(c_int), intent(out) :: impact(n), point_status(n), status
@@ -452,7 +452,7 @@ contains
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_studies, only: core => attractor_points
     use sloshdyn_layouts, only: to_ode_options, to_method, to_steady
-    real(c_double), intent(in) :: rpar(9), y0(4, n), integration(7), steady(7)
+    real(c_double), intent(in) :: rpar(10), y0(4, n), integration(7), steady(7)
     integer(c_int), intent(in) :: ipar(2), n
     real(c_double), intent(out) :: summaries(11, n), y_end(4, n), orbit(16, n), &
                                    orbit_points(4, 8, n)
@@ -500,7 +500,7 @@ contains
     use sloshdyn_response, only: core => frequency_response
     use sloshdyn_tables, only: SPECIAL_ROWS
     use sloshdyn_layouts, only: to_response
-    real(c_double), intent(in) :: rpar(9), lambda_min, lambda_max, settings(10)
+    real(c_double), intent(in) :: rpar(10), lambda_min, lambda_max, settings(10)
     integer(c_int), intent(in) :: ipar(2), resonance, which, max_points, max_special
     real(c_double), intent(out) :: table(28, max_points), &
                                    special(9, max_special)
@@ -528,7 +528,7 @@ contains
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_periodic_response, only: core => periodic_orbit
     use sloshdyn_layouts, only: to_ode_options, to_method
-    real(c_double), intent(in) :: rpar(9), y0(4), integration(7), newton_tol
+    real(c_double), intent(in) :: rpar(10), y0(4), integration(7), newton_tol
     integer(c_int), intent(in) :: ipar(2), k, max_iter
     real(c_double), intent(out) :: y_orbit(4), monodromy(4, 4), multipliers(2, 4), info(2)
     integer(c_int), intent(out) :: status
@@ -559,7 +559,7 @@ contains
     use sloshdyn_continuation, only: continuation_options
     use sloshdyn_periodic_response, only: periodic_response
     use sloshdyn_layouts, only: to_ode_options, to_method, to_int
-    real(c_double), intent(in) :: rpar(9), y0(4), lambda_min, lambda_max, settings(5), &
+    real(c_double), intent(in) :: rpar(10), y0(4), lambda_min, lambda_max, settings(5), &
                                   integration(7)
     integer(c_int), intent(in) :: ipar(2), which, k, max_points, max_special
     real(c_double), intent(out) :: points(7, max_points), multipliers(8, max_points), &
@@ -598,7 +598,7 @@ contains
                                           check_lyapunov
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_lyapunov
-    real(c_double), intent(in) :: rpar(9), y0(4), settings(3), &
+    real(c_double), intent(in) :: rpar(10), y0(4), settings(3), &
                                   integration(7)
     integer(c_int), intent(in) :: ipar(2), n_hist
     real(c_double), intent(out) :: exponent, history(n_hist)
@@ -617,39 +617,281 @@ contains
     status = code
   end subroutine lyapunov_exponent
 
+  ! ---- a tank in SI units under ground motion (layouts tank(17), ground(4) of sloshdyn_layouts;
+  ! ---- samples(n) the record's accelerations [m/s^2], n = 0 for harmonic motion) -------------
+
+  !> The tank's defaults (tank_t).
+  subroutine tank_defaults(tank)
+    use sloshdyn_vessel, only: tank_t
+    use sloshdyn_layouts, only: from_tank
+    real(c_double), intent(out) :: tank(17)
+    type(tank_t) :: defaults
+    tank = from_tank(defaults)
+  end subroutine tank_defaults
+
+  !> The tank's properties (the 'tank_si' table's row) and its dimensionless model.
+  subroutine tank_properties(tank, row, rpar, ipar, status, message)
+    use sloshdyn_model, only: model_t, model_to_arrays
+    use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
+    use sloshdyn_seismic, only: tank_summary
+    use sloshdyn_layouts, only: to_tank
+    real(c_double), intent(in) :: tank(17)
+    real(c_double), intent(out) :: row(28), rpar(10)
+    integer(c_int), intent(out) :: ipar(2), status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties_t) :: props
+    integer :: info, ints(2)
+    row = 0; rpar = 0; ipar = 0
+    call tank_model(to_tank(tank), model, props, info, message)
+    if (info == 0) then
+      call tank_summary(to_tank(tank), props, model, row)
+      call model_to_arrays(model, rpar, ints)
+      ipar = ints
+    end if
+    status = info
+  end subroutine tank_properties
+
+  !> The rules of a ground motion (sloshdyn_ground's check_ground).
+  subroutine check_ground(ground, n, samples, status, message)
+    use sloshdyn_ground, only: core => check_ground
+    use sloshdyn_layouts, only: to_ground
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: ground(4), samples(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_ground(ground, samples), info, message)
+    status = info
+  end subroutine check_ground
+
+  !> The factor that turns an acceleration in the named units (g, m/s^2, cm/s^2) into m/s^2.
+  subroutine acceleration_units(name, factor, status, message)
+    use sloshdyn_records, only: units_code, units_factor
+    character(len=*), intent(in) :: name
+    real(c_double), intent(out) :: factor
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: code, info
+    call units_code(name, code, info, message)
+    factor = 0
+    if (info == 0) call units_factor(code, factor, info, message)
+    status = info
+  end subroutine acceleration_units
+
+  !> A record file (sloshdyn_records' load_record): dt [s] and the first n of samples [m/s^2].
+  !> n_max must be at least the number of samples (the file's count of numbers is enough).
+  subroutine read_record(path, format, units, n_max, dt, samples, n, status, message)
+    use sloshdyn_kinds, only: wp
+    use sloshdyn_status, only: SD_BAD_INPUT
+    use sloshdyn_records, only: load_record
+    use sloshdyn_text, only: num2str
+    character(len=*), intent(in) :: path, format, units
+    integer(c_int), intent(in) :: n_max
+    real(c_double), intent(out) :: dt, samples(n_max)
+    integer(c_int), intent(out) :: n, status
+    character(len=256), intent(out) :: message
+    real(wp), allocatable :: accel(:)
+    integer :: info
+    samples = 0; n = 0
+    call load_record(path, format, units, dt, accel, info, message)
+    if (info == 0) then
+      if (size(accel) > n_max) then
+        info = SD_BAD_INPUT
+        message = path//' has '//num2str(size(accel))//' samples, more than n_max = '// &
+                  num2str(int(n_max))
+      else
+        n = size(accel)
+        samples(1:n) = accel
+      end if
+    end if
+    status = info
+  end subroutine read_record
+
+  !> The ground motion scaled (sloshdyn_ground's scale_ground; SI units).
+  subroutine scale_ground(ground, n, samples, scale_factor, target_pga, target_sa, &
+                          target_period, target_damping, scaled, scaled_samples, status, message)
+    use sloshdyn_ground, only: ground_motion_t, core => scale_ground
+    use sloshdyn_layouts, only: to_ground, from_ground
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: ground(4), samples(n), scale_factor, target_pga, target_sa, &
+                                  target_period, target_damping
+    real(c_double), intent(out) :: scaled(4), scaled_samples(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(ground_motion_t) :: motion
+    integer :: info
+    motion = to_ground(ground, samples)
+    call core(motion, scale_factor, target_pga, target_sa, target_period, target_damping, info, &
+              message)
+    scaled = from_ground(motion)
+    scaled_samples = samples
+    if (info == 0 .and. n > 0) scaled_samples = motion%acceleration
+    status = info
+  end subroutine scale_ground
+
+  !> Response spectrum of the ground motion (sloshdyn_ground's ground_spectrum).
+  subroutine ground_spectrum(ground, n, samples, m, periods, damping, tail_duration, duration, &
+                             sd, sv, psa, status, message)
+    use sloshdyn_ground, only: core => ground_spectrum
+    use sloshdyn_layouts, only: to_ground
+    integer(c_int), intent(in) :: n, m
+    real(c_double), intent(in) :: ground(4), samples(n), periods(m), damping, tail_duration, &
+                                  duration
+    real(c_double), intent(out) :: sd(m), sv(m), psa(m)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_ground(ground, samples), periods, damping, tail_duration, duration, sd, sv, &
+              psa, info, message)
+    status = info
+  end subroutine ground_spectrum
+
+  !> t_end [s] and n_out of a seismic response, the defaults (sloshdyn_seismic) where the given
+  !> ones are <= 0: chosen = [t_end, n_out].
+  subroutine seismic_defaults(tank, ground, n, samples, t_end, n_out, chosen, status, message)
+    use sloshdyn_model, only: model_t
+    use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
+    use sloshdyn_ground, only: check_ground
+    use sloshdyn_seismic, only: core => seismic_defaults
+    use sloshdyn_layouts, only: to_tank, to_ground
+    integer(c_int), intent(in) :: n, n_out
+    real(c_double), intent(in) :: tank(17), ground(4), samples(n), t_end
+    real(c_double), intent(out) :: chosen(2)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties_t) :: props
+    real(c_double) :: duration
+    integer :: info, count
+    chosen = 0
+    call tank_model(to_tank(tank), model, props, info, message)
+    if (info == 0) call check_ground(to_ground(ground, samples), info, message)
+    if (info == 0) then
+      duration = t_end
+      count = n_out
+      call core(props, to_ground(ground, samples), duration, count)
+      chosen = [duration, real(count, c_double)]
+    end if
+    status = info
+  end subroutine seismic_defaults
+
+  !> The tank's response from rest (sloshdyn_seismic): table(11, n_out) in the 'seismic' layout
+  !> and peaks(19) in the 'seismic_peaks' layout.
+  subroutine seismic_response(tank, ground, n, samples, t_end, n_out, integration, table, &
+                              peaks, status, message)
+    use sloshdyn_seismic, only: core => seismic_response
+    use sloshdyn_layouts, only: to_tank, to_ground, to_ode_options, to_method
+    integer(c_int), intent(in) :: n, n_out
+    real(c_double), intent(in) :: tank(17), ground(4), samples(n), t_end, integration(7)
+    real(c_double), intent(out) :: table(11, n_out), peaks(19)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_tank(tank), to_ground(ground, samples), t_end, int(n_out), &
+              to_ode_options(integration), to_method(integration), table, peaks, info, message)
+    status = info
+  end subroutine seismic_response
+
+  !> Steady states of the tank under harmonic ground motion of the ground's peak acceleration
+  !> at each frequency [Hz] (sloshdyn_seismic's harmonic_sweep): summaries(11, n) in the
+  !> 'summary' layout and table(9, n) in the 'harmonic_sweep' layout; carry = 1: each point
+  !> from the previous one's final state (threads = 1; y_final the last one's), else each from
+  !> y0.
+  subroutine harmonic_sweep(tank, ground, n, frequencies, y0, integration, steady, carry, &
+                            threads, summaries, table, y_final, n_done, status, message)
+    use sloshdyn_ground, only: harmonic_ground
+    use sloshdyn_seismic, only: core => harmonic_sweep
+    use sloshdyn_layouts, only: to_tank, to_ode_options, to_method, to_steady
+    integer(c_int), intent(in) :: n, carry, threads
+    real(c_double), intent(in) :: tank(17), ground(4), frequencies(n), y0(4), integration(7), &
+                                  steady(7)
+    real(c_double), intent(out) :: summaries(11, n), table(9, n), y_final(4)
+    integer(c_int), intent(out) :: n_done, status
+    character(len=256), intent(out) :: message
+    integer :: info, done
+    call core(to_tank(tank), harmonic_ground(ground(2), ground(3)), frequencies, y0, &
+              to_ode_options(integration), to_method(integration), to_steady(steady), carry /= 0, &
+              int(threads), summaries, table, y_final, done, info, message)
+    n_done = done
+    status = info
+  end subroutine harmonic_sweep
+
+  !> The tank's sloshing parameters by sloshdyn and by the design codes, codes(6, 4) in the
+  !> 'design_codes' layout; wave heights need the ground motion (has_ground = 1).
+  subroutine design_codes(tank, has_ground, ground, n, samples, codes, status, message)
+    use sloshdyn_seismic, only: design_code_checks
+    use sloshdyn_layouts, only: to_tank, to_ground
+    integer(c_int), intent(in) :: has_ground, n
+    real(c_double), intent(in) :: tank(17), ground(4), samples(n)
+    real(c_double), intent(out) :: codes(6, 4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call design_code_checks(to_tank(tank), to_ground(ground, samples), has_ground /= 0, codes, &
+                            info, message)
+    status = info
+  end subroutine design_codes
+
+  !> The samples of the ground-motion record of a namelist file (as read_input reads it, scaled).
+  subroutine input_record(path, n, samples, status, message)
+    use sloshdyn_status, only: SD_BAD_INPUT
+    use sloshdyn_namelist, only: run_config, core => read_input
+    use sloshdyn_ground, only: GROUND_RECORD
+    character(len=*), intent(in) :: path
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(out) :: samples(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(run_config) :: config
+    integer :: info
+    samples = 0
+    call core(path, config, info, message)
+    if (info == 0 .and. config%has_ground .and. config%ground%kind == GROUND_RECORD) then
+      if (size(config%ground%acceleration) /= n) then
+        info = SD_BAD_INPUT
+        message = path//' changed while it was read: its record has a different length now'
+      else
+        samples = config%ground%acceleration
+      end if
+    end if
+    status = info
+  end subroutine input_record
+
   !> Read and validate a namelist input file (the executable's reader) and return it flattened:
   !> the model (rpar, ipar); the analysis code (1-based index into the 'analyses' names) with
-  !> analysis_values = [sigma1, kappa_min, kappa_max]; the output directory; tank = [dimensional
-  !> (1/0), R, h, m_liquid, l, m, d1, m0, d0, M, L, g]; integration, steady, response and
+  !> analysis_values = [sigma1, kappa_min, kappa_max]; the output directory; tank(17) and
+  !> ground(4) in their layouts with has_tank, has_ground (1/0) and n_samples (the record's
+  !> length, for input_record); seismic = [t_end, n_out]; integration, steady, response and
   !> lyapunov in their layouts; simulation = [t_end, n_out, y0(4)]; sweep = [parameter (1 rho,
   !> 2 A), start, stop, n_points, direction (1 up, 2 down, 3 both), carry_state (1/0),
-  !> threads]; response_range =
-  !> [resonance (1 3:1, 0 none), parameter, start, stop].
+  !> threads]; response_range = [resonance (1 3:1, 0 none), parameter, start, stop].
   !> study = [given (1/0), kind (1 response_map, 2 basins), workers, worker_kind (1 processes,
   !> 2 threads), points_per_task, frequency_start, frequency_stop, n_frequencies,
   !> amplitude_start, amplitude_stop, n_amplitudes, continuation (1 none, 2 up, 3 down, 4 both),
   !> x1_start, x1_stop, dx1_start, dx1_stop, n_grid, tol]; study_store, study_figure,
   !> study_scheduler the &study strings.
-  subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, tank, &
-                        integration, steady, response, lyapunov, simulation, sweep, &
-                        response_range, study, study_store, study_figure, study_scheduler, &
-                        status, message)
+  subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
+                        has_ground, ground, n_samples, seismic, integration, steady, response, &
+                        lyapunov, simulation, sweep, response_range, study, study_store, &
+                        study_figure, study_scheduler, status, message)
     use sloshdyn_model, only: model_to_arrays
     use sloshdyn_namelist, only: run_config, core => read_input
-    use sloshdyn_layouts, only: &
-                                from_ode_options, from_steady, from_response, from_lyapunov
+    use sloshdyn_layouts, only: from_ode_options, from_steady, from_response, from_lyapunov, &
+                                from_tank, from_ground
     character(len=*), intent(in) :: path
-    real(c_double), intent(out) :: rpar(9), analysis_values(3), tank(12), &
-                                   integration(7), steady(7), &
-                                   response(10), lyapunov(3), &
-                                   simulation(6), sweep(7), response_range(4), study(18)
-    integer(c_int), intent(out) :: ipar(2), analysis, status
+    real(c_double), intent(out) :: rpar(10), analysis_values(3), tank(17), ground(4), &
+                                   seismic(2), integration(7), steady(7), response(10), &
+                                   lyapunov(3), simulation(6), sweep(7), response_range(4), &
+                                   study(18)
+    integer(c_int), intent(out) :: ipar(2), analysis, has_tank, has_ground, n_samples, status
     character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler
     character(len=256), intent(out) :: message
     type(run_config) :: config
     integer :: info, ints(2)
     rpar = 0; ipar = 0; analysis = 0; analysis_values = 0; tank = 0; integration = 0
     steady = 0; response = 0; lyapunov = 0; simulation = 0; sweep = 0; response_range = 0
+    has_tank = 0; has_ground = 0; ground = 0; n_samples = 0; seismic = 0
     directory = ''; study = 0; study_store = ''; study_figure = ''; study_scheduler = ''
     call core(path, config, info, message)
     status = info
@@ -659,11 +901,14 @@ contains
     analysis = config%analysis
     analysis_values = [config%sigma1, config%kappa_min, config%kappa_max]
     directory = config%directory
-    associate (t => config%tank)
-      tank = [merge(1.0_c_double, 0.0_c_double, config%dimensional), t%radius, t%depth, &
-              t%liquid_mass, t%pendulum_length, t%sloshing_mass, t%d1, t%rigid_mass, t%d0, &
-              t%total_mass, t%rod_length, t%gravity]
-    end associate
+    has_tank = merge(1, 0, config%dimensional)
+    if (config%dimensional) tank = from_tank(config%tank)
+    has_ground = merge(1, 0, config%has_ground)
+    if (config%has_ground) then
+      ground = from_ground(config%ground)
+      if (allocated(config%ground%acceleration)) n_samples = size(config%ground%acceleration)
+    end if
+    seismic = [config%seismic_t_end, real(config%seismic_n_out, c_double)]
     integration = from_ode_options(config%integration, config%method)
     steady = from_steady(config%steady)
     response = from_response(config%response%options)
@@ -731,7 +976,7 @@ contains
   !> Every namelist group with its variables and defaults, as written by a namelist write.
   subroutine namelist_defaults(text)
     use sloshdyn_namelist, only: core => namelist_defaults
-    character(len=16384), intent(out) :: text
+    character(len=32768), intent(out) :: text
     character(len=:), allocatable :: written
     call core(written)
     text = written
@@ -781,7 +1026,7 @@ contains
     end function join
   end subroutine names
 
-  !> The defaults of the option types: model = [beta, gamma, delta, n, p]; integration, steady,
+  !> The defaults of the option types: model = [beta, gamma, delta, n, p, zeta]; integration, steady,
   !> response and lyapunov in their layouts; shooting = [newton_tol, max_iter].
   subroutine defaults(model, integration, steady, response, lyapunov, shooting)
     !f2py threadsafe
@@ -793,10 +1038,10 @@ contains
     use sloshdyn_integrator, only: METHOD_DOPRI5
     use sloshdyn_layouts, only: &
                                 from_ode_options, from_steady, from_response, from_lyapunov
-    real(c_double), intent(out) :: model(5), integration(7), steady(7), &
+    real(c_double), intent(out) :: model(6), integration(7), steady(7), &
                                    response(10), lyapunov(3), shooting(2)
     type(model_t) :: m
-    model = [m%beta, m%gamma, m%delta, real(m%n, c_double), real(m%p, c_double)]
+    model = [m%beta, m%gamma, m%delta, real(m%n, c_double), real(m%p, c_double), m%zeta]
     integration = from_ode_options(ode_options(), METHOD_DOPRI5)
     steady = from_steady(steady_options())
     response = from_response(response_options())

@@ -185,14 +185,15 @@ contains
 
   !> Characteristic polynomial lambda^4 + c1 lambda^3 + c2 lambda^2 + c3 lambda + c4 of the trivial
   !> equilibrium, eq (20), and its Hurwitz determinants [c1, Delta2, Delta3, Delta4].
-  !> Eq (20) assumes p >= 1; for p = 0 the dissipation delta x1' is linear and adds delta' = delta:
+  !> Eq (20) assumes p >= 1 and no linear sloshing damping; the linear damping of the pendulum is
+  !> delta' = 2 zeta, plus delta when p = 0 (then delta x1' is linear):
   !> det(M0 l^2 + C l + K0) = (l^2 + delta' l + 1)(l^2 + gamma l + kappa - s1) - mu1 l^4.
   pure subroutine trivial_routh_hurwitz(model, coefficients, hurwitz, routh_stable)
     type(model_t), intent(in) :: model
     real(wp), intent(out) :: coefficients(4), hurwitz(4)
     logical, intent(out) :: routh_stable
     real(wp) :: linear_delta
-    linear_delta = merge(model%delta, 0.0_wp, model%p == 0)
+    linear_delta = 2*model%zeta + merge(model%delta, 0.0_wp, model%p == 0)
     associate (g => model%gamma, d => linear_delta, mu1 => model%mu1, &
                sigma_t => model%kappa - model%s1)
       coefficients = [g + d, sigma_t + 1 + d*g, g + d*sigma_t, sigma_t]/(1 - mu1)

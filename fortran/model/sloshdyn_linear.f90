@@ -89,6 +89,7 @@ contains
     undamped = model
     undamped%gamma = 0
     undamped%delta = 0
+    undamped%zeta = 0
     undamped%excitation%A = 0
     undamped%b_coef(5) = 0
     undamped%a_coef(5) = 0

@@ -66,6 +66,7 @@ contains
                      scaled(-a(3), sin_series(scaled(t0, x1))))
       if (model%n == 2) force(1) = add(force(1), scaled(-a(4), times(x1, times(x1, x1))))
       if (model%p == 1) force(1) = add(force(1), scaled(-a(5), times(times(x1, x1), v1)))
+      if (model%zeta /= 0) force(1) = add(force(1), scaled(-2*model%zeta, v1))
       force(2) = add(add(scaled(b(2), times(sin12, times(v1, v1))), scaled(-b(3), x2)), &
                      add(scaled(b(4), sin_series(scaled(t0, x2))), scaled(-b(5), v2)))
       ! the factor of rho^2 A sin(rho tau) in F (eq 31)

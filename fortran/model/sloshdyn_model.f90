@@ -2,7 +2,7 @@
 !> the base excitation (sloshdyn_excitation; harmonic X = A sin(rho tau) of eq (29)-(31)).
 !>
 !> Flat layout used across the f2py bridge (one place defines it, Python mirrors it):
-!>   real    parameters  rpar = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho]
+!>   real    parameters  rpar = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta]
 !>   integer parameters  ipar = [n, p]
 module sloshdyn_model
   use sloshdyn_kinds, only: wp, pi, message_len
@@ -14,7 +14,7 @@ module sloshdyn_model
   public :: model_t, model_from_arrays, model_to_arrays, model_from_physical, set_coefficients
   public :: require_stable_trivial, n_real_params, n_int_params, real_param_names
 
-  integer, parameter :: n_real_params = 9, n_int_params = 2
+  integer, parameter :: n_real_params = 10, n_int_params = 2
   !> Largest allowed groups: beyond them the equations are stiffer than an explicit integrator can
   !> follow, or their eigenvalue problems lose all precision (a damping of 1e300 rounds the slow
   !> eigenvalues to 0); real tanks have groups of order 1.
@@ -22,7 +22,8 @@ module sloshdyn_model
                          max_damping = 1.0e3_wp, max_excitation = 1.0e3_wp
   integer, parameter :: max_exponent = 50
   character(len=6), parameter :: real_param_names(n_real_params) = &
-    [character(len=6) :: 's1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'A', 'rho']
+    [character(len=6) :: 's1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'A', 'rho', &
+     'zeta']
 
   type :: model_t
     real(wp) :: s1 = 0      !< l/L, pendulum to rod length ratio
@@ -36,6 +37,9 @@ module sloshdyn_model
     !> sloshing dissipation d/(omega m l^2); the paper gives none: 0.1 is about 5 % of critical
     !> at the wall and nothing at small amplitude (README)
     real(wp) :: delta = 0.1_wp
+    !> linear sloshing damping, as a ratio of critical for the pendulum alone: the term
+    !> 2 zeta x1' in the pendulum's equation (0 in the paper; the design codes take 0.005)
+    real(wp) :: zeta = 0
     integer :: n = 6        !< impact exponent, eq (4)
     integer :: p = 2        !< dissipation exponent, eq (5)
     type(excitation_t) :: excitation   !< base motion X(tau)
@@ -57,7 +61,7 @@ contains
     message = ''
     model%s1 = rpar(1); model%mu1 = rpar(2); model%kappa = rpar(3); model%theta0 = rpar(4)
     model%beta = rpar(5); model%gamma = rpar(6); model%delta = rpar(7)
-    model%excitation%A = rpar(8); model%excitation%rho = rpar(9)
+    model%excitation%A = rpar(8); model%excitation%rho = rpar(9); model%zeta = rpar(10)
     model%n = ipar(1); model%p = ipar(2)
 
     call check_real('s1', model%s1, 0.0_wp, max_s1, .true., .false., &
@@ -77,6 +81,8 @@ contains
     call check_real('delta', model%delta, 0.0_wp, max_damping, .false., .false., &
                     'delta (sloshing dissipation) must be >= 0 and at most '// &
                     num2str(max_damping), status, message)
+    call check_real('zeta', model%zeta, 0.0_wp, 1.0_wp, .false., .true., &
+                    'zeta (sloshing damping ratio) must lie in [0, 1)', status, message)
     call check_real('A', model%excitation%A, 0.0_wp, max_excitation, .false., .false., &
                     'A (excitation amplitude) must be >= 0 and at most '//num2str(max_excitation), &
                     status, message)
@@ -101,7 +107,7 @@ contains
     real(wp), intent(out) :: rpar(n_real_params)
     integer, intent(out) :: ipar(n_int_params)
     rpar = [model%s1, model%mu1, model%kappa, model%theta0, model%beta, model%gamma, &
-            model%delta, model%excitation%A, model%excitation%rho]
+            model%delta, model%excitation%A, model%excitation%rho, model%zeta]
     ipar = [model%n, model%p]
   end subroutine model_to_arrays
 

@@ -1,5 +1,6 @@
 !> Equations of motion of the tank-pendulum system, eq (10), (13)-(15), with the base
-!> acceleration X'' of the model's excitation (eq 29-31 for harmonic motion). State y = (x1, x1', x2, x2'), x1 = theta/theta0, x2 = phi/theta0,
+!> acceleration X'' of the model's excitation (eq 29-31 for harmonic motion) and, beyond the
+!> paper, a linear sloshing damping 2 zeta x1' in the pendulum's equation (zeta = 0: the paper). State y = (x1, x1', x2, x2'), x1 = theta/theta0, x2 = phi/theta0,
 !> ' = d/dtau. No allocation and no I/O: these are called in every integrator step.
 module sloshdyn_motion
   use sloshdyn_kinds, only: wp
@@ -65,8 +66,9 @@ contains
     type(state_terms), intent(in) :: t
     real(wp) :: force(2)
     associate (a => model%a_coef, b => model%b_coef)
+      ! the linear sloshing damping 2 zeta x1' comes last: zeta = 0 leaves the sum unchanged
       force(1) = a(2)*t%sin12*y(4)**2 - a(3)*t%sin1 - a(4)*t%impact_pow &
-                 - a(5)*t%dissipation_pow*y(2) - a(6)*t%cos1*t%xdd
+                 - a(5)*t%dissipation_pow*y(2) - a(6)*t%cos1*t%xdd - 2*model%zeta*y(2)
       force(2) = b(2)*t%sin12*y(2)**2 - b(3)*y(3) + b(4)*t%sin2 - b(5)*y(4) - b(6)*t%xdd*t%cos2
     end associate
   end function forcing_from_terms
@@ -132,7 +134,7 @@ contains
       dforce(1, 1) = a(2)*t0*t%cos12*y(4)**2 - a(3)*t0*t%cos1 &
                      - a(4)*(2*n - 1)*y(1)**(2*n - 2) - a(5)*lower_pow*y(2) &
                      + a(6)*t0*t%sin1*t%xdd
-      dforce(1, 2) = -a(5)*t%dissipation_pow
+      dforce(1, 2) = -a(5)*t%dissipation_pow - 2*model%zeta
       dforce(1, 3) = a(2)*t0*t%cos12*y(4)**2
       dforce(1, 4) = 2*a(2)*t%sin12*y(4)
       dforce(2, 1) = b(2)*t0*t%cos12*y(2)**2

@@ -64,6 +64,10 @@ module sloshdyn_ode
     !> > 0: steps of exactly this size, no error control (the last step is shortened to end
     !> at t_bound); h_initial, h_max and the PI settings are then ignored. 0 = adaptive.
     real(wp) :: fixed_step = 0
+    !> > 0: no step crosses a breakpoint t = k breakpoint_step, 0 < t <= breakpoint_end (where
+    !> the right-hand side has a kink, e.g. the samples of a piecewise linear record): steps
+    !> are clipped to end on them. 0 = none.
+    real(wp) :: breakpoint_step = 0, breakpoint_end = 0
   end type ode_options
 
   !> Work counts of an integration and how far it got.
@@ -506,6 +510,7 @@ contains
     real(wp), intent(out) :: h, t_new
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp) :: breakpoint
     logical :: last
 
     status = SD_OK
@@ -541,7 +546,26 @@ contains
     else
       t_new = t + h
     end if
+    if (opt%breakpoint_step > 0) then
+      breakpoint = next_breakpoint(t, opt%breakpoint_step, opt%breakpoint_end)
+      if (breakpoint < t_new) then
+        h = breakpoint - t
+        t_new = breakpoint
+      end if
+    end if
   end subroutine plan_trial
+
+  !> The first breakpoint k step > t (k >= 1, k step <= last), or +huge when there is none. A t
+  !> within rounding of a breakpoint counts as on it.
+  pure real(wp) function next_breakpoint(t, step, last) result(breakpoint)
+    real(wp), intent(in) :: t, step, last
+    real(wp) :: k
+    breakpoint = huge(1.0_wp)
+    if (t >= last) return
+    k = real(floor(t/step), wp)
+    if ((k + 1)*step - t <= 4*epsilon(t)*max(abs(t), step)) k = k + 1
+    breakpoint = min((k + 1)*step, last)
+  end function next_breakpoint
 
   !> The options and the initial state: the checks every integration and every input reader
   !> applies (readers validate before computing).
@@ -627,5 +651,7 @@ contains
                     status, message)
     call check_real('fixed_step', options%fixed_step, 0.0_wp, big, .false., .false., &
                     'fixed_step must be >= 0 (0 = adaptive)', status, message)
+    call check_real('breakpoint_step', options%breakpoint_step, 0.0_wp, big, .false., .false., &
+                    'breakpoint_step must be >= 0 (0 = none)', status, message)
   end subroutine check_options
 end module sloshdyn_ode

@@ -13,6 +13,8 @@ from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, eq
 from .periodic import (PeriodicBranch, PeriodicOrbit, PeriodicSpecialPoint, lyapunov_exponent,
                        periodic_orbit, periodic_response)
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
+from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, Spectrum, Tank,
+                      acceleration_factor, harmonic_sweep, seismic_defaults, seismic_response)
 from .studies import FragilityFit, basins, fit_fragility, response_map
 from .simulation import (Integration, Simulation, Steady, SteadyState, Sweep, amplitude_sweep,
                          frequency_sweep, poincare_section, simulate, spectrum, steady_state,
@@ -31,6 +33,8 @@ __all__ = [
     "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
     "nonresonant_amplitudes", "PeriodicBranch", "PeriodicOrbit", "PeriodicSpecialPoint",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
+    "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "Spectrum", "Tank",
+    "acceleration_factor", "harmonic_sweep", "seismic_defaults", "seismic_response",
     "FragilityFit", "basins", "fit_fragility", "response_map",
 ]
 

@@ -38,7 +38,7 @@ def columns(table):
 
 @lru_cache(maxsize=None)
 def defaults():
-    """The core's defaults: model [beta, gamma, delta, n, p], the integration, steady, response
+    """The core's defaults: model [beta, gamma, delta, n, p, zeta], the integration, steady, response
     and lyapunov settings in their bridge layouts, and shooting [newton_tol, max_iter]."""
     arrays = _bridge.defaults()
     keys = ("model", "integration", "steady", "response", "lyapunov", "shooting")

@@ -178,6 +178,17 @@ def _figure(inp, out):
                          np.array([t["u1"], t["u2"]]), t["impact_force"], t["theta"], t["phi"],
                          0, 0, 0, float(t["tau"][-1]))
         return "history.png", plotting.time_history(sim, ("x1", "x2", "impact_force"))
+    if inp.analysis == "seismic":
+        from .seismic import SeismicResponse
+        t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
+        response = SeismicResponse(inp.tank, inp.ground_motion, np.array(list(t.values())),
+                                   np.array([column[0] for column in peaks.values()]))
+        return "seismic.png", plotting.seismic(response)
+    if inp.analysis == "sweep" and inp.sweep["parameter"] == "frequency":
+        from .seismic import HarmonicSweep
+        t = _table(out / "harmonic_sweep.csv")
+        return "harmonic_sweep.png", plotting.harmonic_sweep(
+            HarmonicSweep(inp.tank, [], np.array(list(t.values())), None))
     if inp.analysis == "sweep":
         t = _table(out / "sweep.csv")
         points = [_summary(np.array([column[k] for column in t.values()]))

@@ -37,6 +37,7 @@ class Parameters:
     delta: float = float(_MODEL_DEFAULTS[2])  #: the paper gives none; see README
     n: int = int(_MODEL_DEFAULTS[3])
     p: int = int(_MODEL_DEFAULTS[4])
+    zeta: float = float(_MODEL_DEFAULTS[5])   #: linear sloshing damping ratio (0: the paper)
     A: float = 0.0
     rho: float = 0.0
 
@@ -51,9 +52,9 @@ class Parameters:
         self.coefficients()  # validates in the Fortran core
 
     def arrays(self):
-        """The flat arrays of the f2py bridge: rpar(9), ipar(2)."""
+        """The flat arrays of the f2py bridge: rpar(10), ipar(2)."""
         rpar = np.array([self.s1, self.mu1, self.kappa, self.theta0, self.beta, self.gamma,
-                         self.delta, self.A, self.rho], dtype=np.float64)
+                         self.delta, self.A, self.rho, self.zeta], dtype=np.float64)
         ipar = np.array([self.n, self.p], dtype=np.int32)
         return rpar, ipar
 
@@ -74,18 +75,24 @@ class Parameters:
 
     @classmethod
     def from_physical(cls, *, M, L, k, theta0, R=None, h=None, rho_liquid=None, m_liquid=None,
-                      l=None, m=None, c=0.0, b=0.0, d=0.0, g=9.81, n=6, p=2, A=0.0, rho=0.0):
+                      l=None, m=None, c=0.0, b=None, d=None, g=9.81, n=6, p=2, A=0.0, rho=0.0):
         """Dimensionless groups of eq (9) from SI values. The pendulum (l, m) is given directly or
-        computed from a cylindrical tank (R, h and rho_liquid or m_liquid, eq 2)."""
+        computed from a cylindrical tank (R, h and rho_liquid or m_liquid, eq 2). Without the
+        impact coefficient b [N m] or the dissipation d [N m s], beta and delta take the same
+        defaults as Parameters and &model (README, "Impact and dissipation defaults"). For a
+        whole tank in SI units (freeboard, supports by frequency, damping ratios) see
+        sloshdyn.Tank."""
         if l is None or m is None:
             if R is None or h is None:
                 raise InputError("give the pendulum (l, m) or the tank (R, h with rho_liquid or m_liquid)")
             pendulum = tank_pendulum(R, h, rho_liquid=rho_liquid, m_liquid=m_liquid)
             l, m = pendulum.l, pendulum.m
-        physical = np.array([M, L, k, c, b, d, g, theta0, l, m], dtype=np.float64)
+        physical = np.array([M, L, k, c, b or 0.0, d or 0.0, g, theta0, l, m], dtype=np.float64)
         groups, status, message = _core.sloshdyn_bridge.dimensionless_groups(physical)
         check_status(status, message)
         s1, mu1, kappa, beta, gamma, delta = (float(x) for x in groups)
+        beta = float(_MODEL_DEFAULTS[0]) if b is None else beta
+        delta = float(_MODEL_DEFAULTS[2]) if d is None else delta
         return cls(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
                    delta=delta, n=n, p=p, A=A, rho=rho)
 
@@ -100,7 +107,8 @@ class Parameters:
 
         groups = {
             "model": {name: getattr(self, name) for name in
-                      ("s1", "mu1", "kappa", "theta0", "beta", "gamma", "delta", "n", "p")},
+                      ("s1", "mu1", "kappa", "theta0", "beta", "gamma", "delta", "zeta", "n",
+                       "p")},
             "excitation": {"A": self.A, "rho": self.rho},
         }
         nml = f90nml.Namelist(groups)
@@ -140,8 +148,9 @@ class Input:
     kappa_min: float = 0.0
     kappa_max: float | None = None
     directory: str = "sloshdyn_output"
-    tank: TankPendulum | None = None
-    structure: dict = field(default_factory=dict)
+    tank: object = None            #: seismic.Tank (from &tank), or None (&model)
+    ground_motion: object = None   #: seismic.GroundMotion (from &ground_motion, scaled), or None
+    seismic: dict = field(default_factory=dict)       #: &seismic: t_end [s], n_out (0: default)
     integration: dict = field(default_factory=dict)   #: &integration, for simulation.Integration
     simulation: dict = field(default_factory=dict)    #: &simulation: t_end, n_out, y0
     steady: dict = field(default_factory=dict)        #: &steady, for simulation.Steady
@@ -154,25 +163,36 @@ class Input:
 def read_namelist(path):
     """Read and validate a namelist input file with the executable's reader (same rules, defaults
     and messages)."""
+    from .seismic import GroundMotion, Tank
+
     path = os.fspath(path)
-    (rpar, ipar, analysis, values, directory, tank, integration, steady, response, lyapunov,
-     simulation, sweep, response_range, study, store, figure, scheduler, status,
+    (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
+     seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, study,
+     store, figure, scheduler, status,
      message) = _core.sloshdyn_bridge.read_input(path)
     check_status(status, message)
-    s1, mu1, kappa, theta0, beta, gamma, delta, A, rho = (float(x) for x in rpar)
+    s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta = (float(x) for x in rpar)
     params = Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
-                        delta=delta, n=int(ipar[0]), p=int(ipar[1]), A=A, rho=rho)
+                        delta=delta, n=int(ipar[0]), p=int(ipar[1]), A=A, rho=rho, zeta=zeta)
     analyses, first = _tables.names("analyses")
     methods, first_method = _tables.names("methods")
-    pendulum, structure = None, {}
-    if tank[0]:
-        pendulum = TankPendulum(*(float(x) for x in tank[4:9]), m_F=float(tank[3]))
-        structure = {"M": float(tank[9]), "L": float(tank[10]), "g": float(tank[11])}
-    excitation_parameter = {1: "rho", 2: "A"}
+    tank = ground_motion = None
+    if has_tank:
+        tank = Tank(**{f.name: (int(x) if f.type == "int" else float(x))
+                       for f, x in zip(dataclasses.fields(Tank), tank_array)})
+    if has_ground and n_samples > 0:
+        samples, status, message = _core.sloshdyn_bridge.input_record(path, n_samples)
+        check_status(status, message)
+        ground_motion = GroundMotion(dt=float(ground[3]), acceleration=samples.copy())
+    elif has_ground:
+        ground_motion = GroundMotion(peak_acceleration=float(ground[1]),
+                                     frequency=float(ground[2]))
+    excitation_parameter = {1: "rho", 2: "A", 3: "frequency"}
     return Input(
         params=params, analysis=analyses[int(analysis) - first], sigma1=float(values[0]),
         kappa_min=float(values[1]), kappa_max=float(values[2]),
-        directory=_tables._text(directory), tank=pendulum, structure=structure,
+        directory=_tables._text(directory), tank=tank, ground_motion=ground_motion,
+        seismic={"t_end": float(seismic[0]), "n_out": int(seismic[1])},
         integration={**{name: float(x) for name, x in zip(
             ("rtol", "atol", "h_initial", "h_max", "h_min"), integration[:5])},
             "max_steps": int(integration[5]), "method": methods[int(integration[6]) - first_method]},

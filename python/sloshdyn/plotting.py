@@ -142,6 +142,68 @@ def routh_delta3(response, zoom=None):
     return fig
 
 
+# ---- a tank in SI units ------------------------------------------------------------------------
+
+_G = 9.80665   # m/s^2 per g, for axes in g
+
+
+def _tank_title(tank):
+    return (f"tank R = {tank.radius:g} m, liquid depth {tank.liquid_depth:g} m, freeboard "
+            f"{tank.freeboard:g} m; sloshing period {tank.sloshing_period:.3g} s")
+
+
+def seismic(response, loads=("wave_height", "base_shear", "overturning_moment")):
+    """A SeismicResponse for a report: the ground acceleration [g] on top, then each load
+    against t [s] in SI units (forces in kN, moments in kN m), the roof at +-freeboard on the
+    wave height, and each peak marked."""
+    units = {"wave_height": ("wave height at the wall [m]", 1.0),
+             "sloshing_displacement": ("sloshing displacement [m]", 1.0),
+             "pendulum_angle": ("pendulum angle [rad]", 1.0),
+             "tank_drift": ("tank drift [m]", 1.0),
+             "impact_force": ("roof/wall impact force [kN]", 1e-3),
+             "base_shear": ("base shear [kN]", 1e-3),
+             "overturning_moment": ("overturning moment [kN m]", 1e-3)}
+    for load in loads:
+        if load not in units:
+            raise ValueError(f"load {load!r} is not known; choose from {', '.join(units)}")
+    fig, axes = plt.subplots(len(loads) + 1, 1, sharex=True,
+                             figsize=(8, 1.9 * (len(loads) + 1) + 0.6))
+    t = response.t
+    axes[0].plot(t, response.ground_acceleration / _G, lw=0.6, color="0.3")
+    axes[0].set_ylabel("ground\nacceleration [g]")
+    for ax, load in zip(axes[1:], loads):
+        label, factor = units[load]
+        ax.plot(t, getattr(response, load) * factor, lw=0.7, color="k")
+        peak, when = response.peaks[load]
+        k = int(np.argmin(np.abs(t - when)))
+        unit = label[label.index("[") + 1:-1]
+        ax.plot(when, getattr(response, load)[k] * factor, "o", mfc="none", color="r", ms=6,
+                label=f"peak {peak * factor:.4g} {unit} at {when:.3g} s")
+        if load == "wave_height":
+            for sign in (1, -1):
+                ax.axhline(sign * response.tank.freeboard, ls="--", color="b", lw=0.8,
+                           label="roof (freeboard)" if sign > 0 else None)
+        ax.set_ylabel(label.replace(" [", "\n["))
+        ax.legend(loc="upper right", fontsize=8)
+    axes[-1].set_xlabel("time t [s]")
+    axes[0].set_title(_tank_title(response.tank), fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def response_spectrum(spectrum, marks=()):
+    """A response spectrum: pseudo-spectral acceleration [g] and displacement [m] against the
+    period [s]; dotted lines at the periods in `marks` (e.g. the sloshing period)."""
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(7, 5))
+    axes[0].plot(spectrum.periods, spectrum.psa / _G, color="k", lw=1)
+    axes[0].set_ylabel("pseudo-spectral\nacceleration [g]")
+    axes[1].plot(spectrum.periods, spectrum.sd, color="k", lw=1)
+    axes[1].set_ylabel("spectral\ndisplacement [m]")
+    for ax in axes:
+        for period in marks:
+            ax.axvline(period, ls=":", color="r", lw=0.8)
+    axes[1].set_xlabel("period T [s]")
+    axes[0].set_title(f"response spectrum, {100 * spectrum.damping:g} % damping", fontsize=10)
 # ---- studies -------------------------------------------------------------------------------
 
 _MOTION_COLOURS = {0: "0.85", 1: "#4c72b0", 2: "#dd8452", 3: "#c44e52", 4: "#8172b3"}
@@ -207,6 +269,25 @@ def response_map(ds, variable="max_x1"):
     return fig
 
 
+def harmonic_sweep(sweep):
+    """A HarmonicSweep: the largest wave height at the wall [m] against the frequency [Hz],
+    the roof at the freeboard; up and down halves drawn apart so jumps show."""
+    f = sweep.frequency
+    turn = int(np.argmax(f))
+    fig, ax = plt.subplots(figsize=(7, 3.4))
+    ax.plot(f[:turn + 1], sweep.wave_height[:turn + 1], "o-", ms=3, color="k",
+            label="frequency up")
+    if turn < len(f) - 1:
+        ax.plot(f[turn:], sweep.wave_height[turn:], "s--", ms=3, mfc="none", color="b",
+                label="frequency down")
+    ax.axhline(sweep.tank.freeboard, ls="--", color="r", lw=0.8, label="roof (freeboard)")
+    ax.axvline(1 / sweep.tank.sloshing_period, ls=":", color="0.5", lw=0.8,
+               label="linear sloshing frequency")
+    ax.set_xlabel("ground motion frequency [Hz]")
+    ax.set_ylabel("largest wave height\nat the wall [m]")
+    ax.set_title(f"{_tank_title(sweep.tank)}\nharmonic ground motion, peak "
+                 f"{sweep.peak_ground_acceleration[0] / _G:.3g} g", fontsize=10)
+    ax.legend(fontsize=8)
 def basins(ds):
     """Basins of attraction (sloshdyn.basins): the attractor reached from each initial state,
     with the attractors' orbit states (phase 0) marked and listed with kind, period,

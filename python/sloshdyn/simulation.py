@@ -211,6 +211,28 @@ def sweep_values(start, stop, n, direction="up"):
 
 
 def _sweep(params, parameter, values, y0, steady, integration, progress, threads, start_from):
+    which = {"rho": 1, "A": 2}[parameter]
+
+    def run(chunk, y, carry):
+        if carry:
+            summaries, y, n_done, status, message = _bridge.parameter_sweep(
+                *params.arrays(), which, chunk, y, integration.array(), steady.array())
+        else:
+            summaries, n_done, status, message = _bridge.independent_sweep(
+                *params.arrays(), which, chunk, y, integration.array(), steady.array(),
+                int(threads))
+        return summaries, None, y, status, message
+
+    points, _, y = run_sweep(parameter, values, y0, progress, threads, start_from, run,
+                             lambda points, y: Sweep(parameter, points, y))
+    return Sweep(parameter, points, y)
+
+
+def run_sweep(label, values, y0, progress, threads, start_from, run, partial):
+    """The points of a sweep by run(chunk, y, carry) -> (summaries, extra, y_final, status,
+    message), a chunk at a time so that progress shows: the SteadyStates, the extras stacked as
+    columns (or None), and the final state (None for independent points). On failure the
+    exception carries `partial(points, y)`, the points done."""
     if start_from not in ("previous", "y0"):
         raise InputError(f"start_from = {start_from!r} is not valid: it must be 'previous' or 'y0'")
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)):
@@ -218,40 +240,35 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
     carry = start_from == "previous"
     status, message = _bridge.sweep_threads(int(threads), int(carry))
     check_status(status, message)
-    which = {"rho": 1, "A": 2}[parameter]
     values = np.ascontiguousarray(values, dtype=np.float64)
     y = _state(y0)
-    points = []
+    points, extras = [], []
     bar = None
     if progress:
         from tqdm.auto import tqdm
-        bar = tqdm(total=len(values), desc=f"sweep in {parameter}", unit="point")
+        bar = tqdm(total=len(values), desc=f"sweep in {label}", unit="point")
     try:
         # one point per Fortran call when the state is carried, so progress shows; independent
         # points in one call, or four per thread when progress is shown
         step = 1 if carry else (4 * int(threads) if bar else max(len(values), 1))
         for first in range(0, len(values), step):
             chunk = values[first:first + step]
-            if carry:
-                summaries, y, n_done, status, message = _bridge.parameter_sweep(
-                    *params.arrays(), which, chunk, y, integration.array(), steady.array())
-            else:
-                summaries, n_done, status, message = _bridge.independent_sweep(
-                    *params.arrays(), which, chunk, y, integration.array(), steady.array(),
-                    int(threads))
+            summaries, extra, y, status, message = run(chunk, y, carry)
             if status:
                 try:
-                    check_status(status, message, f"sweep in {parameter}")
+                    check_status(status, message, f"sweep in {label}")
                 except Exception as exc:
-                    exc.partial = Sweep(parameter, points, y if carry else None)
+                    exc.partial = partial(points, y if carry else None)
                     raise
             points.extend(_summary(summaries[:, k]) for k in range(len(chunk)))
+            if extra is not None:
+                extras.append(extra)
             if bar:
                 bar.update(len(chunk))
     finally:
         if bar:
             bar.close()
-    return Sweep(parameter, points, y if carry else None)
+    return points, (np.hstack(extras) if extras else None), (y if carry else None)
 
 
 def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady = Steady(),

@@ -117,13 +117,13 @@ contains
   subroutine with_beta_hat(beta_hat)
     real(wp), intent(in) :: beta_hat
     call model_from_arrays([1.5_wp, 0.5_wp, 1.8_wp, theta0, beta_hat*theta0**3, 0.0_wp, 0.0_wp, &
-                            0.0_wp, 0.0_wp], [2, 2], model, status, message)
+                            0.0_wp, 0.0_wp, 0.0_wp], [2, 2], model, status, message)
   end subroutine with_beta_hat
 
   !> s1 = 1.5, kappa = kappa^ s1; beta large enough for theta = 0 only
   subroutine with_kappa_hat(kappa_hat, gamma)
     real(wp), intent(in) :: kappa_hat, gamma
     call model_from_arrays([1.5_wp, 0.5_wp, kappa_hat*1.5_wp, theta0, 1.0_wp, gamma, 0.0_wp, &
-                            0.0_wp, 0.0_wp], [6, 2], model, status, message)
+                            0.0_wp, 0.0_wp, 0.0_wp], [6, 2], model, status, message)
   end subroutine with_kappa_hat
 end program test_equilibria

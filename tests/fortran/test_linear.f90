@@ -75,6 +75,6 @@ contains
   subroutine fig12(kappa)
     real(wp), intent(in) :: kappa
     call model_from_arrays([1.5_wp, 0.5_wp, kappa, pi/4, 1.0_wp, 0.001_wp, 0.0_wp, 0.00075_wp, &
-                            0.509615_wp], [6, 2], model, status, message)
+                            0.509615_wp, 0.0_wp], [6, 2], model, status, message)
   end subroutine fig12
 end program test_linear

@@ -58,7 +58,7 @@ program test_model
 
   ! eq (11) coefficients at s1 = 1.5, mu1 = 0.5, theta0 = 0.5, kappa = 2, beta = 3, gamma = 0.1,
   ! delta = 0.2: a = [1/1.5, 0.5/1.5, 2, 6, 0.2, 1/0.75], b = [0.75, 0.375, 2, 3, 0.1, 2]
-  call model_from_arrays([1.5_wp, 0.5_wp, 2.0_wp, 0.5_wp, 3.0_wp, 0.1_wp, 0.2_wp, 0.0_wp, 0.0_wp], &
+  call model_from_arrays([1.5_wp, 0.5_wp, 2.0_wp, 0.5_wp, 3.0_wp, 0.1_wp, 0.2_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
                          [6, 2], model, status, message)
   call check_close('eq 11: a1', model%a_coef(1), 1/1.5_wp, 1.0e-15_wp)
   call check_close('eq 11: a2', model%a_coef(2), 1/3.0_wp, 1.0e-15_wp)

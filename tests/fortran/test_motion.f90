@@ -18,7 +18,7 @@ program test_motion
                                                  -0.8_wp, 1.3_wp, 0.05_wp, 0.2_wp], [4, 3])
 
   ! a forced case with impacts (n = 6), dissipation (p = 2) and rod damping
-  call model_from_arrays([1.5_wp, 0.5_wp, 1.8_wp, pi/4, 0.7_wp, 0.01_wp, 0.05_wp, 0.3_wp, 0.51_wp], &
+  call model_from_arrays([1.5_wp, 0.5_wp, 1.8_wp, pi/4, 0.7_wp, 0.01_wp, 0.05_wp, 0.3_wp, 0.51_wp, 0.0_wp], &
                          [6, 2], model, status, message)
   call check_true('model valid', status == 0)
   tau = 2.3_wp

@@ -244,7 +244,7 @@ contains
     integer :: status
     character(len=message_len) :: message
     call model_from_arrays([1.5_wp, 0.5_wp, 1.804897259_wp, pi/4, 10.0_wp, 0.001_wp, 0.1_wp, &
-                            0.00075_wp, rho], [6, 2], model, status, message)
+                            0.00075_wp, rho, 0.0_wp], [6, 2], model, status, message)
   end function fig12_model
 
   !> The test functions on given multiplier sets: signs follow the crossings.

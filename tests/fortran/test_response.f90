@@ -3,7 +3,7 @@
 !> error let the table-shape message replace it).
 program test_response
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_status, only: SD_BAD_INPUT
   use sloshdyn_model, only: model_t, model_from_arrays
   use sloshdyn_excitation, only: PARAMETER_RHO
   use sloshdyn_response, only: response_options, frequency_response
@@ -19,7 +19,7 @@ program test_response
   character(len=message_len) :: message
 
   call model_from_arrays([1.5_wp, 0.5_wp, 1.804897259_wp, pi/4, 10.0_wp, 0.001_wp, 0.1_wp, &
-                          0.00075_wp, 0.5_wp], [6, 2], model, status, message)
+                          0.00075_wp, 0.5_wp, 0.0_wp], [6, 2], model, status, message)
   options%n_scan = 0
   call frequency_response(model, .true., PARAMETER_RHO, 0.49_wp, 0.53_wp, options, table, &
                           n_points, wrong_special, n_special, complete, status, message)

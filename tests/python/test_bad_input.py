@@ -10,8 +10,25 @@ from conftest import directory_tree, run, write
 
 MODEL = "&model s1 = 1.5, mu1 = 0.5, kappa = 1.8, theta0 = 0.7853981633974483, gamma = 0.001 /\n"
 OUTPUT = "&output directory = 'out' /\n"
-TANK = "&tank R = 1.5, h = 1.2, rho_liquid = 1000 /\n"
-STRUCTURE = "&structure M = 20000, L = 3, k = 1.5e6, c = 2e4, theta0 = 0.6 /\n"
+TANK = ("&tank radius = 5, liquid_depth = 6, freeboard = 1, liquid_density = 1000, "
+        "tank_mass = 5e4, support_frequency = 2 /\n")
+GROUND = "&ground_motion peak_acceleration = 0.05, frequency = 0.3 /\n"
+SEISMIC = "&analysis kind = 'seismic' /\n"
+
+
+def tank_with(**changes):
+    text = TANK
+    for name, value in changes.items():
+        text = text.replace(" /\n", f", {name} = {value} /\n") if f" {name} =" not in text else \
+            text.replace(f"{name} = " + text.split(f"{name} = ")[1].split(",")[0].split(" /")[0],
+                         f"{name} = {value}")
+    return text
+
+
+def ground_with(**changes):
+    return "&ground_motion " + ", ".join(
+        f"{k} = {v}" for k, v in {"peak_acceleration": 0.05, "frequency": 0.3, **changes}.items()
+        if v is not None) + " /\n"
 
 
 def model_with(**changes):
@@ -39,11 +56,56 @@ CASES = {
     "delta < 0": (model_with(delta=-0.1) + OUTPUT, ["delta = -0.1", ">= 0"]),
     "beta < 0": (model_with(beta=-1.0) + OUTPUT, ["beta = -1", ">= 0"]),
     "kappa_hat <= 1": (model_with(kappa=1.4) + OUTPUT, ["kappa = 1.4", "kappa_hat"]),
-    "R <= 0": (TANK.replace("R = 1.5", "R = -1.5") + STRUCTURE + OUTPUT, ["R = -1.5", "> 0"]),
-    "h <= 0": (TANK.replace("h = 1.2", "h = 0") + STRUCTURE + OUTPUT, ["h = 0", "> 0"]),
-    "c < 0": (TANK + STRUCTURE.replace("c = 2e4", "c = -2e4") + OUTPUT, ["c = -20000", ">= 0"]),
-    "both descriptions": (MODEL + TANK + STRUCTURE + OUTPUT, ["&model", "not both"]),
-    "tank without structure": (TANK + OUTPUT, ["&structure", "missing"]),
+    "radius <= 0": (tank_with(radius=-5) + OUTPUT, ["radius = -5", "> 0"]),
+    "liquid_depth = 0": (tank_with(liquid_depth=0) + OUTPUT, ["liquid_depth = 0", "> 0"]),
+    "freeboard = 0": (tank_with(freeboard=0) + OUTPUT, ["freeboard = 0", "> 0"]),
+    "freeboard beyond the wave": (tank_with(freeboard=10) + OUTPUT,
+                                  ["freeboard = 10", "4.19", "smaller freeboard"]),
+    "tank_mass < 0": (tank_with(tank_mass=-1) + OUTPUT, ["tank_mass = -1", ">= 0"]),
+    "support_damping = 1": (tank_with(support_damping=1.0) + OUTPUT,
+                            ["support_damping = 1", "[0, 1)"]),
+    "sloshing_damping < 0": (tank_with(sloshing_damping=-0.01) + OUTPUT,
+                             ["sloshing_damping = -0.01", "[0, 1)"]),
+    "liquid twice": (tank_with(liquid_mass=1e5) + OUTPUT,
+                     ["liquid_density = 1000", "liquid_mass = 100000", "exactly one"]),
+    "supports twice": (tank_with(support_stiffness=1e9) + OUTPUT,
+                       ["support_frequency = 2", "support_stiffness = 1e9", "exactly one"]),
+    "support coefficient < 0": (
+        tank_with(support_frequency=0, support_stiffness=1e9, support_damping_coefficient=-1)
+        + OUTPUT, ["support_damping_coefficient = -1", ">= 0"]),
+    "impact_stiffness < 0": (tank_with(impact_stiffness=-1) + OUTPUT, ["impact_stiffness", "-1"]),
+    "tank without tank_mass": (TANK.replace("tank_mass = 5e4, ", "") + OUTPUT,
+                               ["tank_mass", "missing"]),
+    "both descriptions": (MODEL + TANK + OUTPUT, ["&model", "not both"]),
+    "old &structure": (TANK + "&structure M = 20000 /\n" + OUTPUT,
+                       ["&structure", "support_frequency"]),
+    "excitation with a tank": (TANK + "&excitation A = 0.001, rho = 0.5 /\n" + OUTPUT,
+                               ["&excitation", "&ground_motion"]),
+    "ground motion with a model": (MODEL + GROUND + OUTPUT, ["&ground_motion", "&tank"]),
+    "seismic without ground motion": (TANK + SEISMIC + OUTPUT, ["seismic", "&ground_motion"]),
+    "seismic with a model": (MODEL + SEISMIC + OUTPUT, ["seismic", "&tank"]),
+    "unknown units": (TANK + ground_with(units="'furlongs'") + OUTPUT,
+                      ["furlongs", "g, m/s^2 or cm/s^2"]),
+    "peak_acceleration < 0": (TANK + ground_with(peak_acceleration=-0.1) + OUTPUT,
+                              ["peak_acceleration = -0.1", ">= 0 [g]"]),
+    "frequency = 0": (TANK + ground_with(frequency=0) + OUTPUT, ["frequency = 0", "> 0"]),
+    "frequency missing": (TANK + ground_with(frequency=None) + OUTPUT, ["frequency", "missing"]),
+    "two scalings": (TANK + ground_with(scale_factor=2, target_pga=0.1) + OUTPUT,
+                     ["scale_factor = 2", "target_pga = 0.98", "at most one"]),
+    "target_damping = 1.5": (TANK + ground_with(target_sa=0.1, target_damping=1.5) + OUTPUT,
+                             ["target_damping = 1.5", "[0, 1)"]),
+    "unknown record format": (TANK + "&ground_motion record = 'x.txt', format = 'xml' /\n" + OUTPUT,
+                              ["format = 'xml'", "auto, at2 or columns"]),
+    "seismic t_end < 0": (TANK + GROUND + SEISMIC + "&seismic t_end = -1 /\n" + OUTPUT,
+                          ["t_end = -1"]),
+    "seismic n_out = 1": (TANK + GROUND + SEISMIC + "&seismic n_out = 1 /\n" + OUTPUT,
+                          ["n_out = 1"]),
+    "frequency sweep of a model": (MODEL + "&excitation A = 0.001 /\n&analysis kind = 'sweep' /\n"
+                                   "&sweep parameter = 'frequency', start = 0.2, stop = 0.3, "
+                                   "n_points = 3 /\n" + OUTPUT, ["'frequency'", "&tank"]),
+    "frequency sweep at 0 Hz": (TANK + ground_with(frequency=None) + "&analysis kind = 'sweep' /\n"
+                                "&sweep parameter = 'frequency', start = 0, stop = 0.3, "
+                                "n_points = 3 /\n" + OUTPUT, ["start = 0", "> 0 [Hz]"]),
     "unknown analysis": (MODEL + "&analysis kind = 'nonsense' /\n" + OUTPUT, ["nonsense", "linear"]),
     "simulate without t_end": (MODEL + "&analysis kind = 'simulate' /\n" + OUTPUT, ["t_end", "missing"]),
     "t_end <= 0": (MODEL + "&analysis kind = 'simulate' /\n&simulation t_end = -5 /\n" + OUTPUT,
@@ -53,7 +115,7 @@ CASES = {
     "y0 not numbers": (MODEL + "&analysis kind = 'simulate' /\n&simulation t_end = 5, y0 = 'a' /\n"
                        + OUTPUT, ["y0", "four real numbers"]),
     "sweep parameter": (MODEL + "&analysis kind = 'sweep' /\n&sweep parameter = 'kappa', start = 0.5, "
-                        "stop = 0.6, n_points = 3 /\n" + OUTPUT, ["kappa", "rho, A"]),
+                        "stop = 0.6, n_points = 3 /\n" + OUTPUT, ["kappa", "rho, A, frequency"]),
     "sweep direction": (MODEL + "&analysis kind = 'sweep' /\n&sweep start = 0.5, stop = 0.6, "
                         "n_points = 3, direction = 'sideways' /\n" + OUTPUT, ["sideways"]),
     "sweep n_points": (MODEL + "&analysis kind = 'sweep' /\n&sweep start = 0.5, stop = 0.6, "

@@ -50,8 +50,8 @@ def test_same_numbers_from_executable_and_python(exe, tmp_path, example):
 
     if inp.tank is not None:
         tank = read_csv(out / "tank.csv")[0]
-        assert (tank["l"], tank["m"], tank["d1"], tank["m0"], tank["d0"]) == \
-               (inp.tank.l, inp.tank.m, inp.tank.d1, inp.tank.m0, inp.tank.d0)
+        assert {name.split(" [")[0]: value for name, value in tank.items()} == inp.tank.properties
+        assert inp.tank.parameters() == params
 
 
 def test_summary_reports_the_paper_numbers(exe, tmp_path):

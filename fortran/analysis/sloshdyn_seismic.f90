@@ -1,0 +1,302 @@
+!> A real tank under ground motion, in SI units: the time histories of the sloshing
+!> displacement, the wave height at the wall, the pendulum angle, the tank drift, the impact
+!> force, the base shear and the overturning moment (sloshdyn_vessel's loads), their peaks, and
+!> whether and when the wave reaches the roof; and the cross-check of the tank's sloshing
+!> parameters against the design codes (API 650 Annex E, Eurocode 8-4 Annex A, ACI 350.3).
+!>
+!> Table layouts (sloshdyn_tables): 'seismic' (one column per output time), 'seismic_peaks' (one
+!> row) and 'design_codes' (one row per source: sloshdyn, API 650, EC8-4, ACI 350.3).
+module sloshdyn_seismic
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use sloshdyn_kinds, only: wp, pi, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_text, only: num2str
+  use sloshdyn_model, only: model_t
+  use sloshdyn_motion, only: equations_of_motion
+  use sloshdyn_excitation, only: base_acceleration
+  use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS
+  use sloshdyn_ground, only: ground_motion_t, ground_excitation, ground_duration, ground_spectrum, &
+                             GROUND_RECORD, GROUND_HARMONIC
+  use sloshdyn_excitation, only: PARAMETER_FREQUENCY
+  use sloshdyn_design_codes, only: aci350_parameters, api650_parameters, ec8_parameters, &
+                                   aci350_circular, aci350_wave_height, api650_circular, &
+                                   api650_wave_height, ec8_circular, ec8_wave_height
+  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
+  use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, &
+                             HARMONIC_SWEEP_ROWS, SUMMARY_SIZE, SUMMARY_RHO, SUMMARY_A, &
+                             SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
+  implicit none
+  private
+  public :: seismic_response, seismic_defaults, design_code_checks, tank_summary
+  public :: harmonic_sweep, harmonic_sweep_row, free_periods, max_seismic_outputs
+
+  !> After a record ends the liquid goes on sloshing: t_end defaults to the record plus this
+  !> many sloshing periods; harmonic motion runs this many forcing periods.
+  integer, parameter :: free_periods = 5, harmonic_periods = 40
+  !> Outputs per sloshing period and per period of the tank on its supports at least, and at
+  !> most this many outputs in all.
+  integer, parameter :: outputs_per_period = 50, outputs_per_support_period = 20, &
+                        max_seismic_outputs = 10000000
+
+contains
+
+  !> t_end [s] and n_out when not given (<= 0): the record plus free_periods sloshing periods
+  !> (harmonic: harmonic_periods forcing periods), sampled at the finest of the record's step,
+  !> 50 points per sloshing (or forcing) period and 20 per period of the tank on its supports.
+  pure subroutine seismic_defaults(props, ground, t_end, n_out)
+    type(tank_properties), intent(in) :: props
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(inout) :: t_end
+    integer, intent(inout) :: n_out
+    real(wp) :: dt_out, support_frequency
+    dt_out = props%sloshing_period/outputs_per_period
+    ! the tank on its supports: k/(M L^2) - g/L = (2 pi f_s)^2
+    support_frequency = sqrt(max(props%stiffness/(props%total_mass*props%rod_length**2) - &
+                                 props%omega**2*props%pendulum_length/props%rod_length, &
+                                 0.0_wp))/(2*pi)
+    if (support_frequency > 0) dt_out = min(dt_out, 1/(outputs_per_support_period* &
+                                                       support_frequency))
+    if (ground%kind == GROUND_RECORD) then
+      dt_out = min(dt_out, ground%dt)
+      if (t_end <= 0) t_end = ground_duration(ground) + free_periods*props%sloshing_period
+    else
+      dt_out = min(dt_out, 1/(outputs_per_period*ground%frequency))
+      if (t_end <= 0) t_end = harmonic_periods/ground%frequency
+    end if
+    if (n_out <= 0) n_out = int(min(t_end/dt_out, real(max_seismic_outputs - 1, wp))) + 1
+  end subroutine seismic_defaults
+
+  !> The response of the tank, at rest at t = 0, to the ground motion, at n_out times evenly
+  !> spaced over [0, t_end] [s]: table(SEISMIC_ROWS, n_out) and the peaks. On failure the times
+  !> reached are filled, the rest NaN.
+  subroutine seismic_response(tank, ground, t_end, n_out, options, method, table, peaks, &
+                              status, message)
+    type(tank_t), intent(in) :: tank
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: t_end
+    integer, intent(in) :: n_out, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties) :: props
+    type(ode_stats) :: stats
+    real(wp), allocatable :: tau(:), history(:, :)
+    real(wp) :: dydt(4), y0(4)
+    integer :: i, run_status
+    character(len=message_len) :: run_message
+
+    table = ieee_value(1.0_wp, ieee_quiet_nan)
+    peaks = ieee_value(1.0_wp, ieee_quiet_nan)
+    call tank_model(tank, model, props, status, message)
+    if (status == SD_OK) call ground_excitation(ground, props%omega, props%rod_length, &
+                                                model%excitation, status, message)
+    call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    't_end must be > 0 [s]', status, message)
+    if (status == SD_OK .and. (n_out < 2 .or. n_out > max_seismic_outputs)) then
+      status = SD_BAD_INPUT
+      message = 'n_out = '//num2str(n_out)//' is out of range: it must lie in [2, '// &
+                num2str(max_seismic_outputs)//']'
+    end if
+    if (status /= SD_OK) return
+    allocate (tau(n_out), history(HISTORY_ROWS, n_out))
+    tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]
+    y0 = 0
+    call time_history(model, 0.0_wp, y0, tau, options, method, history, stats, run_status, &
+                      run_message)
+    do i = 1, n_out
+      if (tau(i) > stats%t_reached) exit
+      call equations_of_motion(model, tau(i), history(1:4, i), dydt)
+      table(1:LOAD_ROWS, i) = tank_loads(tank, props, model, tau(i), history(1:4, i), dydt, &
+                                         props%rod_length*props%omega**2* &
+                                         base_acceleration(model%excitation, tau(i)))
+      table(LOAD_ROWS + 1, i) = history(1, i)
+      table(LOAD_ROWS + 2, i) = history(3, i)
+    end do
+    status = run_status
+    message = run_message
+    if (status /= SD_OK) return
+    peaks = peak_values(table)
+  end subroutine seismic_response
+
+  !> For each load (rows 2..LOAD_ROWS of the table): the largest |value| and its time; then
+  !> whether the wave reached the roof (|x1| >= 1), the first time it did, and how many times it
+  !> struck (entries into |x1| >= 1).
+  pure function peak_values(table) result(peaks)
+    real(wp), intent(in) :: table(:, :)
+    real(wp) :: peaks(PEAKS_SIZE)
+    integer :: row, k, strikes
+    logical :: on_roof
+    do row = 2, LOAD_ROWS
+      k = maxloc(abs(table(row, :)), dim=1)
+      peaks(2*row - 3:2*row - 2) = [abs(table(row, k)), table(1, k)]
+    end do
+    strikes = 0
+    on_roof = .false.
+    peaks(2*LOAD_ROWS - 1:2*LOAD_ROWS + 1) = [0.0_wp, ieee_value(1.0_wp, ieee_quiet_nan), 0.0_wp]
+    do k = 1, size(table, 2)
+      if (abs(table(LOAD_ROWS + 1, k)) >= 1) then
+        if (.not. on_roof) then
+          strikes = strikes + 1
+          if (strikes == 1) peaks(2*LOAD_ROWS) = table(1, k)
+        end if
+        on_roof = .true.
+      else
+        on_roof = .false.
+      end if
+    end do
+    peaks(2*LOAD_ROWS - 1) = merge(1.0_wp, 0.0_wp, strikes > 0)
+    peaks(2*LOAD_ROWS + 1) = strikes
+  end function peak_values
+
+  !> The tank's sloshing parameters by sloshdyn's model and by the design codes, one row per
+  !> source (sloshdyn, API 650, EC8-4, ACI 350.3) in the 'design_codes' layout: convective
+  !> period [s], convective and impulsive liquid masses [kg], their heights above the bottom
+  !> (EBP) [m], and the wave height [m] from the ground motion's pseudo-spectral acceleration at
+  !> each source's convective period, at the tank's sloshing damping ratio (NaN where a code
+  !> gives no value: EC8-4's impulsive mass needs a series this program does not evaluate).
+  !> sloshdyn's wave height is the linear one of its model: 2 R/(xi^2 - 1) Sa/g.
+  subroutine design_code_checks(tank, ground, has_ground, codes, status, message)
+    type(tank_t), intent(in) :: tank
+    type(ground_motion_t), intent(in) :: ground
+    logical, intent(in) :: has_ground
+    real(wp), intent(out) :: codes(CODES_COLUMNS, CODES_ROWS)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties) :: props
+    type(api650_parameters) :: api
+    type(ec8_parameters) :: ec8
+    type(aci350_parameters) :: aci
+    real(wp) :: periods(CODES_ROWS), sd(CODES_ROWS), sv(CODES_ROWS), psa(CODES_ROWS), &
+                wave(CODES_ROWS), nan, duration
+
+    nan = ieee_value(1.0_wp, ieee_quiet_nan)
+    codes = nan
+    call tank_model(tank, model, props, status, message)
+    if (status == SD_OK) call api650_circular(tank%radius, tank%liquid_depth, api, status, message)
+    if (status == SD_OK) call ec8_circular(tank%radius, tank%liquid_depth, tank%gravity, ec8, &
+                                           status, message)
+    if (status == SD_OK) call aci350_circular(tank%radius, tank%liquid_depth, tank%gravity, aci, &
+                                              status, message)
+    if (status /= SD_OK) return
+    periods = [props%sloshing_period, api%convective_period, ec8%convective_period, &
+               aci%convective_period]
+    wave = nan
+    if (has_ground) call code_wave_heights()
+    if (status /= SD_OK) return
+    associate (mf => props%liquid_mass)
+      codes(:, 1) = [periods(1), props%sloshing_mass, props%rigid_mass, &
+                     props%convective_height, props%impulsive_height, wave(1)]
+      codes(:, 2) = [periods(2), api%convective_ratio*mf, api%impulsive_ratio*mf, &
+                     api%convective_height, api%impulsive_height, wave(2)]
+      codes(:, 3) = [periods(3), ec8%convective_ratio*mf, nan, ec8%convective_height, nan, &
+                     wave(3)]
+      codes(:, 4) = [periods(4), aci%convective_ratio*mf, aci%impulsive_ratio*mf, &
+                     aci%convective_height, aci%impulsive_height, wave(4)]
+    end associate
+
+  contains
+
+    !> Each source's wave height from the pseudo-spectral acceleration at its period.
+    subroutine code_wave_heights()
+      duration = ground_duration(ground)
+      if (duration <= 0) duration = harmonic_periods/ground%frequency
+      call ground_spectrum(ground, periods, tank%sloshing_damping, free_periods*maxval(periods), &
+                           duration, sd, sv, psa, status, message)
+      if (status /= SD_OK) then
+        message = 'the spectrum for the design codes: '//trim(message)
+        return
+      end if
+      wave(1) = props%wave_factor*psa(1)/tank%gravity
+      call api650_wave_height(tank%radius, psa(2)/tank%gravity, wave(2), status, message)
+      if (status == SD_OK) call ec8_wave_height(tank%radius, psa(3), tank%gravity, wave(3), &
+                                                status, message)
+      if (status == SD_OK) call aci350_wave_height(tank%radius, psa(4), tank%gravity, 1.0_wp, &
+                                                   wave(4), status, message)
+    end subroutine code_wave_heights
+  end subroutine design_code_checks
+
+  !> Steady states of the tank under harmonic ground motion at each of the frequencies [Hz], at
+  !> the ground motion's peak acceleration (a sweep in rho at constant A rho^2 through
+  !> sloshdyn_simulation: from the previous point's final state when carry_state, else each
+  !> from y0 on `threads` threads, identical for any number). summaries: the dimensionless
+  !> 'summary' layout; table: the same in SI ('harmonic_sweep' layout); y_final: the state after
+  !> the last point (carried sweeps continue from it).
+  subroutine harmonic_sweep(tank, ground, frequencies, y0, options, method, steady, &
+                            carry_state, threads, summaries, table, y_final, n_done, status, &
+                            message)
+    type(tank_t), intent(in) :: tank
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: frequencies(:), y0(4)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method, threads
+    type(steady_options), intent(in) :: steady
+    logical, intent(in) :: carry_state
+    real(wp), intent(out) :: summaries(SUMMARY_SIZE, size(frequencies)), &
+                             table(HARMONIC_SWEEP_ROWS, size(frequencies)), y_final(4)
+    integer, intent(out) :: n_done, status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties) :: props
+    real(wp) :: rho(size(frequencies))
+    integer :: i
+
+    summaries = 0
+    table = 0
+    y_final = y0
+    n_done = 0
+    call tank_model(tank, model, props, status, message)
+    if (status == SD_OK .and. ground%kind /= GROUND_HARMONIC) then
+      status = SD_BAD_INPUT
+      message = 'a sweep in frequency needs harmonic ground motion (peak_acceleration), not a '// &
+                'record'
+    end if
+    if (status == SD_OK) call ground_excitation(ground, props%omega, props%rod_length, &
+                                                model%excitation, status, message)
+    if (status /= SD_OK) return
+    rho = 2*pi*frequencies/props%omega
+    if (carry_state) then
+      call parameter_sweep(model, PARAMETER_FREQUENCY, rho, y0, options, method, steady, &
+                           summaries, y_final, n_done, status, message)
+    else
+      call independent_sweep(model, PARAMETER_FREQUENCY, rho, y0, options, method, steady, &
+                             threads, summaries, n_done, status, message)
+    end if
+    do i = 1, n_done
+      table(:, i) = harmonic_sweep_row(props, model%theta0, frequencies(i), summaries(:, i))
+    end do
+  end subroutine harmonic_sweep
+
+  !> A steady-state summary in SI ('harmonic_sweep' layout): the largest wave height, sloshing
+  !> displacement and pendulum angle from max|x1|, the tank drift from max|x2|, whether the wave
+  !> reaches the roof (max|x1| >= 1), the kind of motion and its period.
+  pure function harmonic_sweep_row(props, theta0, frequency, summary) result(row)
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(in) :: theta0, frequency, summary(SUMMARY_SIZE)
+    real(wp) :: row(HARMONIC_SWEEP_ROWS)
+    real(wp) :: theta
+    theta = theta0*summary(SUMMARY_MAX_X1)
+    row = [frequency, summary(SUMMARY_A)*summary(SUMMARY_RHO)**2*props%rod_length*props%omega**2, &
+           props%wave_factor*sin(theta), props%pendulum_length*sin(theta), theta, &
+           props%rod_length*sin(theta0*summary(SUMMARY_MAX_X2)), &
+           merge(1.0_wp, 0.0_wp, summary(SUMMARY_MAX_X1) >= 1), summary(SUMMARY_MOTION), &
+           summary(SUMMARY_PERIOD)]
+  end function harmonic_sweep_row
+
+  !> The tank's properties as one row of the 'tank_si' table.
+  pure subroutine tank_summary(tank, props, model, row)
+    type(tank_t), intent(in) :: tank
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(out) :: row(:)
+    row = [tank%radius, tank%liquid_depth, tank%freeboard, props%liquid_mass, tank%tank_mass, &
+           props%total_mass, props%pendulum_length, props%sloshing_mass, props%d1, &
+           props%rigid_mass, props%d0, props%convective_height, props%impulsive_height, &
+           props%sloshing_period, props%omega, props%rod_length, props%stiffness, &
+           props%damping, props%theta0, props%wave_factor, props%impact_coefficient, &
+           model%s1, model%mu1, model%kappa, model%beta, model%gamma, model%delta, model%zeta]
+  end subroutine tank_summary
+end module sloshdyn_seismic

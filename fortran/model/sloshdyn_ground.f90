@@ -1,0 +1,241 @@
+!> Ground motion in SI units: a recorded ground acceleration (uniform time step, piecewise linear
+!> between samples, at rest after the record) or a harmonic acceleration u'' = -a sin(2 pi f t);
+!> scaling of a record (a factor, a peak ground acceleration, or a spectral acceleration at a
+!> period); its response spectrum (sloshdyn_sdof); and its excitation of a tank's model,
+!> X'' = u''/(L omega^2) in the model's time tau = omega t.
+module sloshdyn_ground
+  use sloshdyn_kinds, only: wp, pi, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_text, only: num2str
+  use sloshdyn_samples, only: check_samples, sampled_value
+  use sloshdyn_excitation, only: excitation_t, record_excitation, EXCITATION_HARMONIC
+  use sloshdyn_sdof, only: response_spectrum
+  implicit none
+  private
+  public :: ground_motion_t, harmonic_ground, record_ground, check_ground, ground_excitation, &
+            ground_acceleration, ground_duration, ground_spectrum, scale_to_pga, scale_to_sa, scale_ground
+  public :: GROUND_HARMONIC, GROUND_RECORD
+
+  integer, parameter :: GROUND_HARMONIC = 1, GROUND_RECORD = 2
+  !> Samples per period when a harmonic motion is sampled for its spectrum.
+  integer, parameter :: samples_per_period = 200
+
+  type :: ground_motion_t
+    integer :: kind = GROUND_HARMONIC
+    real(wp) :: peak_acceleration = 0      !< harmonic: a [m/s^2]
+    real(wp) :: frequency = 0              !< harmonic: f [Hz]
+    real(wp) :: dt = 0                     !< record: time step [s]
+    real(wp), allocatable :: acceleration(:)   !< record: u'' [m/s^2] at t = (i - 1) dt
+  end type ground_motion_t
+
+contains
+
+  pure function harmonic_ground(peak_acceleration, frequency) result(ground)
+    real(wp), intent(in) :: peak_acceleration, frequency
+    type(ground_motion_t) :: ground
+    ground%kind = GROUND_HARMONIC
+    ground%peak_acceleration = peak_acceleration
+    ground%frequency = frequency
+  end function harmonic_ground
+
+  pure function record_ground(dt, acceleration) result(ground)
+    real(wp), intent(in) :: dt, acceleration(:)
+    type(ground_motion_t) :: ground
+    ground%kind = GROUND_RECORD
+    ground%dt = dt
+    allocate (ground%acceleration, source=acceleration)
+  end function record_ground
+
+  !> The rules of a ground motion: a harmonic one with a >= 0 and f > 0; a record with dt > 0
+  !> and at least 2 finite samples.
+  pure subroutine check_ground(ground, status, message)
+    type(ground_motion_t), intent(in) :: ground
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    if (ground%kind == GROUND_HARMONIC) then
+      call check_real('peak_acceleration', ground%peak_acceleration, 0.0_wp, huge(1.0_wp), &
+                      .false., .true., 'the peak ground acceleration must be >= 0', status, &
+                      message)
+      call check_real('frequency', ground%frequency, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'the frequency of harmonic ground motion must be > 0 [Hz]', status, &
+                      message)
+      return
+    end if
+    call check_real('dt', ground%dt, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the time step of a record must be > 0 [s]', status, message)
+    if (status /= SD_OK) return
+    if (.not. allocated(ground%acceleration)) then
+      status = SD_BAD_INPUT
+      message = 'the record has no samples: it needs at least 2'
+    else
+      call check_samples('the record', ground%acceleration, ground%dt, status, message)
+    end if
+  end subroutine check_ground
+
+  !> u''(t) [m/s^2].
+  elemental real(wp) function ground_acceleration(ground, t) result(accel)
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: t
+    if (ground%kind == GROUND_HARMONIC) then
+      accel = -ground%peak_acceleration*sin(2*pi*ground%frequency*t)
+      return
+    end if
+    accel = sampled_value(ground%acceleration, ground%dt, t)
+  end function ground_acceleration
+
+  !> Length of a record [s] (0 for harmonic motion, which does not end).
+  elemental real(wp) function ground_duration(ground)
+    type(ground_motion_t), intent(in) :: ground
+    ground_duration = 0
+    if (ground%kind == GROUND_RECORD) ground_duration = ground%dt*(size(ground%acceleration) - 1)
+  end function ground_duration
+
+  !> The excitation of a model whose time is tau = omega t and whose base displacement is
+  !> X = u/L: X'' = u''/(L omega^2); harmonic: X = A sin(rho tau), rho = 2 pi f/omega,
+  !> A = a/(L (2 pi f)^2).
+  pure subroutine ground_excitation(ground, omega, rod_length, excitation, status, message)
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: omega, rod_length
+    type(excitation_t), intent(out) :: excitation
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    call check_ground(ground, status, message)
+    if (status /= SD_OK) return
+    if (ground%kind == GROUND_HARMONIC) then
+      excitation%kind = EXCITATION_HARMONIC
+      excitation%rho = 2*pi*ground%frequency/omega
+      excitation%A = ground%peak_acceleration/(rod_length*(2*pi*ground%frequency)**2)
+    else
+      call record_excitation(ground%acceleration/(rod_length*omega**2), omega*ground%dt, &
+                             excitation, status, message)
+    end if
+  end subroutine ground_excitation
+
+  !> Response spectrum of the ground motion (sloshdyn_sdof, exact for piecewise linear records):
+  !> peak relative displacement sd [m], pseudo-velocity sv [m/s], pseudo-acceleration psa
+  !> [m/s^2] at each period [s] for the damping ratio, followed by a free-vibration tail of
+  !> tail_duration [s] so that late peaks count. Harmonic motion is sampled at 200 points per
+  !> period over `duration` seconds.
+  pure subroutine ground_spectrum(ground, periods, damping, tail_duration, duration, sd, sv, &
+                                  psa, status, message)
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: periods(:), damping, tail_duration, duration
+    real(wp), intent(out) :: sd(size(periods)), sv(size(periods)), psa(size(periods))
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: dt
+    integer :: i, n
+    sd = 0; sv = 0; psa = 0
+    call check_ground(ground, status, message)
+    if (status /= SD_OK) return
+    if (ground%kind == GROUND_RECORD) then
+      call response_spectrum(ground%dt, ground%acceleration, periods, damping, sd, sv, psa, &
+                             status, message, tail_duration)
+    else
+      call check_real('duration', duration, 0.0_wp, 1.0e7_wp/ground%frequency, .true., .false., &
+                      'the duration of harmonic motion for a spectrum must be > 0 and at most '// &
+                      '1e7 periods', status, message)
+      if (status /= SD_OK) return
+      dt = 1/(samples_per_period*ground%frequency)
+      n = int(duration/dt) + 1
+      call response_spectrum(dt, ground_acceleration(ground, [(dt*(i - 1), i = 1, n)]), periods, &
+                             damping, sd, sv, psa, status, message, tail_duration)
+    end if
+  end subroutine ground_spectrum
+
+  !> Scale a record (or a harmonic motion) so that its peak acceleration is pga [m/s^2].
+  pure subroutine scale_to_pga(ground, pga, status, message)
+    type(ground_motion_t), intent(inout) :: ground
+    real(wp), intent(in) :: pga
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: peak
+    call check_ground(ground, status, message)
+    call check_real('target_pga', pga, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the target peak ground acceleration must be >= 0 [m/s^2]', status, message)
+    if (status /= SD_OK) return
+    if (ground%kind == GROUND_HARMONIC) then
+      ground%peak_acceleration = pga
+      return
+    end if
+    peak = maxval(abs(ground%acceleration))
+    if (peak == 0) then
+      status = SD_BAD_INPUT
+      message = 'the record is all zeros: it cannot be scaled to target_pga = '//num2str(pga)
+      return
+    end if
+    ground%acceleration = ground%acceleration*(pga/peak)
+  end subroutine scale_to_pga
+
+  !> Scale so that the pseudo-spectral acceleration at period [s] (damping ratio) is sa [m/s^2].
+  pure subroutine scale_to_sa(ground, sa, period, damping, status, message)
+    type(ground_motion_t), intent(inout) :: ground
+    real(wp), intent(in) :: sa, period, damping
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: sd(1), sv(1), psa(1), factor
+    call check_real('target_sa', sa, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the target spectral acceleration must be >= 0 [m/s^2]', status, message)
+    if (status /= SD_OK) return
+    call ground_spectrum(ground, [period], damping, 0.0_wp, 20*period, sd, sv, psa, status, &
+                         message)
+    if (status /= SD_OK) return
+    if (psa(1) == 0) then
+      status = SD_BAD_INPUT
+      message = 'the record has no spectral acceleration at period = '//num2str(period)// &
+                ' s: it cannot be scaled to target_sa = '//num2str(sa)
+      return
+    end if
+    factor = sa/psa(1)
+    if (ground%kind == GROUND_HARMONIC) then
+      ground%peak_acceleration = ground%peak_acceleration*factor
+    else
+      ground%acceleration = ground%acceleration*factor
+    end if
+  end subroutine scale_to_sa
+
+  !> Scale by at most one of: a factor (1 = unscaled), a peak ground acceleration target_pga
+  !> [m/s^2] (0 = none), or a pseudo-spectral acceleration target_sa [m/s^2] (0 = none) at
+  !> target_period [s] for the damping ratio target_damping.
+  pure subroutine scale_ground(ground, scale_factor, target_pga, target_sa, target_period, &
+                               target_damping, status, message)
+    type(ground_motion_t), intent(inout) :: ground
+    real(wp), intent(in) :: scale_factor, target_pga, target_sa, target_period, target_damping
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: given
+    call check_ground(ground, status, message)
+    call check_real('scale_factor', scale_factor, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'scale_factor must be >= 0', status, message)
+    call check_real('target_pga', target_pga, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'target_pga must be >= 0 [m/s^2] (0: not scaled to a PGA)', status, message)
+    call check_real('target_sa', target_sa, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'target_sa must be >= 0 [m/s^2] (0: not scaled to a spectral acceleration)', &
+                    status, message)
+    if (status /= SD_OK) return
+    given = count([target_pga > 0, target_sa > 0, scale_factor /= 1])
+    if (given > 1) then
+      status = SD_BAD_INPUT
+      message = 'scale_factor = '//num2str(scale_factor)//', target_pga = '// &
+                num2str(target_pga)//', target_sa = '//num2str(target_sa)//': give at most '// &
+                'one of them'
+      return
+    end if
+    if (target_pga > 0) then
+      call scale_to_pga(ground, target_pga, status, message)
+    else if (target_sa > 0) then
+      call check_real('target_period', target_period, 0.0_wp, huge(1.0_wp), .true., .true., &
+                      'target_period must be > 0 [s]', status, message)
+      call check_real('target_damping', target_damping, 0.0_wp, 1.0_wp, .false., .true., &
+                      'target_damping must lie in [0, 1)', status, message)
+      if (status == SD_OK) call scale_to_sa(ground, target_sa, target_period, target_damping, &
+                                            status, message)
+    else if (ground%kind == GROUND_RECORD) then
+      ground%acceleration = ground%acceleration*scale_factor
+    else
+      ground%peak_acceleration = ground%peak_acceleration*scale_factor
+    end if
+  end subroutine scale_ground
+end module sloshdyn_ground

@@ -1,0 +1,248 @@
+!> A real tank in SI units and its mapping to the dimensionless model: the equivalent pendulum of
+!> eq (2)-(3), the supports given by their natural frequency and damping ratio (or stiffness and
+!> damping directly), the wall angle theta0 from the freeboard, the linear sloshing damping, and
+!> the physical loads (SI) of a state of the model. Every front door uses these, so one tank
+!> gives one model.
+!>
+!> Conventions (docs/model.md): x horizontal; the base moves by u(t); the tank (and the liquid
+!> that does not slosh) by u + L sin(phi); the sloshing mass m by u + L sin(phi) + l sin(theta).
+!> Heights are measured from the tank bottom.
+!>
+!> Freeboard and theta0: in linear potential flow, the first sloshing mode of a cylinder raises
+!> the free surface at the wall by eta = 2 R sin(theta)/(xi^2 - 1) when the equivalent pendulum
+!> (eq 2, xi = 1.84) swings by theta: equating the liquid's horizontal momentum,
+!> rho pi R^2 (A J1(xi)) tanh(xi h/R)/xi, with that of the pendulum, m l cos(theta) theta', and
+!> using eq (2) for m and l. The wave reaches the roof when eta = freeboard, which sets
+!> sin(theta0) = freeboard (xi^2 - 1)/(2 R). (Eurocode 8-4 A.2.1.4 writes the same relation as
+!> d_max = 0.84 R Se/g, with theta = Se/g.)
+module sloshdyn_vessel
+  use sloshdyn_kinds, only: wp, pi, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_text, only: num2str
+  use sloshdyn_model, only: model_t, model_from_arrays, n_real_params
+  use sloshdyn_tank, only: tank_pendulum
+  use sloshdyn_tables, only: SEISMIC_LOADS
+  implicit none
+  private
+  public :: tank_t, tank_properties, tank_model, tank_loads, wave_height_factor
+  public :: standard_gravity, LOAD_ROWS
+
+  real(wp), parameter :: standard_gravity = 9.80665_wp   !< m/s^2
+  !> xi = 1.84 of eq (2): the first root of J1', as the paper rounds it
+  real(wp), parameter :: xi = 1.84_wp
+
+  !> A cylindrical tank on supports, SI units. Zero (or negative) means "not given" where an
+  !> alternative exists: the liquid by its density or its mass; the supports by their natural
+  !> frequency and damping ratio or by stiffness and damping coefficient.
+  type :: tank_t
+    real(wp) :: radius = 0                  !< R [m]
+    real(wp) :: liquid_depth = 0            !< h [m]
+    real(wp) :: freeboard = 0               !< liquid surface to roof [m]
+    real(wp) :: liquid_density = 0          !< [kg/m^3] (or liquid_mass)
+    real(wp) :: liquid_mass = 0             !< m_F [kg] (or liquid_density)
+    real(wp) :: tank_mass = 0               !< shell and roof [kg]
+    real(wp) :: support_frequency = 0       !< natural frequency of the tank on its supports [Hz]
+    real(wp) :: support_damping = 0.05_wp   !< its damping ratio (of critical)
+    real(wp) :: support_stiffness = 0       !< k [N m/rad] (instead of support_frequency)
+    real(wp) :: support_damping_coefficient = 0   !< c [N m s/rad] (with support_stiffness)
+    real(wp) :: support_height = 0          !< rod length L [m]; 0 = the tank's height h + freeboard
+    real(wp) :: sloshing_damping = 0.005_wp !< linear, of critical for the sloshing mode
+    real(wp) :: impact_stiffness = 10       !< beta: roof/wall impact moment over m g l at theta0
+    real(wp) :: impact_damping = 0.1_wp     !< delta: dissipation at the wall (eq 5)
+    integer :: n = 6, p = 2                 !< exponents of eq (4)-(5)
+    real(wp) :: gravity = standard_gravity  !< [m/s^2]
+  end type tank_t
+
+  !> What a tank is in the model's terms, and what the loads need.
+  type :: tank_properties
+    real(wp) :: liquid_mass = 0, total_mass = 0           !< m_F, M = m_F + tank mass [kg]
+    real(wp) :: pendulum_length = 0, sloshing_mass = 0    !< l [m], m [kg] (eq 2)
+    real(wp) :: d1 = 0, rigid_mass = 0, d0 = 0            !< eq (2)-(3) [m, kg, m]
+    real(wp) :: omega = 0                                 !< sqrt(g/l) [rad/s]
+    real(wp) :: sloshing_period = 0                       !< 2 pi/omega [s] (rigid tank)
+    real(wp) :: rod_length = 0                            !< L [m]
+    real(wp) :: stiffness = 0, damping = 0                !< k [N m/rad], c [N m s/rad]
+    real(wp) :: theta0 = 0                                !< wall angle [rad]
+    real(wp) :: convective_height = 0                     !< of m (wall pressures) [m]
+    real(wp) :: impulsive_height = 0                      !< of m0 (wall pressures) [m]
+    real(wp) :: shell_height = 0                          !< of the tank mass, (h + freeboard)/2
+    real(wp) :: wave_factor = 0                           !< eta = wave_factor sin(theta) [m]
+    real(wp) :: impact_coefficient = 0                    !< b = beta m g l [N m]
+  end type tank_properties
+
+  !> Rows of tank_loads: t [s], ground acceleration [m/s^2], sloshing displacement l sin(theta)
+  !> [m], wave height at the wall [m], pendulum angle [rad], tank drift L sin(phi) [m], impact
+  !> force [N], base shear [N], overturning moment [N m] (the 'seismic' table of sloshdyn_tables,
+  !> which adds x1, x2).
+  integer, parameter :: LOAD_ROWS = SEISMIC_LOADS
+
+contains
+
+  !> eta/sin(theta) = 2 R/(xi^2 - 1): the wave height at the wall per unit sin(theta).
+  elemental real(wp) function wave_height_factor(radius)
+    real(wp), intent(in) :: radius
+    wave_height_factor = 2*radius/(xi**2 - 1)
+  end function wave_height_factor
+
+  !> The model of a tank (groups of eq 9, linear sloshing damping, no excitation yet) and its
+  !> properties. The supports: from their frequency f_s and damping ratio zeta_s with all of M
+  !> on them, M L^2 phi'' + c phi' + (k - M g L) phi = 0, so k = M L^2 (2 pi f_s)^2 + M g L and
+  !> c = 2 zeta_s M L^2 (2 pi f_s); or k and c as given.
+  pure subroutine tank_model(tank, model, props, status, message)
+    type(tank_t), intent(in) :: tank
+    type(model_t), intent(out) :: model
+    type(tank_properties), intent(out) :: props
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), parameter :: big = huge(1.0_wp)
+    real(wp) :: omega_s, sin_theta0, rpar(n_real_params)
+
+    status = SD_OK
+    message = ''
+    call check_real('radius', tank%radius, 0.0_wp, big, .true., .true., &
+                    'the tank radius must be > 0 [m]', status, message)
+    call check_real('liquid_depth', tank%liquid_depth, 0.0_wp, big, .true., .true., &
+                    'the liquid depth must be > 0 [m]', status, message)
+    if (status == SD_OK .and. (tank%liquid_density > 0 .eqv. tank%liquid_mass > 0)) then
+      status = SD_BAD_INPUT
+      message = 'liquid_density = '//num2str(tank%liquid_density)//' and liquid_mass = '// &
+                num2str(tank%liquid_mass)//': give exactly one, > 0 (the density [kg/m^3] or '// &
+                'the mass [kg] of the liquid)'
+    end if
+    call check_real('liquid_density', max(tank%liquid_density, 0.0_wp), 0.0_wp, big, .false., &
+                    .true., 'the liquid density must be finite [kg/m^3]', status, message)
+    call check_real('liquid_mass', max(tank%liquid_mass, 0.0_wp), 0.0_wp, big, .false., &
+                    .true., 'the liquid mass must be finite [kg]', status, message)
+    call check_real('freeboard', tank%freeboard, 0.0_wp, big, .true., .true., &
+                    'the freeboard (liquid surface to roof) must be > 0 [m]', status, message)
+    call check_real('tank_mass', tank%tank_mass, 0.0_wp, big, .false., .true., &
+                    'the tank mass (shell and roof) must be >= 0 [kg]', status, message)
+    call check_real('gravity', tank%gravity, 0.0_wp, big, .true., .true., &
+                    'gravity must be > 0 [m/s^2]', status, message)
+    call check_real('sloshing_damping', tank%sloshing_damping, 0.0_wp, 1.0_wp, .false., .true., &
+                    'the sloshing damping ratio must lie in [0, 1)', status, message)
+    call check_real('support_height', tank%support_height, 0.0_wp, big, .false., .true., &
+                    'the support height must be > 0 [m] (0: the tank height)', status, message)
+    if (status == SD_OK .and. (tank%support_frequency > 0 .eqv. tank%support_stiffness > 0)) then
+      status = SD_BAD_INPUT
+      message = 'support_frequency = '//num2str(tank%support_frequency)//' and '// &
+                'support_stiffness = '//num2str(tank%support_stiffness)//': give exactly one, '// &
+                '> 0 (the natural frequency [Hz] of the tank on its supports, or the rods'' '// &
+                'stiffness [N m/rad])'
+    end if
+    if (tank%support_frequency > 0) then
+      call check_real('support_frequency', tank%support_frequency, 0.0_wp, big, .true., .true., &
+                      'the support frequency must be > 0 [Hz]', status, message)
+      call check_real('support_damping', tank%support_damping, 0.0_wp, 1.0_wp, .false., .true., &
+                      'the support damping ratio must lie in [0, 1)', status, message)
+    else
+      call check_real('support_stiffness', tank%support_stiffness, 0.0_wp, big, .true., .true., &
+                      'the support stiffness must be > 0 [N m/rad]', status, message)
+      call check_real('support_damping_coefficient', tank%support_damping_coefficient, 0.0_wp, &
+                      big, .false., .true., 'the support damping coefficient must be >= 0 '// &
+                      '[N m s/rad]', status, message)
+    end if
+    if (status /= SD_OK) return
+    call tank_pendulum(tank%radius, tank%liquid_depth, tank%liquid_density, tank%liquid_mass, &
+                       props%pendulum_length, props%sloshing_mass, props%d1, props%rigid_mass, &
+                       props%d0, props%liquid_mass, status, message)
+    if (status /= SD_OK) return
+    props%wave_factor = wave_height_factor(tank%radius)
+    sin_theta0 = tank%freeboard/props%wave_factor
+    if (sin_theta0 >= sin(0.4999_wp*pi)) then
+      status = SD_BAD_INPUT
+      message = 'freeboard = '//num2str(tank%freeboard)//' is out of range: the linear sloshing '// &
+                'wave reaches at most 2 R/(xi^2 - 1) = '//num2str(props%wave_factor)//' m at '// &
+                'the wall; the roof impact model needs a smaller freeboard'
+      return
+    end if
+    props%theta0 = asin(sin_theta0)
+    props%total_mass = props%liquid_mass + tank%tank_mass
+    props%rod_length = merge(tank%support_height, tank%liquid_depth + tank%freeboard, &
+                             tank%support_height > 0)
+    associate (m_total => props%total_mass, rod => props%rod_length, g => tank%gravity)
+      if (tank%support_frequency > 0) then
+        omega_s = 2*pi*tank%support_frequency
+        props%stiffness = m_total*rod**2*omega_s**2 + m_total*g*rod
+        props%damping = 2*tank%support_damping*m_total*rod**2*omega_s
+      else
+        props%stiffness = tank%support_stiffness
+        props%damping = tank%support_damping_coefficient
+      end if
+    end associate
+    props%omega = sqrt(tank%gravity/props%pendulum_length)
+    props%sloshing_period = 2*pi/props%omega
+    ! heights of application of the wall pressures (the bottom's excluded): the first mode's by
+    ! potential flow, h [1 - (cosh x - 1)/(x sinh x)] = h - (R/xi) tanh(x/2) with x = xi h/R;
+    ! m0's such that slow (quasi-static) motion gives the liquid's exact moment m_F h/2
+    ! (docs/model.md, "Loads")
+    props%convective_height = tank%liquid_depth - tank%radius/xi* &
+                              tanh(xi*tank%liquid_depth/(2*tank%radius))
+    props%impulsive_height = (props%liquid_mass*tank%liquid_depth/2 - props%sloshing_mass* &
+                              props%convective_height)/props%rigid_mass
+    props%shell_height = (tank%liquid_depth + tank%freeboard)/2
+    props%impact_coefficient = tank%impact_stiffness*props%sloshing_mass*tank%gravity* &
+                               props%pendulum_length
+
+    ! the groups of eq (9); beta and delta are given dimensionless, zeta is the damping ratio
+    associate (pendulum => props%pendulum_length, rod => props%rod_length, w => props%omega)
+      rpar = [pendulum/rod, props%sloshing_mass/props%total_mass, &
+              props%stiffness/(w**2*rod**2*props%total_mass), props%theta0, &
+              tank%impact_stiffness, props%damping/(w*rod**2*props%total_mass), &
+              tank%impact_damping, 0.0_wp, 0.0_wp, tank%sloshing_damping]
+    end associate
+    call model_from_arrays(rpar, [tank%n, tank%p], model, status, message)
+    if (status /= SD_OK) call rename(message)
+
+  contains
+
+    !> The model's names in a message are the tank's: tell which tank inputs made them.
+    pure subroutine rename(text)
+      character(len=message_len), intent(inout) :: text
+      select case (text(1:index(text, ' ') - 1))
+      case ('s1', 'mu1', 'kappa', 'gamma')
+        text = 'the supports, tank and liquid give '//trim(text)
+      case ('beta');       text = 'impact_stiffness = beta'//text(5:)
+      case ('delta');      text = 'impact_damping = delta'//text(6:)
+      case ('zeta');       text = 'sloshing_damping = zeta'//text(5:)
+      end select
+    end subroutine rename
+  end subroutine tank_model
+
+  !> The loads of the state y with rates dydt = (x1', x1'', x2', x2'') at tau, in SI (the rows
+  !> of LOAD_ROWS); ground_acceleration = u'' [m/s^2] at that time.
+  pure function tank_loads(tank, props, model, tau, y, dydt, ground_acceleration) result(row)
+    type(tank_t), intent(in) :: tank
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau, y(4), dydt(4), ground_acceleration
+    real(wp) :: row(LOAD_ROWS)
+    real(wp) :: theta, theta_d, theta_dd, phi, phi_d, phi_dd, tank_accel, mass_accel
+    associate (w => props%omega, t0 => model%theta0, pendulum => props%pendulum_length, &
+               rod => props%rod_length, m => props%sloshing_mass)
+      theta = t0*y(1)
+      theta_d = w*t0*y(2)
+      theta_dd = w**2*t0*dydt(2)
+      phi = t0*y(3)
+      phi_d = w*t0*y(4)
+      phi_dd = w**2*t0*dydt(4)
+      ! horizontal accelerations of the tank and of the sloshing mass
+      tank_accel = ground_acceleration + rod*(cos(phi)*phi_dd - sin(phi)*phi_d**2)
+      mass_accel = tank_accel + pendulum*(cos(theta)*theta_dd - sin(theta)*theta_d**2)
+      row(1) = tau/w
+      row(2) = ground_acceleration
+      row(3) = pendulum*sin(theta)
+      row(4) = props%wave_factor*sin(theta)
+      row(5) = theta
+      row(6) = rod*sin(phi)
+      ! the impact moment b x1^(2n-1) of eq (4) acts on m through the arm l
+      row(7) = props%impact_coefficient*y(1)**(2*model%n - 1)/pendulum
+      ! the base shear: the rate of the horizontal momentum (M - m) X_t' + m X_m'
+      row(8) = (props%total_mass - m)*tank_accel + m*mass_accel
+      ! the overturning moment about the tank bottom of the wall pressures and the shell's
+      ! inertia: each mass's horizontal inertia force at its height
+      row(9) = (props%rigid_mass*props%impulsive_height + tank%tank_mass*props%shell_height)* &
+               tank_accel + m*props%convective_height*mass_accel
+    end associate
+  end function tank_loads
+end module sloshdyn_vessel

@@ -1,0 +1,454 @@
+"""A real tank under ground motion, in SI units: the tank (`Tank`), the ground motion
+(`GroundMotion`: a record or harmonic motion, scaled, with its response spectrum), the seismic
+response (`seismic_response`: time histories and peaks of the physical loads) and the design-code
+cross-check (`Tank.design_codes`). Every number comes from the Fortran core (sloshdyn_vessel,
+sloshdyn_ground, sloshdyn_seismic); the namelist groups &tank, &ground_motion and &seismic are
+the same objects (README, "Namelist reference"), and docs/model.md gives the relations.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core, _tables
+from ._errors import InputError, check_status
+from .parameters import Parameters
+from .simulation import Integration
+
+_bridge = _core.sloshdyn_bridge
+_TANK_DEFAULTS = _bridge.tank_defaults()
+_HARMONIC, _RECORD = 1, 2          # the ground kinds of sloshdyn_ground
+
+
+def _name(column):
+    """The attribute name of a column: its name without the unit, 't [s]' -> 't'."""
+    return column.split(" [")[0]
+
+
+def _real(name, value):
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise InputError(f"{name} = {value!r} is not valid: {name} must be a real number")
+    return float(value)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Tank:
+    """A cylindrical tank on supports, SI units (the namelist group &tank, the same variables
+    and defaults). Give the liquid by liquid_density or liquid_mass, and the supports by
+    support_frequency [Hz] with support_damping (ratio), or by support_stiffness [N m/rad] with
+    support_damping_coefficient [N m s/rad]. The fields are in the order of the core's layout."""
+
+    radius: float                       #: R [m]
+    liquid_depth: float                 #: h [m]
+    freeboard: float                    #: liquid surface to the roof [m]
+    liquid_density: float = float(_TANK_DEFAULTS[3])      #: [kg/m^3]
+    liquid_mass: float = float(_TANK_DEFAULTS[4])         #: [kg]
+    tank_mass: float                    #: shell and roof [kg]
+    support_frequency: float = float(_TANK_DEFAULTS[6])   #: [Hz]
+    support_damping: float = float(_TANK_DEFAULTS[7])     #: ratio of critical
+    support_stiffness: float = float(_TANK_DEFAULTS[8])   #: [N m/rad]
+    support_damping_coefficient: float = float(_TANK_DEFAULTS[9])   #: [N m s/rad]
+    support_height: float = float(_TANK_DEFAULTS[10])     #: rod length L [m]; 0: h + freeboard
+    sloshing_damping: float = float(_TANK_DEFAULTS[11])   #: ratio of critical (linear)
+    impact_stiffness: float = float(_TANK_DEFAULTS[12])   #: beta (dimensionless, eq 4)
+    impact_damping: float = float(_TANK_DEFAULTS[13])     #: delta (dimensionless, eq 5)
+    n: int = int(_TANK_DEFAULTS[14])                      #: exponent of eq (4)
+    p: int = int(_TANK_DEFAULTS[15])                      #: exponent of eq (5)
+    gravity: float = float(_TANK_DEFAULTS[16])            #: [m/s^2]
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if f.type == "int":
+                if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+                    raise InputError(f"{f.name} = {value!r} is not valid: {f.name} must be an "
+                                     "integer")
+            else:
+                _real(f.name, value)
+        row, rpar, ipar, status, message = _bridge.tank_properties(self.array())
+        check_status(status, message)
+        object.__setattr__(self, "_row", row.copy())
+        object.__setattr__(self, "_model", (rpar.copy(), ipar.copy()))
+
+    def array(self):
+        """The core's layout tank(17)."""
+        return np.array([float(getattr(self, f.name)) for f in dataclasses.fields(self)],
+                        dtype=np.float64)
+
+    @property
+    def properties(self):
+        """Everything the core derives from the tank ({name: value}, the columns of tank.csv
+        without their units): masses, pendulum, heights, supports, theta0, the groups."""
+        return {_name(c): float(v) for c, v in zip(_tables.columns("tank_si"), self._row)}
+
+    @property
+    def sloshing_period(self):
+        """Period of the first sloshing mode in a rigid tank, 2 pi sqrt(l/g) [s]."""
+        return self.properties["sloshing_period"]
+
+    @property
+    def convective_mass(self):
+        """The sloshing (pendulum) mass m of eq (2) [kg]."""
+        return self.properties["sloshing_mass"]
+
+    @property
+    def impulsive_mass(self):
+        """The rigid liquid mass m0 = m_F - m of eq (3) [kg]."""
+        return self.properties["rigid_mass"]
+
+    @property
+    def convective_height(self):
+        """Height of the convective wall-pressure resultant above the bottom [m]."""
+        return self.properties["convective_height"]
+
+    @property
+    def impulsive_height(self):
+        """Height of the impulsive wall-pressure resultant above the bottom [m]."""
+        return self.properties["impulsive_height"]
+
+    @property
+    def theta0(self):
+        """The pendulum angle at which the linear wave reaches the roof [rad]."""
+        return self.properties["theta0"]
+
+    def parameters(self, ground_motion=None):
+        """The dimensionless model (Parameters) of the tank; with harmonic ground motion, its
+        excitation A, rho as well."""
+        rpar, ipar = self._model
+        s1, mu1, kappa, theta0, beta, gamma, delta, _, _, zeta = (float(x) for x in rpar)
+        A = rho = 0.0
+        if ground_motion is not None:
+            if ground_motion.kind != "harmonic":
+                raise InputError("a record has no A and rho: parameters() takes harmonic ground "
+                                 "motion only")
+            p = self.properties
+            rho = 2 * math.pi * ground_motion.frequency / p["omega"]
+            A = ground_motion.peak_acceleration / (
+                p["support_height"] * (2 * math.pi * ground_motion.frequency) ** 2)
+        return Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
+                          delta=delta, n=int(ipar[0]), p=int(ipar[1]), zeta=zeta, A=A, rho=rho)
+
+    def design_codes(self, ground_motion=None):
+        """The tank's sloshing parameters by sloshdyn and by API 650 Annex E, EN 1998-4 Annex A
+        and ACI 350.3 side by side (DesignCodes); wave heights from the ground motion's
+        pseudo-spectral acceleration when one is given."""
+        ground, samples = _ground_arrays(ground_motion)
+        codes, status, message = _bridge.design_codes(self.array(), int(ground_motion is not None),
+                                                      ground, samples)
+        check_status(status, message)
+        return DesignCodes(codes.copy())
+
+
+@dataclass(frozen=True)
+class DesignCodes:
+    """Rows: sloshdyn, API 650, EC8-4, ACI 350.3; columns: convective_period [s],
+    convective_mass [kg], impulsive_mass [kg], convective_height [m], impulsive_height [m],
+    wave_height [m] (NaN where a source gives none)."""
+
+    table: np.ndarray   #: (6, 4), the core's 'design_codes' layout
+
+    @property
+    def sources(self):
+        return list(_tables.names("source")[0])
+
+    @property
+    def columns(self):
+        return [_name(c) for c in _tables.columns("design_codes")[1:]]
+
+    def value(self, source, column):
+        return float(self.table[self.columns.index(column), self.sources.index(source)])
+
+    def difference(self, source, column):
+        """(source - sloshdyn)/sloshdyn in %."""
+        ours = self.value("sloshdyn", column)
+        return 100 * (self.value(source, column) - ours) / ours
+
+    def __str__(self):
+        """The table the executable prints: values, and each code's difference in %."""
+        lines = ["  " + "".ljust(24) + "sloshdyn".ljust(14) +
+                 "".join(s.ljust(22) for s in self.sources[1:]).rstrip()]
+        for i, column in enumerate(_tables.columns("design_codes")[1:]):
+            cells = [_pad(_value_text(self.table[i, 0]), 14)]
+            for k, source in enumerate(self.sources[1:], start=1):
+                text = _value_text(self.table[i, k])
+                if not math.isnan(self.table[i, k]):
+                    text += f" ({self.difference(source, _name(column)):+.1f}%)"
+                cells.append(_pad(text, 22))
+            lines.append(("  " + column.replace("_", " ").ljust(24) + "".join(cells)).rstrip())
+        return "\n".join(lines)
+
+
+def _pad(text, width):
+    """As the executable pads: to width, and at least one blank after."""
+    return text.ljust(max(width, len(text) + 1))
+
+
+def _value_text(x):
+    """As the executable prints it: 6 significant digits, no trailing zeros."""
+    if math.isnan(x):
+        return "-"
+    x = float(f"{x:.5e}")
+    if x == 0 or 1e-4 <= abs(x) < 1e9:
+        return f"{x:.10f}".rstrip("0").rstrip(".")
+    mantissa, exponent = f"{x:.9e}".split("e")
+    return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+
+
+class GroundMotion:
+    """Horizontal ground acceleration in SI units: a record sampled at a uniform step dt [s]
+    (piecewise linear between samples, at rest after the last one), or harmonic motion
+    u'' = -peak_acceleration sin(2 pi frequency t).
+
+    GroundMotion(dt=0.01, acceleration=a)                 a record, a in `units`
+    GroundMotion.from_file('x.AT2')                       PEER NGA .AT2 (in g)
+    GroundMotion.from_file('x.csv', units='cm/s^2')       two columns: time [s], acceleration
+    GroundMotion.harmonic(0.2, 0.3, units='g')            peak 0.2 g at 0.3 Hz
+    """
+
+    def __init__(self, dt=None, acceleration=None, *, units="m/s^2", peak_acceleration=None,
+                 frequency=None):
+        factor = acceleration_factor(units)
+        if acceleration is not None or dt is not None:
+            if peak_acceleration is not None or frequency is not None:
+                raise InputError("give a record (dt, acceleration) or harmonic motion "
+                                 "(peak_acceleration, frequency), not both")
+            if acceleration is None or dt is None:
+                raise InputError("a record needs both dt [s] and acceleration (an array)")
+            try:
+                samples = np.array(acceleration, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise InputError(f"acceleration = {acceleration!r:.60} is not valid: it must be "
+                                 "an array of real numbers") from None
+            if samples.ndim != 1:
+                raise InputError(f"acceleration has shape {samples.shape}: it must be "
+                                 "one-dimensional")
+            self.kind, self.dt = "record", _real("dt", dt)
+            self.acceleration = samples * factor
+            self.peak_acceleration = self.frequency = 0.0
+        else:
+            if peak_acceleration is None or frequency is None:
+                raise InputError("harmonic motion needs peak_acceleration and frequency [Hz]")
+            self.kind, self.dt, self.acceleration = "harmonic", 0.0, np.zeros(0)
+            self.peak_acceleration = _real("peak_acceleration", peak_acceleration) * factor
+            self.frequency = _real("frequency", frequency)
+        self.acceleration.flags.writeable = False
+        status, message = _bridge.check_ground(*self._arrays())
+        check_status(status, message)
+
+    @classmethod
+    def harmonic(cls, peak_acceleration, frequency, units="g"):
+        """u'' = -peak_acceleration sin(2 pi frequency t), frequency in Hz."""
+        return cls(peak_acceleration=peak_acceleration, frequency=frequency, units=units)
+
+    @classmethod
+    def from_file(cls, path, format="auto", units="g"):
+        """A record file: 'at2' (PEER NGA, values in g), 'columns' (time [s], acceleration in
+        `units`; commas, semicolons or blanks; # comments) or 'auto' (by the .AT2 extension).
+        The file is only read."""
+        path = os.fspath(path)
+        try:
+            with open(path, "rb") as f:
+                n_max = max(2, len(f.read().split()))
+        except OSError as exc:
+            raise InputError(f"record file {path}: {exc.strerror}") from None
+        dt, samples, n, status, message = _bridge.read_record(path, format, units, n_max)
+        check_status(status, message)
+        return cls(dt=float(dt), acceleration=samples[:n].copy())
+
+    def _arrays(self):
+        ground = np.array([_HARMONIC if self.kind == "harmonic" else _RECORD,
+                           self.peak_acceleration, self.frequency, self.dt], dtype=np.float64)
+        return ground, np.asarray(self.acceleration, dtype=np.float64)
+
+    @property
+    def duration(self):
+        """Length of a record [s] (0 for harmonic motion)."""
+        return self.dt * (len(self.acceleration) - 1) if self.kind == "record" else 0.0
+
+    @property
+    def time(self):
+        """The times of a record's samples [s]."""
+        return self.dt * np.arange(len(self.acceleration))
+
+    @property
+    def pga(self):
+        """Peak ground acceleration [m/s^2]."""
+        if self.kind == "record":
+            return float(np.max(np.abs(self.acceleration)))
+        return self.peak_acceleration
+
+    def scaled(self, factor=None, *, pga=None, sa=None, period=None, damping=0.05,
+               units="m/s^2"):
+        """A copy scaled by a factor, to a peak ground acceleration pga, or to a pseudo-spectral
+        acceleration sa at period [s] for the damping ratio (give one; pga and sa in `units`)."""
+        to_si = acceleration_factor(units)
+        if sa is not None and period is None:
+            raise InputError("sa needs the period [s] at which it applies")
+        ground, samples = self._arrays()
+        scaled, scaled_samples, status, message = _bridge.scale_ground(
+            ground, samples, 1.0 if factor is None else _real("factor", factor),
+            0.0 if pga is None else _real("pga", pga) * to_si,
+            0.0 if sa is None else _real("sa", sa) * to_si,
+            0.0 if period is None else _real("period", period), _real("damping", damping))
+        check_status(status, message)
+        if self.kind == "record":
+            return GroundMotion(dt=self.dt, acceleration=scaled_samples.copy())
+        return GroundMotion(peak_acceleration=float(scaled[1]), frequency=float(scaled[2]))
+
+    def response_spectrum(self, periods, damping=0.05, tail_duration=None, duration=None):
+        """Peak responses of linear oscillators (exact for the piecewise linear record) at
+        `periods` [s]: Spectrum(periods, sd [m], sv [m/s], psa [m/s^2]). A free-vibration tail
+        of tail_duration [s] (default 5 times the longest period) follows the record; harmonic
+        motion is sampled over `duration` [s] (default 40 forcing periods)."""
+        periods = np.atleast_1d(np.asarray(periods, dtype=np.float64))
+        if tail_duration is None:
+            tail_duration = 5 * float(np.max(periods)) if periods.size else 0.0
+        if duration is None:
+            duration = 40 / self.frequency if self.kind == "harmonic" else self.duration
+        sd, sv, psa, status, message = _bridge.ground_spectrum(
+            *self._arrays(), periods, _real("damping", damping),
+            _real("tail_duration", tail_duration), _real("duration", duration))
+        check_status(status, message)
+        return Spectrum(periods, sd.copy(), sv.copy(), psa.copy(), float(damping))
+
+    def __repr__(self):
+        if self.kind == "record":
+            return (f"GroundMotion(record: {len(self.acceleration)} samples, dt = {self.dt} s, "
+                    f"PGA = {self.pga:.4g} m/s^2)")
+        return (f"GroundMotion(harmonic: peak {self.peak_acceleration:.4g} m/s^2 at "
+                f"{self.frequency:.4g} Hz)")
+
+
+def acceleration_factor(units):
+    """The factor that turns an acceleration in units 'g' (9.80665 m/s^2), 'm/s^2' or
+    'cm/s^2' into m/s^2."""
+    if not isinstance(units, str):
+        raise InputError(f"units = {units!r} is not valid: use 'g', 'm/s^2' or 'cm/s^2'")
+    factor, status, message = _bridge.acceleration_units(units)
+    check_status(status, message)
+    return float(factor)
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """A response spectrum: at each period [s], peak relative displacement sd [m],
+    pseudo-velocity sv [m/s] and pseudo-acceleration psa [m/s^2], for the damping ratio."""
+
+    periods: np.ndarray
+    sd: np.ndarray
+    sv: np.ndarray
+    psa: np.ndarray
+    damping: float
+
+
+def _ground_arrays(ground_motion):
+    if ground_motion is None:
+        return np.zeros(4), np.zeros(0)
+    if not isinstance(ground_motion, GroundMotion):
+        raise InputError(f"ground_motion = {ground_motion!r:.60} is not a GroundMotion")
+    return ground_motion._arrays()
+
+
+class SeismicResponse:
+    """The response of a tank to ground motion from rest, SI units. One array per quantity
+    over the output times `t` [s]: ground_acceleration [m/s^2], sloshing_displacement [m] (of
+    the sloshing mass relative to the tank), wave_height [m] (at the wall), pendulum_angle
+    [rad], tank_drift [m] (relative to the ground), impact_force [N] (roof/walls on the
+    liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2; and
+    `peaks` {quantity: (largest |value|, its time [s])}, roof_reached, first_roof_time [s],
+    roof_impacts. Columns are those of seismic.csv and seismic_peaks.csv."""
+
+    def __init__(self, tank, ground_motion, table, peaks):
+        self.tank, self.ground_motion = tank, ground_motion
+        self.table = table
+        for column, row in zip(_tables.columns("seismic"), table):
+            setattr(self, _name(column), row)
+        self.peak_table = {_name(c): float(v) for c, v in zip(_tables.columns("seismic_peaks"),
+                                                              peaks)}
+        self.peaks = {name[len("peak_"):]: (value, self.peak_table["time_" + name[5:]])
+                      for name, value in self.peak_table.items() if name.startswith("peak_")}
+        self.roof_reached = bool(self.peak_table["roof_reached"])
+        self.first_roof_time = self.peak_table["first_roof_time"]
+        self.roof_impacts = int(self.peak_table["roof_impacts"])
+
+    @property
+    def columns(self):
+        return [_name(c) for c in _tables.columns("seismic")]
+
+    def __repr__(self):
+        wave = self.peaks["wave_height"]
+        return (f"SeismicResponse({len(self.t)} outputs to t = {self.t[-1]:.4g} s; peak wave "
+                f"height {wave[0]:.4g} m at {wave[1]:.4g} s, freeboard {self.tank.freeboard} m, "
+                f"roof {'reached' if self.roof_reached else 'not reached'})")
+
+
+def seismic_defaults(tank, ground_motion, t_end=None, n_out=None):
+    """(t_end [s], n_out) as seismic_response chooses them: t_end = the record plus 5 sloshing
+    periods (harmonic: 40 forcing periods); outputs at the finest of the record's step, 50 per
+    sloshing (or forcing) period and 20 per period of the tank on its supports."""
+    ground, samples = _ground_arrays(ground_motion)
+    chosen, status, message = _bridge.seismic_defaults(
+        tank.array(), ground, samples, 0.0 if t_end is None else _real("t_end", t_end),
+        0 if n_out is None else int(n_out))
+    check_status(status, message)
+    return float(chosen[0]), int(chosen[1])
+
+
+def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=Integration()):
+    """The tank at rest at t = 0 under the ground motion, to t_end [s] (default: the record
+    plus 5 sloshing periods), at n_out evenly spaced times (default: seismic_defaults): a
+    SeismicResponse. Its peaks are the largest values at the output times."""
+    if not isinstance(tank, Tank):
+        raise InputError(f"tank = {tank!r:.60} is not a Tank")
+    t_end, n_out = seismic_defaults(tank, ground_motion, t_end, n_out)
+    ground, samples = _ground_arrays(ground_motion)
+    table, peaks, status, message = _bridge.seismic_response(
+        tank.array(), ground, samples, t_end, n_out, integration.array())
+    check_status(status, message)
+    return SeismicResponse(tank, ground_motion, table.copy(), peaks.copy())
+
+
+class HarmonicSweep:
+    """Steady states of a tank under harmonic ground motion of one peak acceleration at each
+    frequency: `points` (SteadyState, dimensionless, as frequency_sweep gives) and one SI array
+    per column of harmonic_sweep.csv: frequency [Hz], peak_ground_acceleration [m/s^2],
+    wave_height [m], sloshing_displacement [m], pendulum_angle [rad], tank_drift [m] (their
+    largest values over the measuring window), roof_reached (1/0), motion (code), period
+    [forcing periods]."""
+
+    def __init__(self, tank, points, table, y_final):
+        self.tank, self.points, self.table, self.y_final = tank, points, table, y_final
+        for column, row in zip(_tables.columns("harmonic_sweep"), table):
+            setattr(self, _name(column), row)
+
+
+def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
+                   steady=None, integration=Integration(), progress=False, threads=1,
+                   start_from="previous"):
+    """Steady states of the tank under harmonic ground motion of constant peak_acceleration (in
+    `units`) at each of the frequencies [Hz], in the given order (ascending = up); start_from,
+    threads and steady as for sloshdyn.frequency_sweep. A HarmonicSweep."""
+    from .simulation import Steady, run_sweep
+
+    steady = Steady() if steady is None else steady
+    frequencies = np.ascontiguousarray(frequencies, dtype=np.float64)
+    if frequencies.ndim != 1 or frequencies.size == 0:
+        raise InputError(f"frequencies has shape {frequencies.shape}: give a 1-D array of "
+                         "frequencies [Hz]")
+    ground = GroundMotion.harmonic(peak_acceleration, float(frequencies[0]), units=units)
+    ground_array, _ = ground._arrays()
+
+    def run(chunk, y, carry):
+        summaries, table, y_final, n_done, status, message = _bridge.harmonic_sweep(
+            tank.array(), ground_array, chunk, y, integration.array(), steady.array(),
+            int(carry), int(threads))
+        return summaries, table, (y_final if carry else y), status, message
+
+    points, table, y = run_sweep("frequency", frequencies, y0, progress, threads, start_from,
+                                 run, lambda points, y: None)
+    return HarmonicSweep(tank, points, table, y)
