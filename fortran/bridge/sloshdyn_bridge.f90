@@ -631,6 +631,7 @@ contains
 
   !> The tank's properties (the 'tank_si' table's row) and its dimensionless model.
   subroutine tank_properties(tank, row, rpar, ipar, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t, model_to_arrays
     use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
     use sloshdyn_seismic, only: tank_summary
@@ -654,6 +655,7 @@ contains
 
   !> The rules of a ground motion (sloshdyn_ground's check_ground).
   subroutine check_ground(ground, n, samples, status, message)
+    !f2py threadsafe
     use sloshdyn_ground, only: core => check_ground
     use sloshdyn_layouts, only: to_ground
     integer(c_int), intent(in) :: n
@@ -711,6 +713,7 @@ contains
   !> The ground motion scaled (sloshdyn_ground's scale_ground; SI units).
   subroutine scale_ground(ground, n, samples, scale_factor, target_pga, target_sa, &
                           target_period, target_damping, scaled, scaled_samples, status, message)
+    !f2py threadsafe
     use sloshdyn_ground, only: ground_motion_t, core => scale_ground
     use sloshdyn_layouts, only: to_ground, from_ground
     integer(c_int), intent(in) :: n
@@ -733,6 +736,7 @@ contains
   !> Response spectrum of the ground motion (sloshdyn_ground's ground_spectrum).
   subroutine ground_spectrum(ground, n, samples, m, periods, damping, tail_duration, duration, &
                              sd, sv, psa, status, message)
+    !f2py threadsafe
     use sloshdyn_ground, only: core => ground_spectrum
     use sloshdyn_layouts, only: to_ground
     integer(c_int), intent(in) :: n, m
@@ -750,6 +754,7 @@ contains
   !> t_end [s] and n_out of a seismic response, the defaults (sloshdyn_seismic) where the given
   !> ones are <= 0: chosen = [t_end, n_out].
   subroutine seismic_defaults(tank, ground, n, samples, t_end, n_out, chosen, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: model_t
     use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
     use sloshdyn_ground, only: check_ground
@@ -780,6 +785,7 @@ contains
   !> and peaks(19) in the 'seismic_peaks' layout.
   subroutine seismic_response(tank, ground, n, samples, t_end, n_out, integration, table, &
                               peaks, status, message)
+    !f2py threadsafe
     use sloshdyn_seismic, only: core => seismic_response
     use sloshdyn_layouts, only: to_tank, to_ground, to_ode_options, to_method
     integer(c_int), intent(in) :: n, n_out
@@ -800,6 +806,7 @@ contains
   !> y0.
   subroutine harmonic_sweep(tank, ground, n, frequencies, y0, integration, steady, carry, &
                             threads, summaries, table, y_final, n_done, status, message)
+    !f2py threadsafe
     use sloshdyn_ground, only: harmonic_ground
     use sloshdyn_seismic, only: core => harmonic_sweep
     use sloshdyn_layouts, only: to_tank, to_ode_options, to_method, to_steady

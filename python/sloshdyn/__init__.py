@@ -15,7 +15,7 @@ from .periodic import (PeriodicBranch, PeriodicOrbit, PeriodicSpecialPoint, lyap
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
 from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, Spectrum, Tank,
                       acceleration_factor, harmonic_sweep, seismic_defaults, seismic_response)
-from .studies import FragilityFit, basins, fit_fragility, response_map
+from .studies import FragilityFit, basins, fit_fragility, fragility_study, response_map
 from .simulation import (Integration, Simulation, Steady, SteadyState, Sweep, amplitude_sweep,
                          frequency_sweep, poincare_section, simulate, spectrum, steady_state,
                          sweep_values)
@@ -35,7 +35,7 @@ __all__ = [
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
     "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "Spectrum", "Tank",
     "acceleration_factor", "harmonic_sweep", "seismic_defaults", "seismic_response",
-    "FragilityFit", "basins", "fit_fragility", "response_map",
+    "FragilityFit", "basins", "fit_fragility", "fragility_study", "response_map",
 ]
 
 

@@ -383,7 +383,7 @@ def _unpack(summaries, orbit, impact, status, shape, suffix="", order="C"):
 
 # ---- response map ----------------------------------------------------------------------------
 
-def _response_task(rpar, ipar, rho, A, integration, steady, continuation):
+def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_grid=False):
     """One task of a response map: the block's points from rest, and (continuation) each
     amplitude column swept up and/or down in frequency carrying the state. Runs on a worker."""
     start = time.perf_counter()
@@ -409,21 +409,40 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation):
             parts.append({k: v[order] for k, v in part.items()})
         for k in parts[0]:
             out[k] = np.concatenate([p[k] for p in parts], axis=1)
+    if with_grid:
+        out["rho"], out["A"] = rho, A
     out[_SECONDS] = time.perf_counter() - start
     return out
+
+
+def _tank_grid(tank, f, a, units):
+    """(rho, A) at every (frequency [Hz], peak ground acceleration [units]) of a tank at
+    constant acceleration, as Tank.parameters gives them for harmonic ground motion."""
+    from .seismic import GroundMotion
+    rho = np.empty((len(f), len(a)))
+    amplitude = np.empty_like(rho)
+    for i, fi in enumerate(f):
+        for j, aj in enumerate(a):
+            # A is linear in the acceleration: at a = 0 it is 0 (the rho of any a)
+            p = tank.parameters(GroundMotion.harmonic(aj if aj > 0 else 1.0, fi, units=units))
+            rho[i, j], amplitude[i, j] = p.rho, (p.A if aj > 0 else 0.0)
+    tank.parameters().replace(rho=float(rho.max()), A=float(amplitude.max()))   # range rules
+    return rho, amplitude
 
 
 def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None, scheduler=None,
                  workers=None, worker_kind=None, steady: Steady = Steady(),
                  integration: Integration = Integration(), continuation=None,
-                 points_per_task=None, progress=True):
+                 points_per_task=None, progress=True, units="g"):
     """Steady states on a grid of forcing frequency x amplitude, as an xarray Dataset with
     dimensions (frequency, amplitude) written to the Zarr store `store` as tasks finish.
 
-    params_or_tank: sloshdyn.Parameters; frequencies are rho = Omega/omega and amplitudes the
-    dimensionless A = u0/L. Every point is the steady state from rest with the given settings,
-    equal bit for bit to sloshdyn.steady_state(params.replace(rho=f, A=a), steady=...,
-    integration=...). continuation = 'up', 'down' or 'both' adds, for each amplitude, the sweep
+    params_or_tank: sloshdyn.Parameters, with frequencies rho = Omega/omega and amplitudes the
+    dimensionless A = u0/L; or a sloshdyn.Tank, with frequencies in Hz and amplitudes the peak
+    ground acceleration in `units` (constant along the frequency axis: A = a/(L Omega^2)), the
+    point's rho and A as variables. Every point is the steady state from rest with the given
+    settings, equal bit for bit to sloshdyn.steady_state(params.replace(rho=..., A=...),
+    steady=..., integration=...). continuation = 'up', 'down' or 'both' adds, for each amplitude, the sweep
     along the frequency axis that carries the state from point to point (variables *_up,
     *_down): where they differ from the points from rest, the response is multi-valued
     (hysteresis, jumps).
@@ -433,14 +452,21 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     one per core) of kind `worker_kind` ('processes' by default, 'threads'). Rerunning the same
     study on the same store resumes it; a store made by a different study is refused
     (InputError). See README, "Studies"."""
-    if isinstance(params_or_tank, Parameters):
-        params = params_or_tank
-    else:
-        raise InputError(f"params_or_tank = {type(params_or_tank).__name__} is not valid: give "
-                         "sloshdyn.Parameters")
+    from .seismic import Tank
+    tank = None
     f = _axis("frequencies", frequencies, 0.0)
     a = _axis("amplitudes", amplitudes, 0.0, lower_open=False)
-    params.replace(rho=float(f.max()), A=float(a.max()))      # the core's range rules
+    if isinstance(params_or_tank, Parameters):
+        params = params_or_tank
+        params.replace(rho=float(f.max()), A=float(a.max()))      # the core's range rules
+        rho_grid, a_grid = np.meshgrid(f, a, indexing="ij")
+    elif isinstance(params_or_tank, Tank):
+        tank = params_or_tank
+        params = tank.parameters()
+        rho_grid, a_grid = _tank_grid(tank, f, a, units)
+    else:
+        raise InputError(f"params_or_tank = {type(params_or_tank).__name__} is not valid: give "
+                         "sloshdyn.Parameters or sloshdyn.Tank")
     steady_array, integration_array = _settings(steady, integration)
     if continuation is None or continuation == "none":
         directions = ()
@@ -460,12 +486,11 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
         bf = min(nf, ppt)
         chunks = (bf, max(1, min(na, ppt // bf)))
     rpar, ipar = params.arrays()
-    rho_grid, a_grid = np.meshgrid(f, a, indexing="ij")
 
     def task(block):
         return _response_task, (rpar, ipar, np.ascontiguousarray(rho_grid[block]),
                                 np.ascontiguousarray(a_grid[block]), integration_array,
-                                steady_array, directions)
+                                steady_array, directions, tank is not None)
 
     dims = ("frequency", "amplitude")
     variables = _summary_variables(dims)
@@ -482,20 +507,36 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
                                                            "the state"))
     variables["done"] = _Variable(dims, "bool", False, {
         "long_name": "the point is computed and stored (resumable studies)"})
+    if tank is not None:
+        variables["rho"] = _Variable(dims, "f8", np.nan, {
+            "units": "1", "long_name": "forcing frequency ratio rho = Omega/omega of the point"})
+        variables["A"] = _Variable(dims, "f8", np.nan, {
+            "units": "1", "long_name": "dimensionless base displacement amplitude A = u0/L of "
+                                      "the point (constant acceleration: A falls as 1/f^2)"})
     spec = {"kind": "response_map", "parameters": dataclasses.asdict(params),
+            "tank": None if tank is None else dataclasses.asdict(tank), "units": units,
             "frequencies": f.tolist(), "amplitudes": a.tolist(),
             "steady": dataclasses.asdict(steady), "integration": dataclasses.asdict(integration),
             "continuation": list(directions), "version": _version()}
+    if tank is None:
+        extra = {"frequency_axis": "rho = Omega/omega (forcing over pendulum frequency)",
+                 "amplitude_axis": "A = u0/L (base displacement amplitude over rod length)"}
+        coords = {
+            "frequency": (f, {"units": "1", "long_name": "forcing frequency ratio rho = "
+                                                         "Omega/omega"}),
+            "amplitude": (a, {"units": "1", "long_name": "base displacement amplitude A = u0/L"})}
+    else:
+        extra = {"tank": json.dumps(dataclasses.asdict(tank)),
+                 "frequency_axis": "ground motion frequency [Hz]",
+                 "amplitude_axis": f"peak ground acceleration [{units}], constant along the "
+                                   "frequency axis"}
+        coords = {
+            "frequency": (f, {"units": "Hz", "long_name": "ground motion frequency"}),
+            "amplitude": (a, {"units": units, "long_name": "peak ground acceleration"})}
     attrs = _common_attrs("response_map", params, steady, integration, {
-        "frequency_axis": "rho = Omega/omega (forcing over pendulum frequency)",
-        "amplitude_axis": "A = u0/L (base displacement amplitude over rod length)",
-        "continuation": ", ".join(directions) or "none",
+        **extra, "continuation": ", ".join(directions) or "none",
         "study_spec": json.dumps(spec, sort_keys=True)})
-    plan = _Plan("response_map", dims, {
-        "frequency": (f, {"units": "1", "long_name": "forcing frequency ratio rho = Omega/omega",
-                          "standard_name": "rho"}),
-        "amplitude": (a, {"units": "1", "long_name": "base displacement amplitude A = u0/L"})},
-        variables, attrs, spec, chunks, task)
+    plan = _Plan("response_map", dims, coords, variables, attrs, spec, chunks, task)
     return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
                     worker_kind=worker_kind, progress=progress)
 
@@ -653,6 +694,190 @@ def _label_basins(ds, tol):
     return ds
 
 
+# ---- fragility (incremental dynamic analysis) ------------------------------------------------
+
+_PEAKS = [c.split(" [")[0] for c in _tables.columns("seismic_peaks")]
+_FRAGILITY_LOADS = {
+    "peak_wave_height": ("m", "largest wave height at the wall over the run"),
+    "peak_sloshing_displacement": ("m", "largest displacement of the sloshing mass relative to "
+                                        "the tank"),
+    "peak_base_shear": ("N", "largest base shear (about the tank bottom)"),
+    "peak_overturning_moment": ("N m", "largest overturning moment about the tank bottom"),
+    "peak_tank_drift": ("m", "largest drift of the tank relative to the ground"),
+    "peak_impact_force": ("N", "largest impact force of the roof/walls on the liquid"),
+    "first_roof_time": ("s", "first time the wave reached the roof (NaN: never)"),
+}
+
+
+def _fragility_task(tank, records, intensities, sa_factor, period, damping, integration):
+    """One task of a fragility study: every (record, intensity) of the block, each record
+    scaled to the spectral acceleration at `period`, then the seismic response from rest.
+    Runs on a worker; every number comes from the core (scale_ground, seismic_response)."""
+    start = time.perf_counter()
+    shape = (len(records), len(intensities))
+    out = {name: np.full(shape, np.nan) for name in _FRAGILITY_LOADS}
+    out["scale_factor"] = np.full(shape, np.nan)
+    out["roof_impact"] = np.full(shape, 0, np.int8)
+    out["roof_impacts"] = np.full(shape, -1, np.int32)
+    out["status"] = np.zeros(shape, np.int16)
+    for i, (ground, samples) in enumerate(records):
+        for j, sa in enumerate(intensities):
+            scaled, scaled_samples, status, _ = _bridge.scale_ground(
+                ground, samples, 1.0, 0.0, sa * sa_factor, period, damping)
+            if status == 0:
+                chosen, status, _ = _bridge.seismic_defaults(tank, scaled, scaled_samples, 0.0, 0)
+            if status == 0:
+                _, peaks, status, _ = _bridge.seismic_response(
+                    tank, scaled, scaled_samples, float(chosen[0]), int(chosen[1]), integration)
+            out["status"][i, j] = status
+            if status != 0:
+                out["roof_impact"][i, j] = -1
+                continue
+            values = dict(zip(_PEAKS, peaks))
+            for name in _FRAGILITY_LOADS:
+                out[name][i, j] = values[name]
+            out["roof_impact"][i, j] = int(values["roof_reached"] != 0)
+            out["roof_impacts"][i, j] = int(values["roof_impacts"])
+            peak_in = np.max(np.abs(samples)) if samples.size else ground[1]
+            peak_out = np.max(np.abs(scaled_samples)) if scaled_samples.size else scaled[1]
+            out["scale_factor"][i, j] = peak_out / peak_in
+    out[_SECONDS] = time.perf_counter() - start
+    return out
+
+
+def _record_name(record, k):
+    if isinstance(record, (str, os.PathLike)):
+        return os.path.basename(os.fspath(record))
+    return f"record_{k}"
+
+
+def fragility_study(tank, records, intensities, store, *, units="g", period=None,
+                    damping=0.005, client=None, scheduler=None, workers=None, worker_kind=None,
+                    integration: Integration = Integration(), points_per_task=None,
+                    progress=True, names=None):
+    """Incremental dynamic analysis of a tank (sloshdyn.Tank) over a suite of ground-motion
+    records: every record scaled to each intensity -- the pseudo-spectral acceleration Sa at
+    `period` (default: the tank's sloshing period) for the damping ratio `damping` (default
+    0.5 %, the convective damping of the design codes), in `units` -- and the seismic response
+    from rest (sloshdyn.seismic_response) with its peaks: wave height, base shear, overturning
+    moment, roof impact (the wave reaches the roof: |x1| >= 1) per run. The lognormal fragility
+    curve of roof impact is fitted by maximum likelihood over all runs (fit_fragility):
+    variables fragility_median [units] and fragility_dispersion with their standard errors
+    (NaN where no run, or every run, reached the roof).
+
+    records: GroundMotion objects or record files (PEER .AT2 or two columns, read with
+    GroundMotion.from_file). Returns a Dataset with dimensions (record, intensity), written to
+    the Zarr store `store` as tasks finish; engine, resumption and errors as response_map."""
+    from .seismic import GroundMotion, Tank, acceleration_factor
+    if not isinstance(tank, Tank):
+        raise InputError(f"tank = {type(tank).__name__} is not valid: give a sloshdyn.Tank")
+    if isinstance(records, (str, os.PathLike, GroundMotion)):
+        records = [records]
+    try:
+        records = list(records)
+    except TypeError:
+        raise InputError(f"records = {records!r:.60} is not valid: give a list of GroundMotion "
+                         "objects or record files") from None
+    if not records:
+        raise InputError("records is empty: give at least one ground-motion record")
+    motions = []
+    for k, r in enumerate(records):
+        if isinstance(r, (str, os.PathLike)):
+            r = GroundMotion.from_file(r)
+        if not isinstance(r, GroundMotion) or r.kind != "record":
+            raise InputError(f"records[{k}] = {r!r:.60} is not valid: give a recorded ground "
+                             "motion (GroundMotion with dt and acceleration) or a record file")
+        motions.append(r)
+    labels = [_record_name(r, k) for k, r in enumerate(records)] if names is None else list(names)
+    if len(labels) != len(motions) or len(set(labels)) != len(labels):
+        raise InputError(f"names = {labels!r:.80} is not valid: one distinct name per record")
+    x = _axis("intensities", intensities, 0.0)
+    sa_factor = acceleration_factor(units)
+    period = tank.sloshing_period if period is None else float(period)
+    if not (math.isfinite(period) and period > 0):
+        raise InputError(f"period = {period} is not valid: it must be > 0 [s]")
+    if not (math.isfinite(damping) and 0 <= damping < 1):
+        raise InputError(f"damping = {damping} is not valid: it must lie in [0, 1)")
+    if not isinstance(integration, Integration):
+        raise InputError(f"integration = {integration!r} is not valid: give a sloshdyn.Integration")
+    integration_array = integration.array()
+    ppt = POINTS_PER_TASK if points_per_task is None else _positive_int("points_per_task",
+                                                                         points_per_task)
+    n_r, n_x = len(motions), len(x)
+    chunks = (max(1, min(n_r, ppt // n_x)), n_x) if n_x <= ppt else (1, ppt)
+    arrays = [m._arrays() for m in motions]
+    tank_array = tank.array()
+
+    def task(block):
+        return _fragility_task, (tank_array, arrays[block[0]], x[block[1]], sa_factor, period,
+                                 float(damping), integration_array)
+
+    dims = ("record", "intensity")
+    variables = {name: _Variable(dims, "f8", np.nan, {"units": unit, "long_name": text})
+                 for name, (unit, text) in _FRAGILITY_LOADS.items()}
+    variables["scale_factor"] = _Variable(dims, "f8", np.nan, {
+        "units": "1", "long_name": "factor applied to the record to reach the intensity"})
+    variables["roof_impact"] = _Variable(dims, "i1", -1, {
+        "units": "1", "flag_values": [-1, 0, 1], "flag_meanings": "not_computed_or_failed no yes",
+        "long_name": "the wave reached the roof during the run (|x1| >= 1)"})
+    variables["roof_impacts"] = _Variable(dims, "i4", -1, {
+        "units": "1", "long_name": "number of strikes on the roof during the run"})
+    variables["status"] = _Variable(dims, "i2", -1, {
+        "units": "1", "long_name": "core status of the run (0 ok, -1 not computed)"})
+    variables["done"] = _Variable(dims, "bool", False, {
+        "long_name": "the run is computed and stored (resumable studies)"})
+    digests = [hashlib.sha256(np.ascontiguousarray(a[1]).tobytes() + a[0].tobytes()).hexdigest()
+               for a in arrays]
+    spec = {"kind": "fragility", "tank": dataclasses.asdict(tank), "records": digests,
+            "names": labels, "intensities": x.tolist(), "units": units, "period": period,
+            "damping": float(damping), "integration": dataclasses.asdict(integration),
+            "version": _version()}
+    attrs = {"title": "sloshdyn fragility study (incremental dynamic analysis)",
+             "study": "fragility", "sloshdyn_version": _version(),
+             "tank": json.dumps(dataclasses.asdict(tank)),
+             "integration": json.dumps(dataclasses.asdict(integration)),
+             "intensity_measure": f"pseudo-spectral acceleration Sa({period:.6g} s, "
+                                  f"{100 * damping:g} %) [{units}]",
+             "spectral_period": period, "spectral_damping": float(damping),
+             "record_sha256": json.dumps(dict(zip(labels, digests))),
+             "study_spec": json.dumps(spec, sort_keys=True)}
+    plan = _Plan("fragility", dims, {
+        "record": (np.array(labels), {"long_name": "ground-motion record"}),
+        "intensity": (x, {"units": units, "long_name": f"spectral acceleration Sa at "
+                                                      f"T = {period:.4g} s, {100 * damping:g} % "
+                                                      "damping"})},
+        variables, attrs, spec, chunks, task)
+    ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
+                  worker_kind=worker_kind, progress=progress)
+    return _fit_study(ds, units)
+
+
+def _fit_study(ds, units):
+    """The lognormal fit of roof impact over every run, as 0-d variables."""
+    hit = ds["roof_impact"].values
+    ok = hit >= 0
+    xs = np.broadcast_to(ds["intensity"].values, hit.shape)[ok]
+    values = dict(median=np.nan, beta=np.nan, median_se=np.nan, beta_se=np.nan)
+    try:
+        fit = fit_fragility(xs, hit[ok].astype(float))
+        values = dict(median=fit.median, beta=fit.beta, median_se=fit.median_se,
+                      beta_se=fit.beta_se)
+        ds.attrs["fragility_fit"] = "lognormal, maximum likelihood over every run"
+    except InputError as exc:     # no run or every run reached the roof, or they separate
+        ds.attrs["fragility_fit"] = f"not fitted: {exc}"
+    ds["fragility_median"] = ((), values["median"], {
+        "units": units, "long_name": "median of the lognormal fragility curve of roof impact "
+                                     "(maximum likelihood)"})
+    ds["fragility_median_se"] = ((), values["median_se"], {
+        "units": units, "long_name": "standard error of the median"})
+    ds["fragility_dispersion"] = ((), values["beta"], {
+        "units": "1", "long_name": "dispersion beta (log standard deviation) of the fragility "
+                                   "curve"})
+    ds["fragility_dispersion_se"] = ((), values["beta_se"], {
+        "units": "1", "long_name": "standard error of the dispersion"})
+    return ds
+
+
 # ---- fragility fit ---------------------------------------------------------------------------
 
 @dataclass(frozen=True)
@@ -694,6 +919,11 @@ def fit_fragility(intensities, failures, counts=None) -> FragilityFit:
         raise InputError("failures must lie in [0, counts] (0/1 per run)")
     if y.sum() == 0 or y.sum() == m.sum():
         raise InputError("failures are all 0 or all 1: the fragility curve cannot be fitted")
+    survived, failed = x[y < m], x[y > 0]
+    if survived.max() < failed.min():
+        raise InputError(f"the runs separate perfectly (no failure up to {survived.max():g}, "
+                         f"all from {failed.min():g}): the maximum-likelihood dispersion is 0 "
+                         "and the fit does not exist; add intensities between them or records")
     lx = np.log(x)
 
     def nll(theta):
@@ -717,7 +947,10 @@ def fit_fragility(intensities, failures, counts=None) -> FragilityFit:
             ei, ej = np.eye(2)[i] * h[i], np.eye(2)[j] * h[j]
             hess[i, j] = (nll_mb(theta0 + ei + ej) - nll_mb(theta0 + ei - ej)
                           - nll_mb(theta0 - ei + ej) + nll_mb(theta0 - ei - ej)) / (4 * h[i] * h[j])
-    cov = np.linalg.inv(hess)
+    try:
+        cov = np.linalg.inv(hess)
+    except np.linalg.LinAlgError:
+        cov = np.full((2, 2), np.nan)
     median = math.exp(mu)
     return FragilityFit(median=median, beta=beta, median_se=median * math.sqrt(cov[0, 0]),
                         beta_se=math.sqrt(cov[1, 1]), log_likelihood=-float(result.fun),

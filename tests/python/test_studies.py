@@ -479,3 +479,87 @@ def test_study_group_rules_name_the_variable(tmp_path, extra, match):
                             capture_output=True, text=True, timeout=120)
     assert result.returncode == 3 and match.replace("\\", "") in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["input.nml"]
+
+
+# ---- a tank in SI units: response map in Hz x g, fragility study -----------------------------
+
+def example_tank():
+    """The tank of data/examples/tank_seismic.nml."""
+    return sloshdyn.Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000,
+                         tank_mass=5.0e4, support_frequency=2.0, support_damping=0.02)
+
+
+def test_tank_response_map_in_hz_and_g_at_constant_acceleration(client, tmp_path):
+    tank = example_tank()
+    f = [0.9 / tank.sloshing_period, 1.1 / tank.sloshing_period]       # [Hz]
+    a = [0.02, 0.05]                                                    # [g]
+    ds = sloshdyn.response_map(tank, f, a, tmp_path / "t.zarr", client=client, steady=QUICK,
+                               progress=False)
+    assert ds.frequency.attrs["units"] == "Hz" and ds.amplitude.attrs["units"] == "g"
+    for i, fi in enumerate(f):
+        for j, aj in enumerate(a):
+            p = tank.parameters(sloshdyn.GroundMotion.harmonic(aj, fi, units="g"))
+            st = sloshdyn.steady_state(p, steady=QUICK)
+            point = ds.isel(frequency=i, amplitude=j)
+            assert float(point.max_x1) == st.max_x1 and float(point.rho) == p.rho
+            assert float(point.A) == p.A
+    # constant acceleration: A = a/(L Omega^2) falls as 1/f^2
+    ratio = ds.A.values[0, :] / ds.A.values[1, :]
+    assert ratio == pytest.approx([(f[1] / f[0]) ** 2] * 2, rel=1e-12)
+
+
+def records():
+    """Four records made from the example (synthetic) one -- as written, reversed in time and
+    played faster, played 1.5 and 2 times slower -- whose roof-impact thresholds differ
+    (measured: Sa ~ 2.5, 2.0, 4.0, 3.0 g)."""
+    base = sloshdyn.GroundMotion.from_file(ROOT / "data/examples/records/synthetic_kt.AT2")
+    a = base.acceleration
+    return [base, sloshdyn.GroundMotion(dt=0.7 * base.dt, acceleration=a[::-1]),
+            sloshdyn.GroundMotion(dt=1.5 * base.dt, acceleration=a),
+            sloshdyn.GroundMotion(dt=2.0 * base.dt, acceleration=a)]
+
+
+NAMES = ["kt", "kt_reversed_fast", "kt_slow", "kt_slower"]
+
+
+def test_fragility_study_of_a_tank(client, tmp_path):
+    tank = example_tank()
+    intensities = [1.0, 2.0, 2.5, 3.0, 4.0]          # Sa(T_sloshing, 0.5 %) [g]
+    ds = sloshdyn.fragility_study(tank, records(), intensities, tmp_path / "f.zarr",
+                                  client=client, names=NAMES, progress=False)
+    assert ds.peak_wave_height.dims == ("record", "intensity")
+    assert ds.peak_base_shear.attrs["units"] == "N"
+    assert ds.peak_overturning_moment.attrs["units"] == "N m"
+    fraction = (ds.roof_impact == 1).mean("record").values
+    assert np.all(np.diff(fraction) >= 0) and fraction[0] == 0 and fraction[-1] == 1
+    assert 0 < fraction[2] < 1                                     # the runs overlap
+    assert np.all(np.diff(ds.peak_wave_height.values, axis=1) > 0)   # more shaking, higher wave
+    # each run is sloshdyn.seismic_response of the record scaled to the intensity
+    g = records()[1].scaled(sa=2.5, period=tank.sloshing_period, damping=0.005, units="g")
+    run = sloshdyn.seismic_response(tank, g)
+    point = ds.sel(record="kt_reversed_fast", intensity=2.5)
+    assert float(point.peak_wave_height) == run.peaks["wave_height"][0]
+    assert float(point.peak_base_shear) == run.peaks["base_shear"][0]
+    assert int(point.roof_impact) == run.roof_reached
+    # the fit of the study is fit_fragility of its runs
+    fit = sloshdyn.fit_fragility(np.tile(intensities, 4), ds.roof_impact.values.ravel())
+    assert float(ds.fragility_median) == pytest.approx(fit.median, rel=1e-12)
+    assert float(ds.fragility_dispersion) == pytest.approx(fit.beta, rel=1e-12)
+    assert intensities[0] < float(ds.fragility_median) < intensities[-1]
+    assert ds.fragility_median.attrs["units"] == "g"
+
+
+def test_fragility_study_bad_input(tmp_path):
+    tank = example_tank()
+    with pytest.raises(sloshdyn.InputError, match="records is empty"):
+        sloshdyn.fragility_study(tank, [], [1.0], tmp_path / "f.zarr")
+    with pytest.raises(sloshdyn.InputError, match=r"records\[0\]"):
+        sloshdyn.fragility_study(tank, [sloshdyn.GroundMotion.harmonic(0.1, 1.0)], [1.0],
+                                 tmp_path / "f.zarr")
+    with pytest.raises(sloshdyn.InputError, match="separate perfectly"):
+        sloshdyn.fit_fragility([1, 2, 3, 4], [0, 0, 1, 1])
+    with pytest.raises(sloshdyn.InputError, match=r"intensities\[1\] = nan"):
+        sloshdyn.fragility_study(tank, records()[:1], [1.0, float("nan")], tmp_path / "f.zarr")
+    with pytest.raises(sloshdyn.InputError, match="tank"):
+        sloshdyn.fragility_study(FIG12, records()[:1], [1.0], tmp_path / "f.zarr")
+    assert not list(tmp_path.iterdir())
