@@ -45,7 +45,8 @@ module sloshdyn_namelist
                         G_SEISMIC = 13, G_STUDY = 14
   !> &study: the kinds of study (run by Python, `sloshdyn-py study`), the embedded cluster's
   !> worker kinds and the continuations of a response map, by code (index).
-  character(len=*), parameter :: study_kinds(2) = [character(len=12) :: 'response_map', 'basins']
+  character(len=*), parameter :: study_kinds(3) = &
+    [character(len=12) :: 'response_map', 'basins', 'fragility']
   character(len=*), parameter :: worker_kinds(2) = [character(len=9) :: 'processes', 'threads']
   character(len=*), parameter :: continuation_names(4) = &
     [character(len=4) :: 'none', 'up', 'down', 'both']
@@ -108,6 +109,11 @@ module sloshdyn_namelist
     real(wp) :: x1_start = 0, x1_stop = 0, dx1_start = 0, dx1_stop = 0
     integer :: n_grid = 50
     real(wp) :: tol = 1.0e-3_wp
+    !> fragility: the record files (a glob pattern, expanded by Python) and the intensities,
+    !> Sa at the sloshing period [g] for spectral_damping
+    character(len=path_len) :: records = ''
+    real(wp) :: intensity_start = 0, intensity_stop = 0, spectral_damping = 0.005_wp
+    integer :: n_intensities = 1
   end type study_settings
 
   !> Everything one run needs, validated.
@@ -832,16 +838,18 @@ contains
     character(len=message_len), intent(out) :: message
     type(study_settings) :: defaults
     character(len=word_len) :: kind, worker_kind, continuation
-    character(len=study_text_len + 1) :: store, figure, scheduler
+    character(len=study_text_len + 1) :: store, figure, scheduler, records
     real(wp) :: frequency_start, frequency_stop, amplitude_start, amplitude_stop, x1_start, &
-                x1_stop, dx1_start, dx1_stop, tol
-    integer :: workers, points_per_task, n_frequencies, n_amplitudes, n_grid
+                x1_stop, dx1_start, dx1_stop, tol, intensity_start, intensity_stop, &
+                spectral_damping
+    integer :: workers, points_per_task, n_frequencies, n_amplitudes, n_grid, n_intensities
     type(model_t) :: first
     type(group_reader) :: reader
     namelist /study/ kind, store, figure, scheduler, workers, worker_kind, points_per_task, &
                      frequency_start, frequency_stop, n_frequencies, amplitude_start, &
                      amplitude_stop, n_amplitudes, continuation, x1_start, x1_stop, dx1_start, &
-                     dx1_stop, n_grid, tol
+                     dx1_stop, n_grid, tol, records, intensity_start, intensity_stop, &
+                     n_intensities, spectral_damping
 
     kind = study_kinds(defaults%kind); store = ''; figure = ''; scheduler = ''
     workers = defaults%workers; worker_kind = worker_kinds(defaults%worker_kind)
@@ -853,6 +861,9 @@ contains
     x1_start = defaults%x1_start; x1_stop = defaults%x1_stop
     dx1_start = defaults%dx1_start; dx1_stop = defaults%dx1_stop
     n_grid = defaults%n_grid; tol = defaults%tol
+    records = ''; intensity_start = defaults%intensity_start
+    intensity_stop = defaults%intensity_stop; n_intensities = defaults%n_intensities
+    spectral_damping = defaults%spectral_damping
     status = SD_OK
     message = ''
     call reader%start(file, G_STUDY, status)
@@ -945,12 +956,46 @@ contains
         st%x1_start = x1_start; st%x1_stop = x1_stop
         st%dx1_start = dx1_start; st%dx1_stop = dx1_stop
         st%n_grid = n_grid; st%tol = tol
+      case (3)     ! fragility
+        if (.not. file%groups(G_TANK)%given) then
+          call fail(status, message, '&study: a fragility study needs the tank: group &tank '// &
+                    'is missing')
+          return
+        end if
+        call require(file, G_STUDY, 'records', status, message)
+        call require(file, G_STUDY, 'intensity_start', status, message)
+        call require(file, G_STUDY, 'intensity_stop', status, message)
+        if (status /= SD_OK) return
+        if (len_trim(records) == 0 .or. len_trim(records) > study_text_len) &
+          call fail(status, message, '&study: records must name the record files (a pattern '// &
+                    'such as ''records/*.AT2''), at most '//num2str(study_text_len)// &
+                    ' characters')
+        call check_real('intensity_start', intensity_start, 0.0_wp, huge(1.0_wp), .true., &
+                        .true., 'intensities (Sa [g]) must be > 0', status, message)
+        call check_real('intensity_stop', intensity_stop, intensity_start, huge(1.0_wp), &
+                        .false., .true., 'intensity_stop must be >= intensity_start = '// &
+                        num2str(intensity_start), status, message)
+        call check_real('spectral_damping', spectral_damping, 0.0_wp, 1.0_wp, .false., .true., &
+                        'spectral_damping must lie in [0, 1)', status, message)
+        if (status /= SD_OK) then
+          if (index(message, '&study') /= 1) message = '&study: '//trim(message)
+          return
+        end if
+        call check_count('n_intensities', n_intensities, 1, 100000)
+        if (status == SD_OK .and. n_intensities > 1 .and. intensity_start == intensity_stop) &
+          call fail(status, message, '&study: intensity_start = intensity_stop with '// &
+                    'n_intensities > 1 repeats one intensity')
+        if (status /= SD_OK) return
+        st%records = records(1:study_text_len)
+        st%intensity_start = intensity_start; st%intensity_stop = intensity_stop
+        st%n_intensities = n_intensities; st%spectral_damping = spectral_damping
       end select
       if (file%groups(G_ANALYSIS)%given) then
         call fail(status, message, 'give &analysis (a run of the executable) or &study (a '// &
                   'study, sloshdyn-py study), not both')
         return
       end if
+      if (st%kind == 3) return
       call check_steady(first, config%steady, status, message)
       if (status /= SD_OK) message = trim(merge('&excitation', '&steady    ', &
                                                 index(message, 'rho') == 1))//': '//trim(message)
@@ -1451,11 +1496,11 @@ contains
     select case (name)
     case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
           'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points', &
-          'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid')
+          'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid', 'n_intensities')
       text = name//' must be an integer'
     case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from', &
           'record', 'format', 'units', 'store', 'figure', 'scheduler', 'worker_kind', &
-          'continuation')
+          'continuation', 'records')
       text = name//' must be a quoted string'
     case ('shooting')
       text = name//' must be .true. or .false.'
@@ -1473,7 +1518,8 @@ contains
           'max_transient_periods', 'periodic_tol', 'start', 'stop', 'amplitude_min', &
           'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale', 'frequency_start', &
           'frequency_stop', 'amplitude_start', 'amplitude_stop', 'x1_start', 'x1_stop', &
-          'dx1_start', 'dx1_stop', 'tol')
+          'dx1_start', 'dx1_stop', 'tol', 'intensity_start', 'intensity_stop', &
+          'spectral_damping')
       text = name//' must be a real number'
     case default
       text = 'unknown variable '''//name//''' (see the namelist reference in README.md)'

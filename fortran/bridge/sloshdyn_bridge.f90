@@ -876,12 +876,13 @@ contains
   !> study = [given (1/0), kind (1 response_map, 2 basins), workers, worker_kind (1 processes,
   !> 2 threads), points_per_task, frequency_start, frequency_stop, n_frequencies,
   !> amplitude_start, amplitude_stop, n_amplitudes, continuation (1 none, 2 up, 3 down, 4 both),
-  !> x1_start, x1_stop, dx1_start, dx1_stop, n_grid, tol]; study_store, study_figure,
-  !> study_scheduler the &study strings.
+  !> x1_start, x1_stop, dx1_start, dx1_stop, n_grid, tol, intensity_start, intensity_stop,
+  !> n_intensities, spectral_damping] (kind 3: fragility); study_store, study_figure,
+  !> study_scheduler, study_records the &study strings.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
                         has_ground, ground, n_samples, seismic, integration, steady, response, &
                         lyapunov, simulation, sweep, response_range, study, study_store, &
-                        study_figure, study_scheduler, status, message)
+                        study_figure, study_scheduler, study_records, status, message)
     use sloshdyn_model, only: model_to_arrays
     use sloshdyn_namelist, only: run_config, core => read_input
     use sloshdyn_layouts, only: from_ode_options, from_steady, from_response, from_lyapunov, &
@@ -890,9 +891,10 @@ contains
     real(c_double), intent(out) :: rpar(10), analysis_values(3), tank(17), ground(4), &
                                    seismic(2), integration(7), steady(7), response(10), &
                                    lyapunov(3), simulation(6), sweep(7), response_range(4), &
-                                   study(18)
+                                   study(22)
     integer(c_int), intent(out) :: ipar(2), analysis, has_tank, has_ground, n_samples, status
-    character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler
+    character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler, &
+                                        study_records
     character(len=256), intent(out) :: message
     type(run_config) :: config
     integer :: info, ints(2)
@@ -900,6 +902,7 @@ contains
     steady = 0; response = 0; lyapunov = 0; simulation = 0; sweep = 0; response_range = 0
     has_tank = 0; has_ground = 0; ground = 0; n_samples = 0; seismic = 0
     directory = ''; study = 0; study_store = ''; study_figure = ''; study_scheduler = ''
+    study_records = ''
     call core(path, config, info, message)
     status = info
     if (info /= 0) return
@@ -935,8 +938,11 @@ contains
                real(st%points_per_task, c_double), st%frequency_start, st%frequency_stop, &
                real(st%n_frequencies, c_double), st%amplitude_start, st%amplitude_stop, &
                real(st%n_amplitudes, c_double), real(st%continuation, c_double), st%x1_start, &
-               st%x1_stop, st%dx1_start, st%dx1_stop, real(st%n_grid, c_double), st%tol]
+               st%x1_stop, st%dx1_start, st%dx1_stop, real(st%n_grid, c_double), st%tol, &
+               st%intensity_start, st%intensity_stop, real(st%n_intensities, c_double), &
+               st%spectral_damping]
       study_store = st%store
+      study_records = st%records
       study_figure = st%figure
       study_scheduler = st%scheduler
     end associate

@@ -125,8 +125,8 @@ def run_study(path, scheduler=None, workers=None, progress=True):
     if st["kind"] == "response_map":
         f = np.linspace(st["frequency_start"], st["frequency_stop"], st["n_frequencies"])
         a = np.linspace(st["amplitude_start"], st["amplitude_stop"], st["n_amplitudes"])
-        ds = studies.response_map(inp.params, f, a, store, continuation=st["continuation"],
-                                  **common)
+        ds = studies.response_map(inp.tank or inp.params, f, a, store,
+                                  continuation=st["continuation"], **common)
         fig = plotting.response_map(ds)
         kinds = {studies.MOTIONS.get(int(k), "failed"): int((ds.motion == k).sum())
                  for k in np.unique(ds.motion.values)}
@@ -134,6 +134,30 @@ def run_study(path, scheduler=None, workers=None, progress=True):
               f"amplitudes, {ds.attrs['points_computed']} points computed now; motions {kinds}; "
               f"roof impacts {int((ds.roof_impact == 1).sum())}; max |x1| = "
               f"{float(ds.max_x1.max()):.6g}")
+    elif st["kind"] == "fragility":
+        import glob
+        pattern = st["records"] if os.path.isabs(st["records"]) else str(base / st["records"])
+        files = sorted(glob.glob(pattern))
+        if not files:
+            raise InputError(f"&study: records = {st['records']!r} matches no file")
+        x = np.linspace(st["intensity_start"], st["intensity_stop"], st["n_intensities"])
+        common.pop("steady")
+        ds = studies.fragility_study(inp.tank, files, x, store,
+                                     damping=st["spectral_damping"], **common)
+        hit = ds.roof_impact.values
+        levels = np.broadcast_to(ds.intensity.values, hit.shape)
+        from .studies import FragilityFit
+        fit = FragilityFit(float(ds.fragility_median), float(ds.fragility_dispersion),
+                           float(ds.fragility_median_se), float(ds.fragility_dispersion_se), 0,
+                           int((hit >= 0).sum()))
+        fig = plotting.fragility(fit, levels[hit >= 0], hit[hit >= 0],
+                                 label=f"Sa({ds.attrs['spectral_period']:.3g} s, "
+                                       f"{100 * st['spectral_damping']:g} %)")
+        print(f"fragility: {ds.sizes['record']} records x {ds.sizes['intensity']} intensities, "
+              f"{ds.attrs['points_computed']} runs computed now; roof impacts "
+              f"{int((hit == 1).sum())} of {int((hit >= 0).sum())}; fragility median "
+              f"{fit.median:.4g} g (standard error {fit.median_se:.2g}), dispersion "
+              f"{fit.beta:.3g} ({fit.beta_se:.2g}); {ds.attrs.get('fragility_fit', '')}")
     else:
         y0 = inp.simulation["y0"]
         ds = studies.basins(inp.params, (st["x1_start"], st["x1_stop"]),

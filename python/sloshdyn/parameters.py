@@ -168,7 +168,7 @@ def read_namelist(path):
     path = os.fspath(path)
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, study,
-     store, figure, scheduler, status,
+     store, figure, scheduler, study_records, status,
      message) = _core.sloshdyn_bridge.read_input(path)
     check_status(status, message)
     s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta = (float(x) for x in rpar)
@@ -217,14 +217,14 @@ def read_namelist(path):
                   "max_points": int(response[9])},
         lyapunov={name: int(x) for name, x in zip(
             ("transient_periods", "n_periods", "renormalise_every"), lyapunov)},
-        study=_study(study, store, figure, scheduler))
+        study=_study(study, store, figure, scheduler, study_records))
 
 
-def _study(values, store, figure, scheduler):
+def _study(values, store, figure, scheduler, records):
     """&study as a dict (empty when the file has none)."""
     if not values[0]:
         return {}
-    kind = ("response_map", "basins")[int(values[1]) - 1]
+    kind = ("response_map", "basins", "fragility")[int(values[1]) - 1]
     study = {"kind": kind, "store": _tables._text(store), "figure": _tables._text(figure),
              "scheduler": _tables._text(scheduler), "workers": int(values[2]),
              "worker_kind": ("processes", "threads")[int(values[3]) - 1],
@@ -234,8 +234,12 @@ def _study(values, store, figure, scheduler):
                      n_frequencies=int(values[7]), amplitude_start=float(values[8]),
                      amplitude_stop=float(values[9]), n_amplitudes=int(values[10]),
                      continuation=("none", "up", "down", "both")[int(values[11]) - 1])
-    else:
+    elif kind == "basins":
         study.update(x1_start=float(values[12]), x1_stop=float(values[13]),
                      dx1_start=float(values[14]), dx1_stop=float(values[15]),
                      n_grid=int(values[16]), tol=float(values[17]))
+    else:
+        study.update(records=_tables._text(records), intensity_start=float(values[18]),
+                     intensity_stop=float(values[19]), n_intensities=int(values[20]),
+                     spectral_damping=float(values[21]))
     return study

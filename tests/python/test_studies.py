@@ -563,3 +563,47 @@ def test_fragility_study_bad_input(tmp_path):
     with pytest.raises(sloshdyn.InputError, match="tank"):
         sloshdyn.fragility_study(FIG12, records()[:1], [1.0], tmp_path / "f.zarr")
     assert not list(tmp_path.iterdir())
+
+
+FRAGILITY_NML = """
+&tank radius = 5.0, liquid_depth = 6.0, freeboard = 1.0, liquid_density = 1000,
+  tank_mass = 5.0e4, support_frequency = 2.0, support_damping = 0.02 /
+&study kind = 'fragility', store = 'frag.zarr', records = 'rec/*.csv', intensity_start = 1.0,
+  intensity_stop = 4.0, n_intensities = 4, workers = 1, worker_kind = 'threads' /
+"""
+
+
+def test_study_command_runs_a_fragility_study(tmp_path):
+    from conftest import write
+    (tmp_path / "rec").mkdir()
+    for name, r in zip(NAMES, records()):       # two columns: time [s], acceleration [g]
+        np.savetxt(tmp_path / "rec" / f"{name}.csv",
+                   np.column_stack([r.time, r.acceleration / 9.80665]), delimiter=",")
+    nml = write(tmp_path, FRAGILITY_NML)
+    result = subprocess.run([sys.executable, "-m", "sloshdyn", "study", str(nml), "--no-progress"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert "fragility: 4 records x 4 intensities, 16 runs computed now" in result.stdout
+    ds = xr.open_zarr(tmp_path / "frag.zarr").load()
+    assert sorted(ds.record.values) == sorted(f"{n}.csv" for n in NAMES)
+    assert (tmp_path / "frag.png").stat().st_size > 10000
+    bad = write(tmp_path, "&model s1 = 1.5, mu1 = 0.5, kappa = 2, theta0 = 0.7 /\n" +
+                FRAGILITY_NML.split("/", 1)[1], "bad.nml")       # no &tank
+    result = subprocess.run([sys.executable, "-m", "sloshdyn", "study", str(bad)], cwd=tmp_path,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 3 and "needs the tank: group &tank is missing" in result.stderr
+
+
+@pytest.mark.parametrize("change, match", [
+    ("intensity_start = 1.0", "required variable intensity_start is missing"),
+    ("records = 'rec/*.csv'", "required variable records is missing"),
+    ("n_intensities = 4", "n_intensities = 4, spectral_damping = 1.5"),
+])
+def test_fragility_group_rules(tmp_path, change, match):
+    from conftest import write
+    text = FRAGILITY_NML.replace(change + ",", "") if "n_intensities" not in change else \
+        FRAGILITY_NML.replace(change, change + ", spectral_damping = 1.5")
+    nml = write(tmp_path, text)
+    expected = match if "missing" in match else "spectral_damping = 1.5"
+    with pytest.raises(sloshdyn.InputError, match=expected):
+        sloshdyn.read_namelist(nml)
