@@ -607,3 +607,33 @@ def test_fragility_group_rules(tmp_path, change, match):
     expected = match if "missing" in match else "spectral_damping = 1.5"
     with pytest.raises(sloshdyn.InputError, match=expected):
         sloshdyn.read_namelist(nml)
+
+
+def test_ctrl_c_keeps_what_was_computed_and_the_rerun_finishes_it(tmp_path):
+    from conftest import write
+    slow = ("&steady settle_tol = 0, transient_periods = 800, window_periods = 16, "
+            "shooting = .false. /")
+    text = STUDY_NML.format(extra=", points_per_task = 1").replace(
+        "&steady max_transient_periods = 600, window_periods = 32 /", slow).replace(
+        "n_frequencies = 3", "n_frequencies = 6")
+    nml = write(tmp_path, text)
+    store = tmp_path / "map.zarr"
+    child = subprocess.Popen([sys.executable, "-m", "sloshdyn", "study", str(nml),
+                              "--no-progress"], cwd=tmp_path, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while done_count(store) < 2 and time.monotonic() < deadline and child.poll() is None:
+        time.sleep(0.02)
+    child.send_signal(signal.SIGINT)                 # Ctrl-C
+    out, err = child.communicate(timeout=120)
+    kept = done_count(store)
+    assert child.returncode == 130, err[-2000:]
+    assert "study interrupted" in err and "rerun the same study" in err
+    assert 2 <= kept < 12
+    again = subprocess.run([sys.executable, "-m", "sloshdyn", "study", str(nml), "--no-progress"],
+                           cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0 and f"{12 - kept} points computed now" in again.stdout
+    ds = xr.open_zarr(store).load()
+    steady = sloshdyn.Steady(settle_tol=0, transient_periods=800, window_periods=16,
+                             shooting=False)
+    assert_equals_serial(ds, serial(np.linspace(0.505, 0.52, 6), AMPLITUDES, steady))
