@@ -43,6 +43,8 @@ _ORBIT_FOUND, _ORBIT_PERIODS, _ORBIT_ATTEMPTS, _ORBIT_Y, _ORBIT_MAX_MU = 0, 1, 2
 _MAX_PERIOD = 8
 #: a task's result entry (not stored) with the seconds the task computed
 _SECONDS = "_compute_seconds"
+#: attributes of a returned dataset that describe the call, not the study (not stored)
+_RUN_ATTRS = ("points_computed", "compute_seconds", "store")
 
 _MOTION_ATTRS = {
     "flag_values": [-1, 0] + list(MOTIONS),
@@ -650,7 +652,14 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
         variables, attrs, spec, chunks, task)
     ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
                   worker_kind=worker_kind, progress=progress)
-    return _label_basins(ds, tol)
+    ds = _label_basins(ds, tol)
+    # the labels and the attractor list join the store (recomputed alike by every rerun)
+    derived = [name for name in ds.data_vars if name.startswith("attractor")]
+    import xarray as xr
+    kept = {k: v for k, v in ds.attrs.items() if k not in _RUN_ATTRS}   # the store's own
+    xr.Dataset({name: ds[name] for name in derived}, attrs=kept).to_zarr(
+        ds.attrs["store"], mode="a", consolidated=True)
+    return ds
 
 
 def _label_basins(ds, tol):

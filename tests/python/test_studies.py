@@ -282,6 +282,15 @@ def test_basins_find_both_coexisting_orbits_and_start_on_each_stays_there(client
         assert ds["attractor_stability"].sel(attractor_id=label) == "stable"
         assert float(centre["transient_periods"]) <= 16
         assert ds["attractor_share"].sum() == pytest.approx(1.0)
+        stored = xr.open_zarr(tmp_path / f"{name}.zarr").load()
+        assert stored["attractor"].equals(ds["attractor"])
+        assert stored.attrs["study_spec"] == ds.attrs["study_spec"]
+        assert "points_computed" not in stored.attrs
+        assert list(stored["attractor_stability"].values) == list(ds["attractor_stability"].values)
+        rerun = sloshdyn.basins(p, (c[0] - 0.1, c[0] + 0.1), (c[1] - 0.1, c[1] + 0.1), n=3,
+                                store=tmp_path / f"{name}.zarr", x2=float(c[2]),
+                                dx2=float(c[3]), client=client, progress=False)
+        assert rerun.attrs["points_computed"] == 0 and rerun["attractor"].equals(ds["attractor"])
         if name == "high":                     # this grid reaches both attractors
             assert ds.sizes["attractor_id"] == 2
             for j in ds.attractor_id.values:
