@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core, _tables
-from ._errors import InputError, SloshdynError
+from ._errors import InputError
 from .parameters import Parameters
 from .simulation import Integration, Steady
 
