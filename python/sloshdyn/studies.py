@@ -32,8 +32,10 @@ from .simulation import Integration, Steady
 _bridge = _core.sloshdyn_bridge
 SUMMARY_COLUMNS = _tables.columns("summary")
 MOTIONS = _tables.codes("motion")
-#: points per task unless told: measured by benchmarks/studies.py (README, "Studies")
-POINTS_PER_TASK = 32
+#: points per task unless told: about 8 tasks per worker for the load balance, within these
+#: bounds (measured by benchmarks/studies.py: the engine's overhead is ~20 % of the work at 8
+#: points per task, ~5 % at 32, ~2 % at 128; README, "Studies")
+MIN_POINTS_PER_TASK, MAX_POINTS_PER_TASK, TASKS_PER_WORKER = 8, 128, 8
 #: the default worker kind of an embedded cluster, by measurement (README, "Studies")
 WORKER_KIND = "processes"
 #: how long a scheduler address may take to answer
@@ -67,8 +69,9 @@ class _Variable:
 @dataclass
 class _Plan:
     """A study in index space: its axes, variables, attributes, and tasks (blocks of the grid,
-    aligned with the store's chunks). run(block) is (function, args) for Dask; the function
-    returns {variable: array over the block}."""
+    aligned with the store's chunks). task(block) is (function, args) for Dask; the function
+    returns {variable: array over the block}. chunking(points_per_task) gives the chunk shape;
+    points_per_task None lets the engine choose (auto_points_per_task)."""
 
     kind: str
     dims: tuple
@@ -78,6 +81,8 @@ class _Plan:
     spec: dict                   #: what must match to resume (JSON-able)
     chunks: tuple
     task: object                 #: block (tuple of slices) -> (function, args)
+    chunking: object = None      #: points per task -> chunk shape
+    points_per_task: int = None
 
     def blocks(self):
         ranges = [range(0, len(self.coords[d][0]), c) for d, c in zip(self.dims, self.chunks)]
@@ -88,6 +93,13 @@ class _Plan:
     @property
     def shape(self):
         return tuple(len(self.coords[d][0]) for d in self.dims)
+
+
+def auto_points_per_task(n_points, n_workers):
+    """Points per task: about TASKS_PER_WORKER tasks per worker thread, within
+    [MIN_POINTS_PER_TASK, MAX_POINTS_PER_TASK]."""
+    wanted = math.ceil(n_points / (TASKS_PER_WORKER * max(1, n_workers)))
+    return int(min(MAX_POINTS_PER_TASK, max(MIN_POINTS_PER_TASK, wanted)))
 
 
 def _version():
@@ -249,27 +261,33 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
     path = _check_store(store)
     if worker_kind is None:
         worker_kind = WORKER_KIND
-    if os.path.exists(path):
-        chunks = _check_same_study(plan, path)
-        if chunks != tuple(plan.chunks):      # the store's tasks win: its chunks are its tasks
-            plan = dataclasses.replace(plan, chunks=chunks)
-    else:
-        _create_store(plan, path)
-    done = zarr.open_group(path, mode="r")["done"][...]
-    todo = [b for b in plan.blocks() if not done[b].all()]
-    remaining = int(sum(np.prod([s.stop - s.start for s in b]) for b in todo))
+    exists = os.path.exists(path)
+    todo = None
+    if exists:
+        chunks = _check_same_study(plan, path)   # the store's tasks win: its chunks are its tasks
+        plan = dataclasses.replace(plan, chunks=chunks)
+        done = zarr.open_group(path, mode="r")["done"][...]
+        todo = [b for b in plan.blocks() if not done[b].all()]
     computed = 0
     compute_seconds = 0.0
-    if todo:
+    if todo is None or todo:
         from dask.distributed import as_completed
         bar = None
-        if progress:
-            from tqdm.auto import tqdm
-            bar = tqdm(total=int(np.prod(plan.shape)), initial=int(np.prod(plan.shape)) - remaining,
-                       desc=plan.kind.replace("_", " "), unit="point", smoothing=0.1)
         try:
-            writer = _Writer(path, plan)
             with _client(client, scheduler, workers, worker_kind) as c:
+                if not exists:        # the task size needs the workers: the store comes now
+                    ppt = plan.points_per_task or auto_points_per_task(
+                        int(np.prod(plan.shape)), sum(c.nthreads().values()))
+                    plan = dataclasses.replace(plan, chunks=tuple(plan.chunking(ppt)))
+                    _create_store(plan, path)
+                    todo = list(plan.blocks())
+                remaining = int(sum(np.prod([s.stop - s.start for s in b]) for b in todo))
+                if progress:
+                    from tqdm.auto import tqdm
+                    total = int(np.prod(plan.shape))
+                    bar = tqdm(total=total, initial=total - remaining,
+                               desc=plan.kind.replace("_", " "), unit="point", smoothing=0.1)
+                writer = _Writer(path, plan)
                 futures = {}
                 for block in todo:
                     function, args = plan.task(block)
@@ -479,14 +497,14 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     else:
         raise InputError(f"continuation = {continuation!r} is not valid: it must be None, 'up', "
                          "'down' or 'both'")
-    ppt = POINTS_PER_TASK if points_per_task is None else _positive_int("points_per_task",
-                                                                         points_per_task)
+    ppt = None if points_per_task is None else _positive_int("points_per_task", points_per_task)
     nf, na = len(f), len(a)
-    if directions:                      # a task sweeps whole frequency columns
-        chunks = (nf, max(1, ppt // nf))
-    else:
+
+    def chunking(ppt):
+        if directions:                      # a task sweeps whole frequency columns
+            return nf, max(1, min(na, ppt // nf))
         bf = min(nf, ppt)
-        chunks = (bf, max(1, min(na, ppt // bf)))
+        return bf, max(1, min(na, ppt // bf))
     rpar, ipar = params.arrays()
 
     def task(block):
@@ -538,7 +556,7 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     attrs = _common_attrs("response_map", params, steady, integration, {
         **extra, "continuation": ", ".join(directions) or "none",
         "study_spec": json.dumps(spec, sort_keys=True)})
-    plan = _Plan("response_map", dims, coords, variables, attrs, spec, chunks, task)
+    plan = _Plan("response_map", dims, coords, variables, attrs, spec, None, task, chunking, ppt)
     return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
                     worker_kind=worker_kind, progress=progress)
 
@@ -602,10 +620,11 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
     if not params.rho > 0:
         raise InputError(f"rho = {params.rho} is not valid: basins need a forcing frequency rho > 0")
     steady_array, integration_array = _settings(steady, integration)
-    ppt = POINTS_PER_TASK if points_per_task is None else _positive_int("points_per_task",
-                                                                         points_per_task)
-    b1 = min(n, ppt)
-    chunks = (b1, max(1, min(n, ppt // b1)))
+    ppt = None if points_per_task is None else _positive_int("points_per_task", points_per_task)
+
+    def chunking(ppt):
+        b1 = min(n, ppt)
+        return b1, max(1, min(n, ppt // b1))
     x1, dx1 = ranges
     grid = np.zeros((4, n, n))
     grid[0], grid[1] = np.meshgrid(x1, dx1, indexing="ij")
@@ -649,7 +668,7 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
         "state": (np.array(["x1", "dx1", "x2", "dx2"]), {"long_name": "state component"}),
         "orbit_point": (np.arange(1, _MAX_PERIOD + 1), {
             "units": "1", "long_name": "Poincare point of the orbit, in time order"})},
-        variables, attrs, spec, chunks, task)
+        variables, attrs, spec, None, task, chunking, ppt)
     ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
                   worker_kind=worker_kind, progress=progress)
     ds = _label_basins(ds, tol)
@@ -810,10 +829,11 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
     if not isinstance(integration, Integration):
         raise InputError(f"integration = {integration!r} is not valid: give a sloshdyn.Integration")
     integration_array = integration.array()
-    ppt = POINTS_PER_TASK if points_per_task is None else _positive_int("points_per_task",
-                                                                         points_per_task)
+    ppt = None if points_per_task is None else _positive_int("points_per_task", points_per_task)
     n_r, n_x = len(motions), len(x)
-    chunks = (max(1, min(n_r, ppt // n_x)), n_x) if n_x <= ppt else (1, ppt)
+
+    def chunking(ppt):
+        return (max(1, min(n_r, ppt // n_x)), n_x) if n_x <= ppt else (1, ppt)
     arrays = [m._arrays() for m in motions]
     tank_array = tank.array()
 
@@ -855,7 +875,7 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
         "intensity": (x, {"units": units, "long_name": f"spectral acceleration Sa at "
                                                       f"T = {period:.4g} s, {100 * damping:g} % "
                                                       "damping"})},
-        variables, attrs, spec, chunks, task)
+        variables, attrs, spec, None, task, chunking, ppt)
     ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
                   worker_kind=worker_kind, progress=progress)
     return _fit_study(ds, units)

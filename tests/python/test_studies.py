@@ -646,3 +646,10 @@ def test_ctrl_c_keeps_what_was_computed_and_the_rerun_finishes_it(tmp_path):
     steady = sloshdyn.Steady(settle_tol=0, transient_periods=800, window_periods=16,
                              shooting=False)
     assert_equals_serial(ds, serial(np.linspace(0.505, 0.52, 6), AMPLITUDES, steady))
+
+
+def test_the_engine_chooses_the_task_size_from_the_workers():
+    choose = studies.auto_points_per_task
+    assert choose(10000, 2) == 128        # 2 workers: big tasks, the overhead ~2 %
+    assert choose(10000, 64) == 20        # 64 workers: ~8 tasks each for the load balance
+    assert choose(6, 2) == 8              # never below 8 points (overhead ~20 % at 8)
