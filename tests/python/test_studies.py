@@ -301,6 +301,16 @@ def test_basins_find_both_coexisting_orbits_and_start_on_each_stays_there(client
                     float(ds["attractor_max_multiplier"].sel(attractor_id=j)), rel=1e-6)
             states = ds["attractor_state"].values
             assert any(np.allclose(s, low.y0, atol=1e-8) for s in states)
+            # shooting jumps only to the attractor the integration approaches: every start
+            # ends on the same orbit as by integration alone
+            plain = sloshdyn.basins(p, (c[0] - 0.1, c[0] + 0.1), (c[1] - 0.1, c[1] + 0.1),
+                                    n=3, store=tmp_path / "plain.zarr", x2=float(c[2]),
+                                    dx2=float(c[3]), client=client, progress=False,
+                                    steady=sloshdyn.Steady(shooting=False))
+            assert np.allclose(plain["max_x1"], ds["max_x1"], rtol=1e-5)
+            same = {int(a): int(b) for a, b in zip(ds.attractor.values.ravel(),
+                                                   plain.attractor.values.ravel())}
+            assert len(same) == 2 and len(set(same.values())) == 2
 
 
 def test_basins_bad_input(tmp_path):
