@@ -151,6 +151,7 @@ class Input:
     tank: object = None            #: seismic.Tank (from &tank), or None (&model)
     ground_motion: object = None   #: seismic.GroundMotion (from &ground_motion, scaled), or None
     seismic: dict = field(default_factory=dict)       #: &seismic: t_end [s], n_out (0: default)
+    chart: dict = field(default_factory=dict)         #: &chart, as stability_chart's arguments
     integration: dict = field(default_factory=dict)   #: &integration, for simulation.Integration
     simulation: dict = field(default_factory=dict)    #: &simulation: t_end, n_out, y0
     steady: dict = field(default_factory=dict)        #: &steady, for simulation.Steady
@@ -166,8 +167,8 @@ def read_namelist(path):
 
     path = os.fspath(path)
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
-     seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, status,
-     message) = _core.sloshdyn_bridge.read_input(path)
+     seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
+     status, message) = _core.sloshdyn_bridge.read_input(path)
     check_status(status, message)
     s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta = (float(x) for x in rpar)
     params = Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
@@ -191,6 +192,7 @@ def read_namelist(path):
         kappa_min=float(values[1]), kappa_max=float(values[2]),
         directory=_tables._text(directory), tank=tank, ground_motion=ground_motion,
         seismic={"t_end": float(seismic[0]), "n_out": int(seismic[1])},
+        chart=_chart_settings(chart),
         integration={**{name: float(x) for name, x in zip(
             ("rtol", "atol", "h_initial", "h_max", "h_min"), integration[:5])},
             "max_steps": int(integration[5]), "method": methods[int(integration[6]) - first_method]},
@@ -214,3 +216,17 @@ def read_namelist(path):
                   "max_points": int(response[9])},
         lyapunov={name: int(x) for name, x in zip(
             ("transient_periods", "n_periods", "renormalise_every"), lyapunov)})
+
+
+def _chart_settings(chart):
+    """&chart as the arguments of sloshdyn.stability_chart (the layout of the core's chart
+    array: model, x, y, x_min, x_max, y_min, y_max, n_x, n_y, n_scan, max_points, max_curves,
+    brute_force_starts, threads)."""
+    models, axes = _tables.names("chart_models")[0], ("rho", "A", "gamma")
+    values = [float(v) for v in chart]
+    return {"model": models[int(values[0]) - 1], "x": axes[int(values[1]) - 1],
+            "y": axes[int(values[2]) - 1], "x_range": (values[3], values[4]),
+            "y_range": (values[5], values[6]),
+            **{name: int(v) for name, v in zip(("n_x", "n_y", "n_scan", "max_points",
+                                                 "max_curves", "brute_force_starts", "threads"),
+                                                values[7:])}}
