@@ -12,6 +12,7 @@ u + L sin(phi) + l sin(theta); the linear sloshing damping is the moment 2 zeta 
 """
 
 import math
+import os
 import pathlib
 import subprocess
 
@@ -21,7 +22,7 @@ from scipy.linalg import expm
 from scipy.special import jnp_zeros
 
 import sloshdyn
-from conftest import EXAMPLES, run
+from conftest import EXAMPLES, directory_tree, run
 
 TANK = dict(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0, tank_mass=5.0e4)
 TIGHT = sloshdyn.Integration(rtol=1e-11, atol=1e-14)
@@ -458,3 +459,143 @@ def test_python_api_gives_the_numbers_of_the_csv_files(both_doors):
     assert np.array_equal(table.T, r.table)
     peaks = np.loadtxt(exe_out / "seismic_peaks.csv", delimiter=",", skiprows=1)
     assert np.array_equal(peaks, list(r.peak_table.values()), equal_nan=True)
+
+
+# --- 7. bad input through every front door; the record file untouched -----------------------
+
+AT2_HEAD = "TITLE\nSOURCE\nACCELERATION TIME SERIES IN UNITS OF G\n"
+BAD_RECORDS = {
+    # name: (file name, its text (None: no file), units, words of the message)
+    "one AT2 sample": ("r.AT2", AT2_HEAD + "NPTS= 1, DT= 0.01 SEC\n 0.1\n", "g",
+                       ["only 1 sample", "at least 2"]),
+    "one column sample": ("r.csv", "0.0, 0.1\n", "m/s^2", ["only 1 sample", "at least 2"]),
+    "non-uniform step": ("r.csv", "0, 0.1\n0.01, 0.2\n0.03, 0.1\n", "m/s^2",
+                         ["line 3", "non-uniform time step", "0.02 s"]),
+    "time repeats": ("r.csv", "0, 0.1\n0.01, 0.2\n0.01, 0.1\n", "m/s^2",
+                     ["line 3", "time does not increase", "t = 0.01 s"]),
+    "time decreases": ("r.csv", "0, 0.1\n-0.01, 0.2\n", "m/s^2",
+                       ["line 2", "time does not increase"]),
+    "NaN sample": ("r.csv", "0, 0.1\n0.01, NaN\n0.02, 0.1\n", "m/s^2",
+                   ["line 2", "'NaN' is not finite"]),
+    "Inf sample": ("r.AT2", AT2_HEAD + "NPTS= 3, DT= 0.01 SEC\n 0.1 -Inf 0.2\n", "g",
+                   ["line 5", "value 2", "'-Inf' is not finite"]),
+    "unknown units": ("r.csv", "0, 0.1\n0.01, 0.2\n", "furlongs",
+                      ["units = 'furlongs'", "g, m/s^2 or cm/s^2"]),
+    "AT2 without NPTS": ("r.AT2", AT2_HEAD + "DT= 0.01 SEC\n 0.1 0.2\n", "g",
+                         ["line 4", "no number of points NPTS"]),
+    "AT2 with DT = 0": ("r.AT2", AT2_HEAD + "NPTS= 2, DT= 0.0 SEC\n 0.1 0.2\n", "g",
+                        ["line 4", "no time step DT > 0"]),
+    "AT2 with DT < 0": ("r.AT2", AT2_HEAD + "NPTS= 2, DT= -0.01 SEC\n 0.1 0.2\n", "g",
+                        ["no time step DT > 0", "DT= -0.01"]),
+    "fewer values than NPTS": ("r.AT2", AT2_HEAD + "NPTS= 5, DT= 0.01 SEC\n 0.1 0.2 0.3\n", "g",
+                               ["NPTS = 5", "3 values"]),
+    "missing file": ("nowhere.AT2", None, "g", ["nowhere.AT2", "no such file"]),
+}
+SEISMIC_TANK = "&tank " + ", ".join(f"{k} = {v!r}" for k, v in TANK.items()) + \
+    ", support_frequency = 2.0 /\n&analysis kind = 'seismic' /\n&output directory = 'out' /\n"
+
+
+def bad_record_case(folder, case):
+    """Write the case's record and namelist into folder; the record's mtime set in the past."""
+    name, text, units, words = BAD_RECORDS[case]
+    record = folder / name
+    if text is not None:
+        record.write_text(text)
+        os.utime(record, ns=(1_000_000_000_000_000_000, 1_000_000_000_000_000_000))
+    (folder / "input.nml").write_text(
+        SEISMIC_TANK + f"&ground_motion record = '{name}', units = '{units}' /\n")
+    return record, units, words
+
+
+def file_state(path):
+    return (path.read_bytes(), path.stat().st_mtime_ns) if path.exists() else None
+
+
+@pytest.mark.parametrize("case", BAD_RECORDS)
+def test_bad_record_through_every_door(exe, tmp_path, case):
+    """The executable exits 3 (bad input) with one message naming the file, the line and the
+    rule, prints nothing else and writes nothing; Python raises the same exception class with
+    the same message from the namelist and from GroundMotion.from_file; the record is never
+    modified (bytes and mtime)."""
+    record, units, words = bad_record_case(tmp_path, case)
+    before, tree = file_state(record), directory_tree(tmp_path)
+    result = run(exe, "input.nml", tmp_path)
+    assert result.returncode == 3 and result.stdout == ""
+    assert result.stderr.startswith("sloshdyn: error: &ground_motion: ")
+    for word in words:
+        assert word in result.stderr, (word, result.stderr)
+    assert directory_tree(tmp_path) == tree and file_state(record) == before
+
+    with pytest.raises(sloshdyn.SloshdynError) as from_namelist:
+        sloshdyn.read_namelist(tmp_path / "input.nml")
+    with pytest.raises(sloshdyn.SloshdynError) as from_file:
+        sloshdyn.GroundMotion.from_file(record, units=units)
+    assert type(from_file.value) is type(from_namelist.value)
+    assert str(from_namelist.value) == "&ground_motion: " + str(from_file.value)
+    for word in words:
+        assert word in str(from_file.value)
+    assert directory_tree(tmp_path) == tree and file_state(record) == before
+
+
+@pytest.mark.parametrize("case", ["AT2 without NPTS", "non-uniform step", "missing file"])
+def test_bad_record_through_sloshdyn_py_run(exe, tmp_path, case):
+    record, _, words = bad_record_case(tmp_path, case)
+    before, tree = file_state(record), directory_tree(tmp_path)
+    result = subprocess.run([str(pathlib.Path(exe).with_name("sloshdyn-py")), "run", "input.nml"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert result.returncode == 3 and result.stdout == ""
+    assert result.stderr.startswith("sloshdyn-py: error: &ground_motion: ")
+    for word in words:
+        assert word in result.stderr
+    assert directory_tree(tmp_path) == tree and file_state(record) == before
+
+
+@pytest.mark.parametrize("field,value,words", [
+    ("freeboard", 0.0, ["freeboard = 0", "> 0"]),
+    ("freeboard", -1.0, ["freeboard = -1", "> 0"]),
+    ("radius", -5.0, ["radius = -5", "> 0"]),
+    ("liquid_depth", -6.0, ["liquid_depth = -6", "> 0"]),
+    ("tank_mass", -1.0, ["tank_mass = -1", ">= 0"]),
+    ("liquid_density", -1000.0, ["liquid_density = -1000", "give exactly one"]),
+    ("support_height", -1.0, ["support_height = -1", ">= 0"]),
+    ("support_damping", -0.1, ["support_damping = -0.1", "[0, 1)"]),
+    ("support_damping", 1.0, ["support_damping = 1", "[0, 1)"]),
+    ("sloshing_damping", -0.01, ["sloshing_damping = -0.01", "[0, 1)"]),
+    ("sloshing_damping", 1.0, ["sloshing_damping = 1", "[0, 1)"]),
+])
+def test_bad_tank_in_python_and_in_the_executable(exe, tmp_path, field, value, words):
+    """Tank(...) refuses what &tank refuses, with the same message (test_bad_input.py covers a
+    few of these for the namelist alone)."""
+    with pytest.raises(sloshdyn.InputError) as info:
+        sloshdyn.Tank(**{**TANK, "support_frequency": 2.0, field: value})
+    for word in words:
+        assert word in str(info.value), (word, str(info.value))
+    (tmp_path / "input.nml").write_text(SEISMIC_TANK.replace(" /", f", {field} = {value!r} /", 1)
+                                        + "&ground_motion peak_acceleration = 0.1, "
+                                          "frequency = 0.3 /\n")
+    result = run(exe, "input.nml", tmp_path)
+    assert result.returncode == 3 and result.stderr.strip() == \
+        f"sloshdyn: error: &tank: {info.value}"
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("make,words", [
+    (lambda: sloshdyn.GroundMotion(dt=0.01, acceleration=[0.1]), ["1 samples", "at least 2"]),
+    (lambda: sloshdyn.GroundMotion(dt=0.0, acceleration=[0.1, 0.2]), ["dt = 0", "> 0"]),
+    (lambda: sloshdyn.GroundMotion(dt=0.01, acceleration=[0.1, math.nan]),
+     ["sample 2 = NaN", "finite"]),
+    (lambda: sloshdyn.GroundMotion(dt=0.01, acceleration=[math.inf, 0.1]),
+     ["sample 1 = +Infinity", "finite"]),
+    (lambda: sloshdyn.GroundMotion(dt=0.01, acceleration=[0.1, 0.2], units="furlongs"),
+     ["units = 'furlongs'"]),
+    (lambda: sloshdyn.GroundMotion.harmonic(0.1, 0.0), ["frequency = 0", "> 0"]),
+    (lambda: sloshdyn.GroundMotion.harmonic(-0.1, 1.0), ["peak_acceleration = -0.980665"]),
+    (lambda: tapered_sines().scaled(sa=0.1, period=3.0, damping=1.0),
+     ["target_damping = 1", "[0, 1)"]),
+    (lambda: tapered_sines().response_spectrum([3.0], damping=-0.01), ["damping = -0.01"]),
+])
+def test_bad_ground_motion_in_python(make, words):
+    with pytest.raises(sloshdyn.InputError) as info:
+        make()
+    for word in words:
+        assert word in str(info.value), (word, str(info.value))
