@@ -276,7 +276,9 @@ contains
                         history(2:, :), stats, status, message)
       call in_context('simulation', status, message)
       if (status /= SD_OK) return
-      print '(/a)', 'Simulation ('//method_name(config%method)//', eq 15 with 29-31) from '// &
+      print '(/a)', 'Simulation ('//method_name(config%method)//', eq 15'// &
+                    trim(merge(' with 29-31', ', a record ', &
+                               config%model%excitation%kind /= EXCITATION_RECORD))//') from '// &
                     'tau = 0 to '//num2str(sim%t_end)
     end associate
     print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
@@ -525,9 +527,14 @@ contains
                    num2str(peaks(2*SEISMIC_LOADS))//' s, '// &
                    num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s)'
     else
-      print '(a)', '  the wave does not reach the roof (peak wave height '// &
-                   num2str(peaks(5))//' m < freeboard '//num2str(config%tank%freeboard)//' m)'
+      print '(a)', '  the wave does not reach the roof: its peak is '// &
+                   num2str(100*peaks(5)/config%tank%freeboard, significant=3)// &
+                   ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
     end if
+    ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
+    print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
+                 num2str(peaks(11)/(config%tank_props%sloshing_mass*config%tank%gravity), &
+                         significant=3)//' times the sloshing weight m g'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
     if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks', &

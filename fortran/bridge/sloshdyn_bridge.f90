@@ -852,8 +852,8 @@ contains
   !> ground(4) in their layouts with has_tank, has_ground (1/0) and n_samples (the record's
   !> length, for input_record); seismic = [t_end, n_out]; integration, steady, response and
   !> lyapunov in their layouts; simulation = [t_end, n_out, y0(4)]; sweep = [parameter (1 rho,
-  !> 2 A), start, stop, n_points, direction (1 up, 2 down, 3 both), carry_state (1/0),
-  !> threads]; response_range = [resonance (1 3:1, 0 none), parameter, start, stop]; chart in its
+  !> 2 A, 3 frequency [Hz]), start, stop, n_points, direction (1 up, 2 down, 3 both),
+  !> carry_state (1/0), threads]; response_range = [resonance (1 3:1, 0 none), parameter, start, stop]; chart in its
   !> layout.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
                         has_ground, ground, n_samples, seismic, integration, steady, response, &

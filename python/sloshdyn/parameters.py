@@ -75,7 +75,8 @@ class Parameters:
 
     @classmethod
     def from_physical(cls, *, M, L, k, theta0, R=None, h=None, rho_liquid=None, m_liquid=None,
-                      l=None, m=None, c=0.0, b=None, d=None, g=9.81, n=6, p=2, A=0.0, rho=0.0):
+                      l=None, m=None, c=0.0, b=None, d=None, g=9.80665, n=6, p=2, A=0.0,
+                      rho=0.0):
         """Dimensionless groups of eq (9) from SI values. The pendulum (l, m) is given directly or
         computed from a cylindrical tank (R, h and rho_liquid or m_liquid, eq 2). Without the
         impact coefficient b [N m] or the dissipation d [N m s], beta and delta take the same
