@@ -113,7 +113,7 @@ module sloshdyn_bifurcation
   public :: curve_system, fold_system, hopf_system, system_refresh, system_diagnose, &
             system_alignment, system_codim2_kind, max_curve_tests, trace_curve, &
             correct_state, setup_system, split_x_p, point_x_p, bordered_vectors, &
-            inverse_iteration, field_defining_system
+            inverse_iteration, field_defining_system, curve_of_kind
 
   !> Curve kinds: of equilibria of flows (fold, Hopf) and of fixed points of maps (fold,
   !> period doubling, Neimark-Sacker; sloshdyn_map_bifurcation).
@@ -413,10 +413,7 @@ contains
     type(bifurcation_curve), intent(out) :: curve
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    call any_curve(field, CURVE_FOLD, x0, p0, options, curve, status, message)
-    if (status /= SD_OK) message = 'fold_curve: '//trim(message)
-    curve%status = status
-    curve%message = message
+    call curve_of_kind(field, CURVE_FOLD, 'fold_curve', x0, p0, options, curve, status, message)
   end subroutine fold_curve
 
   !> The Hopf curve through (x0, p0), a Hopf point of equilibria (approximately: corrected as for
@@ -428,11 +425,26 @@ contains
     type(bifurcation_curve), intent(out) :: curve
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    call any_curve(field, CURVE_HOPF, x0, p0, options, curve, status, message)
-    if (status /= SD_OK) message = 'hopf_curve: '//trim(message)
+    call curve_of_kind(field, CURVE_HOPF, 'hopf_curve', x0, p0, options, curve, status, message)
+  end subroutine hopf_curve
+
+  !> The curve of the given kind (CURVE_*) through (x0, p0), for the public routines here and
+  !> in other modules (sloshdyn_map_bifurcation): the status and message (prefixed by caller)
+  !> are also kept in the curve.
+  subroutine curve_of_kind(field, kind, caller, x0, p0, options, curve, status, message)
+    class(two_parameter_field), intent(in) :: field
+    integer, intent(in) :: kind
+    character(len=*), intent(in) :: caller
+    real(wp), intent(in) :: x0(:), p0(2)
+    type(curve_options), intent(in) :: options
+    type(bifurcation_curve), intent(out) :: curve
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    call any_curve(field, kind, x0, p0, options, curve, status, message)
+    if (status /= SD_OK) message = caller//': '//trim(message)
     curve%status = status
     curve%message = message
-  end subroutine hopf_curve
+  end subroutine curve_of_kind
 
   !> The fold (kind = CURVE_FOLD) or Hopf point (CURVE_HOPF) near (x_guess, p_guess) with
   !> p(fixed) = p_guess(fixed): Newton on the defining system with the other parameter free
