@@ -1110,8 +1110,10 @@ contains
       end if
       call pack_state(sys, s, z(1:m), z(m + 1))
       opts = options%continuation
-      opts%lambda_min = q_min(sys%lam)
-      opts%lambda_max = q_max(sys%lam)
+      ! a start corrected onto the curve may lie on the box's boundary up to rounding: the
+      ! segment may start there (a step outward then ends it on the boundary)
+      opts%lambda_min = min(q_min(sys%lam), z(m + 1))
+      opts%lambda_max = max(q_max(sys%lam), z(m + 1))
       opts%direction = nint(sign(1.0_wp, ts(k + sys%lam)))
       opts%x_scale = 1
       opts%x_max = huge(1.0_wp)

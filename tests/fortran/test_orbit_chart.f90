@@ -224,18 +224,41 @@ program test_orbit_chart
                                       neimark_sacker_curve
   use orbit_test_maps, only: henon_map, walled_henon, cusp_flip_map, frame_map, FRAME_CUSP, &
                              FRAME_LINEAR
+  use sloshdyn_model, only: model_t, model_from_arrays
+  use sloshdyn_excitation, only: PARAMETER_RHO
+  use sloshdyn_ode, only: ode_options
+  use sloshdyn_integrator, only: METHOD_DOP853
+  use sloshdyn_continuation, only: continuation_options
+  use sloshdyn_periodic_response, only: periodic_orbit, periodic_response
+  use sloshdyn_system, only: tank_system
+  use sloshdyn_shooting, only: monodromy_matrix
+  use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_NEIMARK_SACKER, SPECIAL_BRANCH_POINT
+  use sloshdyn_orbit_chart, only: tank_orbit_map, orbit_chart_options, make_orbit_map, &
+                                  orbit_curve_from_special, orbit_neimark_sacker_curve
   use checks, only: check_close, check_true, finish
   implicit none
 
+  integer :: clock_start, clock_rate
+  real(wp) :: clock_last = 0
+
+  call system_clock(clock_start, clock_rate)
   call test_henon_neimark_sacker()
   call test_henon_neutral_saddles()
   call test_henon_fold_and_flip()
   call test_cusp_flip()
+  call test_incomplete()
+  call test_bad_input()
+  call timed('textbook maps')
   call test_frame_derivatives()
   call test_frame_cusp()
   call test_frame_linear()
-  call test_incomplete()
-  call test_bad_input()
+  call timed('rotating frames (shooting)')
+  call test_fig12_neimark_sacker()
+  call timed('Fig 12 Neimark-Sacker curve and its checks')
+  call test_fig12_folds()
+  call timed('Fig 12 fold curve and its checks')
+  call test_tank_derivatives()
+  call test_tank_bad_input()
   call finish()
 
 contains
@@ -473,6 +496,7 @@ contains
     map%kind = FRAME_CUSP
     map%integration%rtol = 1.0e-12_wp
     map%integration%atol = 1.0e-14_wp
+    map%method = METHOD_DOP853
     z = 0.4_wp
     p(2) = 0.2_wp
     p(1) = z**3 - p(2)*z
@@ -502,6 +526,7 @@ contains
     map%kind = FRAME_CUSP
     map%integration%rtol = 1.0e-12_wp
     map%integration%atol = 1.0e-14_wp
+    map%method = METHOD_DOP853
     map%x_step = 1.0e-4_wp
     map%p_step = 1.0e-4_wp
     opt = box(-0.3_wp, 0.3_wp, -0.1_wp, 0.5_wp)
@@ -524,6 +549,20 @@ contains
     call check_true('frame cusp fold: p = (-2 z^3, 3 z^2) (1e-9)', worst < 1.0e-9_wp)
     call check_true('frame cusp fold: a multiplier at +1 (1e-8)', worst_mu < 1.0e-8_wp)
     call check_codim2('frame cusp fold', curve, CODIM2_CUSP, [0.0_wp, 0.0_wp], 0.0_wp, 1.0e-8_wp)
+
+    ! orbits of period 2 T: the same equilibria, multipliers squared
+    map%periods = 2
+    call map_fold_curve(map, [z, 0.0_wp], [-2*z**3, 3*z**2], opt, curve, status, message)
+    worst = 0
+    do j = 1, curve%n_points
+      worst = max(worst, abs(curve%p(1, j) + 2*curve%x(1, j)**3), &
+                  abs(curve%p(2, j) - 3*curve%x(1, j)**2), abs(curve%x(2, j)))
+    end do
+    call check_true('frame cusp fold, period 2 T: complete, p = (-2 z^3, 3 z^2) (1e-9) ('// &
+                    trim(message)//')', status == SD_OK .and. curve%complete .and. &
+                    worst < 1.0e-9_wp)
+    call check_codim2('frame cusp fold, period 2 T', curve, CODIM2_CUSP, [0.0_wp, 0.0_wp], &
+                      0.0_wp, 1.0e-8_wp)
   end subroutine test_frame_cusp
 
   !> The linear rotating-frame flow by shooting: the Neimark-Sacker line p1 + p2 = 0 with its
@@ -539,6 +578,7 @@ contains
     map%kind = FRAME_LINEAR
     map%integration%rtol = 1.0e-12_wp
     map%integration%atol = 1.0e-14_wp
+    map%method = METHOD_DOP853
     map%x_step = 1.0e-4_wp
     map%p_step = 1.0e-4_wp
     opt = box(0.3_wp, 2.0_wp, -2.0_wp, 0.0_wp)
@@ -644,4 +684,385 @@ contains
                     abs(theta - pi/2) < 1.0e-12_wp .and. maxval(abs(x - [0.5_wp, -0.5_wp])) < &
                     1.0e-12_wp)
   end subroutine test_bad_input
+  !> Print the wall time since the last call (sections of this test).
+  subroutine timed(label)
+    character(len=*), intent(in) :: label
+    print '(a, f8.2, a)', '  -- '//label//': ', elapsed() - clock_last, ' s'
+    clock_last = elapsed()
+  end subroutine timed
+
+  real(wp) function elapsed()
+    integer :: now
+    call system_clock(now)
+    elapsed = real(now - clock_start, wp)/clock_rate
+  end function elapsed
+
+  !> The Fig 12 model (s1 = 1.5, mu1 = 0.5, kappa = 1.804897259, theta0 = pi/4, beta = 10,
+  !> gamma = 0.001, delta = 0.1, n = 6, p = 2) at (rho, A).
+  function fig12_model(rho, amplitude) result(model)
+    real(wp), intent(in) :: rho, amplitude
+    type(model_t) :: model
+    integer :: status
+    character(len=message_len) :: message
+    call model_from_arrays([1.5_wp, 0.5_wp, 1.804897259_wp, pi/4, 10.0_wp, 0.001_wp, 0.1_wp, &
+                            amplitude, rho, 0.0_wp], [6, 2], model, status, message)
+  end function fig12_model
+
+  !> The shots of the tank tests (as in test_periodic, tighter: the finite-difference steps of
+  !> the chart follow rtol^(1/3)).
+  function tank_integration() result(opt)
+    type(ode_options) :: opt
+    opt%rtol = 1.0e-12_wp
+    opt%atol = 1.0e-14_wp
+  end function tank_integration
+
+  function tank_chart_options() result(opt)
+    type(orbit_chart_options) :: opt
+    opt%integration = tank_integration()
+    opt%curve%p_min = [0.505_wp, 1.0e-4_wp]
+    opt%curve%p_max = [0.515_wp, 0.0015_wp]
+    opt%curve%continuation%newton%f_tol = 1.0e-10_wp
+  end function tank_chart_options
+
+  !> One-parameter continuation of the Fig 12 orbits in rho over [0.50, 0.52] at the amplitude:
+  !> its special points (periodic_response's layout).
+  subroutine one_parameter(amplitude, special, n_special, rho_range, y_guess)
+    real(wp), intent(in) :: amplitude
+    real(wp), intent(out) :: special(:, :)
+    integer, intent(out) :: n_special
+    real(wp), intent(in), optional :: rho_range(2), y_guess(4)
+    integer, parameter :: capacity = 400
+    type(continuation_options) :: opt
+    real(wp) :: y(4), m(4, 4), re(4), im(4), max_x1, points(7, capacity), mult(8, capacity), &
+                range(2), guess(4)
+    integer :: iterations, status, n_points, j
+    logical :: complete
+    character(len=message_len) :: message
+    range = [0.50_wp, 0.52_wp]
+    guess = 0
+    opt%ds = 0.002_wp
+    opt%ds_max = 0.01_wp
+    if (present(rho_range)) then
+      range = rho_range
+      guess = y_guess
+      ! the orbit changes fast with rho there (|dy0/drho| ~ 1e3): arclength steps of ~1e-5 in rho
+      opt%ds = 0.005_wp
+      opt%ds_max = 0.02_wp
+    end if
+    call periodic_orbit(fig12_model(range(1), amplitude), guess, 1, tank_integration(), 0, &
+                        1.0e-10_wp, 20, y, m, re, im, iterations, max_x1, status, message)
+    opt%max_points = capacity
+    call periodic_response(fig12_model(range(1), amplitude), PARAMETER_RHO, y, 1, range(1), &
+                           range(2), opt, tank_integration(), 0, points, mult, n_points, &
+                           special, n_special, complete, status, message)
+    if (status /= SD_OK) print '(a)', '    periodic_response: '//trim(message)
+    print '(a, es9.2, a, 2f9.5, a, i0, a)', '  one-parameter continuation at A = ', amplitude, &
+      ' over rho in', range, ': ', n_special, ' special points'
+    do j = 1, n_special
+      print '(a, i0, a, f14.10)', '    kind ', nint(special(1, j)), ' at rho = ', special(2, j)
+    end do
+  end subroutine one_parameter
+
+  !> The rho of the special points of the kind.
+  subroutine rho_of(special, n_special, kind, rho, n_rho)
+    real(wp), intent(in) :: special(:, :)
+    integer, intent(in) :: n_special, kind
+    real(wp), intent(out) :: rho(:)
+    integer, intent(out) :: n_rho
+    integer :: j
+    n_rho = 0
+    do j = 1, n_special
+      if (nint(special(1, j)) /= kind) cycle
+      n_rho = n_rho + 1
+      rho(n_rho) = special(2, j)
+    end do
+  end subroutine rho_of
+
+  !> The largest distance from a value of a to the nearest of b and the other way round.
+  real(wp) function set_distance(a, b) result(worst)
+    real(wp), intent(in) :: a(:), b(:)
+    integer :: i
+    worst = huge(1.0_wp)
+    if (size(a) == 0 .or. size(b) == 0) return
+    worst = 0
+    do i = 1, size(a)
+      worst = max(worst, minval(abs(b - a(i))))
+    end do
+    do i = 1, size(b)
+      worst = max(worst, minval(abs(a - b(i))))
+    end do
+  end function set_distance
+
+  !> Fig 12's Neimark-Sacker curve of the full model in (rho, A), started from the first
+  !> Neimark-Sacker point of the one-parameter continuation at A = 0.00075: it crosses A =
+  !> 0.00075 at both Neimark-Sacker points of that continuation and A = 0.001 at those of a
+  !> second one-parameter continuation (3e-5 in rho); independent shooting at points of the curve
+  !> puts the pair on the unit circle (1e-8). Timed.
+  subroutine test_fig12_neimark_sacker()
+    type(tank_orbit_map) :: map
+    type(orbit_chart_options) :: opt
+    type(bifurcation_curve) :: curve
+    real(wp) :: special(7, 12), local(7, 12), ns_rho(20), crossing_x(4, 8), crossing_p(2, 8), &
+                start, seconds, y(4), m(4, 4), re(4), im(4), max_x1, worst, distance
+    real(wp), parameter :: levels(2) = [0.00075_wp, 0.001_wp]
+    integer :: n_special, n_ns, status, n_found, l, j, iterations, column, n_checked, i, k, &
+               n_local
+    character(len=message_len) :: message
+
+    call one_parameter(levels(1), special, n_special)
+    call rho_of(special, n_special, SPECIAL_NEIMARK_SACKER, ns_rho, n_ns)
+    call check_true('Fig 12 (full model): two Neimark-Sacker points at A = 0.00075', n_ns == 2)
+    if (n_ns < 1) return
+    opt = tank_chart_options()
+    column = 0
+    do j = 1, n_special
+      if (nint(special(1, j)) == SPECIAL_NEIMARK_SACKER .and. column == 0) column = j
+    end do
+    start = elapsed()
+    call orbit_curve_from_special(fig12_model(0.50_wp, levels(1)), PARAMETER_RHO, &
+                                  special(:, column), opt, curve, status, message)
+    seconds = elapsed() - start
+    call report('Fig 12 Neimark-Sacker curve (full model)', curve)
+    print '(a, f8.2, a, i0, a)', '    time: ', seconds, ' s for ', curve%n_points, ' points'
+    call check_true('Fig 12 NS curve: complete, status 0 ('//trim(message)//')', &
+                    status == SD_OK .and. curve%complete .and. curve%kind == CURVE_NEIMARK_SACKER)
+    call make_orbit_map(fig12_model(0.50_wp, levels(1)), opt, map, status, message)
+
+    do l = 1, size(levels)
+      if (l > 1) then
+        call one_parameter(levels(l), special, n_special)
+        call rho_of(special, n_special, SPECIAL_NEIMARK_SACKER, ns_rho, n_ns)
+      end if
+      call curve_crossings(map, curve, 2, levels(l), opt%curve, crossing_x, crossing_p, &
+                           n_found, status, message)
+      if (status /= SD_OK) print '(a)', '    '//trim(message)
+      ! a crossing on a family of orbits the continuation from rest does not reach: a second
+      ! one-parameter continuation through that orbit, over rho_crossing -+ 2e-4
+      do i = 1, n_found
+        if (n_ns > 0) then
+          if (minval(abs(ns_rho(1:n_ns) - crossing_p(1, i))) <= 3.0e-5_wp) cycle
+        end if
+        call one_parameter(levels(l), local, n_local, crossing_p(1, i) + [-2.0e-4_wp, &
+                           2.0e-4_wp], crossing_x(:, i))
+        call rho_of(local, n_local, SPECIAL_NEIMARK_SACKER, ns_rho(n_ns + 1:), k)
+        n_ns = n_ns + k
+      end do
+      print '(a, es9.2, a, 4f15.10)', '    A = ', levels(l), ': NS (one-parameter)  ', &
+        ns_rho(1:n_ns)
+      print '(a, es9.2, a, 4f15.10)', '    A = ', levels(l), ': NS curve crossings ', &
+        crossing_p(1, 1:n_found)
+      distance = set_distance(crossing_p(1, 1:n_found), ns_rho(1:n_ns))
+      print '(a, es10.2)', '      max |difference| in rho: ', distance
+      call check_true('Fig 12 NS curve: its crossings of A = '//trim(num_text(levels(l)))// &
+                      ' are the one-parameter NS points (3e-5 in rho)', status == SD_OK .and. &
+                      n_found == n_ns .and. n_ns > 0 .and. distance <= 3.0e-5_wp)
+    end do
+
+    ! independent shooting (Newton on y(T) - y0 from the curve's state) at every fifth point
+    worst = 0
+    n_checked = 0
+    do j = 1, curve%n_points, 5
+      call periodic_orbit(fig12_model(curve%p(1, j), curve%p(2, j)), curve%x(:, j), 1, &
+                          tank_integration(), 0, 1.0e-12_wp, 20, y, m, re, im, iterations, &
+                          max_x1, status, message)
+      if (status /= SD_OK) then
+        worst = huge(1.0_wp)
+        exit
+      end if
+      worst = max(worst, pair_off_circle(re, im))
+      n_checked = n_checked + 1
+    end do
+    print '(a, i0, a, es10.2)', '    independent shooting at ', n_checked, &
+      ' points: max ||mu| - 1| of the pair ', worst
+    call check_true('Fig 12 NS curve: a multiplier pair on the unit circle (1e-8, independent '// &
+                    'shooting)', worst < 1.0e-8_wp)
+  end subroutine test_fig12_neimark_sacker
+
+  !> Fig 12's fold curve(s) of orbits through the one-parameter folds at A = 0.00075: they cross
+  !> A = 0.00075 exactly there; independent shooting finds a multiplier +1 (1e-8); the fold pair
+  !> is born at a cusp of orbits (the slow flow's is at rho = 0.509325, A = 5.455e-4,
+  !> test_slowflow_chart). Timed.
+  subroutine test_fig12_folds()
+    type(tank_orbit_map) :: map
+    type(orbit_chart_options) :: opt
+    type(bifurcation_curve) :: curve
+    type(tank_system) :: tank
+    real(wp) :: special(7, 12), fold_rho(4), crossing_x(4, 8), crossing_p(2, 8), start, &
+                seconds, y(4), m(4, 4), re(4), im(4), worst, distance, residual
+    integer :: n_special, n_folds, status, n_found, j, column, n_checked, i, count
+    character(len=message_len) :: message
+
+    call one_parameter(0.00075_wp, special, n_special)
+    call rho_of(special, n_special, SPECIAL_FOLD, fold_rho, n_folds)
+    column = 0
+    do j = 1, n_special
+      if (nint(special(1, j)) == SPECIAL_FOLD .and. column == 0) column = j
+    end do
+    if (column == 0) then
+      call check_true('Fig 12 folds: the one-parameter continuation has folds', .false.)
+      return
+    end if
+    opt = tank_chart_options()
+    start = elapsed()
+    call orbit_curve_from_special(fig12_model(0.50_wp, 0.00075_wp), PARAMETER_RHO, &
+                                  special(:, column), opt, curve, status, message)
+    seconds = elapsed() - start
+    call report('Fig 12 fold curve of orbits (full model)', curve)
+    print '(a, f8.2, a, i0, a)', '    time: ', seconds, ' s for ', curve%n_points, ' points'
+    call check_true('Fig 12 fold curve: complete, status 0 ('//trim(message)//')', &
+                    status == SD_OK .and. curve%complete .and. curve%kind == CURVE_FOLD)
+    call make_orbit_map(fig12_model(0.50_wp, 0.00075_wp), opt, map, status, message)
+    call curve_crossings(map, curve, 2, 0.00075_wp, opt%curve, crossing_x, crossing_p, n_found, &
+                         status, message)
+    print '(a, 4f15.10)', '    A = 7.5e-4: folds (one-parameter)  ', fold_rho(1:n_folds)
+    print '(a, 4f15.10)', '    A = 7.5e-4: fold curve crossings  ', crossing_p(1, 1:n_found)
+    distance = set_distance(crossing_p(1, 1:n_found), fold_rho(1:n_folds))
+    print '(a, es10.2)', '      max |difference| in rho: ', distance
+    call check_true('Fig 12 fold curve: one curve through both folds, its crossings of A = '// &
+                    '7.5e-4 are the one-parameter folds (3e-5 in rho)', status == SD_OK .and. &
+                    n_found == n_folds .and. distance <= 3.0e-5_wp)
+    i = find_codim2(curve, CODIM2_CUSP, count)
+    call check_true('Fig 12 fold curve: the fold pair is born at one cusp of orbits', count == 1)
+    if (i > 0) then
+      print '(a, f12.8, a, es14.6, a, 2es11.3)', '    cusp of orbits at rho = ', &
+        curve%codim2(i)%p(1), ', A = ', curve%codim2(i)%p(2), '; slow flow''s: difference ', &
+        curve%codim2(i)%p - [0.509325415_wp, 5.45535038e-4_wp]
+      call check_true('Fig 12 fold curve: the cusp of orbits near the slow flow''s (2e-4 in '// &
+                      'rho, 10 % in A)', abs(curve%codim2(i)%p(1) - 0.509325415_wp) < 2.0e-4_wp &
+                      .and. abs(curve%codim2(i)%p(2)/5.45535038e-4_wp - 1) < 0.1_wp)
+    end if
+    ! one shot by the other integrator (DOPRI5; Newton's M - I is singular at a fold): the
+    ! curve's state is a fixed point and has a multiplier +1
+    worst = 0
+    residual = 0
+    n_checked = 0
+    tank%varied = PARAMETER_RHO
+    do j = 1, curve%n_points, 5
+      if (curve%special(j) /= 0) cycle
+      tank%model = fig12_model(curve%p(1, j), curve%p(2, j))
+      call monodromy_matrix(tank, curve%x(:, j), 1, tank_integration(), 0, y, m, status, message)
+      if (status == SD_OK) call eigenvalues(m, re, im, status, message)
+      if (status /= SD_OK) then
+        print '(a)', '    '//trim(message)
+        worst = huge(1.0_wp)
+        exit
+      end if
+      residual = max(residual, maxval(abs(y - curve%x(:, j))))
+      worst = max(worst, minval(hypot(re - 1, im)))
+      n_checked = n_checked + 1
+    end do
+    print '(a, i0, a, es10.2, a, es10.2)', '    one DOPRI5 shot at ', n_checked, &
+      ' points: max |P(y0) - y0| ', residual, ', max |mu - 1| of the multiplier nearest +1 ', &
+      worst
+    call check_true('Fig 12 fold curve: fixed points (1e-10) with a multiplier at +1 (1e-8), '// &
+                    'by an independent shot', residual < 1.0e-10_wp .and. worst < 1.0e-8_wp)
+  end subroutine test_fig12_folds
+
+  !> The tank's map: dP/d(rho, A) from the sensitivity equations (with dT/drho) and M from the
+  !> variational equations against central differences of P (steps 1e-4 of the scales:
+  !> truncation ~1e-8); the finite-difference second derivative B(v, v) of the curves at the
+  !> default step (rtol^(1/3) x_scale) against one ten times smaller.
+  subroutine test_tank_derivatives()
+    type(tank_orbit_map) :: map, finer
+    type(orbit_chart_options) :: opt
+    real(wp) :: x(4), p(2), px(4), mx(4, 4), mp(4, 2), plus(4), minus(4), m_dummy(4, 4), h, &
+                error_p(2), error_x, v(4), b(4), b_fine(4)
+    integer :: k, status
+    character(len=message_len) :: message
+    opt = tank_chart_options()
+    ! the orbit near the first Neimark-Sacker point of Fig 12 (rho = 0.5092, A = 0.00075)
+    p = [0.5092_wp, 0.00075_wp]
+    call periodic_orbit(fig12_model(p(1), p(2)), [-0.011_wp, -0.045_wp, -0.051_wp, 0.116_wp], &
+                        1, tank_integration(), 0, 1.0e-12_wp, 20, x, mx, px, mp(:, 1), k, h, &
+                        status, message)
+    call check_true('tank derivatives: an orbit at rho = 0.5092 ('//trim(message)//')', &
+                    status == SD_OK)
+    call make_orbit_map(fig12_model(p(1), p(2)), opt, map, status, message)
+    call map%map(x, p, px, mx, status, message, mp)
+    do k = 1, 2
+      h = 1.0e-4_wp*opt%curve%p_scale(k)
+      call map%map(x, p + h*unit(k, 2), plus, m_dummy, status, message)
+      call map%map(x, p - h*unit(k, 2), minus, m_dummy, status, message)
+      error_p(k) = maxval(abs((plus - minus)/(2*h) - mp(:, k)))/maxval(abs(mp(:, k)))
+    end do
+    error_x = 0
+    h = 1.0e-4_wp*opt%curve%x_scale
+    do k = 1, 4
+      call map%map(x + h*unit(k, 4), p, plus, m_dummy, status, message)
+      call map%map(x - h*unit(k, 4), p, minus, m_dummy, status, message)
+      error_x = max(error_x, maxval(abs((plus - minus)/(2*h) - mx(:, k))))
+    end do
+    error_x = error_x/maxval(abs(mx))
+    print '(a, 3es10.2)', '  tank map: relative difference of dP/drho, dP/dA, M from '// &
+      'differences of P: ', error_p, error_x
+    call check_true('tank map: dP/d(rho, A) (sensitivities, dT/drho) = differences of P (1e-6)', &
+                    maxval(error_p) < 1.0e-6_wp)
+    call check_true('tank map: M (variational equations) = differences of P (1e-6)', &
+                    error_x < 1.0e-6_wp)
+    v = [0.3_wp, -0.5_wp, 0.6_wp, 0.5_wp]
+    call map%second_derivative(x, p, v, v, b)
+    finer = map
+    finer%x_step = map%x_step/10
+    call finer%second_derivative(x, p, v, v, b_fine)
+    print '(a, es10.2, a, es10.2)', '  tank map: B(v, v) at steps x_step and x_step/10 differ '// &
+      'by ', maxval(abs(b - b_fine))/maxval(abs(b_fine)), ' relative; x_step = ', map%x_step
+    call check_true('tank map: B(v, v) settled in the step (1e-5 relative)', &
+                    maxval(abs(b - b_fine)) < 1.0e-5_wp*maxval(abs(b_fine)))
+  end subroutine test_tank_derivatives
+
+  pure function unit(k, n) result(e)
+    integer, intent(in) :: k, n
+    real(wp) :: e(n)
+    e = 0
+    e(k) = 1
+  end function unit
+
+  !> ||mu| - 1| of the complex pair nearest the unit circle.
+  real(wp) function pair_off_circle(re, im) result(distance)
+    real(wp), intent(in) :: re(:), im(:)
+    integer :: i
+    distance = huge(1.0_wp)
+    do i = 1, size(re)
+      if (im(i) > 0) distance = min(distance, abs(hypot(re(i), im(i)) - 1))
+    end do
+  end function pair_off_circle
+
+  function num_text(value) result(text)
+    real(wp), intent(in) :: value
+    character(len=16) :: text
+    write (text, '(es9.2)') value
+    text = adjustl(text)
+  end function num_text
+
+  !> Rules of the tank's curves: a branch point has no curve, periods >= 1, rho > 0 in the box.
+  subroutine test_tank_bad_input()
+    type(orbit_chart_options) :: opt
+    type(bifurcation_curve) :: curve
+    integer :: status
+    character(len=message_len) :: message
+    opt = tank_chart_options()
+    call orbit_curve_from_special(fig12_model(0.5_wp, 0.00075_wp), PARAMETER_RHO, &
+                                  [real(SPECIAL_BRANCH_POINT, wp), 0.5_wp, 0.0_wp, 0.0_wp, &
+                                   0.0_wp, 0.0_wp, 0.0_wp], opt, curve, status, message)
+    call check_true('tank: a branch point has no curve, special(1) named: '//trim(message), &
+                    status == SD_BAD_INPUT .and. index(message, 'special(1)') > 0 .and. &
+                    curve%status == status)
+    opt%periods = 0
+    call orbit_neimark_sacker_curve(fig12_model(0.5_wp, 0.00075_wp), [0.0_wp, 0.0_wp, 0.0_wp, &
+                                    0.0_wp], [0.5_wp, 0.00075_wp], opt, curve, status, message)
+    call check_true('tank: periods = 0 named: '//trim(message), &
+                    status == SD_BAD_INPUT .and. index(message, 'periods') > 0)
+    opt = tank_chart_options()
+    opt%curve%p_min(1) = 0
+    call orbit_neimark_sacker_curve(fig12_model(0.5_wp, 0.00075_wp), [0.0_wp, 0.0_wp, 0.0_wp, &
+                                    0.0_wp], [0.5_wp, 0.00075_wp], opt, curve, status, message)
+    call check_true('tank: rho_min = 0 named: '//trim(message), &
+                    status == SD_BAD_INPUT .and. index(message, 'rho') > 0)
+    call orbit_curve_from_special(fig12_model(0.5_wp, 0.00075_wp), 3, &
+                                  [real(SPECIAL_FOLD, wp), 0.5_wp, 0.0_wp, 0.0_wp, &
+                                   0.0_wp, 0.0_wp, 0.0_wp], tank_chart_options(), curve, status, &
+                                  message)
+    call check_true('tank: parameter out of range named: '//trim(message), &
+                    status == SD_BAD_INPUT .and. index(message, 'parameter') > 0)
+  end subroutine test_tank_bad_input
 end program test_orbit_chart
