@@ -15,7 +15,7 @@ module sloshdyn_orbit_chart
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
-  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
+  use sloshdyn_excitation, only: excitation_t, PARAMETER_RHO, PARAMETER_A, forcing_period
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: check_method, METHOD_DOP853
@@ -64,11 +64,21 @@ contains
     type(tank_orbit_map), intent(out) :: map
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    type(excitation_t) :: probe
     real(wp) :: fraction
     status = SD_OK
     message = ''
     call check_orbit_chart_options(options, status, message)
     if (status /= SD_OK) return
+    ! rho and A are those of a harmonic excitation; another kind has no forcing period at any rho
+    probe = model%excitation
+    probe%rho = 1
+    if (.not. forcing_period(probe) < huge(1.0_wp)) then
+      status = SD_BAD_INPUT
+      message = 'the excitation has no forcing period: curves of periodic orbits in (rho, A) '// &
+                'need the harmonic excitation X = A sin(rho tau)'
+      return
+    end if
     map%model = model
     map%periods = options%periods
     map%method = options%method

@@ -38,12 +38,16 @@
 !> curve and its multipliers, is as accurate as the shots; the differences only enter Newton's
 !> Jacobian, the tangent and the cusp test <w, B(v, v)>). Steps: x_step/max|u| along u and
 !> p_step(k) in p_k (two_parameter_map; 0 = eps^(1/3) (1 + |.|), right for exact maps). For
-!> shots, the step balances the truncation error (h/L)^2 against the integration noise
-!> rtol L/h of M (L the scale on which M varies: x_scale, p_scale): h = rtol^(1/3) L gives
-!> both ~ rtol^(2/3), 1e-8 relative at rtol = 1e-12 (stroboscopic_map; the accuracy is measured
-!> in tests/fortran/test_orbit_chart.f90 against the closed-form second derivative of a
-!> rotating-frame flow). Second-order variational equations would give them to the integration
-!> tolerance, but the problems here provide no second derivatives of their right-hand side.
+!> shots the step should balance the truncation error (h/L)^2 against the integration error
+!> ~rtol L/h that a change of the step sequence between the two shots can bring (L the scale on
+!> which M varies, e.g. the curve's x_scale and p_scale): h = rtol^(1/3) L, both ~rtol^(2/3)
+!> (the tank's map, sloshdyn_orbit_chart, sets its steps so). Measured in
+!> tests/fortran/test_orbit_chart.f90 at rtol = 1e-12: d^2 P/dz^2 of a rotating-frame flow
+!> against its closed form, 1.7e-7 relative at h = 1e-4 (truncation; 2e-11 at h = 1e-6); the
+!> tank's B(v, v) changes by 9e-9 relative from h to h/10. Second-order variational equations
+!> would give the derivatives to the integration tolerance, but the periodic problems provide
+!> no second derivatives of their right-hand side, and the accuracy above is far more than
+!> Newton's convergence needs.
 !>
 !> Test functions and codimension-2 points (zeros between consecutive points, located by
 !> sloshdyn_bifurcation; v, w unit null vectors of the bordered matrix):
@@ -71,9 +75,9 @@
 !> neimark_sacker_curve. correct_to_curve and curve_crossings of sloshdyn_bifurcation take maps
 !> and the kinds CURVE_FOLD, CURVE_PERIOD_DOUBLING, CURVE_NEIMARK_SACKER.
 module sloshdyn_map_bifurcation
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_SINGULAR
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues
   use sloshdyn_ode, only: ode_options

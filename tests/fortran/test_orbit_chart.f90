@@ -225,7 +225,7 @@ program test_orbit_chart
   use orbit_test_maps, only: henon_map, walled_henon, cusp_flip_map, frame_map, FRAME_CUSP, &
                              FRAME_LINEAR
   use sloshdyn_model, only: model_t, model_from_arrays
-  use sloshdyn_excitation, only: PARAMETER_RHO
+  use sloshdyn_excitation, only: PARAMETER_RHO, record_excitation
   use sloshdyn_ode, only: ode_options
   use sloshdyn_integrator, only: METHOD_DOP853
   use sloshdyn_continuation, only: continuation_options
@@ -1037,6 +1037,7 @@ contains
   !> Rules of the tank's curves: a branch point has no curve, periods >= 1, rho > 0 in the box.
   subroutine test_tank_bad_input()
     type(orbit_chart_options) :: opt
+    type(model_t) :: model
     type(bifurcation_curve) :: curve
     integer :: status
     character(len=message_len) :: message
@@ -1064,5 +1065,12 @@ contains
                                   message)
     call check_true('tank: parameter out of range named: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'parameter') > 0)
+    model = fig12_model(0.5_wp, 0.00075_wp)
+    call record_excitation([0.0_wp, 0.1_wp, 0.0_wp], 0.5_wp, model%excitation, status, message)
+    call orbit_neimark_sacker_curve(model, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
+                                    [0.5_wp, 0.00075_wp], tank_chart_options(), curve, status, &
+                                    message)
+    call check_true('tank: a record excitation is refused: '//trim(message), &
+                    status == SD_BAD_INPUT .and. index(message, 'harmonic') > 0)
   end subroutine test_tank_bad_input
 end program test_orbit_chart
