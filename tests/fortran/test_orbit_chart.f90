@@ -803,7 +803,8 @@ contains
     type(orbit_chart_options) :: opt
     type(bifurcation_curve) :: curve
     real(wp) :: special(7, 12), local(7, 12), ns_rho(20), crossing_x(4, 8), crossing_p(2, 8), &
-                start, seconds, y(4), m(4, 4), re(4), im(4), max_x1, worst, distance
+                start, seconds, y(4), m(4, 4), re(4), im(4), max_x1, worst, distance, &
+                cpu_start, cpu_end, stored
     real(wp), parameter :: levels(2) = [0.00075_wp, 0.001_wp]
     integer :: n_special, n_ns, status, n_found, l, j, iterations, column, n_checked, i, k, &
                n_local
@@ -819,11 +820,14 @@ contains
       if (nint(special(1, j)) == SPECIAL_NEIMARK_SACKER .and. column == 0) column = j
     end do
     start = elapsed()
+    call cpu_time(cpu_start)
     call orbit_curve_from_special(fig12_model(0.50_wp, levels(1)), PARAMETER_RHO, &
                                   special(:, column), opt, curve, status, message)
+    call cpu_time(cpu_end)
     seconds = elapsed() - start
     call report('Fig 12 Neimark-Sacker curve (full model)', curve)
-    print '(a, f8.2, a, i0, a)', '    time: ', seconds, ' s for ', curve%n_points, ' points'
+    print '(a, f8.2, a, f8.2, a, i0, a)', '    time: ', cpu_end - cpu_start, ' s CPU (', &
+      seconds, ' s wall) for ', curve%n_points, ' points'
     call check_true('Fig 12 NS curve: complete, status 0 ('//trim(message)//')', &
                     status == SD_OK .and. curve%complete .and. curve%kind == CURVE_NEIMARK_SACKER)
     call make_orbit_map(fig12_model(0.50_wp, levels(1)), opt, map, status, message)
@@ -872,6 +876,13 @@ contains
       worst = max(worst, pair_off_circle(re, im))
       n_checked = n_checked + 1
     end do
+    stored = 0
+    do j = 1, curve%n_points
+      stored = max(stored, pair_off_circle(curve%eig_re(:, j), curve%eig_im(:, j)))
+    end do
+    print '(a, es10.2)', '    the curve''s own multipliers, every point: max ||mu| - 1| ', stored
+    call check_true('Fig 12 NS curve: its multiplier pair on the unit circle at every point '// &
+                    '(1e-8)', stored < 1.0e-8_wp)
     print '(a, i0, a, es10.2)', '    independent shooting at ', n_checked, &
       ' points: max ||mu| - 1| of the pair ', worst
     call check_true('Fig 12 NS curve: a multiplier pair on the unit circle (1e-8, independent '// &
@@ -888,7 +899,8 @@ contains
     type(bifurcation_curve) :: curve
     type(tank_system) :: tank
     real(wp) :: special(7, 12), fold_rho(4), crossing_x(4, 8), crossing_p(2, 8), start, &
-                seconds, y(4), m(4, 4), re(4), im(4), worst, distance, residual
+                seconds, y(4), m(4, 4), re(4), im(4), worst, distance, residual, cpu_start, &
+                cpu_end, stored
     integer :: n_special, n_folds, status, n_found, j, column, n_checked, i, count
     character(len=message_len) :: message
 
@@ -904,11 +916,14 @@ contains
     end if
     opt = tank_chart_options()
     start = elapsed()
+    call cpu_time(cpu_start)
     call orbit_curve_from_special(fig12_model(0.50_wp, 0.00075_wp), PARAMETER_RHO, &
                                   special(:, column), opt, curve, status, message)
+    call cpu_time(cpu_end)
     seconds = elapsed() - start
     call report('Fig 12 fold curve of orbits (full model)', curve)
-    print '(a, f8.2, a, i0, a)', '    time: ', seconds, ' s for ', curve%n_points, ' points'
+    print '(a, f8.2, a, f8.2, a, i0, a)', '    time: ', cpu_end - cpu_start, ' s CPU (', &
+      seconds, ' s wall) for ', curve%n_points, ' points'
     call check_true('Fig 12 fold curve: complete, status 0 ('//trim(message)//')', &
                     status == SD_OK .and. curve%complete .and. curve%kind == CURVE_FOLD)
     call make_orbit_map(fig12_model(0.50_wp, 0.00075_wp), opt, map, status, message)
@@ -951,6 +966,14 @@ contains
       worst = max(worst, minval(hypot(re - 1, im)))
       n_checked = n_checked + 1
     end do
+    stored = 0
+    do j = 1, curve%n_points
+      if (curve%special(j) /= 0) cycle
+      stored = max(stored, minval(hypot(curve%eig_re(:, j) - 1, curve%eig_im(:, j))))
+    end do
+    print '(a, es10.2)', '    the curve''s own multipliers, every point but the cusp: '// &
+      'max |mu - 1| ', stored
+    call check_true('Fig 12 fold curve: a multiplier +1 at every point (1e-8)', stored < 1.0e-8_wp)
     print '(a, i0, a, es10.2, a, es10.2)', '    one DOPRI5 shot at ', n_checked, &
       ' points: max |P(y0) - y0| ', residual, ', max |mu - 1| of the multiplier nearest +1 ', &
       worst
