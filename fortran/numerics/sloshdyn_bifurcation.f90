@@ -82,9 +82,10 @@
 !> and names its own test functions (n_tests <= max_curve_tests) and codimension-2 kinds
 !> (codim2_kind, confirm_codim2, codim2_frequency, masked_by, terminal, check_point,
 !> frequency_of); everything else -- segments, border refreshes, box, closure, locating the
-!> codimension-2 points, end reasons, correct_to_curve and curve_crossings -- is shared. The
-!> helpers such systems need (setup_system, split_x_p, point_x_p, bordered_vectors,
-!> inverse_iteration) are public for them.
+!> codimension-2 points, end reasons, correct_to_curve and curve_crossings -- is shared;
+!> curve_of_kind traces a curve of any kind (fold_curve and hopf_curve call it). The helpers such
+!> systems need (setup_system, split_x_p, point_x_p, bordered_vectors, inverse_iteration,
+!> trace_curve, correct_state) are public for them.
 module sloshdyn_bifurcation
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -235,7 +236,8 @@ module sloshdyn_bifurcation
     integer :: n_points = 0
     real(wp), allocatable :: x(:, :)     !< (n, n_points)
     real(wp), allocatable :: p(:, :)     !< (2, n_points)
-    real(wp), allocatable :: eig_re(:, :), eig_im(:, :)  !< eigenvalues of J (n, n_points)
+    !> eigenvalues of J (n, n_points); of a map's curve: its multipliers (of M)
+    real(wp), allocatable :: eig_re(:, :), eig_im(:, :)
     !> test functions (n_tests, n_points): fold (BT, cusp, ZH), Hopf (BT = kappa, ZH = det J,
     !> GH = l1) (3 each); those of map curves: sloshdyn_map_bifurcation
     real(wp), allocatable :: tests(:, :)
