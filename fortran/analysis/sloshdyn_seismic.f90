@@ -58,13 +58,15 @@ contains
     if (support_frequency > 0) dt_out = min(dt_out, 1/(outputs_per_support_period* &
                                                        support_frequency))
     if (ground%kind == GROUND_RECORD) then
-      dt_out = min(dt_out, ground%dt)
-      if (t_end <= 0) t_end = ground_duration(ground) + free_periods*props%sloshing_period
+      ! the record's own step if it is fine enough, so that outputs fall on its samples
+      if (ground%dt <= dt_out) dt_out = ground%dt
+      if (t_end <= 0) t_end = dt_out*ceiling((ground_duration(ground) + free_periods* &
+                                              props%sloshing_period)/dt_out)
     else
       dt_out = min(dt_out, 1/(outputs_per_period*ground%frequency))
       if (t_end <= 0) t_end = harmonic_periods/ground%frequency
     end if
-    if (n_out <= 0) n_out = int(min(t_end/dt_out, real(max_seismic_outputs - 1, wp))) + 1
+    if (n_out <= 0) n_out = nint(min(t_end/dt_out, real(max_seismic_outputs - 1, wp))) + 1
   end subroutine seismic_defaults
 
   !> The response of the tank, at rest at t = 0, to the ground motion, at n_out times evenly

@@ -17,7 +17,8 @@ module sloshdyn_driver
                              SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_HOPF, POINT_BRANCH, &
                              MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
                              SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, &
-                             TANK_SI_SIZE, HARMONIC_SWEEP_ROWS
+                             TANK_SI_SIZE, HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
+                             CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
@@ -29,9 +30,12 @@ module sloshdyn_driver
   use sloshdyn_namelist, only: run_config, known_analyses, ANALYSIS_LINEAR, ANALYSIS_SIMULATE, &
                                ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, ANALYSIS_FREQUENCY_RESPONSE, &
                                ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, &
-                               DIRECTION_DOWN, &
+                               ANALYSIS_STABILITY_CHART, chart_models, DIRECTION_DOWN, &
                                DIRECTION_BOTH, direction_names
   use sloshdyn_results, only: result_files
+  use sloshdyn_stability_chart, only: chart_result, stability_chart, chart_tables, &
+                                      chart_table_sizes, chart_kind, chart_codim2_kind
+  use sloshdyn_slowflow_chart, only: chart_parameter_name
   use sloshdyn_seismic, only: seismic_response, seismic_defaults, design_code_checks, &
                               tank_summary, harmonic_sweep
   use sloshdyn_ground, only: ground_duration, GROUND_RECORD
@@ -77,6 +81,8 @@ contains
       call run_lyapunov(config, files, status, message)
     case (ANALYSIS_SEISMIC)
       call run_seismic(config, files, status, message)
+    case (ANALYSIS_STABILITY_CHART)
+      call run_chart(config, files, status, message)
     end select
     if (status == SD_OK) call files%commit(status, message)
     if (status == SD_OK) then
@@ -86,6 +92,74 @@ contains
     end if
     flush (output_unit)
   end subroutine run_analysis
+
+  !> Stability chart of the slow flow: curves with their codimension-2 points, the grid's
+  !> counts of steady states (and brute force). Incomplete curves are written as far as they
+  !> go, each marked in chart_ends.csv and named here.
+  subroutine run_chart(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(chart_result) :: chart
+    real(wp), allocatable :: curves(:, :), codim2(:, :), ends(:, :), grid(:, :)
+    integer :: n_points, n_codim2, n_curves, n_cells, c, j, agree, checked
+
+    associate (s => config%chart)
+      print '(/a)', 'Stability chart of the slow flow ('//trim(chart_models(s%model))//') in '// &
+                    chart_parameter_name(s%parameters(1))//' in ['//num2str(s%p_min(1))//', '// &
+                    num2str(s%p_max(1))//'] x '//chart_parameter_name(s%parameters(2))// &
+                    ' in ['//num2str(s%p_min(2))//', '//num2str(s%p_max(2))//']: '// &
+                    num2str(s%n_levels)//' one-parameter runs seed the curves'
+    end associate
+    flush (output_unit)
+    call stability_chart(config%model, config%chart, chart, status, message)
+    call in_context('stability chart', status, message)
+    if (status /= SD_OK) return
+    do c = 1, chart%n_curves
+      associate (curve => chart%curves(c))
+        print '(a)', '  curve '//pad(num2str(c), 4)//pad(code_name('k', chart_kind(curve%kind)), &
+                     6)//pad(num2str(curve%n_points)//' points', 13)//'ends: '// &
+                     code_name('e', curve%end_reason(1))//' / '// &
+                     code_name('e', curve%end_reason(2))// &
+                     trim(merge('              ', ', INCOMPLETE  ', curve%complete))
+        if (.not. curve%complete) print '(a)', '      '//trim(curve%message)
+        do j = 1, curve%n_codim2
+          print '(a)', '      '//pad(code_name('d', chart_codim2_kind(curve%codim2(j)%kind)), &
+                       18)//'at '//chart_parameter_name(config%chart%parameters(1))//' = '// &
+                       num2str(curve%codim2(j)%p(1))//', '// &
+                       chart_parameter_name(config%chart%parameters(2))//' = '// &
+                       num2str(curve%codim2(j)%p(2))
+        end do
+      end associate
+    end do
+    call chart_table_sizes(chart, n_points, n_codim2, n_curves, n_cells)
+    allocate (curves(CHART_CURVE_ROWS, n_points), codim2(CHART_CODIM2_ROWS, n_codim2), &
+              ends(CHART_END_ROWS, n_curves), grid(CHART_GRID_ROWS, n_cells))
+    call chart_tables(chart, curves, codim2, ends, grid)
+    print '(a)', '  grid of '//num2str(n_cells)//' cells: '//num2str(count(grid(4, :) == 0))// &
+                 ' with no stable steady state, '//num2str(count(grid(4, :) == 1))//' with one, '// &
+                 num2str(count(grid(4, :) > 1))//' with more; '// &
+                 num2str(count(grid(6, :) > 0))//' near a curve'
+    if (config%chart%brute_force_starts > 0) then
+      checked = count(grid(6, :) == 0)
+      agree = count(grid(6, :) == 0 .and. grid(7, :) == grid(4, :))
+      print '(a)', '  brute force ('//num2str(config%chart%brute_force_starts)// &
+                   ' integrations per cell): the same number of stable steady states in '// &
+                   num2str(agree)//' of the '//num2str(checked)//' cells away from the curves'
+    end if
+    if (.not. chart%complete) print '(a)', '  WARNING: not every curve could be continued to '// &
+                                           'its ends (see above and chart_ends.csv)'
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('chart_curves.csv', 'chart_curves', curves, &
+                                                status, message)
+    if (status == SD_OK) call files%write_table('chart_codim2.csv', 'chart_codim2', codim2, &
+                                                status, message)
+    if (status == SD_OK) call files%write_table('chart_ends.csv', 'chart_ends', ends, status, &
+                                                message)
+    if (status == SD_OK) call files%write_table('chart_grid.csv', 'chart_grid', grid, status, &
+                                                message)
+  end subroutine run_chart
 
   !> A failed step: keep the status, put the context (and the kind of failure) in the message.
   pure subroutine in_context(context, status, message)
@@ -208,7 +282,9 @@ contains
                         history(2:, :), stats, status, message)
       call in_context('simulation', status, message)
       if (status /= SD_OK) return
-      print '(/a)', 'Simulation ('//method_name(config%method)//', eq 15 with 29-31) from '// &
+      print '(/a)', 'Simulation ('//method_name(config%method)//', eq 15'// &
+                    trim(merge(' with 29-31', ', a record ', &
+                               config%model%excitation%kind /= EXCITATION_RECORD))//') from '// &
                     'tau = 0 to '//num2str(sim%t_end)
     end associate
     print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
@@ -473,9 +549,14 @@ contains
                    num2str(peaks(2*SEISMIC_LOADS))//' s, '// &
                    num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s)'
     else
-      print '(a)', '  the wave does not reach the roof (peak wave height '// &
-                   num2str(peaks(5))//' m < freeboard '//num2str(config%tank%freeboard)//' m)'
+      print '(a)', '  the wave does not reach the roof: its peak is '// &
+                   num2str(100*peaks(5)/config%tank%freeboard, significant=3)// &
+                   ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
     end if
+    ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
+    print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
+                 num2str(peaks(11)/(config%tank_props%sloshing_mass*config%tank%gravity), &
+                         significant=3)//' times the sloshing weight m g'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
     if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks', &

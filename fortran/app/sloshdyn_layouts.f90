@@ -8,6 +8,7 @@
 !>   lyapunov(LYAPUNOV_SIZE)       = [transient_periods, n_periods, renormalise_every]
 !>   tank(TANK_SIZE)               = tank_t's components in order (sloshdyn_vessel)
 !>   ground(GROUND_SIZE)           = [kind, peak_acceleration, frequency, dt] (+ the samples)
+!>   chart(CHART_SETTINGS_SIZE)    = the &chart variables (to_chart)
 !> Python's Integration, Steady, Continuation and the Lyapunov settings list their fields in
 !> these orders and take their defaults from defaults_* below (through the bridge).
 !> Integer entries are converted by to_int, which keeps out-of-range and NaN values out of range
@@ -20,15 +21,18 @@ module sloshdyn_layouts
   use sloshdyn_periodic_response, only: lyapunov_options
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, GROUND_RECORD
+  use sloshdyn_stability_chart, only: chart_settings
   implicit none
   private
-  public :: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, TANK_SIZE, GROUND_SIZE
+  public :: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, TANK_SIZE, GROUND_SIZE, &
+            CHART_SETTINGS_SIZE
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
   public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
-  public :: to_tank, from_tank, to_ground, from_ground
+  public :: to_tank, from_tank, to_ground, from_ground, to_chart, from_chart
 
   integer, parameter :: INTEGRATION_SIZE = 7, STEADY_SIZE = 7, RESPONSE_SIZE = 10, &
-                        LYAPUNOV_SIZE = 3, TANK_SIZE = 17, GROUND_SIZE = 4
+                        LYAPUNOV_SIZE = 3, TANK_SIZE = 17, GROUND_SIZE = 4, &
+                        CHART_SETTINGS_SIZE = 14
 
 contains
 
@@ -152,6 +156,35 @@ contains
     real(wp) :: a(GROUND_SIZE)
     a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt]
   end function from_ground
+
+  !> chart(CHART_SETTINGS_SIZE) = [model, x, y, x_min, x_max, y_min, y_max, n_x, n_y, n_scan,
+  !> max_points, max_curves, brute_force_starts, threads] (the &chart variables; x, y and model
+  !> as codes).
+  pure function to_chart(a) result(settings)
+    real(wp), intent(in) :: a(CHART_SETTINGS_SIZE)
+    type(chart_settings) :: settings
+    settings%model = to_int(a(1))
+    settings%parameters = to_int(a(2:3))
+    settings%p_min = a([4, 6])
+    settings%p_max = a([5, 7])
+    settings%n_columns = to_int(a(8))
+    settings%n_levels = to_int(a(9))
+    settings%response%n_scan = to_int(a(10))
+    settings%max_points = to_int(a(11))
+    settings%max_curves = to_int(a(12))
+    settings%brute_force_starts = to_int(a(13))
+    settings%threads = to_int(a(14))
+  end function to_chart
+
+  pure function from_chart(settings) result(a)
+    type(chart_settings), intent(in) :: settings
+    real(wp) :: a(CHART_SETTINGS_SIZE)
+    a = [real(settings%model, wp), real(settings%parameters, wp), settings%p_min(1), &
+         settings%p_max(1), settings%p_min(2), settings%p_max(2), &
+         real([settings%n_columns, settings%n_levels, settings%response%n_scan, &
+               settings%max_points, settings%max_curves, settings%brute_force_starts, &
+               settings%threads], wp)]
+  end function from_chart
 
   !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
   pure function counts_array(stats) result(counts)

@@ -20,6 +20,8 @@ module sloshdyn_namelist
                              scale_ground, GROUND_RECORD
   use sloshdyn_records, only: load_record, units_code, units_factor
   use sloshdyn_seismic, only: max_seismic_outputs
+  use sloshdyn_stability_chart, only: chart_settings, check_chart_settings
+  use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_GAMMA
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_DOPRI5, method_names
   use sloshdyn_simulation, only: steady_options, check_steady
@@ -33,16 +35,18 @@ module sloshdyn_namelist
             check_threads
   public :: ANALYSIS_LINEAR, ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
             ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, &
-            ANALYSIS_SEISMIC
+            ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART
+  public :: chart_models
   public :: DIRECTION_UP, DIRECTION_DOWN, DIRECTION_BOTH, direction_names
 
-  character(len=*), parameter :: known_groups(14) = &
+  character(len=*), parameter :: known_groups(15) = &
     [character(len=13) :: 'model', 'tank', 'ground_motion', 'excitation', 'analysis', 'output', &
-     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov', 'seismic', 'study']
+     'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov', 'seismic', 'chart', &
+     'study']
   integer, parameter :: G_MODEL = 1, G_TANK = 2, G_GROUND_MOTION = 3, G_EXCITATION = 4, &
                         G_ANALYSIS = 5, G_OUTPUT = 6, G_INTEGRATION = 7, G_SIMULATION = 8, &
                         G_STEADY = 9, G_SWEEP = 10, G_RESPONSE = 11, G_LYAPUNOV = 12, &
-                        G_SEISMIC = 13, G_STUDY = 14
+                        G_SEISMIC = 13, G_CHART = 14, G_STUDY = 15
   !> &study: the kinds of study (run by Python, `sloshdyn-py study`), the embedded cluster's
   !> worker kinds and the continuations of a response map, by code (index).
   character(len=*), parameter :: study_kinds(3) = &
@@ -51,13 +55,16 @@ module sloshdyn_namelist
   character(len=*), parameter :: continuation_names(4) = &
     [character(len=4) :: 'none', 'up', 'down', 'both']
   !> The analyses, by code (index).
-  character(len=*), parameter :: known_analyses(8) = &
+  character(len=*), parameter :: known_analyses(9) = &
     [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response', &
-     'periodic_response', 'lyapunov', 'seismic']
+     'periodic_response', 'lyapunov', 'seismic', 'stability_chart']
   integer, parameter :: ANALYSIS_LINEAR = 1, ANALYSIS_SIMULATE = 2, ANALYSIS_STEADY_STATE = 3, &
                         ANALYSIS_SWEEP = 4, ANALYSIS_FREQUENCY_RESPONSE = 5, &
                         ANALYSIS_PERIODIC_RESPONSE = 6, ANALYSIS_LYAPUNOV = 7, &
-                        ANALYSIS_SEISMIC = 8
+                        ANALYSIS_SEISMIC = 8, ANALYSIS_STABILITY_CHART = 9
+  !> &chart: the models, by CHART_SLOW_FLOW_* code.
+  character(len=*), parameter :: chart_models(2) = [character(len=21) :: 'slow_flow_3:1', &
+                                                    'slow_flow_nonresonant']
   character(len=*), parameter :: direction_names(3) = [character(len=4) :: 'up', 'down', 'both']
   integer, parameter :: DIRECTION_UP = 1, DIRECTION_DOWN = 2, DIRECTION_BOTH = 3
   !> Longest output directory name; longer ones are refused, never cut.
@@ -126,6 +133,7 @@ module sloshdyn_namelist
     type(ground_motion_t) :: ground
     real(wp) :: seismic_t_end = 0        !< &seismic [s]; 0 = default
     integer :: seismic_n_out = 0
+    type(chart_settings) :: chart
     integer :: analysis = ANALYSIS_LINEAR
     real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0   !< 3:1 tuning search
     character(len=path_len) :: directory = 'sloshdyn_output'
@@ -262,6 +270,8 @@ contains
     if (status == SD_OK) call read_lyapunov(file, config%lyapunov, status, message)
     if (status == SD_OK) call read_seismic(file, config%seismic_t_end, config%seismic_n_out, &
                                            status, message)
+    if (status == SD_OK) call read_chart(file, config%analysis == ANALYSIS_STABILITY_CHART, &
+                                         config%chart, status, message)
     if (status == SD_OK) call read_study(file, config, status, message)
     ! a study file describes no analysis of the executable: the default one is not checked
     if (status == SD_OK .and. .not. (config%study%given .and. .not. file%groups(G_ANALYSIS)%given)) &
@@ -284,6 +294,7 @@ contains
     type(sweep_settings) :: sweep
     type(response_settings) :: response
     type(lyapunov_options) :: lyapunov
+    type(chart_settings) :: chart
     character(len=path_len) :: directory
     type(run_config) :: study_config
     real(wp) :: groups(8), A, rho, t_end
@@ -307,6 +318,7 @@ contains
     call read_response(file, .false., response, status, message)
     call read_lyapunov(file, lyapunov, status, message)
     call read_seismic(file, t_end, n_out, status, message)
+    call read_chart(file, .false., chart, status, message)
     call read_study(file, study_config, status, message)
     text = file%description
   end subroutine namelist_defaults
@@ -1122,6 +1134,86 @@ contains
     options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every)
   end subroutine read_lyapunov
 
+  !> &chart: a stability chart of the slow flow (sloshdyn_stability_chart): the model, the
+  !> parameters on the axes and their box, the grid, the settings of the runs and curves.
+  subroutine read_chart(file, needed, settings, status, message)
+    type(input_file), intent(inout) :: file
+    logical, intent(in) :: needed
+    type(chart_settings), intent(out) :: settings
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=word_len) :: model, x, y
+    real(wp) :: x_min, x_max, y_min, y_max
+    integer :: n_x, n_y, n_scan, max_points, max_curves, brute_force_starts, threads
+    type(group_reader) :: reader
+    namelist /chart/ model, x, y, x_min, x_max, y_min, y_max, n_x, n_y, n_scan, max_points, &
+                     max_curves, brute_force_starts, threads
+
+    model = chart_models(settings%model); x = 'rho'; y = 'A'
+    x_min = 0; x_max = 0; y_min = 0; y_max = 0
+    n_x = settings%n_columns; n_y = settings%n_levels; n_scan = settings%response%n_scan
+    max_points = settings%max_points; max_curves = settings%max_curves
+    brute_force_starts = settings%brute_force_starts
+    threads = settings%threads
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_CHART, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=chart, iostat=reader%ios)
+      else
+        read (reader%text, nml=chart, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK .or. .not. needed) return
+    call require(file, G_CHART, 'x_min', status, message)
+    call require(file, G_CHART, 'x_max', status, message)
+    call require(file, G_CHART, 'y_min', status, message)
+    call require(file, G_CHART, 'y_max', status, message)
+    if (status /= SD_OK) return
+    settings%model = findloc_word(chart_models, model)
+    if (settings%model == 0) call fail(status, message, "&chart: model = '"// &
+                                       trim(adjustl(model))//"' is not known; allowed: "// &
+                                       join(chart_models))
+    settings%parameters = [axis_code(x), axis_code(y)]
+    if (status == SD_OK .and. any(settings%parameters == 0)) &
+      call fail(status, message, "&chart: x = '"//trim(adjustl(x))//"', y = '"// &
+                trim(adjustl(y))//"': the axes are two of rho, A, gamma (x: rho or A)")
+    if (status /= SD_OK) return
+    settings%p_min = [x_min, y_min]
+    settings%p_max = [x_max, y_max]
+    settings%n_columns = n_x
+    settings%n_levels = n_y
+    settings%response%n_scan = n_scan
+    settings%max_points = max_points
+    settings%max_curves = max_curves
+    settings%brute_force_starts = brute_force_starts
+    settings%threads = threads
+    call check_chart_settings(settings, status, message)
+    if (status /= SD_OK) message = '&chart: '//trim(message)
+  end subroutine read_chart
+
+  !> The chart parameter code (CHART_*) of an axis name, 0 if there is none.
+  pure integer function axis_code(word) result(code)
+    character(len=*), intent(in) :: word
+    integer :: k
+    code = 0
+    do k = CHART_RHO, CHART_GAMMA
+      if (chart_parameter_name(k) == trim(adjustl(word))) code = k
+    end do
+  end function axis_code
+
+  !> The index of a word in a list (blanks and case of the word ignored), 0 if absent.
+  pure integer function findloc_word(list, word) result(k)
+    character(len=*), intent(in) :: list(:), word
+    integer :: i
+    k = 0
+    do i = 1, size(list)
+      if (lower(trim(list(i))) == lower(trim(adjustl(word)))) k = i
+    end do
+  end function findloc_word
+
   !> The rules that tie the groups to the analysis asked for.
   subroutine check_analysis(config, status, message)
     type(run_config), intent(inout) :: config
@@ -1163,7 +1255,7 @@ contains
       call check_steady(first, config%steady, status, message)
       if (status /= SD_OK) message = trim(merge('&excitation', '&steady    ', &
                                                 index(message, 'rho') == 1))//': '//trim(message)
-    case (ANALYSIS_FREQUENCY_RESPONSE)
+    case (ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_STABILITY_CHART)
       call require_stable_trivial(config%model, status, message)
     case (ANALYSIS_PERIODIC_RESPONSE)
       call require_stable_trivial(config%model, status, message)

@@ -11,8 +11,7 @@ module sloshdyn_results
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_IO_ERROR
   use sloshdyn_text, only: num2str
-  use sloshdyn_tables, only: table_header, table_formats, special_kind_name, verdict_name, &
-                             source_name
+  use sloshdyn_tables, only: table_header, table_formats, code_name
   use sloshdyn_files, only: make_directory, rename_file, remove_file, process_id
   implicit none
   private
@@ -107,12 +106,8 @@ contains
         select case (formats(i:i))
         case ('i')
           write (field, '(i0)') nint(data(i, j))
-        case ('s')
-          field = special_kind_name(nint(data(i, j)))
-        case ('v')
-          field = verdict_name(nint(data(i, j)))
-        case ('c')
-          field = source_name(nint(data(i, j)))
+        case ('s', 'v', 'c', 'k', 'd', 'e')
+          field = code_name(formats(i:i), nint(data(i, j)))
         case default
           write (field, '(es24.16e3)') data(i, j)
         end select

@@ -7,8 +7,8 @@
 module sloshdyn_tables
   implicit none
   private
-  public :: table_header, table_formats, table_size, kind_names, special_kind_name, motion_name, &
-            verdict_name, source_name
+  public :: table_header, table_formats, table_size, kind_names, code_name, special_kind_name, &
+            motion_name, verdict_name
   public :: SPECIAL_FOLD, SPECIAL_HOPF, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
             SPECIAL_NEIMARK_SACKER
   public :: MOTION_PERIODIC, MOTION_QUASI_PERIODIC, MOTION_IRREGULAR, MOTION_SETTLING
@@ -24,6 +24,11 @@ module sloshdyn_tables
   public :: ROUTH_SIZE, COUNTS_SIZE
   public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS
+  public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
+            CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
+            CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
+            CODIM2_FOLD_FLIP, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, &
+            CHART_GRID_ROWS
 
   !> Special points on branches (slow flow and periodic orbits).
   integer, parameter :: SPECIAL_FOLD = 1, SPECIAL_HOPF = 2, SPECIAL_BRANCH_POINT = 3, &
@@ -37,6 +42,19 @@ module sloshdyn_tables
   !> Stability verdicts of equilibria, from -1.
   integer, parameter :: VERDICT_UNSTABLE = -1, VERDICT_MARGINAL = 0, VERDICT_STABLE = 1
   character(len=*), parameter :: verdict_kinds = 'unstable,marginal,stable'
+  !> Stability charts (sloshdyn_stability_chart): the kinds of bifurcation curves, of their
+  !> codimension-2 points (0: a regular point), and of the ends of a curve.
+  integer, parameter :: CHART_FOLD = 1, CHART_HOPF = 2, CHART_PERIOD_DOUBLING = 3, &
+                        CHART_NEIMARK_SACKER = 4
+  character(len=*), parameter :: curve_kinds = 'fold,hopf,period_doubling,neimark_sacker'
+  integer, parameter :: CODIM2_NONE = 0, CODIM2_BOGDANOV_TAKENS = 1, CODIM2_CUSP_POINT = 2, &
+                        CODIM2_FOLD_HOPF = 3, CODIM2_GENERALISED_HOPF = 4, &
+                        CODIM2_RESONANCE_1_1 = 5, CODIM2_RESONANCE_1_2 = 6, &
+                        CODIM2_FOLD_FLIP = 7
+  character(len=*), parameter :: codim2_kinds = 'none,bogdanov_takens,cusp,fold_hopf,'// &
+    'generalised_hopf,resonance_1_1,resonance_1_2,fold_flip'
+  character(len=*), parameter :: curve_end_kinds = 'start,box,closed,x_max,bogdanov_takens,'// &
+    'max_points,failed'
 
   !> Time history rows (after tau): state, modal coordinates (eq 34), impact force (eq 4),
   !> angles [rad].
@@ -85,6 +103,17 @@ module sloshdyn_tables
     'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
     'first_roof_time [s],roof_impacts'
   integer, parameter :: PEAKS_SIZE = 19
+  !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
+  !> the curves' ends, and the grid's cells with their counts of steady states.
+  character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,x1,x2,x3,x4,'// &
+    'omega,l1,codim2'
+  character(len=*), parameter :: chart_codim2_columns = 'kind,curve,rho,A,gamma,omega'
+  character(len=*), parameter :: chart_end_columns = 'curve,kind,n_points,complete,first_end,'// &
+    'last_end,status'
+  character(len=*), parameter :: chart_grid_columns = 'rho,A,gamma,n_stable,n_steady,'// &
+    'near_curve,brute_force_stable'
+  integer, parameter :: CHART_CURVE_ROWS = 12, CHART_CODIM2_ROWS = 6, CHART_END_ROWS = 7, &
+                        CHART_GRID_ROWS = 7
   character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
     'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
     'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
@@ -149,6 +178,14 @@ contains
       header = codes_columns_names
     case ('harmonic_sweep')
       header = harmonic_sweep_columns
+    case ('chart_curves')
+      header = chart_curve_columns
+    case ('chart_codim2')
+      header = chart_codim2_columns
+    case ('chart_ends')
+      header = chart_end_columns
+    case ('chart_grid')
+      header = chart_grid_columns
     case ('tank_si')
       header = tank_si_columns
     case default
@@ -157,7 +194,8 @@ contains
   end function table_header
 
   !> How each column of a result table is written, one letter per column: r real, i integer,
-  !> s special-point kind name, v verdict name, c the source of a design-code row.
+  !> and names of codes (code_name): s special-point kind, v verdict, c the source of a
+  !> design-code row, k curve kind, d codimension-2 kind, e curve end.
   pure function table_formats(name) result(formats)
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: formats
@@ -182,6 +220,14 @@ contains
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')
       formats = 'rrrrrriir'
+    case ('chart_curves')
+      formats = 'ikrrrrrrrrrd'
+    case ('chart_codim2')
+      formats = 'dirrrr'
+    case ('chart_ends')
+      formats = 'ikiieei'
+    case ('chart_grid')
+      formats = 'rrriiii'
     case default
       formats = repeat('r', table_size(name))
     end select
@@ -219,11 +265,38 @@ contains
     case ('source')
       names = code_sources
       first = 1
+    case ('curve')
+      names = curve_kinds
+      first = CHART_FOLD
+    case ('codim2')
+      names = codim2_kinds
+      first = CODIM2_NONE
+    case ('curve_end')
+      names = curve_end_kinds
+      first = 0
     case default
       names = ''
       first = 0
     end select
   end subroutine kind_names
+
+  !> The name of a code in a table column written by format letter (table_formats): s special,
+  !> v verdict, c source, k curve kind, d codimension-2 kind, e curve end.
+  pure function code_name(letter, code) result(name)
+    character, intent(in) :: letter
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name, names
+    integer :: first
+    select case (letter)
+    case ('s'); call kind_names('special', names, first)
+    case ('v'); call kind_names('verdict', names, first)
+    case ('c'); call kind_names('source', names, first)
+    case ('k'); call kind_names('curve', names, first)
+    case ('d'); call kind_names('codim2', names, first)
+    case default; call kind_names('curve_end', names, first)
+    end select
+    name = item(names, code - first + 1)
+  end function code_name
 
   pure function special_kind_name(code) result(name)
     integer, intent(in) :: code
@@ -236,12 +309,6 @@ contains
     character(len=len_trim(item(motion_kinds, code - MOTION_PERIODIC + 1))) :: name
     name = item(motion_kinds, code - MOTION_PERIODIC + 1)
   end function motion_name
-
-  pure function source_name(code) result(name)
-    integer, intent(in) :: code
-    character(len=:), allocatable :: name
-    name = item(code_sources, code)
-  end function source_name
 
   pure function verdict_name(code) result(name)
     integer, intent(in) :: code

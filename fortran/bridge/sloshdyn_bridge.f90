@@ -617,6 +617,96 @@ contains
     status = code
   end subroutine lyapunov_exponent
 
+  !> The slow flow (3:1 internal resonance: resonance = 1, n = 4; none: 0, n = 2) at the model's
+  !> rho and A: f(x) and its Jacobian (sloshdyn_slowflow_chart; x = Re B1, Im B1, Re B2, Im B2).
+  subroutine slow_flow_field(rpar, ipar, resonance, n, x, f, jacobian, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_slowflow_chart, only: field_t => slow_flow_field, make_slow_flow_field, &
+                                       CHART_RHO, CHART_A
+    use sloshdyn_status, only: SD_BAD_INPUT
+    use sloshdyn_text, only: num2str
+    real(c_double), intent(in) :: rpar(10), x(n)
+    integer(c_int), intent(in) :: ipar(2), resonance, n
+    real(c_double), intent(out) :: f(n), jacobian(n, n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(field_t) :: field
+    real(c_double) :: fp(n, 2)
+    integer :: info
+    f = 0
+    jacobian = 0
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call make_slow_flow_field(model, resonance /= 0, [CHART_RHO, CHART_A], field, &
+                                             info, message)
+    if (info == 0 .and. n /= field%dimension()) then
+      info = SD_BAD_INPUT
+      message = 'x has '//num2str(int(n))//' components: the slow flow has '// &
+                num2str(field%dimension())
+    end if
+    if (info == 0) call field%evaluate(x, [model%excitation%rho, model%excitation%A], f, &
+                                       jacobian, fp)
+    status = info
+  end subroutine slow_flow_field
+
+  ! ---- stability charts -----------------------------------------------------------------------
+
+  !> The &chart defaults (layouts' chart array).
+  subroutine chart_defaults(chart)
+    use sloshdyn_stability_chart, only: chart_settings
+    use sloshdyn_layouts, only: from_chart
+    real(c_double), intent(out) :: chart(14)
+    type(chart_settings) :: defaults
+    chart = from_chart(defaults)
+  end subroutine chart_defaults
+
+  !> A stability chart of the model's slow flow (sloshdyn_stability_chart) as its four tables,
+  !> each with room for max_* columns; sizes = the columns used [curve points, codimension-2
+  !> points, curves, cells] (if a table is too small: status SD_CAPACITY, sizes = those
+  !> needed). complete = 0 if a curve stopped early; notes = a line per such curve.
+  subroutine stability_chart(rpar, ipar, settings, max_points, max_codim2, max_curves, n_cells, &
+                             curves, codim2, ends, grid, sizes, complete, notes, status, message)
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_status, only: SD_CAPACITY
+    use sloshdyn_text, only: num2str
+    use sloshdyn_stability_chart, only: chart_result, core => stability_chart, chart_tables, &
+                                        chart_table_sizes
+    use sloshdyn_layouts, only: to_chart
+    real(c_double), intent(in) :: rpar(10), settings(14)
+    integer(c_int), intent(in) :: ipar(2), max_points, max_codim2, max_curves, n_cells
+    real(c_double), intent(out) :: curves(12, max_points), codim2(6, max_codim2), &
+                                   ends(7, max_curves), grid(7, n_cells)
+    integer(c_int), intent(out) :: sizes(4), complete, status
+    character(len=4096), intent(out) :: notes
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(chart_result) :: chart
+    integer :: info, used(4), c
+    curves = 0; codim2 = 0; ends = 0; grid = 0; sizes = 0; complete = 0
+    notes = ''
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    if (info == 0) call core(model, to_chart(settings), chart, info, message)
+    if (info == 0) then
+      call chart_table_sizes(chart, used(1), used(2), used(3), used(4))
+      sizes = used
+      if (any(used > [int(max_points), int(max_codim2), int(max_curves), int(n_cells)])) then
+        info = SD_CAPACITY
+        message = 'the chart needs tables of '//num2str(used(1))//' curve points, '// &
+                  num2str(used(2))//' codimension-2 points, '//num2str(used(3))//' curves, '// &
+                  num2str(used(4))//' cells'
+      else
+        call chart_tables(chart, curves(:, 1:used(1)), codim2(:, 1:used(2)), &
+                          ends(:, 1:used(3)), grid(:, 1:used(4)))
+        complete = merge(1, 0, chart%complete)
+        do c = 1, chart%n_curves
+          if (.not. chart%curves(c)%complete) notes = trim(notes)//'curve '//num2str(c)//': '// &
+                                                      trim(chart%curves(c)%message)//new_line('a')
+        end do
+      end if
+    end if
+    status = info
+  end subroutine stability_chart
+
   ! ---- a tank in SI units under ground motion (layouts tank(17), ground(4) of sloshdyn_layouts;
   ! ---- samples(n) the record's accelerations [m/s^2], n = 0 for harmonic motion) -------------
 
@@ -871,8 +961,9 @@ contains
   !> ground(4) in their layouts with has_tank, has_ground (1/0) and n_samples (the record's
   !> length, for input_record); seismic = [t_end, n_out]; integration, steady, response and
   !> lyapunov in their layouts; simulation = [t_end, n_out, y0(4)]; sweep = [parameter (1 rho,
-  !> 2 A), start, stop, n_points, direction (1 up, 2 down, 3 both), carry_state (1/0),
-  !> threads]; response_range = [resonance (1 3:1, 0 none), parameter, start, stop].
+  !> 2 A, 3 frequency [Hz]), start, stop, n_points, direction (1 up, 2 down, 3 both),
+  !> carry_state (1/0), threads]; response_range = [resonance (1 3:1, 0 none), parameter, start,
+  !> stop]; chart in its layout.
   !> study = [given (1/0), kind (1 response_map, 2 basins), workers, worker_kind (1 processes,
   !> 2 threads), points_per_task, frequency_start, frequency_stop, n_frequencies,
   !> amplitude_start, amplitude_stop, n_amplitudes, continuation (1 none, 2 up, 3 down, 4 both),
@@ -881,17 +972,17 @@ contains
   !> study_scheduler, study_records the &study strings.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
                         has_ground, ground, n_samples, seismic, integration, steady, response, &
-                        lyapunov, simulation, sweep, response_range, study, study_store, &
+                        lyapunov, simulation, sweep, response_range, chart, study, study_store, &
                         study_figure, study_scheduler, study_records, status, message)
     use sloshdyn_model, only: model_to_arrays
     use sloshdyn_namelist, only: run_config, core => read_input
     use sloshdyn_layouts, only: from_ode_options, from_steady, from_response, from_lyapunov, &
-                                from_tank, from_ground
+                                from_tank, from_ground, from_chart
     character(len=*), intent(in) :: path
     real(c_double), intent(out) :: rpar(10), analysis_values(3), tank(17), ground(4), &
                                    seismic(2), integration(7), steady(7), response(10), &
                                    lyapunov(3), simulation(6), sweep(7), response_range(4), &
-                                   study(22)
+                                   chart(14), study(22)
     integer(c_int), intent(out) :: ipar(2), analysis, has_tank, has_ground, n_samples, status
     character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler, &
                                         study_records
@@ -900,7 +991,7 @@ contains
     integer :: info, ints(2)
     rpar = 0; ipar = 0; analysis = 0; analysis_values = 0; tank = 0; integration = 0
     steady = 0; response = 0; lyapunov = 0; simulation = 0; sweep = 0; response_range = 0
-    has_tank = 0; has_ground = 0; ground = 0; n_samples = 0; seismic = 0
+    has_tank = 0; has_ground = 0; ground = 0; n_samples = 0; seismic = 0; chart = 0
     directory = ''; study = 0; study_store = ''; study_figure = ''; study_scheduler = ''
     study_records = ''
     call core(path, config, info, message)
@@ -919,6 +1010,7 @@ contains
       if (allocated(config%ground%acceleration)) n_samples = size(config%ground%acceleration)
     end if
     seismic = [config%seismic_t_end, real(config%seismic_n_out, c_double)]
+    chart = from_chart(config%chart)
     integration = from_ode_options(config%integration, config%method)
     steady = from_steady(config%steady)
     response = from_response(config%response%options)
@@ -999,8 +1091,8 @@ contains
   !> (list = 'analyses'), the integration methods ('methods', from code 0), or the kinds of a
   !> kind list ('special', 'motion', 'verdict'); first = the code of the first name.
   subroutine names(list, text, first, status, message)
-    use sloshdyn_tables, only: table_header, kind_names
-    use sloshdyn_namelist, only: known_analyses
+    use sloshdyn_tables, only: table_header, table_formats, kind_names
+    use sloshdyn_namelist, only: known_analyses, chart_models
     use sloshdyn_integrator, only: method_names
     character(len=*), intent(in) :: list
     character(len=1024), intent(out) :: text
@@ -1013,11 +1105,15 @@ contains
     code = 1
     if (index(list, 'table:') == 1) then
       joined = table_header(list(7:))
+    else if (index(list, 'formats:') == 1) then
+      joined = table_formats(list(9:))
     else if (list == 'analyses') then
       joined = join(known_analyses)
     else if (list == 'methods') then
       joined = join(method_names)
       code = lbound(method_names, 1)
+    else if (list == 'chart_models') then
+      joined = join(chart_models)
     else
       call kind_names(list, joined, code)
     end if

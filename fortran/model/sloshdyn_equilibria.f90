@@ -5,6 +5,7 @@ module sloshdyn_equilibria
   use sloshdyn_status, only: SD_OK, SD_CAPACITY
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
+  use sloshdyn_excitation, only: excitation_t
   use sloshdyn_motion, only: motion_jacobian
   use sloshdyn_lapack, only: eigenvalues
   use sloshdyn_roots, only: scalar_function, find_all_roots
@@ -167,7 +168,7 @@ contains
       return
     end if
     unforced = model
-    unforced%excitation%A = 0
+    unforced%excitation = excitation_t()   ! no forcing, of any kind
     do i = 1, n_theta
       do j = 1, n_phi
         n_eq = n_eq + 1

@@ -179,7 +179,8 @@ contains
     call check_real('target_sa', sa, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'the target spectral acceleration must be >= 0 [m/s^2]', status, message)
     if (status /= SD_OK) return
-    call ground_spectrum(ground, [period], damping, 0.0_wp, 20*period, sd, sv, psa, status, &
+    ! with the free-vibration tail of GroundMotion.response_spectrum's default (5 periods)
+    call ground_spectrum(ground, [period], damping, 5*period, 20*period, sd, sv, psa, status, &
                          message)
     if (status /= SD_OK) return
     if (psa(1) == 0) then

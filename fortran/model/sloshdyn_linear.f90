@@ -6,6 +6,7 @@ module sloshdyn_linear
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, require_stable_trivial
+  use sloshdyn_excitation, only: excitation_t
   use sloshdyn_motion, only: motion_jacobian
   use sloshdyn_lapack, only: eigenvalues
   use sloshdyn_roots, only: scalar_function, find_all_roots
@@ -90,7 +91,7 @@ contains
     undamped%gamma = 0
     undamped%delta = 0
     undamped%zeta = 0
-    undamped%excitation%A = 0
+    undamped%excitation = excitation_t()   ! no forcing, of any kind
     undamped%b_coef(5) = 0
     undamped%a_coef(5) = 0
     call motion_jacobian(undamped, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], jac)

@@ -17,9 +17,9 @@
 !> D^3 f[u, v, w] are the sums over the placements of the directions (U = u1 + i u2, ...).
 !>
 !> gamma enters only through the modal damping: gamma11 and gamma22 are linear in gamma (the rod
-!> damping -gamma x2' is the only term linear in a velocity; the c_ij come from terms with zero
-!> or two velocities), so with gamma a chart parameter they are taken from the modal expansion at
-!> gamma and at gamma + 1.
+!> damping -gamma x2' and the sloshing damping -2 zeta x1' are the only terms linear in a
+!> velocity; the c_ij come from terms with zero or two velocities), so with gamma a chart
+!> parameter they are taken from the modal expansion at gamma and at gamma + 1.
 module sloshdyn_slowflow_chart
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT

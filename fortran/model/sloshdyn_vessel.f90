@@ -122,7 +122,8 @@ contains
     call check_real('sloshing_damping', tank%sloshing_damping, 0.0_wp, 1.0_wp, .false., .true., &
                     'the sloshing damping ratio must lie in [0, 1)', status, message)
     call check_real('support_height', tank%support_height, 0.0_wp, big, .false., .true., &
-                    'the support height must be > 0 [m] (0: the tank height)', status, message)
+                    'the support height must be >= 0 [m] (0: the tank height h + freeboard)', &
+                    status, message)
     if (status == SD_OK .and. (tank%support_frequency > 0 .eqv. tank%support_stiffness > 0)) then
       status = SD_BAD_INPUT
       message = 'support_frequency = '//num2str(tank%support_frequency)//' and '// &

@@ -72,7 +72,20 @@
 !> codim2_point list), fold_curve and hopf_curve (a curve through a start point),
 !> first_lyapunov_coefficient, correct_to_curve (a fold or Hopf point at a fixed parameter),
 !> curve_crossings (where a computed curve crosses p_k = level), check_curve_options, and the
-!> CURVE_*, CODIM2_* and END_* codes with codim2_name and curve_end_name.
+!> CURVE_*, CODIM2_* and END_* codes with codim2_name, curve_kind_name and curve_end_name.
+!>
+!> Extension interface (for defining systems in other modules, as the integrator components of
+!> sloshdyn_ode are public for the methods): a field chooses the defining system of each curve
+!> kind through its binding defining_system (here: fold and Hopf systems of equilibria;
+!> sloshdyn_map_bifurcation overrides it for fixed points of maps: fold, period-doubling and
+!> Neimark-Sacker curves). A defining system extends curve_system (or fold_system, hopf_system)
+!> and names its own test functions (n_tests <= max_curve_tests) and codimension-2 kinds
+!> (codim2_kind, confirm_codim2, codim2_frequency, masked_by, terminal, check_point,
+!> frequency_of); everything else -- segments, border refreshes, box, closure, locating the
+!> codimension-2 points, end reasons, correct_to_curve and curve_crossings -- is shared;
+!> curve_of_kind traces a curve of any kind (fold_curve and hopf_curve call it). The helpers such
+!> systems need (setup_system, split_x_p, point_x_p, bordered_vectors, inverse_iteration,
+!> trace_curve, correct_state) are public for them.
 module sloshdyn_bifurcation
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -91,16 +104,35 @@ module sloshdyn_bifurcation
             field_second_derivative, field_third_derivative
   public :: curve_options, bifurcation_curve, codim2_point
   public :: fold_curve, hopf_curve, first_lyapunov_coefficient, correct_to_curve, &
-            curve_crossings, check_curve_options, codim2_name, curve_end_name
-  public :: CURVE_FOLD, CURVE_HOPF, CODIM2_BT, CODIM2_CUSP, CODIM2_ZH, CODIM2_GH, &
-            END_START, END_BOX, END_CLOSED, END_X_MAX, END_BT, END_MAX_POINTS, END_FAILED
+            curve_crossings, check_curve_options, codim2_name, curve_end_name, curve_kind_name
+  public :: CURVE_FOLD, CURVE_HOPF, CURVE_PERIOD_DOUBLING, CURVE_NEIMARK_SACKER, &
+            CODIM2_BT, CODIM2_CUSP, CODIM2_ZH, CODIM2_GH, CODIM2_R1, CODIM2_R2, CODIM2_R3, &
+            CODIM2_R4, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS, CODIM2_FLIP_NS, &
+            END_START, END_BOX, END_CLOSED, END_X_MAX, END_BT, END_MAX_POINTS, END_FAILED, &
+            END_RESONANCE
+  ! the extension interface (module header)
+  public :: curve_system, fold_system, hopf_system, system_refresh, system_diagnose, &
+            system_alignment, system_codim2_kind, max_curve_tests, trace_curve, &
+            correct_state, setup_system, split_x_p, point_x_p, bordered_vectors, &
+            inverse_iteration, field_defining_system, curve_of_kind
 
-  integer, parameter :: CURVE_FOLD = 1, CURVE_HOPF = 2
+  !> Curve kinds: of equilibria of flows (fold, Hopf) and of fixed points of maps (fold,
+  !> period doubling, Neimark-Sacker; sloshdyn_map_bifurcation).
+  integer, parameter :: CURVE_FOLD = 1, CURVE_HOPF = 2, CURVE_PERIOD_DOUBLING = 3, &
+                        CURVE_NEIMARK_SACKER = 4
   !> Kinds of codimension-2 points (codim2_name gives the words).
   integer, parameter :: CODIM2_BT = 1    !< Bogdanov-Takens: double zero eigenvalue
   integer, parameter :: CODIM2_CUSP = 2  !< cusp: fold with a = 0
   integer, parameter :: CODIM2_ZH = 3    !< zero-Hopf (fold-Hopf): 0 and +-i omega
   integer, parameter :: CODIM2_GH = 4    !< generalised Hopf (Bautin): l1 = 0
+  !> ... of fixed points of maps (multipliers mu of M = dP/dx)
+  integer, parameter :: CODIM2_R1 = 5    !< 1:1 resonance: double mu = +1 (Jordan block)
+  integer, parameter :: CODIM2_R2 = 6    !< 1:2 resonance: double mu = -1 (Jordan block)
+  integer, parameter :: CODIM2_R3 = 7    !< 1:3 resonance: Neimark-Sacker with theta = 2 pi/3
+  integer, parameter :: CODIM2_R4 = 8    !< 1:4 resonance: Neimark-Sacker with theta = pi/2
+  integer, parameter :: CODIM2_FOLD_FLIP = 9   !< fold-flip: mu = +1 and mu = -1
+  integer, parameter :: CODIM2_FOLD_NS = 10    !< fold-Neimark-Sacker: +1 and e^{+-i theta}
+  integer, parameter :: CODIM2_FLIP_NS = 11    !< flip-Neimark-Sacker: -1 and e^{+-i theta}
   !> How an end of a curve came about (curve_end_name gives the words).
   integer, parameter :: END_START = 0       !< the start point (a curve traced one way only)
   integer, parameter :: END_BOX = 1         !< on the boundary of the parameter box
@@ -109,6 +141,11 @@ module sloshdyn_bifurcation
   integer, parameter :: END_BT = 4          !< Hopf curve at a Bogdanov-Takens point
   integer, parameter :: END_MAX_POINTS = 5  !< max_points computed (incomplete)
   integer, parameter :: END_FAILED = 6      !< no continuation step converged (incomplete)
+  !> Neimark-Sacker curve at a 1:1 or 1:2 resonance (the pair leaves the unit circle as a
+  !> double +1 or -1)
+  integer, parameter :: END_RESONANCE = 7
+  !> The most test functions a defining system may have.
+  integer, parameter :: max_curve_tests = 6
 
   !> A vector field f(x; p1, p2) with its derivatives. evaluate is required; the higher
   !> derivatives default to finite differences of the Jacobian (central, steps eps^(1/3) and
@@ -120,6 +157,8 @@ module sloshdyn_bifurcation
     procedure :: jacobian_derivative => fd_jacobian_derivative
     procedure :: second_derivative => default_second_derivative
     procedure :: third_derivative => fd_third_derivative
+    !> the defining system of a curve kind (extension interface; fields of flows: fold, Hopf)
+    procedure :: defining_system => field_defining_system
   end type two_parameter_field
 
   abstract interface
@@ -183,22 +222,27 @@ module sloshdyn_bifurcation
     integer :: kind = 0                !< CODIM2_*
     integer :: index = 0               !< its column in the curve
     real(wp) :: p(2) = 0
-    real(wp) :: omega = 0              !< zero-Hopf, generalised Hopf: the frequency; else 0
+    !> zero-Hopf, generalised Hopf: the frequency; maps: the angle theta of the multipliers
+    !> on the unit circle (R1: 0, R2: pi, R3: 2 pi/3, R4: pi/2, fold-NS, flip-NS: theta); else 0
+    real(wp) :: omega = 0
     real(wp), allocatable :: x(:)
   end type codim2_point
 
   !> A computed curve, columns in order along it (the start point is somewhere inside when the
   !> curve was traced both ways).
   type :: bifurcation_curve
-    integer :: kind = 0                  !< CURVE_FOLD or CURVE_HOPF
+    integer :: kind = 0                  !< CURVE_*
     integer :: n = 0                     !< dimension of x
     integer :: n_points = 0
     real(wp), allocatable :: x(:, :)     !< (n, n_points)
     real(wp), allocatable :: p(:, :)     !< (2, n_points)
-    real(wp), allocatable :: eig_re(:, :), eig_im(:, :)  !< eigenvalues of J (n, n_points)
-    !> test functions (3, n_points): fold (BT, cusp, ZH), Hopf (BT = kappa, ZH = det J, GH = l1)
+    !> eigenvalues of J (n, n_points); of a map's curve: its multipliers (of M)
+    real(wp), allocatable :: eig_re(:, :), eig_im(:, :)
+    !> test functions (n_tests, n_points): fold (BT, cusp, ZH), Hopf (BT = kappa, ZH = det J,
+    !> GH = l1) (3 each); those of map curves: sloshdyn_map_bifurcation
     real(wp), allocatable :: tests(:, :)
-    !> Hopf: omega = sqrt(kappa), or -sqrt(-kappa) on a neutral-saddle part; fold: 0
+    !> Hopf: omega = sqrt(kappa), or -sqrt(-kappa) on a neutral-saddle part; fold: 0;
+    !> Neimark-Sacker: theta (sloshdyn_map_bifurcation)
     real(wp), allocatable :: omega(:)
     real(wp), allocatable :: l1(:)       !< Hopf: first Lyapunov coefficient (NaN if kappa <= 0)
     integer, allocatable :: special(:)   !< CODIM2_* of the point, 0 for a regular point
@@ -216,20 +260,36 @@ module sloshdyn_bifurcation
     integer :: start_index = 0           !< column of the start point
   end type bifurcation_curve
 
-  ! ---- private ----------------------------------------------------------------------------
+  ! ---- the extension interface (module header) -----------------------------------------
 
   !> An augmented system in scaled variables: point z = (x/x_scale, extra, q_other), lambda =
   !> q_lam, q = (p - p_ref)/p_scale; the state s = (x, extra, p1, p2) is the same point
-  !> unscaled in x and p.
+  !> unscaled in x and p. Its test functions tests(1:n_tests) name codimension-2 points by
+  !> their zeros (codim2_kind).
   type, abstract, extends(parametrised_system) :: curve_system
     class(two_parameter_field), allocatable :: field
+    integer :: kind = 0                   !< CURVE_*
     integer :: n = 0, n_extra = 0
+    integer :: n_tests = 3                !< <= max_curve_tests
     integer :: lam = 2, other = 1
     real(wp) :: x_scale = 1, p_scale(2) = 1, p_ref(2) = 0
   contains
     procedure(system_refresh), deferred :: refresh
     procedure(system_diagnose), deferred :: diagnose
     procedure(system_alignment), deferred :: alignment
+    procedure(system_codim2_kind), deferred :: codim2_kind
+    !> is a located zero of a test a codimension-2 point of its kind? (default: yes)
+    procedure :: confirm_codim2 => confirm_always
+    !> the frequency / angle reported with a codimension-2 point (default 0)
+    procedure :: codim2_frequency => no_codim2_frequency
+    !> a test whose sign change over the same step explains a zero of this one (default 0)
+    procedure :: masked_by => no_mask
+    !> the END_* reason if a codimension-2 kind ends the curve (default 0: it never does)
+    procedure :: terminal => never_terminal
+    !> may a corrected state be a point of the curve? (default: yes)
+    procedure :: check_point => any_point
+    !> the frequency / angle of the state s (default 0)
+    procedure :: frequency_of => no_frequency
   end type curve_system
 
   abstract interface
@@ -252,24 +312,38 @@ module sloshdyn_bifurcation
       real(wp) :: growth
     end function system_alignment
 
-    !> Eigenvalues of J, the three test functions, omega and l1 at the point z = (.., lambda).
+    !> Eigenvalues (of J; of M for maps), the test functions (tests(1:n_tests), the rest NaN),
+    !> omega and l1 at the point z = (.., lambda).
     subroutine system_diagnose(self, z, re, im, tests, omega, l1, status, message)
-      import :: wp, message_len, curve_system
+      import :: wp, message_len, curve_system, max_curve_tests
       class(curve_system), intent(in) :: self
       real(wp), intent(in) :: z(:)
-      real(wp), intent(out) :: re(:), im(:), tests(3), omega, l1
+      real(wp), intent(out) :: re(:), im(:), tests(max_curve_tests), omega, l1
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
     end subroutine system_diagnose
+
+    !> The CODIM2_* kind whose points are the zeros of tests(which).
+    pure integer function system_codim2_kind(self, which) result(kind)
+      import :: curve_system
+      class(curve_system), intent(in) :: self
+      integer, intent(in) :: which
+    end function system_codim2_kind
   end interface
 
+  !> The minimally augmented fold system (module header) on the matrix J + shift I (shift = 0:
+  !> folds; a map's period doubling is a fold system on M + I = (M - I) + 2 I).
   type, extends(curve_system) :: fold_system
     real(wp), allocatable :: b(:), c(:)   !< border vectors
+    real(wp) :: shift = 0
   contains
     procedure :: evaluate => fold_evaluate
     procedure :: refresh => fold_refresh
     procedure :: diagnose => fold_diagnose
     procedure :: alignment => fold_alignment
+    procedure :: codim2_kind => fold_codim2_kind
+    procedure :: confirm_codim2 => fold_confirm
+    procedure :: codim2_frequency => fold_codim2_frequency
   end type fold_system
 
   type, extends(curve_system) :: hopf_system
@@ -280,7 +354,16 @@ module sloshdyn_bifurcation
     procedure :: refresh => hopf_refresh
     procedure :: diagnose => hopf_diagnose
     procedure :: alignment => hopf_alignment
+    procedure :: codim2_kind => hopf_codim2_kind
+    procedure :: confirm_codim2 => hopf_confirm
+    procedure :: codim2_frequency => hopf_codim2_frequency
+    procedure :: masked_by => hopf_masked_by
+    procedure :: terminal => hopf_terminal
+    procedure :: check_point => hopf_check_point
+    procedure :: frequency_of => hopf_frequency_of
   end type hopf_system
+
+  ! ---- private ----------------------------------------------------------------------------
 
   !> A test function along a curve segment: tests(which) of the point, or (which = 0) the
   !> coordinate z(coordinate) - level (for ending on the box).
@@ -332,10 +415,7 @@ contains
     type(bifurcation_curve), intent(out) :: curve
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    call any_curve(field, CURVE_FOLD, x0, p0, options, curve, status, message)
-    if (status /= SD_OK) message = 'fold_curve: '//trim(message)
-    curve%status = status
-    curve%message = message
+    call curve_of_kind(field, CURVE_FOLD, 'fold_curve', x0, p0, options, curve, status, message)
   end subroutine fold_curve
 
   !> The Hopf curve through (x0, p0), a Hopf point of equilibria (approximately: corrected as for
@@ -347,15 +427,32 @@ contains
     type(bifurcation_curve), intent(out) :: curve
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    call any_curve(field, CURVE_HOPF, x0, p0, options, curve, status, message)
-    if (status /= SD_OK) message = 'hopf_curve: '//trim(message)
+    call curve_of_kind(field, CURVE_HOPF, 'hopf_curve', x0, p0, options, curve, status, message)
+  end subroutine hopf_curve
+
+  !> The curve of the given kind (CURVE_*) through (x0, p0), for the public routines here and
+  !> in other modules (sloshdyn_map_bifurcation): the status and message (prefixed by caller)
+  !> are also kept in the curve.
+  subroutine curve_of_kind(field, kind, caller, x0, p0, options, curve, status, message)
+    class(two_parameter_field), intent(in) :: field
+    integer, intent(in) :: kind
+    character(len=*), intent(in) :: caller
+    real(wp), intent(in) :: x0(:), p0(2)
+    type(curve_options), intent(in) :: options
+    type(bifurcation_curve), intent(out) :: curve
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    call any_curve(field, kind, x0, p0, options, curve, status, message)
+    if (status /= SD_OK) message = caller//': '//trim(message)
     curve%status = status
     curve%message = message
-  end subroutine hopf_curve
+  end subroutine curve_of_kind
 
   !> The fold (kind = CURVE_FOLD) or Hopf point (CURVE_HOPF) near (x_guess, p_guess) with
   !> p(fixed) = p_guess(fixed): Newton on the defining system with the other parameter free
   !> (options gives the scales and the Newton settings). omega: the Hopf frequency (0 for a fold).
+  !> For a map (sloshdyn_map_bifurcation) also CURVE_PERIOD_DOUBLING and CURVE_NEIMARK_SACKER
+  !> (omega: the angle theta of the multipliers).
   subroutine correct_to_curve(field, kind, x_guess, p_guess, fixed, options, x, p, omega, &
                               status, message)
     class(two_parameter_field), intent(in) :: field
@@ -378,12 +475,9 @@ contains
       status = SD_BAD_INPUT
       message = 'fixed = '//num2str(fixed)//' is out of range: it must be 1 or 2'
     end if
-    if (status == SD_OK .and. (kind /= CURVE_FOLD .and. kind /= CURVE_HOPF)) then
-      status = SD_BAD_INPUT
-      message = 'kind = '//num2str(kind)//' is out of range: CURVE_FOLD (1) or CURVE_HOPF (2)'
-    end if
-    if (status == SD_OK) call make_proto(field, kind, x_guess, p_guess, options, proto, s0, &
-                                         status, message)
+    if (status == SD_OK) call check_kind(kind, status, message)
+    if (status == SD_OK) call field%defining_system(kind, x_guess, p_guess, options, proto, s0, &
+                                                    status, message)
     if (status == SD_OK) call correct_state(proto, s0, [fixed], options, sys, s, status, message)
     if (status /= SD_OK) then
       message = 'correct_to_curve: '//trim(message)
@@ -391,7 +485,7 @@ contains
     end if
     x = s(1:n)
     p = s(size(s) - 1:size(s))
-    if (kind == CURVE_HOPF) omega = sqrt(max(s(2*n + 1)*curve_kappa_scale(proto), 0.0_wp))
+    omega = sys%frequency_of(s)
   end subroutine correct_to_curve
 
   !> The points of a computed curve where p(k) = level, each corrected onto the curve
@@ -533,9 +627,29 @@ contains
     case (CODIM2_CUSP); name = 'cusp'
     case (CODIM2_ZH);   name = 'zero-Hopf'
     case (CODIM2_GH);   name = 'generalised Hopf'
+    case (CODIM2_R1);   name = '1:1 resonance'
+    case (CODIM2_R2);   name = '1:2 resonance'
+    case (CODIM2_R3);   name = '1:3 resonance'
+    case (CODIM2_R4);   name = '1:4 resonance'
+    case (CODIM2_FOLD_FLIP); name = 'fold-flip'
+    case (CODIM2_FOLD_NS);   name = 'fold-Neimark-Sacker'
+    case (CODIM2_FLIP_NS);   name = 'flip-Neimark-Sacker'
     case default;       name = 'regular'
     end select
   end function codim2_name
+
+  !> Words for a CURVE_* code.
+  pure function curve_kind_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(len=:), allocatable :: name
+    select case (kind)
+    case (CURVE_FOLD);            name = 'fold'
+    case (CURVE_HOPF);            name = 'Hopf'
+    case (CURVE_PERIOD_DOUBLING); name = 'period-doubling'
+    case (CURVE_NEIMARK_SACKER);  name = 'Neimark-Sacker'
+    case default;                 name = 'unknown'
+    end select
+  end function curve_kind_name
 
   !> Words for an END_* code.
   pure function curve_end_name(reason) result(name)
@@ -549,6 +663,7 @@ contains
     case (END_BT);         name = 'Bogdanov-Takens point'
     case (END_MAX_POINTS); name = 'max_points computed'
     case (END_FAILED);     name = 'step fell below ds_min'
+    case (END_RESONANCE);  name = '1:1 or 1:2 resonance'
     case default;          name = 'unknown end'
     end select
   end function curve_end_name
@@ -646,13 +761,15 @@ contains
     end do
   end subroutine check_start
 
-  subroutine setup_system(sys, field, n, n_extra, p0, options)
+  !> The common part of a defining system: its field, kind, sizes, scales and reference point.
+  subroutine setup_system(sys, field, kind, n, n_extra, p0, options)
     class(curve_system), intent(inout) :: sys
     class(two_parameter_field), intent(in) :: field
-    integer, intent(in) :: n, n_extra
+    integer, intent(in) :: kind, n, n_extra
     real(wp), intent(in) :: p0(2)
     type(curve_options), intent(in) :: options
     allocate (sys%field, source=field)
+    sys%kind = kind
     sys%n = n
     sys%n_extra = n_extra
     sys%x_scale = options%x_scale
@@ -731,15 +848,29 @@ contains
     curve%kind = kind
     curve%n = size(x0)
     call check_start(x0, p0, options, status, message)
+    if (status == SD_OK) call check_kind(kind, status, message)
     if (status /= SD_OK) return
-    call make_proto(field, kind, x0, p0, options, proto, s0, status, message)
+    call field%defining_system(kind, x0, p0, options, proto, s0, status, message)
     if (status /= SD_OK) return
     call trace_curve(proto, s0, options, curve, status, message)
   end subroutine any_curve
 
-  !> The defining system of a fold or Hopf curve with its first borders / reference data, and
-  !> the start state s0 = (x0, [v, kappa/kappa_scale,] p0).
-  subroutine make_proto(field, kind, x0, p0, options, proto, s0, status, message)
+  pure subroutine check_kind(kind, status, message)
+    integer, intent(in) :: kind
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    if (status /= SD_OK) return
+    if (kind < CURVE_FOLD .or. kind > CURVE_NEIMARK_SACKER) then
+      status = SD_BAD_INPUT
+      message = 'kind = '//num2str(kind)//' is out of range: CURVE_FOLD (1), CURVE_HOPF (2), '// &
+                'CURVE_PERIOD_DOUBLING (3) or CURVE_NEIMARK_SACKER (4)'
+    end if
+  end subroutine check_kind
+
+  !> The defining system of a fold or Hopf curve of equilibria with its first borders /
+  !> reference data, and the start state s0 = (x0, [v, kappa/kappa_scale,] p0) (the default
+  !> defining_system of a field; kind is one of CURVE_*).
+  subroutine field_defining_system(field, kind, x0, p0, options, proto, s0, status, message)
     class(two_parameter_field), intent(in) :: field
     integer, intent(in) :: kind
     real(wp), intent(in) :: x0(:), p0(2)
@@ -753,6 +884,14 @@ contains
     integer :: n
 
     n = size(x0)
+    status = SD_OK
+    message = ''
+    if (kind == CURVE_PERIOD_DOUBLING .or. kind == CURVE_NEIMARK_SACKER) then
+      status = SD_BAD_INPUT
+      message = 'a '//curve_kind_name(kind)//' curve is a curve of fixed points of a map: '// &
+                'the field must be a two_parameter_map (sloshdyn_map_bifurcation)'
+      return
+    end if
     if (kind == CURVE_FOLD) then
       call field%evaluate(x0, p0, f, fx, fp)
       scale = max(maxval(abs(fx)), tiny(1.0_wp))
@@ -768,7 +907,7 @@ contains
         proto%c = v
         proto%b = w
       end select
-      call setup_system(proto, field, n, 0, p0, options)
+      call setup_system(proto, field, CURVE_FOLD, n, 0, p0, options)
       s0 = [x0, p0]
     else
       if (n < 2) then
@@ -784,14 +923,14 @@ contains
         proto%kappa_scale = omega**2
         allocate (proto%v_ref(n), proto%u_ref(n))
       end select
-      call setup_system(proto, field, n, n + 1, p0, options)
+      call setup_system(proto, field, CURVE_HOPF, n, n + 1, p0, options)
       s0 = [x0, v, 1.0_wp, p0]
     end if
-  end subroutine make_proto
+  end subroutine field_defining_system
 
   !> Newton on the defining system from the state s0 with lambda = p(fixed(1)) fixed (then
-  !> fixed(2), ... if it fails); sys is the system that converged, s the corrected state. A Hopf
-  !> point must have kappa > 0.
+  !> fixed(2), ... if it fails); sys is the system that converged, s the corrected state, which
+  !> must pass sys%check_point (a Hopf point must have kappa > 0).
   subroutine correct_state(proto, s0, fixed, options, sys, s, status, message)
     class(curve_system), intent(in) :: proto
     real(wp), intent(in) :: s0(:)
@@ -802,10 +941,9 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: z(size(s0))
-    integer :: m, k, attempt, iterations
+    integer :: m, attempt, iterations
 
     m = size(s0) - 1
-    k = proto%n + proto%n_extra
     s = s0
     status = SD_NOT_CONVERGED
     message = 'no attempt'
@@ -823,20 +961,12 @@ contains
       if (status == SD_OK) exit
     end do
     if (status /= SD_OK) then
-      message = 'the point is not near a '//merge('fold', 'Hopf', proto%n_extra == 0)// &
-                ' point: '//trim(message)
+      message = 'the point is not near a '//curve_kind_name(proto%kind)//' point: '// &
+                trim(message)
       return
     end if
     s = unpack_state(sys, z)
-    if (proto%n_extra > 0 .and. .not. options%neutral_saddles) then
-      if (.not. s(2*proto%n + 1) > 0) then
-        status = SD_BAD_INPUT
-        message = 'the point converged to a neutral saddle (real eigenvalues +-mu, kappa = '// &
-                  num2str(s(2*proto%n + 1)*curve_kappa_scale(proto))//' < 0) at p = ('// &
-                  num2str(s(k + 1))//', '//num2str(s(k + 2))//'), not to a Hopf point'
-        return
-      end if
-    end if
+    call sys%check_point(s, options%neutral_saddles, status, message)
   end subroutine correct_state
 
   !> Correct the start, find the tangent, trace both halves (or one) and assemble the curve.
@@ -901,17 +1031,8 @@ contains
       status = status_behind
       message = message_behind
     end if
-    call assemble(curve, behind, ahead, reason_behind, reason_ahead)
+    call assemble(curve, proto%n_tests, behind, ahead, reason_behind, reason_ahead)
   end subroutine trace_curve
-
-  pure real(wp) function curve_kappa_scale(sys)
-    class(curve_system), intent(in) :: sys
-    curve_kappa_scale = 1
-    select type (sys)
-    type is (hopf_system)
-      curve_kappa_scale = sys%kappa_scale
-    end select
-  end function curve_kappa_scale
 
   !> The box in scaled parameters q = (p - p_ref)/p_scale.
   pure subroutine box_in_q(sys, options, q_min, q_max)
@@ -943,10 +1064,11 @@ contains
     class(curve_system), allocatable :: sys
     type(continuation_options) :: opts
     real(wp), allocatable :: pts(:, :), tans(:, :), arc(:), s(:), ts(:), z(:), zb(:)
-    real(wp) :: prev_tests(3), tests(3), re(start%n), im(start%n), omega, l1, ds, &
+    real(wp) :: prev_tests(max_curve_tests), tests(max_curve_tests), re(start%n), im(start%n), &
+                omega, l1, ds, &
                 c0(start%n + 2), tc0(start%n + 2), c_prev(start%n + 2), c_new(start%n + 2), &
                 g_prev, g_new, theta
-    integer :: n, k, m, np, stop_reason, j, r, info, n_found
+    integer :: n, k, m, np, stop_reason, j, r, info, n_found, end_here
     logical :: done, on_boundary, capacity_reached, truncated
     character(len=message_len) :: info_message
 
@@ -990,8 +1112,10 @@ contains
       end if
       call pack_state(sys, s, z(1:m), z(m + 1))
       opts = options%continuation
-      opts%lambda_min = q_min(sys%lam)
-      opts%lambda_max = q_max(sys%lam)
+      ! a start corrected onto the curve may lie on the box's boundary up to rounding: the
+      ! segment may start there (a step outward then ends it on the boundary)
+      opts%lambda_min = min(q_min(sys%lam), z(m + 1))
+      opts%lambda_max = max(q_max(sys%lam), z(m + 1))
       opts%direction = nint(sign(1.0_wp, ts(k + sys%lam)))
       opts%x_scale = 1
       opts%x_max = huge(1.0_wp)
@@ -1066,14 +1190,15 @@ contains
           exit
         end if
         call detect_codim2(sys, pts(:, j - 1), tans(:, j - 1), z, prev_tests, tests, opts, &
-                           options%neutral_saddles, buf, n_found, done)
+                           options%neutral_saddles, buf, n_found, end_here)
+        done = end_here /= 0
         if (buf%count >= capacity) then
           reason = END_MAX_POINTS
           done = .true.
           exit
         end if
         if (done) then
-          reason = END_BT
+          reason = end_here
           exit
         end if
         s = unpack_state(sys, z)
@@ -1178,43 +1303,46 @@ contains
   end subroutine boundary_point
 
   !> Sign changes of the test functions between z_a and z_b: locate each, confirm its kind and
-  !> append the points in order along the curve. stop_here: a Bogdanov-Takens point ends a Hopf
-  !> curve (unless neutral_saddles).
+  !> append the points in order along the curve. end_here: the END_* reason when one of them
+  !> ends the curve (a Bogdanov-Takens point a Hopf curve, unless neutral_saddles), else 0.
   subroutine detect_codim2(sys, z_a, t_a, z_b, tests_a, tests_b, opts, neutral_saddles, buf, &
-                           n_found, stop_here)
+                           n_found, end_here)
     class(curve_system), intent(in) :: sys
-    real(wp), intent(in) :: z_a(:), t_a(:), z_b(:), tests_a(3), tests_b(3)
+    real(wp), intent(in) :: z_a(:), t_a(:), z_b(:), tests_a(max_curve_tests), &
+                            tests_b(max_curve_tests)
     type(continuation_options), intent(in) :: opts
     logical, intent(in) :: neutral_saddles
     type(curve_buffer), intent(inout) :: buf
-    integer, intent(out) :: n_found
-    logical, intent(out) :: stop_here
+    integer, intent(out) :: n_found, end_here
     type(curve_test) :: test
-    real(wp) :: found(size(z_a), 3), position(3), freq(3), z(size(z_a)), re(sys%n), im(sys%n), &
-                tests(3), omega, l1, s(size(z_a)), ds_total
-    integer :: kinds(3), which, kind, info, order(3), i, j, k, n
-    logical :: is_hopf
+    real(wp) :: found(size(z_a), max_curve_tests), position(max_curve_tests), &
+                freq(max_curve_tests), z(size(z_a)), re(sys%n), im(sys%n), &
+                tests(max_curve_tests), omega, l1, s(size(z_a)), ds_total
+    integer :: kinds(max_curve_tests), which, kind, info, order(max_curve_tests), i, j, k, n, &
+               mask
     character(len=message_len) :: info_message
 
     n = sys%n
     k = n + sys%n_extra
     n_found = 0
-    stop_here = .false.
-    is_hopf = sys%n_extra > 0
+    end_here = 0
     ds_total = sum(t_a*(z_b - z_a))
-    do which = 1, 3
+    do which = 1, sys%n_tests
       if (.not. (ieee_is_finite(tests_a(which)) .and. ieee_is_finite(tests_b(which)))) cycle
       if (.not. tests_a(which)*tests_b(which) < 0) cycle
-      ! on a Hopf curve det J = kappa prod(other eigenvalues) vanishes with kappa at a
+      ! e.g. on a Hopf curve det J = kappa prod(other eigenvalues) vanishes with kappa at a
       ! Bogdanov-Takens point: that zero is the BT point, not a zero-Hopf point
-      if (is_hopf .and. which == 2 .and. tests_a(1)*tests_b(1) < 0) cycle
+      mask = sys%masked_by(which)
+      if (mask > 0) then
+        if (tests_a(mask)*tests_b(mask) < 0) cycle
+      end if
       if (.not. allocated(test%sys)) allocate (test%sys, source=sys)
       test%which = which
       call locate_zero_on_branch(sys, z_a, t_a, ds_total, test, z, info, info_message, opts)
       if (info /= SD_OK) then
         buf%n_unlocated = buf%n_unlocated + 1
         if (buf%unlocated_message == '') buf%unlocated_message = 'a '// &
-          codim2_name(test_kind(is_hopf, which))//' point between p = ('// &
+          codim2_name(sys%codim2_kind(which))//' point between p = ('// &
           trim(p_text(sys, z_a))//') and ('//trim(p_text(sys, z_b))//') was not located: '// &
           trim(info_message)
         cycle
@@ -1224,13 +1352,13 @@ contains
       ! a sign change through a pole (l1 at a zero-Hopf point) is no zero
       if (.not. abs(tests(which)) <= pole_ratio*max(abs(tests_a(which)), abs(tests_b(which)))) &
         cycle
-      kind = test_kind(is_hopf, which)
-      if (.not. confirmed(kind)) cycle
+      kind = sys%codim2_kind(which)
+      if (.not. sys%confirm_codim2(kind, re, im, tests)) cycle
       n_found = n_found + 1
       found(:, n_found) = z
       position(n_found) = sum(t_a*(z - z_a))
       kinds(n_found) = kind
-      freq(n_found) = frequency(kind)
+      freq(n_found) = sys%codim2_frequency(kind, re, im, omega)
     end do
     ! in order along the curve
     order(1:n_found) = [(i, i = 1, n_found)]
@@ -1246,66 +1374,10 @@ contains
       s = unpack_state(sys, found(:, j))
       call sys%diagnose(found(:, j), re, im, tests, omega, l1, info, info_message)
       call append(buf, s(1:n), s(k + 1:k + 2), re, im, tests, omega, l1, kinds(j), freq(j))
-      if (is_hopf .and. kinds(j) == CODIM2_BT .and. .not. neutral_saddles) then
-        stop_here = .true.
-        return
-      end if
+      end_here = sys%terminal(kinds(j), neutral_saddles)
+      if (end_here /= 0) return
     end do
-
-  contains
-
-    !> Zero-Hopf on a fold curve needs a pair on the imaginary axis (not a real pair +-mu);
-    !> on a Hopf curve, kappa > 0 (det J also vanishes at the Bogdanov-Takens point);
-    !> generalised Hopf needs kappa > 0.
-    logical function confirmed(kind)
-      integer, intent(in) :: kind
-      real(wp) :: scale
-      integer :: i
-      scale = max(maxval(abs(cmplx(re, im, wp))), tiny(1.0_wp))
-      confirmed = .true.
-      if (kind == CODIM2_ZH .and. .not. is_hopf) then
-        confirmed = .false.
-        do i = 1, n
-          if (abs(re(i)) <= axis_tol*scale .and. abs(im(i)) > axis_tol*scale) confirmed = .true.
-        end do
-      else if (is_hopf .and. (kind == CODIM2_ZH .or. kind == CODIM2_GH)) then
-        confirmed = tests(1) > axis_tol*scale**2
-      end if
-    end function confirmed
-
-    !> The imaginary eigenvalue of a zero-Hopf or generalised Hopf point.
-    real(wp) function frequency(kind)
-      integer, intent(in) :: kind
-      integer :: i, best
-      frequency = 0
-      if (is_hopf) then
-        if (kind == CODIM2_GH .or. kind == CODIM2_ZH) frequency = omega
-      else if (kind == CODIM2_ZH) then
-        best = 0
-        do i = 1, n
-          if (im(i) <= 0) cycle
-          if (best == 0) then
-            best = i
-          else if (abs(re(i)) < abs(re(best))) then
-            best = i
-          end if
-        end do
-        if (best > 0) frequency = im(best)
-      end if
-    end function frequency
   end subroutine detect_codim2
-
-  pure integer function test_kind(is_hopf, which)
-    logical, intent(in) :: is_hopf
-    integer, intent(in) :: which
-    integer, parameter :: fold_kinds(3) = [CODIM2_BT, CODIM2_CUSP, CODIM2_ZH], &
-                          hopf_kinds(3) = [CODIM2_BT, CODIM2_ZH, CODIM2_GH]
-    if (is_hopf) then
-      test_kind = hopf_kinds(which)
-    else
-      test_kind = fold_kinds(which)
-    end if
-  end function test_kind
 
   function p_text(sys, z) result(text)
     class(curve_system), intent(in) :: sys
@@ -1320,7 +1392,7 @@ contains
     class(curve_test), intent(in) :: self
     real(wp), intent(in) :: z(:), t(:)
     real(wp) :: g
-    real(wp) :: re(self%sys%n), im(self%sys%n), tests(3), omega, l1
+    real(wp) :: re(self%sys%n), im(self%sys%n), tests(max_curve_tests), omega, l1
     integer :: info
     character(len=message_len) :: info_message
     if (self%which == 0) then
@@ -1338,14 +1410,15 @@ contains
     type(curve_buffer), intent(out) :: buf
     integer, intent(in) :: n, capacity
     allocate (buf%x(n, capacity), buf%p(2, capacity), buf%re(n, capacity), &
-              buf%im(n, capacity), buf%tests(3, capacity), buf%omega(capacity), &
+              buf%im(n, capacity), buf%tests(max_curve_tests, capacity), buf%omega(capacity), &
               buf%l1(capacity), buf%special(capacity), buf%codim2_omega(capacity))
     buf%count = 0
   end subroutine new_buffer
 
   subroutine append(buf, x, p, re, im, tests, omega, l1, special, codim2_omega)
     type(curve_buffer), intent(inout) :: buf
-    real(wp), intent(in) :: x(:), p(2), re(:), im(:), tests(3), omega, l1, codim2_omega
+    real(wp), intent(in) :: x(:), p(2), re(:), im(:), tests(max_curve_tests), omega, l1, &
+                            codim2_omega
     integer, intent(in) :: special
     if (buf%count >= size(buf%omega)) return
     buf%count = buf%count + 1
@@ -1363,10 +1436,10 @@ contains
   end subroutine append
 
   !> The curve: the half behind the start reversed, then the half ahead (the start once).
-  subroutine assemble(curve, behind, ahead, reason_behind, reason_ahead)
+  subroutine assemble(curve, n_tests, behind, ahead, reason_behind, reason_ahead)
     type(bifurcation_curve), intent(inout) :: curve
     type(curve_buffer), intent(in) :: behind, ahead
-    integer, intent(in) :: reason_behind, reason_ahead
+    integer, intent(in) :: n_tests, reason_behind, reason_ahead
     integer :: nb, na, total, j, c
     integer, allocatable :: columns(:)
     logical, allocatable :: from_behind(:)
@@ -1382,7 +1455,7 @@ contains
     curve%n_points = total
     curve%start_index = nb + 1
     allocate (curve%x(curve%n, total), curve%p(2, total), curve%eig_re(curve%n, total), &
-              curve%eig_im(curve%n, total), curve%tests(3, total), curve%omega(total), &
+              curve%eig_im(curve%n, total), curve%tests(n_tests, total), curve%omega(total), &
               curve%l1(total), curve%special(total))
     do j = 1, total
       if (from_behind(j)) then
@@ -1422,7 +1495,7 @@ contains
       curve%p(:, to) = buf%p(:, from)
       curve%eig_re(:, to) = buf%re(:, from)
       curve%eig_im(:, to) = buf%im(:, from)
-      curve%tests(:, to) = buf%tests(:, from)
+      curve%tests(:, to) = buf%tests(1:n_tests, from)
       curve%omega(to) = buf%omega(from)
       curve%l1(to) = buf%l1(from)
       curve%special(to) = buf%special(from)
@@ -1445,7 +1518,7 @@ contains
     l = self%lam
     call split_x_p(self, x, lambda, xx, p)
     call self%field%evaluate(xx, p, ff, jj, fp)
-    call bordered_vectors(jj, self%b, self%c, v, w, g, info)
+    call bordered_vectors(jj, self%b, self%c, v, w, g, info, self%shift)
     if (info /= SD_OK) then
       f = ieee_value(1.0_wp, ieee_quiet_nan)
       fx = 0
@@ -1457,6 +1530,7 @@ contains
     f(n + 1) = g
     fx(1:n, 1:n) = jj*self%x_scale
     fx(1:n, n + 1) = fp(:, o)*self%p_scale(o)
+    ! d(J + shift I)v/dx = d(J v)/dx
     fx(n + 1, 1:n) = -matmul(w, hx)*self%x_scale
     fx(n + 1, n + 1) = -sum(w*hp(:, o))*self%p_scale(o)
     flambda(1:n) = fp(:, l)*self%p_scale(l)
@@ -1474,11 +1548,12 @@ contains
     integer :: n
     n = self%n
     call self%field%evaluate(s(1:n), s(n + 1:n + 2), ff, jj, fp)
-    call bordered_vectors(jj, self%b, self%c, v, w, g, status)
+    call bordered_vectors(jj, self%b, self%c, v, w, g, status, self%shift)
     message = ''
     if (status /= SD_OK) then
       message = 'the bordered Jacobian is singular at p = ('//num2str(s(n + 1))//', '// &
-                num2str(s(n + 2))//'): the null space of df/dx has dimension > 1'
+                num2str(s(n + 2))//'): the null space of df/dx + shift I has dimension > 1 '// &
+                '(shift = '//num2str(self%shift)//')'
       return
     end if
     self%c = v/norm2(v)
@@ -1489,7 +1564,7 @@ contains
   subroutine fold_diagnose(self, z, re, im, tests, omega, l1, status, message)
     class(fold_system), intent(in) :: self
     real(wp), intent(in) :: z(:)
-    real(wp), intent(out) :: re(:), im(:), tests(3), omega, l1
+    real(wp), intent(out) :: re(:), im(:), tests(max_curve_tests), omega, l1
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), v(self%n), &
@@ -1502,7 +1577,7 @@ contains
     call self%field%evaluate(xx, p, ff, jj, fp)
     call eigenvalues(jj, re, im, status, message)
     if (status /= SD_OK) return
-    call bordered_vectors(jj, self%b, self%c, v, w, g, status)
+    call bordered_vectors(jj, self%b, self%c, v, w, g, status, self%shift)
     if (status /= SD_OK) then
       message = 'the bordered Jacobian is singular'
       return
@@ -1525,21 +1600,28 @@ contains
     integer :: info
     call point_x_p(self, z, xx, p)
     call self%field%evaluate(xx, p, ff, jj, fp)
-    call bordered_vectors(jj, self%b, self%c, v, w, g, info)
+    call bordered_vectors(jj, self%b, self%c, v, w, g, info, self%shift)
     growth = huge(1.0_wp)
     if (info == SD_OK) growth = max(norm2(v), norm2(w))
   end function fold_alignment
 
-  !> v, w and g of the bordered systems [J b; c^T 0] (v; g) = e and its transpose.
-  subroutine bordered_vectors(jj, b, c, v, w, g, status)
+  !> v, w and g of the bordered systems [J b; c^T 0] (v; g) = e and its transpose (J + shift I
+  !> in place of J with shift).
+  subroutine bordered_vectors(jj, b, c, v, w, g, status, shift)
     real(wp), intent(in) :: jj(:, :), b(:), c(:)
     real(wp), intent(out) :: v(:), w(:), g
     integer, intent(out) :: status
+    real(wp), intent(in), optional :: shift
     real(wp) :: a(size(b) + 1, size(b) + 1), r(size(b) + 1)
-    integer :: n
+    integer :: n, i
     character(len=message_len) :: message
     n = size(b)
     a(1:n, 1:n) = jj
+    if (present(shift)) then
+      do i = 1, n
+        a(i, i) = a(i, i) + shift
+      end do
+    end if
     a(1:n, n + 1) = b
     a(n + 1, 1:n) = c
     a(n + 1, n + 1) = 0
@@ -1665,7 +1747,7 @@ contains
   subroutine hopf_diagnose(self, z, re, im, tests, omega, l1, status, message)
     class(hopf_system), intent(in) :: self
     real(wp), intent(in) :: z(:)
-    real(wp), intent(out) :: re(:), im(:), tests(3), omega, l1
+    real(wp), intent(out) :: re(:), im(:), tests(max_curve_tests), omega, l1
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), kappa
@@ -1697,6 +1779,163 @@ contains
       tests(3) = l1
     end if
   end subroutine hopf_diagnose
+
+  ! ---- codimension-2 bookkeeping: defaults, fold and Hopf curves ----------------------------
+
+  logical function confirm_always(self, kind, re, im, tests) result(confirmed)
+    class(curve_system), intent(in) :: self
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: re(:), im(:), tests(:)
+    confirmed = .true.
+  end function confirm_always
+
+  real(wp) function no_codim2_frequency(self, kind, re, im, omega) result(frequency)
+    class(curve_system), intent(in) :: self
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: re(:), im(:), omega
+    frequency = 0
+  end function no_codim2_frequency
+
+  pure integer function no_mask(self, which) result(mask)
+    class(curve_system), intent(in) :: self
+    integer, intent(in) :: which
+    mask = 0
+  end function no_mask
+
+  pure integer function never_terminal(self, kind, neutral_saddles) result(reason)
+    class(curve_system), intent(in) :: self
+    integer, intent(in) :: kind
+    logical, intent(in) :: neutral_saddles
+    reason = 0
+  end function never_terminal
+
+  subroutine any_point(self, s, neutral_saddles, status, message)
+    class(curve_system), intent(in) :: self
+    real(wp), intent(in) :: s(:)
+    logical, intent(in) :: neutral_saddles
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+  end subroutine any_point
+
+  real(wp) function no_frequency(self, s) result(frequency)
+    class(curve_system), intent(in) :: self
+    real(wp), intent(in) :: s(:)
+    frequency = 0
+  end function no_frequency
+
+  !> Fold curves: tests (BT, cusp, ZH).
+  pure integer function fold_codim2_kind(self, which) result(kind)
+    class(fold_system), intent(in) :: self
+    integer, intent(in) :: which
+    integer, parameter :: kinds(3) = [CODIM2_BT, CODIM2_CUSP, CODIM2_ZH]
+    kind = kinds(which)
+  end function fold_codim2_kind
+
+  !> Zero-Hopf on a fold curve needs a pair on the imaginary axis (not a real pair +-mu).
+  logical function fold_confirm(self, kind, re, im, tests) result(confirmed)
+    class(fold_system), intent(in) :: self
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: re(:), im(:), tests(:)
+    real(wp) :: scale
+    integer :: i
+    confirmed = .true.
+    if (kind /= CODIM2_ZH) return
+    scale = max(maxval(abs(cmplx(re, im, wp))), tiny(1.0_wp))
+    confirmed = .false.
+    do i = 1, size(re)
+      if (abs(re(i)) <= axis_tol*scale .and. abs(im(i)) > axis_tol*scale) confirmed = .true.
+    end do
+  end function fold_confirm
+
+  !> The imaginary eigenvalue of a zero-Hopf point on a fold curve.
+  real(wp) function fold_codim2_frequency(self, kind, re, im, omega) result(frequency)
+    class(fold_system), intent(in) :: self
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: re(:), im(:), omega
+    integer :: i, best
+    frequency = 0
+    if (kind /= CODIM2_ZH) return
+    best = 0
+    do i = 1, size(re)
+      if (im(i) <= 0) cycle
+      if (best == 0) then
+        best = i
+      else if (abs(re(i)) < abs(re(best))) then
+        best = i
+      end if
+    end do
+    if (best > 0) frequency = im(best)
+  end function fold_codim2_frequency
+
+  !> Hopf curves: tests (BT = kappa, ZH = det J, GH = l1).
+  pure integer function hopf_codim2_kind(self, which) result(kind)
+    class(hopf_system), intent(in) :: self
+    integer, intent(in) :: which
+    integer, parameter :: kinds(3) = [CODIM2_BT, CODIM2_ZH, CODIM2_GH]
+    kind = kinds(which)
+  end function hopf_codim2_kind
+
+  !> Zero-Hopf and generalised Hopf need kappa > 0 (det J also vanishes at the
+  !> Bogdanov-Takens point).
+  logical function hopf_confirm(self, kind, re, im, tests) result(confirmed)
+    class(hopf_system), intent(in) :: self
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: re(:), im(:), tests(:)
+    real(wp) :: scale
+    confirmed = .true.
+    if (kind /= CODIM2_ZH .and. kind /= CODIM2_GH) return
+    scale = max(maxval(abs(cmplx(re, im, wp))), tiny(1.0_wp))
+    confirmed = tests(1) > axis_tol*scale**2
+  end function hopf_confirm
+
+  real(wp) function hopf_codim2_frequency(self, kind, re, im, omega) result(frequency)
+    class(hopf_system), intent(in) :: self
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: re(:), im(:), omega
+    frequency = 0
+    if (kind == CODIM2_GH .or. kind == CODIM2_ZH) frequency = omega
+  end function hopf_codim2_frequency
+
+  !> det J (ZH) vanishes with kappa at a Bogdanov-Takens point.
+  pure integer function hopf_masked_by(self, which) result(mask)
+    class(hopf_system), intent(in) :: self
+    integer, intent(in) :: which
+    mask = merge(1, 0, which == 2)
+  end function hopf_masked_by
+
+  pure integer function hopf_terminal(self, kind, neutral_saddles) result(reason)
+    class(hopf_system), intent(in) :: self
+    integer, intent(in) :: kind
+    logical, intent(in) :: neutral_saddles
+    reason = 0
+    if (kind == CODIM2_BT .and. .not. neutral_saddles) reason = END_BT
+  end function hopf_terminal
+
+  !> A Hopf point has kappa > 0 (unless neutral saddles are asked for).
+  subroutine hopf_check_point(self, s, neutral_saddles, status, message)
+    class(hopf_system), intent(in) :: self
+    real(wp), intent(in) :: s(:)
+    logical, intent(in) :: neutral_saddles
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: k
+    status = SD_OK
+    message = ''
+    k = self%n + self%n_extra
+    if (neutral_saddles .or. s(2*self%n + 1) > 0) return
+    status = SD_BAD_INPUT
+    message = 'the point converged to a neutral saddle (real eigenvalues +-mu, kappa = '// &
+              num2str(s(2*self%n + 1)*self%kappa_scale)//' < 0) at p = ('// &
+              num2str(s(k + 1))//', '//num2str(s(k + 2))//'), not to a Hopf point'
+  end subroutine hopf_check_point
+
+  real(wp) function hopf_frequency_of(self, s) result(frequency)
+    class(hopf_system), intent(in) :: self
+    real(wp), intent(in) :: s(:)
+    frequency = sqrt(max(s(2*self%n + 1)*self%kappa_scale, 0.0_wp))
+  end function hopf_frequency_of
 
   ! ---- Hopf points: start and Lyapunov coefficient ------------------------------------------
 

@@ -83,11 +83,11 @@ contains
   !>
   !> tail_duration [s] (optional, default 0): the oscillator keeps vibrating freely for this long
   !> after the record, so that a peak after the last sample (long periods, short records) is not
-  !> missed. The record is then padded with zeros at the same step: the ground acceleration
-  !> falls linearly from the last sample to zero over one step and stays zero (for a record that
-  !> ends at rest, as baseline-corrected records do, this is free vibration from the end state).
-  !> The default 0 gives the peak over the record alone, the usual convention of published
-  !> spectra; a tail of about the longest period catches the late peaks.
+  !> missed. The ground is at rest after the last sample, as in the model's excitation
+  !> (sloshdyn_excitation): free vibration from the end state, sampled at the record's step,
+  !> also for a record that stops at a nonzero acceleration. The default 0 gives the peak over
+  !> the record alone, the usual convention of published spectra; a tail of about the longest
+  !> period catches the late peaks.
   pure subroutine response_spectrum(dt, accel, periods, damping, sd, sv, psa, status, message, &
                                     tail_duration)
     real(wp), intent(in) :: dt, accel(:), periods(:), damping
@@ -125,8 +125,7 @@ contains
         peak = max(peak, abs(u))
       end do
       do i = 1, tail_steps
-        call advance(coefficients, merge(-accel(size(accel)), 0.0_wp, i == 1), 0.0_wp, u, v, &
-                     u_next, v_next)
+        call advance(coefficients, 0.0_wp, 0.0_wp, u, v, u_next, v_next)
         u = u_next
         v = v_next
         peak = max(peak, abs(u))

@@ -13,6 +13,7 @@ from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, eq
 from .periodic import (PeriodicBranch, PeriodicOrbit, PeriodicSpecialPoint, lyapunov_exponent,
                        periodic_orbit, periodic_response)
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
+from .charts import Codim2Point, Curve, StabilityChart, stability_chart
 from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, Spectrum, Tank,
                       acceleration_factor, harmonic_sweep, seismic_defaults, seismic_response)
 from .studies import FragilityFit, basins, fit_fragility, fragility_study, response_map
@@ -35,6 +36,7 @@ __all__ = [
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
     "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "Spectrum", "Tank",
     "acceleration_factor", "harmonic_sweep", "seismic_defaults", "seismic_response",
+    "Codim2Point", "Curve", "StabilityChart", "stability_chart",
     "FragilityFit", "basins", "fit_fragility", "fragility_study", "response_map",
 ]
 

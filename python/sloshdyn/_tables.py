@@ -18,8 +18,9 @@ def _text(raw):
 
 @lru_cache(maxsize=None)
 def names(list_name):
-    """The names of a list ('analyses', 'methods', 'special', 'motion', 'verdict', or
-    'table:NAME' for a result table's columns) and the code of the first one."""
+    """The names of a list ('analyses', 'methods', 'special', 'motion', 'verdict', 'source',
+    'curve', 'codim2', 'curve_end', 'chart_models', 'table:NAME' for a result table's columns,
+    'formats:NAME' for their format letters) and the code of the first one."""
     text, first, status, message = _bridge.names(list_name)
     check_status(status, message)
     return tuple(_text(text).split(",")), int(first)

@@ -208,6 +208,12 @@ def _figure(inp, out):
         response = SeismicResponse(inp.tank, inp.ground_motion, np.array(list(t.values())),
                                    np.array([column[0] for column in peaks.values()]))
         return "seismic.png", plotting.seismic(response)
+    if inp.analysis == "stability_chart":
+        from .charts import chart_from_files
+        chart = chart_from_files(out, inp.chart["x"], inp.chart["y"], inp.chart["model"])
+        return "stability_chart.png", plotting.stability_chart(
+            chart, tank=inp.tank if inp.tank is not None and inp.chart["x"] == "rho"
+            and inp.chart["y"] == "A" else None)
     if inp.analysis == "sweep" and inp.sweep["parameter"] == "frequency":
         from .seismic import HarmonicSweep
         t = _table(out / "harmonic_sweep.csv")

@@ -75,7 +75,8 @@ class Parameters:
 
     @classmethod
     def from_physical(cls, *, M, L, k, theta0, R=None, h=None, rho_liquid=None, m_liquid=None,
-                      l=None, m=None, c=0.0, b=None, d=None, g=9.81, n=6, p=2, A=0.0, rho=0.0):
+                      l=None, m=None, c=0.0, b=None, d=None, g=9.80665, n=6, p=2, A=0.0,
+                      rho=0.0):
         """Dimensionless groups of eq (9) from SI values. The pendulum (l, m) is given directly or
         computed from a cylindrical tank (R, h and rho_liquid or m_liquid, eq 2). Without the
         impact coefficient b [N m] or the dissipation d [N m s], beta and delta take the same
@@ -151,6 +152,7 @@ class Input:
     tank: object = None            #: seismic.Tank (from &tank), or None (&model)
     ground_motion: object = None   #: seismic.GroundMotion (from &ground_motion, scaled), or None
     seismic: dict = field(default_factory=dict)       #: &seismic: t_end [s], n_out (0: default)
+    chart: dict = field(default_factory=dict)         #: &chart, as stability_chart's arguments
     integration: dict = field(default_factory=dict)   #: &integration, for simulation.Integration
     simulation: dict = field(default_factory=dict)    #: &simulation: t_end, n_out, y0
     steady: dict = field(default_factory=dict)        #: &steady, for simulation.Steady
@@ -167,8 +169,8 @@ def read_namelist(path):
 
     path = os.fspath(path)
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
-     seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, study,
-     store, figure, scheduler, study_records, status,
+     seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
+     study, store, figure, scheduler, study_records, status,
      message) = _core.sloshdyn_bridge.read_input(path)
     check_status(status, message)
     s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta = (float(x) for x in rpar)
@@ -193,6 +195,7 @@ def read_namelist(path):
         kappa_min=float(values[1]), kappa_max=float(values[2]),
         directory=_tables._text(directory), tank=tank, ground_motion=ground_motion,
         seismic={"t_end": float(seismic[0]), "n_out": int(seismic[1])},
+        chart=_chart_settings(chart),
         integration={**{name: float(x) for name, x in zip(
             ("rtol", "atol", "h_initial", "h_max", "h_min"), integration[:5])},
             "max_steps": int(integration[5]), "method": methods[int(integration[6]) - first_method]},
@@ -243,3 +246,17 @@ def _study(values, store, figure, scheduler, records):
                      intensity_stop=float(values[19]), n_intensities=int(values[20]),
                      spectral_damping=float(values[21]))
     return study
+
+
+def _chart_settings(chart):
+    """&chart as the arguments of sloshdyn.stability_chart (the layout of the core's chart
+    array: model, x, y, x_min, x_max, y_min, y_max, n_x, n_y, n_scan, max_points, max_curves,
+    brute_force_starts, threads)."""
+    models, axes = _tables.names("chart_models")[0], ("rho", "A", "gamma")
+    values = [float(v) for v in chart]
+    return {"model": models[int(values[0]) - 1], "x": axes[int(values[1]) - 1],
+            "y": axes[int(values[2]) - 1], "x_range": (values[3], values[4]),
+            "y_range": (values[5], values[6]),
+            **{name: int(v) for name, v in zip(("n_x", "n_y", "n_scan", "max_points",
+                                                 "max_curves", "brute_force_starts", "threads"),
+                                                values[7:])}}

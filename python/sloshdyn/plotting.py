@@ -350,3 +350,91 @@ def fragility(fit, intensities=None, failures=None, unit="g", label="intensity m
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
     return fig
+
+
+# ---- stability charts ----------------------------------------------------------------------------
+
+_CURVE_STYLE = {"fold": dict(color="k", ls="-", label="fold"),
+                "hopf": dict(color="r", ls="--", label="Hopf"),
+                "period_doubling": dict(color="b", ls="-.", label="period doubling"),
+                "neimark_sacker": dict(color="m", ls=":", label="Neimark-Sacker")}
+_CODIM2_MARKER = {"cusp": "^", "bogdanov_takens": "s", "fold_hopf": "D", "generalised_hopf": "o",
+                  "resonance_1_1": "v", "resonance_1_2": "P", "fold_flip": "X"}
+_AXIS_LABEL = {"rho": r"$\rho = \Omega/\omega$", "A": r"$A = u_0/L$", "gamma": r"$\gamma$"}
+
+
+def stability_chart(chart, tank=None):
+    """A StabilityChart: the cells shaded by their number of stable steady states (the number
+    printed in each), the fold / Hopf (/ period-doubling / Neimark-Sacker) curves, the
+    codimension-2 points, and, where brute force was run, a red cross on every cell away from
+    the curves whose brute-force count differs. With a tank (a chart in rho and A of its
+    model), the axes are the ground motion's frequency [Hz] and peak acceleration [g]."""
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+
+    def xy(point_or_curve):
+        x, y = getattr(point_or_curve, chart.x), getattr(point_or_curve, chart.y)
+        if tank is not None:
+            return chart.frequency_and_acceleration(tank, point_or_curve.rho, point_or_curve.A)
+        return x, y
+
+    if tank is not None and (chart.x, chart.y) != ("rho", "A"):
+        raise ValueError("a chart in Hz and g needs x = 'rho' and y = 'A'")
+    grid = chart.grid
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    columns = np.unique(grid[chart.x])
+    rows = np.unique(grid[chart.y])
+    counts = grid["n_stable"].reshape(len(rows), len(columns))
+    top = int(max(counts.max(), 2))
+    cmap = ListedColormap(plt.cm.Blues(np.linspace(0.08, 0.55, top + 1)))
+    norm = BoundaryNorm(np.arange(-0.5, top + 1.5), cmap.N)
+
+    class Cell:          # the cell centres as points, for xy()
+        pass
+    for k in range(len(grid["rho"])):
+        cell = Cell()
+        cell.rho, cell.A, cell.gamma = grid["rho"][k], grid["A"][k], grid["gamma"][k]
+        gx, gy = xy(cell)
+        ax.text(gx, gy, f"{int(grid['n_stable'][k])}", ha="center", va="center", fontsize=6,
+                color="0.35")
+        if grid["brute_force_stable"][k] >= 0 and not grid["near_curve"][k] and \
+                grid["brute_force_stable"][k] != grid["n_stable"][k]:
+            ax.plot(gx, gy, "x", color="r", ms=7)
+    if tank is None:
+        dx = (columns[1] - columns[0]) if len(columns) > 1 else 1.0
+        dy = (rows[1] - rows[0]) if len(rows) > 1 else 1.0
+        edges_x = np.concatenate([columns - dx / 2, [columns[-1] + dx / 2]])
+        edges_y = np.concatenate([rows - dy / 2, [rows[-1] + dy / 2]])
+        mesh = ax.pcolormesh(edges_x, edges_y, counts, cmap=cmap, norm=norm, shading="flat")
+    else:
+        cx, cy = chart.frequency_and_acceleration(tank, grid["rho"], grid["A"])
+        mesh = ax.scatter(cx, cy, c=grid["n_stable"], cmap=cmap, norm=norm, marker="s", s=60)
+    fig.colorbar(mesh, ax=ax, ticks=range(top + 1), label="stable steady states")
+    shown = set()
+    for curve in chart.curves:
+        style = dict(_CURVE_STYLE[curve.kind])
+        if curve.kind in shown:
+            style.pop("label")
+        shown.add(curve.kind)
+        cx, cy = xy(curve)
+        ax.plot(cx, cy, lw=1.2, **style)
+        if not curve.complete:
+            ax.plot(cx[-1], cy[-1], "*", color="orange", ms=10)
+    for kind in sorted({p.kind for p in chart.codim2_points}):
+        points = [p for p in chart.codim2_points if p.kind == kind]
+        px = [xy(p)[0] for p in points]
+        py = [xy(p)[1] for p in points]
+        ax.plot(px, py, _CODIM2_MARKER.get(kind, "o"), mfc="w", mec="k", ms=7,
+                label=kind.replace("_", " "))
+    if any(grid["brute_force_stable"] >= 0):
+        ax.plot([], [], "x", color="r", label="brute force differs")
+    if tank is None:
+        ax.set_xlabel(_AXIS_LABEL[chart.x])
+        ax.set_ylabel(_AXIS_LABEL[chart.y])
+        ax.set_title(f"stability chart of the slow flow ({chart.model})", fontsize=10)
+    else:
+        ax.set_xlabel("ground motion frequency [Hz]")
+        ax.set_ylabel("peak ground acceleration [g]")
+        ax.set_title(f"{_tank_title(tank)}\nstability chart ({chart.model})", fontsize=10)
+    ax.legend(fontsize=8, loc="upper left")
+    fig.tight_layout()
+    return fig

@@ -69,7 +69,8 @@ def test_namelist_round_trip(tmp_path, fig12):
 
 def test_physical_route_matches_the_groups_of_eq_9():
     # worked by hand: g = 9.81, l = 0.5 -> omega^2 = 19.62; L = 2, M = 100, m = 10, k = 7848
-    p = sloshdyn.Parameters.from_physical(M=100, L=2, k=7848, theta0=0.5, l=0.5, m=10, b=49.05)
+    p = sloshdyn.Parameters.from_physical(M=100, L=2, k=7848, theta0=0.5, l=0.5, m=10, b=49.05,
+                                          g=9.81)
     assert math.isclose(p.s1, 0.25) and math.isclose(p.mu1, 0.1)
     assert math.isclose(p.kappa, 1.0, rel_tol=1e-12) and math.isclose(p.beta, 1.0, rel_tol=1e-12)
 

@@ -1,0 +1,182 @@
+"""Stability charts in two parameters: the fold and Hopf curves of the slow flow's steady states
+with their codimension-2 points, and the number of stable steady states in each cell of a grid
+(optionally found again by brute-force integration). The Fortran core computes everything
+(sloshdyn_stability_chart); the namelist's `kind = 'stability_chart'` with `&chart` is the
+same computation.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _core, _tables
+from ._errors import InputError, check_status
+from .parameters import Parameters
+
+_bridge = _core.sloshdyn_bridge
+_DEFAULTS = _bridge.chart_defaults()
+AXES = ("rho", "A", "gamma")                      #: the chart parameters, by code 1, 2, 3
+MODELS = _tables.names("chart_models")[0]         #: 'slow_flow_3:1', 'slow_flow_nonresonant'
+CURVE_KINDS = _tables.codes("curve")              #: {1: 'fold', 2: 'hopf', ...}
+CODIM2_KINDS = _tables.codes("codim2")            #: {0: 'none', 1: 'bogdanov_takens', ...}
+CURVE_ENDS = _tables.codes("curve_end")
+
+
+@dataclass
+class Curve:
+    """A fold or Hopf curve, point by point along it (rho, A and gamma at every point; two of them
+    vary). state: (4, n) slow-flow state (Re B1, Im B1, Re B2, Im B2; the last two 0 without the
+    internal resonance); omega: Hopf frequency (slow time; negative on a neutral-saddle part, 0
+    for folds); l1: first Lyapunov coefficient along a Hopf curve (< 0 supercritical);
+    codim2: the kind of each point ('none' for a regular one)."""
+
+    kind: str
+    rho: np.ndarray
+    A: np.ndarray
+    gamma: np.ndarray
+    state: np.ndarray
+    omega: np.ndarray
+    l1: np.ndarray
+    codim2: list
+    complete: bool = True
+    ends: tuple = ("", "")
+    note: str = ""              #: why an incomplete curve stopped
+
+
+@dataclass
+class Codim2Point:
+    """A codimension-2 point: 'cusp', 'bogdanov_takens', 'fold_hopf', 'generalised_hopf'."""
+
+    kind: str
+    rho: float
+    A: float
+    gamma: float
+    omega: float
+    curve: int                  #: index into StabilityChart.curves
+
+
+@dataclass
+class StabilityChart:
+    """A chart in (x, y) = two of rho, A, gamma: its curves, codimension-2 points and grid
+    (arrays over the cells: rho, A, gamma, n_stable, n_steady, near_curve (1/0),
+    brute_force_stable (-1: not computed))."""
+
+    x: str
+    y: str
+    model: str
+    curves: list
+    codim2_points: list
+    grid: dict
+    complete: bool
+    params: Parameters = field(repr=False, default=None)
+
+    def frequency_and_acceleration(self, tank, rho, A):
+        """(frequency [Hz], peak ground acceleration [g]) of chart points of a tank's model:
+        f = rho omega/(2 pi), a = A rho^2 L omega^2 (harmonic ground motion)."""
+        p = tank.properties
+        rho, A = np.asarray(rho, dtype=float), np.asarray(A, dtype=float)
+        return (rho * p["omega"] / (2 * math.pi),
+                A * rho**2 * p["support_height"] * p["omega"] ** 2 / tank.gravity)
+
+
+def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
+                    model="slow_flow_3:1", n_x=int(_DEFAULTS[7]), n_y=int(_DEFAULTS[8]),
+                    n_scan=int(_DEFAULTS[9]), max_points=int(_DEFAULTS[10]),
+                    max_curves=int(_DEFAULTS[11]), brute_force_starts=0, threads=1,
+                    capacity=200_000) -> StabilityChart:
+    """The stability chart of the slow flow of `params` (model 'slow_flow_3:1' or
+    'slow_flow_nonresonant') for x in x_range and y in y_range: x is rho or A (it is varied by
+    the one-parameter runs at n_y values of y, which seed the curves), y any other of rho, A,
+    gamma; the values of the third come from params. The grid has n_x by n_y cells (their
+    midpoints). brute_force_starts > 0 integrates the slow flow from that many starts in every
+    cell and counts the stable steady states reached (a small basin may be missed; it never
+    finds more than there are). threads share out the runs and cells (same result on any
+    number). A curve that stops early is kept up to where it stopped (complete False, with
+    its note) and a warning is issued."""
+    if model not in MODELS:
+        raise InputError(f"model = {model!r} is not valid: it must be one of "
+                         f"{', '.join(repr(m) for m in MODELS)}")
+    for name, axis in (("x", x), ("y", y)):
+        if axis not in AXES:
+            raise InputError(f"{name} = {axis!r} is not valid: it must be one of "
+                             f"{', '.join(repr(a) for a in AXES)}")
+    (x_min, x_max), (y_min, y_max) = _range("x_range", x_range), _range("y_range", y_range)
+    settings = np.array([MODELS.index(model) + 1, AXES.index(x) + 1, AXES.index(y) + 1, x_min,
+                         x_max, y_min, y_max, n_x, n_y, n_scan, max_points, max_curves,
+                         brute_force_starts, threads], dtype=np.float64)
+    n_cells = max(int(n_x), 1) * max(int(n_y), 1)
+    (curves, codim2, ends, grid, sizes, complete, notes, status,
+     message) = _bridge.stability_chart(*params.arrays(), settings, int(capacity),
+                                        max(10 * int(max_curves), 1), max(int(max_curves), 1),
+                                        n_cells)
+    if status == 9:   # SD_CAPACITY: name the Python argument that sets the room
+        message = (_tables._text(message) + f"; give capacity >= {int(sizes[0])} (now "
+                   f"{int(capacity)})")
+    check_status(status, message)
+    chart = _chart(x, y, model, curves[:, :sizes[0]], codim2[:, :sizes[1]], ends[:, :sizes[2]],
+                   grid[:, :sizes[3]], bool(complete), _tables._text(notes), params)
+    if not chart.complete:
+        warnings.warn("stability chart: not every curve could be continued to its ends:\n"
+                      + _tables._text(notes), stacklevel=2)
+    return chart
+
+
+def _range(name, value):
+    try:
+        low, high = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} = {value!r} is not valid: give two numbers (low, high)") from None
+    return low, high
+
+
+def _chart(x, y, model, curves, codim2, ends, grid, complete, notes, params):
+    """A StabilityChart from the core's tables (the columns of the chart CSV files)."""
+    note_of = {}
+    for line in notes.splitlines():
+        head, _, text = line.partition(": ")
+        note_of[int(head.split()[1])] = text
+    columns = _tables.columns("chart_curves")
+    table = dict(zip(columns, curves))
+    curve_list = []
+    for k, end in enumerate(ends.T, start=1):
+        on = table["curve"] == k
+        curve_list.append(Curve(
+            kind=CURVE_KINDS[int(end[1])], rho=table["rho"][on], A=table["A"][on],
+            gamma=table["gamma"][on],
+            state=np.array([table[f"x{i}"][on] for i in range(1, 5)]),
+            omega=table["omega"][on], l1=table["l1"][on],
+            codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]], complete=bool(end[3]),
+            ends=(CURVE_ENDS[int(end[4])], CURVE_ENDS[int(end[5])]), note=note_of.get(k, "")))
+    points = [Codim2Point(CODIM2_KINDS[int(r[0])], float(r[2]), float(r[3]), float(r[4]),
+                          float(r[5]), int(r[1]) - 1) for r in codim2.T]
+    grid_table = {name: values.copy() for name, values in zip(_tables.columns("chart_grid"), grid)}
+    return StabilityChart(x, y, model, curve_list, points, grid_table, complete, params)
+
+
+def chart_from_files(directory, x="rho", y="A", model="slow_flow_3:1", params=None):
+    """A StabilityChart from the CSV files of the executable (chart_curves.csv, chart_codim2.csv,
+    chart_ends.csv, chart_grid.csv in directory)."""
+    import csv
+    from pathlib import Path
+
+    def read(name, table):
+        with open(Path(directory) / name, newline="") as f:
+            rows = list(csv.reader(f))[1:]
+        codes = {"k": {v: c for c, v in CURVE_KINDS.items()},
+                 "d": {v: c for c, v in CODIM2_KINDS.items()},
+                 "e": {v: c for c, v in CURVE_ENDS.items()}}
+        formats = _tables.names(f"formats:{table}")[0][0]
+        data = np.array([[codes[f][v] if f in codes else float(v) for f, v in zip(formats, row)]
+                         for row in rows], dtype=float).reshape(len(rows), len(formats))
+        return data.T
+
+    ends = read("chart_ends.csv", "chart_ends")
+    notes = "\n".join(f"curve {int(e[0])}: stopped ({CURVE_ENDS[int(e[5])]})"
+                      for e in ends.T if not e[3])
+    return _chart(x, y, model, read("chart_curves.csv", "chart_curves"),
+                  read("chart_codim2.csv", "chart_codim2"), ends,
+                  read("chart_grid.csv", "chart_grid"), bool(np.all(ends[3] > 0)), notes, params)
