@@ -100,7 +100,7 @@ contains
     integer :: n_points, n_codim2, n_curves, n_cells, c, j, agree, checked
 
     associate (s => config%chart)
-      print '(/a)', 'Stability chart of the slow flow ('//trim(chart_models(s%model))//') in '// &
+      print '(/a)', 'Stability chart ('//trim(chart_models(s%model))//') in '// &
                     chart_parameter_name(s%parameters(1))//' in ['//num2str(s%p_min(1))//', '// &
                     num2str(s%p_max(1))//'] x '//chart_parameter_name(s%parameters(2))// &
                     ' in ['//num2str(s%p_min(2))//', '//num2str(s%p_max(2))//']: '// &

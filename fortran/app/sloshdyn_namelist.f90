@@ -53,9 +53,9 @@ module sloshdyn_namelist
                         ANALYSIS_SWEEP = 4, ANALYSIS_FREQUENCY_RESPONSE = 5, &
                         ANALYSIS_PERIODIC_RESPONSE = 6, ANALYSIS_LYAPUNOV = 7, &
                         ANALYSIS_SEISMIC = 8, ANALYSIS_STABILITY_CHART = 9
-  !> &chart: the models, by CHART_SLOW_FLOW_* code.
-  character(len=*), parameter :: chart_models(2) = [character(len=21) :: 'slow_flow_3:1', &
-                                                    'slow_flow_nonresonant']
+  !> &chart: the models, by CHART_SLOW_FLOW_31, CHART_SLOW_FLOW_NONRESONANT, CHART_FULL code.
+  character(len=*), parameter :: chart_models(3) = [character(len=21) :: 'slow_flow_3:1', &
+                                                    'slow_flow_nonresonant', 'full']
   character(len=*), parameter :: direction_names(3) = [character(len=4) :: 'up', 'down', 'both']
   integer, parameter :: DIRECTION_UP = 1, DIRECTION_DOWN = 2, DIRECTION_BOTH = 3
   !> Longest output directory name; longer ones are refused, never cut.

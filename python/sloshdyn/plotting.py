@@ -287,7 +287,10 @@ def stability_chart(chart, tank=None):
     else:
         cx, cy = chart.frequency_and_acceleration(tank, grid["rho"], grid["A"])
         mesh = ax.scatter(cx, cy, c=grid["n_stable"], cmap=cmap, norm=norm, marker="s", s=60)
-    fig.colorbar(mesh, ax=ax, ticks=range(top + 1), label="stable steady states")
+    full = chart.model == "full"
+    fig.colorbar(mesh, ax=ax, ticks=range(top + 1),
+                 label="stable periodic orbits (branch from rest)" if full
+                 else "stable steady states")
     shown = set()
     for curve in chart.curves:
         style = dict(_CURVE_STYLE[curve.kind])
@@ -309,7 +312,8 @@ def stability_chart(chart, tank=None):
     if tank is None:
         ax.set_xlabel(_AXIS_LABEL[chart.x])
         ax.set_ylabel(_AXIS_LABEL[chart.y])
-        ax.set_title(f"stability chart of the slow flow ({chart.model})", fontsize=10)
+        ax.set_title("stability chart: periodic orbits of the full model" if full else
+                     f"stability chart of the slow flow ({chart.model})", fontsize=10)
     else:
         ax.set_xlabel("ground motion frequency [Hz]")
         ax.set_ylabel("peak ground acceleration [g]")

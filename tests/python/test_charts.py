@@ -157,3 +157,21 @@ def test_bad_chart_input(exe, tmp_path, change, words):
     with pytest.raises(sloshdyn.InputError) as info:
         sloshdyn.read_namelist(tmp_path / "input.nml")
     assert words[0] in str(info.value)
+
+
+def test_full_model_neimark_sacker_curve_meets_the_periodic_response():
+    # rows at A = 0.000675 and 0.000825: the curves cross A = 0.00075 between their points
+    chart = sloshdyn.stability_chart(FIG12, (0.505, 0.515), (0.0006, 0.0009), model="full",
+                                     n_x=5, n_y=2, threads=2)
+    ns = [c for c in chart.curves if c.kind == "neimark_sacker"]
+    assert ns and all(c.complete for c in ns)
+    crossings = []
+    for c in ns:
+        s = np.sign(c.A - 0.00075)
+        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
+            t = (0.00075 - c.A[j]) / (c.A[j + 1] - c.A[j])
+            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    branch = sloshdyn.periodic_response(FIG12.replace(rho=0.505), (0.505, 0.515))
+    located = sorted(s.rho for s in branch.special_points if s.kind == "neimark_sacker")
+    assert len(located) == 2 and len(crossings) == 2
+    assert np.allclose(sorted(crossings), located, atol=3e-5)     # the bound
