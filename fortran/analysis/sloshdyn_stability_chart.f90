@@ -4,7 +4,7 @@
 !> states in each cell of a grid, and, optionally, that number found again by brute force.
 !>
 !> How a chart is made, for parameters (p1, p2) in a box (p1 is rho or A, p2 any other of rho,
-!> A, gamma):
+!> A, gamma, kappa; kappa re-expands the modal coefficients at each value):
 !> 1. At n_levels values of p2 (the grid's rows, cell midpoints) the one-parameter frequency
 !>    response in p1 (sloshdyn_response: Newton from a grid of starts at n_scan values of p1,
 !>    then continuation of every branch found) gives the steady states, their stability and
@@ -24,7 +24,7 @@ module sloshdyn_stability_chart
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CAPACITY, check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t
+  use sloshdyn_model, only: model_t, set_coefficients
   use sloshdyn_lapack, only: eigenvalues, solve_linear
   use sloshdyn_ode, only: ode_system, ode_options, ode_stats
   use sloshdyn_integrator, only: integrate, METHOD_DOP853
@@ -41,7 +41,8 @@ module sloshdyn_stability_chart
   use sloshdyn_orbit_chart, only: tank_orbit_map, orbit_chart_options, make_orbit_map, &
                                   orbit_curve_from_special
   use sloshdyn_slowflow_chart, only: slow_flow_field, make_slow_flow_field, &
-                                     chart_parameter_name, CHART_RHO, CHART_A, CHART_GAMMA
+                                     chart_parameter_name, CHART_RHO, CHART_A, CHART_GAMMA, &
+                                     CHART_KAPPA
   use sloshdyn_response, only: response_options, frequency_response, check_response_options
   use sloshdyn_tables, only: POINT_ROWS, SPECIAL_ROWS, POINT_BRANCH, POINT_LAMBDA, POINT_STABLE, &
                              POINT_X, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_COLUMN, SPECIAL_FOLD, &
@@ -63,7 +64,8 @@ module sloshdyn_stability_chart
 
   type :: chart_settings
     integer :: model = CHART_SLOW_FLOW_31
-    integer :: parameters(2) = [CHART_RHO, CHART_A]   !< (p1, p2): CHART_RHO, CHART_A, CHART_GAMMA
+    !> (p1, p2): CHART_RHO, CHART_A, CHART_GAMMA, CHART_KAPPA (p1: rho or A)
+    integer :: parameters(2) = [CHART_RHO, CHART_A]
     real(wp) :: p_min(2) = 0, p_max(2) = 0            !< the box (required)
     integer :: n_levels = 9                           !< grid rows (values of p2)
     integer :: n_columns = 41                         !< grid columns (values of p1)
@@ -79,7 +81,7 @@ module sloshdyn_stability_chart
   !> A computed chart.
   type, public :: chart_result
     integer :: parameters(2) = [CHART_RHO, CHART_A]
-    real(wp) :: base(3) = 0                 !< the model's rho, A, gamma (the non-chart values)
+    real(wp) :: base(4) = 0                 !< the model's rho, A, gamma, kappa (non-chart values)
     integer :: n_curves = 0
     logical :: complete = .true.            !< every curve traced to its ends
     type(bifurcation_curve), allocatable :: curves(:)
@@ -120,18 +122,22 @@ contains
     else if (settings%model == CHART_FULL .and. any(settings%parameters /= [CHART_RHO, CHART_A])) &
       then
       status = SD_BAD_INPUT
-      message = 'the full model''s chart is in x = rho and y = A'
+      message = "x = '"//chart_parameter_name(settings%parameters(1))//"', y = '"// &
+                chart_parameter_name(settings%parameters(2))//"': the full model's chart is "// &
+                'in x = rho and y = A'
     else if (settings%model == CHART_FULL .and. settings%brute_force_starts /= 0) then
       status = SD_BAD_INPUT
       message = 'brute_force_starts = '//num2str(settings%brute_force_starts)//': brute force '// &
                 'integrates the slow flow; for the full model it must be 0 (a study maps it)'
     else if (all(settings%parameters(1) /= [CHART_RHO, CHART_A])) then
       status = SD_BAD_INPUT
-      message = 'the first chart parameter must be rho or A (the one-parameter runs vary it)'
-    else if (all(settings%parameters(2) /= [CHART_RHO, CHART_A, CHART_GAMMA]) .or. &
+      message = "x = '"//chart_parameter_name(settings%parameters(1))//"' is out of range: the "// &
+                'x axis must be rho or A (the one-parameter runs vary it)'
+    else if (all(settings%parameters(2) /= [CHART_RHO, CHART_A, CHART_GAMMA, CHART_KAPPA]) .or. &
              settings%parameters(1) == settings%parameters(2)) then
       status = SD_BAD_INPUT
-      message = 'the second chart parameter must be rho, A or gamma, not the first one'
+      message = "y = '"//chart_parameter_name(settings%parameters(2))//"' is out of range: the "// &
+                'y axis must be another of rho, A, gamma, kappa than x'
     end if
     do k = 1, 2
       if (status /= SD_OK) return
@@ -208,7 +214,7 @@ contains
     levels = cell_midpoints(settings%p_min(2), settings%p_max(2), settings%n_levels)
     columns = cell_midpoints(settings%p_min(1), settings%p_max(1), settings%n_columns)
     chart%parameters = settings%parameters
-    chart%base = [model%excitation%rho, model%excitation%A, model%gamma]
+    chart%base = [model%excitation%rho, model%excitation%A, model%gamma, model%kappa]
     allocate (chart%curves(settings%max_curves))
     allocate (chart%cells(6, settings%n_columns*settings%n_levels))
 
@@ -367,7 +373,10 @@ contains
       model%excitation%A = value
     case (CHART_GAMMA)
       model%gamma = value
+    case (CHART_KAPPA)
+      model%kappa = value
     end select
+    call set_coefficients(model)   ! gamma and kappa enter eq (11)
   end subroutine set_chart_parameter
 
   pure function level_text(settings, level) result(text)
@@ -588,11 +597,12 @@ contains
     n_cells = size(chart%cells, 2)
   end subroutine chart_table_sizes
 
-  !> The chart as tables (sizes from chart_table_sizes), each point with all of rho, A, gamma:
-  !> 'chart_curves' (curve, kind, rho, A, gamma, x1..x4 (0 beyond the state's dimension), omega,
-  !> l1, codimension-2 kind), 'chart_codim2' (kind, curve, rho, A, gamma, omega), 'chart_ends'
-  !> (curve, kind, n_points, complete, first end, last end, status) and 'chart_grid' (rho, A,
-  !> gamma, n_stable, n_steady, near a curve, brute-force count or -1).
+  !> The chart as tables (sizes from chart_table_sizes), each point with all of rho, A, gamma,
+  !> kappa: 'chart_curves' (curve, kind, rho, A, gamma, kappa, x1..x4 (0 beyond the state's
+  !> dimension), omega, l1, codimension-2 kind), 'chart_codim2' (kind, curve, rho, A, gamma,
+  !> kappa, omega), 'chart_ends' (curve, kind, n_points, complete, first end, last end, status)
+  !> and 'chart_grid' (rho, A, gamma, kappa, n_stable, n_steady, near a curve, brute-force count
+  !> or -1).
   pure subroutine chart_tables(chart, curves, codim2, ends, grid)
     type(chart_result), intent(in) :: chart
     real(wp), intent(out) :: curves(:, :), codim2(:, :), ends(:, :), grid(:, :)
@@ -606,10 +616,10 @@ contains
       associate (curve => chart%curves(c))
         do j = 1, curve%n_points
           row = row + 1
-          curves(1:5, row) = [real(c, wp), real(chart_kind(curve%kind), wp), &
+          curves(1:6, row) = [real(c, wp), real(chart_kind(curve%kind), wp), &
                               chart_point(chart, curve%p(:, j))]
-          curves(6:5 + curve%n, row) = curve%x(:, j)
-          curves(10:12, row) = [curve%omega(j), curve%l1(j), &
+          curves(7:6 + curve%n, row) = curve%x(:, j)
+          curves(11:13, row) = [curve%omega(j), curve%l1(j), &
                                 real(chart_codim2_kind(curve%special(j)), wp)]
         end do
         do j = 1, curve%n_codim2
@@ -627,11 +637,11 @@ contains
     end do
   end subroutine chart_tables
 
-  !> (rho, A, gamma) of the chart point p = (p1, p2).
+  !> (rho, A, gamma, kappa) of the chart point p = (p1, p2).
   pure function chart_point(chart, p) result(point)
     type(chart_result), intent(in) :: chart
     real(wp), intent(in) :: p(2)
-    real(wp) :: point(3)
+    real(wp) :: point(4)
     point = chart%base
     point(chart%parameters) = p
   end function chart_point

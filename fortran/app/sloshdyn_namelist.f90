@@ -21,7 +21,7 @@ module sloshdyn_namelist
   use sloshdyn_records, only: load_record, units_code, units_factor
   use sloshdyn_seismic, only: max_seismic_outputs
   use sloshdyn_stability_chart, only: chart_settings, check_chart_settings
-  use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_GAMMA
+  use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_KAPPA
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_DOPRI5, method_names
   use sloshdyn_simulation, only: steady_options, check_steady
@@ -943,7 +943,7 @@ contains
     settings%parameters = [axis_code(x), axis_code(y)]
     if (status == SD_OK .and. any(settings%parameters == 0)) &
       call fail(status, message, "&chart: x = '"//trim(adjustl(x))//"', y = '"// &
-                trim(adjustl(y))//"': the axes are two of rho, A, gamma (x: rho or A)")
+                trim(adjustl(y))//"': the axes are two of rho, A, gamma, kappa (x: rho or A)")
     if (status /= SD_OK) return
     settings%p_min = [x_min, y_min]
     settings%p_max = [x_max, y_max]
@@ -963,7 +963,7 @@ contains
     character(len=*), intent(in) :: word
     integer :: k
     code = 0
-    do k = CHART_RHO, CHART_GAMMA
+    do k = CHART_RHO, CHART_KAPPA
       if (chart_parameter_name(k) == trim(adjustl(word))) code = k
     end do
   end function axis_code

@@ -108,15 +108,15 @@ module sloshdyn_tables
   integer, parameter :: PEAKS_SIZE = 19
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
-  character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,x1,x2,x3,x4,'// &
-    'omega,l1,codim2'
-  character(len=*), parameter :: chart_codim2_columns = 'kind,curve,rho,A,gamma,omega'
+  character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
+    'x4,omega,l1,codim2'
+  character(len=*), parameter :: chart_codim2_columns = 'kind,curve,rho,A,gamma,kappa,omega'
   character(len=*), parameter :: chart_end_columns = 'curve,kind,n_points,complete,first_end,'// &
     'last_end,status'
-  character(len=*), parameter :: chart_grid_columns = 'rho,A,gamma,n_stable,n_steady,'// &
+  character(len=*), parameter :: chart_grid_columns = 'rho,A,gamma,kappa,n_stable,n_steady,'// &
     'near_curve,brute_force_stable'
-  integer, parameter :: CHART_CURVE_ROWS = 12, CHART_CODIM2_ROWS = 6, CHART_END_ROWS = 7, &
-                        CHART_GRID_ROWS = 7
+  integer, parameter :: CHART_CURVE_ROWS = 13, CHART_CODIM2_ROWS = 7, CHART_END_ROWS = 7, &
+                        CHART_GRID_ROWS = 8
   character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
     'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
     'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
@@ -224,13 +224,13 @@ contains
     case ('harmonic_sweep')
       formats = 'rrrrrriir'
     case ('chart_curves')
-      formats = 'ikrrrrrrrrrd'
+      formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')
-      formats = 'dirrrr'
+      formats = 'dirrrrr'
     case ('chart_ends')
       formats = 'ikiieei'
     case ('chart_grid')
-      formats = 'rrriiii'
+      formats = 'rrrriiii'
     case default
       formats = repeat('r', table_size(name))
     end select

@@ -239,7 +239,8 @@ _CURVE_STYLE = {"fold": dict(color="k", ls="-", label="fold"),
                 "neimark_sacker": dict(color="m", ls=":", label="Neimark-Sacker")}
 _CODIM2_MARKER = {"cusp": "^", "bogdanov_takens": "s", "fold_hopf": "D", "generalised_hopf": "o",
                   "resonance_1_1": "v", "resonance_1_2": "P", "fold_flip": "X"}
-_AXIS_LABEL = {"rho": r"$\rho = \Omega/\omega$", "A": r"$A = u_0/L$", "gamma": r"$\gamma$"}
+_AXIS_LABEL = {"rho": r"$\rho = \Omega/\omega$", "A": r"$A = u_0/L$", "gamma": r"$\gamma$",
+               "kappa": r"$\kappa$"}
 
 
 def stability_chart(chart, tank=None):
@@ -271,7 +272,8 @@ def stability_chart(chart, tank=None):
         pass
     for k in range(len(grid["rho"])):
         cell = Cell()
-        cell.rho, cell.A, cell.gamma = grid["rho"][k], grid["A"][k], grid["gamma"][k]
+        cell.rho, cell.A, cell.gamma, cell.kappa = (grid[name][k] for name in
+                                                    ("rho", "A", "gamma", "kappa"))
         gx, gy = xy(cell)
         ax.text(gx, gy, f"{int(grid['n_stable'][k])}", ha="center", va="center", fontsize=6,
                 color="0.35")

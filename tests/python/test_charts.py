@@ -140,8 +140,9 @@ def test_both_front_doors_give_the_same_chart(exe, tmp_path, fig12_chart):
 
 
 @pytest.mark.parametrize("change,words", [
-    ("x = 'kappa'", ["x = 'kappa'", "rho, A, gamma"]),
-    ("y = 'rho'", ["second chart parameter", "not the first"]),
+    ("x = 'kappa'", ["x = 'kappa'", "rho or A"]),
+    ("x = 'sigma'", ["x = 'sigma'", "rho, A, gamma, kappa"]),
+    ("y = 'rho'", ["y = 'rho'", "another of"]),
     ("x_max = 0.48", ["x_max = 0.48", "x_min = 0.49"]),
     ("n_x = 0", ["n_columns = 0"]),
     ("model = 'full_model'", ["model = 'full_model'", "slow_flow_3:1"]),
@@ -175,3 +176,18 @@ def test_full_model_neimark_sacker_curve_meets_the_periodic_response():
     located = sorted(s.rho for s in branch.special_points if s.kind == "neimark_sacker")
     assert len(located) == 2 and len(crossings) == 2
     assert np.allclose(sorted(crossings), located, atol=3e-5)     # the bound
+
+
+def test_kappa_chart_crosses_the_fig12_kappa_at_its_hopf_points():
+    # kappa as the second parameter: the modal coefficients are expanded again at every kappa
+    chart = sloshdyn.stability_chart(FIG12, RHO, (1.79, 1.82), y="kappa", n_x=11, n_y=5)
+    crossings = []
+    for c in (c for c in chart.curves if c.kind == "hopf"):
+        s = np.sign(c.kappa - FIG12.kappa)
+        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
+            t = (FIG12.kappa - c.kappa[j]) / (c.kappa[j + 1] - c.kappa[j])
+            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    hopf_points = sorted(s.rho for s in one_parameter(FIG12, 0.00075).special_points
+                         if s.kind == "hopf")
+    assert np.allclose(sorted(crossings), hopf_points, atol=2e-6)
+    assert all(np.all(c.A == FIG12.A) for c in chart.curves)
