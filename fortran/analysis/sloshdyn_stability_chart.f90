@@ -4,7 +4,7 @@
 !> states in each cell of a grid, and, optionally, that number found again by brute force.
 !>
 !> How a chart is made, for parameters (p1, p2) in a box (p1 is rho or A, p2 any other of rho,
-!> A, gamma):
+!> A, gamma, kappa; kappa re-expands the modal coefficients at each value):
 !> 1. At n_levels values of p2 (the grid's rows, cell midpoints) the one-parameter frequency
 !>    response in p1 (sloshdyn_response: Newton from a grid of starts at n_scan values of p1,
 !>    then continuation of every branch found) gives the steady states, their stability and
@@ -24,33 +24,48 @@ module sloshdyn_stability_chart
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CAPACITY, check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t
+  use sloshdyn_model, only: model_t, set_coefficients
   use sloshdyn_lapack, only: eigenvalues, solve_linear
   use sloshdyn_ode, only: ode_system, ode_options, ode_stats
   use sloshdyn_integrator, only: integrate, METHOD_DOP853
-  use sloshdyn_bifurcation, only: curve_options, bifurcation_curve, fold_curve, hopf_curve, &
-                                  curve_crossings, check_curve_options, CURVE_FOLD, CODIM2_BT, &
-                                  CODIM2_CUSP, CODIM2_ZH, CODIM2_GH
+  use sloshdyn_bifurcation, only: two_parameter_field, curve_options, bifurcation_curve, &
+                                  fold_curve, hopf_curve, curve_crossings, check_curve_options, &
+                                  CURVE_FOLD, CURVE_HOPF, CURVE_PERIOD_DOUBLING, &
+                                  CURVE_NEIMARK_SACKER, CODIM2_BT, &
+                                  CODIM2_CUSP, CODIM2_ZH, CODIM2_GH, CODIM2_R1, CODIM2_R2, &
+                                  CODIM2_R3, CODIM2_R4, CODIM2_FOLD_NS, CODIM2_FLIP_NS, &
+                                  FOLD_FLIP => CODIM2_FOLD_FLIP
+  use sloshdyn_excitation, only: PARAMETER_RHO
+  use sloshdyn_simulation, only: steady_options
+  use sloshdyn_periodic_response, only: periodic_response_from_rest
+  use sloshdyn_orbit_chart, only: tank_orbit_map, orbit_chart_options, make_orbit_map, &
+                                  orbit_curve_from_special
   use sloshdyn_slowflow_chart, only: slow_flow_field, make_slow_flow_field, &
-                                     chart_parameter_name, CHART_RHO, CHART_A, CHART_GAMMA
+                                     chart_parameter_name, CHART_RHO, CHART_A, CHART_GAMMA, &
+                                     CHART_KAPPA
   use sloshdyn_response, only: response_options, frequency_response, check_response_options
   use sloshdyn_tables, only: POINT_ROWS, SPECIAL_ROWS, POINT_BRANCH, POINT_LAMBDA, POINT_STABLE, &
                              POINT_X, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_COLUMN, SPECIAL_FOLD, &
-                             SPECIAL_HOPF, CHART_FOLD, CHART_HOPF, CODIM2_NONE, &
-                             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
-                             CODIM2_GENERALISED_HOPF
+                             SPECIAL_HOPF, SPECIAL_PERIOD_DOUBLING, SPECIAL_NEIMARK_SACKER, &
+                             CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, &
+                             CHART_NEIMARK_SACKER, CODIM2_NONE, CODIM2_BOGDANOV_TAKENS, &
+                             CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, CODIM2_GENERALISED_HOPF, &
+                             CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, CODIM2_RESONANCE_1_3, &
+                             CODIM2_RESONANCE_1_4, CODIM2_FOLD_FLIP, CODIM2_FOLD_NEIMARK_SACKER, &
+                             CODIM2_FLIP_NEIMARK_SACKER
   implicit none
   private
   public :: chart_settings, stability_chart, check_chart_settings, chart_tables, &
             chart_table_sizes, chart_kind, chart_codim2_kind
-  public :: CHART_SLOW_FLOW_31, CHART_SLOW_FLOW_NONRESONANT
+  public :: CHART_SLOW_FLOW_31, CHART_SLOW_FLOW_NONRESONANT, CHART_FULL
 
-  !> Which model a chart is of.
-  integer, parameter :: CHART_SLOW_FLOW_31 = 1, CHART_SLOW_FLOW_NONRESONANT = 2
+  !> Which model a chart is of: a slow flow, or the full equations' periodic orbits.
+  integer, parameter :: CHART_SLOW_FLOW_31 = 1, CHART_SLOW_FLOW_NONRESONANT = 2, CHART_FULL = 3
 
   type :: chart_settings
     integer :: model = CHART_SLOW_FLOW_31
-    integer :: parameters(2) = [CHART_RHO, CHART_A]   !< (p1, p2): CHART_RHO, CHART_A, CHART_GAMMA
+    !> (p1, p2): CHART_RHO, CHART_A, CHART_GAMMA, CHART_KAPPA (p1: rho or A)
+    integer :: parameters(2) = [CHART_RHO, CHART_A]
     real(wp) :: p_min(2) = 0, p_max(2) = 0            !< the box (required)
     integer :: n_levels = 9                           !< grid rows (values of p2)
     integer :: n_columns = 41                         !< grid columns (values of p1)
@@ -66,7 +81,7 @@ module sloshdyn_stability_chart
   !> A computed chart.
   type, public :: chart_result
     integer :: parameters(2) = [CHART_RHO, CHART_A]
-    real(wp) :: base(3) = 0                 !< the model's rho, A, gamma (the non-chart values)
+    real(wp) :: base(4) = 0                 !< the model's rho, A, gamma, kappa (non-chart values)
     integer :: n_curves = 0
     logical :: complete = .true.            !< every curve traced to its ends
     type(bifurcation_curve), allocatable :: curves(:)
@@ -101,16 +116,28 @@ contains
     character :: axis
     integer :: k
     if (status /= SD_OK) return
-    if (settings%model /= CHART_SLOW_FLOW_31 .and. settings%model /= CHART_SLOW_FLOW_NONRESONANT) then
+    if (all(settings%model /= [CHART_SLOW_FLOW_31, CHART_SLOW_FLOW_NONRESONANT, CHART_FULL])) then
       status = SD_BAD_INPUT
-      message = 'model = '//num2str(settings%model)//' is not a slow-flow chart'
+      message = 'model = '//num2str(settings%model)//' is not a chart model'
+    else if (settings%model == CHART_FULL .and. any(settings%parameters /= [CHART_RHO, CHART_A])) &
+      then
+      status = SD_BAD_INPUT
+      message = "x = '"//chart_parameter_name(settings%parameters(1))//"', y = '"// &
+                chart_parameter_name(settings%parameters(2))//"': the full model's chart is "// &
+                'in x = rho and y = A'
+    else if (settings%model == CHART_FULL .and. settings%brute_force_starts /= 0) then
+      status = SD_BAD_INPUT
+      message = 'brute_force_starts = '//num2str(settings%brute_force_starts)//': brute force '// &
+                'integrates the slow flow; for the full model it must be 0 (a study maps it)'
     else if (all(settings%parameters(1) /= [CHART_RHO, CHART_A])) then
       status = SD_BAD_INPUT
-      message = 'the first chart parameter must be rho or A (the one-parameter runs vary it)'
-    else if (all(settings%parameters(2) /= [CHART_RHO, CHART_A, CHART_GAMMA]) .or. &
+      message = "x = '"//chart_parameter_name(settings%parameters(1))//"' is out of range: the "// &
+                'x axis must be rho or A (the one-parameter runs vary it)'
+    else if (all(settings%parameters(2) /= [CHART_RHO, CHART_A, CHART_GAMMA, CHART_KAPPA]) .or. &
              settings%parameters(1) == settings%parameters(2)) then
       status = SD_BAD_INPUT
-      message = 'the second chart parameter must be rho, A or gamma, not the first one'
+      message = "y = '"//chart_parameter_name(settings%parameters(2))//"' is out of range: the "// &
+                'y axis must be another of rho, A, gamma, kappa than x'
     end if
     do k = 1, 2
       if (status /= SD_OK) return
@@ -159,6 +186,8 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(slow_flow_field) :: field
+    type(tank_orbit_map) :: orbit_map
+    type(orbit_chart_options) :: orbits
     type(curve_options) :: options
     real(wp), allocatable :: levels(:), columns(:), seeds(:, :, :)
     integer, allocatable :: n_seeds(:), level_status(:)
@@ -170,17 +199,22 @@ contains
     status = SD_OK
     message = ''
     call check_chart_settings(settings, status, message)
-    if (status == SD_OK) call make_slow_flow_field(model, &
-                                                   settings%model == CHART_SLOW_FLOW_31, &
-                                                   settings%parameters, field, status, message)
     if (status /= SD_OK) return
     options = curve_settings(settings)
-    call check_curve_options(options, status, message)
+    if (settings%model == CHART_FULL) then
+      orbits%curve = options
+      orbits%curve%continuation%ds_max = 1   ! the orbits' curves take longer steps (their scales)
+      call make_orbit_map(model, orbits, orbit_map, status, message)
+    else
+      call make_slow_flow_field(model, settings%model == CHART_SLOW_FLOW_31, &
+                                settings%parameters, field, status, message)
+      if (status == SD_OK) call check_curve_options(options, status, message)
+    end if
     if (status /= SD_OK) return
     levels = cell_midpoints(settings%p_min(2), settings%p_max(2), settings%n_levels)
     columns = cell_midpoints(settings%p_min(1), settings%p_max(1), settings%n_columns)
     chart%parameters = settings%parameters
-    chart%base = [model%excitation%rho, model%excitation%A, model%gamma]
+    chart%base = [model%excitation%rho, model%excitation%A, model%gamma, model%kappa]
     allocate (chart%curves(settings%max_curves))
     allocate (chart%cells(6, settings%n_columns*settings%n_levels))
 
@@ -205,15 +239,24 @@ contains
       do k = 1, n_seeds(l)
         associate (seed => seeds(:, k, l))
           start_p = [seed(2), levels(l)]
-          if (on_a_curve(field, chart, nint(seed(1)), start_p, options, &
-                         seed_tolerance*(settings%p_max(1) - settings%p_min(1)))) cycle
+          if (settings%model == CHART_FULL) then
+            if (on_a_curve(orbit_map, chart, curve_kind_of(nint(seed(1))), start_p, options, &
+                           seed_tolerance*(settings%p_max(1) - settings%p_min(1)))) cycle
+          else
+            if (on_a_curve(field, chart, curve_kind_of(nint(seed(1))), start_p, options, &
+                           seed_tolerance*(settings%p_max(1) - settings%p_min(1)))) cycle
+          end if
           if (chart%n_curves == size(chart%curves)) then
             status = SD_CAPACITY
             message = 'more than max_curves = '//num2str(size(chart%curves))//' curves'
             return
           end if
           chart%n_curves = chart%n_curves + 1
-          if (nint(seed(1)) == SPECIAL_FOLD) then
+          if (settings%model == CHART_FULL) then
+            call orbit_curve_from_special(level_model(l), PARAMETER_RHO, seed, orbits, &
+                                          chart%curves(chart%n_curves), curve_status, &
+                                          curve_message)
+          else if (nint(seed(1)) == SPECIAL_FOLD) then
             call fold_curve(field, seed(3:2 + field%dimension()), start_p, options, &
                             chart%curves(chart%n_curves), curve_status, curve_message)
           else
@@ -239,34 +282,62 @@ contains
     !> p1, state).
     subroutine run_level(l)
       integer, intent(in) :: l
-      type(model_t) :: level_model
-      real(wp), allocatable :: table(:, :), special(:, :)
+      real(wp), allocatable :: table(:, :), special(:, :), multipliers(:, :)
       integer :: n_points, n_special, k, column
       logical :: complete
-      allocate (table(POINT_ROWS, max_run_points), special(SPECIAL_ROWS, max_run_special))
-      level_model = model
-      call set_chart_parameter(level_model, settings%parameters(2), levels(l))
-      call frequency_response(level_model, settings%model == CHART_SLOW_FLOW_31, &
-                              settings%parameters(1), settings%p_min(1), settings%p_max(1), &
-                              settings%response, table, n_points, special, n_special, complete, &
-                              level_status(l), level_message(l))
       n_seeds(l) = 0
-      if (level_status(l) /= SD_OK) return
+      seeds(:, :, l) = 0
       associate (row => chart%cells(:, (l - 1)*size(columns) + 1:l*size(columns)))
-        call count_cells(table(:, 1:n_points), columns, row)
+        if (settings%model == CHART_FULL) then
+          ! the branch of orbits continued from the steady state reached from rest
+          allocate (table(7, max_run_points), multipliers(8, max_run_points), &
+                    special(7, max_run_special))
+          call periodic_response_from_rest(level_model(l), PARAMETER_RHO, [0.0_wp, 0.0_wp, &
+                                           0.0_wp, 0.0_wp], settings%p_min(1), &
+                                           settings%p_max(1), steady_options(), &
+                                           settings%response%continuation, orbits%integration, &
+                                           orbits%method, table, multipliers, n_points, special, &
+                                           n_special, complete, level_status(l), &
+                                           level_message(l))
+          if (level_status(l) /= SD_OK) return
+          call count_cells(table(1, 1:n_points), table(7, 1:n_points), &
+                           [(1, k = 1, n_points)], columns, row)
+          do k = 1, n_special
+            if (all(nint(special(1, k)) /= [SPECIAL_FOLD, SPECIAL_PERIOD_DOUBLING, &
+                                             SPECIAL_NEIMARK_SACKER])) cycle
+            n_seeds(l) = n_seeds(l) + 1
+            seeds(:, n_seeds(l), l) = special(1:seed_rows, k)
+          end do
+        else
+          allocate (table(POINT_ROWS, max_run_points), special(SPECIAL_ROWS, max_run_special))
+          call frequency_response(level_model(l), settings%model == CHART_SLOW_FLOW_31, &
+                                  settings%parameters(1), settings%p_min(1), settings%p_max(1), &
+                                  settings%response, table, n_points, special, n_special, &
+                                  complete, level_status(l), level_message(l))
+          if (level_status(l) /= SD_OK) return
+          call count_cells(table(POINT_LAMBDA, 1:n_points), table(POINT_STABLE, 1:n_points), &
+                           nint(table(POINT_BRANCH, 1:n_points)), columns, row)
+          do k = 1, n_special
+            if (all(nint(special(SPECIAL_KIND, k)) /= [SPECIAL_FOLD, SPECIAL_HOPF])) cycle
+            n_seeds(l) = n_seeds(l) + 1
+            column = nint(special(SPECIAL_COLUMN, k))
+            seeds(1:2, n_seeds(l), l) = [special(SPECIAL_KIND, k), special(SPECIAL_LAMBDA, k)]
+            seeds(3:2 + field%dimension(), n_seeds(l), l) = &
+              table(POINT_X:POINT_X + field%dimension() - 1, column)
+          end do
+        end if
         row(1, :) = columns
         row(2, :) = levels(l)
       end associate
-      seeds(:, :, l) = 0
-      do k = 1, n_special
-        if (all(nint(special(SPECIAL_KIND, k)) /= [SPECIAL_FOLD, SPECIAL_HOPF])) cycle
-        n_seeds(l) = n_seeds(l) + 1
-        column = nint(special(SPECIAL_COLUMN, k))
-        seeds(1:2, n_seeds(l), l) = [special(SPECIAL_KIND, k), special(SPECIAL_LAMBDA, k)]
-        seeds(3:2 + field%dimension(), n_seeds(l), l) = &
-          table(POINT_X:POINT_X + field%dimension() - 1, column)
-      end do
     end subroutine run_level
+
+    !> The model at level l.
+    pure function level_model(l) result(at_level)
+      integer, intent(in) :: l
+      type(model_t) :: at_level
+      at_level = model
+      call set_chart_parameter(at_level, settings%parameters(2), levels(l))
+    end function level_model
   end subroutine stability_chart
 
   !> Curve settings from the chart's: the box, and scales from its size and the response's.
@@ -302,7 +373,10 @@ contains
       model%excitation%A = value
     case (CHART_GAMMA)
       model%gamma = value
+    case (CHART_KAPPA)
+      model%kappa = value
     end select
+    call set_coefficients(model)   ! gamma and kappa enter eq (11)
   end subroutine set_chart_parameter
 
   pure function level_text(settings, level) result(text)
@@ -312,48 +386,49 @@ contains
     text = chart_parameter_name(settings%parameters(2))//' = '//num2str(level)
   end function level_text
 
-  !> Is the special point (kind, p) on a computed curve of its kind (a crossing with p2 = p(2)
-  !> within tolerance of p(1))?
+  !> Is a point of a curve of this kind at p on a computed curve of that kind (a crossing with
+  !> p2 = p(2) within tolerance of p(1))?
   logical function on_a_curve(field, chart, kind, p, options, tolerance) result(found)
-    type(slow_flow_field), intent(in) :: field
+    class(two_parameter_field), intent(in) :: field
     type(chart_result), intent(in) :: chart
     integer, intent(in) :: kind
     real(wp), intent(in) :: p(2), tolerance
     type(curve_options), intent(in) :: options
-    real(wp) :: x(field%dimension(), 100), crossing(2, 100)
+    real(wp) :: x(4, 100), crossing(2, 100)
     integer :: c, n_found, status
     character(len=message_len) :: message
     found = .false.
     do c = 1, chart%n_curves
-      if ((chart%curves(c)%kind == CURVE_FOLD) .neqv. (kind == SPECIAL_FOLD)) cycle
-      call curve_crossings(field, chart%curves(c), 2, p(2), options, x, crossing, n_found, &
-                           status, message)
+      if (chart%curves(c)%kind /= kind) cycle
+      call curve_crossings(field, chart%curves(c), 2, p(2), options, &
+                           x(1:chart%curves(c)%n, :), crossing, n_found, status, message)
       if (n_found > 0) found = any(abs(crossing(1, 1:n_found) - p(1)) <= tolerance)
       if (found) return
     end do
   end function on_a_curve
 
-  !> The stable and all steady states of a row: branch segments (consecutive points of one
-  !> branch) that span each column value; cells(3:5, :) = n_stable, n_steady, 0 (near a curve:
-  !> set later); a segment whose ends differ in stability makes the count uncertain: 1 there.
-  pure subroutine count_cells(points, columns, cells)
-    real(wp), intent(in) :: points(:, :), columns(:)
+  !> The stable and all steady states of a row from its branch points (lambda, stable (1/0),
+  !> branch id): the segments between consecutive points of one branch that span each column
+  !> value; cells(3:5, :) = n_stable, n_steady, 0 (near a curve: set later; a segment whose
+  !> ends differ in stability makes the count uncertain: 1 there), cells(6, :) = -1 (no brute
+  !> force yet).
+  pure subroutine count_cells(lambda, stable, branch, columns, cells)
+    real(wp), intent(in) :: lambda(:), stable(:), columns(:)
+    integer, intent(in) :: branch(:)
     real(wp), intent(out) :: cells(:, :)
     integer :: i, j
     real(wp) :: a, b
     cells = 0
-    cells(6, :) = -1    ! brute force not done
-    do j = 1, size(points, 2) - 1
-      if (nint(points(POINT_BRANCH, j)) /= nint(points(POINT_BRANCH, j + 1))) cycle
-      a = min(points(POINT_LAMBDA, j), points(POINT_LAMBDA, j + 1))
-      b = max(points(POINT_LAMBDA, j), points(POINT_LAMBDA, j + 1))
+    cells(6, :) = -1
+    do j = 1, size(lambda) - 1
+      if (branch(j) /= branch(j + 1)) cycle
+      a = min(lambda(j), lambda(j + 1))
+      b = max(lambda(j), lambda(j + 1))
       do i = 1, size(columns)
         if (columns(i) < a .or. columns(i) >= b) cycle
         cells(4, i) = cells(4, i) + 1
-        if (points(POINT_STABLE, j) > 0 .and. points(POINT_STABLE, j + 1) > 0) &
-          cells(3, i) = cells(3, i) + 1
-        if ((points(POINT_STABLE, j) > 0) .neqv. (points(POINT_STABLE, j + 1) > 0)) &
-          cells(5, i) = 1
+        if (stable(j) > 0 .and. stable(j + 1) > 0) cells(3, i) = cells(3, i) + 1
+        if ((stable(j) > 0) .neqv. (stable(j + 1) > 0)) cells(5, i) = 1
       end do
     end do
   end subroutine count_cells
@@ -522,11 +597,12 @@ contains
     n_cells = size(chart%cells, 2)
   end subroutine chart_table_sizes
 
-  !> The chart as tables (sizes from chart_table_sizes), each point with all of rho, A, gamma:
-  !> 'chart_curves' (curve, kind, rho, A, gamma, x1..x4 (0 beyond the state's dimension), omega,
-  !> l1, codimension-2 kind), 'chart_codim2' (kind, curve, rho, A, gamma, omega), 'chart_ends'
-  !> (curve, kind, n_points, complete, first end, last end, status) and 'chart_grid' (rho, A,
-  !> gamma, n_stable, n_steady, near a curve, brute-force count or -1).
+  !> The chart as tables (sizes from chart_table_sizes), each point with all of rho, A, gamma,
+  !> kappa: 'chart_curves' (curve, kind, rho, A, gamma, kappa, x1..x4 (0 beyond the state's
+  !> dimension), omega, l1, codimension-2 kind), 'chart_codim2' (kind, curve, rho, A, gamma,
+  !> kappa, omega), 'chart_ends' (curve, kind, n_points, complete, first end, last end, status)
+  !> and 'chart_grid' (rho, A, gamma, kappa, n_stable, n_steady, near a curve, brute-force count
+  !> or -1).
   pure subroutine chart_tables(chart, curves, codim2, ends, grid)
     type(chart_result), intent(in) :: chart
     real(wp), intent(out) :: curves(:, :), codim2(:, :), ends(:, :), grid(:, :)
@@ -540,10 +616,10 @@ contains
       associate (curve => chart%curves(c))
         do j = 1, curve%n_points
           row = row + 1
-          curves(1:5, row) = [real(c, wp), real(chart_kind(curve%kind), wp), &
+          curves(1:6, row) = [real(c, wp), real(chart_kind(curve%kind), wp), &
                               chart_point(chart, curve%p(:, j))]
-          curves(6:5 + curve%n, row) = curve%x(:, j)
-          curves(10:12, row) = [curve%omega(j), curve%l1(j), &
+          curves(7:6 + curve%n, row) = curve%x(:, j)
+          curves(11:13, row) = [curve%omega(j), curve%l1(j), &
                                 real(chart_codim2_kind(curve%special(j)), wp)]
         end do
         do j = 1, curve%n_codim2
@@ -561,11 +637,11 @@ contains
     end do
   end subroutine chart_tables
 
-  !> (rho, A, gamma) of the chart point p = (p1, p2).
+  !> (rho, A, gamma, kappa) of the chart point p = (p1, p2).
   pure function chart_point(chart, p) result(point)
     type(chart_result), intent(in) :: chart
     real(wp), intent(in) :: p(2)
-    real(wp) :: point(3)
+    real(wp) :: point(4)
     point = chart%base
     point(chart%parameters) = p
   end function chart_point
@@ -574,17 +650,40 @@ contains
   !> sloshdyn_tables) for sloshdyn_bifurcation's codes.
   pure integer function chart_kind(kind)
     integer, intent(in) :: kind
-    chart_kind = merge(CHART_FOLD, CHART_HOPF, kind == CURVE_FOLD)
+    select case (kind)
+    case (CURVE_FOLD);            chart_kind = CHART_FOLD
+    case (CURVE_HOPF);            chart_kind = CHART_HOPF
+    case (CURVE_PERIOD_DOUBLING); chart_kind = CHART_PERIOD_DOUBLING
+    case default;                 chart_kind = CHART_NEIMARK_SACKER
+    end select
   end function chart_kind
 
   pure integer function chart_codim2_kind(kind)
     integer, intent(in) :: kind
     select case (kind)
-    case (CODIM2_BT);   chart_codim2_kind = CODIM2_BOGDANOV_TAKENS
-    case (CODIM2_CUSP); chart_codim2_kind = CODIM2_CUSP_POINT
-    case (CODIM2_ZH);   chart_codim2_kind = CODIM2_FOLD_HOPF
-    case (CODIM2_GH);   chart_codim2_kind = CODIM2_GENERALISED_HOPF
-    case default;       chart_codim2_kind = CODIM2_NONE
+    case (CODIM2_BT);        chart_codim2_kind = CODIM2_BOGDANOV_TAKENS
+    case (CODIM2_CUSP);      chart_codim2_kind = CODIM2_CUSP_POINT
+    case (CODIM2_ZH);        chart_codim2_kind = CODIM2_FOLD_HOPF
+    case (CODIM2_GH);        chart_codim2_kind = CODIM2_GENERALISED_HOPF
+    case (CODIM2_R1);        chart_codim2_kind = CODIM2_RESONANCE_1_1
+    case (CODIM2_R2);        chart_codim2_kind = CODIM2_RESONANCE_1_2
+    case (CODIM2_R3);        chart_codim2_kind = CODIM2_RESONANCE_1_3
+    case (CODIM2_R4);        chart_codim2_kind = CODIM2_RESONANCE_1_4
+    case (FOLD_FLIP);        chart_codim2_kind = CODIM2_FOLD_FLIP
+    case (CODIM2_FOLD_NS);   chart_codim2_kind = CODIM2_FOLD_NEIMARK_SACKER
+    case (CODIM2_FLIP_NS);   chart_codim2_kind = CODIM2_FLIP_NEIMARK_SACKER
+    case default;            chart_codim2_kind = CODIM2_NONE
     end select
   end function chart_codim2_kind
+
+  !> The curve kind through a special point of a one-parameter run.
+  pure integer function curve_kind_of(special_kind)
+    integer, intent(in) :: special_kind
+    select case (special_kind)
+    case (SPECIAL_FOLD);            curve_kind_of = CURVE_FOLD
+    case (SPECIAL_HOPF);            curve_kind_of = CURVE_HOPF
+    case (SPECIAL_PERIOD_DOUBLING); curve_kind_of = CURVE_PERIOD_DOUBLING
+    case default;                   curve_kind_of = CURVE_NEIMARK_SACKER
+    end select
+  end function curve_kind_of
 end module sloshdyn_stability_chart

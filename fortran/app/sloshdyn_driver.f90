@@ -106,7 +106,7 @@ contains
     integer :: n_points, n_codim2, n_curves, n_cells, c, j, agree, checked
 
     associate (s => config%chart)
-      print '(/a)', 'Stability chart of the slow flow ('//trim(chart_models(s%model))//') in '// &
+      print '(/a)', 'Stability chart ('//trim(chart_models(s%model))//') in '// &
                     chart_parameter_name(s%parameters(1))//' in ['//num2str(s%p_min(1))//', '// &
                     num2str(s%p_max(1))//'] x '//chart_parameter_name(s%parameters(2))// &
                     ' in ['//num2str(s%p_min(2))//', '//num2str(s%p_max(2))//']: '// &
@@ -137,13 +137,13 @@ contains
     allocate (curves(CHART_CURVE_ROWS, n_points), codim2(CHART_CODIM2_ROWS, n_codim2), &
               ends(CHART_END_ROWS, n_curves), grid(CHART_GRID_ROWS, n_cells))
     call chart_tables(chart, curves, codim2, ends, grid)
-    print '(a)', '  grid of '//num2str(n_cells)//' cells: '//num2str(count(grid(4, :) == 0))// &
-                 ' with no stable steady state, '//num2str(count(grid(4, :) == 1))//' with one, '// &
-                 num2str(count(grid(4, :) > 1))//' with more; '// &
-                 num2str(count(grid(6, :) > 0))//' near a curve'
+    print '(a)', '  grid of '//num2str(n_cells)//' cells: '//num2str(count(grid(5, :) == 0))// &
+                 ' with no stable steady state, '//num2str(count(grid(5, :) == 1))//' with one, '// &
+                 num2str(count(grid(5, :) > 1))//' with more; '// &
+                 num2str(count(grid(7, :) > 0))//' near a curve'
     if (config%chart%brute_force_starts > 0) then
-      checked = count(grid(6, :) == 0)
-      agree = count(grid(6, :) == 0 .and. grid(7, :) == grid(4, :))
+      checked = count(grid(7, :) == 0)
+      agree = count(grid(7, :) == 0 .and. grid(8, :) == grid(5, :))
       print '(a)', '  brute force ('//num2str(config%chart%brute_force_starts)// &
                    ' integrations per cell): the same number of stable steady states in '// &
                    num2str(agree)//' of the '//num2str(checked)//' cells away from the curves'

@@ -21,7 +21,7 @@ module sloshdyn_namelist
   use sloshdyn_records, only: load_record, units_code, units_factor
   use sloshdyn_seismic, only: max_seismic_outputs
   use sloshdyn_stability_chart, only: chart_settings, check_chart_settings
-  use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_GAMMA
+  use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_KAPPA
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_DOPRI5, method_names
   use sloshdyn_simulation, only: steady_options, check_steady
@@ -62,9 +62,9 @@ module sloshdyn_namelist
                         ANALYSIS_SWEEP = 4, ANALYSIS_FREQUENCY_RESPONSE = 5, &
                         ANALYSIS_PERIODIC_RESPONSE = 6, ANALYSIS_LYAPUNOV = 7, &
                         ANALYSIS_SEISMIC = 8, ANALYSIS_STABILITY_CHART = 9
-  !> &chart: the models, by CHART_SLOW_FLOW_* code.
-  character(len=*), parameter :: chart_models(2) = [character(len=21) :: 'slow_flow_3:1', &
-                                                    'slow_flow_nonresonant']
+  !> &chart: the models, by CHART_SLOW_FLOW_31, CHART_SLOW_FLOW_NONRESONANT, CHART_FULL code.
+  character(len=*), parameter :: chart_models(3) = [character(len=21) :: 'slow_flow_3:1', &
+                                                    'slow_flow_nonresonant', 'full']
   character(len=*), parameter :: direction_names(3) = [character(len=4) :: 'up', 'down', 'both']
   integer, parameter :: DIRECTION_UP = 1, DIRECTION_DOWN = 2, DIRECTION_BOTH = 3
   !> Longest output directory name; longer ones are refused, never cut.
@@ -1179,7 +1179,7 @@ contains
     settings%parameters = [axis_code(x), axis_code(y)]
     if (status == SD_OK .and. any(settings%parameters == 0)) &
       call fail(status, message, "&chart: x = '"//trim(adjustl(x))//"', y = '"// &
-                trim(adjustl(y))//"': the axes are two of rho, A, gamma (x: rho or A)")
+                trim(adjustl(y))//"': the axes are two of rho, A, gamma, kappa (x: rho or A)")
     if (status /= SD_OK) return
     settings%p_min = [x_min, y_min]
     settings%p_max = [x_max, y_max]
@@ -1199,7 +1199,7 @@ contains
     character(len=*), intent(in) :: word
     integer :: k
     code = 0
-    do k = CHART_RHO, CHART_GAMMA
+    do k = CHART_RHO, CHART_KAPPA
       if (chart_parameter_name(k) == trim(adjustl(word))) code = k
     end do
   end function axis_code

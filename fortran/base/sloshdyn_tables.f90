@@ -27,7 +27,8 @@ module sloshdyn_tables
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
             CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
-            CODIM2_FOLD_FLIP, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, &
+            CODIM2_RESONANCE_1_3, CODIM2_RESONANCE_1_4, CODIM2_FOLD_FLIP, &
+            CODIM2_FOLD_NEIMARK_SACKER, CODIM2_FLIP_NEIMARK_SACKER, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, &
             CHART_GRID_ROWS
 
   !> Special points on branches (slow flow and periodic orbits).
@@ -50,11 +51,13 @@ module sloshdyn_tables
   integer, parameter :: CODIM2_NONE = 0, CODIM2_BOGDANOV_TAKENS = 1, CODIM2_CUSP_POINT = 2, &
                         CODIM2_FOLD_HOPF = 3, CODIM2_GENERALISED_HOPF = 4, &
                         CODIM2_RESONANCE_1_1 = 5, CODIM2_RESONANCE_1_2 = 6, &
-                        CODIM2_FOLD_FLIP = 7
+                        CODIM2_RESONANCE_1_3 = 7, CODIM2_RESONANCE_1_4 = 8, CODIM2_FOLD_FLIP = 9, &
+                        CODIM2_FOLD_NEIMARK_SACKER = 10, CODIM2_FLIP_NEIMARK_SACKER = 11
   character(len=*), parameter :: codim2_kinds = 'none,bogdanov_takens,cusp,fold_hopf,'// &
-    'generalised_hopf,resonance_1_1,resonance_1_2,fold_flip'
+    'generalised_hopf,resonance_1_1,resonance_1_2,resonance_1_3,resonance_1_4,fold_flip,'// &
+    'fold_neimark_sacker,flip_neimark_sacker'
   character(len=*), parameter :: curve_end_kinds = 'start,box,closed,x_max,bogdanov_takens,'// &
-    'max_points,failed'
+    'max_points,failed,resonance'
 
   !> Time history rows (after tau): state, modal coordinates (eq 34), impact force (eq 4),
   !> angles [rad].
@@ -105,15 +108,15 @@ module sloshdyn_tables
   integer, parameter :: PEAKS_SIZE = 19
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
-  character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,x1,x2,x3,x4,'// &
-    'omega,l1,codim2'
-  character(len=*), parameter :: chart_codim2_columns = 'kind,curve,rho,A,gamma,omega'
+  character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
+    'x4,omega,l1,codim2'
+  character(len=*), parameter :: chart_codim2_columns = 'kind,curve,rho,A,gamma,kappa,omega'
   character(len=*), parameter :: chart_end_columns = 'curve,kind,n_points,complete,first_end,'// &
     'last_end,status'
-  character(len=*), parameter :: chart_grid_columns = 'rho,A,gamma,n_stable,n_steady,'// &
+  character(len=*), parameter :: chart_grid_columns = 'rho,A,gamma,kappa,n_stable,n_steady,'// &
     'near_curve,brute_force_stable'
-  integer, parameter :: CHART_CURVE_ROWS = 12, CHART_CODIM2_ROWS = 6, CHART_END_ROWS = 7, &
-                        CHART_GRID_ROWS = 7
+  integer, parameter :: CHART_CURVE_ROWS = 13, CHART_CODIM2_ROWS = 7, CHART_END_ROWS = 7, &
+                        CHART_GRID_ROWS = 8
   character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
     'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
     'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
@@ -221,13 +224,13 @@ contains
     case ('harmonic_sweep')
       formats = 'rrrrrriir'
     case ('chart_curves')
-      formats = 'ikrrrrrrrrrd'
+      formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')
-      formats = 'dirrrr'
+      formats = 'dirrrrr'
     case ('chart_ends')
       formats = 'ikiieei'
     case ('chart_grid')
-      formats = 'rrriiii'
+      formats = 'rrrriiii'
     case default
       formats = repeat('r', table_size(name))
     end select

@@ -674,8 +674,8 @@ contains
     use sloshdyn_layouts, only: to_chart
     real(c_double), intent(in) :: rpar(10), settings(14)
     integer(c_int), intent(in) :: ipar(2), max_points, max_codim2, max_curves, n_cells
-    real(c_double), intent(out) :: curves(12, max_points), codim2(6, max_codim2), &
-                                   ends(7, max_curves), grid(7, n_cells)
+    real(c_double), intent(out) :: curves(13, max_points), codim2(7, max_codim2), &
+                                   ends(7, max_curves), grid(8, n_cells)
     integer(c_int), intent(out) :: sizes(4), complete, status
     character(len=4096), intent(out) :: notes
     character(len=256), intent(out) :: message

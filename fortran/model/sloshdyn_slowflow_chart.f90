@@ -21,6 +21,7 @@
 !> velocity; the c_ij come from terms with zero or two velocities), so with gamma a chart
 !> parameter they are taken from the modal expansion at gamma and at gamma + 1.
 module sloshdyn_slowflow_chart
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
@@ -31,10 +32,13 @@ module sloshdyn_slowflow_chart
   implicit none
   private
   public :: slow_flow_field, make_slow_flow_field, chart_parameter_name
-  public :: CHART_RHO, CHART_A, CHART_GAMMA
+  public :: CHART_RHO, CHART_A, CHART_GAMMA, CHART_KAPPA
 
   !> Which model value a chart parameter is (rho and A keep the excitation's codes).
-  integer, parameter :: CHART_RHO = PARAMETER_RHO, CHART_A = PARAMETER_A, CHART_GAMMA = 3
+  integer, parameter :: CHART_RHO = PARAMETER_RHO, CHART_A = PARAMETER_A, CHART_GAMMA = 3, &
+                        CHART_KAPPA = 4
+  !> Relative step of the central differences in kappa (the modal constants are smooth in it).
+  real(wp), parameter :: kappa_step = 1.0e-6_wp
 
   !> The cubic terms: row (1: B1', 2: B2'), the variable (1: B1, 2: B2) of each slot and whether
   !> the slot is conjugated; coefficients in slow_flow_terms.
@@ -49,13 +53,20 @@ module sloshdyn_slowflow_chart
                                                          .false., .false., .true., &
                                                          .false., .false., .false.], [3, n_terms])
 
+  !> What the slow flow takes from the modal expansion of a model.
+  type :: slow_flow_constants
+    real(wp) :: omega1 = 0, omega2 = 0, F11 = 0, c(2, 3) = 0
+    !> gamma11 = gamma11_0 + gamma11_slope gamma (likewise gamma22)
+    real(wp) :: gamma11_0 = 0, gamma11_slope = 0, gamma22_0 = 0, gamma22_slope = 0
+  end type slow_flow_constants
+
   type, extends(two_parameter_field) :: slow_flow_field
     logical :: internal_resonance = .true.   !< 3:1 (4 unknowns) or none (2 unknowns)
     integer :: parameters(2) = [CHART_RHO, CHART_A]   !< what p1 and p2 are
     real(wp) :: rho = 0, amplitude = 0, gamma = 0     !< the model's values (non-chart ones used)
-    real(wp) :: omega1 = 0, omega2 = 0, F11 = 0, c(2, 3) = 0
-    !> gamma11 = gamma11_0 + gamma11_slope gamma (likewise gamma22)
-    real(wp) :: gamma11_0 = 0, gamma11_slope = 0, gamma22_0 = 0, gamma22_slope = 0
+    type(slow_flow_constants) :: constants            !< at the model's kappa
+    !> the model (with kappa a chart parameter, the constants are expanded again at each kappa)
+    type(model_t) :: model
   contains
     procedure :: evaluate => field_evaluate
     procedure :: jacobian_derivative => field_jacobian_derivative
@@ -75,17 +86,15 @@ contains
     type(slow_flow_field), intent(out) :: field
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(modal_coefficients) :: modal, shifted
-    type(model_t) :: other
     integer :: k
 
     status = SD_OK
     message = ''
     do k = 1, 2
-      if (parameters(k) < CHART_RHO .or. parameters(k) > CHART_GAMMA) then
+      if (parameters(k) < CHART_RHO .or. parameters(k) > CHART_KAPPA) then
         status = SD_BAD_INPUT
         message = 'chart parameter '//num2str(k)//' = '//num2str(parameters(k))// &
-                  ' is out of range: it must be rho (1), A (2) or gamma (3)'
+                  ' is out of range: it must be rho (1), A (2), gamma (3) or kappa (4)'
         return
       end if
     end do
@@ -95,31 +104,44 @@ contains
                 chart_parameter_name(parameters(1))//')'
       return
     end if
-    call expand_model(model, modal, status, message)
-    if (status /= SD_OK) return
     field%internal_resonance = internal_resonance
     field%parameters = parameters
     field%rho = model%excitation%rho
     field%amplitude = model%excitation%A
     field%gamma = model%gamma
-    field%omega1 = modal%omega1
-    field%omega2 = modal%omega2
-    field%F11 = modal%F11
-    field%c = modal%c
-    field%gamma11_0 = modal%gamma11
-    field%gamma22_0 = modal%gamma22
-    if (any(parameters == CHART_GAMMA)) then
-      other = model
-      other%gamma = model%gamma + 1
-      call set_coefficients(other)
-      call expand_model(other, shifted, status, message)
-      if (status /= SD_OK) return
-      field%gamma11_slope = shifted%gamma11 - modal%gamma11
-      field%gamma22_slope = shifted%gamma22 - modal%gamma22
-      field%gamma11_0 = modal%gamma11 - model%gamma*field%gamma11_slope
-      field%gamma22_0 = modal%gamma22 - model%gamma*field%gamma22_slope
-    end if
+    field%model = model
+    call expand_constants(model, any(parameters == CHART_GAMMA), field%constants, status, message)
   end subroutine make_slow_flow_field
+
+  !> The slow flow's constants of a model; with_gamma: also their slopes in gamma (gamma11 and
+  !> gamma22 are linear in it), from a second expansion at gamma + 1.
+  pure subroutine expand_constants(model, with_gamma, constants, status, message)
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: with_gamma
+    type(slow_flow_constants), intent(out) :: constants
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(modal_coefficients) :: modal, shifted
+    type(model_t) :: other
+    call expand_model(model, modal, status, message)
+    if (status /= SD_OK) return
+    constants%omega1 = modal%omega1
+    constants%omega2 = modal%omega2
+    constants%F11 = modal%F11
+    constants%c = modal%c
+    constants%gamma11_0 = modal%gamma11
+    constants%gamma22_0 = modal%gamma22
+    if (.not. with_gamma) return
+    other = model
+    other%gamma = model%gamma + 1
+    call set_coefficients(other)
+    call expand_model(other, shifted, status, message)
+    if (status /= SD_OK) return
+    constants%gamma11_slope = shifted%gamma11 - modal%gamma11
+    constants%gamma22_slope = shifted%gamma22 - modal%gamma22
+    constants%gamma11_0 = modal%gamma11 - model%gamma*constants%gamma11_slope
+    constants%gamma22_0 = modal%gamma22 - model%gamma*constants%gamma22_slope
+  end subroutine expand_constants
 
   pure function chart_parameter_name(code) result(name)
     integer, intent(in) :: code
@@ -128,6 +150,7 @@ contains
     case (CHART_RHO);   name = 'rho'
     case (CHART_A);     name = 'A'
     case (CHART_GAMMA); name = 'gamma'
+    case (CHART_KAPPA); name = 'kappa'
     case default;       name = 'unknown'
     end select
   end function chart_parameter_name
@@ -147,42 +170,95 @@ contains
     complex(wp), intent(out) :: lin(2), dlin(2, 2), coef(n_terms)
     real(wp), intent(out) :: forcing, dforcing(2)
     complex(wp), parameter :: i = (0.0_wp, 1.0_wp)
+    type(slow_flow_constants) :: c
+    type(model_t) :: at_kappa
     real(wp) :: rho, amplitude, gamma, k1, k2
-    integer :: k
+    integer :: k, status
+    character(len=message_len) :: message
 
     rho = self%rho
     amplitude = self%amplitude
     gamma = self%gamma
+    c = self%constants
     do k = 1, 2
       select case (self%parameters(k))
       case (CHART_RHO);   rho = p(k)
       case (CHART_A);     amplitude = p(k)
       case (CHART_GAMMA); gamma = p(k)
+      case (CHART_KAPPA)
+        ! the modal constants at this kappa (NaN where the expansion fails: Newton stops there)
+        at_kappa = self%model
+        at_kappa%kappa = p(k)
+        call set_coefficients(at_kappa)
+        call expand_constants(at_kappa, any(self%parameters == CHART_GAMMA), c, status, message)
+        if (status /= SD_OK) c = nan_constants()
       end select
     end do
-    lin(1) = -((self%gamma11_0 + self%gamma11_slope*gamma)/2 + i*(rho - self%omega1))
-    lin(2) = -((self%gamma22_0 + self%gamma22_slope*gamma)/2 + &
-               i*(3*(rho - self%omega1) - (self%omega2 - 3*self%omega1)))
-    forcing = rho**2*amplitude*self%F11/(2*self%omega1)
+    lin(1) = -((c%gamma11_0 + c%gamma11_slope*gamma)/2 + i*(rho - c%omega1))
+    lin(2) = -((c%gamma22_0 + c%gamma22_slope*gamma)/2 + &
+               i*(3*(rho - c%omega1) - (c%omega2 - 3*c%omega1)))
+    forcing = rho**2*amplitude*c%F11/(2*c%omega1)
     do k = 1, 2
       select case (self%parameters(k))
       case (CHART_RHO)
         dlin(:, k) = [-i, -3*i]
-        dforcing(k) = 2*rho*amplitude*self%F11/(2*self%omega1)
+        dforcing(k) = 2*rho*amplitude*c%F11/(2*c%omega1)
       case (CHART_A)
         dlin(:, k) = 0
-        dforcing(k) = rho**2*self%F11/(2*self%omega1)
-      case default
-        dlin(:, k) = [cmplx(-self%gamma11_slope/2, 0.0_wp, wp), &
-                      cmplx(-self%gamma22_slope/2, 0.0_wp, wp)]
+        dforcing(k) = rho**2*c%F11/(2*c%omega1)
+      case (CHART_GAMMA)
+        dlin(:, k) = [cmplx(-c%gamma11_slope/2, 0.0_wp, wp), &
+                      cmplx(-c%gamma22_slope/2, 0.0_wp, wp)]
+        dforcing(k) = 0
+      case default   ! kappa: by differences of the whole field (field_evaluate)
+        dlin(:, k) = 0
         dforcing(k) = 0
       end select
     end do
-    k1 = 1/(8*self%omega1)
-    k2 = 1/(8*self%omega2)
-    coef = [i*k1*self%c(1, 1), 2*i*k1*self%c(1, 2), -i*k1*self%c(1, 3), &
-            i*k2*self%c(2, 1), 2*i*k2*self%c(2, 2), -i*k2*self%c(2, 3)]
+    k1 = 1/(8*c%omega1)
+    k2 = 1/(8*c%omega2)
+    coef = [i*k1*c%c(1, 1), 2*i*k1*c%c(1, 2), -i*k1*c%c(1, 3), &
+            i*k2*c%c(2, 1), 2*i*k2*c%c(2, 2), -i*k2*c%c(2, 3)]
   end subroutine slow_flow_terms
+
+  pure function nan_constants() result(c)
+    type(slow_flow_constants) :: c
+    real(wp) :: nan
+    nan = ieee_value(1.0_wp, ieee_quiet_nan)
+    c = slow_flow_constants(nan, nan, nan, nan, nan, nan, nan, nan)
+  end function nan_constants
+
+  !> f(x, p) alone, and J(x, p) u alone (for the differences in kappa).
+  pure function field_value(self, x, p) result(f)
+    class(slow_flow_field), intent(in) :: self
+    real(wp), intent(in) :: x(:), p(2)
+    real(wp) :: f(size(x))
+    complex(wp) :: lin(2), dlin(2, 2), coef(n_terms), b(2)
+    real(wp) :: forcing, dforcing(2)
+    call slow_flow_terms(self, p, lin, dlin, forcing, dforcing, coef)
+    b = complex_of(self, x)
+    f = real_of(self, lin*b + [cmplx(forcing, 0.0_wp, wp), (0.0_wp, 0.0_wp)] + &
+                      trilinear(self, coef, b, b, b))
+  end function field_value
+
+  pure function jacobian_times(self, x, p, u) result(ju)
+    class(slow_flow_field), intent(in) :: self
+    real(wp), intent(in) :: x(:), p(2), u(:)
+    real(wp) :: ju(size(x))
+    complex(wp) :: lin(2), dlin(2, 2), coef(n_terms), b(2), uu(2)
+    real(wp) :: forcing, dforcing(2)
+    call slow_flow_terms(self, p, lin, dlin, forcing, dforcing, coef)
+    b = complex_of(self, x)
+    uu = complex_of(self, u)
+    ju = real_of(self, lin*uu + trilinear(self, coef, uu, b, b) + trilinear(self, coef, b, uu, b) + &
+                       trilinear(self, coef, b, b, uu))
+  end function jacobian_times
+
+  !> The central-difference step in kappa at p(k).
+  pure real(wp) function kappa_difference(p) result(h)
+    real(wp), intent(in) :: p
+    h = kappa_step*max(1.0_wp, abs(p))
+  end function kappa_difference
 
   !> (B1, B2) of a real vector (B2 = 0 without internal resonance).
   pure function complex_of(self, u) result(b)
@@ -244,7 +320,7 @@ contains
     real(wp), intent(in) :: x(:), p(2)
     real(wp), intent(out) :: f(:), fx(:, :), fp(:, :)
     complex(wp) :: lin(2), dlin(2, 2), coef(n_terms), b(2), e(2), col(2)
-    real(wp) :: forcing, dforcing(2), unit(size(x))
+    real(wp) :: forcing, dforcing(2), unit(size(x)), h(2)
     integer :: j, k
 
     call slow_flow_terms(self, p, lin, dlin, forcing, dforcing, coef)
@@ -260,8 +336,14 @@ contains
       fx(:, j) = real_of(self, col)
     end do
     do k = 1, 2
-      fp(:, k) = real_of(self, dlin(:, k)*b + [cmplx(dforcing(k), 0.0_wp, wp), &
-                                              (0.0_wp, 0.0_wp)])
+      if (self%parameters(k) == CHART_KAPPA) then
+        h = 0
+        h(k) = kappa_difference(p(k))
+        fp(:, k) = (field_value(self, x, p + h) - field_value(self, x, p - h))/(2*h(k))
+      else
+        fp(:, k) = real_of(self, dlin(:, k)*b + [cmplx(dforcing(k), 0.0_wp, wp), &
+                                                (0.0_wp, 0.0_wp)])
+      end if
     end do
   end subroutine field_evaluate
 
@@ -271,7 +353,7 @@ contains
     real(wp), intent(in) :: x(:), p(2), u(:)
     real(wp), intent(out) :: hx(:, :), hp(:, :)
     complex(wp) :: lin(2), dlin(2, 2), coef(n_terms), b(2), uu(2), e(2)
-    real(wp) :: forcing, dforcing(2), unit(size(x))
+    real(wp) :: forcing, dforcing(2), unit(size(x)), h(2)
     integer :: j, k
 
     call slow_flow_terms(self, p, lin, dlin, forcing, dforcing, coef)
@@ -284,7 +366,14 @@ contains
       hx(:, j) = real_of(self, second_form(self, coef, b, uu, e))
     end do
     do k = 1, 2
-      hp(:, k) = real_of(self, dlin(:, k)*uu)
+      if (self%parameters(k) == CHART_KAPPA) then
+        h = 0
+        h(k) = kappa_difference(p(k))
+        hp(:, k) = (jacobian_times(self, x, p + h, u) - jacobian_times(self, x, p - h, u))/ &
+                   (2*h(k))
+      else
+        hp(:, k) = real_of(self, dlin(:, k)*uu)
+      end if
     end do
   end subroutine field_jacobian_derivative
 

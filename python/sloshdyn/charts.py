@@ -19,7 +19,7 @@ from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
 _DEFAULTS = _bridge.chart_defaults()
-AXES = ("rho", "A", "gamma")                      #: the chart parameters, by code 1, 2, 3
+AXES = ("rho", "A", "gamma", "kappa")             #: the chart parameters, by code 1, 2, 3, 4
 MODELS = _tables.names("chart_models")[0]         #: 'slow_flow_3:1', 'slow_flow_nonresonant'
 CURVE_KINDS = _tables.codes("curve")              #: {1: 'fold', 2: 'hopf', ...}
 CODIM2_KINDS = _tables.codes("codim2")            #: {0: 'none', 1: 'bogdanov_takens', ...}
@@ -28,8 +28,8 @@ CURVE_ENDS = _tables.codes("curve_end")
 
 @dataclass
 class Curve:
-    """A fold or Hopf curve, point by point along it (rho, A and gamma at every point; two of them
-    vary). state: (4, n) slow-flow state (Re B1, Im B1, Re B2, Im B2; the last two 0 without the
+    """A fold or Hopf curve, point by point along it (rho, A, gamma and kappa at every point; two
+    of them vary). state: (4, n) slow-flow state (Re B1, Im B1, Re B2, Im B2; the last two 0 without the
     internal resonance); omega: Hopf frequency (slow time; negative on a neutral-saddle part, 0
     for folds); l1: first Lyapunov coefficient along a Hopf curve (< 0 supercritical);
     codim2: the kind of each point ('none' for a regular one)."""
@@ -38,6 +38,7 @@ class Curve:
     rho: np.ndarray
     A: np.ndarray
     gamma: np.ndarray
+    kappa: np.ndarray
     state: np.ndarray
     omega: np.ndarray
     l1: np.ndarray
@@ -55,14 +56,15 @@ class Codim2Point:
     rho: float
     A: float
     gamma: float
+    kappa: float
     omega: float
     curve: int                  #: index into StabilityChart.curves
 
 
 @dataclass
 class StabilityChart:
-    """A chart in (x, y) = two of rho, A, gamma: its curves, codimension-2 points and grid
-    (arrays over the cells: rho, A, gamma, n_stable, n_steady, near_curve (1/0),
+    """A chart in (x, y) = two of rho, A, gamma, kappa: its curves, codimension-2 points and
+    grid (arrays over the cells: rho, A, gamma, kappa, n_stable, n_steady, near_curve (1/0),
     brute_force_stable (-1: not computed))."""
 
     x: str
@@ -146,13 +148,13 @@ def _chart(x, y, model, curves, codim2, ends, grid, complete, notes, params):
         on = table["curve"] == k
         curve_list.append(Curve(
             kind=CURVE_KINDS[int(end[1])], rho=table["rho"][on], A=table["A"][on],
-            gamma=table["gamma"][on],
+            gamma=table["gamma"][on], kappa=table["kappa"][on],
             state=np.array([table[f"x{i}"][on] for i in range(1, 5)]),
             omega=table["omega"][on], l1=table["l1"][on],
             codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]], complete=bool(end[3]),
             ends=(CURVE_ENDS[int(end[4])], CURVE_ENDS[int(end[5])]), note=note_of.get(k, "")))
-    points = [Codim2Point(CODIM2_KINDS[int(r[0])], float(r[2]), float(r[3]), float(r[4]),
-                          float(r[5]), int(r[1]) - 1) for r in codim2.T]
+    points = [Codim2Point(CODIM2_KINDS[int(r[0])], *(float(v) for v in r[2:7]), int(r[1]) - 1)
+              for r in codim2.T]
     grid_table = {name: values.copy() for name, values in zip(_tables.columns("chart_grid"), grid)}
     return StabilityChart(x, y, model, curve_list, points, grid_table, complete, params)
 

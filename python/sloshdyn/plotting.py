@@ -360,7 +360,8 @@ _CURVE_STYLE = {"fold": dict(color="k", ls="-", label="fold"),
                 "neimark_sacker": dict(color="m", ls=":", label="Neimark-Sacker")}
 _CODIM2_MARKER = {"cusp": "^", "bogdanov_takens": "s", "fold_hopf": "D", "generalised_hopf": "o",
                   "resonance_1_1": "v", "resonance_1_2": "P", "fold_flip": "X"}
-_AXIS_LABEL = {"rho": r"$\rho = \Omega/\omega$", "A": r"$A = u_0/L$", "gamma": r"$\gamma$"}
+_AXIS_LABEL = {"rho": r"$\rho = \Omega/\omega$", "A": r"$A = u_0/L$", "gamma": r"$\gamma$",
+               "kappa": r"$\kappa$"}
 
 
 def stability_chart(chart, tank=None):
@@ -392,7 +393,8 @@ def stability_chart(chart, tank=None):
         pass
     for k in range(len(grid["rho"])):
         cell = Cell()
-        cell.rho, cell.A, cell.gamma = grid["rho"][k], grid["A"][k], grid["gamma"][k]
+        cell.rho, cell.A, cell.gamma, cell.kappa = (grid[name][k] for name in
+                                                    ("rho", "A", "gamma", "kappa"))
         gx, gy = xy(cell)
         ax.text(gx, gy, f"{int(grid['n_stable'][k])}", ha="center", va="center", fontsize=6,
                 color="0.35")
@@ -408,7 +410,10 @@ def stability_chart(chart, tank=None):
     else:
         cx, cy = chart.frequency_and_acceleration(tank, grid["rho"], grid["A"])
         mesh = ax.scatter(cx, cy, c=grid["n_stable"], cmap=cmap, norm=norm, marker="s", s=60)
-    fig.colorbar(mesh, ax=ax, ticks=range(top + 1), label="stable steady states")
+    full = chart.model == "full"
+    fig.colorbar(mesh, ax=ax, ticks=range(top + 1),
+                 label="stable periodic orbits (branch from rest)" if full
+                 else "stable steady states")
     shown = set()
     for curve in chart.curves:
         style = dict(_CURVE_STYLE[curve.kind])
@@ -430,7 +435,8 @@ def stability_chart(chart, tank=None):
     if tank is None:
         ax.set_xlabel(_AXIS_LABEL[chart.x])
         ax.set_ylabel(_AXIS_LABEL[chart.y])
-        ax.set_title(f"stability chart of the slow flow ({chart.model})", fontsize=10)
+        ax.set_title("stability chart: periodic orbits of the full model" if full else
+                     f"stability chart of the slow flow ({chart.model})", fontsize=10)
     else:
         ax.set_xlabel("ground motion frequency [Hz]")
         ax.set_ylabel("peak ground acceleration [g]")

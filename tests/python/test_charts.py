@@ -140,8 +140,9 @@ def test_both_front_doors_give_the_same_chart(exe, tmp_path, fig12_chart):
 
 
 @pytest.mark.parametrize("change,words", [
-    ("x = 'kappa'", ["x = 'kappa'", "rho, A, gamma"]),
-    ("y = 'rho'", ["second chart parameter", "not the first"]),
+    ("x = 'kappa'", ["x = 'kappa'", "rho or A"]),
+    ("x = 'sigma'", ["x = 'sigma'", "rho, A, gamma, kappa"]),
+    ("y = 'rho'", ["y = 'rho'", "another of"]),
     ("x_max = 0.48", ["x_max = 0.48", "x_min = 0.49"]),
     ("n_x = 0", ["n_columns = 0"]),
     ("model = 'full_model'", ["model = 'full_model'", "slow_flow_3:1"]),
@@ -157,3 +158,36 @@ def test_bad_chart_input(exe, tmp_path, change, words):
     with pytest.raises(sloshdyn.InputError) as info:
         sloshdyn.read_namelist(tmp_path / "input.nml")
     assert words[0] in str(info.value)
+
+
+def test_full_model_neimark_sacker_curve_meets_the_periodic_response():
+    # rows at A = 0.000675 and 0.000825: the curves cross A = 0.00075 between their points
+    chart = sloshdyn.stability_chart(FIG12, (0.505, 0.515), (0.0006, 0.0009), model="full",
+                                     n_x=5, n_y=2, threads=2)
+    ns = [c for c in chart.curves if c.kind == "neimark_sacker"]
+    assert ns and all(c.complete for c in ns)
+    crossings = []
+    for c in ns:
+        s = np.sign(c.A - 0.00075)
+        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
+            t = (0.00075 - c.A[j]) / (c.A[j + 1] - c.A[j])
+            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    branch = sloshdyn.periodic_response(FIG12.replace(rho=0.505), (0.505, 0.515))
+    located = sorted(s.rho for s in branch.special_points if s.kind == "neimark_sacker")
+    assert len(located) == 2 and len(crossings) == 2
+    assert np.allclose(sorted(crossings), located, atol=3e-5)     # the bound
+
+
+def test_kappa_chart_crosses_the_fig12_kappa_at_its_hopf_points():
+    # kappa as the second parameter: the modal coefficients are expanded again at every kappa
+    chart = sloshdyn.stability_chart(FIG12, RHO, (1.79, 1.82), y="kappa", n_x=11, n_y=5)
+    crossings = []
+    for c in (c for c in chart.curves if c.kind == "hopf"):
+        s = np.sign(c.kappa - FIG12.kappa)
+        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
+            t = (FIG12.kappa - c.kappa[j]) / (c.kappa[j + 1] - c.kappa[j])
+            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    hopf_points = sorted(s.rho for s in one_parameter(FIG12, 0.00075).special_points
+                         if s.kind == "hopf")
+    assert np.allclose(sorted(crossings), hopf_points, atol=2e-6)
+    assert all(np.all(c.A == FIG12.A) for c in chart.curves)
