@@ -1,6 +1,9 @@
-"""Exceptions raised when the Fortran core returns a nonzero status.
+"""Exceptions raised when the Fortran core returns a nonzero status, and the exit codes of both
+front doors.
 
-The status codes are those of ``fortran/sloshdyn_status.f90``.
+The status codes are those of ``fortran/base/sloshdyn_status.f90``; so is the rule that turns a
+status into an exit code (its exit_code, which the executable applies): `exit_code` below asks
+the core, so sloshdyn-py and the executable exit alike by construction.
 """
 
 
@@ -66,6 +69,28 @@ _BY_STATUS = {
     8: FileError,
     9: CapacityError,
 }
+
+
+#: the exit codes of both front doors and what each says (README, "Failure behaviour")
+EXIT_MEANINGS = {
+    0: "success: every result file of the run is complete",
+    1: "check: a quantity is outside its tolerance",
+    2: "usage: the command line is wrong",
+    3: "input: a namelist value, a rule, an input file that cannot be read or is malformed "
+       "(check: a corrupted values.json or reference table); nothing was written",
+    4: "the computation failed (no convergence, integration failure, singular matrix, "
+       "LAPACK); nothing was written",
+    130: "interrupted (Ctrl-C); no file was left half-written",
+    143: "terminated (SIGTERM); no file was left half-written",
+}
+EXIT_INTERRUPTED, EXIT_TERMINATED = 130, 143
+
+
+def exit_code(error, reading=False):
+    """The exit code of a SloshdynError: the core's rule for its status (any status while the
+    input is read is an input error)."""
+    from . import _core
+    return int(_core.sloshdyn_bridge.exit_code(int(error.status or 1), bool(reading)))
 
 
 def check_status(status, message, context=None):

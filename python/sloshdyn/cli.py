@@ -13,8 +13,9 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__, _core, figures, plotting, reference
-from ._errors import InputError, SloshdynError, check_status
-from ._files import atomic_path, save_figure
+from ._errors import (EXIT_INTERRUPTED, EXIT_TERMINATED, InputError, SloshdynError,
+                      check_status, exit_code)
+from ._files import file_error, run_directory, save_figure, write_text
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
 from .simulation import Simulation, Sweep, _summary
@@ -65,6 +66,7 @@ def main(argv=None):
     sty.add_argument("--no-progress", action="store_true", help="no progress bar")
 
     args = parser.parse_args(argv)
+    previous = _on_sigterm(_terminate)
     try:
         if args.command == "run":
             return run_input(args.input)
@@ -75,14 +77,35 @@ def main(argv=None):
         return check(args.dir, args.reference)
     except SloshdynError as exc:
         print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
-        return int(_core.sloshdyn_bridge.exit_code(exc.status or 1, getattr(exc, "reading", False)))
-    except FileNotFoundError as exc:
-        print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
-        return 3
+        return exit_code(exc, getattr(exc, "reading", False))
     except KeyboardInterrupt as exc:
-        print(f"sloshdyn-py: interrupted; {exc or 'files already complete are kept, none is half-written'}",
-              file=sys.stderr)
-        return 130
+        print(f"sloshdyn-py: interrupted; {exc or _KEPT}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except _Terminated:
+        print(f"sloshdyn-py: terminated; {_KEPT}", file=sys.stderr)
+        return EXIT_TERMINATED
+    finally:
+        _on_sigterm(previous)
+
+
+_KEPT = "files already complete are kept, none is half-written"
+
+
+class _Terminated(BaseException):
+    """SIGTERM, raised where Python runs next so that the writers clean up."""
+
+
+def _terminate(signum, frame):
+    raise _Terminated()
+
+
+def _on_sigterm(handler):
+    """Install a SIGTERM handler (main thread only; elsewhere nothing changes)."""
+    import signal
+    import threading
+    if handler is None or threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.signal(signal.SIGTERM, handler)
 
 
 def run_input(path):
@@ -237,8 +260,14 @@ def _figure(inp, out):
 
 
 def reproduce(out, only=None, quick=False):
+    """Every figure, values.json and report.md into `out`, renamed into place together at the
+    end (a failed or interrupted run leaves none of its files)."""
+    with run_directory(out):
+        return _reproduce(out, only, quick)
+
+
+def _reproduce(out, only, quick):
     from tqdm.auto import tqdm
-    out.mkdir(parents=True, exist_ok=True)
     selected = only or list(figures.FIGURES)
     reproduced, values = [], {}
     start = time.time()
@@ -249,8 +278,7 @@ def reproduce(out, only=None, quick=False):
             values.update(fig.values)
     missing = [row["quantity"] for row in reference.load() if row["quantity"] not in values]
     values.update(reference.compute(missing, quick))
-    with atomic_path(out / "values.json") as tmp:
-        Path(tmp).write_text(json.dumps({k: float(v) for k, v in values.items()}, indent=1))
+    write_text(out / "values.json", json.dumps({k: float(v) for k, v in values.items()}, indent=1))
     verdicts = reference.check(values)
     write_report(out, reproduced, verdicts, time.time() - start)
     failed = [v.quantity for v in verdicts if not v.passed]
@@ -277,17 +305,13 @@ def write_report(out, reproduced, verdicts, seconds):
     errata = reference.PACKAGE_REFERENCE / "errata.md"
     if errata.exists():
         lines += ["## Errata", "", errata.read_text()]
-    with atomic_path(out / "report.md") as tmp:
-        Path(tmp).write_text("\n".join(lines))
+    write_text(out / "report.md", "\n".join(lines))
 
 
 def check(directory=None, reference_dir=None):
-    values = None
-    if directory:
-        path = Path(directory) / "values.json"
-        if not path.exists():
-            raise FileNotFoundError(f"{path} not found: run `reproduce --out {directory}` first")
-        values = json.loads(path.read_text())
+    """Exit 0 if every quantity is within its tolerance, 1 if one is not; a missing, corrupted
+    or empty values.json or reference table is an InputError ("bad file", exit 3)."""
+    values = reference.load_values(Path(directory) / "values.json") if directory else None
     verdicts = reference.check(values, reference_dir)
     print(reference.format_table(verdicts))
     failed = [v.quantity for v in verdicts if not v.passed]

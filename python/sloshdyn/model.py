@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core, _tables
+from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters
 
@@ -28,9 +28,8 @@ class Motion:
 
 def equations_of_motion(params: Parameters, tau, y) -> Motion:
     """Evaluate eq (13)-(15) with X = A sin(rho tau) at state y = (x1, x1', x2, x2')."""
-    y = np.asarray(y, dtype=np.float64)
-    if y.shape != (4,):
-        raise InputError(f"y has shape {y.shape}: it must be (x1, x1', x2, x2'), shape (4,)")
+    _checks.instance("params", params, Parameters)
+    y, tau = _checks.reals("y", y, (4,)), _checks.real("tau", tau)
     mass, force, dydt, jac, status, message = _bridge.equations_of_motion(*params.arrays(), tau, y)
     check_status(status, message)
     return Motion(mass, force, dydt, jac)
@@ -55,6 +54,7 @@ class LinearModes:
 
 def linear_modes(params: Parameters) -> LinearModes:
     """Natural frequencies by eq (28) and by dgeev, K, P and P^-1 (needs kappa > s1)."""
+    _checks.instance("params", params, Parameters)
     omegas, k, p, p_inv, status, message = _bridge.natural_frequencies(*params.arrays())
     check_status(status, message)
     return LinearModes(*(float(w) for w in omegas), k, p, p_inv)
@@ -69,8 +69,14 @@ def natural_frequencies(params: Parameters):
 def frequency_ratio(sigma_tilde, mu_tilde):
     """omega2/omega1 as a function of sigma~ = kappa - s1 and mu~ = 1 - mu1 (Fig 7, 8);
     broadcasts like numpy."""
-    sigma_tilde, mu_tilde = np.broadcast_arrays(np.asarray(sigma_tilde, dtype=np.float64),
-                                                np.asarray(mu_tilde, dtype=np.float64))
+    sigma_tilde, mu_tilde = _checks.reals("sigma_tilde", sigma_tilde), _checks.reals("mu_tilde",
+                                                                                      mu_tilde)
+    try:
+        sigma_tilde, mu_tilde = np.broadcast_arrays(sigma_tilde, mu_tilde)
+    except ValueError:
+        raise InputError(f"sigma_tilde has shape {sigma_tilde.shape} and mu_tilde "
+                         f"{mu_tilde.shape}: they must broadcast together") from None
+    _checks.output_size("sigma_tilde", sigma_tilde.size)
     ratio, status, message = _bridge.frequency_ratios(sigma_tilde.ravel(), mu_tilde.ravel())
     check_status(status, message)
     return ratio.reshape(sigma_tilde.shape) if sigma_tilde.ndim else float(ratio[0])
@@ -79,8 +85,10 @@ def frequency_ratio(sigma_tilde, mu_tilde):
 def kappa_for_detuning(s1, mu1, sigma1, kappa_min=None, kappa_max=None):
     """All kappa in (max(kappa_min, s1), kappa_max] with omega2 - 3 omega1 = sigma1 (eq 51),
     ascending; kappa_max defaults to s1 + 1000."""
-    kappa_min = 0.0 if kappa_min is None else kappa_min
-    kappa_max = s1 + 1000.0 if kappa_max is None else kappa_max
+    s1, mu1, sigma1 = (_checks.real(n, v) for n, v in (("s1", s1), ("mu1", mu1),
+                                                        ("sigma1", sigma1)))
+    kappa_min = _checks.optional_real("kappa_min", kappa_min, 0.0)
+    kappa_max = _checks.optional_real("kappa_max", kappa_max, s1 + 1000.0)
     roots, n, status, message = _bridge.kappa_for_detuning(s1, mu1, sigma1, kappa_min, kappa_max,
                                                            MAX_ROOTS)
     check_status(status, message)
@@ -90,9 +98,8 @@ def kappa_for_detuning(s1, mu1, sigma1, kappa_min=None, kappa_max=None):
 def equilibrium_angles(params: Parameters, which: str):
     """Real roots of eq (17) (which='theta') or eq (18) (which='phi') in radians, ascending,
     and whether the search stopped at |angle| = 32 pi."""
-    code = {"theta": 1, "phi": 2}.get(which)
-    if code is None:
-        raise InputError(f"which = {which!r} is not valid: it must be 'theta' or 'phi'")
+    _checks.instance("params", params, Parameters)
+    code = {"theta": 1, "phi": 2}[_checks.choice("which", which, ("theta", "phi"))]
     roots, n, truncated, status, message = _bridge.equilibrium_angles(*params.arrays(), code,
                                                                       MAX_ROOTS)
     check_status(status, message)
@@ -138,6 +145,7 @@ class Equilibria:
 
 def equilibria(params: Parameters) -> Equilibria:
     """Every equilibrium (theta, phi) of eq (16)-(18) with eigenvalues and verdict."""
+    _checks.instance("params", params, Parameters)
     (theta, phi, physical, re, im, verdict, n, truncated, routh, status,
      message) = _bridge.equilibria(*params.arrays(), MAX_EQUILIBRIA)
     check_status(status, message)

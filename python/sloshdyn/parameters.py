@@ -13,11 +13,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _core, _tables
+from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from ._files import atomic_path
 
 _MODEL_DEFAULTS = _tables.defaults()["model"]   # beta, gamma, delta, n, p of the core
+
+
+def convert_fields(settings):
+    """Check and convert every field of a settings dataclass by its annotation (int: a C int,
+    float: a finite real, bool: True or False, str: text), in place (frozen or not)."""
+    kinds = {"int": _checks.integer, "float": _checks.real, "bool": _checks.flag,
+             "str": _checks.text}
+    for f in dataclasses.fields(settings):
+        check = kinds.get(f.type)
+        if check is not None:
+            object.__setattr__(settings, f.name, check(f.name, getattr(settings, f.name)))
 
 
 @dataclass(frozen=True)
@@ -42,13 +53,7 @@ class Parameters:
     rho: float = 0.0
 
     def __post_init__(self):
-        for f in dataclasses.fields(self):
-            value = getattr(self, f.name)
-            if f.type == "int":
-                if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-                    raise InputError(f"{f.name} = {value!r} is not valid: {f.name} must be an integer")
-            elif isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-                raise InputError(f"{f.name} = {value!r} is not valid: {f.name} must be a real number")
+        convert_fields(self)
         self.coefficients()  # validates in the Fortran core
 
     def arrays(self):
@@ -83,11 +88,16 @@ class Parameters:
         defaults as Parameters and &model (README, "Impact and dissipation defaults"). For a
         whole tank in SI units (freeboard, supports by frequency, damping ratios) see
         sloshdyn.Tank."""
+        M, L, k, theta0, c, g, A, rho = (_checks.real(name, value) for name, value in (
+            ("M", M), ("L", L), ("k", k), ("theta0", theta0), ("c", c), ("g", g), ("A", A),
+            ("rho", rho)))
+        b, d = _checks.optional_real("b", b, None), _checks.optional_real("d", d, None)
         if l is None or m is None:
             if R is None or h is None:
                 raise InputError("give the pendulum (l, m) or the tank (R, h with rho_liquid or m_liquid)")
             pendulum = tank_pendulum(R, h, rho_liquid=rho_liquid, m_liquid=m_liquid)
             l, m = pendulum.l, pendulum.m
+        l, m = _checks.real("l", l), _checks.real("m", m)
         physical = np.array([M, L, k, c, b or 0.0, d or 0.0, g, theta0, l, m], dtype=np.float64)
         groups, status, message = _core.sloshdyn_bridge.dimensionless_groups(physical)
         check_status(status, message)
@@ -114,7 +124,7 @@ class Parameters:
         }
         nml = f90nml.Namelist(groups)
         nml.float_format = ".17g"
-        with atomic_path(path) as tmp:
+        with atomic_path(_checks.path("path", path)) as tmp:
             nml.write(tmp, force=True)
 
 
@@ -134,7 +144,9 @@ def tank_pendulum(R, h, rho_liquid=None, m_liquid=None):
     """Pendulum of the first sloshing mode of a cylindrical tank of radius R and liquid depth h,
     from the liquid density rho_liquid or the liquid mass m_liquid (give one), eq (2)-(3)."""
     pendulum, status, message = _core.sloshdyn_bridge.tank_pendulum(
-        R, h, rho_liquid or 0.0, m_liquid or 0.0)
+        _checks.real("R", R), _checks.real("h", h),
+        _checks.optional_real("rho_liquid", rho_liquid, 0.0),
+        _checks.optional_real("m_liquid", m_liquid, 0.0))
     check_status(status, message)
     return TankPendulum(*(float(x) for x in pendulum))
 
@@ -167,7 +179,7 @@ def read_namelist(path):
     and messages)."""
     from .seismic import GroundMotion, Tank
 
-    path = os.fspath(path)
+    path = _checks.path("path", path)
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
      study, store, figure, scheduler, study_records, status,

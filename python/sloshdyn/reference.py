@@ -5,6 +5,7 @@ computed at tight tolerances and confirmed by an independent method."""
 from __future__ import annotations
 
 import csv
+import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -12,6 +13,8 @@ from pathlib import Path
 import numpy as np
 
 from . import figures
+from ._errors import InputError
+from ._files import file_error
 from .asymptotics import frequency_response, modal_coefficients
 from .model import kappa_for_detuning, natural_frequencies
 from .parameters import Parameters
@@ -32,21 +35,96 @@ class Verdict:
     note: str = ""
 
 
+_KINDS_NEEDING_TOLERANCE = ("abs", "rel", "factor")
+_KINDS = _KINDS_NEEDING_TOLERANCE + ("at_least", "at_most")
+
+
+def bad_file(path, line, what):
+    """The error of a corrupted input file of `check` (exit 3, not 1 = out of tolerance)."""
+    where = f"{path}, line {line}" if line else f"{path}"
+    return InputError(f"bad file: {where}: {what}")
+
+
 def load(directory=None):
-    """Rows of paper_values.csv and computed_values.csv (method beside each)."""
+    """Rows of paper_values.csv and computed_values.csv (method beside each), each checked: a
+    finite reference, a known tolerance kind with a finite tolerance >= 0 where the kind needs
+    one, no repeated quantity. A corrupted or empty table is an InputError naming the file and
+    the line."""
     directory = Path(directory) if directory else PACKAGE_REFERENCE
-    rows = []
+    rows, seen = [], {}
     for name in ("paper_values.csv", "computed_values.csv"):
         path = directory / name
-        if not path.exists():
-            raise FileNotFoundError(f"reference table {path} is missing")
-        with open(path, newline="") as f:
-            rows.extend(csv.DictReader(f))
+        with file_error(path, "read the reference table"):
+            with open(path, newline="", encoding="utf-8") as f:
+                try:
+                    table = [(reader.line_num, row) for reader in [csv.DictReader(f)]
+                             for row in reader]
+                except (csv.Error, UnicodeDecodeError) as exc:
+                    raise bad_file(path, None, f"not a CSV table ({exc})") from None
+        if not table:
+            raise bad_file(path, None, "the table has no rows: a reference table needs at least one")
+        for line, row in table:
+            _check_row(path, line, row)
+            if row["quantity"] in seen:
+                raise bad_file(path, line, f"quantity {row['quantity']!r} appears twice "
+                                           f"(also {seen[row['quantity']]})")
+            seen[row["quantity"]] = f"{path.name} line {line}"
+            rows.append(row)
     return rows
 
 
+def _check_row(path, line, row):
+    if None in row or any(v is None for v in row.values()):
+        raise bad_file(path, line, "the row has a different number of fields than the header")
+    for column in ("quantity", "reference", "kind"):
+        if not (row.get(column) or "").strip():
+            raise bad_file(path, line, f"column {column!r} is missing or empty")
+    if row["kind"] not in _KINDS:
+        raise bad_file(path, line, f"kind = {row['kind']!r} is not one of {', '.join(_KINDS)}")
+    _number(path, line, row, "reference")
+    if row["kind"] in _KINDS_NEEDING_TOLERANCE or (row.get("tolerance") or "").strip():
+        tol = _number(path, line, row, "tolerance")
+        if tol < 0 or (row["kind"] == "factor" and tol < 1):
+            raise bad_file(path, line, f"tolerance = {tol!r} is out of range: it must be >= "
+                                       f"{1 if row['kind'] == 'factor' else 0}")
+
+
+def _number(path, line, row, column):
+    try:
+        x = float(row.get(column) or "")
+    except ValueError:
+        x = math.nan
+    if not math.isfinite(x):
+        raise bad_file(path, line, f"{column} = {row.get(column)!r} is not a finite number")
+    return x
+
+
+def load_values(path):
+    """The values.json of a `reproduce` run: {quantity: number}; a missing, corrupted or empty
+    file is an InputError naming the file (and the line of a syntax error)."""
+    path = Path(path)
+    if not path.exists():
+        raise InputError(f"{path} not found: run `reproduce --out {path.parent}` first")
+    with file_error(path, "read"):
+        text = path.read_bytes()
+    try:
+        values = json.loads(text.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise bad_file(path, None, f"not UTF-8 text ({exc.reason})") from None
+    except json.JSONDecodeError as exc:
+        raise bad_file(path, exc.lineno, f"not JSON ({exc.msg}, column {exc.colno})") from None
+    if not isinstance(values, dict) or not values:
+        raise bad_file(path, None, "it must be a non-empty JSON object {quantity: number}")
+    for name, value in values.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            line = next((k + 1 for k, text_line in enumerate(text.decode().splitlines())
+                         if f'"{name}"' in text_line), None)
+            raise bad_file(path, line, f"{name} = {value!r} is not a number")
+    return values
+
+
 def judge(row, computed):
-    """Apply the row's tolerance kind to a computed value."""
+    """Apply the row's tolerance kind to a computed value (the row as load checked it)."""
     reference = float(row["reference"])
     kind = row["kind"]
     tol = float(row["tolerance"]) if row.get("tolerance") else 0.0
@@ -60,9 +138,7 @@ def judge(row, computed):
         return computed >= reference, f">= {reference:g}"
     if kind == "at_most":
         return computed <= reference, f"<= {reference:g}"
-    if kind == "factor":
-        return reference / tol <= computed <= reference * tol, f"within a factor {tol:g}"
-    raise ValueError(f"unknown tolerance kind {kind!r} for {row['quantity']}")
+    return reference / tol <= computed <= reference * tol, f"within a factor {tol:g}"
 
 
 def compute(names, quick=True):

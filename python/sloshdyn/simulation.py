@@ -8,9 +8,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _core, _tables
+from . import _checks, _core, _tables
 from ._errors import InputError, IntegrationError, check_status
-from .parameters import Parameters
+from .parameters import Parameters, convert_fields
 
 _bridge = _core.sloshdyn_bridge
 MOTIONS = _tables.codes("motion")
@@ -34,10 +34,11 @@ class Integration:
     method: str = _tables.codes("methods")[int(_INTEGRATION[6])]   #: 'rk45' (Dormand-Prince
     #: 5(4)) or 'dop853' (8(5,3), fewer steps at tight tolerances)
 
+    def __post_init__(self):
+        convert_fields(self)
+        _checks.choice("method", self.method, tuple(METHODS))
+
     def array(self):
-        if self.method not in METHODS:
-            raise InputError(f"method = {self.method!r} is not valid: it must be one of "
-                             f"{', '.join(repr(m) for m in METHODS)}")
         return np.array([self.rtol, self.atol, self.h_initial, self.h_max, self.h_min,
                          self.max_steps, METHODS[self.method]], dtype=np.float64)
 
@@ -59,10 +60,10 @@ class Steady:
     #: Poincare map contracts, jump to the periodic orbit by Newton shooting (kept only if
     #: stable and the attractor being approached); False: integration only
 
+    def __post_init__(self):
+        convert_fields(self)
+
     def array(self):
-        if not isinstance(self.shooting, (bool, np.bool_)):
-            raise InputError(f"shooting = {self.shooting!r} is not valid: it must be True or "
-                             "False")
         return np.array([self.transient_periods, self.settle_tol, self.max_transient_periods,
                          self.window_periods, self.samples_per_period, self.periodic_tol,
                          float(self.shooting)], dtype=np.float64)
@@ -97,10 +98,16 @@ def _counts(counts):
 
 
 def _state(y0):
-    y0 = np.zeros(4) if y0 is None else np.asarray(y0, dtype=np.float64)
-    if y0.shape != (4,):
-        raise InputError(f"y0 has shape {y0.shape}: it must be (x1, x1', x2, x2'), shape (4,)")
-    return y0
+    """A state (x1, x1', x2, x2'): 4 finite reals (None: rest)."""
+    return np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
+
+
+def _settings(params, integration, steady=None):
+    """The common arguments checked: params, the Integration and the Steady settings."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    if steady is not None:
+        _checks.instance("steady", steady, Steady)
 
 
 def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_start=0.0,
@@ -111,14 +118,22 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
 
     On failure raises IntegrationError whose ``partial`` attribute holds the history up to
     where the integration stopped (later columns are NaN)."""
+    _settings(params, integration)
     if tolerances:
         integration = Integration(**{**integration.__dict__, **tolerances})
+    t_end, t_start = _checks.real("t_end", t_end), _checks.real("t_start", t_start)
     if tau_out is None:
         if n_out is None:
             period = 2 * math.pi / (params.rho if params.rho > 0 else 1.0)
-            n_out = max(2, int(math.ceil(20 * (t_end - t_start) / period)) + 1)
-        tau_out = np.linspace(t_start, t_end, int(n_out))
-    tau_out = np.ascontiguousarray(tau_out, dtype=np.float64)
+            periods = max(0.0, (t_end - t_start) / period)
+            n_out = max(2, math.ceil(20 * min(periods, 2.0**60)) + 1)
+            if n_out > _checks.C_INT_MAX:
+                raise InputError(f"t_end = {_checks.show(t_end)} is out of range: 20 outputs "
+                                 f"per period make {n_out}, more than {_checks.C_INT_MAX}; give "
+                                 "n_out or tau_out")
+        n_out = _checks.output_size("n_out", _checks.integer("n_out", n_out, 0), 9)
+        tau_out = np.linspace(t_start, t_end, n_out)
+    tau_out = _checks.reals("tau_out", tau_out, ndim=1)
     history, counts, status, message = _bridge.simulate(
         *params.arrays(), t_start, _state(y0), tau_out, integration.array())
     result = Simulation(tau_out, history[0:4], history[4:6], history[6], history[7], history[8],
@@ -164,8 +179,10 @@ def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),
                  integration: Integration = Integration()) -> SteadyState:
     """Integrate through a transient, then measure max|x1|, max|x2|, max|u1|, max|u2| and the
     Poincare points over a window, and judge the motion from them."""
+    _settings(params, integration, steady)
+    window = _checks.output_size("window_periods", max(steady.window_periods, 1), 4)
     summary, poincare, y_end, counts, status, message = _bridge.steady_state(
-        *params.arrays(), _state(y0), integration.array(), steady.array(), steady.window_periods)
+        *params.arrays(), _state(y0), integration.array(), steady.array(), window)
     check_status(status, message, "steady state")
     return _summary(summary, poincare, y_end)
 
@@ -174,11 +191,13 @@ def poincare_section(params: Parameters, n_points, y0=None, *, transient_periods
                      integration: Integration = Integration()):
     """Stroboscopic Poincare section: the states at tau = k 2 pi/rho, k = transient_periods + 1
     ... transient_periods + n_points (dense output, steps never shortened). Shape (4, n_points)."""
+    _settings(params, integration)
     if not params.rho > 0:
         raise InputError(f"rho = {params.rho} is out of range: a Poincare section needs rho > 0")
     period = 2 * math.pi / params.rho
-    k0 = int(transient_periods)
-    tau = period * np.arange(k0 + 1, k0 + int(n_points) + 1)
+    k0 = _checks.integer("transient_periods", transient_periods, 0)
+    n_points = _checks.output_size("n_points", _checks.integer("n_points", n_points, 1), 9)
+    tau = period * np.arange(k0 + 1, k0 + n_points + 1)
     return simulate(params, tau[-1], y0, tau_out=tau, integration=integration).y
 
 
@@ -200,7 +219,9 @@ class Sweep:
 
 def sweep_values(start, stop, n, direction="up"):
     """Sweep values from start to stop ('up'), back ('down'), or up then down ('both')."""
-    values = np.linspace(min(start, stop), max(start, stop), int(n))
+    start, stop = _checks.real("start", start), _checks.real("stop", stop)
+    n = _checks.output_size("n", _checks.integer("n", n, 1))
+    values = np.linspace(min(start, stop), max(start, stop), n)
     if direction == "up":
         return values
     if direction == "down":
@@ -211,6 +232,7 @@ def sweep_values(start, stop, n, direction="up"):
 
 
 def _sweep(params, parameter, values, y0, steady, integration, progress, threads, start_from):
+    _settings(params, integration, steady)
     which = {"rho": 1, "A": 2}[parameter]
 
     def run(chunk, y, carry):
@@ -233,14 +255,13 @@ def run_sweep(label, values, y0, progress, threads, start_from, run, partial):
     message), a chunk at a time so that progress shows: the SteadyStates, the extras stacked as
     columns (or None), and the final state (None for independent points). On failure the
     exception carries `partial(points, y)`, the points done."""
-    if start_from not in ("previous", "y0"):
-        raise InputError(f"start_from = {start_from!r} is not valid: it must be 'previous' or 'y0'")
-    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)):
-        raise InputError(f"threads = {threads!r} is not valid: threads must be an integer")
+    _checks.choice("start_from", start_from, ("previous", "y0"))
+    threads = _checks.integer("threads", threads)
     carry = start_from == "previous"
-    status, message = _bridge.sweep_threads(int(threads), int(carry))
+    status, message = _bridge.sweep_threads(threads, int(carry))
     check_status(status, message)
-    values = np.ascontiguousarray(values, dtype=np.float64)
+    values = _checks.reals({"rho": "rho_values", "A": "A_values"}.get(label, "frequencies"),
+                           values, ndim=1)
     y = _state(y0)
     points, extras = [], []
     bar = None
@@ -297,9 +318,8 @@ def spectrum(signal, dt, window="hann"):
     """One-sided amplitude spectrum of an evenly sampled signal: (angular frequencies [rad per
     unit time], amplitudes). The mean is removed; the window ('hann' or None) is normalised so a
     sinusoid of amplitude a shows a peak of height about a."""
-    x = np.asarray(signal, dtype=np.float64)
-    if x.ndim != 1 or x.size < 4:
-        raise InputError(f"signal has shape {x.shape}: it must be 1-D with at least 4 samples")
+    x = _checks.reals("signal", signal, ndim=1, min_size=4)
+    dt = _checks.real("dt", dt)
     if not dt > 0:
         raise InputError(f"dt = {dt} is out of range: it must be > 0")
     x = x - x.mean()
