@@ -8,9 +8,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core, _tables
+from . import _checks, _core, _tables
 from ._errors import InputError, check_status
-from .parameters import Parameters
+from .parameters import Parameters, convert_fields
 
 _bridge = _core.sloshdyn_bridge
 
@@ -61,6 +61,7 @@ def modal_coefficients(params: Parameters) -> dict:
     'F_hat23') and of eq (36) ('alpha11', 'gamma17', ..., 'F24'), derived from the equations of
     motion (not typed in from Appendix A, which has misprints: see ERRATA.md). Also 'g', 'h',
     'g_forcing', 'h_forcing': {exponents: coefficient} polynomials of eq (32) and (35)."""
+    _checks.instance("params", params, Parameters)
     (scalars, c, exponents, g, g_forcing, h, h_forcing, status,
      message) = _bridge.modal_expansion(*params.arrays())
     check_status(status, message)
@@ -153,6 +154,9 @@ class Continuation:
     x_scale: float = float(_RESPONSE[8])       #: weight of the amplitudes in the arclength norm
     max_points: int = int(_RESPONSE[9])        #: points per branch and direction at most
 
+    def __post_init__(self):
+        convert_fields(self)
+
     @classmethod
     def from_namelist(cls, response: dict):
         """The settings of a &response group (as read_namelist gives it)."""
@@ -171,11 +175,10 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
 
     Raises ConvergenceError (with ``partial``, the response computed so far, marked incomplete)
     if a branch could not be finished."""
-    if resonance not in ("3:1", "none"):
-        raise InputError(f"resonance = {resonance!r} is not valid: it must be '3:1' or 'none'")
-    if (rho_range is None) == (A_range is None):
-        raise InputError("give rho_range or A_range (the parameter to continue in), not both")
-    parameter, (lo, hi) = ("rho", rho_range) if rho_range is not None else ("A", A_range)
+    _checks.instance("params", params, Parameters)
+    _checks.instance("settings", settings, Continuation)
+    _checks.choice("resonance", resonance, ("3:1", "none"))
+    parameter, (lo, hi) = continuation_range(rho_range, A_range)
     (table, n_points, special, n_special, complete, status,
      message) = _bridge.frequency_response(*params.arrays(), 1 if resonance == "3:1" else 0,
                                            1 if parameter == "rho" else 2, float(lo), float(hi),
@@ -197,10 +200,23 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
     return result
 
 
+def continuation_range(rho_range, A_range):
+    """(parameter, (low, high)) of a continuation given in rho or in A (exactly one)."""
+    if (rho_range is None) == (A_range is None):
+        raise InputError("give rho_range or A_range (the parameter to continue in), not both")
+    if rho_range is not None:
+        return "rho", _checks.interval("rho_range", rho_range)
+    return "A", _checks.interval("A_range", A_range)
+
+
 def nonresonant_amplitudes(params: Parameters, rho):
     """Every real solution |u1| of eq (49) (no internal resonance) at each rho (A from params):
     a list of ascending arrays, one per rho (1 or 3 values)."""
-    rho = np.atleast_1d(np.asarray(rho, dtype=np.float64))
+    _checks.instance("params", params, Parameters)
+    rho = np.atleast_1d(_checks.reals("rho", rho))
+    if rho.ndim != 1:
+        raise InputError(f"rho has shape {rho.shape}: give a number or a 1-D array")
+    _checks.output_size("rho", rho.size, 4)
     amplitudes, counts, status, message = _bridge.nonresonant_amplitudes(*params.arrays(), rho)
     check_status(status, message)
     return [amplitudes[:c, i].copy() for i, c in enumerate(counts)]

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _core, _tables
-from ._errors import InputError, check_status
+from . import _checks, _core, _tables
+from ._errors import check_status
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
@@ -99,22 +99,27 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
     finds more than there are). threads share out the runs and cells (same result on any
     number). A curve that stops early is kept up to where it stopped (complete False, with
     its note) and a warning is issued."""
-    if model not in MODELS:
-        raise InputError(f"model = {model!r} is not valid: it must be one of "
-                         f"{', '.join(repr(m) for m in MODELS)}")
-    for name, axis in (("x", x), ("y", y)):
-        if axis not in AXES:
-            raise InputError(f"{name} = {axis!r} is not valid: it must be one of "
-                             f"{', '.join(repr(a) for a in AXES)}")
-    (x_min, x_max), (y_min, y_max) = _range("x_range", x_range), _range("y_range", y_range)
+    _checks.instance("params", params, Parameters)
+    _checks.choice("model", model, MODELS)
+    _checks.choice("x", x, AXES)
+    _checks.choice("y", y, AXES)
+    (x_min, x_max), (y_min, y_max) = (_checks.interval("x_range", x_range),
+                                      _checks.interval("y_range", y_range))
+    n_x, n_y, n_scan, max_points, max_curves, brute_force_starts, threads, capacity = (
+        _checks.integer(name, value) for name, value in (
+            ("n_x", n_x), ("n_y", n_y), ("n_scan", n_scan), ("max_points", max_points),
+            ("max_curves", max_curves), ("brute_force_starts", brute_force_starts),
+            ("threads", threads), ("capacity", capacity)))
+    _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
+    _checks.output_size("max_curves", 10 * max(max_curves, 1), 7)
+    _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))
     settings = np.array([MODELS.index(model) + 1, AXES.index(x) + 1, AXES.index(y) + 1, x_min,
                          x_max, y_min, y_max, n_x, n_y, n_scan, max_points, max_curves,
                          brute_force_starts, threads], dtype=np.float64)
-    n_cells = max(int(n_x), 1) * max(int(n_y), 1)
+    n_cells = max(n_x, 1) * max(n_y, 1)
     (curves, codim2, ends, grid, sizes, complete, notes, status,
-     message) = _bridge.stability_chart(*params.arrays(), settings, int(capacity),
-                                        max(10 * int(max_curves), 1), max(int(max_curves), 1),
-                                        n_cells)
+     message) = _bridge.stability_chart(*params.arrays(), settings, max(capacity, 1),
+                                        10 * max(max_curves, 1), max(max_curves, 1), n_cells)
     if status == 9:   # SD_CAPACITY: name the Python argument that sets the room
         message = (_tables._text(message) + f"; give capacity >= {int(sizes[0])} (now "
                    f"{int(capacity)})")
@@ -125,14 +130,6 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
         warnings.warn("stability chart: not every curve could be continued to its ends:\n"
                       + _tables._text(notes), stacklevel=2)
     return chart
-
-
-def _range(name, value):
-    try:
-        low, high = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} = {value!r} is not valid: give two numbers (low, high)") from None
-    return low, high
 
 
 def _chart(x, y, model, curves, codim2, ends, grid, complete, notes, params):

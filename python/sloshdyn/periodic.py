@@ -10,9 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core, _tables
+from . import _checks, _core, _tables
 from ._errors import InputError, check_status
-from .asymptotics import frequency_response
+from .asymptotics import continuation_range, frequency_response
 from .model import linear_modes
 from .parameters import Parameters
 from .simulation import Integration, Steady, steady_state
@@ -47,11 +47,16 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
     """The periodic orbit near a start: y0, or (y0 None) a steady state of a direct simulation
     from rest (start='simulation') or the 3:1 slow-flow steady state of smallest |u1|
     (start='slow_flow', through eq 34 and 42)."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    periods = _checks.integer("periods", periods)
+    newton_tol = _checks.real("newton_tol", newton_tol)
+    max_iter = _checks.integer("max_iter", max_iter)
     if y0 is None:
         y0 = start_state(params, start)
-    y0 = np.asarray(y0, dtype=np.float64)
+    y0 = _checks.reals("y0", y0, (4,))
     y, monodromy, multipliers, info, status, message = _bridge.periodic_orbit(
-        *params.arrays(), y0, int(periods), integration.array(), newton_tol, max_iter)
+        *params.arrays(), y0, periods, integration.array(), newton_tol, max_iter)
     check_status(status, message, "periodic orbit")
     return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
                          int(info[0]), int(periods))
@@ -59,6 +64,7 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
 
 def start_state(params: Parameters, start="simulation"):
     """A starting state at forcing phase 0 for shooting."""
+    _checks.choice("start", start, ("simulation", "slow_flow"))
     if start == "simulation":
         return steady_state(params, steady=Steady(max_transient_periods=5000)).y_end
     if start == "slow_flow":
@@ -109,20 +115,23 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     in A over A_range, starting at the low end (from_end='low') going up, or at the high end
     going down. Raises ConvergenceError (with ``partial``) if the branch stops before the end
     of the range or a special point on it could not be located."""
-    if (rho_range is None) == (A_range is None):
-        raise InputError("give rho_range or A_range (the parameter to continue in), not both")
-    if from_end not in ("low", "high"):
-        raise InputError(f"from_end = {from_end!r} is not valid: it must be 'low' or 'high'")
-    parameter, (lo, hi) = ("rho", rho_range) if rho_range is not None else ("A", A_range)
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    parameter, (lo, hi) = continuation_range(rho_range, A_range)
+    _checks.choice("from_end", from_end, ("low", "high"))
+    ds, ds_min, ds_max, x_scale = (_checks.real(name, value) for name, value in (
+        ("ds", ds), ("ds_min", ds_min), ("ds_max", ds_max), ("x_scale", x_scale)))
+    periods = _checks.integer("periods", periods)
+    max_points = _checks.output_size("max_points", _checks.integer("max_points", max_points, 1),
+                                     15)
     first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
     if y0 is None:
         y0 = periodic_orbit(first, start_state(first, start), periods=periods,
                             integration=integration).y0
     settings = np.array([ds, ds_min, ds_max, x_scale, 1.0 if from_end == "low" else -1.0])
     points, multipliers, n, special, n_special, complete, status, message = _bridge.periodic_branch(
-        *first.arrays(), 1 if parameter == "rho" else 2, np.asarray(y0, dtype=np.float64),
-        int(periods), float(lo), float(hi), settings, integration.array(),
-        int(max_points), 100)
+        *first.arrays(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
+        periods, lo, hi, settings, integration.array(), max_points, 100)
     lam = points[0, :n]
     table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
              "A": lam if parameter == "A" else np.full(n, params.A)}
@@ -152,8 +161,14 @@ def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=int(_LYA
     renormalise_every forcing periods), and its running estimate after each renormalisation
     block (for a convergence check). Negative: a stable periodic response; about 0:
     quasi-periodic; positive: chaotic."""
-    y0 = np.zeros(4) if y0 is None else np.asarray(y0, dtype=np.float64)
-    blocks = max(int(n_periods) // max(int(renormalise_every), 1), 1)
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
+    transient_periods, n_periods, renormalise_every = (_checks.integer(name, value) for name, value
+                                                       in (("transient_periods", transient_periods),
+                                                           ("n_periods", n_periods),
+                                                           ("renormalise_every", renormalise_every)))
+    blocks = max(n_periods // max(renormalise_every, 1), 1)
     settings = np.array([transient_periods, n_periods, renormalise_every], dtype=np.float64)
     exponent, history, status, message = _bridge.lyapunov_exponent(
         *params.arrays(), y0, settings, integration.array(), blocks)

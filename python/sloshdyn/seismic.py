@@ -15,10 +15,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core, _tables
+from . import _checks, _core, _tables
 from ._errors import InputError, check_status
-from .parameters import Parameters
-from .simulation import Integration
+from .parameters import Parameters, convert_fields
+from .simulation import Integration, Steady
 
 _bridge = _core.sloshdyn_bridge
 _TANK_DEFAULTS = _bridge.tank_defaults()
@@ -30,10 +30,7 @@ def _name(column):
     return column.split(" [")[0]
 
 
-def _real(name, value):
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise InputError(f"{name} = {value!r} is not valid: {name} must be a real number")
-    return float(value)
+_real = _checks.real
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -62,14 +59,7 @@ class Tank:
     gravity: float = float(_TANK_DEFAULTS[16])            #: [m/s^2]
 
     def __post_init__(self):
-        for f in dataclasses.fields(self):
-            value = getattr(self, f.name)
-            if f.type == "int":
-                if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-                    raise InputError(f"{f.name} = {value!r} is not valid: {f.name} must be an "
-                                     "integer")
-            else:
-                _real(f.name, value)
+        convert_fields(self)
         row, rpar, ipar, status, message = _bridge.tank_properties(self.array())
         check_status(status, message)
         object.__setattr__(self, "_row", row.copy())
@@ -219,14 +209,7 @@ class GroundMotion:
                                  "(peak_acceleration, frequency), not both")
             if acceleration is None or dt is None:
                 raise InputError("a record needs both dt [s] and acceleration (an array)")
-            try:
-                samples = np.array(acceleration, dtype=np.float64)
-            except (TypeError, ValueError):
-                raise InputError(f"acceleration = {acceleration!r:.60} is not valid: it must be "
-                                 "an array of real numbers") from None
-            if samples.ndim != 1:
-                raise InputError(f"acceleration has shape {samples.shape}: it must be "
-                                 "one-dimensional")
+            samples = _checks.reals("acceleration", acceleration, ndim=1).copy()
             self.kind, self.dt = "record", _real("dt", dt)
             self.acceleration = samples * factor
             self.peak_acceleration = self.frequency = 0.0
@@ -250,7 +233,8 @@ class GroundMotion:
         """A record file: 'at2' (PEER NGA, values in g), 'columns' (time [s], acceleration in
         `units`; commas, semicolons or blanks; # comments) or 'auto' (by the .AT2 extension).
         The file is only read."""
-        path = os.fspath(path)
+        path = _checks.path("path", path)
+        format, units = _checks.text("format", format), _checks.text("units", units)
         try:
             with open(path, "rb") as f:
                 n_max = max(2, len(f.read().split()))
@@ -305,7 +289,10 @@ class GroundMotion:
         `periods` [s]: Spectrum(periods, sd [m], sv [m/s], psa [m/s^2]). A free-vibration tail
         of tail_duration [s] (default 5 times the longest period) follows the record; harmonic
         motion is sampled over `duration` [s] (default 40 forcing periods)."""
-        periods = np.atleast_1d(np.asarray(periods, dtype=np.float64))
+        periods = np.atleast_1d(_checks.reals("periods", periods))
+        if periods.ndim != 1:
+            raise InputError(f"periods has shape {periods.shape}: give a number or a 1-D array")
+        _checks.output_size("periods", periods.size, 3)
         if tail_duration is None:
             tail_duration = 5 * float(np.max(periods)) if periods.size else 0.0
         if duration is None:
@@ -350,7 +337,7 @@ def _ground_arrays(ground_motion):
     if ground_motion is None:
         return np.zeros(4), np.zeros(0)
     if not isinstance(ground_motion, GroundMotion):
-        raise InputError(f"ground_motion = {ground_motion!r:.60} is not a GroundMotion")
+        _checks.instance("ground_motion", ground_motion, GroundMotion)
     return ground_motion._arrays()
 
 
@@ -391,10 +378,11 @@ def seismic_defaults(tank, ground_motion, t_end=None, n_out=None):
     """(t_end [s], n_out) as seismic_response chooses them: t_end = the record plus 5 sloshing
     periods (harmonic: 40 forcing periods); outputs at the finest of the record's step, 50 per
     sloshing (or forcing) period and 20 per period of the tank on its supports."""
+    _checks.instance("tank", tank, Tank)
     ground, samples = _ground_arrays(ground_motion)
     chosen, status, message = _bridge.seismic_defaults(
         tank.array(), ground, samples, 0.0 if t_end is None else _real("t_end", t_end),
-        0 if n_out is None else int(n_out))
+        0 if n_out is None else _checks.integer("n_out", n_out))
     check_status(status, message)
     return float(chosen[0]), int(chosen[1])
 
@@ -403,9 +391,10 @@ def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=In
     """The tank at rest at t = 0 under the ground motion, to t_end [s] (default: the record
     plus 5 sloshing periods), at n_out evenly spaced times (default: seismic_defaults): a
     SeismicResponse. Its peaks are the largest values at the output times."""
-    if not isinstance(tank, Tank):
-        raise InputError(f"tank = {tank!r:.60} is not a Tank")
+    _checks.instance("tank", tank, Tank)
+    _checks.instance("integration", integration, Integration)
     t_end, n_out = seismic_defaults(tank, ground_motion, t_end, n_out)
+    _checks.output_size("n_out", n_out, len(_tables.columns("seismic")))
     ground, samples = _ground_arrays(ground_motion)
     table, peaks, status, message = _bridge.seismic_response(
         tank.array(), ground, samples, t_end, n_out, integration.array())
@@ -433,10 +422,12 @@ def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
     """Steady states of the tank under harmonic ground motion of constant peak_acceleration (in
     `units`) at each of the frequencies [Hz], in the given order (ascending = up); start_from,
     threads and steady as for sloshdyn.frequency_sweep. A HarmonicSweep."""
-    from .simulation import Steady, run_sweep
+    from .simulation import run_sweep
 
-    steady = Steady() if steady is None else steady
-    frequencies = np.ascontiguousarray(frequencies, dtype=np.float64)
+    _checks.instance("tank", tank, Tank)
+    _checks.instance("integration", integration, Integration)
+    steady = Steady() if steady is None else _checks.instance("steady", steady, Steady)
+    frequencies = _checks.reals("frequencies", frequencies)
     if frequencies.ndim != 1 or frequencies.size == 0:
         raise InputError(f"frequencies has shape {frequencies.shape}: give a 1-D array of "
                          "frequencies [Hz]")

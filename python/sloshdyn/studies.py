@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core, _tables
+from . import _checks, _core, _tables
 from ._errors import InputError
 from .parameters import Parameters
 from .simulation import Integration, Steady
@@ -322,10 +322,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
 
 def _axis(name, values, lower, lower_open=True):
     """A study axis: 1-D, non-empty, finite, > lower (or >= lower), no repeats."""
-    try:
-        a = np.array(values, dtype=np.float64).ravel()
-    except (TypeError, ValueError):
-        raise InputError(f"{name} = {values!r} is not valid: give a sequence of numbers") from None
+    a = _checks.reals(name, values).ravel()
     if a.size == 0:
         raise InputError(f"{name} is empty: give at least one value")
     for i, v in enumerate(a):
@@ -339,9 +336,7 @@ def _axis(name, values, lower, lower_open=True):
 
 
 def _positive_int(name, value, lower=1):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lower:
-        raise InputError(f"{name} = {value!r} is not valid: it must be an integer >= {lower}")
-    return int(value)
+    return _checks.integer(name, value, lower)
 
 
 def _settings(steady, integration):
@@ -603,18 +598,13 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
         raise InputError("store is missing: give the path of a Zarr store for the study")
     n = _positive_int("n", n, 2)
     ranges = []
+    _checks.output_size("n", n * n, 4 * (_MAX_PERIOD + 3) + len(SUMMARY_COLUMNS))
     for name, r in (("x1_range", x1_range), ("dx1_range", dx1_range)):
-        try:
-            lo, hi = (float(v) for v in r)
-        except (TypeError, ValueError):
-            raise InputError(f"{name} = {r!r} is not valid: give (low, high)") from None
-        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-            raise InputError(f"{name} = {r!r} is not valid: low and high must be finite, "
-                             "low < high")
+        lo, hi = _checks.interval(name, r)
+        if not lo < hi:
+            raise InputError(f"{name} = {r!r} is not valid: low < high")
         ranges.append(np.linspace(lo, hi, n))
-    for name, v in (("x2", x2), ("dx2", dx2), ("tol", tol)):
-        if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v)):
-            raise InputError(f"{name} = {v!r} is not valid: it must be a finite number")
+    x2, dx2, tol = _checks.real("x2", x2), _checks.real("dx2", dx2), _checks.real("tol", tol)
     if not 0 < tol < 1:
         raise InputError(f"tol = {tol!r} is not valid: it must lie in (0, 1)")
     if not params.rho > 0:
@@ -821,10 +811,11 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
         raise InputError(f"names = {labels!r:.80} is not valid: one distinct name per record")
     x = _axis("intensities", intensities, 0.0)
     sa_factor = acceleration_factor(units)
-    period = tank.sloshing_period if period is None else float(period)
-    if not (math.isfinite(period) and period > 0):
+    period = tank.sloshing_period if period is None else _checks.real("period", period)
+    damping = _checks.real("damping", damping)
+    if not period > 0:
         raise InputError(f"period = {period} is not valid: it must be > 0 [s]")
-    if not (math.isfinite(damping) and 0 <= damping < 1):
+    if not 0 <= damping < 1:
         raise InputError(f"damping = {damping} is not valid: it must lie in [0, 1)")
     if not isinstance(integration, Integration):
         raise InputError(f"integration = {integration!r} is not valid: give a sloshdyn.Integration")
@@ -933,9 +924,9 @@ def fit_fragility(intensities, failures, counts=None) -> FragilityFit:
     observation, or the number of failures out of counts at each intensity."""
     from scipy.optimize import minimize
     from scipy.stats import norm
-    x = np.asarray(intensities, dtype=float).ravel()
-    y = np.asarray(failures, dtype=float).ravel()
-    m = np.ones_like(y) if counts is None else np.asarray(counts, dtype=float).ravel()
+    x = _checks.reals("intensities", intensities).ravel()
+    y = _checks.reals("failures", failures).ravel()
+    m = np.ones_like(y) if counts is None else _checks.reals("counts", counts).ravel()
     if x.size == 0:
         raise InputError("intensities is empty: give at least one value")
     bad = np.nonzero(~np.isfinite(x) | (x <= 0))[0]
