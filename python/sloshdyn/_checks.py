@@ -95,7 +95,7 @@ def reals(name, value, shape=None, *, ndim=None, min_size=0):
                          "real numbers")
     if a.dtype.kind in "iu" and a.size and (a.max() > 2**53 or a.min() < -2**53):
         raise InputError(f"{name} holds integers beyond 2^53: they are not exact as reals")
-    a = np.ascontiguousarray(a, dtype=np.float64)
+    a = np.asarray(a, dtype=np.float64, order="C")   # keeps a 0-d array 0-d
     if shape is not None and a.shape != tuple(shape):
         raise InputError(f"{name} has shape {a.shape}: it must have shape {tuple(shape)}")
     if ndim is not None and a.ndim != ndim:

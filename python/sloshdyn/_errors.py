@@ -83,7 +83,7 @@ EXIT_MEANINGS = {
     130: "interrupted (Ctrl-C); no file was left half-written",
     143: "terminated (SIGTERM); no file was left half-written",
 }
-EXIT_INTERRUPTED, EXIT_TERMINATED = 130, 143
+EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED = 4, 130, 143
 
 
 def exit_code(error, reading=False):

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__, _core, figures, plotting, reference
-from ._errors import (EXIT_INTERRUPTED, EXIT_TERMINATED, InputError, SloshdynError,
+from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError, SloshdynError,
                       check_status, exit_code)
 from ._files import file_error, run_directory, save_figure, write_text
 from .asymptotics import FrequencyResponse, SpecialPoint
@@ -44,7 +44,8 @@ def main(argv=None):
     chk = commands.add_parser("check", help="regression against the reference data",
                               description="Compare computed values with data/reference (the "
                               "paper's numbers and the project's confirmed tables); exit status "
-                              "1 if any quantity is outside its tolerance.")
+                              "1 if any quantity is outside its tolerance, 3 if values.json or a "
+                              "reference table is missing, corrupted or empty (a bad file).")
     chk.add_argument("dir", nargs="?", help="a `reproduce` output directory whose values.json "
                      "is checked (default: compute the values now)")
     chk.add_argument("--reference", help="reference directory (default: the tables installed "
@@ -84,6 +85,12 @@ def main(argv=None):
     except _Terminated:
         print(f"sloshdyn-py: terminated; {_KEPT}", file=sys.stderr)
         return EXIT_TERMINATED
+    except Exception:     # a defect of sloshdyn-py itself: its traceback, and not exit 1
+        import traceback
+        traceback.print_exc()
+        print("sloshdyn-py: internal error (a defect: please report it with the traceback "
+              "above)", file=sys.stderr)
+        return EXIT_FAILURE
     finally:
         _on_sigterm(previous)
 

@@ -20,7 +20,7 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from conftest import directory_tree
+from conftest import directory_tree, read_csv
 from fuzz_runner import CASE_SECONDS, run_cases
 
 LONG = int(os.environ.get("SLOSHDYN_FUZZ_EXAMPLES", "0"))
@@ -248,6 +248,16 @@ def _run_executable(exe, text, tmp):
     return result.returncode, result.stderr
 
 
+def _finite_results(out):
+    """Exit 0 promises result files whose numbers are finite ('-' and text cells aside)."""
+    tables = list(out.glob("*.csv")) if out.is_dir() else []
+    for table in tables:
+        for row in read_csv(table):
+            if any(isinstance(v, float) and not math.isfinite(v) for v in row.values()):
+                return False
+    return bool(tables)
+
+
 @FUZZ
 @given(st.lists(namelist_case(), min_size=CASES, max_size=CASES))
 def test_namelist_groups_through_the_executable(tmp_path_factory, exe, cases):
@@ -259,6 +269,8 @@ def test_namelist_groups_through_the_executable(tmp_path_factory, exe, cases):
         where = f"&{group} {name} = {token!r}"
         if code not in (0, 3, 4, 5):
             problems.append(f"{where}: exit {code}: {stderr[-200:]}")
+        elif code == 0 and not _finite_results(tmp / "out"):
+            problems.append(f"{where}: exit 0 without finite results: {files}")
         elif code != 0 and (not stderr.strip() or "Traceback" in stderr):
             problems.append(f"{where}: exit {code} without a message")
         elif code != 0 and any(not pathlib.Path(f).name.startswith(".") for f in files

@@ -1,0 +1,185 @@
+"""Fault injection at both front doors (the executable and sloshdyn-py): a full disk (a small
+tmpfs), a read-only directory, kill -9 and SIGTERM while writing, two runs into one directory.
+After each, the output directory holds the complete results of one run or nothing of it (no
+file under a final name, no temporary left where the process could clean up), and the exit code
+says which (README, "Failure behaviour")."""
+
+import contextlib
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from conftest import read_csv
+from sloshdyn import _core
+from sloshdyn._errors import EXIT_TERMINATED
+
+#: the exit code of a write failure, by the core's rule (status SD_IO_ERROR = 8)
+EXIT_IO = int(_core.sloshdyn_bridge.exit_code(8, False))
+SIMULATE = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.8049, theta0 = 0.785, gamma = 0.001 /\n"
+            "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'simulate' /\n"
+            "&simulation t_end = {t_end}, n_out = {n_out} /\n&output directory = '{out}' /\n")
+RUN_FILES = {"history.csv", "parameters.csv"}
+RELCORE = "fixed on branch relcore: "
+
+
+def front_door(door, exe):
+    if door == "executable":
+        return [exe]
+    return [sys.executable, "-m", "sloshdyn", "run"]
+
+
+@contextlib.contextmanager
+def tmpfs(path, size="256k", read_only=False):
+    """A small file system of its own at path (mount needs root; none here is a failure of the
+    environment, reported as such)."""
+    path.mkdir(exist_ok=True)
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", str(path)],
+                             capture_output=True)
+    if mounted.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {mounted.stderr.decode().strip()}")
+    try:
+        (path / "out").mkdir()
+        if read_only:
+            subprocess.run(["mount", "-o", "remount,ro", str(path)], check=True)
+        yield path
+    finally:
+        subprocess.run(["umount", "-l", str(path)], check=True)
+
+
+def final_files(directory):
+    """Names in a run's output directory that are not temporaries (temporaries start with .)."""
+    if not directory.exists():
+        return set()
+    return {p.name for p in directory.iterdir() if not p.name.startswith(".")}
+
+
+def leftovers(directory):
+    return {p.name for p in directory.iterdir() if p.name.startswith(".")} if directory.exists() else set()
+
+
+DOORS = ["executable", "sloshdyn-py"]
+#: both doors write a run's CSV files with the core's writers (sloshdyn-py through the bridge)
+UNCHECKED_WRITES = [pytest.param(door, marks=pytest.mark.xfail(
+    strict=True, reason=RELCORE + "iostat on every write and close: a full disk gives the I/O "
+                                  "exit code, not 0 with a truncated file")) for door in DOORS]
+
+
+@pytest.mark.parametrize("door", UNCHECKED_WRITES)
+def test_full_disk_leaves_nothing_and_says_so(exe, tmp_path, door):
+    with tmpfs(tmp_path / "disk") as disk:
+        (tmp_path / "input.nml").write_text(SIMULATE.format(t_end=2000, n_out=100000,
+                                                            out=disk / "out"))
+        result = subprocess.run(front_door(door, exe) + ["input.nml"], cwd=tmp_path,
+                                capture_output=True, text=True, timeout=120)
+        assert result.returncode == EXIT_IO, result.stderr
+        assert "history.csv" in result.stderr and "Traceback" not in result.stderr
+        assert final_files(disk / "out") == set()
+        assert leftovers(disk / "out") == set()
+
+
+@pytest.mark.parametrize("door", [
+    pytest.param("executable", marks=pytest.mark.xfail(
+        strict=True, reason=RELCORE + "the message of a failed write goes to standard error "
+                                      "and names the directory")), "sloshdyn-py"])
+def test_read_only_directory_leaves_nothing_and_says_so(exe, tmp_path, door):
+    with tmpfs(tmp_path / "disk", read_only=True) as disk:
+        (tmp_path / "input.nml").write_text(SIMULATE.format(t_end=20, n_out=100,
+                                                            out=disk / "out"))
+        result = subprocess.run(front_door(door, exe) + ["input.nml"], cwd=tmp_path,
+                                capture_output=True, text=True, timeout=120)
+        assert result.returncode in (3, EXIT_IO), result.stderr
+        assert str(disk / "out") in result.stderr and "Traceback" not in result.stderr
+        assert final_files(disk / "out") == set()
+
+
+def _start_and_signal(command, cwd, sig, after):
+    proc = subprocess.Popen(command, cwd=cwd, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    time.sleep(after)
+    proc.send_signal(sig)
+    _, stderr = proc.communicate(timeout=120)
+    return proc.returncode, stderr
+
+
+LONG_RUN = dict(t_end=20000, n_out=200000, out="out")   # about 2 s computing, 2 s writing
+
+
+def _complete_or_nothing(out, code):
+    """The directory after an interrupted run: the whole run (exit 0; after kill -9 possibly
+    too, if it had finished writing) or none of it."""
+    files = final_files(out)
+    if code == 0 or (code == -signal.SIGKILL and files):
+        assert RUN_FILES <= files
+        assert len(read_csv(out / "history.csv")) == LONG_RUN["n_out"]
+    else:
+        assert files == set(), (code, files)
+
+
+@pytest.mark.parametrize("door", DOORS)
+def test_kill_9_while_writing_leaves_no_final_file(exe, tmp_path, door):
+    (tmp_path / "input.nml").write_text(SIMULATE.format(**LONG_RUN))
+    code, _ = _start_and_signal(front_door(door, exe) + ["input.nml"], tmp_path,
+                                signal.SIGKILL, 2.0)
+    assert code in (0, -signal.SIGKILL)
+    _complete_or_nothing(tmp_path / "out", code)
+
+
+SIGTERM_CASES = [
+    pytest.param("executable", marks=pytest.mark.xfail(
+        strict=True, reason=RELCORE + "SIGTERM is caught: temporaries removed, exit 143")),
+    pytest.param("sloshdyn-py", marks=pytest.mark.xfail(
+        strict=True, reason=RELCORE + "the cancellation flag stops the Fortran run_input on "
+                                      "SIGTERM before its commit")),
+]
+
+
+@pytest.mark.parametrize("door", SIGTERM_CASES)
+def test_sigterm_while_writing_cleans_up_and_exits_143(exe, tmp_path, door):
+    (tmp_path / "input.nml").write_text(SIMULATE.format(**LONG_RUN))
+    code, stderr = _start_and_signal(front_door(door, exe) + ["input.nml"], tmp_path,
+                                     signal.SIGTERM, 2.0)
+    assert code in (0, EXIT_TERMINATED), stderr
+    _complete_or_nothing(tmp_path / "out", code)
+    assert leftovers(tmp_path / "out") == set()
+
+
+def test_sigterm_during_reproduce_leaves_none_of_its_files(tmp_path):
+    """sloshdyn-py's own writers: a run of `reproduce` stopped by SIGTERM renames none of its
+    files into place and removes its temporaries."""
+    code, stderr = _start_and_signal([sys.executable, "-m", "sloshdyn", "reproduce", "--out",
+                                      str(tmp_path / "out"), "--quick", "--only", "3", "4",
+                                      "9a"], tmp_path, signal.SIGTERM, 6.0)
+    assert code == EXIT_TERMINATED, stderr
+    assert "Traceback" not in stderr and "terminated" in stderr
+    assert final_files(tmp_path / "out") == set() and leftovers(tmp_path / "out") == set()
+
+
+def test_reproduce_on_a_full_disk_writes_none_of_its_files(tmp_path):
+    with tmpfs(tmp_path / "disk", size="64k") as disk:
+        result = subprocess.run([sys.executable, "-m", "sloshdyn", "reproduce", "--out",
+                                 str(disk / "out"), "--quick", "--only", "3", "4"],
+                                capture_output=True, text=True, timeout=600)
+        assert result.returncode == EXIT_IO, result.stderr
+        assert str(disk / "out") in result.stderr and "Traceback" not in result.stderr
+        assert final_files(disk / "out") == set() and leftovers(disk / "out") == set()
+
+
+@pytest.mark.parametrize("door", DOORS)
+def test_two_runs_into_one_directory_leave_one_whole_run(exe, tmp_path, door):
+    """Two runs with different inputs into the same directory at once: both succeed, and the
+    directory holds the files of one of them (its parameters with its own history)."""
+    procs = []
+    for k, t_end in enumerate((300, 400)):
+        (tmp_path / f"input{k}.nml").write_text(SIMULATE.format(t_end=t_end, n_out=20000,
+                                                                out="out"))
+        procs.append(subprocess.Popen(front_door(door, exe) + [f"input{k}.nml"], cwd=tmp_path,
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE))
+    codes = [p.wait(timeout=300) for p in procs]
+    assert codes == [0, 0]
+    history = read_csv(tmp_path / "out" / "history.csv")
+    assert len(history) == 20000 and history[-1]["tau"] in (300.0, 400.0)
+    assert leftovers(tmp_path / "out") == set()
