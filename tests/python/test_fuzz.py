@@ -290,3 +290,51 @@ def test_namelist_groups_through_python(tmp_path_factory, cases):
         calls.append((f"&{group} {name} = {token!r} ({path.name})", "read_namelist",
                       (str(path),), {}))
     assert _violations(run_cases(calls)) == {}
+
+
+# ---- defects of the core found by this suite, fixed on branch relcore ------------------------
+
+RELCORE = "fixed on branch relcore: "
+#: seconds in which a refused count must be refused (it is checked before any work)
+REFUSAL_SECONDS = 5
+STEADY_INPUT = (MODEL + "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'steady_state' /\n")
+CORE_DEFECTS = {
+    # name: (input, the variable the refusal must name, why it fails today)
+    "huge samples_per_period": (
+        STEADY_INPUT + "&steady samples_per_period = 2147483647 /\n&output directory = 'out' /\n",
+        "samples_per_period", "runs unbounded (integer overflow, then hours of work)"),
+    "huge n_amplitudes x n_phases": (
+        MODEL + "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'frequency_response' /\n"
+        "&response start = 0.5, stop = 0.52, n_amplitudes = 100000, n_phases = 100000 /\n"
+        "&output directory = 'out' /\n", "n_amplitudes", "10^10 Newton starts, unbounded"),
+    "huge lyapunov n_periods": (
+        MODEL + "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'lyapunov' /\n"
+        "&lyapunov n_periods = 2000000000 /\n&output directory = 'out' /\n", "n_periods",
+        "no bound from a time estimate"),
+}
+
+
+@pytest.mark.parametrize("case", [pytest.param(name, marks=pytest.mark.xfail(
+    strict=True, reason=RELCORE + why)) for name, (_, _, why) in CORE_DEFECTS.items()])
+def test_huge_counts_are_refused_at_once(exe, tmp_path, case):
+    text, variable, _ = CORE_DEFECTS[case]
+    (tmp_path / "input.nml").write_text(text)
+    try:
+        result = subprocess.run([exe, "input.nml"], cwd=tmp_path, capture_output=True,
+                                text=True, timeout=REFUSAL_SECONDS)
+    except subprocess.TimeoutExpired:
+        pytest.fail(f"{case}: still running after {REFUSAL_SECONDS} s")
+    assert result.returncode == 3 and variable in result.stderr
+
+
+def test_a_group_after_the_slash_on_the_same_line_is_not_ignored(tmp_path):
+    """Issue 11, class 5 (fixed by the one reader): read by both doors alike."""
+    import sloshdyn
+    path = tmp_path / "input.nml"
+    path.write_text(MODEL.rstrip("\n") + " &excitation A = 0.002, rho = 0.5 /\n")
+    try:
+        params = sloshdyn.read_namelist(path).params
+    except sloshdyn.InputError as exc:
+        assert "&excitation" in str(exc)
+    else:
+        assert (params.A, params.rho) == (0.002, 0.5)
