@@ -183,3 +183,30 @@ def test_two_runs_into_one_directory_leave_one_whole_run(exe, tmp_path, door):
     history = read_csv(tmp_path / "out" / "history.csv")
     assert len(history) == 20000 and history[-1]["tau"] in (300.0, 400.0)
     assert leftovers(tmp_path / "out") == set()
+
+
+LYAPUNOV = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.8049, theta0 = 0.785, gamma = 0.001 /\n"
+            "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'lyapunov' /\n"
+            "&lyapunov n_periods = 1000000 /\n&output directory = 'out' /\n")
+#: Ctrl-C must end a run within this many seconds, whatever the core is doing
+CTRL_C_SECONDS = 1.0
+
+
+@pytest.mark.parametrize("door", [pytest.param(door, marks=pytest.mark.xfail(
+    strict=True, reason=RELCORE + "Ctrl-C within a second during any long Fortran call "
+                                  "(a cancellation flag the core polls)")) for door in DOORS])
+def test_ctrl_c_during_a_long_computation_ends_it_within_a_second(exe, tmp_path, door):
+    (tmp_path / "input.nml").write_text(LYAPUNOV)
+    proc = subprocess.Popen(front_door(door, exe) + ["input.nml"], cwd=tmp_path,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(4.0)                       # past the import: inside the Fortran computation
+    assert proc.poll() is None
+    proc.send_signal(signal.SIGINT)
+    try:
+        _, stderr = proc.communicate(timeout=CTRL_C_SECONDS)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        pytest.fail(f"still running {CTRL_C_SECONDS} s after Ctrl-C")
+    assert proc.returncode == 130 and "Traceback" not in stderr
+    assert final_files(tmp_path / "out") == set() and leftovers(tmp_path / "out") == set()

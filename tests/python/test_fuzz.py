@@ -183,14 +183,23 @@ def test_python_api_never_dies_or_raises_a_generic_error(group):
     fuzz()
 
 
-def test_the_runner_catches_a_death_and_names_its_case():
-    """The harness itself: a case that ends the process is reported as a death, and the cases
-    after it still run (os._exit stands in for XERBLA's exit)."""
+def test_the_runner_names_deaths_hangs_and_generic_errors():
+    """The harness itself: a case that ends the process (os._exit(0) stands in for XERBLA's
+    exit) is a death, one that does not finish a hang, a TypeError a generic error; the cases
+    after them still run."""
     outcomes = run_cases([("fine", "natural_frequencies", ("P",), {}),
                           ("dies", "os._exit", (0,), {}),
-                          ("after", "natural_frequencies", ("P",), {})])
-    assert outcomes["fine"] == "finite" and outcomes["after"] == "finite"
+                          ("after death", "natural_frequencies", ("P",), {}),
+                          ("hangs", "time.sleep", (60,), {}),
+                          ("generic", "Parameters", (), {"s1": 1.5, "typo": 1}),
+                          ("rejected", "Parameters", (), dict(s1=math.nan, mu1=0.5, kappa=1.8,
+                                                              theta0=0.7))],
+                         case_seconds=2)
+    assert outcomes["fine"] == outcomes["after death"] == "finite"
     assert outcomes["dies"].startswith("death 0")
+    assert outcomes["hangs"] == "hang"
+    assert outcomes["generic"].startswith("generic TypeError")
+    assert outcomes["rejected"].startswith("sloshdyn InputError: s1 = NaN")
 
 
 # ---- the namelist groups, through both front doors -------------------------------------------
