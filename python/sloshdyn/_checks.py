@@ -129,9 +129,11 @@ def choice(name, value, choices):
 
 
 def text(name, value):
-    """A string for the core (no NUL characters, which end a C string)."""
-    if not isinstance(value, str) or "\0" in value:
-        raise InputError(f"{name} = {show(value)} is not valid: {name} must be a string")
+    """A string for the core: ASCII (what f2py passes to Fortran), no NUL (it ends a C
+    string)."""
+    if not isinstance(value, str) or "\0" in value or not value.isascii():
+        raise InputError(f"{name} = {show(value)} is not valid: {name} must be a string of "
+                         "ASCII characters")
     return value
 
 
@@ -145,6 +147,9 @@ def path(name, value):
         p = os.fsdecode(p)
     if not p or "\0" in p:
         raise InputError(f"{name} = {show(value)} is not valid: {name} must be a non-empty path")
+    if not p.isascii():
+        raise InputError(f"{name} = {show(value)} is not valid: the core takes file names of "
+                         "ASCII characters only")
     return p
 
 

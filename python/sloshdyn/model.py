@@ -77,6 +77,8 @@ def frequency_ratio(sigma_tilde, mu_tilde):
         raise InputError(f"sigma_tilde has shape {sigma_tilde.shape} and mu_tilde "
                          f"{mu_tilde.shape}: they must broadcast together") from None
     _checks.output_size("sigma_tilde", sigma_tilde.size)
+    if sigma_tilde.size == 0:
+        return np.zeros(sigma_tilde.shape)
     ratio, status, message = _bridge.frequency_ratios(sigma_tilde.ravel(), mu_tilde.ravel())
     check_status(status, message)
     return ratio.reshape(sigma_tilde.shape) if sigma_tilde.ndim else float(ratio[0])

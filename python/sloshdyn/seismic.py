@@ -314,9 +314,7 @@ class GroundMotion:
 def acceleration_factor(units):
     """The factor that turns an acceleration in units 'g' (9.80665 m/s^2), 'm/s^2' or
     'cm/s^2' into m/s^2."""
-    if not isinstance(units, str):
-        raise InputError(f"units = {units!r} is not valid: use 'g', 'm/s^2' or 'cm/s^2'")
-    factor, status, message = _bridge.acceleration_units(units)
+    factor, status, message = _bridge.acceleration_units(_checks.text("units", units))
     check_status(status, message)
     return float(factor)
 

@@ -221,14 +221,13 @@ def sweep_values(start, stop, n, direction="up"):
     """Sweep values from start to stop ('up'), back ('down'), or up then down ('both')."""
     start, stop = _checks.real("start", start), _checks.real("stop", stop)
     n = _checks.output_size("n", _checks.integer("n", n, 1))
+    _checks.choice("direction", direction, ("up", "down", "both"))
     values = np.linspace(min(start, stop), max(start, stop), n)
     if direction == "up":
         return values
     if direction == "down":
         return values[::-1]
-    if direction == "both":
-        return np.concatenate([values, values[-2::-1]])
-    raise InputError(f"direction = {direction!r} is not valid: it must be 'up', 'down' or 'both'")
+    return np.concatenate([values, values[-2::-1]])
 
 
 def _sweep(params, parameter, values, y0, steady, integration, progress, threads, start_from):

@@ -25,7 +25,7 @@ from fuzz_runner import CASE_SECONDS, run_cases
 
 LONG = int(os.environ.get("SLOSHDYN_FUZZ_EXAMPLES", "0"))
 #: cases per function group in CI, and hypothesis examples (batches) per test
-CASES = LONG or 24
+CASES = 200 if LONG else 60
 FUZZ = settings(max_examples=1 if not LONG else max(1, LONG // CASES), deadline=None,
                 derandomize=not LONG, phases=[Phase.explicit, Phase.generate],
                 suppress_health_check=list(HealthCheck))
@@ -129,7 +129,7 @@ API = {
 }
 #: arguments whose hostile but valid values start computations of unbounded length: a bound on
 #: them is the core's (issue 11, branch relcore), so their big valid values are not drawn here
-UNBOUNDED = {("simulate", 1), ("stability_chart", "n_x"), ("stability_chart", "n_y"),
+UNBOUNDED = {("simulate", 1), ("simulate", "tau_out"), ("stability_chart", "n_x"), ("stability_chart", "n_y"),
              ("lyapunov_exponent", "n_periods"), ("lyapunov_exponent", "transient_periods")}
 
 
@@ -149,6 +149,9 @@ def api_case(draw, function):
 
 
 def _big_valid(value):
+    """A finite number (or array of them) beyond 50: a long run, not an invalid value."""
+    if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
+        return bool(np.all(np.isfinite(value)) and value.size and np.abs(value).max() > 50)
     return (isinstance(value, (int, float, np.floating)) and not isinstance(value, bool)
             and math.isfinite(value) and abs(value) > 50)
 
@@ -347,3 +350,35 @@ def test_a_group_after_the_slash_on_the_same_line_is_not_ignored(tmp_path):
         assert "&excitation" in str(exc)
     else:
         assert (params.A, params.rho) == (0.002, 0.5)
+
+
+NONFINITE_RESULTS = {
+    # name: (case, the start of the error it must raise)
+    "tank_pendulum R = 1e308": (("tank_pendulum", (1e308, 6.0), {"rho_liquid": 1000.0}),
+                                "sloshdyn InputError: R = "),
+    "tank_pendulum R = 2.2e-308": (("tank_pendulum", (2.2e-308, 6.0), {"rho_liquid": 1000.0}),
+                                   "sloshdyn InputError: R = "),
+    "tank_pendulum rho_liquid = 1e308": (("tank_pendulum", (5.0, 6.0), {"rho_liquid": 1e308}),
+                                         "sloshdyn InputError: rho_liquid = "),
+    "equations_of_motion at y = 1e308": (("equations_of_motion", ("P", 0.0, [1e308] * 4), {}),
+                                         "sloshdyn "),
+}
+
+
+@pytest.mark.parametrize("case", [pytest.param(name, marks=pytest.mark.xfail(
+    strict=True, reason=RELCORE + "a non-finite result is an error, never a result"))
+    for name in NONFINITE_RESULTS])
+def test_extreme_values_give_an_error_not_a_nonfinite_result(case):
+    """Found by the long fuzzing mode: these calls returned NaN or infinity."""
+    (function, args, kwargs), error = NONFINITE_RESULTS[case]
+    outcomes = run_cases([(case, function, args, kwargs)])
+    assert outcomes[case].startswith(error), outcomes
+
+
+@pytest.mark.xfail(strict=True, reason=RELCORE + "a bound on the integration time from a time "
+                                                 "estimate, or Ctrl-C within a second")
+def test_a_simulation_to_tau_1e308_is_refused_at_once():
+    """Found by the long fuzzing mode: simulate(tau_out=[1e308, ...]) runs for hours."""
+    outcomes = run_cases([("far", "simulate", ("P", 1.0), {"tau_out": [0.0, 1e308]})],
+                         case_seconds=REFUSAL_SECONDS)
+    assert outcomes["far"].startswith("sloshdyn InputError"), outcomes
