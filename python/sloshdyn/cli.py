@@ -13,9 +13,9 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__, _core, figures, plotting, reference
-from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError, SloshdynError,
-                      check_status, exit_code)
-from ._files import file_error, run_directory, save_figure, write_text
+from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError, InputError,
+                      SloshdynError, check_status, exit_code)
+from ._files import run_directory, save_figure, write_text
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
 from .simulation import Simulation, Sweep, _summary
@@ -128,7 +128,11 @@ def run_input(path):
     check_status(status, message)
     figure = _figure(inp, Path(inp.directory))
     if figure:
-        save_figure(figure[1], Path(inp.directory) / figure[0])
+        try:
+            save_figure(figure[1], Path(inp.directory) / figure[0])
+        except FileError as exc:
+            raise FileError(f"the result files in {inp.directory} are complete, the figure "
+                            f"{figure[0]} is not: {exc}", exc.status) from exc
     return 0
 
 

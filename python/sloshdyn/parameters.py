@@ -8,7 +8,6 @@ variables, defaults, rules and messages are the same for both front doors by con
 from __future__ import annotations
 
 import dataclasses
-import os
 from dataclasses import dataclass, field
 
 import numpy as np

@@ -5,13 +5,12 @@ Lyapunov exponent. Computed by the Fortran core (sloshdyn_periodic)."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import _checks, _core, _tables
-from ._errors import InputError, check_status
+from ._errors import check_status
 from .asymptotics import continuation_range, frequency_response
 from .model import linear_modes
 from .parameters import Parameters
@@ -67,13 +66,11 @@ def start_state(params: Parameters, start="simulation"):
     _checks.choice("start", start, ("simulation", "slow_flow"))
     if start == "simulation":
         return steady_state(params, steady=Steady(max_transient_periods=5000)).y_end
-    if start == "slow_flow":
-        r = frequency_response(params, (params.rho * 0.999, params.rho * 1.001))
-        t = r.table
-        k = int(np.argmin(np.abs(t["rho"] - params.rho) + 1e3 * (t["stable"] == 0)))
-        return slow_flow_state(params, t["re_B1"][k] + 1j * t["im_B1"][k],
-                               t["re_B2"][k] + 1j * t["im_B2"][k])
-    raise InputError(f"start = {start!r} is not valid: it must be 'simulation' or 'slow_flow'")
+    r = frequency_response(params, (params.rho * 0.999, params.rho * 1.001))
+    t = r.table
+    k = int(np.argmin(np.abs(t["rho"] - params.rho) + 1e3 * (t["stable"] == 0)))
+    return slow_flow_state(params, t["re_B1"][k] + 1j * t["im_B1"][k],
+                           t["re_B2"][k] + 1j * t["im_B2"][k])
 
 
 def slow_flow_state(params: Parameters, b1, b2):

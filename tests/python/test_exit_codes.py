@@ -132,3 +132,18 @@ def test_check_out_of_tolerance_is_exit_1_not_a_bad_file(tmp_path):
     result = _check(tmp_path, json.dumps({"omega1": 0.6}))
     assert result.returncode == 1 and "bad file" not in result.stderr
     assert "omega1" in result.stdout.splitlines()[-1]
+
+
+def test_the_readme_table_is_the_exit_code_table_and_its_tests_exist():
+    """README, "Failure behaviour": its table is EXIT_MEANINGS, and every test it names exists."""
+    import re
+    from conftest import ROOT
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("## Failure behaviour", 1)[1].split("\n## ", 1)[0]
+    rows = dict(re.findall(r"^\| (\d+) \| (.*?) \|$", section, re.M))
+    assert {int(code): text.replace("`", "") for code, text in rows.items()} == EXIT_MEANINGS
+    module = None
+    for name in re.findall(r"`(?:(test_\w+\.py)::|::)(test_\w+)`", section):
+        module = name[0] or module
+        source = (ROOT / "tests" / "python" / module).read_text()
+        assert f"def {name[1]}(" in source, name

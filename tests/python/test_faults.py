@@ -5,7 +5,6 @@ file under a final name, no temporary left where the process could clean up), an
 says which (README, "Failure behaviour")."""
 
 import contextlib
-import os
 import signal
 import subprocess
 import sys
