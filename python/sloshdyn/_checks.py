@@ -82,10 +82,11 @@ def flag(name, value):
     return bool(value)
 
 
-def reals(name, value, shape=None, *, ndim=None, min_size=0):
-    """A C-contiguous float64 array of finite reals, of the given shape (or number of
-    dimensions), with at least min_size elements. Integer arrays convert; bool, complex,
-    text and ragged sequences are refused."""
+def reals(name, value, shape=None, *, ndim=None, min_size=0, finite=True):
+    """A C-contiguous float64 array of finite reals (finite=False: where the core or the caller
+    checks finiteness with its own message), of the given shape (or number of dimensions), with
+    at least min_size elements. Integer arrays convert; bool, complex, text and ragged
+    sequences are refused."""
     try:
         a = np.asarray(value)
     except (TypeError, ValueError):
@@ -102,8 +103,8 @@ def reals(name, value, shape=None, *, ndim=None, min_size=0):
         raise InputError(f"{name} has shape {a.shape}: it must be {ndim}-dimensional")
     if a.size < min_size:
         raise InputError(f"{name} has {a.size} values: it needs at least {min_size}")
-    bad = np.flatnonzero(~np.isfinite(a))
-    if bad.size:
+    bad = np.flatnonzero(~np.isfinite(a)) if finite else ()
+    if len(bad):
         index = np.unravel_index(bad[0], a.shape) if a.ndim > 1 else (int(bad[0]),)
         where = ", ".join(str(int(i)) for i in index) if a.ndim else ""
         label = f"{name}[{where}]" if a.ndim else name

@@ -54,6 +54,8 @@ def load(directory=None):
     rows, seen = [], {}
     for name in ("paper_values.csv", "computed_values.csv"):
         path = directory / name
+        if not path.is_file():
+            raise bad_file(path, None, "the reference table is missing")
         with file_error(path, "read the reference table"):
             with open(path, newline="", encoding="utf-8") as f:
                 try:

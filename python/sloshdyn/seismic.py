@@ -208,7 +208,7 @@ class GroundMotion:
                                  "(peak_acceleration, frequency), not both")
             if acceleration is None or dt is None:
                 raise InputError("a record needs both dt [s] and acceleration (an array)")
-            samples = _checks.reals("acceleration", acceleration, ndim=1).copy()
+            samples = _checks.reals("acceleration", acceleration, ndim=1, finite=False).copy()
             self.kind, self.dt = "record", _real("dt", dt)
             self.acceleration = samples * factor
             self.peak_acceleration = self.frequency = 0.0

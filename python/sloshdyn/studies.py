@@ -322,7 +322,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
 
 def _axis(name, values, lower, lower_open=True):
     """A study axis: 1-D, non-empty, finite, > lower (or >= lower), no repeats."""
-    a = _checks.reals(name, values).ravel()
+    a = _checks.reals(name, values, finite=False).ravel()
     if a.size == 0:
         raise InputError(f"{name} is empty: give at least one value")
     for i, v in enumerate(a):
@@ -924,8 +924,8 @@ def fit_fragility(intensities, failures, counts=None) -> FragilityFit:
     observation, or the number of failures out of counts at each intensity."""
     from scipy.optimize import minimize
     from scipy.stats import norm
-    x = _checks.reals("intensities", intensities).ravel()
-    y = _checks.reals("failures", failures).ravel()
+    x = _checks.reals("intensities", intensities, finite=False).ravel()
+    y = _checks.reals("failures", failures, finite=False).ravel()
     m = np.ones_like(y) if counts is None else _checks.reals("counts", counts).ravel()
     if x.size == 0:
         raise InputError("intensities is empty: give at least one value")

@@ -127,6 +127,15 @@ def test_check_a_corrupted_reference_table_is_a_bad_file(tmp_path, case):
         assert word in result.stderr
 
 
+def test_check_a_missing_reference_table_is_a_bad_file(tmp_path):
+    reference = tmp_path / "ref"
+    shutil.copytree(PACKAGE_REFERENCE, reference)
+    (reference / "computed_values.csv").unlink()
+    result = _check(tmp_path, json.dumps({"omega1": 0.50936}), reference)
+    assert result.returncode == 3 and "bad file" in result.stderr
+    assert "computed_values.csv" in result.stderr and "missing" in result.stderr
+
+
 def test_check_out_of_tolerance_is_exit_1_not_a_bad_file(tmp_path):
     """A well-formed run whose values miss the reference: exit 1, the quantities named."""
     result = _check(tmp_path, json.dumps({"omega1": 0.6}))

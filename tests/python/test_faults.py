@@ -209,3 +209,27 @@ def test_ctrl_c_during_a_long_computation_ends_it_within_a_second(exe, tmp_path,
         pytest.fail(f"still running {CTRL_C_SECONDS} s after Ctrl-C")
     assert proc.returncode == 130 and "Traceback" not in stderr
     assert final_files(tmp_path / "out") == set() and leftovers(tmp_path / "out") == set()
+
+
+def test_python_writers_commit_a_run_whole_or_not_at_all(tmp_path):
+    """sloshdyn's Python writers: two writers of one file never share a temporary; the files of
+    a run_directory appear together when it succeeds, and none (nor a temporary) when it fails;
+    an OSError becomes a FileError naming the file."""
+    from sloshdyn import FileError
+    from sloshdyn._files import run_directory, temporary_name, write_csv, write_text
+    assert temporary_name(tmp_path / "a.csv") != temporary_name(tmp_path / "a.csv")
+    with pytest.raises(RuntimeError):
+        with run_directory(tmp_path / "run"):
+            write_csv(tmp_path / "run" / "a.csv", {"x": [1.0, 2.0]})
+            assert final_files(tmp_path / "run") == set()     # waiting for the commit
+            raise RuntimeError("the run fails after its first file")
+    assert final_files(tmp_path / "run") == set() and leftovers(tmp_path / "run") == set()
+    with run_directory(tmp_path / "run"):
+        write_csv(tmp_path / "run" / "a.csv", {"x": [1.0, 2.0]})
+        write_text(tmp_path / "run" / "b.txt", "done")
+    assert final_files(tmp_path / "run") == {"a.csv", "b.txt"}
+    assert read_csv(tmp_path / "run" / "a.csv") == [{"x": 1.0}, {"x": 2.0}]
+    (tmp_path / "run" / "c.txt").mkdir()                      # a directory where a file goes
+    with pytest.raises(FileError, match="c.txt"):
+        write_text(tmp_path / "run" / "c.txt", "x")
+    assert leftovers(tmp_path / "run") == set()
