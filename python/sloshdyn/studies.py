@@ -483,15 +483,9 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
         raise InputError(f"params_or_tank = {type(params_or_tank).__name__} is not valid: give "
                          "sloshdyn.Parameters or sloshdyn.Tank")
     steady_array, integration_array = _settings(steady, integration)
-    if continuation is None or continuation == "none":
-        directions = ()
-    elif continuation in ("up", "down"):
-        directions = (continuation,)
-    elif continuation == "both":
-        directions = ("up", "down")
-    else:
-        raise InputError(f"continuation = {continuation!r} is not valid: it must be None, 'up', "
-                         "'down' or 'both'")
+    continuation = "none" if continuation is None else continuation
+    directions = {"none": (), "up": ("up",), "down": ("down",), "both": ("up", "down")}[
+        _checks.choice("continuation", continuation, ("none", "up", "down", "both"))]
     ppt = None if points_per_task is None else _positive_int("points_per_task", points_per_task)
     nf, na = len(f), len(a)
 
@@ -806,7 +800,9 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
             raise InputError(f"records[{k}] = {r!r:.60} is not valid: give a recorded ground "
                              "motion (GroundMotion with dt and acceleration) or a record file")
         motions.append(r)
-    labels = [_record_name(r, k) for k, r in enumerate(records)] if names is None else list(names)
+    labels = ([_record_name(r, k) for k, r in enumerate(records)] if names is None else
+              [_checks.text(f"names[{k}]", n) for k, n in enumerate(
+                  names if isinstance(names, (list, tuple)) else [names])])
     if len(labels) != len(motions) or len(set(labels)) != len(labels):
         raise InputError(f"names = {labels!r:.80} is not valid: one distinct name per record")
     x = _axis("intensities", intensities, 0.0)

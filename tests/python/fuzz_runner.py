@@ -3,7 +3,8 @@ XERBLA, a segfault, an abort) or a hang is caught and blamed on its case.
 
 A case is (label, function name, args, kwargs); the names "P", "TANK", "GROUND" among the args
 stand for valid Parameters (Fig 12), a valid Tank and valid harmonic ground motion, built in
-the child. The parent pickles a batch of cases to the child's standard input; the child prints
+the child (and "RECORD" a recorded ground motion, "STORE" a new store path, "NO_CLUSTER" a
+Dask client that stops a study whose inputs passed every check). The parent pickles a batch of cases to the child's standard input; the child prints
 "CASE i" before and "DONE i <outcome>" after each one. A child that dies or stops answering is
 restarted after the case it was running, which is reported as 'death' or 'hang'.
 
@@ -26,11 +27,31 @@ import time
 CASE_SECONDS = 20.0
 
 
+class _NoCluster:
+    """A Dask client that refuses the first thing asked of it: a study whose inputs pass every
+    check stops there (InputError), before any store or computation."""
+
+    def __getattr__(self, name):
+        import sloshdyn
+        raise sloshdyn.InputError(f"fuzzing: the study's inputs passed (client.{name})")
+
+
+SENTINELS = ("P", "TANK", "GROUND", "RECORD", "STORE", "NO_CLUSTER")
+
+
 def _valid(name):
+    import tempfile
+
     import sloshdyn
     from sloshdyn.figures import FIG12
     if name == "P":
         return FIG12
+    if name == "RECORD":
+        return sloshdyn.GroundMotion(dt=0.01, acceleration=[0.0, 0.5, -0.5, 0.2, 0.0])
+    if name == "STORE":
+        return os.path.join(tempfile.mkdtemp(prefix="sloshdyn-fuzz-"), "study.zarr")
+    if name == "NO_CLUSTER":
+        return _NoCluster()
     if name == "TANK":
         return sloshdyn.Tank(radius=5, liquid_depth=6, freeboard=1, liquid_density=1000,
                              tank_mass=5e4, support_frequency=2)
@@ -40,8 +61,10 @@ def _valid(name):
 
 
 def _resolve(value):
-    if isinstance(value, str) and value in ("P", "TANK", "GROUND"):
+    if isinstance(value, str) and value in SENTINELS:
         return _valid(value)
+    if isinstance(value, list):
+        return [_resolve(v) for v in value]
     return value
 
 

@@ -61,7 +61,7 @@ def arrays_like(valid):
 
 texts = st.one_of(st.sampled_from(["", "nonsense", "RHO", "rho ", "g\0", "3:1x"]), st.text(max_size=8),
                   st.sampled_from(WRONG_TYPES))
-objects = st.sampled_from(WRONG_TYPES + [None, "P", "TANK", "GROUND"])
+objects = st.sampled_from(WRONG_TYPES + [None, "P", "TANK", "GROUND", "RECORD"])
 
 STATE = [0.1, 0.0, 0.05, 0.0]
 #: function -> (valid positional args, valid keyword args, strategies of the hostile values of
@@ -126,6 +126,18 @@ API = {
                          "x": texts, "model": texts}),
     "fit_fragility": (([0.1, 0.2, 0.3, 0.4], [0, 1, 0, 1]), {},
                       {0: arrays_like([0.1, 0.2, 0.3, 0.4]), 1: arrays_like([0, 1, 0, 1])}),
+    # the studies: a study whose inputs pass stops at the client (fuzz_runner.NO_CLUSTER)
+    "response_map": (("P", [0.5, 0.51], [0.0005, 0.001], "STORE"), dict(client="NO_CLUSTER"),
+                     {0: objects, 1: arrays_like([0.5, 0.51]), 2: arrays_like([0.0005, 0.001]),
+                      3: objects, "continuation": texts, "points_per_task": ints,
+                      "steady": objects, "integration": objects}),
+    "basins": (("P", (-1.0, 1.0), (-1.0, 1.0)), dict(n=3, store="STORE", client="NO_CLUSTER"),
+               {0: objects, 1: arrays_like([-1.0, 1.0]), 2: arrays_like([-1.0, 1.0]),
+                "n": ints, "x2": reals, "dx2": reals, "tol": reals, "points_per_task": ints}),
+    "fragility_study": (("TANK", ["RECORD"], [0.1, 0.2], "STORE"), dict(client="NO_CLUSTER"),
+                        {0: objects, 1: objects, 2: arrays_like([0.1, 0.2]), "units": texts,
+                         "period": reals, "damping": reals, "names": objects,
+                         "points_per_task": ints}),
 }
 #: arguments whose hostile but valid values start computations of unbounded length: a bound on
 #: them is the core's (issue 11, branch relcore), so their big valid values are not drawn here
@@ -169,7 +181,8 @@ GROUPS = {"model": ["Parameters", "tank_pendulum", "natural_frequencies", "equil
                           "fit_fragility"],
           "seismic": ["Tank", "GroundMotion", "acceleration_factor", "GROUND.scaled",
                       "GROUND.response_spectrum", "TANK.design_codes", "seismic_defaults",
-                      "stability_chart"]}
+                      "stability_chart"],
+          "studies": ["response_map", "basins", "fragility_study"]}
 
 
 @pytest.mark.parametrize("group", GROUPS)
