@@ -80,6 +80,8 @@ EXIT_MEANINGS = {
        "(check: a corrupted values.json or reference table); nothing was written",
     4: "the computation failed (no convergence, integration failure, singular matrix, "
        "LAPACK); nothing was written",
+    5: "the results could not be written (a full disk, a read-only directory); nothing of "
+       "the run is left under a final name",
     130: "interrupted (Ctrl-C); no file was left half-written",
     143: "terminated (SIGTERM); no file was left half-written",
 }

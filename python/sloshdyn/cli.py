@@ -79,12 +79,12 @@ def main(argv=None):
     except SloshdynError as exc:
         print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
         return exit_code(exc, getattr(exc, "reading", False))
-    except KeyboardInterrupt as exc:
-        print(f"sloshdyn-py: interrupted; {exc or _KEPT}", file=sys.stderr)
-        return EXIT_INTERRUPTED
     except _Terminated:
         print(f"sloshdyn-py: terminated; {_KEPT}", file=sys.stderr)
         return EXIT_TERMINATED
+    except KeyboardInterrupt as exc:
+        print(f"sloshdyn-py: interrupted; {exc or _KEPT}", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except Exception:     # a defect of sloshdyn-py itself: its traceback, and not exit 1
         import traceback
         traceback.print_exc()
@@ -98,8 +98,9 @@ def main(argv=None):
 _KEPT = "files already complete are kept, none is half-written"
 
 
-class _Terminated(BaseException):
-    """SIGTERM, raised where Python runs next so that the writers clean up."""
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where Python runs next so that the writers clean up; a kind of
+    KeyboardInterrupt, so whatever stops a computation on Ctrl-C stops it on SIGTERM too."""
 
 
 def _terminate(signum, frame):
