@@ -273,10 +273,18 @@ def _run_executable(exe, text, tmp):
     return result.returncode, result.stderr
 
 
-def _finite_results(out):
-    """Exit 0 promises result files whose numbers are finite ('-' and text cells aside)."""
-    tables = list(out.glob("*.csv")) if out.is_dir() else []
+#: result files whose NaN cells are documented values (README: a design code gives none; the
+#: first roof time of a run that never reaches the roof)
+NAN_BY_DEFINITION = {"design_codes.csv", "seismic_peaks.csv"}
+
+
+def _finite_results(run):
+    """Exit 0 promises result files (in the run's &output directory, wherever it is below
+    `run`) whose numbers are finite ('-' and text cells aside)."""
+    tables = list(run.rglob("*.csv"))
     for table in tables:
+        if table.name in NAN_BY_DEFINITION:
+            continue
         for row in read_csv(table):
             if any(isinstance(v, float) and not math.isfinite(v) for v in row.values()):
                 return False
@@ -294,7 +302,7 @@ def test_namelist_groups_through_the_executable(tmp_path_factory, exe, cases):
         where = f"&{group} {name} = {token!r}"
         if code not in (0, 3, 4, 5):
             problems.append(f"{where}: exit {code}: {stderr[-200:]}")
-        elif code == 0 and not _finite_results(tmp / "out"):
+        elif code == 0 and not _finite_results(tmp):
             problems.append(f"{where}: exit 0 without finite results: {files}")
         elif code != 0 and (not stderr.strip() or "Traceback" in stderr):
             problems.append(f"{where}: exit {code} without a message")
@@ -395,3 +403,16 @@ def test_a_simulation_to_tau_1e308_is_refused_at_once():
     outcomes = run_cases([("far", "simulate", ("P", 1.0), {"tau_out": [0.0, 1e308]})],
                          case_seconds=REFUSAL_SECONDS)
     assert outcomes["far"].startswith("sloshdyn InputError"), outcomes
+
+
+@pytest.mark.xfail(strict=True, reason=RELCORE + "a bound on the work of an integration from a "
+                                                 "time estimate (or the state's size)")
+def test_a_simulation_from_a_huge_state_ends_within_the_bound(exe, tmp_path):
+    """Found by the long fuzzing mode: &simulation y0 = 99999999999999999999 (every component
+    1e20) runs past CASE_SECONDS instead of failing (exit 4) or being refused (exit 3)."""
+    (tmp_path / "input.nml").write_text(
+        MODEL + "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'simulate' /\n"
+        "&simulation t_end = 5, n_out = 20, y0 = 99999999999999999999 /\n"
+        "&output directory = 'out' /\n")
+    code, stderr = _run_executable(exe, (tmp_path / "input.nml").read_text(), tmp_path)
+    assert code in (3, 4) and stderr.strip()
