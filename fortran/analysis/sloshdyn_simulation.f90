@@ -173,7 +173,7 @@ contains
     period = forcing_period(model%excitation)
     call inverse_modal_matrix(model, p_inv)
     ! one spare period: sample times computed in steps must not round past t_bound
-    call new_integrator(method, integ, status, message)
+    call new_integrator(method, options%rtol, integ, status, message)
     if (status == SD_OK) &
       call integ%init(system, 0.0_wp, y0, (max(steady%transient_periods, &
                       steady%max_transient_periods) + steady%window_periods + 1)*period, &
@@ -310,7 +310,7 @@ contains
       real(wp) :: z(4), points(4, max_period)
       integer :: p, i
       p = jump%periods
-      call new_integrator(method, orbit_integ, status, message)
+      call new_integrator(method, options%rtol, orbit_integ, status, message)
       if (status == SD_OK) call orbit_integ%init(system, 0.0_wp, jump%y, (p + 1)*period, &
                                                  options, status, message)
       if (status /= SD_OK) return

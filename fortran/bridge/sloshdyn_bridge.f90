@@ -1144,14 +1144,14 @@ contains
     use sloshdyn_simulation, only: steady_options
     use sloshdyn_response, only: response_options
     use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
-    use sloshdyn_integrator, only: METHOD_DOPRI5
+    use sloshdyn_integrator, only: METHOD_AUTO
     use sloshdyn_layouts, only: &
                                 from_ode_options, from_steady, from_response, from_lyapunov
     real(c_double), intent(out) :: model(6), integration(7), steady(7), &
                                    response(10), lyapunov(3), shooting(2)
     type(model_t) :: m
     model = [m%beta, m%gamma, m%delta, real(m%n, c_double), real(m%p, c_double), m%zeta]
-    integration = from_ode_options(ode_options(), METHOD_DOPRI5)
+    integration = from_ode_options(ode_options(), METHOD_AUTO)
     steady = from_steady(steady_options())
     response = from_response(response_options())
     lyapunov = from_lyapunov(lyapunov_options())

@@ -72,7 +72,7 @@ contains
     ! a generic start direction (not aligned with any coordinate)
     z(n + 1:2*n) = [(1.0_wp/i, i = 1, n)]
     z(n + 1:2*n) = z(n + 1:2*n)/norm2(z(n + 1:2*n))
-    call new_integrator(method, integ, status, message)
+    call new_integrator(method, setup%options%rtol, integ, status, message)
     if (status == SD_OK) call integ%init(setup%sys, 0.0_wp, z, t_end, setup%options, status, &
                                          message)
     if (status /= SD_OK) then

@@ -23,7 +23,7 @@ module sloshdyn_ode
   implicit none
   private
   public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
-  public :: check_options, integrate_with
+  public :: check_options, integrate_with, rms_error_norm
   public :: default_rtol, default_atol, default_max_steps
 
   real(wp), parameter :: default_rtol = 1.0e-9_wp   !< relative tolerance unless given
@@ -434,6 +434,20 @@ contains
     end do
     stats = integ%statistics()
   end subroutine integrate_with
+
+  !> Hairer's RMS error norm, scale sk = atol_i + rtol*max(|y0_i|, |y1_i|). Zero error terms are
+  !> skipped so that a component with sk = 0 (atol_i = 0, y_i = 0) cannot give 0/0.
+  pure function rms_error_norm(e, y0, y1, atol, rtol) result(err)
+    real(wp), intent(in) :: e(:), y0(:), y1(:), atol(:), rtol
+    real(wp) :: err
+    integer :: i
+
+    err = 0
+    do i = 1, size(e)
+      if (e(i) /= 0) err = err + (e(i)/(atol(i) + rtol*max(abs(y0(i)), abs(y1(i)))))**2
+    end do
+    err = sqrt(err/size(e))
+  end function rms_error_norm
 
   !> The options with the method's defaults in place of zeros (and beta < 0 as 0).
   pure function with_method_defaults(options, info) result(opt)
