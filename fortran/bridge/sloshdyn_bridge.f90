@@ -1137,6 +1137,17 @@ contains
 
   !> The defaults of the option types: model = [beta, gamma, delta, n, p, zeta]; integration, steady,
   !> response and lyapunov in their layouts; shooting = [newton_tol, max_iter].
+  !> The method code that runs for the settings integration (layout of sloshdyn_layouts):
+  !> the method itself, or for 'auto' the pair chosen for its rtol.
+  subroutine method_used(integration, code)
+    !f2py threadsafe
+    use sloshdyn_integrator, only: chosen_method
+    use sloshdyn_layouts, only: to_method
+    real(c_double), intent(in) :: integration(7)
+    integer(c_int), intent(out) :: code
+    code = int(chosen_method(to_method(integration), integration(1)), c_int)
+  end subroutine method_used
+
   subroutine defaults(model, integration, steady, response, lyapunov, shooting)
     !f2py threadsafe
     use sloshdyn_model, only: model_t

@@ -22,7 +22,7 @@ module sloshdyn_integrator
     [character(len=6) :: 'rk45', 'dop853', 'vern9', 'auto']
   !> The crossovers of 'auto' (measured, benchmarks/README.md): DOP853 for rtol below the
   !> first, Verner 9(8) for rtol below the second.
-  real(wp), parameter :: auto_dop853_below = 1.0e-4_wp, auto_vern9_below = 1.0e-10_wp
+  real(wp), parameter :: auto_dop853_below = 1.0e-3_wp, auto_vern9_below = 1.0e-10_wp
 
 contains
 

@@ -33,6 +33,7 @@ class PeriodicOrbit:
     max_x1: float               #: max |x1| over the orbit (64 samples per forcing period)
     iterations: int
     periods: int
+    method: str = ""            #: the integration method used ('auto' resolved)
 
     @property
     def stable(self):
@@ -54,7 +55,7 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
         *params.arrays(), y0, int(periods), integration.array(), newton_tol, max_iter)
     check_status(status, message, "periodic orbit")
     return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
-                         int(info[0]), int(periods))
+                         int(info[0]), int(periods), integration.method_used)
 
 
 def start_state(params: Parameters, start="simulation"):
@@ -99,6 +100,7 @@ class PeriodicBranch:
     special_points: list
     complete: bool
     message: str = ""
+    method: str = ""             #: the integration method used ('auto' resolved)
 
 
 def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
@@ -135,7 +137,8 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
                                      float(s[1]) if parameter == "A" else params.A, float(s[6]),
                                      s[2:6].copy()) for s in special[:, :n_special].T]
     text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
-    branch = PeriodicBranch(parameter, table, specials, bool(complete), text)
+    branch = PeriodicBranch(parameter, table, specials, bool(complete), text,
+                            integration.method_used)
     if status:
         try:
             check_status(status, message, "periodic branch")

@@ -31,8 +31,14 @@ class Integration:
     h_max: float = float(_INTEGRATION[3])        #: 0 = no limit
     h_min: float = float(_INTEGRATION[4])        #: 0 = 1e-14 max(1, |tau|)
     max_steps: int = int(_INTEGRATION[5])
-    method: str = _tables.codes("methods")[int(_INTEGRATION[6])]   #: 'rk45' (Dormand-Prince
-    #: 5(4)) or 'dop853' (8(5,3), fewer steps at tight tolerances)
+    method: str = _tables.codes("methods")[int(_INTEGRATION[6])]   #: 'auto' (by rtol, see
+    #: method_used), 'rk45' (Dormand-Prince 5(4)), 'dop853' (8(5,3)) or 'vern9' (Verner 9(8))
+
+    @property
+    def method_used(self):
+        """The method that runs: ``method``, or for 'auto' the one the core picks for rtol
+        (rk45 at loose, dop853 at medium, vern9 at tight tolerances; benchmarks/README.md)."""
+        return _tables.codes("methods")[int(_bridge.method_used(self.array()))]
 
     def array(self):
         if self.method not in METHODS:
@@ -82,6 +88,7 @@ class Simulation:
     n_accepted: int
     n_rejected: int
     tau_reached: float
+    method: str = ""            #: the integration method used ('auto' resolved)
 
     @property
     def x1(self):
@@ -122,7 +129,7 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
     history, counts, status, message = _bridge.simulate(
         *params.arrays(), t_start, _state(y0), tau_out, integration.array())
     result = Simulation(tau_out, history[0:4], history[4:6], history[6], history[7], history[8],
-                        *_counts(counts))
+                        *_counts(counts), method=integration.method_used)
     if status:
         try:
             check_status(status, message, "simulation")
@@ -150,6 +157,7 @@ class SteadyState:
     settled: bool               #: the settle test passed (always True without settle_tol)
     poincare: np.ndarray = field(repr=False, default=None)   #: (4, window) points at tau = k T
     y_end: np.ndarray = field(repr=False, default=None)      #: final state, forcing phase 0
+    method: str = ""            #: the integration method used ('auto' resolved)
 
 
 def _summary(row, poincare=None, y_end=None):
@@ -167,7 +175,9 @@ def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),
     summary, poincare, y_end, counts, status, message = _bridge.steady_state(
         *params.arrays(), _state(y0), integration.array(), steady.array(), steady.window_periods)
     check_status(status, message, "steady state")
-    return _summary(summary, poincare, y_end)
+    result = _summary(summary, poincare, y_end)
+    result.method = integration.method_used
+    return result
 
 
 def poincare_section(params: Parameters, n_points, y0=None, *, transient_periods=0,
@@ -189,6 +199,7 @@ class Sweep:
     parameter: str              #: 'rho' or 'A'
     points: list                #: SteadyState per value, in sweep order
     y_final: np.ndarray
+    method: str = ""            #: the integration method used ('auto' resolved)
 
     def column(self, name):
         return np.array([getattr(p, name) for p in self.points])
@@ -223,9 +234,12 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
                 int(threads))
         return summaries, None, y, status, message
 
+    method = integration.method_used
     points, _, y = run_sweep(parameter, values, y0, progress, threads, start_from, run,
-                             lambda points, y: Sweep(parameter, points, y))
-    return Sweep(parameter, points, y)
+                             lambda points, y: Sweep(parameter, points, y, method))
+    for point in points:
+        point.method = method
+    return Sweep(parameter, points, y, method)
 
 
 def run_sweep(label, values, y0, progress, threads, start_from, run, partial):

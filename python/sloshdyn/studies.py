@@ -360,6 +360,7 @@ def _common_attrs(kind, params, steady, integration, extra):
         "parameters": json.dumps(dataclasses.asdict(params)),
         "steady": json.dumps(dataclasses.asdict(steady)),
         "integration": json.dumps(dataclasses.asdict(integration)),
+        "method_used": integration.method_used,   # 'auto' resolved by rtol
         **extra,
     }
 
