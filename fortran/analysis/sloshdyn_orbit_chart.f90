@@ -50,7 +50,7 @@ module sloshdyn_orbit_chart
     !> (rtol^(1/3) times x_scale and p_scale, sloshdyn_map_bifurcation): 1e-12 keeps those
     !> ~1e-8 relative and the curve's multipliers on the circle to ~1e-10
     type(ode_options) :: integration = ode_options(rtol=1.0e-12_wp, atol=1.0e-14_wp)
-    !> DOP853: at rtol = 1e-12 it takes about a quarter of DOPRI5's time for the Fig 12 curves
+    !> auto: Verner 9(8) at rtol = 1e-12 (DOP853 takes about a quarter of DOPRI5's time there)
     integer :: method = METHOD_AUTO
     integer :: periods = 1   !< orbits of period periods*T, >= 1
   end type orbit_chart_options
