@@ -111,12 +111,15 @@ contains
     real(wp), intent(inout) :: a(:, :), b(:)
     integer, intent(out) :: info
     real(wp) :: swap
-    integer :: n, j, k, p
+    integer :: n, i, j, k, p
 
     n = size(a, 1)
     info = 0
     do k = 1, n
-      p = k - 1 + maxloc(abs(a(k:n, k)), 1)
+      p = k
+      do i = k + 1, n
+        if (abs(a(i, k)) > abs(a(p, k))) p = i
+      end do
       if (a(p, k) == 0) then
         info = k
         return
@@ -131,14 +134,21 @@ contains
         b(k) = b(p)
         b(p) = swap
       end if
-      a(k + 1:n, k) = a(k + 1:n, k)/a(k, k)
-      do j = k + 1, n
-        a(k + 1:n, j) = a(k + 1:n, j) - a(k + 1:n, k)*a(k, j)
+      do i = k + 1, n
+        a(i, k) = a(i, k)/a(k, k)
+        b(i) = b(i) - a(i, k)*b(k)
       end do
-      b(k + 1:n) = b(k + 1:n) - a(k + 1:n, k)*b(k)
+      do j = k + 1, n
+        do i = k + 1, n
+          a(i, j) = a(i, j) - a(i, k)*a(k, j)
+        end do
+      end do
     end do
     do k = n, 1, -1
-      b(k) = (b(k) - sum(a(k, k + 1:n)*b(k + 1:n)))/a(k, k)
+      do j = k + 1, n
+        b(k) = b(k) - a(k, j)*b(j)
+      end do
+      b(k) = b(k)/a(k, k)
     end do
   end subroutine small_lu_solve
 
