@@ -23,7 +23,7 @@ module sloshdyn_ode
   implicit none
   private
   public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
-  public :: check_options, integrate_with, rms_error_norm
+  public :: check_options, integrate_with, rms_error_norm, dense_from_state
   public :: default_rtol, default_atol, default_max_steps
 
   real(wp), parameter :: default_rtol = 1.0e-9_wp   !< relative tolerance unless given
@@ -448,6 +448,23 @@ contains
     end do
     err = sqrt(err/size(e))
   end function rms_error_norm
+
+  !> For a method's dense: done = .true. (with y filled) when there is no continuous extension
+  !> to evaluate -- before any step (y = the state), or without dense output (init's
+  !> dense_output = .false.: the state at t = integ%t, NaN at any other time).
+  pure subroutine dense_from_state(integ, t, y, done)
+    class(rk_integrator), intent(in) :: integ
+    real(wp), intent(in) :: t
+    real(wp), intent(inout) :: y(:)
+    logical, intent(out) :: done
+    done = integ%h_done == 0 .or. .not. integ%dense_output
+    if (.not. done) return
+    if (integ%h_done == 0 .or. t == integ%t) then
+      y = integ%y
+    else
+      y = ieee_value(1.0_wp, ieee_quiet_nan)
+    end if
+  end subroutine dense_from_state
 
   !> The options with the method's defaults in place of zeros (and beta < 0 as 0).
   pure function with_method_defaults(options, info) result(opt)

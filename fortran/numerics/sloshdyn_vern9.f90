@@ -13,9 +13,10 @@
 !> interpolant's weights at theta = 1 equal to b and its quadrature conditions up to order 8),
 !> and tests/fortran/test_vern9.f90 measures the orders of the step and of the interpolant.
 module sloshdyn_vern9
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, rms_error_norm
+  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, rms_error_norm, &
+                          dense_from_state
   implicit none
   private
   public :: vern9_integrator
@@ -436,15 +437,10 @@ contains
     real(wp), intent(out) :: y(:)
     real(wp) :: theta
     integer :: j
+    logical :: done
 
-    if (self%h_done == 0 .or. (.not. self%dense_output .and. t == self%t)) then
-      y = self%y
-      return
-    end if
-    if (.not. self%dense_output) then
-      y = ieee_value(1.0_wp, ieee_quiet_nan)
-      return
-    end if
+    call dense_from_state(self, t, y, done)
+    if (done) return
     theta = (t - self%t_old)/self%h_done
     y = self%cont(:, 9)
     do j = 8, 2, -1
