@@ -67,9 +67,8 @@ contains
 
   !> Solve a x = b; x overwrites b. Systems up to small_system unknowns (Newton steps of the
   !> slow flows, 4 or 5 unknowns, tens of thousands per frequency response) are solved here by
-  !> the algorithm of LAPACK's unblocked LU, dgetf2 + dgetrs (partial pivoting on the first
-  !> largest |entry| of the column), which for such sizes costs a tenth of dgesv's calls through
-  !> the recursive dgetrf2 and the BLAS; larger systems go to dgesv.
+  !> dgesv's operations written out (small_lu_solve), which for such sizes costs a fraction of
+  !> the calls through the recursive dgetrf2 and the BLAS; larger systems go to dgesv.
   subroutine solve_linear(a, b, status, message)
     real(wp), intent(in) :: a(:, :)
     real(wp), intent(inout) :: b(:)
@@ -104,13 +103,16 @@ contains
     end if
   end subroutine solve_linear
 
-  !> LU with partial pivoting of a (overwritten) and the solution of a x = b in b, as dgetf2
-  !> and dgetrs do it; info = k > 0 when the k-th pivot is exactly zero (b is then unchanged
-  !> from that column on, as dgesv leaves it undefined).
+  !> LU with partial pivoting of a (overwritten) and the solution of a x = b in b, with the
+  !> operations of LAPACK's dgetrf2 + dgetrs in their order (first largest |pivot|, scaling by
+  !> the pivot's reciprocal, back substitution by columns from the last), so the results are
+  !> dgesv's to the bit: callers such as inverse iteration on nearly singular matrices depend on
+  !> them. info = k > 0 when the k-th pivot is exactly zero (b is then left unfinished, as
+  !> dgesv leaves it undefined).
   pure subroutine small_lu_solve(a, b, info)
     real(wp), intent(inout) :: a(:, :), b(:)
     integer, intent(out) :: info
-    real(wp) :: swap
+    real(wp) :: swap, reciprocal
     integer :: n, i, j, k, p
 
     n = size(a, 1)
@@ -134,9 +136,14 @@ contains
         b(k) = b(p)
         b(p) = swap
       end if
+      if (abs(a(k, k)) >= tiny(1.0_wp)) then
+        reciprocal = 1/a(k, k)
+        a(k + 1:n, k) = a(k + 1:n, k)*reciprocal
+      else
+        a(k + 1:n, k) = a(k + 1:n, k)/a(k, k)
+      end if
       do i = k + 1, n
-        a(i, k) = a(i, k)/a(k, k)
-        b(i) = b(i) - a(i, k)*b(k)
+        b(i) = b(i) - b(k)*a(i, k)
       end do
       do j = k + 1, n
         do i = k + 1, n
@@ -145,10 +152,11 @@ contains
       end do
     end do
     do k = n, 1, -1
-      do j = k + 1, n
-        b(k) = b(k) - a(k, j)*b(j)
-      end do
+      if (b(k) == 0) cycle
       b(k) = b(k)/a(k, k)
+      do i = 1, k - 1
+        b(i) = b(i) - b(k)*a(i, k)
+      end do
     end do
   end subroutine small_lu_solve
 
