@@ -12,6 +12,8 @@ module sloshdyn_lyapunov
   private
   public :: largest_lyapunov
 
+  integer, parameter :: max_periods = 10000000
+
 contains
 
   !> Largest Lyapunov exponent (per unit tau) from y0 at tau = 0: the orbit and one tangent
@@ -47,6 +49,13 @@ contains
       message = 'transient_periods = '//num2str(transient_periods)//', n_periods = '// &
                 num2str(n_periods)//', renormalise_every = '//num2str(renormalise_every)// &
                 ' are out of range: they must be >= 0, >= 1, >= 1'
+      return
+    end if
+    ! each period integrates the 4 + 16 variational equations: 10**7 periods take hours
+    if (n_periods > max_periods) then
+      status = SD_BAD_INPUT
+      message = 'n_periods = '//num2str(n_periods)//' is out of range: it must lie in [1, '// &
+                num2str(max_periods)//']'
       return
     end if
     if (mod(n_periods, renormalise_every) /= 0) then
