@@ -42,6 +42,6 @@ contains
     character(len=message_len), intent(inout) :: message
     if (status /= SD_OK .or. requested == 0) return
     status = SD_CANCELLED
-    message = 'cancelled on request (Ctrl-C, SIGTERM or request_cancel)'
+    message = 'stopped on request (Ctrl-C, SIGTERM or request_cancel)'
   end subroutine check_cancel
 end module sloshdyn_cancel
