@@ -216,3 +216,14 @@ def test_python_gets_the_same_bound_as_the_executable(fig12):
     with pytest.raises(sloshdyn.InputError, match="n_amplitudes = 100000.*out of range"):
         sloshdyn.frequency_response(fig12, (0.45, 0.55), settings=sloshdyn.Continuation(
             n_amplitudes=100000, n_phases=100000))
+
+
+@pytest.mark.parametrize("excitation, named", [
+    ("A = nan, rho = 0.5", "&excitation: A = NaN is out of range"),
+    ("A = 0.001, rho = -1", "&excitation: rho = -1 is out of range"),
+])
+def test_an_excitation_value_blames_its_group(exe, tmp_path, excitation, named):
+    write(tmp_path, MODEL + f"&excitation {excitation} /\n&analysis kind = 'linear' /\n"
+          "&output directory = 'out' /\n")
+    result = run(exe, "input.nml", tmp_path)
+    assert result.returncode == EXIT_INPUT and named in result.stderr, result.stderr
