@@ -246,3 +246,13 @@ def test_an_excitation_value_blames_its_group(exe, tmp_path, excitation, named):
           "&output directory = 'out' /\n")
     result = run(exe, "input.nml", tmp_path)
     assert result.returncode == EXIT_INPUT and named in result.stderr, result.stderr
+
+
+def test_a_directory_nothing_can_be_written_to_exits_5(exe, tmp_path):
+    # /proc/self exists and refuses new files to every user, root included (where chmod 555
+    # would not stop root)
+    write(tmp_path, SIMULATE.format(t_end=10.0, n_out=11).replace("'out'", "'/proc/self'"))
+    result = run(exe, "input.nml", tmp_path)
+    assert result.returncode == EXIT_IO, result.stderr
+    assert "cannot create a temporary file in /proc/self" in result.stderr
+    assert "Results written" not in result.stdout
