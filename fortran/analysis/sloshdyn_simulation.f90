@@ -24,6 +24,7 @@ module sloshdyn_simulation
 
   !> Longest period (in forcing periods) the classification of steady motions looks for.
   integer, parameter :: max_period = 8
+  real(wp), parameter :: max_samples = 1.0e8_wp   !< window_periods*samples_per_period, at most
 
   !> How a steady state is reached and measured. Times in forcing periods T = 2 pi/rho.
   type :: steady_options
@@ -366,10 +367,14 @@ contains
       status = SD_BAD_INPUT
       message = 'window_periods = '//num2str(steady%window_periods)//' is out of range: it must '// &
                 'lie in ['//num2str(2*max_period)//', 1000000]'
-    else if (steady%samples_per_period < 4) then
+    else if (steady%samples_per_period < 4 .or. &
+             real(steady%samples_per_period, wp)*steady%window_periods > max_samples) then
+      ! window_periods*samples_per_period dense-output samples: at most 10**8 (some seconds),
+      ! and a product that would wrap around the integers is refused, not used
       status = SD_BAD_INPUT
       message = 'samples_per_period = '//num2str(steady%samples_per_period)// &
-                ' is out of range: it must be >= 4'
+                ' is out of range: it must be >= 4 and at most 1e8/window_periods = '// &
+                num2str(int(max_samples)/steady%window_periods)
     end if
   end subroutine check_steady
 

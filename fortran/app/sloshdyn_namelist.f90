@@ -250,7 +250,12 @@ contains
       call model_from_arrays([groups(1:7), A, rho, groups(8)], exponents, config%model, status, &
                              message)
       if (status /= SD_OK) then
-        message = '&model: '//trim(message)
+        ! the model's rules name the variable first: A and rho belong to &excitation
+        if (index(message, 'A = ') == 1 .or. index(message, 'rho = ') == 1) then
+          message = '&excitation: '//trim(message)
+        else
+          message = '&model: '//trim(message)
+        end if
         return
       end if
     end if

@@ -10,7 +10,9 @@
 !> while the Fortran runs and Python threads (e.g. Dask's threaded workers) run them at once.
 !> That is safe because the core keeps no state between calls: no module variables, no `save`,
 !> and no deferred-length function results in the layers below the app (gfortran keeps their
-!> lengths in static variables; see sloshdyn_text). The app layer (reader, driver, writers) has
+!> lengths in static variables; see sloshdyn_text). The one exception is the cancellation flag
+!> (sloshdyn_cancel): request_cancel, called from another Python thread, makes every running
+!> computation return status 10 (cancelled) within one step (python/sloshdyn/_cancel.py). The app layer (reader, driver, writers) has
 !> such statics, so its routines keep the GIL and run one at a time.
 !> Result tables: the layouts of sloshdyn_tables (names gives the column names); work counts:
 !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
@@ -1067,6 +1069,21 @@ contains
     call check_threads(int(threads), carry /= 0, info, message)
     status = info
   end subroutine sweep_threads
+
+  !> Ask every computation running in this process to stop: they return status 10 (cancelled)
+  !> within one integrator or continuation step. Called from Python's main thread on Ctrl-C.
+  subroutine request_cancel()
+    !f2py threadsafe
+    use sloshdyn_cancel, only: core => request_cancel
+    call core(-1_c_int)
+  end subroutine request_cancel
+
+  !> Forget a cancellation request, once every cancelled call has returned.
+  subroutine clear_cancel()
+    !f2py threadsafe
+    use sloshdyn_cancel, only: core => clear_cancel
+    call core()
+  end subroutine clear_cancel
 
   !> The exit code of both front doors for a status, from reading the input (reading = 1) or
   !> from the run (reading = 0).

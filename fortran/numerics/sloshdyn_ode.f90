@@ -20,6 +20,7 @@ module sloshdyn_ode
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
                              SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
+  use sloshdyn_cancel, only: check_cancel
   implicit none
   private
   public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
@@ -263,6 +264,9 @@ contains
       return
     end if
 
+    ! every integration of every analysis passes here: Ctrl-C is honoured within one step
+    call check_cancel(status, message)
+    if (status /= SD_OK) return
     info = self%properties()
     fixed = self%opt%fixed_step > 0
     non_finite_trial = .false.

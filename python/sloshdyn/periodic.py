@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core, _tables
+from ._cancel import cancellable
 from ._errors import InputError, check_status
 from .asymptotics import frequency_response
 from .model import linear_modes
@@ -158,7 +159,7 @@ def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=int(_LYA
     y0 = np.zeros(4) if y0 is None else np.asarray(y0, dtype=np.float64)
     blocks = max(int(n_periods) // max(int(renormalise_every), 1), 1)
     settings = np.array([transient_periods, n_periods, renormalise_every], dtype=np.float64)
-    exponent, history, status, message = _bridge.lyapunov_exponent(
-        *params.arrays(), y0, settings, integration.array(), blocks)
+    exponent, history, status, message = cancellable(
+        _bridge.lyapunov_exponent, *params.arrays(), y0, settings, integration.array(), blocks)
     check_status(status, message, "Lyapunov exponent")
     return float(exponent), history

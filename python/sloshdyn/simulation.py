@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _core, _tables
+from ._cancel import cancellable
 from ._errors import InputError, IntegrationError, check_status
 from .parameters import Parameters
 
@@ -126,8 +127,8 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
             n_out = max(2, int(math.ceil(20 * (t_end - t_start) / period)) + 1)
         tau_out = np.linspace(t_start, t_end, int(n_out))
     tau_out = np.ascontiguousarray(tau_out, dtype=np.float64)
-    history, counts, status, message = _bridge.simulate(
-        *params.arrays(), t_start, _state(y0), tau_out, integration.array())
+    history, counts, status, message = cancellable(
+        _bridge.simulate, *params.arrays(), t_start, _state(y0), tau_out, integration.array())
     result = Simulation(tau_out, history[0:4], history[4:6], history[6], history[7], history[8],
                         *_counts(counts), method=integration.method_used)
     if status:
