@@ -381,12 +381,18 @@ def fig14(out, quick=False):
                   "red dots: Poincaré points (every forcing period).")
 
 
-def _continuation(quick):
-    """The paper's numerical continuation in A at rho = 0.513 (sec 4.2), carrying the state."""
-    p = FIG12.replace(rho=0.513)
+def continuation_path(quick=False):
+    """The settings of the paper's numerical continuation in A at rho = 0.513 (sec 4.2): the
+    parameters, the A values (0.00075 -> 1.0475 -> 2.0) and the steady-state settings."""
     values = np.concatenate([np.geomspace(0.00075, 1.0475, 12 if quick else 30),
                              np.linspace(1.0475, 2.0, 6 if quick else 20)[1:]])
-    steady = Steady(max_transient_periods=3000 if quick else 10000)
+    return (FIG12.replace(rho=0.513), values,
+            Steady(max_transient_periods=3000 if quick else 10000))
+
+
+def _continuation(quick):
+    """The paper's numerical continuation in A at rho = 0.513 (sec 4.2), carrying the state."""
+    p, values, steady = continuation_path(quick)
     states = {}
     y = None
     for A in values:
