@@ -15,13 +15,14 @@ module sloshdyn_slowflow_cycle
   use sloshdyn_slowflow_chart, only: slow_flow_field, make_slow_flow_field, CHART_RHO, CHART_A
   implicit none
   private
-  public :: slow_flow_cycle
+  public :: slow_flow_cycle, frozen_slow_flow
 
   !> Newton's tolerance (relative, on the state and the period) and its shots at most.
   real(wp), parameter :: cycle_tol = 1.0e-10_wp
   integer, parameter :: cycle_max_iter = 30
 
-  !> The 3:1 slow flow at the model's rho and A, as an autonomous system.
+  !> A slow flow at fixed parameters p (those of its field, e.g. rho and A), as an autonomous
+  !> system (also the stability chart's brute-force integrations).
   type, extends(autonomous_system) :: frozen_slow_flow
     type(slow_flow_field) :: field
     real(wp) :: p(2) = 0
