@@ -53,7 +53,8 @@ def main():
 
     # Fig 15 steady state: the same transient and window integrated by scipy DOP853 on eq (10)
     p = figures.FIG12.replace(rho=0.513)
-    st = sloshdyn.steady_state(p)
+    # integration only, as the reference's provider (shooting would jump to the orbit itself)
+    st = sloshdyn.steady_state(p, steady=sloshdyn.Steady(shooting=False))
     period = 2 * math.pi / p.rho
     t_window = st.transient_periods * period
     samples = np.arange(1, 200 * 128 + 1) * period / 128 + t_window
