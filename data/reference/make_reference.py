@@ -16,7 +16,7 @@ from sloshdyn import figures, reference
 HERE = pathlib.Path(__file__).parent
 sys.path.insert(0, str(HERE.parents[1] / "tests" / "python"))
 from test_model import eq10_numpy  # noqa: E402  (eq 10 typed in numpy, independent of the core)
-from test_response import complex_slow_flow  # noqa: E402  (eq 53 typed in numpy)
+from test_response import scipy_return_time  # noqa: E402  (eq 53 typed in numpy, scipy)
 
 #: the slow flow is first order in eps, with eps^2 the detuning (omega2 - 3 omega1)/omega1 of
 #: sec 4.2 (eps^2 sigma1 = 0.005): its amplitudes and rates err by O(eps) relative
@@ -102,16 +102,7 @@ def beat_rows():
     scipy_beat = sloshdyn.beat_period(ref.y[:2])
     assert abs(scipy_beat - beat) <= 1e-5 * beat, (scipy_beat, beat)
     # slow flow: scipy DOP853 on eq (53) from the cycle's point returns to its section
-    cycle = sloshdyn.slow_flow_cycle(p)
-    f = complex_slow_flow(sloshdyn.modal_coefficients(p), p.rho, p.A)
-    normal = np.array(f(0, cycle.x))
-
-    def section(t, x):
-        return normal @ (x - cycle.x)
-    section.direction = 1
-    run = solve_ivp(f, (0, 1.5 * cycle.period), cycle.x, method="DOP853", rtol=1e-11, atol=1e-14,
-                    events=section)
-    scipy_slow = run.t_events[0][run.t_events[0] > 0.5 * cycle.period][0] / period
+    scipy_slow = scipy_return_time(p, sloshdyn.slow_flow_cycle(p))[0] / period
     assert abs(scipy_slow - slow_beat) <= 1e-7 * slow_beat, (scipy_slow, slow_beat)
     return [("beat_fig14_simulation", beat, 1e-4, "rel",
              f"Fig 14 beat [forcing periods] from the full equations: whole turns of the Poincare "

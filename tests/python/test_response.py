@@ -205,16 +205,11 @@ def complex_slow_flow(m, rho, A):
     return f
 
 
-def test_slow_flow_limit_cycle_at_fig14_against_scipy(fig12_response):
-    """The Fig 14 point lies between the Hopf points: the slow flow has a limit cycle. Its
-    period by shooting (Fortran) against scipy's DOP853 on eq (53) typed in numpy: the
-    trajectory from the cycle's point returns to its section after the same time, at the
-    same point; the cycle is stable (the multipliers other than 1 inside the unit circle)."""
+def scipy_return_time(p, cycle):
+    """The first return of eq (53) (complex_slow_flow, scipy DOP853 at rtol 1e-11) from the
+    cycle's point to the section through it normal to the flow, after half a period at least;
+    and the run (dense output)."""
     from scipy.integrate import solve_ivp
-    p = FIG12.replace(rho=0.509615)
-    hopf = sorted(s.rho for s in fig12_response.special_points if s.kind == "hopf")
-    assert hopf[0] < p.rho < hopf[1]
-    cycle = sloshdyn.slow_flow_cycle(p)
     f = complex_slow_flow(sloshdyn.modal_coefficients(p), p.rho, p.A)
     normal = np.array(f(0, cycle.x))
 
@@ -223,8 +218,20 @@ def test_slow_flow_limit_cycle_at_fig14_against_scipy(fig12_response):
     section.direction = 1
     run = solve_ivp(f, (0, 1.5 * cycle.period), cycle.x, method="DOP853", rtol=1e-11,
                     atol=1e-14, events=section, dense_output=True)
-    returns = run.t_events[0][run.t_events[0] > 0.5 * cycle.period]
-    assert returns[0] == pytest.approx(cycle.period, rel=1e-7)
+    return run.t_events[0][run.t_events[0] > 0.5 * cycle.period][0], run
+
+
+def test_slow_flow_limit_cycle_at_fig14_against_scipy(fig12_response):
+    """The Fig 14 point lies between the Hopf points: the slow flow has a limit cycle. Its
+    period by shooting (Fortran) against scipy's DOP853 on eq (53) typed in numpy: the
+    trajectory from the cycle's point returns to its section after the same time, at the
+    same point; the cycle is stable (the multipliers other than 1 inside the unit circle)."""
+    p = FIG12.replace(rho=0.509615)
+    hopf = sorted(s.rho for s in fig12_response.special_points if s.kind == "hopf")
+    assert hopf[0] < p.rho < hopf[1]
+    cycle = sloshdyn.slow_flow_cycle(p)
+    returned, run = scipy_return_time(p, cycle)
+    assert returned == pytest.approx(cycle.period, rel=1e-7)
     assert run.sol(cycle.period) == pytest.approx(cycle.x, abs=1e-7 * np.max(np.abs(cycle.x)))
     mu = np.sort(np.abs(cycle.multipliers))
     assert mu[-1] == pytest.approx(1, abs=1e-6) and mu[-2] < 1
