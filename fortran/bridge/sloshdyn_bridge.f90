@@ -651,6 +651,33 @@ contains
     status = info
   end subroutine slow_flow_field
 
+  !> The limit cycle of the 3:1 slow flow at the model's rho and A (sloshdyn_slowflow_cycle):
+  !> x_cycle = (Re B1, Im B1, Re B2, Im B2) on it, its period [tau], multipliers(2, 4) =
+  !> (Re, Im) and the Newton shots; times settle_time, max_period in tau.
+  subroutine slow_flow_cycle(rpar, ipar, settle_time, max_period, n_samples, integration, &
+                             x_cycle, period, multipliers, iterations, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_slowflow_cycle, only: core => slow_flow_cycle
+    use sloshdyn_layouts, only: to_ode_options, to_method
+    real(c_double), intent(in) :: rpar(10), settle_time, max_period, integration(7)
+    integer(c_int), intent(in) :: ipar(2), n_samples
+    real(c_double), intent(out) :: x_cycle(4), period, multipliers(2, 4)
+    integer(c_int), intent(out) :: iterations, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code, shots
+    real(c_double) :: re(4), im(4)
+    x_cycle = 0; period = 0; multipliers = 0; shots = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, settle_time, max_period, int(n_samples), &
+                             to_ode_options(integration), to_method(integration), x_cycle, &
+                             period, re, im, shots, code, message)
+    if (code == 0) multipliers = transpose(reshape([re, im], [4, 2]))
+    iterations = shots
+    status = code
+  end subroutine slow_flow_cycle
+
   ! ---- stability charts -----------------------------------------------------------------------
 
   !> The &chart defaults (layouts' chart array).

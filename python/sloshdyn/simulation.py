@@ -327,3 +327,24 @@ def spectrum(signal, dt, window="hann"):
     amplitude = 2 * np.abs(np.fft.rfft(x * w)) / w.sum()
     omega = 2 * np.pi * np.fft.rfftfreq(x.size, dt)
     return omega, amplitude
+
+
+def beat_period(poincare):
+    """The beat period of a quasi-periodic motion, in forcing periods, from its Poincare points
+    (rows x1, x1' of a (>= 2, n) array, one point per forcing period): the points turn about
+    their closed curve, so their angle about the centroid, unwrapped, counts the turns; the
+    mean time between successive whole turns (each interpolated linearly between two points)
+    is the period of the envelope. Needs at least two whole turns."""
+    points = np.asarray(poincare, dtype=np.float64)
+    if points.ndim != 2 or points.shape[0] < 2 or points.shape[1] < 4:
+        raise InputError(f"poincare has shape {points.shape}: give (>= 2, n >= 4) Poincare points")
+    z = (points[0] - points[0].mean()) + 1j * (points[1] - points[1].mean())
+    turns = np.unwrap(np.angle(z)) / (2 * math.pi)
+    turns = (turns - turns[0]) * np.sign(turns[-1] - turns[0])
+    whole = np.arange(1, math.floor(turns[-1]) + 1)
+    if whole.size < 2 or np.any(np.diff(turns) <= 0):
+        raise InputError(f"the Poincare points make {turns[-1]:.3g} turns about their centroid, "
+                         "not steadily: a beat period needs at least two whole turns of a closed "
+                         "curve around it (a longer window, or quasi-periodic motion)")
+    times = np.interp(whole, turns, np.arange(turns.size))
+    return float((times[-1] - times[0]) / (whole.size - 1))
