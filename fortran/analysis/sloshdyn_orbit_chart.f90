@@ -18,7 +18,7 @@ module sloshdyn_orbit_chart
   use sloshdyn_excitation, only: excitation_t, PARAMETER_RHO, PARAMETER_A, forcing_period
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, check_options
-  use sloshdyn_integrator, only: check_method, METHOD_DOP853
+  use sloshdyn_integrator, only: check_method, METHOD_AUTO
   use sloshdyn_shooting, only: periodic_problem
   use sloshdyn_continuation, only: continuation_options
   use sloshdyn_bifurcation, only: curve_options, bifurcation_curve, check_curve_options, &
@@ -50,8 +50,8 @@ module sloshdyn_orbit_chart
     !> (rtol^(1/3) times x_scale and p_scale, sloshdyn_map_bifurcation): 1e-12 keeps those
     !> ~1e-8 relative and the curve's multipliers on the circle to ~1e-10
     type(ode_options) :: integration = ode_options(rtol=1.0e-12_wp, atol=1.0e-14_wp)
-    !> DOP853: at rtol = 1e-12 it takes about a quarter of DOPRI5's time for the Fig 12 curves
-    integer :: method = METHOD_DOP853
+    !> auto: Verner 9(8) at rtol = 1e-12 (DOP853 takes about a quarter of DOPRI5's time there)
+    integer :: method = METHOD_AUTO
     integer :: periods = 1   !< orbits of period periods*T, >= 1
   end type orbit_chart_options
 

@@ -10,7 +10,7 @@ module sloshdyn_periodic_response
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_continuation, only: continuation_options
   use sloshdyn_shooting, only: shooting_newton, periodic_branch
-  use sloshdyn_lyapunov, only: largest_lyapunov
+  use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts
   use sloshdyn_simulation, only: steady_options, steady_state
   use sloshdyn_tables, only: SUMMARY_SIZE
   implicit none
@@ -117,25 +117,14 @@ contains
                          status, message)
   end subroutine periodic_response_from_rest
 
-  !> The rules of the Lyapunov settings.
+  !> The rules of the Lyapunov settings (those of largest_lyapunov, checked before allocating).
   pure subroutine check_lyapunov(options, status, message)
     type(lyapunov_options), intent(in) :: options
     integer, intent(inout) :: status
     character(len=message_len), intent(inout) :: message
     if (status /= SD_OK) return
-    if (options%transient_periods < 0) then
-      status = SD_BAD_INPUT
-      message = 'transient_periods = '//num2str(options%transient_periods)//' is out of '// &
-                'range: it must be >= 0'
-    else if (options%renormalise_every < 1) then
-      status = SD_BAD_INPUT
-      message = 'renormalise_every = '//num2str(options%renormalise_every)//' is out of '// &
-                'range: it must be >= 1'
-    else if (options%n_periods < 1 .or. mod(options%n_periods, options%renormalise_every) /= 0) then
-      status = SD_BAD_INPUT
-      message = 'n_periods = '//num2str(options%n_periods)//' is out of range: it must be '// &
-                '>= 1 and a multiple of renormalise_every = '//num2str(options%renormalise_every)
-    end if
+    call check_lyapunov_counts(options%transient_periods, options%n_periods, &
+                               options%renormalise_every, status, message)
   end subroutine check_lyapunov
 
   !> Largest Lyapunov exponent per unit tau from y0, with its running estimates (history).

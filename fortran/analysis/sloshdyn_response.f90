@@ -15,7 +15,7 @@
 module sloshdyn_response
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CAPACITY, check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CAPACITY, SD_CANCELLED, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
@@ -98,6 +98,11 @@ contains
     cont = options%continuation
     cont%lambda_min = lambda_min
     cont%lambda_max = lambda_max
+    call check_starts(options, n, status, message)
+    if (status /= SD_OK) then
+      complete = .false.
+      return
+    end if
     allocate (branch(n + 1, 2*cont%max_points), branch_tangents(n + 1, 2*cont%max_points))
     call find_seeds(flow, n, lambda_min, lambda_max, options, seeds, n_seeds)
 
@@ -115,12 +120,33 @@ contains
       if (n_branch > 0) call record_branch(flow, branch(:, 1:n_branch), &
                                            branch_tangents(:, 1:n_branch), branch_id, cont, &
                                            table, n_points, special, n_special, status, message)
-      if (status == SD_CAPACITY) then
+      if (status == SD_CAPACITY .or. status == SD_CANCELLED) then
         complete = .false.
         return
       end if
     end do
   end subroutine frequency_response
+
+  !> The Newton starts of find_seeds, n_scan (n_amplitudes n_phases)**(n/2), are all kept in
+  !> memory and each costs a Newton solve: at most max_starts (40 MB, some seconds). Counted in
+  !> real numbers, so a product beyond the integers is refused, not wrapped.
+  pure subroutine check_starts(options, n, status, message)
+    type(response_options), intent(in) :: options
+    integer, intent(in) :: n
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    real(wp), parameter :: max_starts = 1.0e6_wp
+    real(wp) :: starts
+    if (status /= SD_OK) return
+    starts = real(options%n_scan, wp)*(real(options%n_amplitudes, wp)* &
+                                       real(options%n_phases, wp))**(n/2)
+    if (starts <= max_starts) return
+    status = SD_BAD_INPUT
+    message = 'n_scan*(n_amplitudes*n_phases)**'//num2str(n/2)//' = '//num2str(starts)// &
+              ' Newton starts (n_scan = '//num2str(options%n_scan)//', n_amplitudes = '// &
+              num2str(options%n_amplitudes)//', n_phases = '//num2str(options%n_phases)// &
+              ') is out of range: at most '//num2str(max_starts)
+  end subroutine check_starts
 
   !> The settings and the parameter interval: the rules every reader applies.
   pure subroutine check_response_options(options, parameter, lambda_min, lambda_max, status, &

@@ -24,6 +24,7 @@ module sloshdyn_simulation
 
   !> Longest period (in forcing periods) the classification of steady motions looks for.
   integer, parameter :: max_period = 8
+  real(wp), parameter :: max_samples = 1.0e8_wp   !< window_periods*samples_per_period, at most
 
   !> How a steady state is reached and measured. Times in forcing periods T = 2 pi/rho.
   type :: steady_options
@@ -173,7 +174,7 @@ contains
     period = forcing_period(model%excitation)
     call inverse_modal_matrix(model, p_inv)
     ! one spare period: sample times computed in steps must not round past t_bound
-    call new_integrator(method, integ, status, message)
+    call new_integrator(method, options%rtol, integ, status, message)
     if (status == SD_OK) &
       call integ%init(system, 0.0_wp, y0, (max(steady%transient_periods, &
                       steady%max_transient_periods) + steady%window_periods + 1)*period, &
@@ -310,7 +311,7 @@ contains
       real(wp) :: z(4), points(4, max_period)
       integer :: p, i
       p = jump%periods
-      call new_integrator(method, orbit_integ, status, message)
+      call new_integrator(method, options%rtol, orbit_integ, status, message)
       if (status == SD_OK) call orbit_integ%init(system, 0.0_wp, jump%y, (p + 1)*period, &
                                                  options, status, message)
       if (status /= SD_OK) return
@@ -366,10 +367,14 @@ contains
       status = SD_BAD_INPUT
       message = 'window_periods = '//num2str(steady%window_periods)//' is out of range: it must '// &
                 'lie in ['//num2str(2*max_period)//', 1000000]'
-    else if (steady%samples_per_period < 4) then
+    else if (steady%samples_per_period < 4 .or. &
+             real(steady%samples_per_period, wp)*steady%window_periods > max_samples) then
+      ! window_periods*samples_per_period dense-output samples: at most 10**8 (some seconds),
+      ! and a product that would wrap around the integers is refused, not used
       status = SD_BAD_INPUT
       message = 'samples_per_period = '//num2str(steady%samples_per_period)// &
-                ' is out of range: it must be >= 4'
+                ' is out of range: it must be >= 4 and at most 1e8/window_periods = '// &
+                num2str(int(max_samples)/steady%window_periods)
     end if
   end subroutine check_steady
 

@@ -26,7 +26,7 @@ module sloshdyn_stability_chart
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, set_coefficients
   use sloshdyn_lapack, only: eigenvalues, solve_linear
-  use sloshdyn_ode, only: ode_system, ode_options, ode_stats
+  use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_integrator, only: integrate, METHOD_DOP853
   use sloshdyn_bifurcation, only: two_parameter_field, curve_options, bifurcation_curve, &
                                   fold_curve, hopf_curve, curve_crossings, check_curve_options, &
@@ -43,6 +43,7 @@ module sloshdyn_stability_chart
   use sloshdyn_slowflow_chart, only: slow_flow_field, make_slow_flow_field, &
                                      chart_parameter_name, CHART_RHO, CHART_A, CHART_GAMMA, &
                                      CHART_KAPPA
+  use sloshdyn_slowflow_cycle, only: frozen_slow_flow
   use sloshdyn_response, only: response_options, frequency_response, check_response_options
   use sloshdyn_tables, only: POINT_ROWS, SPECIAL_ROWS, POINT_BRANCH, POINT_LAMBDA, POINT_STABLE, &
                              POINT_X, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_COLUMN, SPECIAL_FOLD, &
@@ -96,14 +97,6 @@ module sloshdyn_stability_chart
   !> A seed is on a computed curve if the curve crosses its level this close (relative to the
   !> p1 interval).
   real(wp), parameter :: seed_tolerance = 1.0e-6_wp
-
-  !> The slow flow at fixed parameters, for the brute-force integrations.
-  type, extends(ode_system) :: frozen_flow
-    type(slow_flow_field) :: field
-    real(wp) :: p(2) = 0
-  contains
-    procedure :: rhs => frozen_rhs
-  end type frozen_flow
 
 contains
 
@@ -494,7 +487,7 @@ contains
     !> sqrt(2), sqrt(3), sqrt(5), sqrt(7): the steps of the start sequence, one per coordinate
     real(wp), parameter :: irrational(4) = [1.4142135623730951_wp, 1.7320508075688772_wp, &
                                             2.2360679774997898_wp, 2.6457513110645907_wp]
-    type(frozen_flow) :: flow
+    type(frozen_slow_flow) :: flow
     type(ode_options) :: ode
     type(ode_stats) :: stats
     integer :: n, s, k, n_found, chunk
@@ -577,15 +570,6 @@ contains
       end do
     end subroutine polish
   end subroutine attractors_at
-
-  subroutine frozen_rhs(self, t, y, dydt)
-    class(frozen_flow), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    real(wp) :: fx(size(y), size(y)), fp(size(y), 2)
-    call self%field%evaluate(y, self%p, dydt, fx, fp)
-    if (t < 0) dydt = 0      ! autonomous: t unused
-  end subroutine frozen_rhs
 
   !> Columns the tables need: points of all curves, codimension-2 points, curves, cells.
   pure subroutine chart_table_sizes(chart, n_points, n_codim2, n_curves, n_cells)

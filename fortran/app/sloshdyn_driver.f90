@@ -23,7 +23,7 @@ module sloshdyn_driver
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
   use sloshdyn_ode, only: ode_stats
-  use sloshdyn_integrator, only: method_name
+  use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_simulation, only: time_history, steady_state, parameter_sweep, independent_sweep
   use sloshdyn_response, only: frequency_response
   use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent
@@ -282,7 +282,7 @@ contains
                         history(2:, :), stats, status, message)
       call in_context('simulation', status, message)
       if (status /= SD_OK) return
-      print '(/a)', 'Simulation ('//method_name(config%method)//', eq 15'// &
+      print '(/a)', 'Simulation ('//used_method(config)//', eq 15'// &
                     trim(merge(' with 29-31', ', a record ', &
                                config%model%excitation%kind /= EXCITATION_RECORD))//') from '// &
                     'tau = 0 to '//num2str(sim%t_end)
@@ -315,7 +315,7 @@ contains
                       config%steady, summary, poincare, y_end, stats, status, message)
     call in_context('steady state', status, message)
     if (status /= SD_OK) return
-    print '(/a)', 'Steady state ('//method_name(config%method)//') at rho = '// &
+    print '(/a)', 'Steady state ('//used_method(config)//') at rho = '// &
                   num2str(summary(SUMMARY_RHO))//', A = '//num2str(summary(SUMMARY_A))
     call print_summary(summary)
     print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
@@ -365,7 +365,7 @@ contains
       how = 'each from the previous final state'
       if (.not. sw%carry_state) how = 'each from y0, '//num2str(sw%threads)//' thread(s)'
       print '(/a)', 'Sweep in '//name//' ('//trim(direction_names(sw%direction))//', '// &
-                    num2str(size(values))//' points), '//how
+                    num2str(size(values))//' points, '//used_method(config)//'), '//how
       if (in_frequency) print '(a)', '  at the constant peak ground acceleration '// &
                                      num2str(config%ground%peak_acceleration)//' m/s^2'
       ! one point per call when the state is carried, four per thread otherwise (threads that
@@ -497,7 +497,7 @@ contains
       if (status /= SD_OK) return
       name = parameter_label(r%parameter)
       print '(/a)', 'Periodic orbits of the full equations (shooting, Floquet multipliers; '// &
-                    method_name(config%method)//') for '//name//' in ['//num2str(r%start)// &
+                    used_method(config)//') for '//name//' in ['//num2str(r%start)// &
                     ', '//num2str(r%stop)//']'
     end associate
     print '(a)', '  '//num2str(n_points)//' orbits; special points:'
@@ -538,7 +538,7 @@ contains
                           config%method, table, peaks, status, message)
     call in_context('seismic response', status, message)
     if (status /= SD_OK) return
-    print '(/a)', 'Seismic response ('//method_name(config%method)//') from rest, t = 0 to '// &
+    print '(/a)', 'Seismic response ('//used_method(config)//') from rest, t = 0 to '// &
                   num2str(t_end)//' s, '//num2str(n_out)//' outputs; peaks:'
     do i = 1, SEISMIC_LOADS - 1
       print '(a)', '  '//pad(trim(loads(i)), 24)//pad(num2str(peaks(2*i - 1))//' '// &
@@ -580,7 +580,7 @@ contains
                              config%method, exponent, history, status, message)
       call in_context('Lyapunov exponent', status, message)
       if (status /= SD_OK) return
-      print '(/a)', 'Largest Lyapunov exponent (per unit tau; '//method_name(config%method)// &
+      print '(/a)', 'Largest Lyapunov exponent (per unit tau; '//used_method(config)// &
                     ') = '//num2str(exponent)
       print '(a)', '  running estimate at 1/4, 1/2, 3/4 of the run: '// &
                    num2str(history(max(1, size(history)/4)))//', '// &
@@ -817,4 +817,13 @@ contains
     character(len=max(width, len(text) + 1)) :: padded
     padded = text
   end function pad
+
+  !> The name of the integration method that runs, as the summaries print it: the method, or
+  !> for 'auto' the one chosen for rtol, e.g. 'dop853 by auto'.
+  function used_method(config) result(name)
+    type(run_config), intent(in) :: config
+    character(len=:), allocatable :: name
+    name = method_name(chosen_method(config%method, config%integration%rtol))
+    if (config%method == METHOD_AUTO) name = name//' by auto'
+  end function used_method
 end module sloshdyn_driver

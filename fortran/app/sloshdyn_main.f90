@@ -1,11 +1,16 @@
 !> The `sloshdyn` executable: reads a namelist input file, validates all of it, runs the requested
 !> analysis (sloshdyn_driver: a summary on standard output, CSV files in the output directory)
-!> and turns the status into an exit code -- the only place that does.
+!> and turns the status into an exit code -- the only place that does (the table is in
+!> sloshdyn_status). SIGINT and SIGTERM cancel the run: its temporaries are removed and the exit
+!> code is 128 + the signal.
 program sloshdyn_main
   use sloshdyn_kinds, only: message_len
-  use sloshdyn_status, only: SD_OK, exit_code, EXIT_USAGE
+  use sloshdyn_status, only: SD_OK, SD_CANCELLED, exit_code, EXIT_USAGE
+  use sloshdyn_cancel, only: cancel_signal
+  use sloshdyn_signals, only: install_signal_handlers
   use sloshdyn_namelist, only: run_config, read_input
   use sloshdyn_driver, only: run_analysis
+  use sloshdyn_text, only: num2str
   implicit none
 
   character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (see README.md for the '// &
@@ -23,9 +28,12 @@ program sloshdyn_main
     print '(a)', usage
     stop
   end if
+  call install_signal_handlers()
   call read_input(path, config, status, message)
   if (status /= SD_OK) call finish(exit_code(status, reading=.true.), trim(message))
   call run_analysis(config, status, message)
+  if (status == SD_CANCELLED .and. cancel_signal() > 0) &
+    call finish(128 + cancel_signal(), 'signal '//num2str(cancel_signal())//': '//trim(message))
   if (status /= SD_OK) call finish(exit_code(status, reading=.false.), trim(message))
 
 contains

@@ -23,7 +23,7 @@ module sloshdyn_namelist
   use sloshdyn_stability_chart, only: chart_settings, check_chart_settings
   use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_KAPPA
   use sloshdyn_ode, only: ode_options, check_options
-  use sloshdyn_integrator, only: METHOD_DOPRI5, method_names
+  use sloshdyn_integrator, only: METHOD_AUTO, method_names
   use sloshdyn_simulation, only: steady_options, check_steady
   use sloshdyn_response, only: response_options, check_response_options
   use sloshdyn_periodic_response, only: lyapunov_options, check_lyapunov
@@ -138,7 +138,7 @@ module sloshdyn_namelist
     real(wp) :: sigma1 = 0, kappa_min = 0, kappa_max = 0   !< 3:1 tuning search
     character(len=path_len) :: directory = 'sloshdyn_output'
     type(ode_options) :: integration
-    integer :: method = METHOD_DOPRI5
+    integer :: method = METHOD_AUTO
     type(simulation_settings) :: simulation
     type(steady_options) :: steady
     type(sweep_settings) :: sweep
@@ -250,7 +250,12 @@ contains
       call model_from_arrays([groups(1:7), A, rho, groups(8)], exponents, config%model, status, &
                              message)
       if (status /= SD_OK) then
-        message = '&model: '//trim(message)
+        ! the model's rules name the variable first: A and rho belong to &excitation
+        if (index(message, 'A = ') == 1 .or. index(message, 'rho = ') == 1) then
+          message = '&excitation: '//trim(message)
+        else
+          message = '&model: '//trim(message)
+        end if
         return
       end if
     end if
@@ -653,8 +658,8 @@ contains
 
     rtol = options%rtol; atol = options%atol; h_initial = options%h_initial
     h_max = options%h_max; h_min = options%h_min; max_steps = options%max_steps
-    method = method_names(METHOD_DOPRI5)
-    method_code = METHOD_DOPRI5
+    method = method_names(METHOD_AUTO)
+    method_code = METHOD_AUTO
     status = SD_OK
     message = ''
     call reader%start(file, G_INTEGRATION, status)

@@ -1,18 +1,24 @@
-!> The result files of one run: each table is written as CSV under a temporary name that is
-!> unique to the run (dir/.name.PID.tmp), every write checked, and all are renamed into place by
-!> commit once every one is complete; discard removes them. Headers and column formats come from
-!> sloshdyn_tables, so both front doors write the same files.
+!> The result files of one run, all or nothing: each table is written as CSV under a temporary
+!> name unique to the run (dir/.name.XXXXXX, mkstemp), every open, write and close checked and
+!> the size on disk compared with the bytes written (gfortran does not report a full disk on
+!> write or close: the file is just shorter); commit renames them all into place once every one
+!> is complete, and if a rename fails it removes the files it already renamed and the
+!> temporaries; discard removes the temporaries. A cancellation requested before commit (Ctrl-C,
+!> SIGTERM) discards the run. Headers and column formats come from sloshdyn_tables, so both
+!> front doors write the same files.
 !>
 !> A table whose rows come one after another as a long computation finishes them (a sweep's
 !> points) is written to dir/stem.partial.ext (begin_rows), each batch appended and flushed as
 !> it is done (append_rows), and renamed to its final name by commit like the others; discard
 !> keeps it, so a failed or killed run leaves the rows it finished.
 module sloshdyn_results
+  use, intrinsic :: iso_fortran_env, only: int64
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_IO_ERROR
+  use sloshdyn_cancel, only: check_cancel
   use sloshdyn_text, only: num2str
   use sloshdyn_tables, only: table_header, table_formats, code_name
-  use sloshdyn_files, only: make_directory, rename_file, remove_file, process_id
+  use sloshdyn_files, only: make_directory, rename_file, remove_file, unique_file
   implicit none
   private
   public :: result_files
@@ -66,38 +72,68 @@ contains
     character(len=message_len) :: iomsg
     type(pending_file) :: file
     integer :: unit, ios
+    integer(int64) :: bytes, rows_bytes
 
     status = SD_OK
     message = ''
+    iomsg = ''
     file%final = self%directory//'/'//name
-    file%temporary = self%directory//'/.'//name//'.'//num2str(process_id())//'.tmp'
+    call unique_file(self%directory//'/.'//name//'.', file%temporary)
+    if (len(file%temporary) == 0) then
+      status = SD_IO_ERROR
+      message = 'cannot write '//file%final//': cannot create a temporary file in '// &
+                self%directory
+      return
+    end if
     self%files = [self%files, file]
-    open (newunit=unit, file=file%temporary, status='replace', action='write', iostat=ios, &
+    open (newunit=unit, file=file%temporary, status='old', action='write', iostat=ios, &
           iomsg=iomsg)
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
-    if (ios == 0) call write_rows(unit, table, data, ios, iomsg)
-    if (ios == 0) then
-      close (unit, iostat=ios, iomsg=iomsg)
-    else
-      close (unit)
-    end if
+    bytes = len(table_header(table)) + 1
+    if (ios == 0) call write_rows(unit, table, data, rows_bytes, ios, iomsg)
+    call close_checked(unit, file%temporary, bytes + rows_bytes, ios, iomsg)
     if (ios /= 0) then
       status = SD_IO_ERROR
       message = 'cannot write '//file%final//': '//trim(iomsg)
     end if
   end subroutine write_table
 
+  !> Close unit (if ios = 0 so far) and check that file `path` holds `bytes` bytes: a write that
+  !> failed for want of space shows as a shorter file.
+  subroutine close_checked(unit, path, bytes, ios, iomsg)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: path
+    integer(int64), intent(in) :: bytes
+    integer, intent(inout) :: ios
+    character(len=message_len), intent(inout) :: iomsg
+    integer(int64) :: size_on_disk
+    if (ios /= 0) then
+      close (unit)
+      return
+    end if
+    close (unit, iostat=ios, iomsg=iomsg)
+    if (ios /= 0) return
+    inquire (file=path, size=size_on_disk)
+    if (size_on_disk /= bytes) then
+      ios = -1
+      write (iomsg, '(a, i0, a, i0, a)') 'only ', size_on_disk, ' of ', bytes, ' bytes '// &
+        'reached the disk (is it full, or over a size limit?)'
+    end if
+  end subroutine close_checked
+
   !> The rows of data (one column of the array per row of the file) in table's formats.
-  subroutine write_rows(unit, table, data, ios, iomsg)
+  subroutine write_rows(unit, table, data, bytes, ios, iomsg)
     integer, intent(in) :: unit
     character(len=*), intent(in) :: table
     real(wp), intent(in) :: data(:, :)
+    integer(int64), intent(out) :: bytes   !< written, newlines included
     integer, intent(out) :: ios
     character(len=message_len), intent(inout) :: iomsg
     character(len=:), allocatable :: formats, line
     character(len=32) :: field
     integer :: i, j, length
     ios = 0
+    bytes = 0
     formats = table_formats(table)
     allocate (character(len=33*size(data, 1)) :: line)
     do j = 1, size(data, 2)
@@ -121,6 +157,7 @@ contains
       end do
       write (unit, '(a)', iostat=ios, iomsg=iomsg) line(1:length)
       if (ios /= 0) return
+      bytes = bytes + length + 1
     end do
   end subroutine write_rows
 
@@ -149,6 +186,7 @@ contains
     integer :: unit, ios
     status = SD_OK
     message = ''
+    iomsg = ''
     file%final = self%directory//'/'//name
     file%temporary = self%partial_path(name)
     file%keep = .true.
@@ -156,11 +194,7 @@ contains
     open (newunit=unit, file=file%temporary, status='replace', action='write', iostat=ios, &
           iomsg=iomsg)
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
-    if (ios == 0) then
-      close (unit, iostat=ios, iomsg=iomsg)
-    else
-      close (unit)
-    end if
+    call close_checked(unit, file%temporary, len(table_header(table), int64) + 1, ios, iomsg)
     if (ios /= 0) then
       status = SD_IO_ERROR
       message = 'cannot write '//file%temporary//': '//trim(iomsg)
@@ -177,38 +211,47 @@ contains
     character(len=message_len) :: iomsg
     character(len=:), allocatable :: path
     integer :: unit, ios
+    integer(int64) :: size_before, bytes
     status = SD_OK
     message = ''
     iomsg = ''
     path = self%partial_path(name)
+    inquire (file=path, size=size_before)
     open (newunit=unit, file=path, status='old', position='append', action='write', &
           iostat=ios, iomsg=iomsg)
-    if (ios == 0) call write_rows(unit, table, data, ios, iomsg)
-    if (ios == 0) then
-      close (unit, iostat=ios, iomsg=iomsg)
-    else
-      close (unit)
-    end if
+    if (ios == 0) call write_rows(unit, table, data, bytes, ios, iomsg)
+    call close_checked(unit, path, size_before + bytes, ios, iomsg)
     if (ios /= 0) then
       status = SD_IO_ERROR
       message = 'cannot append to '//path//': '//trim(iomsg)
     end if
   end subroutine append_rows
 
-  !> Rename every file into place.
+  !> Rename every file into place, unless a cancellation is pending; if one rename fails, remove
+  !> the files of this run already renamed and discard the rest: nothing of the run is left
+  !> under a final name.
   subroutine commit(self, status, message)
     class(result_files), intent(inout) :: self
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    integer :: i
+    integer :: i, j
     logical :: ok
     status = SD_OK
     message = ''
+    call check_cancel(status, message)
+    if (status /= SD_OK) then
+      call self%discard()
+      return
+    end if
     do i = 1, size(self%files)
       call rename_file(self%files(i)%temporary, self%files(i)%final, ok)
       if (.not. ok) then
         status = SD_IO_ERROR
-        message = 'cannot rename '//self%files(i)%temporary//' into '//self%files(i)%final
+        message = 'cannot rename '//self%files(i)%temporary//' into '//self%files(i)%final// &
+                  '; no result of this run is kept'
+        do j = 1, i - 1
+          call remove_file(self%files(j)%final)
+        end do
         call self%discard()
         return
       end if

@@ -1,5 +1,5 @@
 !> The LAPACK calls of sloshdyn: dgeev for the eigenvalues of every stability Jacobian, dgesv for
-!> Newton steps. Inputs are copied, so callers keep their matrices. A matrix with NaN or
+!> Newton steps (up to 8 unknowns, the same unblocked LU written out, see solve_linear). Inputs are copied, so callers keep their matrices. A matrix with NaN or
 !> infinite entries is refused before LAPACK sees it, and results that are not finite are an
 !> error, never a result.
 !>
@@ -16,6 +16,9 @@ module sloshdyn_lapack
   implicit none
   private
   public :: eigenvalues, solve_linear
+
+  !> Systems up to this size are solved without dgesv (see solve_linear).
+  integer, parameter :: small_system = 8
 
   interface
     subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
@@ -62,22 +65,35 @@ contains
     end if
   end subroutine eigenvalues
 
-  !> Solve a x = b (LAPACK dgesv); x overwrites b.
+  !> Solve a x = b; x overwrites b. Systems up to small_system unknowns (Newton steps of the
+  !> slow flows, 4 or 5 unknowns, tens of thousands per frequency response) are solved here by
+  !> dgesv's operations written out (small_lu_solve), which for such sizes costs a fraction of
+  !> the calls through the recursive dgetrf2 and the BLAS; larger systems go to dgesv.
   subroutine solve_linear(a, b, status, message)
     real(wp), intent(in) :: a(:, :)
     real(wp), intent(inout) :: b(:)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: work_matrix(size(a, 1), size(a, 1))
-    integer :: n, info, pivots(size(a, 1))
+    real(wp) :: small(small_system, small_system)   ! fixed size: no allocation per call
+    real(wp), allocatable :: work_matrix(:, :)
+    integer, allocatable :: pivots(:)
+    integer :: n, info
 
     n = size(a, 1)
     call check_finite('solve_linear: the matrix', a, status, message)
-    if (status == SD_OK) call check_finite('solve_linear: the right-hand side', &
-                                           reshape(b, [size(b), 1]), status, message)
+    if (status == SD_OK .and. .not. all(ieee_is_finite(b))) then
+      status = SD_NON_FINITE
+      message = 'solve_linear: the right-hand side has NaN or infinite entries'
+    end if
     if (status /= SD_OK) return
-    work_matrix = a
-    call dgesv(n, 1, work_matrix, n, pivots, b, n, info)
+    if (n <= small_system) then
+      small(1:n, 1:n) = a
+      call small_lu_solve(small(1:n, 1:n), b, info)
+    else
+      work_matrix = a
+      allocate (pivots(n))
+      call dgesv(n, 1, work_matrix, n, pivots, b, n, info)
+    end if
     if (info > 0) then
       status = SD_SINGULAR
       message = 'singular matrix in dgesv (zero pivot '//num2str(info)//')'
@@ -86,6 +102,63 @@ contains
       message = 'dgesv failed with info = '//num2str(info)
     end if
   end subroutine solve_linear
+
+  !> LU with partial pivoting of a (overwritten) and the solution of a x = b in b, with the
+  !> operations of LAPACK's dgetrf2 + dgetrs in their order (first largest |pivot|, scaling by
+  !> the pivot's reciprocal, back substitution by columns from the last), so the results are
+  !> dgesv's to the bit: callers such as inverse iteration on nearly singular matrices depend on
+  !> them. info = k > 0 when the k-th pivot is exactly zero (b is then left unfinished, as
+  !> dgesv leaves it undefined).
+  pure subroutine small_lu_solve(a, b, info)
+    real(wp), intent(inout) :: a(:, :), b(:)
+    integer, intent(out) :: info
+    real(wp) :: swap, reciprocal
+    integer :: n, i, j, k, p
+
+    n = size(a, 1)
+    info = 0
+    do k = 1, n
+      p = k
+      do i = k + 1, n
+        if (abs(a(i, k)) > abs(a(p, k))) p = i
+      end do
+      if (a(p, k) == 0) then
+        info = k
+        return
+      end if
+      if (p /= k) then
+        do j = 1, n
+          swap = a(k, j)
+          a(k, j) = a(p, j)
+          a(p, j) = swap
+        end do
+        swap = b(k)
+        b(k) = b(p)
+        b(p) = swap
+      end if
+      if (abs(a(k, k)) >= tiny(1.0_wp)) then
+        reciprocal = 1/a(k, k)
+        a(k + 1:n, k) = a(k + 1:n, k)*reciprocal
+      else
+        a(k + 1:n, k) = a(k + 1:n, k)/a(k, k)
+      end if
+      do i = k + 1, n
+        b(i) = b(i) - b(k)*a(i, k)
+      end do
+      do j = k + 1, n
+        do i = k + 1, n
+          a(i, j) = a(i, j) - a(i, k)*a(k, j)
+        end do
+      end do
+    end do
+    do k = n, 1, -1
+      if (b(k) == 0) cycle
+      b(k) = b(k)/a(k, k)
+      do i = 1, k - 1
+        b(i) = b(i) - b(k)*a(i, k)
+      end do
+    end do
+  end subroutine small_lu_solve
 
   pure subroutine check_finite(what, a, status, message)
     character(len=*), intent(in) :: what

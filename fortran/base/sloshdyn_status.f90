@@ -7,9 +7,11 @@ module sloshdyn_status
   implicit none
   private
   public :: status_name, check_real, exit_code
-  public :: EXIT_SUCCESS, EXIT_USAGE, EXIT_INPUT, EXIT_FAILURE
+  public :: EXIT_SUCCESS, EXIT_OUT_OF_TOLERANCE, EXIT_USAGE, EXIT_INPUT, EXIT_FAILURE, EXIT_IO, &
+            EXIT_INTERRUPTED, EXIT_TERMINATED
   public :: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_LAPACK_FAILED, &
-            SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, SD_NON_FINITE, SD_IO_ERROR, SD_CAPACITY
+            SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, SD_NON_FINITE, SD_IO_ERROR, SD_CAPACITY, &
+            SD_CANCELLED
 
   integer, parameter :: SD_OK = 0               !< success
   integer, parameter :: SD_BAD_INPUT = 1        !< an input value is missing, malformed or out of range
@@ -21,10 +23,16 @@ module sloshdyn_status
   integer, parameter :: SD_NON_FINITE = 7       !< the state became NaN or infinite
   integer, parameter :: SD_IO_ERROR = 8         !< a file could not be read or written
   integer, parameter :: SD_CAPACITY = 9         !< a result does not fit the space the caller gave
+  integer, parameter :: SD_CANCELLED = 10       !< the run was cancelled (Ctrl-C, SIGTERM, request_cancel)
 
-  !> Exit codes of both front doors (the executable and sloshdyn-py): 0 success, 2 usage,
-  !> 3 the input (its file, a value, a rule), 4 the computation or its output failed.
-  integer, parameter :: EXIT_SUCCESS = 0, EXIT_USAGE = 2, EXIT_INPUT = 3, EXIT_FAILURE = 4
+  !> The exit codes of both front doors (the executable and sloshdyn-py), one table
+  !> (docs/architecture.md, "Exit codes"): 0 success; 1 `check` found results out of tolerance;
+  !> 2 usage; 3 the input (its file, a value, a rule); 4 the computation failed; 5 the results
+  !> could not be written (nothing of the run is left under a final name); 130 interrupted
+  !> (SIGINT, Ctrl-C) and 143 terminated (SIGTERM), 128 + the signal as shells report them.
+  integer, parameter :: EXIT_SUCCESS = 0, EXIT_OUT_OF_TOLERANCE = 1, EXIT_USAGE = 2, &
+                        EXIT_INPUT = 3, EXIT_FAILURE = 4, EXIT_IO = 5, EXIT_INTERRUPTED = 130, &
+                        EXIT_TERMINATED = 143
 
 contains
 
@@ -34,8 +42,12 @@ contains
     logical, intent(in) :: reading
     if (code == SD_OK) then
       exit_code = EXIT_SUCCESS
+    else if (code == SD_CANCELLED) then
+      exit_code = EXIT_INTERRUPTED
     else if (reading .or. code == SD_BAD_INPUT) then
       exit_code = EXIT_INPUT
+    else if (code == SD_IO_ERROR) then
+      exit_code = EXIT_IO
     else
       exit_code = EXIT_FAILURE
     end if
@@ -56,6 +68,7 @@ contains
     case (SD_NON_FINITE);     name = 'non-finite state'
     case (SD_IO_ERROR);       name = 'input/output error'
     case (SD_CAPACITY);       name = 'output capacity exceeded'
+    case (SD_CANCELLED);      name = 'cancelled'
     case default;             name = 'unknown status'
     end select
   end function status_name

@@ -10,7 +10,9 @@
 !> while the Fortran runs and Python threads (e.g. Dask's threaded workers) run them at once.
 !> That is safe because the core keeps no state between calls: no module variables, no `save`,
 !> and no deferred-length function results in the layers below the app (gfortran keeps their
-!> lengths in static variables; see sloshdyn_text). The app layer (reader, driver, writers) has
+!> lengths in static variables; see sloshdyn_text). The one exception is the cancellation flag
+!> (sloshdyn_cancel): request_cancel, called from another Python thread, makes every running
+!> computation return status 10 (cancelled) within one step (python/sloshdyn/_cancel.py). The app layer (reader, driver, writers) has
 !> such statics, so its routines keep the GIL and run one at a time.
 !> Result tables: the layouts of sloshdyn_tables (names gives the column names); work counts:
 !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
@@ -649,6 +651,33 @@ contains
     status = info
   end subroutine slow_flow_field
 
+  !> The limit cycle of the 3:1 slow flow at the model's rho and A (sloshdyn_slowflow_cycle):
+  !> x_cycle = (Re B1, Im B1, Re B2, Im B2) on it, its period [tau], multipliers(2, 4) =
+  !> (Re, Im) and the Newton shots; times settle_time, max_period in tau.
+  subroutine slow_flow_cycle(rpar, ipar, settle_time, max_period, n_samples, integration, &
+                             x_cycle, period, multipliers, iterations, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_slowflow_cycle, only: core => slow_flow_cycle
+    use sloshdyn_layouts, only: to_ode_options, to_method
+    real(c_double), intent(in) :: rpar(10), settle_time, max_period, integration(7)
+    integer(c_int), intent(in) :: ipar(2), n_samples
+    real(c_double), intent(out) :: x_cycle(4), period, multipliers(2, 4)
+    integer(c_int), intent(out) :: iterations, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code, shots
+    real(c_double) :: re(4), im(4)
+    x_cycle = 0; period = 0; multipliers = 0; shots = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, settle_time, max_period, int(n_samples), &
+                             to_ode_options(integration), to_method(integration), x_cycle, &
+                             period, re, im, shots, code, message)
+    if (code == 0) multipliers = transpose(reshape([re, im], [4, 2]))
+    iterations = shots
+    status = code
+  end subroutine slow_flow_cycle
+
   ! ---- stability charts -----------------------------------------------------------------------
 
   !> The &chart defaults (layouts' chart array).
@@ -1068,6 +1097,21 @@ contains
     status = info
   end subroutine sweep_threads
 
+  !> Ask every computation running in this process to stop: they return status 10 (cancelled)
+  !> within one integrator or continuation step. Called from Python's main thread on Ctrl-C.
+  subroutine request_cancel()
+    !f2py threadsafe
+    use sloshdyn_cancel, only: core => request_cancel
+    call core(-1_c_int)
+  end subroutine request_cancel
+
+  !> Forget a cancellation request, once every cancelled call has returned.
+  subroutine clear_cancel()
+    !f2py threadsafe
+    use sloshdyn_cancel, only: core => clear_cancel
+    call core()
+  end subroutine clear_cancel
+
   !> The exit code of both front doors for a status, from reading the input (reading = 1) or
   !> from the run (reading = 0).
   subroutine exit_code(status, reading, code)
@@ -1137,6 +1181,17 @@ contains
 
   !> The defaults of the option types: model = [beta, gamma, delta, n, p, zeta]; integration, steady,
   !> response and lyapunov in their layouts; shooting = [newton_tol, max_iter].
+  !> The method code that runs for the settings integration (layout of sloshdyn_layouts):
+  !> the method itself, or for 'auto' the pair chosen for its rtol.
+  subroutine method_used(integration, code)
+    !f2py threadsafe
+    use sloshdyn_integrator, only: chosen_method
+    use sloshdyn_layouts, only: to_method
+    real(c_double), intent(in) :: integration(7)
+    integer(c_int), intent(out) :: code
+    code = int(chosen_method(to_method(integration), integration(1)), c_int)
+  end subroutine method_used
+
   subroutine defaults(model, integration, steady, response, lyapunov, shooting)
     !f2py threadsafe
     use sloshdyn_model, only: model_t
@@ -1144,14 +1199,14 @@ contains
     use sloshdyn_simulation, only: steady_options
     use sloshdyn_response, only: response_options
     use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
-    use sloshdyn_integrator, only: METHOD_DOPRI5
+    use sloshdyn_integrator, only: METHOD_AUTO
     use sloshdyn_layouts, only: &
                                 from_ode_options, from_steady, from_response, from_lyapunov
     real(c_double), intent(out) :: model(6), integration(7), steady(7), &
                                    response(10), lyapunov(3), shooting(2)
     type(model_t) :: m
     model = [m%beta, m%gamma, m%delta, real(m%n, c_double), real(m%p, c_double), m%zeta]
-    integration = from_ode_options(ode_options(), METHOD_DOPRI5)
+    integration = from_ode_options(ode_options(), METHOD_AUTO)
     steady = from_steady(steady_options())
     response = from_response(response_options())
     lyapunov = from_lyapunov(lyapunov_options())

@@ -23,6 +23,7 @@ module sloshdyn_continuation
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, &
                              SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
+  use sloshdyn_cancel, only: check_cancel
   use sloshdyn_lapack, only: solve_linear
   use sloshdyn_roots, only: bracketed_function, brent_zero
   implicit none
@@ -125,6 +126,7 @@ module sloshdyn_continuation
   integer, parameter :: STOP_NONE = 0        !< no branch computed (bad input, failed start)
   integer, parameter :: STOP_LAMBDA_MIN = 1  !< left the interval: last point at lambda_min
   integer, parameter :: STOP_LAMBDA_MAX = 2  !< left the interval: last point at lambda_max
+  integer, parameter :: max_points_limit = 10000000
   integer, parameter :: STOP_MAX_POINTS = 3  !< max_points computed
   integer, parameter :: STOP_CLOSED = 4      !< closed loop (isola): last point = first point
   integer, parameter :: STOP_X_MAX = 5       !< the last point has max|x| > x_max
@@ -268,6 +270,8 @@ contains
 
     ds = options%ds
     do
+      call check_cancel(status, message)
+      if (status /= SD_OK) return
       if (n_points >= options%max_points) then
         stop_reason = STOP_MAX_POINTS
         exit
@@ -587,9 +591,11 @@ contains
                     'ds_min must lie in (0, ds = '//num2str(options%ds)//']', status, message)
     call check_real('ds_max', options%ds_max, options%ds, big, .false., .false., &
                     'ds_max must be >= ds = '//num2str(options%ds), status, message)
-    if (status == SD_OK .and. options%max_points < 2) then
+    ! at most 10**7 points: the tables are allocated up front (about 1 GB for the largest)
+    if (status == SD_OK .and. (options%max_points < 2 .or. options%max_points > max_points_limit)) then
       status = SD_BAD_INPUT
-      message = 'max_points = '//num2str(options%max_points)//' is out of range: it must be >= 2'
+      message = 'max_points = '//num2str(options%max_points)//' is out of range: it must lie '// &
+                'in [2, '//num2str(max_points_limit)//']'
     end if
     call check_real('lambda_min', options%lambda_min, -big, big, .false., .false., &
                     'lambda_min must be finite', status, message)

@@ -15,9 +15,9 @@
 !> rule instead of 0.1|h| <= uround|t|; no stiffness detection; no output routine (dense output
 !> is read after each step).
 module sloshdyn_dop853
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties
+  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, dense_from_state
   implicit none
   private
   public :: dop853_integrator
@@ -347,15 +347,10 @@ contains
     real(wp), intent(in) :: t
     real(wp), intent(out) :: y(:)
     real(wp) :: s, s1
+    logical :: done
 
-    if (self%h_done == 0 .or. (.not. self%dense_output .and. t == self%t)) then
-      y = self%y
-      return
-    end if
-    if (.not. self%dense_output) then
-      y = ieee_value(1.0_wp, ieee_quiet_nan)
-      return
-    end if
+    call dense_from_state(self, t, y, done)
+    if (done) return
     s = (t - self%t_old)/self%h_done
     s1 = 1 - s
     associate (c => self%cont)

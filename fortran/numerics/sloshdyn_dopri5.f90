@@ -7,7 +7,7 @@
 module sloshdyn_dopri5
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties
+  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, rms_error_norm
   implicit none
   private
   public :: dopri5_integrator
@@ -93,7 +93,7 @@ contains
     end associate
     self%n_rhs = self%n_rhs + 6
     err = 0
-    if (finite) err = error_norm(self%y_err, self%y, self%y_new, self%atol, self%opt%rtol)
+    if (finite) err = rms_error_norm(self%y_err, self%y, self%y_new, self%atol, self%opt%rtol)
   end subroutine dopri5_trial
 
   !> Nothing more to evaluate: k7 is part of the trial step.
@@ -137,18 +137,4 @@ contains
     y = self%cont(:, 1) + s*(self%cont(:, 2) + s1*(self%cont(:, 3) + &
         s*(self%cont(:, 4) + s1*self%cont(:, 5))))
   end subroutine dopri5_dense
-
-  !> Hairer's RMS error norm, scale sk = atol_i + rtol*max(|y0_i|, |y1_i|). Zero error terms are
-  !> skipped so that a component with sk = 0 (atol_i = 0, y_i = 0) cannot give 0/0.
-  pure function error_norm(e, y0, y1, atol, rtol) result(err)
-    real(wp), intent(in) :: e(:), y0(:), y1(:), atol(:), rtol
-    real(wp) :: err
-    integer :: i
-
-    err = 0
-    do i = 1, size(e)
-      if (e(i) /= 0) err = err + (e(i)/(atol(i) + rtol*max(abs(y0(i)), abs(y1(i)))))**2
-    end do
-    err = sqrt(err/size(e))
-  end function error_norm
 end module sloshdyn_dopri5

@@ -10,7 +10,9 @@ module sloshdyn_lyapunov
   use sloshdyn_shooting, only: periodic_problem, shooting_setup, make_setup, check_setup
   implicit none
   private
-  public :: largest_lyapunov
+  public :: largest_lyapunov, check_lyapunov_counts
+
+  integer, parameter :: max_periods = 10000000
 
 contains
 
@@ -42,19 +44,8 @@ contains
     history = ieee_value(1.0_wp, ieee_quiet_nan)
     call check_setup(problem, y0, 1, status, message)
     if (status /= SD_OK) return
-    if (transient_periods < 0 .or. n_periods < 1 .or. renormalise_every < 1) then
-      status = SD_BAD_INPUT
-      message = 'transient_periods = '//num2str(transient_periods)//', n_periods = '// &
-                num2str(n_periods)//', renormalise_every = '//num2str(renormalise_every)// &
-                ' are out of range: they must be >= 0, >= 1, >= 1'
-      return
-    end if
-    if (mod(n_periods, renormalise_every) /= 0) then
-      status = SD_BAD_INPUT
-      message = 'n_periods = '//num2str(n_periods)//' is out of range: it must be a multiple '// &
-                'of renormalise_every = '//num2str(renormalise_every)
-      return
-    end if
+    call check_lyapunov_counts(transient_periods, n_periods, renormalise_every, status, message)
+    if (status /= SD_OK) return
     n_blocks = n_periods/renormalise_every
     if (size(history) < n_blocks) then
       status = SD_BAD_INPUT
@@ -72,7 +63,7 @@ contains
     ! a generic start direction (not aligned with any coordinate)
     z(n + 1:2*n) = [(1.0_wp/i, i = 1, n)]
     z(n + 1:2*n) = z(n + 1:2*n)/norm2(z(n + 1:2*n))
-    call new_integrator(method, integ, status, message)
+    call new_integrator(method, setup%options%rtol, integ, status, message)
     if (status == SD_OK) call integ%init(setup%sys, 0.0_wp, z, t_end, setup%options, status, &
                                          message)
     if (status /= SD_OK) then
@@ -138,4 +129,35 @@ contains
       end if
     end function next_boundary
   end subroutine largest_lyapunov
+
+  !> The counts of largest_lyapunov, checked before anything is allocated for them (readers call
+  !> this first): n_periods at most max_periods (each period integrates the 4 + 16 variational
+  !> equations: 10**7 periods take hours).
+  pure subroutine check_lyapunov_counts(transient_periods, n_periods, renormalise_every, &
+                                        status, message)
+    integer, intent(in) :: transient_periods, n_periods, renormalise_every
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    if (transient_periods < 0 .or. n_periods < 1 .or. renormalise_every < 1) then
+      status = SD_BAD_INPUT
+      message = 'transient_periods = '//num2str(transient_periods)//', n_periods = '// &
+                num2str(n_periods)//', renormalise_every = '//num2str(renormalise_every)// &
+                ' are out of range: they must be >= 0, >= 1, >= 1'
+      return
+    end if
+    if (n_periods > max_periods) then
+      status = SD_BAD_INPUT
+      message = 'n_periods = '//num2str(n_periods)//' is out of range: it must lie in [1, '// &
+                num2str(max_periods)//']'
+      return
+    end if
+    if (mod(n_periods, renormalise_every) /= 0) then
+      status = SD_BAD_INPUT
+      message = 'n_periods = '//num2str(n_periods)//' is out of range: it must be a multiple '// &
+                'of renormalise_every = '//num2str(renormalise_every)
+      return
+    end if
+  end subroutine check_lyapunov_counts
 end module sloshdyn_lyapunov

@@ -20,10 +20,11 @@ module sloshdyn_ode
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
                              SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
+  use sloshdyn_cancel, only: check_cancel
   implicit none
   private
   public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
-  public :: check_options, integrate_with
+  public :: check_options, integrate_with, rms_error_norm, dense_from_state
   public :: default_rtol, default_atol, default_max_steps
 
   real(wp), parameter :: default_rtol = 1.0e-9_wp   !< relative tolerance unless given
@@ -263,6 +264,9 @@ contains
       return
     end if
 
+    ! every integration of every analysis passes here: Ctrl-C is honoured within one step
+    call check_cancel(status, message)
+    if (status /= SD_OK) return
     info = self%properties()
     fixed = self%opt%fixed_step > 0
     non_finite_trial = .false.
@@ -434,6 +438,37 @@ contains
     end do
     stats = integ%statistics()
   end subroutine integrate_with
+
+  !> Hairer's RMS error norm, scale sk = atol_i + rtol*max(|y0_i|, |y1_i|). Zero error terms are
+  !> skipped so that a component with sk = 0 (atol_i = 0, y_i = 0) cannot give 0/0.
+  pure function rms_error_norm(e, y0, y1, atol, rtol) result(err)
+    real(wp), intent(in) :: e(:), y0(:), y1(:), atol(:), rtol
+    real(wp) :: err
+    integer :: i
+
+    err = 0
+    do i = 1, size(e)
+      if (e(i) /= 0) err = err + (e(i)/(atol(i) + rtol*max(abs(y0(i)), abs(y1(i)))))**2
+    end do
+    err = sqrt(err/size(e))
+  end function rms_error_norm
+
+  !> For a method's dense: done = .true. (with y filled) when there is no continuous extension
+  !> to evaluate -- before any step (y = the state), or without dense output (init's
+  !> dense_output = .false.: the state at t = integ%t, NaN at any other time).
+  pure subroutine dense_from_state(integ, t, y, done)
+    class(rk_integrator), intent(in) :: integ
+    real(wp), intent(in) :: t
+    real(wp), intent(inout) :: y(:)
+    logical, intent(out) :: done
+    done = integ%h_done == 0 .or. .not. integ%dense_output
+    if (.not. done) return
+    if (integ%h_done == 0 .or. t == integ%t) then
+      y = integ%y
+    else
+      y = ieee_value(1.0_wp, ieee_quiet_nan)
+    end if
+  end subroutine dense_from_state
 
   !> The options with the method's defaults in place of zeros (and beta < 0 as 0).
   pure function with_method_defaults(options, info) result(opt)

@@ -649,7 +649,7 @@ contains
     do j = 1, n
       z0(n*j + j) = 1
     end do
-    call new_integrator(setup%method, integ, status, message)
+    call new_integrator(setup%method, setup%options%rtol, integ, status, message)
     if (status /= SD_OK) return
     call integ%init(sys, 0.0_wp, z0, t_end, setup%options, status, message)
     n_samples = samples_per_period*setup%k

@@ -3,8 +3,9 @@ excitation, by the equivalent mechanical model of Farid & Gendelman (a pendulum 
 tank walls through a high-power smooth potential). Numerics run in the Fortran core.
 """
 
-from .asymptotics import (Continuation, FrequencyResponse, SpecialPoint, frequency_response,
-                          modal_coefficients, nonresonant_amplitudes)
+from .asymptotics import (Continuation, FrequencyResponse, SlowFlowCycle, SpecialPoint,
+                          frequency_response, modal_coefficients, nonresonant_amplitudes,
+                          slow_flow_cycle)
 from ._errors import (CapacityError, ConvergenceError, FileError, InputError, IntegrationError,
                       LapackError, SingularMatrixError, SloshdynError)
 from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, equilibrium_angles,
@@ -16,10 +17,11 @@ from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pen
 from .charts import Codim2Point, Curve, StabilityChart, stability_chart
 from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, Spectrum, Tank,
                       acceleration_factor, harmonic_sweep, seismic_defaults, seismic_response)
-from .studies import FragilityFit, basins, fit_fragility, fragility_study, response_map
+from .studies import (FragilityFit, basins, fit_fragility, fragility_study, impact_parameters,
+                      response_map)
 from .simulation import (Integration, Simulation, Steady, SteadyState, Sweep, amplitude_sweep,
-                         frequency_sweep, poincare_section, simulate, spectrum, steady_state,
-                         sweep_values)
+                         beat_period, frequency_sweep, poincare_section, simulate, spectrum,
+                         steady_state, sweep_values)
 
 __version__ = "0.1.0"
 
@@ -30,14 +32,17 @@ __all__ = [
     "equations_of_motion", "frequency_ratio", "kappa_for_detuning", "linear_modes",
     "natural_frequencies", "read_namelist", "tank_pendulum",
     "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
-    "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state", "sweep_values",
+    "beat_period", "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state",
+    "sweep_values",
     "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
-    "nonresonant_amplitudes", "PeriodicBranch", "PeriodicOrbit", "PeriodicSpecialPoint",
+    "nonresonant_amplitudes", "SlowFlowCycle", "slow_flow_cycle", "PeriodicBranch",
+    "PeriodicOrbit", "PeriodicSpecialPoint",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
     "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "Spectrum", "Tank",
     "acceleration_factor", "harmonic_sweep", "seismic_defaults", "seismic_response",
     "Codim2Point", "Curve", "StabilityChart", "stability_chart",
-    "FragilityFit", "basins", "fit_fragility", "fragility_study", "response_map",
+    "FragilityFit", "basins", "fit_fragility", "fragility_study", "impact_parameters",
+    "response_map",
 ]
 
 

@@ -58,6 +58,8 @@ class FileError(SloshdynError, OSError):
     status = 8
 
 
+CANCELLED = 10    #: the core stopped on request (python/sloshdyn/_cancel.py): KeyboardInterrupt
+
 _BY_STATUS = {
     1: InputError,
     2: ConvergenceError,
@@ -105,4 +107,6 @@ def check_status(status, message, context=None):
     message = str(message).strip()
     if context:
         message = f"{context}: {message}"
+    if status == CANCELLED:
+        raise KeyboardInterrupt(message)
     raise _BY_STATUS.get(status, SloshdynError)(message, status)

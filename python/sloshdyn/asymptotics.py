@@ -220,3 +220,34 @@ def nonresonant_amplitudes(params: Parameters, rho):
     amplitudes, counts, status, message = _bridge.nonresonant_amplitudes(*params.arrays(), rho)
     check_status(status, message)
     return [amplitudes[:c, i].copy() for i, c in enumerate(counts)]
+
+
+@dataclass(frozen=True)
+class SlowFlowCycle:
+    """The limit cycle of the 3:1 slow flow (eq 53 in Cartesian form) beyond a Hopf point: the
+    slow amplitudes oscillate with `period`, so the full motion beats with it."""
+
+    x: np.ndarray              #: (Re B1, Im B1, Re B2, Im B2) on the cycle
+    period: float              #: in tau
+    beat_periods: float        #: the period in forcing periods T = 2 pi/rho
+    multipliers: np.ndarray    #: Floquet multipliers of the cycle (one is 1)
+    iterations: int            #: Newton shots
+
+
+def slow_flow_cycle(params: Parameters, *, settle_periods=5000, max_periods=2000,
+                    n_samples=20000, integration=None) -> SlowFlowCycle:
+    """The limit cycle of the 3:1 slow flow at params' rho and A (sloshdyn_slowflow_cycle): the
+    slow flow integrated from rest for settle_periods forcing periods, the period guessed by
+    the first return to a section (searched up to max_periods on n_samples samples), then
+    cycle and period by Newton shooting with the period unknown."""
+    from .simulation import Integration
+    integration = Integration() if integration is None else integration
+    if not params.rho > 0:
+        raise InputError(f"rho = {params.rho} is not valid: the slow flow needs rho > 0")
+    period = 2 * np.pi / params.rho
+    x, tau, multipliers, iterations, status, message = _bridge.slow_flow_cycle(
+        *params.arrays(), float(settle_periods) * period, float(max_periods) * period,
+        int(n_samples), integration.array())
+    check_status(status, message, "slow-flow limit cycle")
+    return SlowFlowCycle(x.copy(), float(tau), float(tau) / period,
+                         multipliers[0] + 1j * multipliers[1], int(iterations))

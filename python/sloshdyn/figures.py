@@ -12,12 +12,12 @@ import numpy as np
 
 from . import plotting
 from ._files import save_figure, write_csv
-from .asymptotics import frequency_response, modal_coefficients
+from .asymptotics import frequency_response, modal_coefficients, slow_flow_cycle
 from ._errors import SloshdynError
 from .model import equilibria, equilibrium_angles, frequency_ratio, kappa_for_detuning, linear_modes
 from .periodic import lyapunov_exponent, periodic_response
 from .parameters import Parameters
-from .simulation import Steady, amplitude_sweep, simulate, spectrum, steady_state
+from .simulation import Steady, amplitude_sweep, beat_period, simulate, spectrum, steady_state
 
 plt = plotting.plt
 
@@ -345,21 +345,20 @@ def fig13(out, quick=False):
 
 def fig14_beats(quick=False):
     """The Fig 14 steady motion, a simulation of it, and its beat period in forcing periods
-    (the strongest line of the spectrum of the u1 envelope)."""
+    measured two ways: from the full equations (the Poincare points' whole turns about their
+    closed curve over a 3000-period window, ~12 turns; beat_period) and from the slow flow
+    (the period of its limit cycle, by shooting; slow_flow_cycle). The transient (5000
+    periods) is long enough that doubling it moves the first by 1e-7 (relative)."""
     p = FIG12
-    st = steady_state(p, steady=Steady(settle_tol=0, transient_periods=2000 if quick else 5000,
-                                       window_periods=400))
+    st = steady_state(p, steady=Steady(settle_tol=0, transient_periods=5000, window_periods=3000))
     period = 2 * math.pi / p.rho
     n_periods = 800 if quick else 3000
     sim = simulate(p, n_periods * period, st.y_end, n_out=n_periods * 32 + 1)
-    envelope = np.abs(sim.u[0][:-1]).reshape(n_periods, 32).max(axis=1)
-    omega, amp = spectrum(envelope, period)
-    beat = 2 * math.pi / omega[1:][np.argmax(amp[1:])] / period
-    return st, sim, beat
+    return st, sim, beat_period(st.poincare), slow_flow_cycle(p).beat_periods
 
 
 def fig14(out, quick=False):
-    st, sim, beat = fig14_beats(quick)
+    st, sim, beat, slow_beat = fig14_beats(quick)
     fig, axes = plt.subplots(1, 3, figsize=(14, 4))
     axes[0].plot(sim.tau, sim.u[0], lw=0.3, color="k", label=r"$u_1$")
     axes[0].plot(sim.tau, sim.u[1], lw=0.3, color="r", label=r"$u_2$")
@@ -376,17 +375,26 @@ def fig14(out, quick=False):
     return Figure("14", "a) Time history for signals u1 and u2. Beating signals take place. b) "
                   "State-plane and Poincare sections of u1, c) State-plane and Poincare sections of "
                   "u2. μ1=0.5, s1=1.5, σ1=0.005, κ=1.804897259, γ=0.001, A=0.00075, ρ=0.509615",
-                  files, {"fig14_beat_periods": beat},
-                  f"Steady motion: {st.motion}; beat period {beat:.0f} forcing periods; "
-                  "red dots: Poincaré points (every forcing period).")
+                  files, {"beat_fig14_simulation": beat, "beat_fig14_slow_flow": slow_beat,
+                          "beat_fig14_ratio": beat / slow_beat},
+                  f"Steady motion: {st.motion}; beat period {beat:.2f} forcing periods (the "
+                  "Poincaré points' turns about their closed curve), against "
+                  f"{slow_beat:.2f} from the slow flow's limit cycle (shooting); red dots: "
+                  "Poincaré points (every forcing period).")
+
+
+def continuation_path(quick=False):
+    """The settings of the paper's numerical continuation in A at rho = 0.513 (sec 4.2): the
+    parameters, the A values (0.00075 -> 1.0475 -> 2.0) and the steady-state settings."""
+    values = np.concatenate([np.geomspace(0.00075, 1.0475, 12 if quick else 30),
+                             np.linspace(1.0475, 2.0, 6 if quick else 20)[1:]])
+    return (FIG12.replace(rho=0.513), values,
+            Steady(max_transient_periods=3000 if quick else 10000))
 
 
 def _continuation(quick):
     """The paper's numerical continuation in A at rho = 0.513 (sec 4.2), carrying the state."""
-    p = FIG12.replace(rho=0.513)
-    values = np.concatenate([np.geomspace(0.00075, 1.0475, 12 if quick else 30),
-                             np.linspace(1.0475, 2.0, 6 if quick else 20)[1:]])
-    steady = Steady(max_transient_periods=3000 if quick else 10000)
+    p, values, steady = continuation_path(quick)
     states = {}
     y = None
     for A in values:
@@ -453,16 +461,22 @@ def fig15_17(out, quick=False):
     return results
 
 
+def slow_flow_max_x1(params, b1, b2):
+    """max|x1| over a forcing period of the slow-flow steady states (B1, B2) (arrays): x1 from
+    u1 = Re(B1 e^{i rho tau}), u2 = Re(B2 e^{3 i rho tau}) (eq 42, 45) through the modal
+    matrix (eq 34)."""
+    modal = linear_modes(params).modal
+    phase = np.linspace(0, 2 * math.pi, 721)[:, None]
+    return np.max(np.abs(modal[0, 0] * np.real(np.asarray(b1) * np.exp(1j * phase))
+                         + modal[0, 1] * np.real(np.asarray(b2) * np.exp(3j * phase))), axis=0)
+
+
 def full_model_fig12(out, quick=False):
     """Periodic orbits of the full equations (shooting) over the slow-flow curves of Fig 12."""
     slow = frequency_response(FIG12, (0.49, 0.53))
     full = periodic_response(FIG12.replace(rho=0.50), (0.50, 0.52))
-    modal = linear_modes(FIG12).modal
     t = slow.table
-    phase = np.linspace(0, 2 * math.pi, 721)[:, None]
-    b1, b2 = t["re_B1"] + 1j * t["im_B1"], t["re_B2"] + 1j * t["im_B2"]
-    slow_x1 = np.max(np.abs(modal[0, 0] * np.real(b1 * np.exp(1j * phase))
-                            + modal[0, 1] * np.real(b2 * np.exp(3j * phase))), axis=0)
+    slow_x1 = slow_flow_max_x1(FIG12, t["re_B1"] + 1j * t["im_B1"], t["re_B2"] + 1j * t["im_B2"])
     fig, axes = plt.subplots(2, 1, sharex=True, figsize=(7, 7))
     for b in np.unique(t["branch"]):
         mask = t["branch"] == b
@@ -554,7 +568,79 @@ def impact_route(out, quick=False):
                   values, notes)
 
 
+#: the (beta, delta) study's summary (data/studies/make_impact_parameters.py writes it)
+IMPACT_PARAMETERS = Path(__file__).parent / "reference" / "impact_parameters.csv"
+
+
+def impact_parameters(out, quick=False):
+    """Which impact coefficient and dissipation reproduce Fig 15-17 together: the stored
+    (beta, delta) study of the continuation in A at rho = 0.513 (read, not recomputed)."""
+    import csv
+    with open(IMPACT_PARAMETERS, newline="") as f:
+        rows = list(csv.DictReader(f))
+    betas = np.unique([float(r["beta"]) for r in rows])
+    deltas = np.unique([float(r["delta"]) for r in rows])
+
+    def grid(name):
+        g = np.full((len(betas), len(deltas)), np.nan)
+        for r in rows:
+            i, j = np.searchsorted(betas, float(r["beta"])), np.searchsorted(deltas, float(r["delta"]))
+            g[i, j] = float(r[name])
+        return g
+    x16, x17, lyap = grid("max_x1_A_1.0475"), grid("max_x1_A_2"), grid("lyapunov_A_2")
+    held = grid("fig15_holds") + grid("fig16_holds") + grid("fig17_holds")
+    fig, axes = plt.subplots(2, 2, figsize=(11, 9), sharex=True, sharey=True)
+    panels = ((axes[0, 0], x16, "max|x1| at A = 1.0475 (Fig 16: close to 1)", "viridis", None),
+              (axes[0, 1], x17, "max|x1| at A = 2 (Fig 17: reaches 1)", "viridis", None),
+              (axes[1, 0], lyap, "largest Lyapunov exponent at A = 2 [1/τ]", "coolwarm",
+               np.nanmax(np.abs(lyap))),
+              (axes[1, 1], held, "statements of the paper that hold (of 3)", "Greens", None))
+    for ax, values, title, cmap, span in panels:
+        mesh = ax.pcolormesh(deltas, betas, values, cmap=cmap, shading="nearest",
+                             vmin=-span if span else (0 if values is held else None),
+                             vmax=span if span else (3 if values is held else None))
+        fig.colorbar(mesh, ax=ax)
+        ax.set_title(title, fontsize=10)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.plot(0.1, 10.0, "*", color="r", ms=12, mfc="none", label="defaults β = 10, δ = 0.1")
+    for ax in axes[1]:
+        ax.set_xlabel("sloshing dissipation δ (dimensionless)")
+    for ax in axes[:, 0]:
+        ax.set_ylabel("impact coefficient β (dimensionless)")
+    axes[0, 0].contour(deltas, betas, x16, levels=[0.8, 1.0], colors=["w", "r"], linewidths=1)
+    axes[0, 1].contour(deltas, betas, x17, levels=[1.0], colors="r", linewidths=1)
+    axes[1, 0].contour(deltas, betas, lyap, levels=[0.0], colors="k", linewidths=1)
+    axes[0, 0].legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    all_hold = grid("all_hold") == 1
+    ib, jd = np.nonzero(all_hold)
+    axes[1, 1].plot(deltas[jd], betas[ib], "o", color="k", mfc="none", label="all three hold")
+    n_all = int(all_hold.sum())
+    periodic16 = np.zeros_like(x16, dtype=bool)
+    for r in rows:
+        if r["motion_A_1.0475"] == "periodic":
+            periodic16[np.searchsorted(betas, float(r["beta"])),
+                       np.searchsorted(deltas, float(r["delta"]))] = True
+    best = np.unravel_index(np.nanargmax(np.where((x16 < 1) & periodic16, x16, -1)), x16.shape)
+    files = ["impact_parameters.png"]
+    save_figure(fig, Path(out) / files[0])
+    return Figure("15-17 (impact parameters)", "Not in the paper: the continuation in A at ρ = "
+                  "0.513 (A = 0.00075 → 1.0475 → 2.0, state carried) over a log grid of the impact "
+                  "coefficient β and the dissipation δ, which the paper does not give; white/red "
+                  "contours: max|x1| = 0.8 and 1, black: Lyapunov exponent 0; star: the defaults.",
+                  files, {"impact_parameters_all_hold": n_all},
+                  f"All three statements (Fig 15: max|x1| of order 0.01; Fig 16: 0.8 ≤ max|x1| < 1 "
+                  f"and periodic; Fig 17: max|x1| ≥ 1 and a positive Lyapunov exponent) hold at "
+                  f"{n_all} of {len(rows)} grid points. The largest max|x1| of a periodic response "
+                  f"without impact at A = 1.0475 is {x16[best]:.3f} (β = {betas[best[0]]:g}, "
+                  f"δ = {deltas[best[1]]:g}), where max|x1| at A = 2 is {x17[best]:.3f}. "
+                  "Data: data/reference/impact_parameters.csv (study: data/studies/"
+                  "make_impact_parameters.py, Zarr store data/studies/impact_parameters.zarr).")
+
+
 #: in the paper's order; each entry gives one Figure or a list of them
 FIGURES = {"3": fig03, "4": fig04, "5": fig05, "6": fig06, "7": fig07, "8": fig08,
            "9a": fig09a, "9b": fig09b, "10": fig10, "11": fig11, "12": fig12, "13": fig13,
-           "14": fig14, "15-17": fig15_17, "full-12": full_model_fig12, "impact-route": impact_route}
+           "14": fig14, "15-17": fig15_17, "full-12": full_model_fig12, "impact-route": impact_route,
+           "impact-parameters": impact_parameters}

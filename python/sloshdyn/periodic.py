@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _checks, _core, _tables
+from ._cancel import cancellable
 from ._errors import check_status
 from .asymptotics import continuation_range, frequency_response
 from .model import linear_modes
@@ -32,6 +33,7 @@ class PeriodicOrbit:
     max_x1: float               #: max |x1| over the orbit (64 samples per forcing period)
     iterations: int
     periods: int
+    method: str = ""            #: the integration method used ('auto' resolved)
 
     @property
     def stable(self):
@@ -58,7 +60,7 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
         *params.arrays(), y0, periods, integration.array(), newton_tol, max_iter)
     check_status(status, message, "periodic orbit")
     return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
-                         int(info[0]), int(periods))
+                         int(info[0]), int(periods), integration.method_used)
 
 
 def start_state(params: Parameters, start="simulation"):
@@ -102,6 +104,7 @@ class PeriodicBranch:
     special_points: list
     complete: bool
     message: str = ""
+    method: str = ""             #: the integration method used ('auto' resolved)
 
 
 def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
@@ -141,7 +144,8 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
                                      float(s[1]) if parameter == "A" else params.A, float(s[6]),
                                      s[2:6].copy()) for s in special[:, :n_special].T]
     text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
-    branch = PeriodicBranch(parameter, table, specials, bool(complete), text)
+    branch = PeriodicBranch(parameter, table, specials, bool(complete), text,
+                            integration.method_used)
     if status:
         try:
             check_status(status, message, "periodic branch")
@@ -167,7 +171,7 @@ def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=int(_LYA
                                                            ("renormalise_every", renormalise_every)))
     blocks = max(n_periods // max(renormalise_every, 1), 1)
     settings = np.array([transient_periods, n_periods, renormalise_every], dtype=np.float64)
-    exponent, history, status, message = _bridge.lyapunov_exponent(
-        *params.arrays(), y0, settings, integration.array(), blocks)
+    exponent, history, status, message = cancellable(
+        _bridge.lyapunov_exponent, *params.arrays(), y0, settings, integration.array(), blocks)
     check_status(status, message, "Lyapunov exponent")
     return float(exponent), history

@@ -345,7 +345,8 @@ class SeismicResponse:
     [rad], tank_drift [m] (relative to the ground), impact_force [N] (roof/walls on the
     liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2; and
     `peaks` {quantity: (largest |value|, its time [s])}, roof_reached, first_roof_time [s],
-    roof_impacts. Columns are those of seismic.csv and seismic_peaks.csv."""
+    roof_impacts. Columns are those of seismic.csv and seismic_peaks.csv; `method`, the
+    integration method used ('auto' resolved)."""
 
     def __init__(self, tank, ground_motion, table, peaks):
         self.tank, self.ground_motion = tank, ground_motion
@@ -396,7 +397,9 @@ def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=In
     table, peaks, status, message = _bridge.seismic_response(
         tank.array(), ground, samples, t_end, n_out, integration.array())
     check_status(status, message)
-    return SeismicResponse(tank, ground_motion, table.copy(), peaks.copy())
+    response = SeismicResponse(tank, ground_motion, table.copy(), peaks.copy())
+    response.method = integration.method_used
+    return response
 
 
 class HarmonicSweep:
@@ -405,10 +408,11 @@ class HarmonicSweep:
     per column of harmonic_sweep.csv: frequency [Hz], peak_ground_acceleration [m/s^2],
     wave_height [m], sloshing_displacement [m], pendulum_angle [rad], tank_drift [m] (their
     largest values over the measuring window), roof_reached (1/0), motion (code), period
-    [forcing periods]."""
+    [forcing periods]; `method`, the integration method used ('auto' resolved)."""
 
-    def __init__(self, tank, points, table, y_final):
+    def __init__(self, tank, points, table, y_final, method=""):
         self.tank, self.points, self.table, self.y_final = tank, points, table, y_final
+        self.method = method
         for column, row in zip(_tables.columns("harmonic_sweep"), table):
             setattr(self, _name(column), row)
 
@@ -439,4 +443,4 @@ def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
 
     points, table, y = run_sweep("frequency", frequencies, y0, progress, threads, start_from,
                                  run, lambda points, y: None)
-    return HarmonicSweep(tank, points, table, y)
+    return HarmonicSweep(tank, points, table, y, integration.method_used)

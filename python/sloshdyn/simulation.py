@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _checks, _core, _tables
+from ._cancel import cancellable
 from ._errors import InputError, IntegrationError, check_status
 from .parameters import Parameters, convert_fields
 
@@ -31,8 +32,14 @@ class Integration:
     h_max: float = float(_INTEGRATION[3])        #: 0 = no limit
     h_min: float = float(_INTEGRATION[4])        #: 0 = 1e-14 max(1, |tau|)
     max_steps: int = int(_INTEGRATION[5])
-    method: str = _tables.codes("methods")[int(_INTEGRATION[6])]   #: 'rk45' (Dormand-Prince
-    #: 5(4)) or 'dop853' (8(5,3), fewer steps at tight tolerances)
+    method: str = _tables.codes("methods")[int(_INTEGRATION[6])]   #: 'auto' (by rtol, see
+    #: method_used), 'rk45' (Dormand-Prince 5(4)), 'dop853' (8(5,3)) or 'vern9' (Verner 9(8))
+
+    @property
+    def method_used(self):
+        """The method that runs: ``method``, or for 'auto' the one the core picks for rtol
+        (rk45 at loose, dop853 at medium, vern9 at tight tolerances; benchmarks/README.md)."""
+        return _tables.codes("methods")[int(_bridge.method_used(self.array()))]
 
     def __post_init__(self):
         convert_fields(self)
@@ -83,6 +90,7 @@ class Simulation:
     n_accepted: int
     n_rejected: int
     tau_reached: float
+    method: str = ""            #: the integration method used ('auto' resolved)
 
     @property
     def x1(self):
@@ -134,10 +142,10 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
         n_out = _checks.output_size("n_out", _checks.integer("n_out", n_out, 0), 9)
         tau_out = np.linspace(t_start, t_end, n_out)
     tau_out = _checks.reals("tau_out", tau_out, ndim=1)
-    history, counts, status, message = _bridge.simulate(
-        *params.arrays(), t_start, _state(y0), tau_out, integration.array())
+    history, counts, status, message = cancellable(
+        _bridge.simulate, *params.arrays(), t_start, _state(y0), tau_out, integration.array())
     result = Simulation(tau_out, history[0:4], history[4:6], history[6], history[7], history[8],
-                        *_counts(counts))
+                        *_counts(counts), method=integration.method_used)
     if status:
         try:
             check_status(status, message, "simulation")
@@ -165,6 +173,7 @@ class SteadyState:
     settled: bool               #: the settle test passed (always True without settle_tol)
     poincare: np.ndarray = field(repr=False, default=None)   #: (4, window) points at tau = k T
     y_end: np.ndarray = field(repr=False, default=None)      #: final state, forcing phase 0
+    method: str = ""            #: the integration method used ('auto' resolved)
 
 
 def _summary(row, poincare=None, y_end=None):
@@ -184,7 +193,9 @@ def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),
     summary, poincare, y_end, counts, status, message = _bridge.steady_state(
         *params.arrays(), _state(y0), integration.array(), steady.array(), window)
     check_status(status, message, "steady state")
-    return _summary(summary, poincare, y_end)
+    result = _summary(summary, poincare, y_end)
+    result.method = integration.method_used
+    return result
 
 
 def poincare_section(params: Parameters, n_points, y0=None, *, transient_periods=0,
@@ -208,6 +219,7 @@ class Sweep:
     parameter: str              #: 'rho' or 'A'
     points: list                #: SteadyState per value, in sweep order
     y_final: np.ndarray
+    method: str = ""            #: the integration method used ('auto' resolved)
 
     def column(self, name):
         return np.array([getattr(p, name) for p in self.points])
@@ -244,9 +256,12 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
                 int(threads))
         return summaries, None, y, status, message
 
+    method = integration.method_used
     points, _, y = run_sweep(parameter, values, y0, progress, threads, start_from, run,
-                             lambda points, y: Sweep(parameter, points, y))
-    return Sweep(parameter, points, y)
+                             lambda points, y: Sweep(parameter, points, y, method))
+    for point in points:
+        point.method = method
+    return Sweep(parameter, points, y, method)
 
 
 def run_sweep(label, values, y0, progress, threads, start_from, run, partial):
@@ -331,3 +346,24 @@ def spectrum(signal, dt, window="hann"):
     amplitude = 2 * np.abs(np.fft.rfft(x * w)) / w.sum()
     omega = 2 * np.pi * np.fft.rfftfreq(x.size, dt)
     return omega, amplitude
+
+
+def beat_period(poincare):
+    """The beat period of a quasi-periodic motion, in forcing periods, from its Poincare points
+    (rows x1, x1' of a (>= 2, n) array, one point per forcing period): the points turn about
+    their closed curve, so their angle about the centroid, unwrapped, counts the turns; the
+    mean time between successive whole turns (each interpolated linearly between two points)
+    is the period of the envelope. Needs at least two whole turns."""
+    points = np.asarray(poincare, dtype=np.float64)
+    if points.ndim != 2 or points.shape[0] < 2 or points.shape[1] < 4:
+        raise InputError(f"poincare has shape {points.shape}: give (>= 2, n >= 4) Poincare points")
+    z = (points[0] - points[0].mean()) + 1j * (points[1] - points[1].mean())
+    turns = np.unwrap(np.angle(z)) / (2 * math.pi)
+    turns = (turns - turns[0]) * np.sign(turns[-1] - turns[0])
+    whole = np.arange(1, math.floor(turns[-1]) + 1)
+    if whole.size < 2 or np.any(np.diff(turns) <= 0):
+        raise InputError(f"the Poincare points make {turns[-1]:.3g} turns about their centroid, "
+                         "not steadily: a beat period needs at least two whole turns of a closed "
+                         "curve around it (a longer window, or quasi-periodic motion)")
+    times = np.interp(whole, turns, np.arange(turns.size))
+    return float((times[-1] - times[0]) / (whole.size - 1))

@@ -1,4 +1,4 @@
-!> Test systems for DOP853, with closed-form solutions (the independent source of the expected
+!> Test systems for DOP853 and Verner's 9(8) (the higher-order pairs), with closed-form solutions (the independent source of the expected
 !> values below) except Van der Pol, which is checked against sloshdyn_rk45.
 module dop853_test_systems
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -99,7 +99,9 @@ program test_dop853
   use sloshdyn_text, only: num2str
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_dop853, only: dop853_integrator
-  use sloshdyn_integrator, only: integrate, METHOD_DOPRI5, METHOD_DOP853
+  use sloshdyn_vern9, only: vern9_integrator
+  use sloshdyn_integrator, only: integrate, chosen_method, METHOD_DOPRI5, METHOD_DOP853, &
+                                 METHOD_VERN9, METHOD_AUTO
   use dop853_test_systems, only: riccati, oscillator, van_der_pol, nan_beyond
   use checks, only: check_close, check_true, finish
   implicit none
@@ -111,6 +113,10 @@ program test_dop853
   call test_stepwise_api()
   call test_failures()
   call test_bad_input()
+  call test_vern9_fixed_step_order()
+  call test_vern9_dense_output_order()
+  call test_vern9_adaptive()
+  call test_auto_choice()
   call finish()
 
 contains
@@ -512,4 +518,135 @@ contains
                     status == SD_BAD_INPUT .and. index(message, name) == 1)
     call check_true('bad '//name//': all outputs NaN', all(ieee_is_nan(y_out)))
   end subroutine expect_bad
+  !> Verner's 9(8), fixed steps: the global error of the 9th-order solution falls like h**9
+  !> (512 per halving), on the forced oscillator at t = 10 with 10, 20, 40 steps (2e-7 ... 3e-13;
+  !> the next halving reaches rounding). The observed orders approach 9 from above (9.8, 9.7:
+  !> the h**10 term still shows), so they must lie in [9, 10]; an 8th-order method (a wrong
+  !> coefficient in a 9th-order condition) would show 8. The riccati problem (2, 4, 8 steps) has
+  !> a larger pre-asymptotic excess (10.8, 10.6) and only has to show at least order 9. 16
+  !> evaluations per step without dense output.
+  subroutine test_vern9_fixed_step_order()
+    type(riccati) :: ric
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
+    real(wp) :: err_ric(0:2), err_osc(0:2), y1(1, 1), y2(2, 1)
+    integer :: i, status, n_steps
+    character(len=message_len) :: message
+
+    do i = 0, 2
+      n_steps = 2*2**i
+      opt%fixed_step = 1.0_wp/n_steps
+      call integrate(METHOD_VERN9, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, &
+                     message)
+      call check_true('vern9, fixed steps on riccati: '//num2str(n_steps)//' steps', &
+                      status == SD_OK .and. stats%n_accepted == n_steps)
+      err_ric(i) = abs(y1(1, 1) - ric%exact(1.0_wp))
+
+      n_steps = 10*2**i
+      opt%fixed_step = 10.0_wp/n_steps
+      call integrate(METHOD_VERN9, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, &
+                     status, message)
+      call check_true('vern9, fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
+                      status == SD_OK .and. stats%n_accepted == n_steps)
+      call check_true('vern9 without dense output: n_rhs = 16 steps + 1', &
+                      stats%n_rhs == 16*n_steps + 1)
+      err_osc(i) = maxval(abs(y2(:, 1) - osc%exact(10.0_wp)))
+    end do
+    call check_orders('vern9, order of y, riccati', err_ric, 10.0_wp, 1.0_wp)
+    call check_orders('vern9, order of y, oscillator', err_osc, 9.5_wp, 0.5_wp)
+  end subroutine test_vern9_fixed_step_order
+
+  !> Verner's 8th-order interpolant: one step from the exact y(t0) leaves an error C(theta) h**9
+  !> inside the step (exponent = order + 1), measured at mid-step for h = 0.8 ... 0.2 on the
+  !> forced oscillator (observed 9.8, 9.5: in [9, 10] as for the step itself). The interpolant
+  !> passes through both ends of the step: exactly at the start, and at the end to the rounding
+  !> of its coefficients in double precision (weights of size up to 1e4 that sum to b_i: about
+  !> 1e-12 h |f|). 20 new evaluations per step with dense output (15 + f at the new point + 4).
+  subroutine test_vern9_dense_output_order()
+    type(oscillator) :: osc
+    type(vern9_integrator) :: integ
+    type(ode_options) :: opt
+    real(wp) :: h, err_local(0:2), y(2)
+    integer :: i, status
+    character(len=message_len) :: message
+
+    do i = 0, 2
+      h = 0.8_wp/2**i
+      opt%fixed_step = h
+      call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 2*h, opt, status, message)
+      call integ%step(osc, status, message)
+      call check_true('vern9, one fixed step, h = '//num2str(h), status == SD_OK .and. &
+                      integ%t == h)
+      call check_true('vern9, 20 new evaluations per step with dense output', &
+                      integ%n_rhs == 21)
+      call integ%dense(h/2, y)
+      err_local(i) = maxval(abs(y - osc%exact(h/2)))
+      call integ%dense(0.0_wp, y)
+      call check_close('vern9 dense output at the step start, h = '//num2str(h), y(1), &
+                       1.0_wp, 0.0_wp, 1.0e-15_wp)
+      call integ%dense(h, y)
+      call check_close('vern9 dense output at the step end, h = '//num2str(h), y(1), &
+                       integ%y(1), 0.0_wp, 2.0e-12_wp*h)
+    end do
+    call check_orders('vern9 dense output at mid-step, local error exponent (order 8 + 1)', &
+                      err_local, 9.5_wp, 0.5_wp)
+  end subroutine test_vern9_dense_output_order
+
+  !> Adaptive Verner 9(8): the error stays within 100 rtol at rtol = 1e-8 ... 1e-12, with dense
+  !> output at 50 times, and at rtol = 1e-12 it takes fewer steps than DOP853.
+  subroutine test_vern9_adaptive()
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    type(ode_stats) :: stats, stats_853
+    real(wp), parameter :: rtols(3) = [1.0e-8_wp, 1.0e-10_wp, 1.0e-12_wp]
+    real(wp) :: t_out(50), y(2, 50), err
+    integer :: i, j, status
+    character(len=message_len) :: message
+
+    t_out = [(0.4_wp*j, j = 1, 50)]
+    do i = 1, size(rtols)
+      opt%rtol = rtols(i)
+      opt%atol = rtols(i)
+      call integrate(METHOD_VERN9, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y, opt, stats, &
+                     status, message)
+      err = 0
+      do j = 1, size(t_out)
+        err = max(err, maxval(abs(y(:, j) - osc%exact(t_out(j)))))
+      end do
+      call check_true('vern9 at rtol '//num2str(rtols(i))//': error '//num2str(err)// &
+                      ' within 100 rtol', status == SD_OK .and. err < 100*rtols(i))
+    end do
+    call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y, opt, stats_853, &
+                   status, message)
+    call check_true('vern9 takes fewer steps than dop853 at rtol 1e-12 ('// &
+                    num2str(stats%n_accepted)//' < '//num2str(stats_853%n_accepted)//')', &
+                    stats%n_accepted < stats_853%n_accepted)
+  end subroutine test_vern9_adaptive
+
+  !> 'auto' runs DOPRI5 at loose, DOP853 at medium and Verner 9(8) at tight tolerances, and the
+  !> same steps as the method it chose.
+  subroutine test_auto_choice()
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    type(ode_stats) :: stats_auto, stats_chosen
+    real(wp), parameter :: rtols(3) = [1.0e-3_wp, 1.0e-8_wp, 1.0e-13_wp]
+    integer, parameter :: expected(3) = [METHOD_DOPRI5, METHOD_DOP853, METHOD_VERN9]
+    real(wp) :: y(2, 1)
+    integer :: i, status
+    character(len=message_len) :: message
+
+    do i = 1, size(rtols)
+      call check_true('auto at rtol '//num2str(rtols(i))//' chooses method '// &
+                      num2str(expected(i)), chosen_method(METHOD_AUTO, rtols(i)) == expected(i))
+      opt%rtol = rtols(i)
+      call integrate(METHOD_AUTO, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y, opt, &
+                     stats_auto, status, message)
+      call integrate(expected(i), osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y, opt, &
+                     stats_chosen, status, message)
+      call check_true('auto at rtol '//num2str(rtols(i))//' runs the chosen method', &
+                      stats_auto%n_rhs == stats_chosen%n_rhs .and. &
+                      stats_auto%n_accepted == stats_chosen%n_accepted)
+    end do
+  end subroutine test_auto_choice
 end program test_dop853

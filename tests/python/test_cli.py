@@ -91,6 +91,14 @@ def test_reference_tables_are_the_repository_copy():
     from conftest import ROOT
     sources = {"paper_values.csv": ROOT / "data" / "reference" / "paper_values.csv",
                "computed_values.csv": ROOT / "data" / "reference" / "computed_values.csv",
+               "impact_parameters.csv": ROOT / "data" / "reference" / "impact_parameters.csv",
                "errata.md": ROOT / "docs" / "errata.md"}
     for name, source in sources.items():
         assert (reference.PACKAGE_REFERENCE / name).read_text() == source.read_text()
+
+
+def test_every_tolerance_has_its_reason_and_bounds_only_where_the_paper_states_one():
+    for row in reference.load():
+        assert row["reason"].strip(), row["quantity"]
+        if row["kind"] in ("at_least", "at_most", "factor"):
+            assert row["reason"].startswith("a bound the paper states"), row["quantity"]

@@ -185,3 +185,54 @@ def test_bad_response_input():
         sloshdyn.frequency_response(FIG12, (-0.1, 0.53))
     with pytest.raises(sloshdyn.InputError, match="kappa"):
         sloshdyn.frequency_response(FIG12.replace(kappa=1.4), (0.49, 0.53))
+
+
+def complex_slow_flow(m, rho, A):
+    """Eq (53) in the Cartesian unknowns B1 = a1 exp(-i phi2), B2 = a2 exp(i (phi1 - 3 phi2))
+    (eq 42, 45), typed here from the modal coefficients: x = (Re B1, Im B1, Re B2, Im B2)."""
+    w1, w2 = m["omega1"], m["omega2"]
+    s2, s1 = rho - w1, w2 - 3 * w1
+
+    def f(t, x):
+        b1, b2 = x[0] + 1j * x[1], x[2] + 1j * x[3]
+        f1 = (-(m["gamma11"] / 2 + 1j * s2) * b1 + rho**2 * A * m["F11"] / (2 * w1)
+              + 1j / (8 * w1) * (m["c11"] * abs(b1)**2 * b1 + 2 * m["c12"] * abs(b2)**2 * b1
+                                 - m["c13"] * np.conj(b1)**2 * b2))
+        f2 = (-(m["gamma22"] / 2 + 1j * (3 * s2 - s1)) * b2
+              + 1j / (8 * w2) * (m["c21"] * abs(b2)**2 * b2 + 2 * m["c22"] * abs(b1)**2 * b2
+                                 - m["c23"] * b1**3))
+        return [f1.real, f1.imag, f2.real, f2.imag]
+    return f
+
+
+def scipy_return_time(p, cycle):
+    """The first return of eq (53) (complex_slow_flow, scipy DOP853 at rtol 1e-11) from the
+    cycle's point to the section through it normal to the flow, after half a period at least;
+    and the run (dense output)."""
+    from scipy.integrate import solve_ivp
+    f = complex_slow_flow(sloshdyn.modal_coefficients(p), p.rho, p.A)
+    normal = np.array(f(0, cycle.x))
+
+    def section(t, x):
+        return normal @ (x - cycle.x)
+    section.direction = 1
+    run = solve_ivp(f, (0, 1.5 * cycle.period), cycle.x, method="DOP853", rtol=1e-11,
+                    atol=1e-14, events=section, dense_output=True)
+    return run.t_events[0][run.t_events[0] > 0.5 * cycle.period][0], run
+
+
+def test_slow_flow_limit_cycle_at_fig14_against_scipy(fig12_response):
+    """The Fig 14 point lies between the Hopf points: the slow flow has a limit cycle. Its
+    period by shooting (Fortran) against scipy's DOP853 on eq (53) typed in numpy: the
+    trajectory from the cycle's point returns to its section after the same time, at the
+    same point; the cycle is stable (the multipliers other than 1 inside the unit circle)."""
+    p = FIG12.replace(rho=0.509615)
+    hopf = sorted(s.rho for s in fig12_response.special_points if s.kind == "hopf")
+    assert hopf[0] < p.rho < hopf[1]
+    cycle = sloshdyn.slow_flow_cycle(p)
+    returned, run = scipy_return_time(p, cycle)
+    assert returned == pytest.approx(cycle.period, rel=1e-7)
+    assert run.sol(cycle.period) == pytest.approx(cycle.x, abs=1e-7 * np.max(np.abs(cycle.x)))
+    mu = np.sort(np.abs(cycle.multipliers))
+    assert mu[-1] == pytest.approx(1, abs=1e-6) and mu[-2] < 1
+    assert cycle.beat_periods == pytest.approx(cycle.period * p.rho / (2 * math.pi), rel=1e-15)

@@ -92,6 +92,37 @@ def test_continuation_equals_the_sweeps_that_carry_the_state(client, tmp_path):
     assert ds["max_x1_up"].values[-1, 0] > 10 * ds["max_x1"].values[-1, 0]
 
 
+def test_impact_parameter_study_equals_a_serial_loop_of_the_same_points(client, tmp_path):
+    """A 2 x 2 (beta, delta) study against the loop it stands for: at each point the
+    carried continuation along A (amplitude_sweep) and the Lyapunov exponent at the last A."""
+    p = FIG12.replace(rho=0.513)
+    betas, deltas, a = [1.0, 100.0], [0.01, 1.0], [0.00075, 0.3, 1.0475, 2.0]
+    steady, lyapunov = sloshdyn.Steady(max_transient_periods=300, window_periods=32), (10, 60)
+    ds = sloshdyn.impact_parameters(p, betas, deltas, a, tmp_path / "impact.zarr", client=client,
+                                    steady=steady, lyapunov_periods=lyapunov,
+                                    points_per_task=1, progress=False)
+    assert ds["max_x1"].dims == ("beta", "delta", "A") and bool(ds["done"].all())
+    for i, beta in enumerate(betas):
+        for j, delta in enumerate(deltas):
+            q = p.replace(beta=beta, delta=delta)
+            sweep = sloshdyn.amplitude_sweep(q, a, steady=steady)
+            exponent, _ = sloshdyn.lyapunov_exponent(q.replace(A=2.0), sweep.y_final,
+                                                     transient_periods=10, n_periods=60)
+            assert list(ds["max_x1"].values[i, j]) == list(sweep.column("max_x1"))
+            assert [studies.MOTIONS[int(m)] for m in ds["motion"].values[i, j]] == \
+                [pt.motion for pt in sweep.points]
+            assert ds["lyapunov"].values[i, j] == exponent
+            x = dict(zip(a, sweep.column("max_x1")))
+            fig17 = x[2.0] >= 1 and exponent > 0
+            assert bool(ds["fig17_holds"].values[i, j]) == fig17
+            assert bool(ds["all_hold"].values[i, j]) == (
+                bool(ds["fig15_holds"].values[i, j]) and bool(ds["fig16_holds"].values[i, j])
+                and fig17)
+    with pytest.raises(sloshdyn.InputError, match="A_values lacks A = 1.0475"):
+        sloshdyn.impact_parameters(p, betas, deltas, [0.00075, 2.0], tmp_path / "bad.zarr",
+                                   client=client, progress=False)
+
+
 def test_a_store_of_another_study_is_refused_and_left_alone(client, tmp_path):
     store = tmp_path / "s.zarr"
     sloshdyn.response_map(FIG12, [0.505], [0.0005], store, client=client, steady=QUICK,

@@ -1,0 +1,47 @@
+"""Ctrl-C during a long Fortran call.
+
+Python delivers KeyboardInterrupt only to the main thread, and only between bytecodes: while a
+Fortran routine runs in the main thread, Ctrl-C waits until it returns. So the call runs in a
+worker thread (the bridge routines that compute release the GIL), the main thread waits for it
+and stays responsive; on KeyboardInterrupt it sets the core's cancellation flag
+(``request_cancel``), which every integrator and continuation step polls: the call returns
+status 10 (cancelled) within one step, the flag is cleared and KeyboardInterrupt goes on.
+
+A request cancels every sloshdyn computation running in the process at that moment (the flag
+is the core's one piece of global state, docs/architecture.md "Cancellation").
+"""
+
+from __future__ import annotations
+
+import threading
+
+from . import _core
+
+_bridge = _core.sloshdyn_bridge
+
+
+def cancellable(function, *args):
+    """function(*args), a bridge routine that releases the GIL, run so that Ctrl-C stops it."""
+    if threading.current_thread() is not threading.main_thread():
+        return function(*args)          # KeyboardInterrupt never reaches other threads
+    outcome = {}
+
+    def run():
+        try:
+            outcome["value"] = function(*args)
+        except BaseException as exc:    # handed to the caller below
+            outcome["error"] = exc
+
+    worker = threading.Thread(target=run, name="sloshdyn-core", daemon=True)
+    worker.start()
+    try:
+        while worker.is_alive():
+            worker.join(0.1)
+    except KeyboardInterrupt:
+        _bridge.request_cancel()
+        worker.join()
+        _bridge.clear_cancel()
+        raise
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["value"]
