@@ -140,7 +140,7 @@ API = {
                          "points_per_task": ints}),
 }
 #: arguments whose hostile but valid values start computations of unbounded length: a bound on
-#: them is the core's (issue 11, branch relcore), so their big valid values are not drawn here
+#: them is the core's (issue 11), so their big valid values are not drawn here
 UNBOUNDED = {("simulate", 1), ("simulate", "tau_out"), ("stability_chart", "n_x"), ("stability_chart", "n_y"),
              ("lyapunov_exponent", "n_periods"), ("lyapunov_exponent", "transient_periods")}
 
@@ -325,14 +325,14 @@ def test_namelist_groups_through_python(tmp_path_factory, cases):
     assert _violations(run_cases(calls)) == {}
 
 
-# ---- defects of the core found by this suite, fixed on branch relcore ------------------------
+# ---- defects of the core found by this suite (open ones marked xfail strict) -----------------
 
-RELCORE = "fixed on branch relcore: "
+CORE = "open defect of the core (issue 11), to fix in fortran/: "
 #: seconds in which a refused count must be refused (it is checked before any work)
 REFUSAL_SECONDS = 5
 STEADY_INPUT = (MODEL + "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'steady_state' /\n")
 CORE_DEFECTS = {
-    # name: (input, the variable the refusal must name, why it fails today)
+    # name: (input, the variable the refusal must name, what it did before the core's bounds)
     "huge samples_per_period": (
         STEADY_INPUT + "&steady samples_per_period = 2147483647 /\n&output directory = 'out' /\n",
         "samples_per_period", "runs unbounded (integer overflow, then hours of work)"),
@@ -347,9 +347,9 @@ CORE_DEFECTS = {
 }
 
 
-@pytest.mark.parametrize("case", [pytest.param(name, marks=pytest.mark.xfail(
-    strict=True, reason=RELCORE + why)) for name, (_, _, why) in CORE_DEFECTS.items()])
+@pytest.mark.parametrize("case", CORE_DEFECTS)
 def test_huge_counts_are_refused_at_once(exe, tmp_path, case):
+    """Found by this suite, fixed by the core's bounds before allocating (issue 11, class 4)."""
     text, variable, _ = CORE_DEFECTS[case]
     (tmp_path / "input.nml").write_text(text)
     try:
@@ -387,7 +387,7 @@ NONFINITE_RESULTS = {
 
 
 @pytest.mark.parametrize("case", [pytest.param(name, marks=pytest.mark.xfail(
-    strict=True, reason=RELCORE + "a non-finite result is an error, never a result"))
+    strict=True, reason=CORE + "a non-finite result is an error, never a result"))
     for name in NONFINITE_RESULTS])
 def test_extreme_values_give_an_error_not_a_nonfinite_result(case):
     """Found by the long fuzzing mode: these calls returned NaN or infinity."""
@@ -396,7 +396,7 @@ def test_extreme_values_give_an_error_not_a_nonfinite_result(case):
     assert outcomes[case].startswith(error), outcomes
 
 
-@pytest.mark.xfail(strict=True, reason=RELCORE + "a bound on the integration time from a time "
+@pytest.mark.xfail(strict=True, reason=CORE + "a bound on the integration time from a time "
                                                  "estimate, or Ctrl-C within a second")
 def test_a_simulation_to_tau_1e308_is_refused_at_once():
     """Found by the long fuzzing mode: simulate(tau_out=[1e308, ...]) runs for hours."""
@@ -405,7 +405,7 @@ def test_a_simulation_to_tau_1e308_is_refused_at_once():
     assert outcomes["far"].startswith("sloshdyn InputError"), outcomes
 
 
-@pytest.mark.xfail(strict=True, reason=RELCORE + "a bound on the work of an integration from a "
+@pytest.mark.xfail(strict=True, reason=CORE + "a bound on the work of an integration from a "
                                                  "time estimate (or the state's size)")
 def test_a_simulation_from_a_huge_state_ends_within_the_bound(exe, tmp_path):
     """Found by the long fuzzing mode: &simulation y0 = 99999999999999999999 (every component
