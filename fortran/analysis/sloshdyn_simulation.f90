@@ -20,7 +20,17 @@ module sloshdyn_simulation
   implicit none
   private
   public :: time_history, steady_options, steady_state, check_steady, parameter_sweep, &
-            independent_sweep, steady_orbit, max_period
+            independent_sweep, steady_orbit, max_period, max_tau_span, max_state
+
+  !> Longest span of one time history in tau = omega1 t: 1e7, about 1.6 million natural
+  !> periods and an hour or more of work at the integrators' usual steps (a few per period up
+  !> to hundreds near impacts); a longer span is a mistake, not a study.
+  real(wp), parameter :: max_tau_span = 1.0e7_wp
+  !> Largest |component| of an initial state: x1 = theta/theta0 is 1 at the walls and x2 =
+  !> phi/theta0 is of the same order, so a state 1e3 times that lies outside every motion the
+  !> model describes (the impact moment beta x1^(2n-1) of eq (4) would exceed any load, and
+  !> the integration would crawl through steps too small to finish).
+  real(wp), parameter :: max_state = 1.0e3_wp
 
   !> Longest period (in forcing periods) the classification of steady motions looks for.
   integer, parameter :: max_period = 8
@@ -86,9 +96,22 @@ contains
     character(len=message_len), intent(out) :: message
     type(tank_system) :: system
     type(ode_options) :: settings
-    real(wp) :: p_inv(2, 2)
+    real(wp) :: p_inv(2, 2), span
     integer :: i
 
+    history = 0
+    call check_initial_state(y0, status, message)
+    if (status == SD_OK .and. size(tau_out) > 0) then
+      span = tau_out(size(tau_out)) - tau0    ! non-finite or descending: integrate's checks
+      if (abs(span) > max_tau_span .and. abs(span) <= huge(span)) then
+        status = SD_BAD_INPUT
+        message = 'the span tau_out('//num2str(size(tau_out))//') - tau0 = '//num2str(span)// &
+                  ' is out of range: one time history spans at most '//num2str(max_tau_span)// &
+                  ' in tau (about 1.6 million natural periods, hours of work; in a namelist '// &
+                  'it is &simulation t_end)'
+      end if
+    end if
+    if (status /= SD_OK) return
     system%model = model
     ! a record's samples are kinks of the right-hand side: no step crosses one
     settings = options
@@ -101,6 +124,22 @@ contains
       history(5:9, i) = derived_quantities(model, p_inv, history(1:4, i))
     end do
   end subroutine time_history
+
+  !> Every component of y0 within +-max_state (NaN and infinity are left to the integrator's
+  !> own check, which names them the same way).
+  pure subroutine check_initial_state(y0, status, message)
+    real(wp), intent(in) :: y0(4)
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    integer :: i
+    do i = 1, size(y0)
+      if (abs(y0(i)) <= max_state .or. .not. abs(y0(i)) <= huge(y0(i))) cycle
+      call check_real('y0('//num2str(i)//')', y0(i), -max_state, max_state, .false., .false., &
+                      'every component of the initial state (x1, x1'', x2, x2'') must lie in '// &
+                      '[-1e3, 1e3]: x1 = theta/theta0 is 1 at the walls', status, message)
+      return
+    end do
+  end subroutine check_initial_state
 
   !> P^-1 of eq (34), or NaN where kappa <= s1 has no modes.
   pure subroutine inverse_modal_matrix(model, p_inv)
@@ -165,6 +204,7 @@ contains
     poincare = 0
     y_end = y0
     call check_steady(model, steady, status, message)
+    call check_initial_state(y0, status, message)
     if (status == SD_OK .and. (size(poincare, 1) /= 4 .or. size(poincare, 2) < steady%window_periods)) then
       status = SD_BAD_INPUT
       message = 'the Poincare array must be 4 x window_periods = 4 x '//num2str(steady%window_periods)

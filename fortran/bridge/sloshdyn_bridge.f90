@@ -5,15 +5,16 @@
 !> Settings arrays (integration, steady, response, lyapunov): the layouts of sloshdyn_layouts;
 !> array sizes are literals here (f2py cannot use another module's constants): the compiler checks
 !> them against the layouts' named sizes where the arrays are converted.
-!> Threads: the routines that compute (every one but the namelist reader, the run of an input
-!> file and the name lists of the app layer) carry `!f2py threadsafe`, so f2py releases the GIL
+!> Threads: the routines that compute (every one but the namelist reader and the name lists of
+!> the app layer) carry `!f2py threadsafe`, so f2py releases the GIL
 !> while the Fortran runs and Python threads (e.g. Dask's threaded workers) run them at once.
 !> That is safe because the core keeps no state between calls: no module variables, no `save`,
 !> and no deferred-length function results in the layers below the app (gfortran keeps their
 !> lengths in static variables; see sloshdyn_text). The one exception is the cancellation flag
 !> (sloshdyn_cancel): request_cancel, called from another Python thread, makes every running
 !> computation return status 10 (cancelled) within one step (python/sloshdyn/_cancel.py). The app layer (reader, driver, writers) has
-!> such statics, so its routines keep the GIL and run one at a time.
+!> such statics, so its routines keep the GIL and run one at a time; run_input releases it so
+!> that Ctrl-C can cancel a run, and Python runs it one at a time (a lock in sloshdyn.cli).
 !> Result tables: the layouts of sloshdyn_tables (names gives the column names); work counts:
 !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
 module sloshdyn_bridge
@@ -75,6 +76,9 @@ contains
   subroutine equations_of_motion(rpar, ipar, tau, y, mass, force, dydt, jacobian, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: model_t, model_from_arrays
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use sloshdyn_status, only: SD_NON_FINITE
+    use sloshdyn_text, only: num2str
     use sloshdyn_motion, only: inertia_matrix, forcing_vector, core_eom => equations_of_motion, &
                                motion_jacobian
     real(c_double), intent(in) :: rpar(10), tau, y(4)
@@ -92,6 +96,13 @@ contains
     call forcing_vector(model, tau, y, force)
     call core_eom(model, tau, y, dydt)
     call motion_jacobian(model, tau, y, jacobian)
+    if (.not. (all(ieee_is_finite(mass)) .and. all(ieee_is_finite(force)) .and. &
+               all(ieee_is_finite(dydt)) .and. all(ieee_is_finite(jacobian)))) then
+      status = SD_NON_FINITE      ! a non-finite result is an error, never a result
+      message = 'the equations of motion (12)-(15) overflow at this state: y = ['// &
+                num2str(y(1))//', '//num2str(y(2))//', '//num2str(y(3))//', '//num2str(y(4))//']'
+      mass = 0; force = 0; dydt = 0; jacobian = 0
+    end if
   end subroutine equations_of_motion
 
   !> Natural frequencies: omegas = [omega1, omega2 (eq 28), omega1, omega2 (dgeev)];
@@ -1070,8 +1081,11 @@ contains
   end subroutine read_input
 
   !> Read a namelist input file and run it exactly as the executable does (summary on standard
-  !> output, CSV files in its output directory); status 1 for bad input.
+  !> output, CSV files in its output directory); status 1 for bad input. It releases the GIL so
+  !> that a cancellation request reaches it, but its app layer has static string lengths: never
+  !> two calls at once (sloshdyn.cli holds a lock around it).
   subroutine run_input(path, status, message)
+    !f2py threadsafe
     use sloshdyn_namelist, only: run_config, read_input_file => read_input
     use sloshdyn_driver, only: run_analysis
     character(len=*), intent(in) :: path

@@ -1,10 +1,19 @@
 !> Equivalent pendulum of the first sloshing mode of a cylindrical tank (Abramson), eq (2)-(3).
 module sloshdyn_tank
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NON_FINITE, check_real
   implicit none
   private
-  public :: tank_pendulum
+  public :: tank_pendulum, min_tank_size, max_tank_size, max_liquid_density
+
+  !> R and h [m]: from a millimetre (below it surface tension, not gravity, restores the liquid
+  !> and Abramson's pendulum does not apply) to a kilometre (no tank is larger); within these
+  !> R^2 h, h/R and the hyperbolic functions of eq (2) stay far from overflow and underflow.
+  real(wp), parameter :: min_tank_size = 1.0e-3_wp, max_tank_size = 1.0e3_wp
+  !> rho_liquid [kg/m^3]: every liquid is lighter than 1e5 (mercury 13 534, molten osmium
+  !> about 20 000).
+  real(wp), parameter :: max_liquid_density = 1.0e5_wp
 
 contains
 
@@ -23,10 +32,12 @@ contains
     status = SD_OK
     message = ''
     l = 0; m = 0; d1 = 0; m0 = 0; d0 = 0; mf = 0
-    call check_real('R', radius, 0.0_wp, big, .true., .true., &
-                    'the tank radius R must be > 0 [m]', status, message)
-    call check_real('h', depth, 0.0_wp, big, .true., .true., &
-                    'the liquid depth h must be > 0 [m]', status, message)
+    call check_real('R', radius, min_tank_size, max_tank_size, .false., .false., &
+                    'the tank radius R [m] must lie in [1e-3, 1e3]: Abramson''s pendulum '// &
+                    'holds for tanks from a millimetre to a kilometre', status, message)
+    call check_real('h', depth, min_tank_size, max_tank_size, .false., .false., &
+                    'the liquid depth h [m] must lie in [1e-3, 1e3]: Abramson''s pendulum '// &
+                    'holds for tanks from a millimetre to a kilometre', status, message)
     if (status /= SD_OK) return
     if ((density > 0) .eqv. (liquid_mass > 0)) then
       status = SD_BAD_INPUT
@@ -34,8 +45,9 @@ contains
                 '[kg/m^3] or the liquid mass [kg])'
       return
     end if
-    call check_real('rho_liquid', max(density, 0.0_wp), 0.0_wp, big, .false., .true., &
-                    'the liquid density must be finite', status, message)
+    call check_real('rho_liquid', max(density, 0.0_wp), 0.0_wp, max_liquid_density, .false., &
+                    .false., 'the liquid density [kg/m^3] must lie in [0, 1e5]: every '// &
+                    'liquid is lighter', status, message)
     call check_real('m_liquid', max(liquid_mass, 0.0_wp), 0.0_wp, big, .false., .true., &
                     'the liquid mass must be finite', status, message)
     if (status /= SD_OK) return
@@ -47,5 +59,11 @@ contains
     d1 = radius/3.68_wp/sinh(2*x)                       ! eq (2): csch (printed "csc h")
     m0 = mf - m                                         ! eq (3)
     d0 = mf/m0*(depth/2 - radius**2/(2*depth)) - (d1 + l)*m/m0   ! eq (3)
+    if (.not. all(ieee_is_finite([l, m, d1, m0, d0, mf]))) then  ! e.g. a liquid mass near huge
+      status = SD_NON_FINITE
+      message = 'the tank pendulum of eq (2)-(3) is not finite for these R, h and liquid: '// &
+                'overflow'
+      l = 0; m = 0; d1 = 0; m0 = 0; d0 = 0; mf = 0
+    end if
   end subroutine tank_pendulum
 end module sloshdyn_tank

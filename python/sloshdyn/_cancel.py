@@ -25,21 +25,25 @@ def cancellable(function, *args):
     if threading.current_thread() is not threading.main_thread():
         return function(*args)          # KeyboardInterrupt never reaches other threads
     outcome = {}
+    finished = threading.Event()
 
     def run():
         try:
             outcome["value"] = function(*args)
         except BaseException as exc:    # handed to the caller below
             outcome["error"] = exc
+        finally:
+            finished.set()
 
-    worker = threading.Thread(target=run, name="sloshdyn-core", daemon=True)
-    worker.start()
+    # An Event, not Thread.join: a join interrupted by KeyboardInterrupt (CPython 3.11) marks the
+    # thread stopped, so a second join returns at once while the Fortran still runs.
+    threading.Thread(target=run, name="sloshdyn-core", daemon=True).start()
     try:
-        while worker.is_alive():
-            worker.join(0.1)
+        while not finished.wait(0.1):
+            pass
     except KeyboardInterrupt:
         _bridge.request_cancel()
-        worker.join()
+        finished.wait()
         _bridge.clear_cancel()
         raise
     if "error" in outcome:

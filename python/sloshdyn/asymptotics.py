@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._cancel import cancellable
 from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters, convert_fields
@@ -180,7 +181,7 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
     _checks.choice("resonance", resonance, ("3:1", "none"))
     parameter, (lo, hi) = continuation_range(rho_range, A_range)
     (table, n_points, special, n_special, complete, status,
-     message) = _bridge.frequency_response(*params.arrays(), 1 if resonance == "3:1" else 0,
+     message) = cancellable(_bridge.frequency_response, *params.arrays(), 1 if resonance == "3:1" else 0,
                                            1 if parameter == "rho" else 2, float(lo), float(hi),
                                            settings.array(), MAX_TABLE_POINTS, MAX_SPECIAL_POINTS)
     columns = {name: table[i, :n_points].copy() for i, name in enumerate(_COLUMNS)}

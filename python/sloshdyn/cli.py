@@ -7,11 +7,13 @@ import csv
 import json
 import os
 import sys
+import threading
 import time
 from pathlib import Path
 
 import numpy as np
 
+from ._cancel import cancellable
 from . import __version__, _core, figures, plotting, reference
 from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError, InputError,
                       SloshdynError, check_status, exit_code)
@@ -95,6 +97,9 @@ def main(argv=None):
         _on_sigterm(previous)
 
 
+#: run_input releases the GIL (so that Ctrl-C and SIGTERM cancel it) but is not re-entrant
+_ONE_RUN_AT_A_TIME = threading.Lock()
+
 _KEPT = "files already complete are kept, none is half-written"
 
 
@@ -110,7 +115,6 @@ def _terminate(signum, frame):
 def _on_sigterm(handler):
     """Install a SIGTERM handler (main thread only; elsewhere nothing changes)."""
     import signal
-    import threading
     if handler is None or threading.current_thread() is not threading.main_thread():
         return None
     return signal.signal(signal.SIGTERM, handler)
@@ -124,7 +128,8 @@ def run_input(path):
     except SloshdynError as exc:
         exc.reading = True
         raise
-    status, message = _core.sloshdyn_bridge.run_input(os.fspath(path))
+    with _ONE_RUN_AT_A_TIME:     # the app layer's static string lengths: one call at a time
+        status, message = cancellable(_core.sloshdyn_bridge.run_input, os.fspath(path))
     sys.stdout.flush()
     check_status(status, message)
     figure = _figure(inp, Path(inp.directory))

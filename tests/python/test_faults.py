@@ -22,7 +22,6 @@ SIMULATE = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.8049, theta0 = 0.785, gamma =
             "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'simulate' /\n"
             "&simulation t_end = {t_end}, n_out = {n_out} /\n&output directory = '{out}' /\n")
 RUN_FILES = {"history.csv", "parameters.csv"}
-CORE = "open defect of the core (issue 11), to fix in fortran/: "
 
 
 def front_door(door, exe):
@@ -120,14 +119,8 @@ def test_kill_9_while_writing_leaves_no_final_file(exe, tmp_path, door):
     _complete_or_nothing(tmp_path / "out", code)
 
 
-#: sloshdyn-py runs a namelist by the bridge's run_input, which holds the GIL (no f2py
-#: threadsafe), so _cancel.cancellable cannot run it and a signal waits for its end
-SIGTERM_CASES = [
-    "executable",
-    pytest.param("sloshdyn-py", marks=pytest.mark.xfail(
-        strict=True, reason=CORE + "run_input releases the GIL (!f2py threadsafe) so that the "
-                                   "cancellation flag stops it on SIGTERM before its commit")),
-]
+#: both front doors: sloshdyn-py runs the bridge's run_input cancellable (it releases the GIL)
+SIGTERM_CASES = ["executable", "sloshdyn-py"]
 
 
 @pytest.mark.parametrize("door", SIGTERM_CASES)
@@ -192,9 +185,7 @@ LYAPUNOV = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.8049, theta0 = 0.785, gamma =
 CTRL_C_SECONDS = 1.0
 
 
-@pytest.mark.parametrize("door", ["executable", pytest.param("sloshdyn-py", marks=pytest.mark.xfail(
-    strict=True, reason=CORE + "run_input releases the GIL (!f2py threadsafe) so that "
-                               "sloshdyn-py runs it cancellable"))])
+@pytest.mark.parametrize("door", ["executable", "sloshdyn-py"])
 def test_ctrl_c_during_a_long_computation_ends_it_within_a_second(exe, tmp_path, door):
     (tmp_path / "input.nml").write_text(LYAPUNOV)
     proc = subprocess.Popen(front_door(door, exe) + ["input.nml"], cwd=tmp_path,

@@ -325,9 +325,8 @@ def test_namelist_groups_through_python(tmp_path_factory, cases):
     assert _violations(run_cases(calls)) == {}
 
 
-# ---- defects of the core found by this suite (open ones marked xfail strict) -----------------
+# ---- defects of the core found by this suite, now fixed: each test proves its fix ------------
 
-CORE = "open defect of the core (issue 11), to fix in fortran/: "
 #: seconds in which a refused count must be refused (it is checked before any work)
 REFUSAL_SECONDS = 5
 STEADY_INPUT = (MODEL + "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'steady_state' /\n")
@@ -386,9 +385,7 @@ NONFINITE_RESULTS = {
 }
 
 
-@pytest.mark.parametrize("case", [pytest.param(name, marks=pytest.mark.xfail(
-    strict=True, reason=CORE + "a non-finite result is an error, never a result"))
-    for name in NONFINITE_RESULTS])
+@pytest.mark.parametrize("case", NONFINITE_RESULTS)
 def test_extreme_values_give_an_error_not_a_nonfinite_result(case):
     """Found by the long fuzzing mode: these calls returned NaN or infinity."""
     (function, args, kwargs), error = NONFINITE_RESULTS[case]
@@ -396,8 +393,6 @@ def test_extreme_values_give_an_error_not_a_nonfinite_result(case):
     assert outcomes[case].startswith(error), outcomes
 
 
-@pytest.mark.xfail(strict=True, reason=CORE + "a bound on the integration time from a time "
-                                                 "estimate, or Ctrl-C within a second")
 def test_a_simulation_to_tau_1e308_is_refused_at_once():
     """Found by the long fuzzing mode: simulate(tau_out=[1e308, ...]) runs for hours."""
     outcomes = run_cases([("far", "simulate", ("P", 1.0), {"tau_out": [0.0, 1e308]})],
@@ -405,8 +400,6 @@ def test_a_simulation_to_tau_1e308_is_refused_at_once():
     assert outcomes["far"].startswith("sloshdyn InputError"), outcomes
 
 
-@pytest.mark.xfail(strict=True, reason=CORE + "a bound on the work of an integration from a "
-                                                 "time estimate (or the state's size)")
 def test_a_simulation_from_a_huge_state_ends_within_the_bound(exe, tmp_path):
     """Found by the long fuzzing mode: &simulation y0 = 99999999999999999999 (every component
     1e20) runs past CASE_SECONDS instead of failing (exit 4) or being refused (exit 3)."""
