@@ -100,6 +100,8 @@ contains
     integer :: i
 
     history = 0
+    status = SD_OK
+    message = ''
     call check_initial_state(y0, status, message)
     if (status == SD_OK .and. size(tau_out) > 0) then
       span = tau_out(size(tau_out)) - tau0    ! non-finite or descending: integrate's checks
