@@ -85,7 +85,7 @@ def main(argv=None):
         print(f"sloshdyn-py: terminated; {_KEPT}", file=sys.stderr)
         return EXIT_TERMINATED
     except KeyboardInterrupt as exc:
-        print(f"sloshdyn-py: interrupted; {exc or _KEPT}", file=sys.stderr)
+        print(f"sloshdyn-py: interrupted; {str(exc) or _KEPT}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception:     # a defect of sloshdyn-py itself: its traceback, and not exit 1
         import traceback

@@ -200,6 +200,8 @@ def test_ctrl_c_during_a_long_computation_ends_it_within_a_second(exe, tmp_path,
         proc.communicate()
         pytest.fail(f"still running {CTRL_C_SECONDS} s after Ctrl-C")
     assert proc.returncode == 130 and "Traceback" not in stderr
+    # the message says what became of the files (it once ended in "interrupted; " and nothing)
+    assert stderr.strip() and not stderr.rstrip().endswith(";"), stderr
     assert final_files(tmp_path / "out") == set() and leftovers(tmp_path / "out") == set()
 
 
