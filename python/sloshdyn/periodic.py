@@ -56,7 +56,7 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
     if y0 is None:
         y0 = start_state(params, start)
     y0 = _checks.reals("y0", y0, (4,))
-    y, monodromy, multipliers, info, status, message = cancellable(_bridge.periodic_orbit, 
+    y, monodromy, multipliers, info, status, message = cancellable(_bridge.periodic_orbit,
         *params.arrays(), y0, periods, integration.array(), newton_tol, max_iter)
     check_status(status, message, "periodic orbit")
     return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
@@ -129,7 +129,7 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
         y0 = periodic_orbit(first, start_state(first, start), periods=periods,
                             integration=integration).y0
     settings = np.array([ds, ds_min, ds_max, x_scale, 1.0 if from_end == "low" else -1.0])
-    points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch, 
+    points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
         *first.arrays(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
         periods, lo, hi, settings, integration.array(), max_points, 100)
     lam = points[0, :n]

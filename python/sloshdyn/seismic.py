@@ -395,7 +395,7 @@ def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=In
     t_end, n_out = seismic_defaults(tank, ground_motion, t_end, n_out)
     _checks.output_size("n_out", n_out, len(_tables.columns("seismic")))
     ground, samples = _ground_arrays(ground_motion)
-    table, peaks, status, message = cancellable(_bridge.seismic_response, 
+    table, peaks, status, message = cancellable(_bridge.seismic_response,
         tank.array(), ground, samples, t_end, n_out, integration.array())
     check_status(status, message)
     response = SeismicResponse(tank, ground_motion, table.copy(), peaks.copy())
@@ -437,7 +437,7 @@ def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
     ground_array, _ = ground._arrays()
 
     def run(chunk, y, carry):
-        summaries, table, y_final, n_done, status, message = cancellable(_bridge.harmonic_sweep, 
+        summaries, table, y_final, n_done, status, message = cancellable(_bridge.harmonic_sweep,
             tank.array(), ground_array, chunk, y, integration.array(), steady.array(),
             int(carry), int(threads))
         return summaries, table, (y_final if carry else y), status, message

@@ -190,7 +190,7 @@ def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),
     Poincare points over a window, and judge the motion from them."""
     _settings(params, integration, steady)
     window = _checks.output_size("window_periods", max(steady.window_periods, 1), 4)
-    summary, poincare, y_end, counts, status, message = cancellable(_bridge.steady_state, 
+    summary, poincare, y_end, counts, status, message = cancellable(_bridge.steady_state,
         *params.arrays(), _state(y0), integration.array(), steady.array(), window)
     check_status(status, message, "steady state")
     result = _summary(summary, poincare, y_end)
@@ -248,10 +248,10 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
 
     def run(chunk, y, carry):
         if carry:
-            summaries, y, n_done, status, message = cancellable(_bridge.parameter_sweep, 
+            summaries, y, n_done, status, message = cancellable(_bridge.parameter_sweep,
                 *params.arrays(), which, chunk, y, integration.array(), steady.array())
         else:
-            summaries, n_done, status, message = cancellable(_bridge.independent_sweep, 
+            summaries, n_done, status, message = cancellable(_bridge.independent_sweep,
                 *params.arrays(), which, chunk, y, integration.array(), steady.array(),
                 int(threads))
         return summaries, None, y, status, message
