@@ -395,7 +395,8 @@ contains
               p2 = mod(j - 1, options%n_phases) + 1
               x(3:4) = radii(a2)*[cos(angles(p2)), sin(angles(p2))]
             end if
-            call newton_solve(flow, x, lambda, options%continuation%newton, iterations, info, msg)
+            call newton_solve(flow, x, lambda, options%continuation%newton, iterations, info, msg, &
+                              explain=.false.)
             if (info /= SD_OK .or. .not. all(ieee_is_finite(x))) cycle
             if (maxval(abs(x)) > 10*options%amplitude_max) cycle
             if (known(x, lambda)) cycle

@@ -177,14 +177,17 @@ module sloshdyn_continuation
 contains
 
   !> Newton's method for F(x, lambda) = 0 at fixed lambda; x is updated in place (on failure it
-  !> holds the last iterate). iterations = Jacobian solves done. Undamped.
-  subroutine newton_solve(sys, x, lambda, options, iterations, status, message)
+  !> holds the last iterate). iterations = Jacobian solves done. Undamped. explain = .false.
+  !> gives failure messages without the iterate's numbers: formatting them costs more than a
+  !> failed run, and scans of Newton starts (frequency_response) make thousands that fail.
+  subroutine newton_solve(sys, x, lambda, options, iterations, status, message, explain)
     class(parametrised_system), intent(in) :: sys
     real(wp), intent(inout) :: x(:)
     real(wp), intent(in) :: lambda
     type(newton_options), intent(in) :: options
     integer, intent(out) :: iterations, status
     character(len=message_len), intent(out) :: message
+    logical, intent(in), optional :: explain
     type(workspace) :: ws
 
     status = SD_OK
@@ -196,7 +199,7 @@ contains
                     'lambda must be finite', status, message)
     if (status /= SD_OK) return
     call setup_workspace(ws, size(x))
-    call newton_core(sys, x, lambda, options, ws, iterations, status, message)
+    call newton_core(sys, x, lambda, options, ws, iterations, status, message, explain)
   end subroutine newton_solve
 
   !> Follow the branch through (x0, lambda0) by pseudo-arclength continuation. x0 is first
@@ -655,8 +658,8 @@ contains
     g = t(merge(size(z), self%index, self%index == 0))
   end function tangent_component_value
 
-  !> Newton at fixed lambda, work arrays from ws.
-  subroutine newton_core(sys, x, lambda, options, ws, iterations, status, message)
+  !> Newton at fixed lambda, work arrays from ws (explain: as in newton_solve).
+  subroutine newton_core(sys, x, lambda, options, ws, iterations, status, message, explain)
     class(parametrised_system), intent(in) :: sys
     real(wp), intent(inout) :: x(:)
     real(wp), intent(in) :: lambda
@@ -664,9 +667,13 @@ contains
     type(workspace), intent(inout) :: ws
     integer, intent(out) :: iterations, status
     character(len=message_len), intent(out) :: message
+    logical, intent(in), optional :: explain
     real(wp) :: f_norm
     integer :: n
+    logical :: numbers
 
+    numbers = .true.
+    if (present(explain)) numbers = explain
     n = size(x)
     status = SD_OK
     message = ''
@@ -676,12 +683,14 @@ contains
       f_norm = maxval(abs(ws%f))
       if (.not. all(ieee_is_finite(ws%f))) then
         status = SD_NON_FINITE
-        message = 'F is NaN or infinite at Newton iteration '//num2str(iterations)// &
-                  ', lambda = '//num2str(lambda)//', max|x| = '//num2str(maxval(abs(x)))
+        message = 'F is NaN or infinite'
+        if (numbers) message = 'F is NaN or infinite at Newton iteration '//num2str(iterations)// &
+                               ', lambda = '//num2str(lambda)//', max|x| = '//num2str(maxval(abs(x)))
         return
       end if
       ws%r(1:n) = -ws%f
       call solve_linear(ws%fx, ws%r(1:n), status, message)
+      if (status /= SD_OK .and. .not. numbers) return
       if (status /= SD_OK) then
         message = 'dF/dx is singular at Newton iteration '//num2str(iterations)//', lambda = '// &
                   num2str(lambda)//', max|x| = '//num2str(maxval(abs(x)))//', max|F| = '// &
@@ -690,8 +699,10 @@ contains
       end if
       if (.not. all(ieee_is_finite(ws%r(1:n)))) then
         status = SD_NON_FINITE
-        message = 'the Newton step is NaN or infinite at iteration '//num2str(iterations)// &
-                  ', lambda = '//num2str(lambda)//', max|x| = '//num2str(maxval(abs(x)))
+        message = 'the Newton step is NaN or infinite'
+        if (numbers) message = 'the Newton step is NaN or infinite at iteration '// &
+                               num2str(iterations)//', lambda = '//num2str(lambda)// &
+                               ', max|x| = '//num2str(maxval(abs(x)))
         return
       end if
       x = x + ws%r(1:n)
@@ -700,6 +711,8 @@ contains
     end do
     iterations = options%max_iter
     status = SD_NOT_CONVERGED
+    message = 'Newton did not converge'
+    if (.not. numbers) return
     message = 'Newton did not converge in '//num2str(options%max_iter)//' iterations at '// &
               'lambda = '//num2str(lambda)//': max|x| = '//num2str(maxval(abs(x)))// &
               ', last max|F| = '//num2str(f_norm)

@@ -262,8 +262,8 @@ contains
     type(circle_and_line) :: sys
     type(newton_options) :: opt
     real(wp), parameter :: root = sqrt(2.0_wp)
-    real(wp) :: x(2), errors(0:8)
-    integer :: k, iterations, status
+    real(wp) :: x(2), x_quiet(2), errors(0:8)
+    integer :: k, iterations, status, iterations_quiet, status_quiet
     character(len=message_len) :: message
 
     errors(0) = maxval(abs([1.0_wp, 0.5_wp] - root))
@@ -307,6 +307,23 @@ contains
                     status == SD_NOT_CONVERGED .and. iterations == 20)
     call check_true('  and the message says where', index(message, 'lambda = -1') > 0 .and. &
                     index(message, 'max|F|') > 0)
+
+    ! explain = .false. (the seed scans) changes the message only: same iterate, same status
+    x_quiet = [1.0_wp, 0.5_wp]
+    call newton_solve(sys, x_quiet, -1.0_wp, newton_options(), iterations_quiet, status_quiet, &
+                      message, explain=.false.)
+    call check_true('explain = .false.: the same status, iterations and last iterate', &
+                    status_quiet == status .and. iterations_quiet == iterations .and. &
+                    all(x_quiet == x))
+    call check_true('  and a message without the numbers: '//trim(message), &
+                    trim(message) == 'Newton did not converge')
+    x = 0
+    x_quiet = 0
+    call newton_solve(sys, x, 4.0_wp, newton_options(), iterations, status, message)
+    call newton_solve(sys, x_quiet, 4.0_wp, newton_options(), iterations_quiet, status_quiet, &
+                      message, explain=.false.)
+    call check_true('explain = .false. from a singular Jacobian: the same status and iterate', &
+                    status_quiet == status .and. status == SD_SINGULAR .and. all(x_quiet == x))
   end subroutine test_newton
 
   !> x^2 + lambda^2 = 1 from (1, 0) upward: over the fold (0, 1), down the x < 0 half, over the
