@@ -142,37 +142,48 @@ contains
   !> steps (errors 2e-10 ... 3e-15; with 2 steps the ratio is still 8.5), and the forced
   !> oscillator at t = 10 with 20, 40, 80 steps (8e-9 ... 1e-13).
   subroutine test_fixed_step_order()
+    real(wp) :: err_ric(0:2), err_osc(0:2)
+
+    call fixed_step_errors(METHOD_DOP853, 'dop853', 4, 20, 12, err_ric, err_osc)
+    call check_orders('order of y, riccati', err_ric, 8.0_wp, 0.5_wp)
+    call check_orders('order of y, oscillator', err_osc, 8.0_wp, 0.5_wp)
+  end subroutine test_fixed_step_order
+
+  !> Errors at the end of fixed-step runs of n, 2n, 4n steps (n = ric_steps, osc_steps): the
+  !> riccati problem to t = 1 and the forced oscillator to t = 10. One output at the end only,
+  !> so no dense stages: stages evaluations per step + f(t0), and no step rejected.
+  subroutine fixed_step_errors(method, name, ric_steps, osc_steps, stages, err_ric, err_osc)
+    integer, intent(in) :: method, ric_steps, osc_steps, stages
+    character(len=*), intent(in) :: name
+    real(wp), intent(out) :: err_ric(0:2), err_osc(0:2)
     type(riccati) :: ric
     type(oscillator) :: osc
     type(ode_options) :: opt
     type(ode_stats) :: stats
-    real(wp) :: err_ric(0:2), err_osc(0:2), y1(1, 1), y2(2, 1)
+    real(wp) :: y1(1, 1), y2(2, 1)
     integer :: i, status, n_steps
     character(len=message_len) :: message
 
     do i = 0, 2
-      n_steps = 4*2**i
+      n_steps = ric_steps*2**i
       opt%fixed_step = 1.0_wp/n_steps
-      call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
-      call check_true('fixed steps on riccati: '//num2str(n_steps)//' steps, none rejected', &
-                      status == SD_OK .and. stats%n_accepted == n_steps .and. &
+      call integrate(method, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
+      call check_true(name//', fixed steps on riccati: '//num2str(n_steps)//' steps, none '// &
+                      'rejected', status == SD_OK .and. stats%n_accepted == n_steps .and. &
                       stats%n_rejected == 0)
       err_ric(i) = abs(y1(1, 1) - ric%exact(1.0_wp))
 
-      n_steps = 20*2**i
+      n_steps = osc_steps*2**i
       opt%fixed_step = 10.0_wp/n_steps
-      call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, status, &
-                            message)
-      call check_true('fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
+      call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, &
+                     status, message)
+      call check_true(name//', fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
                       status == SD_OK .and. stats%n_accepted == n_steps)
-      ! one output at the end only: no dense stages, 12 evaluations per step + f(t0)
-      call check_true('fixed steps without dense output: n_rhs = 12 steps + 1', &
-                      stats%n_rhs == 12*n_steps + 1)
+      call check_true(name//' without dense output: n_rhs = '//num2str(stages)// &
+                      ' per step + 1', stats%n_rhs == stages*n_steps + 1)
       err_osc(i) = maxval(abs(y2(:, 1) - osc%exact(10.0_wp)))
     end do
-    call check_orders('order of y, riccati', err_ric, 8.0_wp, 0.5_wp)
-    call check_orders('order of y, oscillator', err_osc, 8.0_wp, 0.5_wp)
-  end subroutine test_fixed_step_order
+  end subroutine fixed_step_errors
 
   !> The continuous extension (CONTD8) has order 7: one step of size h from the exact y(t0)
   !> leaves an error C(theta) h**8 inside the step (exponent 8 = order + 1; the end point, of
@@ -526,33 +537,9 @@ contains
   !> a larger pre-asymptotic excess (10.8, 10.6) and only has to show at least order 9. 16
   !> evaluations per step without dense output.
   subroutine test_vern9_fixed_step_order()
-    type(riccati) :: ric
-    type(oscillator) :: osc
-    type(ode_options) :: opt
-    type(ode_stats) :: stats
-    real(wp) :: err_ric(0:2), err_osc(0:2), y1(1, 1), y2(2, 1)
-    integer :: i, status, n_steps
-    character(len=message_len) :: message
+    real(wp) :: err_ric(0:2), err_osc(0:2)
 
-    do i = 0, 2
-      n_steps = 2*2**i
-      opt%fixed_step = 1.0_wp/n_steps
-      call integrate(METHOD_VERN9, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, &
-                     message)
-      call check_true('vern9, fixed steps on riccati: '//num2str(n_steps)//' steps', &
-                      status == SD_OK .and. stats%n_accepted == n_steps)
-      err_ric(i) = abs(y1(1, 1) - ric%exact(1.0_wp))
-
-      n_steps = 10*2**i
-      opt%fixed_step = 10.0_wp/n_steps
-      call integrate(METHOD_VERN9, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, &
-                     status, message)
-      call check_true('vern9, fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
-                      status == SD_OK .and. stats%n_accepted == n_steps)
-      call check_true('vern9 without dense output: n_rhs = 16 steps + 1', &
-                      stats%n_rhs == 16*n_steps + 1)
-      err_osc(i) = maxval(abs(y2(:, 1) - osc%exact(10.0_wp)))
-    end do
+    call fixed_step_errors(METHOD_VERN9, 'vern9', 2, 10, 16, err_ric, err_osc)
     call check_orders('vern9, order of y, riccati', err_ric, 10.0_wp, 1.0_wp)
     call check_orders('vern9, order of y, oscillator', err_osc, 9.5_wp, 0.5_wp)
   end subroutine test_vern9_fixed_step_order
