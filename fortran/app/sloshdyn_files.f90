@@ -1,11 +1,20 @@
 !> File-system calls of the front doors (POSIX, through C): create a directory with its parents,
-!> rename and remove files, and create a file under a unique temporary name (mkstemp: unique
-!> across processes and threads, so runs sharing a directory never collide).
+!> rename and remove files, create a file under a unique temporary name (mkstemp: unique
+!> across processes and threads, so runs sharing a directory never collide), tell a regular
+!> file from a FIFO or a device before it is opened (stat, in sloshdyn_file_type.c), and check
+!> that standard output still takes writes.
 module sloshdyn_files
-  use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+  use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char, c_int64_t, c_size_t, &
+                                         c_ptrdiff_t
+  use, intrinsic :: iso_fortran_env, only: int64, output_unit
   implicit none
   private
-  public :: make_directory, rename_file, remove_file, unique_file, process_id
+  public :: make_directory, rename_file, remove_file, unique_file, process_id, file_type, &
+            standard_output_writable
+  !> Kinds of file_type: no such file, a regular file, a directory, anything else (a FIFO, a
+  !> device, a socket), and a file stat could not look at (e.g. permission denied).
+  integer, parameter, public :: FILE_MISSING = 0, FILE_REGULAR = 1, FILE_DIRECTORY = 2, &
+                                FILE_OTHER = 3, FILE_UNKNOWN = -1
 
   interface
     integer(c_int) function c_mkdir(path, mode) bind(c, name='mkdir')
@@ -36,6 +45,17 @@ module sloshdyn_files
       import :: c_int
       integer(c_int), value :: fd
     end function c_close
+    integer(c_int) function c_file_type(path, size) bind(c, name='sloshdyn_file_type')
+      import :: c_char, c_int, c_int64_t
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_int64_t), intent(out) :: size
+    end function c_file_type
+    integer(c_ptrdiff_t) function c_write(fd, buffer, count) bind(c, name='write')
+      import :: c_char, c_int, c_size_t, c_ptrdiff_t
+      integer(c_int), value :: fd
+      character(kind=c_char), intent(in) :: buffer(*)
+      integer(c_size_t), value :: count
+    end function c_write
   end interface
 
 contains
@@ -89,6 +109,27 @@ contains
       path(i:i) = template(i)
     end do
   end subroutine unique_file
+
+  !> What path is (FILE_MISSING, FILE_REGULAR, FILE_DIRECTORY, FILE_OTHER or FILE_UNKNOWN),
+  !> without opening it; size: its bytes when it is a regular file, else 0.
+  subroutine file_type(path, kind, size)
+    character(len=*), intent(in) :: path
+    integer, intent(out) :: kind
+    integer(int64), intent(out) :: size
+    integer(c_int64_t) :: bytes
+    kind = c_file_type(path//c_null_char, bytes)
+    size = bytes
+  end subroutine file_type
+
+  !> Whether standard output takes writes: gfortran's writes and flushes of it report no
+  !> error (a full disk or /dev/full loses the text silently), so the buffered text is flushed
+  !> and an empty write(2) asks the file itself (it fails on /dev/full or a closed descriptor).
+  logical function standard_output_writable() result(ok)
+    character(kind=c_char) :: nothing(1)
+    flush (output_unit)
+    nothing = ' '
+    ok = c_write(1_c_int, nothing, 0_c_size_t) == 0
+  end function standard_output_writable
 
   integer function process_id()
     process_id = c_getpid()

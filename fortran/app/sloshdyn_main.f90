@@ -1,20 +1,26 @@
 !> The `sloshdyn` executable: reads a namelist input file, validates all of it, runs the requested
 !> analysis (sloshdyn_driver: a summary on standard output, CSV files in the output directory)
 !> and turns the status into an exit code -- the only place that does (the table is in
-!> sloshdyn_status). SIGINT and SIGTERM cancel the run: its temporaries are removed and the exit
-!> code is 128 + the signal.
+!> sloshdyn_status). SIGINT and SIGTERM end the run, while it reads (at once: nothing is
+!> written yet) or computes (cancelled: its temporaries are removed); the exit code is 128 +
+!> the signal. Standard output that takes no writes (/dev/full, a closed descriptor) is a
+!> failed write: exit 5 before anything runs. (gfortran reports no error on writes to standard
+!> output, so a disk that fills during the run cannot be told.)
 program sloshdyn_main
   use sloshdyn_kinds, only: message_len
-  use sloshdyn_status, only: SD_OK, SD_CANCELLED, exit_code, EXIT_USAGE
+  use sloshdyn_status, only: SD_OK, exit_code, EXIT_USAGE, EXIT_IO
   use sloshdyn_cancel, only: cancel_signal
-  use sloshdyn_signals, only: install_signal_handlers
+  use sloshdyn_signals, only: install_exit_handlers, install_signal_handlers
   use sloshdyn_namelist, only: run_config, read_input
   use sloshdyn_driver, only: run_analysis
+  use sloshdyn_files, only: standard_output_writable
   use sloshdyn_text, only: num2str
   implicit none
 
   character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (see README.md for the '// &
                                          'namelist groups and variables)'
+  character(len=*), parameter :: no_output = 'standard output takes no writes (a full disk or '// &
+                                             'device, or closed): the summary would be lost'
   character(len=:), allocatable :: path
   character(len=message_len) :: message
   type(run_config) :: config
@@ -28,11 +34,13 @@ program sloshdyn_main
     print '(a)', usage
     stop
   end if
-  call install_signal_handlers()
+  if (.not. standard_output_writable()) call finish(EXIT_IO, no_output)
+  call install_exit_handlers()
   call read_input(path, config, status, message)
   if (status /= SD_OK) call finish(exit_code(status, reading=.true.), trim(message))
+  call install_signal_handlers()
   call run_analysis(config, status, message)
-  if (status == SD_CANCELLED .and. cancel_signal() > 0) &
+  if (status /= SD_OK .and. cancel_signal() > 0) &
     call finish(128 + cancel_signal(), 'signal '//num2str(cancel_signal())//': '//trim(message))
   if (status /= SD_OK) call finish(exit_code(status, reading=.false.), trim(message))
 

@@ -4,19 +4,26 @@
 !> wrong. Files are opened read-only and never modified.
 !>
 !> .AT2 (PEER NGA): 4 header lines; the 4th gives the number of points and the step, in either
-!> form "NPTS=  5590, DT=   .0050 SEC" (any spacing, either order, with or without the unit) or,
-!> in older files, "5590   0.0050   NPTS, DT"; then the NPTS values in units of g, several per
-!> line, separated by blanks (or commas).
+!> form "NPTS=  5590, DT=   .0050 SEC" (any spacing, blanks or tabs, either order, with or
+!> without the unit) or, in older files, "5590   0.0050   NPTS, DT"; then the NPTS values in
+!> units of g, several per line, separated by blanks (or commas).
 !>
 !> Two-column files: one sample per line, "time, acceleration" separated by commas, semicolons
 !> or blanks (tabs included); blank lines and lines whose first non-blank character is # are
-!> skipped. The time step must be uniform: every step within 1e-6 (relative) of the first; the
-!> dt returned is the mean step (t_last - t_first)/(n - 1). The caller gives the units of the
-!> acceleration (UNITS_G, UNITS_M_S2, UNITS_CM_S2; units_code maps their names).
+!> skipped, and so is the first other line when its first field is not a number (one line of
+!> column names such as "time_s,accel_g"). The time step must be uniform: every step within
+!> 1e-6 (relative) of the first; the dt returned is the mean step (t_last - t_first)/(n - 1).
+!> The caller gives the units of the acceleration (UNITS_G, UNITS_M_S2, UNITS_CM_S2;
+!> units_code maps their names).
+!>
+!> Only a regular file of at most 1 GiB is read (read_text): a FIFO, a device or a directory is
+!> refused before it is opened. Messages quote at most 40 characters of the file, escaped.
 module sloshdyn_records
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR
   use sloshdyn_text, only: num2str
+  use sloshdyn_files, only: file_type, FILE_MISSING, FILE_REGULAR, FILE_DIRECTORY, FILE_OTHER
+  use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
   public :: read_at2, read_two_column, load_record, units_code, units_factor
@@ -28,6 +35,10 @@ module sloshdyn_records
   real(wp), parameter :: standard_gravity = 9.80665_wp
   !> Relative tolerance on the uniformity of the time step of two-column files.
   real(wp), parameter :: step_tolerance = 1.0e-6_wp
+  !> The largest record file read [bytes]: 1 GiB, some 70 million samples of AT2 text.
+  integer(int64), parameter :: max_record_bytes = 2_int64**30
+  !> The most characters of a file quoted in a message (escaped, sloshdyn_records excerpt).
+  integer, parameter :: excerpt_len = 40
   character(len=*), parameter :: separators = ' ,;'//char(9)
   character(len=*), parameter :: number_characters = '0123456789+-.eEdD'
 
@@ -224,7 +235,7 @@ contains
       read (npts_text, *, iostat=ios) npts
     if (ios /= 0) then
       status = SD_BAD_INPUT
-      message = 'malformed AT2 header: no number of points NPTS in '''//trim(line)//''''//expected
+      message = 'malformed AT2 header: no number of points NPTS in '//excerpt(trim(line))//expected
       return
     end if
     ios = 1
@@ -232,15 +243,16 @@ contains
       read (dt_text, *, iostat=ios) dt
     if (ios /= 0 .or. .not. (dt > 0 .and. dt <= huge(dt))) then
       status = SD_BAD_INPUT
-      message = 'malformed AT2 header: no time step DT > 0 in '''//trim(line)//''''//expected
+      message = 'malformed AT2 header: no time step DT > 0 in '//excerpt(trim(line))//expected
     end if
   end subroutine parse_at2_header
 
-  !> The number text after "key =" (blanks allowed around =), '' if key = is absent. The text
-  !> ends at the first character that cannot be part of a number.
+  !> The number text after "key =" (blanks or tabs allowed around =), '' if key = is absent.
+  !> The text ends at the first character that cannot be part of a number.
   pure function value_after(line, key) result(text)
     character(len=*), intent(in) :: line, key
     character(len=:), allocatable :: text
+    character(len=*), parameter :: blanks = ' '//char(9)
     integer :: start, i, equals
     text = ''
     start = 1
@@ -248,7 +260,7 @@ contains
       i = index(line(start:), key)
       if (i == 0) return
       i = start + i - 1 + len(key)
-      equals = verify(line(i:), ' ')
+      equals = verify(line(i:), blanks)
       if (equals > 0) then
         equals = i + equals - 1
         if (line(equals:equals) == '=') exit
@@ -257,7 +269,7 @@ contains
     end do
     i = equals + 1
     do while (i <= len(line))
-      if (line(i:i) /= ' ') exit
+      if (index(blanks, line(i:i)) == 0) exit
       i = i + 1
     end do
     start = i
@@ -342,7 +354,7 @@ contains
     integer :: position, first, last, line_number, from, after, n_tokens, lead
     character(len=:), allocatable :: token
     real(wp) :: pair(2), step, first_step
-    logical :: found
+    logical :: found, first_line
 
     status = SD_OK
     message = ''
@@ -350,6 +362,7 @@ contains
     position = 1
     line_number = 0
     first_step = 0
+    first_line = .true.
     do
       call next_line(text, position, first, last, found)
       if (.not. found) exit
@@ -357,6 +370,11 @@ contains
       lead = verify(text(first:last), separators(1:1)//char(9))
       if (lead == 0) cycle                                   ! blank line
       if (text(first + lead - 1:first + lead - 1) == '#') cycle   ! comment line
+      if (first_line) then
+        first_line = .false.
+        call next_token(text(1:last), first, token, after)
+        if (is_header(token)) cycle                          ! column names: time_s,accel_g
+      end if
       n_tokens = 0
       from = first
       do
@@ -400,6 +418,19 @@ contains
     end do
   end subroutine scan_columns
 
+  !> Whether the first field of a two-column file's first line names a column (time_s) rather
+  !> than giving a value: it is not a number, nor a NaN or an infinity (which are errors).
+  logical function is_header(token)
+    character(len=*), intent(in) :: token
+    real(wp) :: value
+    integer :: status
+    character(len=message_len) :: message
+    is_header = .false.
+    if (index(lower(token), 'nan') > 0 .or. index(lower(token), 'inf') > 0) return
+    call parse_number(token, value, status, message)
+    is_header = status /= SD_OK
+  end function is_header
+
   !> A finite real from a token of digits, signs, point and exponent letters; the message says
   !> what is wrong (NaN or infinite, not a number, out of range).
   subroutine parse_number(token, value, status, message)
@@ -416,7 +447,7 @@ contains
     word = lower(token)
     if (index(word, 'nan') > 0 .or. index(word, 'inf') > 0) then
       status = SD_BAD_INPUT
-      message = ''''//token//''' is not finite (NaN or infinite values are not allowed)'
+      message = excerpt(token)//' is not finite (NaN or infinite values are not allowed)'
       return
     end if
     ios = 1
@@ -424,43 +455,55 @@ contains
       read (token, *, iostat=ios) value
     if (ios /= 0) then
       status = SD_BAD_INPUT
-      message = ''''//token//''' is not a number'
+      message = excerpt(token)//' is not a number'
     else if (.not. abs(value) <= huge(value)) then
       status = SD_BAD_INPUT
-      message = ''''//token//''' is out of range (not finite)'
+      message = excerpt(token)//' is out of range (not finite)'
     end if
   end subroutine parse_number
 
-  !> The whole file as one string, read-only; refuses missing files and directories.
+  !> The whole file as one string, read-only. Only a regular file of at most max_record_bytes
+  !> is read: a missing file, a directory, a FIFO (opening it would wait for a writer) or a
+  !> device (/dev/zero never ends) is refused before it is opened.
   subroutine read_text(path, text, status, message)
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(out) :: text
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     character(len=message_len) :: iomsg
-    integer :: unit, ios, file_size
-    logical :: exists, directory
+    integer :: unit, ios, kind
+    integer(int64) :: file_size
 
     status = SD_OK
     message = ''
-    inquire (file=trim(path), exist=exists)
-    if (.not. exists) then
+    if (len_trim(path) < len(path)) then
+      ! Fortran pads names with blanks: 'a.AT2 ' would open a.AT2, another file
+      call fail(SD_BAD_INPUT, path, 0, 'the name ends in a blank: a record file''s name must '// &
+                'not end in blanks', status, message)
+      return
+    end if
+    call file_type(path, kind, file_size)
+    select case (kind)
+    case (FILE_MISSING)
       call fail(SD_IO_ERROR, path, 0, 'no such file', status, message)
-      return
-    end if
-    inquire (file=trim(path)//'/.', exist=directory)
-    if (directory) then
+    case (FILE_DIRECTORY)
       call fail(SD_IO_ERROR, path, 0, 'it is a directory, not a record file', status, message)
-      return
-    end if
-    open (newunit=unit, file=trim(path), status='old', action='read', access='stream', &
+    case (FILE_OTHER)
+      call fail(SD_IO_ERROR, path, 0, 'it is not a regular file (a FIFO, a device or a '// &
+                'socket): only regular files are read as records', status, message)
+    case (FILE_REGULAR)
+      if (file_size > max_record_bytes) call fail(SD_IO_ERROR, path, 0, 'it has '// &
+        num2str(real(file_size, wp))//' bytes, more than the '//num2str(real(max_record_bytes, wp))// &
+        ' bytes (1 GiB) a record file may have', status, message)
+    end select
+    if (status /= SD_OK) return
+    open (newunit=unit, file=path, status='old', action='read', access='stream', &
           form='unformatted', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
       call fail(SD_IO_ERROR, path, 0, 'cannot open it: '//trim(iomsg), status, message)
       return
     end if
-    inquire (unit=unit, size=file_size)
-    allocate (character(len=max(file_size, 0)) :: text)
+    allocate (character(len=file_size) :: text)
     if (file_size > 0) then
       read (unit, iostat=ios, iomsg=iomsg) text
       if (ios /= 0) call fail(SD_IO_ERROR, path, 0, 'cannot read it: '//trim(iomsg), status, &
@@ -509,10 +552,31 @@ contains
     character(len=*), intent(in) :: path, what
     integer, intent(in) :: line_number
     character(len=:), allocatable :: text
-    text = 'record file '''//trim(path)//''''
+    text = 'record file '''//path//''''
     if (line_number > 0) text = text//', line '//num2str(line_number)
     text = text//': '//what
   end function located
+
+  !> text quoted, at most excerpt_len characters of it ('...' after the quote when cut), every
+  !> character outside printable ASCII shown as \xNN: a message never carries a file's raw bytes.
+  pure function excerpt(text) result(quoted)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: quoted
+    character(len=*), parameter :: hex = '0123456789abcdef'
+    integer :: i, code
+    quoted = ''''
+    do i = 1, min(len(text), excerpt_len)
+      code = modulo(ichar(text(i:i)), 256)
+      if (code >= 32 .and. code <= 126) then
+        quoted = quoted//text(i:i)
+      else
+        quoted = quoted//'\x'//hex(code/16 + 1:code/16 + 1)// &
+                 hex(mod(code, 16) + 1:mod(code, 16) + 1)
+      end if
+    end do
+    quoted = quoted//''''
+    if (len(text) > excerpt_len) quoted = quoted//'...'
+  end function excerpt
 
   pure function lower(text) result(low)
     character(len=*), intent(in) :: text
