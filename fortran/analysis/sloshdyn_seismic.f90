@@ -9,7 +9,8 @@
 module sloshdyn_seismic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CANCELLED, check_real
+  use sloshdyn_cancel, only: check_cancel
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
   use sloshdyn_motion, only: equations_of_motion
@@ -38,6 +39,8 @@ module sloshdyn_seismic
   !> most this many outputs in all.
   integer, parameter :: outputs_per_period = 50, outputs_per_support_period = 20, &
                         max_seismic_outputs = 10000000
+  !> Outputs between two polls of the cancellation flag (sloshdyn_cancel) in the loads loop.
+  integer, parameter :: outputs_per_poll = 4096
 
 contains
 
@@ -60,8 +63,9 @@ contains
     if (ground%kind == GROUND_RECORD) then
       ! the record's own step if it is fine enough, so that outputs fall on its samples
       if (ground%dt <= dt_out) dt_out = ground%dt
-      if (t_end <= 0) t_end = dt_out*ceiling((ground_duration(ground) + free_periods* &
-                                              props%sloshing_period)/dt_out)
+      ! a whole number of output steps (a real ceiling: the count may exceed any integer)
+      if (t_end <= 0) t_end = dt_out*real_ceiling((ground_duration(ground) + free_periods* &
+                                                   props%sloshing_period)/dt_out)
     else
       dt_out = min(dt_out, 1/(outputs_per_period*ground%frequency))
       if (t_end <= 0) t_end = harmonic_periods/ground%frequency
@@ -69,9 +73,17 @@ contains
     if (n_out <= 0) n_out = nint(min(t_end/dt_out, real(max_seismic_outputs - 1, wp))) + 1
   end subroutine seismic_defaults
 
+  !> The least whole number >= x (x >= 0), as a real.
+  elemental real(wp) function real_ceiling(x)
+    real(wp), intent(in) :: x
+    real_ceiling = aint(x)
+    if (real_ceiling < x) real_ceiling = real_ceiling + 1
+  end function real_ceiling
+
   !> The response of the tank, at rest at t = 0, to the ground motion, at n_out times evenly
   !> spaced over [0, t_end] [s]: table(SEISMIC_ROWS, n_out) and the peaks. On failure the times
-  !> reached are filled, the rest NaN.
+  !> reached are filled, the rest NaN. A cancellation request stops it within one integrator
+  !> step or outputs_per_poll outputs (SD_CANCELLED).
   subroutine seismic_response(tank, ground, t_end, n_out, options, method, table, peaks, &
                               status, message)
     type(tank_t), intent(in) :: tank
@@ -110,6 +122,8 @@ contains
                       run_message)
     do i = 1, n_out
       if (tau(i) > stats%t_reached) exit
+      if (mod(i, outputs_per_poll) == 0) call check_cancel(run_status, run_message)
+      if (run_status == SD_CANCELLED) exit
       call equations_of_motion(model, tau(i), history(1:4, i), dydt)
       table(1:LOAD_ROWS, i) = tank_loads(tank, props, model, tau(i), history(1:4, i), dydt, &
                                          props%rod_length*props%omega**2* &

@@ -24,6 +24,7 @@ module sloshdyn_stability_chart
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CAPACITY, check_real
   use sloshdyn_text, only: num2str
+  use sloshdyn_cancel, only: check_cancel
   use sloshdyn_model, only: model_t, set_coefficients
   use sloshdyn_lapack, only: eigenvalues, solve_linear
   use sloshdyn_ode, only: ode_options, ode_stats
@@ -261,7 +262,8 @@ contains
         if (curve_status /= SD_OK) chart%complete = .false.
       end do
     end do
-    call mark_near_curves(chart, settings)
+    call mark_near_curves(chart, settings, status, message)
+    if (status /= SD_OK) return
     if (settings%brute_force_starts > 0) call brute_force_counts(field, settings, chart%cells, &
                                                                  run_status, run_message)
     if (settings%brute_force_starts > 0 .and. run_status /= SD_OK .and. status == SD_OK) then
@@ -280,6 +282,10 @@ contains
       logical :: complete
       n_seeds(l) = 0
       seeds(:, :, l) = 0
+      level_status(l) = SD_OK
+      level_message(l) = ''
+      call check_cancel(level_status(l), level_message(l))   ! the levels left after a request
+      if (level_status(l) /= SD_OK) return
       associate (row => chart%cells(:, (l - 1)*size(columns) + 1:l*size(columns)))
         if (settings%model == CHART_FULL) then
           ! the branch of orbits continued from the steady state reached from rest
@@ -426,14 +432,19 @@ contains
     end do
   end subroutine count_cells
 
-  !> Mark the cells within half a cell of a curve point (in both directions).
-  pure subroutine mark_near_curves(chart, settings)
+  !> Mark the cells within half a cell of a curve point (in both directions); a cancellation
+  !> request (sloshdyn_cancel) stops it at the next cell: SD_CANCELLED.
+  subroutine mark_near_curves(chart, settings, status, message)
     type(chart_result), intent(inout) :: chart
     type(chart_settings), intent(in) :: settings
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
     real(wp) :: half(2)
     integer :: c, j, i
     half = (settings%p_max - settings%p_min)/[settings%n_columns, settings%n_levels]/2
     do i = 1, size(chart%cells, 2)
+      call check_cancel(status, message)
+      if (status /= SD_OK) return
       do c = 1, chart%n_curves
         do j = 1, chart%curves(c)%n_points
           if (abs(chart%curves(c)%p(1, j) - chart%cells(1, i)) <= half(1) .and. &

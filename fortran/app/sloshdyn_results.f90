@@ -15,13 +15,16 @@ module sloshdyn_results
   use, intrinsic :: iso_fortran_env, only: int64
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_IO_ERROR
-  use sloshdyn_cancel, only: check_cancel
+  use sloshdyn_cancel, only: check_cancel, cancel_signal
   use sloshdyn_text, only: num2str
   use sloshdyn_tables, only: table_header, table_formats, code_name
   use sloshdyn_files, only: make_directory, rename_file, remove_file, unique_file
   implicit none
   private
   public :: result_files
+
+  !> Rows written between two polls of the cancellation flag.
+  integer, parameter :: rows_per_poll = 4096
 
   type :: pending_file
     character(len=:), allocatable :: final, temporary
@@ -158,6 +161,11 @@ contains
       write (unit, '(a)', iostat=ios, iomsg=iomsg) line(1:length)
       if (ios /= 0) return
       bytes = bytes + length + 1
+      if (mod(j, rows_per_poll) == 0 .and. cancel_signal() /= 0) then
+        ios = -1          ! the caller discards the file; the run ends cancelled
+        iomsg = 'stopped on request (Ctrl-C, SIGTERM or request_cancel)'
+        return
+      end if
     end do
   end subroutine write_rows
 

@@ -9,6 +9,7 @@ module sloshdyn_ground
   use sloshdyn_text, only: num2str
   use sloshdyn_samples, only: check_samples, sampled_value
   use sloshdyn_excitation, only: excitation_t, record_excitation, EXCITATION_HARMONIC
+  use sloshdyn_model, only: max_excitation
   use sloshdyn_sdof, only: response_spectrum
   implicit none
   private
@@ -19,6 +20,11 @@ module sloshdyn_ground
   integer, parameter :: GROUND_HARMONIC = 1, GROUND_RECORD = 2
   !> Samples per period when a harmonic motion is sampled for its spectrum.
   integer, parameter :: samples_per_period = 200
+  !> The finest time step of a record [s] (a thousand times finer than a 1 kHz accelerograph)
+  !> and its longest duration (n - 1) dt [s] (11.6 days; earthquakes last minutes): beyond
+  !> them the output grid of a response (t_end/dt outputs) and the spectra's free-vibration
+  !> tails (5 periods/dt steps) no longer fit a count.
+  real(wp), parameter, public :: min_record_step = 1.0e-6_wp, max_record_duration = 1.0e6_wp
 
   type :: ground_motion_t
     integer :: kind = GROUND_HARMONIC
@@ -46,8 +52,9 @@ contains
     allocate (ground%acceleration, source=acceleration)
   end function record_ground
 
-  !> The rules of a ground motion: a harmonic one with a >= 0 and f > 0; a record with dt > 0
-  !> and at least 2 finite samples.
+  !> The rules of a ground motion: a harmonic one with a >= 0 and f > 0; a record with dt >=
+  !> min_record_step, at least 2 finite samples and a duration (n - 1) dt of at most
+  !> max_record_duration.
   pure subroutine check_ground(ground, status, message)
     type(ground_motion_t), intent(in) :: ground
     integer, intent(out) :: status
@@ -63,8 +70,9 @@ contains
                       message)
       return
     end if
-    call check_real('dt', ground%dt, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    'the time step of a record must be > 0 [s]', status, message)
+    call check_real('dt', ground%dt, min_record_step, huge(1.0_wp), .false., .true., &
+                    'the time step of a record must be at least '//num2str(min_record_step)// &
+                    ' s', status, message)
     if (status /= SD_OK) return
     if (.not. allocated(ground%acceleration)) then
       status = SD_BAD_INPUT
@@ -72,6 +80,11 @@ contains
     else
       call check_samples('the record', ground%acceleration, ground%dt, status, message)
     end if
+    if (status == SD_OK) call check_real('the record''s duration (n - 1) dt', &
+      ground_duration(ground), 0.0_wp, max_record_duration, .false., .false., &
+      'a record ('//num2str(size(ground%acceleration))//' samples at dt = '// &
+      num2str(ground%dt)//' s) may last at most '//num2str(max_record_duration)//' s', &
+      status, message)
   end subroutine check_ground
 
   !> u''(t) [m/s^2].
@@ -107,6 +120,17 @@ contains
       excitation%kind = EXCITATION_HARMONIC
       excitation%rho = 2*pi*ground%frequency/omega
       excitation%A = ground%peak_acceleration/(rod_length*(2*pi*ground%frequency)**2)
+      ! the rules of &excitation's rho and A, in the ground motion's terms
+      call check_real('frequency', ground%frequency, 0.0_wp, max_excitation*omega/(2*pi), &
+                      .true., .false., 'it gives rho = 2 pi f/omega = '// &
+                      num2str(excitation%rho)//', and the model takes rho <= '// &
+                      num2str(max_excitation)//': the frequency must be at most '// &
+                      num2str(max_excitation*omega/(2*pi))//' Hz', status, message)
+      call check_real('peak_acceleration', ground%peak_acceleration, 0.0_wp, &
+                      max_excitation*rod_length*(2*pi*ground%frequency)**2, .false., .false., &
+                      'it gives A = a/(L (2 pi f)^2) = '//num2str(excitation%A)// &
+                      ', and the model takes A <= '//num2str(max_excitation)//' at f = '// &
+                      num2str(ground%frequency)//' Hz', status, message)
     else
       call record_excitation(ground%acceleration/(rod_length*omega**2), omega*ground%dt, &
                              excitation, status, message)
@@ -118,8 +142,8 @@ contains
   !> [m/s^2] at each period [s] for the damping ratio, followed by a free-vibration tail of
   !> tail_duration [s] so that late peaks count. Harmonic motion is sampled at 200 points per
   !> period over `duration` seconds.
-  pure subroutine ground_spectrum(ground, periods, damping, tail_duration, duration, sd, sv, &
-                                  psa, status, message)
+  subroutine ground_spectrum(ground, periods, damping, tail_duration, duration, sd, sv, &
+                             psa, status, message)
     type(ground_motion_t), intent(in) :: ground
     real(wp), intent(in) :: periods(:), damping, tail_duration, duration
     real(wp), intent(out) :: sd(size(periods)), sv(size(periods)), psa(size(periods))
@@ -170,7 +194,7 @@ contains
   end subroutine scale_to_pga
 
   !> Scale so that the pseudo-spectral acceleration at period [s] (damping ratio) is sa [m/s^2].
-  pure subroutine scale_to_sa(ground, sa, period, damping, status, message)
+  subroutine scale_to_sa(ground, sa, period, damping, status, message)
     type(ground_motion_t), intent(inout) :: ground
     real(wp), intent(in) :: sa, period, damping
     integer, intent(out) :: status
@@ -200,8 +224,8 @@ contains
   !> Scale by at most one of: a factor (1 = unscaled), a peak ground acceleration target_pga
   !> [m/s^2] (0 = none), or a pseudo-spectral acceleration target_sa [m/s^2] (0 = none) at
   !> target_period [s] for the damping ratio target_damping.
-  pure subroutine scale_ground(ground, scale_factor, target_pga, target_sa, target_period, &
-                               target_damping, status, message)
+  subroutine scale_ground(ground, scale_factor, target_pga, target_sa, target_period, &
+                          target_damping, status, message)
     type(ground_motion_t), intent(inout) :: ground
     real(wp), intent(in) :: scale_factor, target_pga, target_sa, target_period, target_damping
     integer, intent(out) :: status

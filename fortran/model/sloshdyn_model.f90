@@ -12,7 +12,7 @@ module sloshdyn_model
   implicit none
   private
   public :: model_t, model_from_arrays, model_to_arrays, model_from_physical, set_coefficients
-  public :: require_stable_trivial, n_real_params, n_int_params, real_param_names
+  public :: require_stable_trivial, n_real_params, n_int_params, real_param_names, max_excitation
 
   integer, parameter :: n_real_params = 10, n_int_params = 2
   !> Largest allowed groups: beyond them the equations are stiffer than an explicit integrator can

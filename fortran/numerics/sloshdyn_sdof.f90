@@ -19,12 +19,17 @@ module sloshdyn_sdof
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
+  use sloshdyn_cancel, only: check_cancel
   implicit none
   private
   public :: nigam_jennings_coefficients, sdof_response, response_spectrum
 
   !> omega dt below which the coefficients come from the series (see the module comment).
   real(wp), parameter :: series_below = 1.0_wp
+  !> The most steps of the free-vibration tail of a spectrum, and the steps between two polls
+  !> of the cancellation flag (sloshdyn_cancel) in the spectrum's loops.
+  real(wp), parameter :: max_tail_steps = 1.0e9_wp
+  integer, parameter :: steps_per_poll = 65536
 
 contains
 
@@ -87,9 +92,12 @@ contains
   !> (sloshdyn_excitation): free vibration from the end state, sampled at the record's step,
   !> also for a record that stops at a nonzero acceleration. The default 0 gives the peak over
   !> the record alone, the usual convention of published spectra; a tail of about the longest
-  !> period catches the late peaks.
-  pure subroutine response_spectrum(dt, accel, periods, damping, sd, sv, psa, status, message, &
-                                    tail_duration)
+  !> period catches the late peaks; at most max_tail_steps steps of dt.
+  !>
+  !> A cancellation request (sloshdyn_cancel) stops it within steps_per_poll steps: status
+  !> SD_CANCELLED.
+  subroutine response_spectrum(dt, accel, periods, damping, sd, sv, psa, status, message, &
+                               tail_duration)
     real(wp), intent(in) :: dt, accel(:), periods(:), damping
     real(wp), intent(out) :: sd(size(periods)), sv(size(periods)), psa(size(periods))
     integer, intent(out) :: status
@@ -102,8 +110,9 @@ contains
     tail = 0
     if (present(tail_duration)) tail = tail_duration
     call check_record(dt, accel, status, message)
-    call check_real('tail_duration', tail, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'the free-vibration tail after the record must be >= 0 [s]', status, message)
+    call check_real('tail_duration', tail, 0.0_wp, max_tail_steps*dt, &
+      .false., .false., 'the free-vibration tail after the record must be >= 0 [s] and at '// &
+      'most '//num2str(max_tail_steps)//' steps of dt = '//num2str(dt)//' s', status, message)
     if (status /= SD_OK) return
     tail_steps = ceiling(tail/dt)
     do j = 1, size(periods)
@@ -123,12 +132,16 @@ contains
         u = u_next
         v = v_next
         peak = max(peak, abs(u))
+        if (mod(i, steps_per_poll) == 0) call check_cancel(status, message)
+        if (status /= SD_OK) return
       end do
       do i = 1, tail_steps
         call advance(coefficients, 0.0_wp, 0.0_wp, u, v, u_next, v_next)
         u = u_next
         v = v_next
         peak = max(peak, abs(u))
+        if (mod(i, steps_per_poll) == 0) call check_cancel(status, message)
+        if (status /= SD_OK) return
       end do
       sd(j) = peak
       sv(j) = omega*peak
