@@ -688,6 +688,8 @@ contains
                        ' m/s^2 = '//num2str(g%peak_acceleration/config%tank%gravity)//' g at '// &
                        num2str(g%frequency)//' Hz'
         end if
+        if (len_trim(g%scaling) > 0) print '(a)', '  scaled ('//trim(g%scaling)// &
+                                                   '): factor '//num2str(g%scale_factor)
       end associate
     end if
     call design_code_checks(config%tank, config%ground, config%has_ground, codes, status, &

@@ -15,7 +15,7 @@ module sloshdyn_namelist
   use sloshdyn_model, only: model_t, model_from_arrays, model_from_physical, require_stable_trivial
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A, PARAMETER_FREQUENCY, &
                                  set_excitation_parameter
-  use sloshdyn_vessel, only: tank_t, tank_properties, tank_model
+  use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, convective_damping
   use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, ground_excitation, &
                              scale_ground, GROUND_RECORD
   use sloshdyn_records, only: load_record, units_code, units_factor
@@ -119,7 +119,7 @@ module sloshdyn_namelist
     !> fragility: the record files (a glob pattern, expanded by Python) and the intensities,
     !> Sa at the sloshing period [g] for spectral_damping
     character(len=path_len) :: records = ''
-    real(wp) :: intensity_start = 0, intensity_stop = 0, spectral_damping = 0.005_wp
+    real(wp) :: intensity_start = 0, intensity_stop = 0, spectral_damping = convective_damping
     integer :: n_intensities = 1
   end type study_settings
 
@@ -413,7 +413,7 @@ contains
   !> &ground_motion: a record file (PEER NGA .AT2, or two columns time, acceleration) or harmonic
   !> motion (peak_acceleration, frequency), scaled by a factor, to a peak ground acceleration,
   !> or to a pseudo-spectral acceleration at target_period (default: the tank's sloshing period)
-  !> for target_damping; accelerations in `units` ('g', 'm/s^2', 'cm/s^2'). A sweep in
+  !> for target_damping (default: the convective 0.5 %); accelerations in `units` ('g', 'm/s^2', 'cm/s^2'). A sweep in
   !> frequency gives the frequency (sweep_frequency >= 0, its first [Hz]; < 0: no such sweep)
   !> when none is given.
   subroutine read_ground_motion(file, props, sweep_frequency, ground, status, message)
@@ -435,7 +435,7 @@ contains
 
     record = ''; format = 'auto'; units = 'g'
     peak_acceleration = 0; frequency = 0; scale_factor = 1; target_pga = 0; target_sa = 0
-    target_period = 0; target_damping = 0.05_wp
+    target_period = 0; target_damping = convective_damping
     status = SD_OK
     message = ''
     call reader%start(file, G_GROUND_MOTION, status)

@@ -32,6 +32,8 @@ module sloshdyn_ground
     real(wp) :: frequency = 0              !< harmonic: f [Hz]
     real(wp) :: dt = 0                     !< record: time step [s]
     real(wp), allocatable :: acceleration(:)   !< record: u'' [m/s^2] at t = (i - 1) dt
+    real(wp) :: scale_factor = 1           !< the factor scale_ground applied
+    character(len=96) :: scaling = ''      !< what it scaled to, with the damping and units
   end type ground_motion_t
 
 contains
@@ -184,7 +186,7 @@ contains
       ground%peak_acceleration = pga
       return
     end if
-    peak = maxval(abs(ground%acceleration))
+    peak = peak_ground_acceleration(ground)
     if (peak == 0) then
       status = SD_BAD_INPUT
       message = 'the record is all zeros: it cannot be scaled to target_pga = '//num2str(pga)
@@ -223,7 +225,9 @@ contains
 
   !> Scale by at most one of: a factor (1 = unscaled), a peak ground acceleration target_pga
   !> [m/s^2] (0 = none), or a pseudo-spectral acceleration target_sa [m/s^2] (0 = none) at
-  !> target_period [s] for the damping ratio target_damping.
+  !> target_period [s] for the damping ratio target_damping. ground%scale_factor is the factor
+  !> applied, ground%scaling the target with its period, damping and units (summaries print
+  !> them).
   subroutine scale_ground(ground, scale_factor, target_pga, target_sa, target_period, &
                           target_damping, status, message)
     type(ground_motion_t), intent(inout) :: ground
@@ -231,6 +235,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     integer :: given
+    real(wp) :: peak
     call check_ground(ground, status, message)
     call check_real('scale_factor', scale_factor, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'scale_factor must be >= 0', status, message)
@@ -248,8 +253,10 @@ contains
                 'one of them'
       return
     end if
+    peak = peak_ground_acceleration(ground)
     if (target_pga > 0) then
       call scale_to_pga(ground, target_pga, status, message)
+      ground%scaling = 'PGA = '//num2str(target_pga)//' m/s^2'
     else if (target_sa > 0) then
       call check_real('target_period', target_period, 0.0_wp, huge(1.0_wp), .true., .true., &
                       'target_period must be > 0 [s]', status, message)
@@ -257,10 +264,26 @@ contains
                       'target_damping must lie in [0, 1)', status, message)
       if (status == SD_OK) call scale_to_sa(ground, target_sa, target_period, target_damping, &
                                             status, message)
+      ground%scaling = 'Sa('//num2str(target_period)//' s, '//num2str(100*target_damping)// &
+                       ' % damping) = '//num2str(target_sa)//' m/s^2'
     else if (ground%kind == GROUND_RECORD) then
       ground%acceleration = ground%acceleration*scale_factor
     else
       ground%peak_acceleration = ground%peak_acceleration*scale_factor
     end if
+    if (given == 1 .and. scale_factor /= 1) ground%scaling = 'scale_factor = '//num2str(scale_factor)
+    ground%scale_factor = scale_factor
+    if ((target_pga > 0 .or. target_sa > 0) .and. peak > 0) &
+      ground%scale_factor = peak_ground_acceleration(ground)/peak
   end subroutine scale_ground
+
+  !> The largest |u''| [m/s^2] of a record's samples, or a harmonic motion's amplitude.
+  pure real(wp) function peak_ground_acceleration(ground) result(peak)
+    type(ground_motion_t), intent(in) :: ground
+    if (ground%kind == GROUND_RECORD) then
+      peak = maxval(abs(ground%acceleration))
+    else
+      peak = ground%peak_acceleration
+    end if
+  end function peak_ground_acceleration
 end module sloshdyn_ground

@@ -34,6 +34,11 @@ module sloshdyn_vessel
   !> A cylindrical tank on supports, SI units. Zero (or negative) means "not given" where an
   !> alternative exists: the liquid by its density or its mass; the supports by their natural
   !> frequency and damping ratio or by stiffness and damping coefficient.
+  !> The convective (sloshing) damping ratio of the design codes, 0.5 %: the default of a
+  !> tank's sloshing_damping and of every spectral acceleration's damping (&ground_motion
+  !> target_damping, &study spectral_damping; Python's GroundMotion.scaled, response_spectrum).
+  real(wp), parameter, public :: convective_damping = 0.005_wp
+
   type :: tank_t
     real(wp) :: radius = 0                  !< R [m]
     real(wp) :: liquid_depth = 0            !< h [m]
@@ -46,7 +51,7 @@ module sloshdyn_vessel
     real(wp) :: support_stiffness = 0       !< k [N m/rad] (instead of support_frequency)
     real(wp) :: support_damping_coefficient = 0   !< c [N m s/rad] (with support_stiffness)
     real(wp) :: support_height = 0          !< rod length L [m]; 0 = the tank's height h + freeboard
-    real(wp) :: sloshing_damping = 0.005_wp !< linear, of critical for the sloshing mode
+    real(wp) :: sloshing_damping = convective_damping !< linear, of critical for the sloshing mode
     real(wp) :: impact_stiffness = 10       !< beta: roof/wall impact moment over m g l at theta0
     real(wp) :: impact_damping = 0.1_wp     !< delta: dissipation at the wall (eq 5)
     integer :: n = 6, p = 2                 !< exponents of eq (4)-(5)
