@@ -139,7 +139,8 @@ def text(name, value):
 
 
 def path(name, value):
-    """A file path (str or path-like) as a string."""
+    """A file path (str or path-like) as a string; give the core os.fsencode(path) (f2py
+    takes only ASCII str, but any bytes)."""
     try:
         p = os.fspath(value)
     except TypeError:
@@ -148,9 +149,6 @@ def path(name, value):
         p = os.fsdecode(p)
     if not p or "\0" in p:
         raise InputError(f"{name} = {show(value)} is not valid: {name} must be a non-empty path")
-    if not p.isascii():
-        raise InputError(f"{name} = {show(value)} is not valid: the core takes file names of "
-                         "ASCII characters only")
     return p
 
 

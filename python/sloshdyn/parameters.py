@@ -8,6 +8,7 @@ variables, defaults, rules and messages are the same for both front doors by con
 from __future__ import annotations
 
 import dataclasses
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -182,7 +183,7 @@ def read_namelist(path):
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
      study, store, figure, scheduler, study_records, status,
-     message) = _core.sloshdyn_bridge.read_input(path)
+     message) = _core.sloshdyn_bridge.read_input(os.fsencode(path))
     check_status(status, message)
     s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta = (float(x) for x in rpar)
     params = Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,

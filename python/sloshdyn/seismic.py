@@ -10,19 +10,27 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
+import stat
 from dataclasses import dataclass
 
 import numpy as np
 
 from ._cancel import cancellable
 from . import _checks, _core, _tables
-from ._errors import InputError, check_status
+from ._errors import InputError, SloshdynError, check_status
 from .parameters import Parameters, convert_fields
 from .simulation import Integration, Steady
 
 _bridge = _core.sloshdyn_bridge
 _TANK_DEFAULTS = _bridge.tank_defaults()
 _HARMONIC, _RECORD = 1, 2          # the ground kinds of sloshdyn_ground
+#: the damping ratio of a spectral acceleration when none is given: the convective 0.5 % of
+#: the design codes, the core's one default (sloshdyn_vessel convective_damping, a tank's
+#: sloshing_damping; &ground_motion target_damping, &study spectral_damping)
+CONVECTIVE_DAMPING = float(_TANK_DEFAULTS[11])
+#: the largest record file the core reads (sloshdyn_records max_record_bytes, 1 GiB)
+_MAX_RECORD_BYTES = 1 << 30
 
 
 def _name(column):
@@ -231,17 +239,19 @@ class GroundMotion:
     @classmethod
     def from_file(cls, path, format="auto", units="g"):
         """A record file: 'at2' (PEER NGA, values in g), 'columns' (time [s], acceleration in
-        `units`; commas, semicolons or blanks; # comments) or 'auto' (by the .AT2 extension).
-        The file is only read."""
+        `units`; commas, semicolons or blanks; # comments; one first line of column names) or
+        'auto' (by the .AT2 extension). Only a regular file of at most 1 GiB is read (a FIFO,
+        a device or a directory is refused before it is opened); it is never modified. Its
+        errors are input errors (exit code 3 in sloshdyn-py)."""
         path = _checks.path("path", path)
         format, units = _checks.text("format", format), _checks.text("units", units)
         try:
-            with open(path, "rb") as f:
-                n_max = max(2, len(f.read().split()))
-        except OSError:
-            n_max = 2    # the core names what is wrong (missing, a directory), as for &ground_motion
-        dt, samples, n, status, message = _bridge.read_record(path, format, units, n_max)
-        check_status(status, message)
+            dt, samples, n, status, message = _bridge.read_record(
+                os.fsencode(path), format, units, _fields_in(path))
+            check_status(status, message)
+        except SloshdynError as exc:
+            exc.reading = True
+            raise
         return cls(dt=float(dt), acceleration=samples[:n].copy())
 
     def _arrays(self):
@@ -266,27 +276,43 @@ class GroundMotion:
             return float(np.max(np.abs(self.acceleration)))
         return self.peak_acceleration
 
-    def scaled(self, factor=None, *, pga=None, sa=None, period=None, damping=0.05,
-               units="m/s^2"):
+    def scaled(self, factor=None, *, pga=None, sa=None, period=None,
+               damping=CONVECTIVE_DAMPING, units="g"):
         """A copy scaled by a factor, to a peak ground acceleration pga, or to a pseudo-spectral
-        acceleration sa at period [s] for the damping ratio (give one; pga and sa in `units`)."""
+        acceleration sa at period [s] for the damping ratio (default 0.5 %, the convective
+        damping, as &ground_motion target_damping); give one; pga and sa in `units` (default
+        g, as &ground_motion). The copy's `scale_factor` is the factor applied and `scaling`
+        says to what, with the damping and units (its repr shows them)."""
         to_si = acceleration_factor(units)
         if sa is not None and period is None:
             raise InputError("sa needs the period [s] at which it applies")
         ground, samples = self._arrays()
-        scaled, scaled_samples, status, message = _bridge.scale_ground(
-            ground, samples, 1.0 if factor is None else _real("factor", factor),
+        factor = 1.0 if factor is None else _real("factor", factor)
+        damping = _real("damping", damping)
+        scaled, scaled_samples, status, message = cancellable(
+            _bridge.scale_ground, ground, samples, factor,
             0.0 if pga is None else _real("pga", pga) * to_si,
             0.0 if sa is None else _real("sa", sa) * to_si,
-            0.0 if period is None else _real("period", period), _real("damping", damping))
+            0.0 if period is None else _real("period", period), damping)
         check_status(status, message)
         if self.kind == "record":
-            return GroundMotion(dt=self.dt, acceleration=scaled_samples.copy())
-        return GroundMotion(peak_acceleration=float(scaled[1]), frequency=float(scaled[2]))
+            copy = GroundMotion(dt=self.dt, acceleration=scaled_samples.copy())
+        else:
+            copy = GroundMotion(peak_acceleration=float(scaled[1]), frequency=float(scaled[2]))
+        copy.scale_factor = copy.pga / self.pga if (pga or sa) and self.pga > 0 else factor
+        if pga is not None:
+            copy.scaling = f"PGA = {pga:g} {units}"
+        elif sa is not None:
+            copy.scaling = f"Sa({period:g} s, {100 * damping:g} % damping) = {sa:g} {units}"
+        else:
+            copy.scaling = f"factor {factor:g}"
+        return copy
 
-    def response_spectrum(self, periods, damping=0.05, tail_duration=None, duration=None):
+    def response_spectrum(self, periods, damping=CONVECTIVE_DAMPING, tail_duration=None,
+                          duration=None):
         """Peak responses of linear oscillators (exact for the piecewise linear record) at
-        `periods` [s]: Spectrum(periods, sd [m], sv [m/s], psa [m/s^2]). A free-vibration tail
+        `periods` [s] for the damping ratio (default 0.5 %, the convective damping, as scaled):
+        Spectrum(periods, sd [m], sv [m/s], psa [m/s^2]). A free-vibration tail
         of tail_duration [s] (default 5 times the longest period) follows the record; harmonic
         motion is sampled over `duration` [s] (default 40 forcing periods)."""
         periods = np.atleast_1d(_checks.reals("periods", periods))
@@ -297,18 +323,45 @@ class GroundMotion:
             tail_duration = 5 * float(np.max(periods)) if periods.size else 0.0
         if duration is None:
             duration = 40 / self.frequency if self.kind == "harmonic" else self.duration
-        sd, sv, psa, status, message = _bridge.ground_spectrum(
-            *self._arrays(), periods, _real("damping", damping),
+        sd, sv, psa, status, message = cancellable(
+            _bridge.ground_spectrum, *self._arrays(), periods, _real("damping", damping),
             _real("tail_duration", tail_duration), _real("duration", duration))
         check_status(status, message)
         return Spectrum(periods, sd.copy(), sv.copy(), psa.copy(), float(damping))
 
+    #: the factor `scaled` applied (1 unscaled) and to what, with the damping and units
+    scale_factor, scaling = 1.0, ""
+
     def __repr__(self):
+        scaled = (f", scaled by {self.scale_factor:.6g} ({self.scaling})" if self.scaling
+                  else "")
         if self.kind == "record":
             return (f"GroundMotion(record: {len(self.acceleration)} samples, dt = {self.dt} s, "
-                    f"PGA = {self.pga:.4g} m/s^2)")
+                    f"PGA = {self.pga:.4g} m/s^2{scaled})")
         return (f"GroundMotion(harmonic: peak {self.peak_acceleration:.4g} m/s^2 at "
-                f"{self.frequency:.4g} Hz)")
+                f"{self.frequency:.4g} Hz{scaled})")
+
+
+def _fields_in(path):
+    """The number of blank-separated fields of a regular file of at most _MAX_RECORD_BYTES (a
+    bound on its samples), counted in blocks; 2 for anything else, which the core refuses with
+    its message without reading it (a FIFO would block, /dev/zero never ends)."""
+    try:
+        info = os.stat(path)
+    except OSError:
+        return 2
+    if not stat.S_ISREG(info.st_mode) or info.st_size > _MAX_RECORD_BYTES:
+        return 2
+    count, tail = 0, b""
+    try:
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                fields = (tail + block).split()
+                tail = fields.pop() if fields and not block[-1:].isspace() else b""
+                count += len(fields)
+    except OSError:
+        return 2
+    return max(2, count + bool(tail))
 
 
 def acceleration_factor(units):
