@@ -4,10 +4,13 @@
 !> The cycle is reached by integrating the slow flow from rest (B = 0) for settle_time, its
 !> period guessed by the first return to the section through the state reached, and both
 !> refined by Newton shooting with the period unknown (sloshdyn_limit_cycle). Times in tau.
+!> Outside the Hopf interval there is no cycle: the slow flow settles to an equilibrium, and
+!> slow_flow_cycle says so (SD_NOT_CONVERGED, "no limit cycle at rho = ..., A = ...").
 module sloshdyn_slowflow_cycle
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, check_real
+  use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_integrator, only: integrate
@@ -20,6 +23,9 @@ module sloshdyn_slowflow_cycle
   !> Newton's tolerance (relative, on the state and the period) and its shots at most.
   real(wp), parameter :: cycle_tol = 1.0e-10_wp
   integer, parameter :: cycle_max_iter = 30
+  !> The settled state is an equilibrium when the flow's rate there is below this fraction of
+  !> its rate at rest (B = 0, where only the forcing drives it).
+  real(wp), parameter :: equilibrium_tol = 1.0e-8_wp
 
   !> A slow flow at fixed parameters p (those of its field, e.g. rho and A), as an autonomous
   !> system (also the stability chart's brute-force integrations).
@@ -49,7 +55,7 @@ contains
     character(len=message_len), intent(out) :: message
     type(frozen_slow_flow) :: flow
     type(ode_stats) :: stats
-    real(wp) :: settled(4, 1), guess
+    real(wp) :: settled(4, 1), guess, rate(4), rate_at_rest(4)
 
     x_cycle = ieee_value(1.0_wp, ieee_quiet_nan)
     period = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -74,11 +80,39 @@ contains
                      settled, options, stats, status, message)
       if (status /= SD_OK) return
     end if
+    ! a slow flow that settles to an equilibrium has no cycle here (outside the Hopf interval)
+    call flow%rhs(0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], rate_at_rest)
+    call flow%rhs(0.0_wp, settled(:, 1), rate)
+    if (norm2(rate) <= equilibrium_tol*norm2(rate_at_rest)) then
+      status = SD_NOT_CONVERGED
+      message = 'no limit cycle at '//at_point()//': the slow flow settles to an equilibrium '// &
+                '(|B1| = '//num2str(norm2(settled(1:2, 1)))//', |B2| = '// &
+                num2str(norm2(settled(3:4, 1)))//' after tau = '//num2str(settle_time)// &
+                '); a cycle exists only between the Hopf points'
+      return
+    end if
     call return_time(flow, settled(:, 1), max_period, n_samples, options, method, guess, &
                      status, message)
-    if (status /= SD_OK) return
-    call cycle_newton(flow, settled(:, 1), guess, options, method, cycle_tol, cycle_max_iter, &
-                      x_cycle, period, multipliers_re, multipliers_im, iterations, status, message)
+    if (status == SD_OK) call cycle_newton(flow, settled(:, 1), guess, options, method, &
+                                           cycle_tol, cycle_max_iter, x_cycle, period, &
+                                           multipliers_re, multipliers_im, iterations, status, &
+                                           message)
+    if (status == SD_OK .and. .not. period > 0) status = SD_NOT_CONVERGED
+    ! the shooting failed or its period left (0, infinity): say so, not its internal values
+    if (status == SD_NOT_CONVERGED .or. status == SD_BAD_INPUT) then
+      status = SD_NOT_CONVERGED
+      message = 'no limit cycle found at '//at_point()//': the shooting from the state reached '// &
+                'after tau = '//num2str(settle_time)//' did not converge to a closed orbit '// &
+                'of period <= max_period = '//num2str(max_period)//' (outside the Hopf '// &
+                'interval the slow flow settles to an equilibrium)'
+    end if
+
+  contains
+
+    pure function at_point() result(text)
+      character(len=:), allocatable :: text
+      text = 'rho = '//num2str(model%excitation%rho)//', A = '//num2str(model%excitation%A)
+    end function at_point
   end subroutine slow_flow_cycle
 
   subroutine frozen_rhs(self, t, y, dydt)

@@ -493,8 +493,8 @@ contains
                 'socket): only regular files are read as records', status, message)
     case (FILE_REGULAR)
       if (file_size > max_record_bytes) call fail(SD_IO_ERROR, path, 0, 'it has '// &
-        num2str(real(file_size, wp))//' bytes, more than the '//num2str(real(max_record_bytes, wp))// &
-        ' bytes (1 GiB) a record file may have', status, message)
+        num2str(real(file_size, wp))//' bytes, more than the 1 GiB ('// &
+        num2str(real(max_record_bytes, wp))//' bytes) a record file may have', status, message)
     end select
     if (status /= SD_OK) return
     open (newunit=unit, file=path, status='old', action='read', access='stream', &

@@ -271,7 +271,8 @@ contains
     else
       ground%peak_acceleration = ground%peak_acceleration*scale_factor
     end if
-    if (given == 1 .and. scale_factor /= 1) ground%scaling = 'scale_factor = '//num2str(scale_factor)
+    if (given == 1 .and. scale_factor /= 1) &
+      ground%scaling = 'scale_factor = '//num2str(scale_factor)
     ground%scale_factor = scale_factor
     if ((target_pga > 0 .or. target_sa > 0) .and. peak > 0) &
       ground%scale_factor = peak_ground_acceleration(ground)/peak
