@@ -37,7 +37,7 @@ module sloshdyn_records
   real(wp), parameter :: step_tolerance = 1.0e-6_wp
   !> The largest record file read [bytes]: 1 GiB, some 70 million samples of AT2 text.
   integer(int64), parameter :: max_record_bytes = 2_int64**30
-  !> The most characters of a file quoted in a message (escaped, sloshdyn_records excerpt).
+  !> The most characters of a file's text quoted in a message, escaped (excerpt).
   integer, parameter :: excerpt_len = 40
   character(len=*), parameter :: separators = ' ,;'//char(9)
   character(len=*), parameter :: number_characters = '0123456789+-.eEdD'
@@ -373,7 +373,7 @@ contains
       if (first_line) then
         first_line = .false.
         call next_token(text(1:last), first, token, after)
-        if (is_header(token)) cycle                          ! column names: time_s,accel_g
+        if (is_header(text(first:last), token)) cycle        ! column names: time_s,accel_g
       end if
       n_tokens = 0
       from = first
@@ -418,14 +418,19 @@ contains
     end do
   end subroutine scan_columns
 
-  !> Whether the first field of a two-column file's first line names a column (time_s) rather
-  !> than giving a value: it is not a number, nor a NaN or an infinity (which are errors).
-  logical function is_header(token)
-    character(len=*), intent(in) :: token
+  !> Whether the first line of a two-column file names the columns (time_s,accel_g) rather
+  !> than giving a sample: text without control characters whose first field is not a number,
+  !> nor a NaN or an infinity (errors, as binary junk is).
+  logical function is_header(line, token)
+    character(len=*), intent(in) :: line, token
     real(wp) :: value
-    integer :: status
+    integer :: status, i, code
     character(len=message_len) :: message
     is_header = .false.
+    do i = 1, len(line)
+      code = modulo(ichar(line(i:i)), 256)
+      if ((code < 32 .and. code /= 9) .or. code == 127) return
+    end do
     if (index(lower(token), 'nan') > 0 .or. index(lower(token), 'inf') > 0) return
     call parse_number(token, value, status, message)
     is_header = status /= SD_OK
@@ -557,15 +562,17 @@ contains
     text = text//': '//what
   end function located
 
-  !> text quoted, at most excerpt_len characters of it ('...' after the quote when cut), every
-  !> character outside printable ASCII shown as \xNN: a message never carries a file's raw bytes.
+  !> text quoted, at most about excerpt_len characters of quote ('...' after it when cut),
+  !> every character outside printable ASCII shown as \xNN: a message never carries a file's
+  !> raw bytes, and stays short.
   pure function excerpt(text) result(quoted)
     character(len=*), intent(in) :: text
     character(len=:), allocatable :: quoted
     character(len=*), parameter :: hex = '0123456789abcdef'
     integer :: i, code
     quoted = ''''
-    do i = 1, min(len(text), excerpt_len)
+    do i = 1, len(text)
+      if (len(quoted) > excerpt_len) exit
       code = modulo(ichar(text(i:i)), 256)
       if (code >= 32 .and. code <= 126) then
         quoted = quoted//text(i:i)
@@ -575,7 +582,7 @@ contains
       end if
     end do
     quoted = quoted//''''
-    if (len(text) > excerpt_len) quoted = quoted//'...'
+    if (i <= len(text)) quoted = quoted//'...'
   end function excerpt
 
   pure function lower(text) result(low)

@@ -71,6 +71,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     previous = _on_sigterm(_terminate)
     try:
+        _check_standard_output()
         if args.command == "run":
             return run_input(args.input)
         if args.command == "study":
@@ -95,6 +96,24 @@ def main(argv=None):
         return EXIT_FAILURE
     finally:
         _on_sigterm(previous)
+
+
+def _check_standard_output():
+    """Standard output that takes no writes (/dev/full, closed) would lose the summary: a
+    failed write (FileError, exit 5) before anything runs, as the executable does. An empty
+    write(2) asks the file itself."""
+    if sys.stdout is None:                       # descriptor 1 closed when Python started
+        raise FileError("standard output is closed: the summary would be lost")
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, ValueError, OSError):     # not a file (captured): nothing to ask
+        return
+    try:
+        sys.stdout.flush()
+        os.write(fd, b"")
+    except OSError as exc:
+        raise FileError(f"standard output takes no writes ({exc.strerror or exc}): the "
+                        "summary would be lost") from None
 
 
 #: run_input releases the GIL (so that Ctrl-C and SIGTERM cancel it) but is not re-entrant

@@ -195,7 +195,8 @@ def read_namelist(path):
         tank = Tank(**{f.name: (int(x) if f.type == "int" else float(x))
                        for f, x in zip(dataclasses.fields(Tank), tank_array)})
     if has_ground and n_samples > 0:
-        samples, status, message = _core.sloshdyn_bridge.input_record(path, n_samples)
+        samples, status, message = _core.sloshdyn_bridge.input_record(os.fsencode(path),
+                                                                         n_samples)
         check_status(status, message)
         ground_motion = GroundMotion(dt=float(ground[3]), acceleration=samples.copy())
     elif has_ground:

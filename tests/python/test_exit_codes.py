@@ -15,6 +15,8 @@ from sloshdyn._errors import EXIT_MEANINGS
 from sloshdyn.reference import PACKAGE_REFERENCE
 
 MODEL = "&model s1 = 1.5, mu1 = 0.5, kappa = 1.8049, theta0 = 0.785, gamma = 0.001 /\n"
+TANK = ("&tank radius = 5.0, liquid_depth = 6.0, freeboard = 1.0, liquid_density = 1000, "
+        "tank_mass = 5.0e4, support_frequency = 2.0, support_damping = 0.02 /\n")
 
 
 def sloshdyn_py(*args, cwd):
@@ -39,6 +41,10 @@ FAILURES = {
                             "'simulate' /\n&simulation t_end = 100 /\n&integration max_steps = 5"
                             " /\n&output directory = 'out' /\n", 4),
     "not a namelist": ("\x00\x01 binary \xff garbage", 3),
+    # &excitation's rule rho <= 1000 holds for a tank's harmonic ground motion too (was 4 / 3)
+    "ground motion beyond rho": (TANK + "&ground_motion peak_acceleration = 0.1, frequency = "
+                                 "1e300 /\n&analysis kind = 'seismic' /\n&output directory = "
+                                 "'out' /\n", 3),
 }
 
 
@@ -53,6 +59,24 @@ def test_both_doors_exit_alike_without_a_traceback(exe, tmp_path, case):
                                                                  python.stderr)
     assert python.stderr.startswith("sloshdyn-py: error:") and "Traceback" not in python.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_a_record_that_is_a_directory_is_an_input_error_in_every_door(exe, tmp_path):
+    """A record file that cannot be read is input (exit 3), in &ground_motion (executable) and
+    in a fragility study's records (sloshdyn-py study; was 5)."""
+    (tmp_path / "quake.AT2").mkdir()
+    (tmp_path / "seismic.nml").write_text(TANK + "&ground_motion record = 'quake.AT2' /\n"
+                                          "&analysis kind = 'seismic' /\n")
+    (tmp_path / "study.nml").write_text(TANK + "&study kind = 'fragility', records = 'quake*',"
+                                        " intensity_start = 0.1, intensity_stop = 0.2, "
+                                        "n_intensities = 2, store = 'f.zarr' /\n")
+    executable = subprocess.run([exe, "seismic.nml"], cwd=tmp_path, capture_output=True,
+                                text=True, timeout=120)
+    python = sloshdyn_py("study", "study.nml", "--no-progress", cwd=tmp_path)
+    assert executable.returncode == python.returncode == 3, (executable.stderr, python.stderr)
+    for run in (executable, python):
+        assert "quake.AT2" in run.stderr and "directory" in run.stderr
+    assert "Traceback" not in python.stderr and not (tmp_path / "f.zarr").exists()
 
 
 @pytest.mark.parametrize("what", ["missing.nml", "."])
