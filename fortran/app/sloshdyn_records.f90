@@ -23,6 +23,7 @@ module sloshdyn_records
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR
   use sloshdyn_text, only: num2str
   use sloshdyn_files, only: file_type, FILE_MISSING, FILE_REGULAR, FILE_DIRECTORY, FILE_OTHER
+  use sloshdyn_ground, only: check_ground, record_ground
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
@@ -128,7 +129,8 @@ contains
   end subroutine read_two_column
 
   !> Read a record file by its format: 'at2' (PEER NGA, in g), 'columns' (time, acceleration in
-  !> the given units) or 'auto' (.AT2 by its extension, any case; otherwise columns). The
+  !> the given units) or 'auto' (.AT2 by its extension, any case; otherwise columns), and check
+  !> the rules of a record (sloshdyn_ground's check_ground: its step and duration). The
   !> acceleration in m/s^2; unallocated on failure.
   subroutine load_record(path, format, units, dt, accel, status, message)
     character(len=*), intent(in) :: path, format, units
@@ -157,6 +159,13 @@ contains
       status = SD_BAD_INPUT
       message = 'format = '''//trim(adjustl(format))//''' is not known: use auto, at2 or columns'
     end select
+    if (status /= SD_OK) return
+    ! the rules of a record (its step and duration), named with the file
+    call check_ground(record_ground(dt, accel), status, message)
+    if (status /= SD_OK) then
+      message = located(path, 0, trim(message))
+      deallocate (accel)
+    end if
   end subroutine load_record
 
   !> The units code of a name: 'g'; 'm/s^2' (also 'm/s2', 'm/s**2'); 'cm/s^2' (also 'cm/s2',

@@ -249,10 +249,10 @@ class GroundMotion:
             dt, samples, n, status, message = _bridge.read_record(
                 os.fsencode(path), format, units, _fields_in(path))
             check_status(status, message)
+            return cls(dt=float(dt), acceleration=samples[:n].copy())
         except SloshdynError as exc:
             exc.reading = True
             raise
-        return cls(dt=float(dt), acceleration=samples[:n].copy())
 
     def _arrays(self):
         ground = np.array([_HARMONIC if self.kind == "harmonic" else _RECORD,

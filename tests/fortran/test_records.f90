@@ -48,7 +48,7 @@ contains
     character(len=*), parameter :: header_lines = 'PEER NGA STRONG MOTION DATABASE RECORD'//lf// &
       'IMPERIAL VALLEY 10/15/79 2316, EL CENTRO ARRAY #6, 140'//lf// &
       'ACCELERATION TIME SERIES IN UNITS OF G'//lf
-    character(len=40) :: fourth(5)
+    character(len=40) :: fourth(6)
     character(len=:), allocatable :: path, content
     integer :: k
 
@@ -57,6 +57,7 @@ contains
     fourth(3) = '     7   0.0050   NPTS, DT'          ! older form
     fourth(4) = 'DT= .005 SEC, NPTS= 7'               ! either order
     fourth(5) = 'npts =7 , dt = 5.0e-3'               ! lower case, blanks around =, no unit
+    fourth(6) = 'NPTS='//char(9)//'7,'//char(9)//'DT'//char(9)//'= .005'   ! tabs around =
     do k = 1, size(fourth)
       path = scratch('valid_'//achar(iachar('0') + k)//'.AT2')
       content = header_lines//trim(fourth(k))//lf//values
@@ -156,6 +157,15 @@ contains
                      0.0_wp, 1.0e-16_wp)
     call check_true('CSV: file unchanged by reading', file_text(path) == content)
 
+    ! one first line of column names, without #
+    path = scratch('named.csv')
+    call write_file(path, 'time_s,accel_g'//lf//'0.0, 1'//lf//'0.01, 2'//lf)
+    call read_two_column(path, UNITS_G, dt, accel, status, message)
+    call check_true('CSV with a line of column names: status and 2 samples', &
+                    status == SD_OK .and. size(accel) == 2)
+    if (status == SD_OK) call check_close('CSV with column names: a(2) = 2 g', accel(2), &
+                                          2*standard_gravity, 1.0e-15_wp)
+
     path = scratch('record_g.txt')
     call write_file(path, '1.000 0.1'//lf//'1.005 -0.2'//lf//'1.010 0.3')   ! no final newline
     call read_two_column(path, UNITS_G, dt, accel, status, message)
@@ -207,11 +217,18 @@ contains
     call expect('CSV NaN time', SD_BAD_INPUT, [character(len=40) :: 'line 2', 'time', &
                 'not finite'])
 
+    ! one line of column names is read as such; a second is an error naming its line
     path = scratch('header.csv')
-    call write_file(path, 'time,accel'//lf//'0.0, 1'//lf//'0.01, 2'//lf)
+    call write_file(path, 'time,accel'//lf//'seconds,g'//lf//'0.0, 1'//lf//'0.01, 2'//lf)
     call read_two_column(path, UNITS_M_S2, dt, accel, status, message)
-    call expect('CSV header row without #', SD_BAD_INPUT, [character(len=40) :: 'line 1', &
-                '''time'' is not a number'])
+    call expect('CSV second header row', SD_BAD_INPUT, [character(len=40) :: 'line 2', &
+                '''seconds'' is not a number'])
+    ! binary junk is no header: quoted short and escaped
+    path = scratch('junk.csv')
+    call write_file(path, char(27)//'[31m'//char(0)//repeat(char(255), 100)//lf//'0.0, 1'//lf)
+    call read_two_column(path, UNITS_M_S2, dt, accel, status, message)
+    call expect('CSV binary junk', SD_BAD_INPUT, [character(len=40) :: 'line 1', &
+                '''\x1b[31m\x00\xff', '''... is not a number'])
 
     path = scratch('single.csv')
     call write_file(path, '# only one sample'//lf//'0.0, 1'//lf)
@@ -252,6 +269,15 @@ contains
                 'no such file'])
     call read_at2(folder, dt, accel, status, message)
     call expect('a directory', SD_IO_ERROR, [character(len=40) :: 'is a directory'])
+    ! a device is refused before it is read (/dev/zero never ends)
+    call read_two_column('/dev/zero', UNITS_G, dt, accel, status, message)
+    call expect('a device', SD_IO_ERROR, [character(len=40) :: '''/dev/zero''', &
+                'not a regular file'])
+    ! a name ending in a blank would open another file: refused by that name
+    call write_file(scratch('blank.csv'), '0.0, 1'//lf//'0.01, 2'//lf)
+    call read_two_column(scratch('blank.csv')//' ', UNITS_G, dt, accel, status, message)
+    call expect('a name ending in a blank', SD_BAD_INPUT, [character(len=40) :: 'blank.csv ''', &
+                'ends in a blank'])
   end subroutine test_file_errors
 
   !> status == code and every part in the message.
