@@ -7,29 +7,18 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 
 from conftest import EXAMPLES
+from test_faults import _start_and_signal
 
 GUARD = 30          # seconds a run may take to stop after SIGTERM before the test fails
 
 
 def terminate_after(cmd, cwd, delay):
-    """Start cmd, send SIGTERM after `delay` s, and return (exit code, stderr)."""
-    proc = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True)
-    time.sleep(delay)
-    assert proc.poll() is None, "the run ended before the signal: make the case longer"
-    proc.send_signal(signal.SIGTERM)
-    try:
-        _, stderr = proc.communicate(timeout=GUARD)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        proc.communicate()
-        pytest.fail(f"still running {GUARD} s after SIGTERM")
-    return proc.returncode, stderr
+    """Start cmd, send SIGTERM after `delay` s: (exit code, stderr)."""
+    return _start_and_signal(cmd, cwd, signal.SIGTERM, delay, within=GUARD)
 
 
 def test_sigterm_stops_the_output_of_a_long_seismic_response(exe, tmp_path):
