@@ -343,7 +343,7 @@ class GroundMotion:
 
 
 def _fields_in(path):
-    """The number of blank-separated fields of a regular file of at most _MAX_RECORD_BYTES (a
+    """The number of fields (separated by blanks, commas or semicolons) of a regular file of at most _MAX_RECORD_BYTES (a
     bound on its samples), counted in blocks; 2 for anything else, which the core refuses with
     its message without reading it (a FIFO would block, /dev/zero never ends)."""
     try:
@@ -356,6 +356,7 @@ def _fields_in(path):
     try:
         with open(path, "rb") as f:
             for block in iter(lambda: f.read(1 << 20), b""):
+                block = block.replace(b",", b" ").replace(b";", b" ")   # the core's separators
                 fields = (tail + block).split()
                 tail = fields.pop() if fields and not block[-1:].isspace() else b""
                 count += len(fields)
