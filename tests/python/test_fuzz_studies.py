@@ -12,8 +12,6 @@ within the stated timeout; never another exception. Examples are few for CI
 import math
 import os
 import shutil
-import socket
-import threading
 import time
 
 import numpy as np
@@ -23,6 +21,7 @@ from hypothesis import strategies as st
 
 import sloshdyn
 from sloshdyn.studies import engine
+from test_studies import silent_server
 
 pytest.importorskip("dask.distributed")
 xr = pytest.importorskip("xarray")
@@ -130,38 +129,11 @@ def test_a_scheduler_address_is_accepted_or_named(address):
     assert scheme in ("tcp", "tls", "ws", "wss", "ucx") and 0 < port < 65536 and host
 
 
-def answering_server(reply):
-    """A loopback server that answers every connection with `reply` and closes it; it stops
-    by itself within 30 s."""
-    listener = socket.socket()
-    listener.bind(("127.0.0.1", 0))
-    listener.listen(4)
-    listener.settimeout(0.2)
-    stop = threading.Event()
-
-    def serve():
-        deadline = time.monotonic() + 30
-        while not stop.is_set() and time.monotonic() < deadline:
-            try:
-                conn, _ = listener.accept()
-            except OSError:
-                continue
-            with conn:
-                conn.sendall(reply)
-        listener.close()
-    thread = threading.Thread(target=serve, daemon=True)
-    thread.start()
-
-    def close():
-        stop.set()
-        thread.join()
-    return listener.getsockname()[1], close
-
-
 @FUZZ
 @given(st.binary(max_size=32))
 def test_a_service_answering_random_bytes_is_no_scheduler(reply):
-    port, close = answering_server(reply)
+    address, close = silent_server(reply)
+    port = int(address.rsplit(":", 1)[1])
     try:
         start = time.monotonic()
         try:

@@ -832,7 +832,7 @@ def test_the_main_guard_is_read_from_the_source():
 def silent_server(kind):
     """A loopback server for the scheduler tests, in a thread that stops by itself: 'http'
     (Python's HTTP server), 'greeting' (answers HTTP bytes at once), 'mute' (accepts, never
-    answers). Returns (address, stop)."""
+    answers), or bytes (answers them and closes). Returns (address, stop)."""
     import http.server
     stop = threading.Event()
     if kind == "http":
@@ -864,6 +864,9 @@ def silent_server(kind):
                 held.append(conn)
                 if kind == "greeting":
                     conn.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n")
+                elif isinstance(kind, bytes):
+                    conn.sendall(kind)
+                    conn.close()
             for conn in held:
                 conn.close()
             listener.close()
@@ -922,7 +925,7 @@ def test_a_study_too_large_for_the_machine_is_refused_before_anything_runs(tmp_p
 def test_more_workers_than_the_machine_runs_are_refused_before_anything_runs(tmp_path):
     bound = studies.engine.max_workers("processes")
     assert bound <= 4 * os.cpu_count()
-    for kind in ("processes", "threads"):
+    for kind in ("threads", "processes"):
         n = studies.engine.max_workers(kind) + 1
         with pytest.raises(sloshdyn.InputError, match=f"workers = {n} is out of range"):
             sloshdyn.response_map(FIG12, [0.5], [0.001], tmp_path / "x.zarr", workers=n,

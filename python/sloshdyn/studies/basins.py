@@ -13,7 +13,7 @@ from .. import _checks, _core
 from .._errors import InputError
 from ..parameters import Parameters
 from ..simulation import Integration, Steady
-from .engine import SECONDS, Plan, Variable, positive_int, run_plan, store_derived, version
+from .engine import SECONDS, Plan, Variable, positive_int, run_plan, version
 from .points import (MAX_PERIOD, MOTIONS, ORBIT_FOUND, ORBIT_MAX_MU, ORBIT_Y, SUMMARY_COLUMNS,
                      common_attrs, settings_arrays, summary_variables, unpack)
 
@@ -121,12 +121,9 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
         "orbit_point": (np.arange(1, MAX_PERIOD + 1), {
             "units": "1", "long_name": "Poincare point of the orbit, in time order"})},
         variables, attrs, spec, None, task, chunking, ppt)
-    ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
-                  worker_kind=worker_kind, progress=progress)
-    ds = _label_basins(ds, tol)
-    # the labels and the attractor list join the store (recomputed alike by every rerun)
-    store_derived(ds, [name for name in ds.data_vars if name.startswith("attractor")])
-    return ds
+    return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
+                    worker_kind=worker_kind, progress=progress,
+                    derive=lambda ds: _label_basins(ds, tol))
 
 
 def _label_basins(ds, tol):

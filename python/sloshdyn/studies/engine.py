@@ -480,13 +480,15 @@ def check_size(plan):
 
 
 def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_kind=None,
-             progress=True):
+             progress=True, derive=None):
     """Run a study plan on Dask, storing each task's results in `store` as it finishes; return
     the whole study as an xarray Dataset (loaded). Already finished points are not recomputed;
     the returned dataset's attrs['points_computed'] counts the points this call computed,
     attrs['compute_seconds'] the time its tasks spent computing (summed over workers) and
     attrs['points_repaired'] the finished points computed again because their stored data were
-    missing or damaged (attrs['repaired'] says which variables)."""
+    missing or damaged (attrs['repaired'] says which variables). derive(dataset), if given,
+    adds the variables derived from all the points (basins' attractor list, the fragility
+    fit): they join the store too, derived again by every rerun."""
     import xarray as xr
 
     path = _check_store(store)
@@ -551,6 +553,10 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
     ds.attrs["points_repaired"] = repaired
     ds.attrs["repaired"] = ", ".join(damaged)
     ds.attrs["store"] = path
+    if derive is not None:
+        points = set(ds.data_vars)
+        ds = derive(ds)
+        _store_derived(ds, [name for name in ds.data_vars if name not in points])
     return ds
 
 
@@ -574,10 +580,15 @@ def positive_int(name, value, lower=1):
 
 
 
-def store_derived(ds, names):
+def _store_derived(ds, names):
     """Write the variables `names` of a study's dataset, derived from its points once they are
     all in (basins' attractor list, the fragility fit), into the study's store beside them."""
     import xarray as xr
     kept = {k: v for k, v in ds.attrs.items() if k not in RUN_ATTRS}   # the store's own
-    xr.Dataset({name: ds[name] for name in names}, attrs=kept).to_zarr(
-        ds.attrs["store"], mode="a", consolidated=True)
+    try:
+        xr.Dataset({name: ds[name] for name in names}, attrs=kept).to_zarr(
+            ds.attrs["store"], mode="a", consolidated=True)
+    except OSError as exc:
+        raise FileError(f"store = {ds.attrs['store']!r}: {', '.join(names)} cannot be written "
+                        f"({exc.strerror or exc}); its points are complete: rerun the same "
+                        "study on it to write them") from exc

@@ -16,8 +16,7 @@ import numpy as np
 from .. import _checks, _core, _tables
 from .._errors import InputError
 from ..simulation import Integration
-from .engine import (SECONDS, Plan, Variable, axis, positive_int, run_plan, store_derived,
-                     version)
+from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
 
 _bridge = _core.sloshdyn_bridge
 
@@ -177,12 +176,9 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
                                                       f"T = {period:.4g} s, {100 * damping:g} % "
                                                       "damping"})},
         variables, attrs, spec, None, task, chunking, ppt)
-    ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
-                  worker_kind=worker_kind, progress=progress)
-    ds = _fit_study(ds, units)
-    # the fit joins the store (recomputed alike by every rerun)
-    store_derived(ds, [name for name in ds.data_vars if name.startswith("fragility")])
-    return ds
+    return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
+                    worker_kind=worker_kind, progress=progress,
+                    derive=lambda ds: _fit_study(ds, units))
 
 
 def _fit_study(ds, units):
