@@ -81,8 +81,8 @@ def main(argv=None):
     except SloshdynError as exc:
         print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
         return exit_code(exc, getattr(exc, "reading", False))
-    except _Terminated:
-        print(f"sloshdyn-py: terminated; {_KEPT}", file=sys.stderr)
+    except _Terminated as exc:
+        print(f"sloshdyn-py: terminated; {str(exc) or _KEPT}", file=sys.stderr)
         return EXIT_TERMINATED
     except KeyboardInterrupt as exc:
         print(f"sloshdyn-py: interrupted; {str(exc) or _KEPT}", file=sys.stderr)
@@ -212,6 +212,9 @@ def run_study(path, scheduler=None, workers=None, progress=True):
                   f"(max |mu| = {float(ds.attractor_max_multiplier.values[j]):.6g}), share "
                   f"{float(ds.attractor_share.values[j]):.3f}, max |x1| = "
                   f"{float(ds.attractor_max_x1.values[j]):.6g}")
+    if ds.attrs["points_repaired"]:
+        print(f"repaired: {ds.attrs['points_repaired']} finished points of the store whose "
+              f"stored data were missing or damaged ({ds.attrs['repaired']}) computed again")
     figure = Path(st["figure"]) if st["figure"] else store.with_suffix(".png")
     if not figure.is_absolute() and st["figure"]:
         figure = base / figure
