@@ -28,9 +28,9 @@ from .._errors import FileError, InputError
 
 #: points per task unless told: about 8 tasks per worker for the load balance, within these
 #: bounds (measured by benchmarks/studies.py: the engine's overhead is ~20 % of the work at 8
-#: points per task, ~5 % at 32, ~2 % at 128; README, "Studies")
+#: points per task, ~5 % at 32, ~2 % at 128; docs/studies.md)
 MIN_POINTS_PER_TASK, MAX_POINTS_PER_TASK, TASKS_PER_WORKER = 8, 128, 8
-#: the default worker kind of an embedded cluster, by measurement (README, "Studies")
+#: the default worker kind of an embedded cluster, by measurement (docs/studies.md)
 WORKER_KIND = "processes"
 #: how long a scheduler address may take to answer
 CONNECT_TIMEOUT = 5.0

@@ -88,7 +88,7 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     `scheduler`, or (neither given) on an embedded local cluster of `workers` workers (default:
     one per core) of kind `worker_kind` ('processes' by default, 'threads'). Rerunning the same
     study on the same store resumes it; a store made by a different study is refused
-    (InputError). See README, "Studies"."""
+    (InputError). See docs/studies.md."""
     from ..seismic import Tank
     tank = None
     f = axis("frequencies", frequencies, 0.0)
