@@ -1,0 +1,63 @@
+"""The namelist scanner is linear in the length of a line (issue 22, item 8).
+
+On the main before the fix one `&model` line padded with blanks to 300 kB took 16.6 s to read and
+1 MB more than 60 s: the body of a group grew by one character at a time (a copy of the whole
+body each time, so n^2/2 bytes copied), and each assignment was found by scanning the body from
+its start again. Quadratic time from 16.6 s at 300 kB is about 740 s at 2 MB.
+
+No timing is asserted here (the machine may be loaded): the 2 MB line must be read, to the right
+values, within a subprocess timeout of 60 s. That bound is more than 20 times what the linear
+scanner needs on a loaded machine (the whole run, process start included, takes ~0.3 s on an
+idle 2-core machine and stays under 3 s with both cores busy) and over ten times below what the
+quadratic scanner needed, so the test cannot pass with a quadratic scanner and does not fail
+with a linear one on a slow machine. The same holds through Python (read_namelist), which calls
+the same reader; a padded line with many assignments exercises the assignment positions, which
+were found by a scan from the start of the body for each assignment.
+"""
+
+import subprocess
+import sys
+
+from conftest import write
+
+MEGABYTE = 1 << 20
+TIMEOUT = 60   # seconds: > 20x the linear scanner's time, < 1/10 of the quadratic one's
+
+
+def padded_model(size, assignments=1):
+    """A one-line input of about `size` bytes: &model with its values spread over the line by
+    blanks (`assignments` copies of `beta = 0.5,` among them), then a linear analysis."""
+    values = ["s1 = 1.5,", "mu1 = 0.5,", "kappa = 1.804897259,", "theta0 = 0.7853981633974483,"]
+    values += ["beta = 0.5,"] * assignments
+    gap = " " * max((size - 100) // (len(values) - 1), 1)
+    return "&model " + gap.join(values) + " / &analysis kind = 'linear' /\n"
+
+
+def test_a_2_megabyte_line_reads_within_the_bound_executable(exe, tmp_path):
+    """The padded file gives the same results as the file without padding."""
+    for name, size in (("padded", 2 * MEGABYTE), ("plain", 0)):
+        (tmp_path / name).mkdir()
+        path = write(tmp_path / name, padded_model(size) + "&output directory = 'out' /\n")
+        result = subprocess.run([exe, str(path)], cwd=tmp_path / name, capture_output=True,
+                                text=True, timeout=TIMEOUT)
+        assert result.returncode == 0, result.stderr
+    assert (tmp_path / "padded" / "input.nml").stat().st_size > 2 * MEGABYTE - 200
+    files = sorted(p.name for p in (tmp_path / "plain" / "out").iterdir())
+    assert files and files == sorted(p.name for p in (tmp_path / "padded" / "out").iterdir())
+    for name in files:
+        assert (tmp_path / "plain" / "out" / name).read_bytes() == \
+            (tmp_path / "padded" / "out" / name).read_bytes(), name
+
+
+def test_a_2_megabyte_line_with_many_assignments_reads_within_the_bound_python(tmp_path):
+    """20,000 assignments on one 2 MB line, read through the bridge in a child interpreter (so
+    the timeout can stop it); the last assignment of beta wins, as in any namelist read."""
+    text = padded_model(2 * MEGABYTE, assignments=20000).replace(
+        "beta = 0.5, / &analysis", "beta = 0.25 / &analysis")
+    path = write(tmp_path, text)
+    code = ("import sloshdyn, sys; p = sloshdyn.read_namelist(sys.argv[1]).params; "
+            "print(p.s1, p.beta)")
+    result = subprocess.run([sys.executable, "-c", code, str(path)], capture_output=True,
+                            text=True, timeout=TIMEOUT, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["1.5", "0.25"]
