@@ -86,7 +86,7 @@
 !> locating the codimension-2 points, end reasons, correct_to_curve and curve_crossings -- is
 !> shared; curve_of_kind traces a curve of any kind (fold_curve and hopf_curve call it). The
 !> helpers such systems need (setup_system, split_x_p, point_x_p, inverse_iteration,
-!> nearest_pair, trace_curve, correct_state) are public for them.
+!> null_vectors, nearest_pair, trace_curve, correct_state) are public for them.
 !>
 !> The parts: this module (the types, the public routines, the shared helpers); its submodules
 !> sloshdyn_bifurcation_tracer (the curve tracer: segments, box, closure, codimension-2 points)
@@ -120,7 +120,8 @@ module sloshdyn_bifurcation
   ! the extension interface (module header)
   public :: curve_system, system_refresh, system_diagnose, system_alignment, &
             max_curve_tests, trace_curve, correct_state, setup_system, &
-            split_x_p, point_x_p, inverse_iteration, nearest_pair, field_defining_system, &
+            split_x_p, point_x_p, inverse_iteration, null_vectors, nearest_pair, &
+            field_defining_system, &
             curve_of_kind
 
   !> Curve kinds: of equilibria of flows (fold, Hopf) and of fixed points of maps (fold,
@@ -858,6 +859,19 @@ contains
       v = v/norm2(v)
     end do
   end subroutine inverse_iteration
+
+  !> Unit vectors v, w near the right and left null spaces of the nearly singular a (inverse
+  !> iteration on a and a^T relative to max|a_ij|).
+  subroutine null_vectors(a, v, w, status, message)
+    real(wp), intent(in) :: a(:, :)
+    real(wp), intent(out) :: v(:), w(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: scale
+    scale = max(maxval(abs(a)), tiny(1.0_wp))
+    call inverse_iteration(a, scale, v, status, message)
+    if (status == SD_OK) call inverse_iteration(transpose(a), scale, w, status, message)
+  end subroutine null_vectors
 
   !> The eigenvalue re + i im with im > im_floor whose distance(i) is least (the first of equal
   !> ones) and at most max_distance, 0 if there is none: with distance |re|, the complex pair

@@ -10,7 +10,7 @@ contains
 
   module procedure field_defining_system
     real(wp) :: f(size(x0)), fx(size(x0), size(x0)), fp(size(x0), 2), v(size(x0)), &
-                w(size(x0)), omega, scale
+                w(size(x0)), omega
     integer :: n
 
     n = size(x0)
@@ -24,9 +24,7 @@ contains
     end if
     if (kind == CURVE_FOLD) then
       call field%evaluate(x0, p0, f, fx, fp)
-      scale = max(maxval(abs(fx)), tiny(1.0_wp))
-      call inverse_iteration(fx, scale, v, status, message)
-      if (status == SD_OK) call inverse_iteration(transpose(fx), scale, w, status, message)
+      call null_vectors(fx, v, w, status, message)
       if (status /= SD_OK) then
         message = 'no null vector of df/dx at the start point: '//trim(message)
         return

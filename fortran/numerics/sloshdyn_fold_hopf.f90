@@ -26,6 +26,8 @@ module sloshdyn_fold_hopf
     procedure :: refresh => fold_refresh
     procedure :: diagnose => fold_diagnose
     procedure :: alignment => fold_alignment
+    !> the unit null vectors v, w of the bordered matrix at J (for the tests)
+    procedure :: null_vectors => fold_null_vectors
     procedure :: confirm_codim2 => fold_confirm
     procedure :: codim2_frequency => fold_codim2_frequency
   end type fold_system
@@ -116,7 +118,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), v(self%n), &
-                w(self%n), g, bvv(self%n)
+                w(self%n), bvv(self%n)
 
     tests = ieee_value(1.0_wp, ieee_quiet_nan)
     omega = 0
@@ -125,13 +127,8 @@ contains
     call self%field%evaluate(xx, p, ff, jj, fp)
     call eigenvalues(jj, re, im, status, message)
     if (status /= SD_OK) return
-    call bordered_vectors(jj, self%b, self%c, v, w, g, status, self%shift)
-    if (status /= SD_OK) then
-      message = 'the bordered Jacobian is singular'
-      return
-    end if
-    v = v/norm2(v)
-    w = w/norm2(w)
+    call self%null_vectors(jj, v, w, status, message)
+    if (status /= SD_OK) return
     call self%field%second_derivative(xx, p, v, v, bvv)
     tests(1) = sum(w*v)
     tests(2) = sum(w*bvv)
@@ -152,6 +149,23 @@ contains
     growth = huge(1.0_wp)
     if (info == SD_OK) growth = max(norm2(v), norm2(w))
   end function fold_alignment
+
+  subroutine fold_null_vectors(self, jj, v, w, status, message)
+    class(fold_system), intent(in) :: self
+    real(wp), intent(in) :: jj(:, :)
+    real(wp), intent(out) :: v(:), w(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: g
+    message = ''
+    call bordered_vectors(jj, self%b, self%c, v, w, g, status, self%shift)
+    if (status /= SD_OK) then
+      message = 'the bordered matrix is singular'
+      return
+    end if
+    v = v/norm2(v)
+    w = w/norm2(w)
+  end subroutine fold_null_vectors
 
   !> v, w and g of the bordered systems [J b; c^T 0] (v; g) = e and its transpose (J + shift I
   !> in place of J with shift).

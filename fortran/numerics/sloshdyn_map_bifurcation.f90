@@ -85,13 +85,14 @@ module sloshdyn_map_bifurcation
                                period_doubling_test
   use sloshdyn_bifurcation, only: two_parameter_field, curve_options, bifurcation_curve, &
                                   curve_system, max_curve_tests, setup_system, split_x_p, &
-                                  point_x_p, inverse_iteration, nearest_pair, curve_of_kind, &
+                                  point_x_p, inverse_iteration, null_vectors, nearest_pair, &
+                                  curve_of_kind, &
                                   curve_kind_name, &
                                   CURVE_FOLD, CURVE_HOPF, CURVE_PERIOD_DOUBLING, &
                                   CURVE_NEIMARK_SACKER, CODIM2_R1, CODIM2_R2, CODIM2_R3, &
                                   CODIM2_R4, CODIM2_CUSP, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS, &
                                   CODIM2_FLIP_NS, END_RESONANCE
-  use sloshdyn_fold_hopf, only: fold_system, hopf_system, bordered_vectors
+  use sloshdyn_fold_hopf, only: fold_system, hopf_system
   implicit none
   private
   public :: two_parameter_map, map_evaluate, stroboscopic_map, map_problem
@@ -366,7 +367,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: px(size(x0)), mx(size(x0), size(x0)), a(size(x0), size(x0)), v(size(x0)), &
-                w(size(x0)), re(size(x0)), im(size(x0)), shift, scale, radius
+                w(size(x0)), re(size(x0)), im(size(x0)), shift, radius
     integer :: n, i, best
 
     n = size(x0)
@@ -383,9 +384,7 @@ contains
       do i = 1, n
         a(i, i) = a(i, i) + shift
       end do
-      scale = max(maxval(abs(a)), tiny(1.0_wp))
-      call inverse_iteration(a, scale, v, status, message)
-      if (status == SD_OK) call inverse_iteration(transpose(a), scale, w, status, message)
+      call null_vectors(a, v, w, status, message)
       if (status /= SD_OK) then
         message = 'no null vector of M '//merge('- I', '+ I', kind == CURVE_FOLD)// &
                   ' at the start point: '//trim(message)
@@ -457,7 +456,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), &
-                mm(self%n, self%n), v(self%n), w(self%n), g, bvv(self%n)
+                mm(self%n, self%n), v(self%n), w(self%n), bvv(self%n)
     integer :: i
     logical :: is_fold
 
@@ -473,13 +472,8 @@ contains
     end do
     call eigenvalues(mm, re, im, status, message)
     if (status /= SD_OK) return
-    call bordered_vectors(jj, self%b, self%c, v, w, g, status, self%shift)
-    if (status /= SD_OK) then
-      message = 'the bordered matrix is singular'
-      return
-    end if
-    v = v/norm2(v)
-    w = w/norm2(w)
+    call self%null_vectors(jj, v, w, status, message)
+    if (status /= SD_OK) return
     tests(1) = sum(w*v)
     if (is_fold) then
       call self%field%second_derivative(xx, p, v, v, bvv)
