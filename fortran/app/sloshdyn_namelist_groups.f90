@@ -25,7 +25,7 @@ module sloshdyn_namelist_groups
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_AUTO, method_names
   use sloshdyn_simulation, only: steady_options
-  use sloshdyn_response, only: response_options, check_response_options
+  use sloshdyn_response, only: check_response_options
   use sloshdyn_periodic_response, only: lyapunov_options
   implicit none
   private

@@ -99,7 +99,7 @@ module sloshdyn_bifurcation
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_CAPACITY, &
                              check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_lapack, only: eigenvalues, solve_linear
+  use sloshdyn_lapack, only: solve_linear
   use sloshdyn_continuation, only: parametrised_system, branch_test, continuation_options, &
                                    newton_solve, continue_branch, branch_tangent, &
                                    locate_zero_on_branch, continuation_check_options, &

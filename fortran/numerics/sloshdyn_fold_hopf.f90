@@ -6,7 +6,7 @@
 module sloshdyn_fold_hopf
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_SINGULAR
+  use sloshdyn_status, only: SD_OK, SD_SINGULAR
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues, solve_linear
   use sloshdyn_bifurcation, only: curve_system, max_curve_tests, split_x_p, point_x_p, &
