@@ -1,7 +1,7 @@
 !> The input file: Fortran namelist groups, read and validated in full before anything is
 !> computed. The only reader: the executable uses it directly and Python through the bridge, so
 !> both front doors apply the same rules, defaults and messages. The groups and variables are
-!> documented in README.md ("Namelist reference").
+!> documented in docs/namelist.md.
 !>
 !> This module reads a whole file and applies the rules that tie its groups together; it is the
 !> public face of the reader (it re-exports the run configuration). Its parts:

@@ -1,7 +1,7 @@
 !> The groups of the input file and their readers: each group has its own reader with its own
 !> local variables, whose defaults come from the settings types of the analyses, and applies the
 !> group's own rules (the rules that tie groups together are read_input's, sloshdyn_namelist).
-!> The groups and variables are documented in README.md ("Namelist reference").
+!> The groups and variables are documented in docs/namelist.md.
 module sloshdyn_namelist_groups
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
@@ -60,11 +60,9 @@ contains
     type(input_file), intent(out) :: file
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    call scan_file(path, known_groups, file, status, message, &
-                   retired=['structure'], retired_hint=[character(len=256) :: &
-                   '&tank describes the whole tank in SI units, its supports by '// &
-                   'support_frequency and support_damping (or support_stiffness, '// &
-                   'support_damping_coefficient, support_height); README.md, "Namelist reference"'])
+    call scan_file(path, known_groups, file, status, message, retired=['structure'], &
+                   retired_hint=['&tank describes the tank in SI units, its supports by '// &
+                                 'support_frequency and support_damping (docs/namelist.md)'])
   end subroutine open_input
 
   !> A file that describes these groups with their defaults instead of reading them.
@@ -914,7 +912,7 @@ contains
           'spectral_damping')
       text = name//' must be a real number'
     case default
-      text = 'unknown variable '''//name//''' (see the namelist reference in README.md)'
+      text = 'unknown variable '''//name//''' (see the namelist reference, docs/namelist.md)'
     end select
   end function expected_type
 end module sloshdyn_namelist_groups
