@@ -530,8 +530,8 @@ contains
     character(len=*), parameter :: units(SEISMIC_LOADS - 1) = [character(len=6) :: &
       'm/s^2', 'm', 'm', 'rad', 'm', 'N', 'N', 'N m']
 
-    t_end = config%seismic_t_end
-    n_out = config%seismic_n_out
+    t_end = config%seismic%t_end
+    n_out = config%seismic%n_out
     call seismic_defaults(config%tank_props, config%ground, t_end, n_out)
     allocate (table(SEISMIC_ROWS, n_out))
     call seismic_response(config%tank, config%ground, t_end, n_out, config%integration, &

@@ -1049,7 +1049,7 @@ contains
       ground = from_ground(config%ground)
       if (allocated(config%ground%acceleration)) n_samples = size(config%ground%acceleration)
     end if
-    seismic = [config%seismic_t_end, real(config%seismic_n_out, c_double)]
+    seismic = [config%seismic%t_end, real(config%seismic%n_out, c_double)]
     chart = from_chart(config%chart)
     integration = from_ode_options(config%integration, config%method)
     steady = from_steady(config%steady)
