@@ -154,9 +154,9 @@ contains
   !> &ground_motion: a record file (PEER NGA .AT2, or two columns time, acceleration) or harmonic
   !> motion (peak_acceleration, frequency), scaled by a factor, to a peak ground acceleration,
   !> or to a pseudo-spectral acceleration at target_period (default: the tank's sloshing period)
-  !> for target_damping (default: the convective 0.5 %); accelerations in `units` ('g', 'm/s^2', 'cm/s^2'). A sweep in
-  !> frequency gives the frequency (sweep_frequency >= 0, its first [Hz]; < 0: no such sweep)
-  !> when none is given.
+  !> for target_damping (default: the convective 0.5 %); accelerations in `units` ('g',
+  !> 'm/s^2', 'cm/s^2'). A sweep in frequency gives the frequency (sweep_frequency >= 0, its
+  !> first [Hz]; < 0: no such sweep) when none is given.
   subroutine read_ground_motion(file, props, sweep_frequency, ground, status, message)
     type(input_file), intent(inout) :: file
     type(tank_properties), intent(in) :: props
