@@ -1226,4 +1226,33 @@ contains
     lyapunov = from_lyapunov(lyapunov_options())
     shooting = [newton_tol_default, real(max_iter_default, c_double)]
   end subroutine defaults
+
+  ! ==== research toolkit (issue 27): Lyapunov spectrum, slow-flow cycles, branch switching ====
+  ! Added at the end in one block for the lead to move into the reorganised bridge.
+
+  !> All four Lyapunov exponents per unit tau from y0 (QR method), their running estimates
+  !> history(4, n_hist) after each renormalisation block and the Kaplan-Yorke dimension;
+  !> settings in the lyapunov layout.
+  subroutine lyapunov_spectrum(rpar, ipar, y0, settings, integration, n_hist, exponents, &
+                               history, dimension_ky, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
+    use sloshdyn_layouts, only: to_ode_options, to_method, to_lyapunov
+    real(c_double), intent(in) :: rpar(10), y0(4), settings(3), integration(7)
+    integer(c_int), intent(in) :: ipar(2), n_hist
+    real(c_double), intent(out) :: exponents(4), history(4, n_hist), dimension_ky
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code
+    exponents = 0; history = 0; dimension_ky = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call tank_lyapunov_spectrum(model, y0, to_lyapunov(settings), &
+                                               to_ode_options(integration), &
+                                               to_method(integration), exponents, history, &
+                                               dimension_ky, code, message)
+    status = code
+  end subroutine lyapunov_spectrum
+  ! ==== end of the research toolkit block ====
 end module sloshdyn_bridge

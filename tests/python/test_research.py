@@ -1,0 +1,103 @@
+"""The research toolkit (issue 27): the Lyapunov spectrum of the full equations against
+Liouville's formula (the sum of the exponents is the mean trace of the Jacobian along the run,
+integrated here by scipy) and Floquet theory (on a periodic orbit the exponents are log|mu|/T of
+the multipliers of the shooting's monodromy matrix)."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import sloshdyn
+from sloshdyn import Lyapunov
+
+FIG12 = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4,
+                            gamma=0.001, A=0.00075, rho=0.50)
+
+
+def kaplan_yorke(exponents):
+    """D = k + (l1 + .. + lk)/|l_{k+1}|, k the largest count with a partial sum >= 0."""
+    l = np.sort(exponents)[::-1]
+    partial = np.cumsum(l)
+    if l[0] < 0:
+        return 0.0
+    if partial[-1] >= 0:
+        return float(len(l))
+    k = int(np.max(np.nonzero(partial >= 0)[0])) + 1
+    return k + partial[k - 1] / abs(l[k])
+
+
+def test_spectrum_sum_is_the_mean_divergence_along_the_run():
+    """Liouville: l1 + .. + l4 = (1/t) int tr J dtau over the measured run (from tau = 0 here,
+    transient_periods = 0), tr J along the trajectory from scipy's DOP853, the trace itself
+    checked against central differences of y'."""
+    p = FIG12.replace(rho=0.509615)                    # Fig 14: the beat, from rest
+    n = 40
+    spectrum = sloshdyn.lyapunov_spectrum(p, lyapunov=Lyapunov(transient_periods=0, n_periods=n))
+    assert spectrum.exponents.shape == (4,) and spectrum.history.shape == (4, n)
+
+    def field(tau, z):
+        motion = sloshdyn.equations_of_motion(p, tau, z[:4])
+        return np.concatenate([motion.dydt, [np.trace(motion.jacobian)]])
+
+    t_end = n * 2 * math.pi / p.rho
+    run = solve_ivp(field, (0, t_end), np.zeros(5), method="DOP853", rtol=1e-9, atol=1e-12)
+    divergence = run.y[4, -1] / t_end
+    assert spectrum.sum == pytest.approx(divergence, rel=1e-3)   # measured 1.4e-8 (300 periods)
+
+    y, tau, h = run.y[:4, run.y.shape[1] // 2], run.t[run.y.shape[1] // 2], 1e-6
+    trace = sum((sloshdyn.equations_of_motion(p, tau, y + h * e).dydt[i]
+                 - sloshdyn.equations_of_motion(p, tau, y - h * e).dydt[i]) / (2 * h)
+                for i, e in enumerate(np.eye(4)))
+    assert np.trace(sloshdyn.equations_of_motion(p, tau, y).jacobian) == pytest.approx(trace,
+                                                                                       rel=1e-6)
+
+
+def test_spectrum_on_a_periodic_orbit_is_log_floquet_over_period():
+    """On a stable periodic orbit the exponents are log|mu|/T (Floquet). The multipliers come in
+    two complex pairs: the QR method splits a pair's common exponent with an error bounded over
+    the run (O(1/t)), while the sum over the pair (the growth of the invariant plane) converges
+    at once: each exponent to 1e-4 absolute, each pair's sum to 1e-4 relative."""
+    p = FIG12.replace(rho=0.513, gamma=0.05, A=0.05)   # damped, so the run converges fast
+    orbit = sloshdyn.periodic_orbit(p, sloshdyn.steady_state(p).y_end)
+    floquet = np.sort(np.log(np.abs(orbit.multipliers)) * p.rho / (2 * math.pi))[::-1]
+    spectrum = sloshdyn.lyapunov_spectrum(p, orbit.y0,
+                                          lyapunov=Lyapunov(transient_periods=200, n_periods=1000))
+    exponents = spectrum.exponents
+    assert np.all(np.abs(exponents - floquet) < 1e-4)               # measured 1.9e-5
+    assert exponents[0] + exponents[1] == pytest.approx(floquet[0] + floquet[1], rel=1e-4)
+    assert exponents[2] + exponents[3] == pytest.approx(floquet[2] + floquet[3], rel=1e-4)
+    assert spectrum.kaplan_yorke == 0.0                             # all negative: a point
+
+
+def test_largest_of_the_spectrum_is_the_largest_exponent():
+    """The first QR column is Benettin's single tangent vector (same start direction, only the
+    step sequence differs: the error norm covers four columns instead of one)."""
+    p = FIG12.replace(rho=0.513)
+    y0 = sloshdyn.periodic_orbit(p, sloshdyn.steady_state(p).y_end).y0
+    settings = Lyapunov(transient_periods=0, n_periods=50, renormalise_every=5)
+    spectrum = sloshdyn.lyapunov_spectrum(p, y0, lyapunov=settings)
+    largest, _ = sloshdyn.lyapunov_exponent(p, y0, transient_periods=0, n_periods=50,
+                                            renormalise_every=5)
+    assert spectrum.exponents[0] == pytest.approx(largest, rel=1e-6)
+
+
+def test_chaotic_spectrum_and_kaplan_yorke_dimension():
+    """Fig 17 (rho = 0.513, A = 2), chaotic: the largest exponent is positive, the sum negative
+    (dissipation), and the Kaplan-Yorke dimension is its definition on the sorted exponents
+    (computed here), between 1 and 4."""
+    p = FIG12.replace(rho=0.513, A=2.0)
+    y0 = sloshdyn.steady_state(p, steady=sloshdyn.Steady(max_transient_periods=2000)).y_end
+    spectrum = sloshdyn.lyapunov_spectrum(p, y0, lyapunov=Lyapunov(transient_periods=100,
+                                                                   n_periods=500))
+    assert spectrum.exponents[0] > 0.05 and spectrum.sum < 0
+    assert spectrum.kaplan_yorke == pytest.approx(kaplan_yorke(spectrum.exponents), rel=1e-12)
+    assert 1 < spectrum.kaplan_yorke < 4
+
+
+def test_lyapunov_settings_are_checked():
+    with pytest.raises(sloshdyn.InputError, match="n_periods"):
+        sloshdyn.lyapunov_spectrum(FIG12, lyapunov=Lyapunov(n_periods=7, renormalise_every=2))
+    with pytest.raises(sloshdyn.InputError, match="lyapunov"):
+        sloshdyn.lyapunov_spectrum(FIG12, lyapunov=(1, 2, 3))
