@@ -1114,8 +1114,10 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp) :: transient_periods
     integer :: n_periods, renormalise_every
+    logical :: spectrum
     type(group_reader) :: reader
-    namelist /lyapunov/ transient_periods, n_periods, renormalise_every
+    namelist /lyapunov/ transient_periods, n_periods, renormalise_every, spectrum
+    spectrum = options%spectrum
     transient_periods = options%transient_periods
     n_periods = options%n_periods
     renormalise_every = options%renormalise_every
@@ -1136,7 +1138,7 @@ contains
       message = '&lyapunov: '//trim(message)
       return
     end if
-    options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every)
+    options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every, spectrum)
   end subroutine read_lyapunov
 
   !> &chart: a stability chart of the slow flow (sloshdyn_stability_chart): the model, the

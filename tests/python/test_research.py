@@ -101,3 +101,24 @@ def test_lyapunov_settings_are_checked():
         sloshdyn.lyapunov_spectrum(FIG12, lyapunov=Lyapunov(n_periods=7, renormalise_every=2))
     with pytest.raises(sloshdyn.InputError, match="lyapunov"):
         sloshdyn.lyapunov_spectrum(FIG12, lyapunov=(1, 2, 3))
+
+
+def test_namelist_spectrum_runs_the_same_spectrum(tmp_path):
+    """&lyapunov spectrum = .true.: the executable writes lyapunov_spectrum.csv, whose rows are
+    the running estimates of sloshdyn.lyapunov_spectrum with the same settings (one reader, one
+    core), and whose last row sums to the mean divergence (checked by scipy above)."""
+    from conftest import run, write
+    from test_one_reader import MODEL, sys_exe
+    text = (MODEL + "&excitation A = 0.00075, rho = 0.509615 /\n&analysis kind = 'lyapunov' /\n"
+            "&lyapunov spectrum = .true., transient_periods = 20, n_periods = 40, "
+            "renormalise_every = 2 /\n&output directory = 'out' /\n")
+    write(tmp_path, text)
+    exe = run(sys_exe(), "input.nml", tmp_path)
+    assert exe.returncode == 0, exe.stderr
+    assert "Kaplan-Yorke dimension" in exe.stdout
+    table = np.loadtxt(tmp_path / "out" / "lyapunov_spectrum.csv", delimiter=",", skiprows=1)
+    spectrum = sloshdyn.lyapunov_spectrum(FIG12.replace(rho=0.509615), lyapunov=Lyapunov(
+        transient_periods=20, n_periods=40, renormalise_every=2))
+    assert np.array_equal(table[:, 0], spectrum.periods)
+    assert np.array_equal(table[:, 1:].T, spectrum.history)
+    assert np.array_equal(table[-1, 1:], spectrum.exponents)
