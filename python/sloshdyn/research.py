@@ -1,6 +1,7 @@
 """Research toolkit (issue 27): the Lyapunov spectrum of the full equations of motion (QR method
-on the variational equations, Kaplan-Yorke dimension). Computed by the Fortran core
-(sloshdyn_lyapunov, sloshdyn_tank_lyapunov)."""
+on the variational equations, Kaplan-Yorke dimension) and the continuation of the beats, the
+limit cycles of the 3:1 slow flow, between their Hopf points. Computed by the Fortran core
+(sloshdyn_lyapunov, sloshdyn_tank_lyapunov, sloshdyn_cycle_branch, sloshdyn_slowflow_cycles)."""
 
 from __future__ import annotations
 
@@ -10,12 +11,16 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import check_status
+from ._errors import ConvergenceError, InputError, check_status
+from .asymptotics import Continuation, continuation_range, frequency_response, slow_flow_cycle
 from .parameters import Parameters, convert_fields
 from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge
 _LYAPUNOV = _tables.defaults()["lyapunov"]
+KINDS = _tables.codes("special")
+#: why a continuation stopped (sloshdyn_continuation's STOP_* codes)
+_STOPS = {1: "lambda_min", 2: "lambda_max", 3: "max_points", 4: "closed", 5: "x_max", 6: "failed"}
 
 
 @dataclass(frozen=True)
@@ -69,3 +74,132 @@ def lyapunov_spectrum(params: Parameters, y0=None, *, lyapunov: Lyapunov = Lyapu
     periods = lyapunov.renormalise_every * np.arange(1, blocks + 1, dtype=float)
     return LyapunovSpectrum(exponents, history, periods, float(dimension),
                             integration.method_used)
+
+
+@dataclass(frozen=True)
+class CycleSpecialPoint:
+    """A bifurcation on the branch of slow-flow cycles: 'hopf' (an end: the cycle shrinks onto
+    a steady state of the slow flow; beat_periods = rho/omega of the Hopf pair), 'fold' (of
+    cycles), 'period_doubling' or 'neimark_sacker' (a torus of the slow flow: a 3-frequency
+    motion of the full model)."""
+
+    kind: str
+    rho: float
+    A: float
+    beat_periods: float          #: the cycle's period in forcing periods T = 2 pi/rho
+    x: np.ndarray                #: (Re B1, Im B1, Re B2, Im B2) on the cycle (at a Hopf point:
+                                 #: the steady state)
+
+
+@dataclass(frozen=True)
+class SlowFlowCycles:
+    """The branch of limit cycles of the 3:1 slow flow (the beats of the full motion, Fig 14),
+    from one Hopf point towards the other, one row per point in the order of the parameter."""
+
+    parameter: str               #: 'rho' or 'A'
+    rho: np.ndarray
+    A: np.ndarray
+    period: np.ndarray           #: the cycle's period in tau
+    beat_periods: np.ndarray     #: the same in forcing periods T = 2 pi/rho
+    x: np.ndarray                #: (n, 4): (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest
+    multipliers: np.ndarray      #: (n, 4) complex Floquet multipliers (one is 1)
+    stable: np.ndarray           #: bool: all but the trivial multiplier inside the unit circle
+    amplitudes: np.ndarray       #: (n, 4): min|B1|, max|B1|, min|B2|, max|B2| over the cycle
+    special_points: list         #: CycleSpecialPoint: the Hopf ends and what lies between
+    ends: tuple                  #: (low end, high end): 'hopf' or why the branch stopped
+    method: str = ""             #: the integration method used ('auto' resolved)
+
+
+def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
+                     continuation: Continuation = Continuation(ds=0.01, ds_max=0.05,
+                                                               max_points=500),
+                     hopf_gap=1e-3,
+                     integration: Integration = Integration(rtol=1e-10, atol=1e-13)
+                     ) -> SlowFlowCycles:
+    """The beats continued: the limit cycles of the 3:1 slow flow between two consecutive Hopf
+    points of its steady states in rho_range (or A_range): the cycle is found at params' rho
+    (or A) if that lies between them, else midway (sloshdyn.slow_flow_cycle), then followed
+    both ways by pseudo-arclength continuation (single shooting, the period unknown, phase
+    condition d(Re B1)/dtau = 0) with its Floquet multipliers, folds of cycles, period
+    doublings and Neimark-Sacker points, up to hopf_gap times the Hopf interval before each
+    Hopf point (at the Hopf point the cycle has shrunk to the steady state). continuation:
+    ds, ds_min, ds_max, x_scale and max_points (per direction) are used; the arclength norm
+    has the four amplitudes and the period relative to the start's.
+
+    Raises ConvergenceError saying "no cycle" when the steady states have no Hopf point in the
+    range (the slow flow settles to an equilibrium there) or no cycle is found between them."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("continuation", continuation, Continuation)
+    _checks.instance("integration", integration, Integration)
+    parameter, (lo, hi) = continuation_range(rho_range, A_range)
+    hopf_gap = _checks.real("hopf_gap", hopf_gap)
+    if not 0 < hopf_gap < 0.5:
+        raise InputError(f"hopf_gap = {hopf_gap} is out of range: it must lie in (0, 0.5)")
+    response = frequency_response(params, **{f"{parameter}_range": (lo, hi)})
+    hopfs = sorted((s for s in response.special_points if s.kind == "hopf"),
+                   key=lambda s: getattr(s, parameter))
+    if len(hopfs) < 2:
+        raise ConvergenceError(
+            f"no cycle: the slow flow settles to an equilibrium for {parameter} in [{lo}, {hi}] "
+            f"(its steady states have {len(hopfs)} Hopf point{'s' if len(hopfs) != 1 else ''} "
+            "there; a branch of beats needs a pair)")
+    here = getattr(params, parameter)
+    pairs = list(zip(hopfs[:-1], hopfs[1:]))
+    low, high = next(((a, b) for a, b in pairs
+                      if getattr(a, parameter) < here < getattr(b, parameter)), pairs[0])
+    a, b = getattr(low, parameter), getattr(high, parameter)
+    start = params if a < here < b else params.replace(**{parameter: 0.5 * (a + b)})
+    try:
+        cycle = slow_flow_cycle(start, integration=integration)
+    except ConvergenceError as exc:
+        raise ConvergenceError(
+            f"no cycle: the slow flow from rest settles to an equilibrium at {parameter} = "
+            f"{getattr(start, parameter)}, between the Hopf points at {a} and {b} ({exc})") from exc
+    gap = hopf_gap * (b - a)
+    halves = []
+    for direction in (-1.0, 1.0):
+        settings = np.array([continuation.ds, continuation.ds_min, continuation.ds_max,
+                             continuation.x_scale, direction])
+        (points, multipliers, amplitudes, n, special, n_special, stop, status,
+         message) = cancellable(_bridge.slow_flow_cycle_branch, *start.arrays(),
+                                1 if parameter == "rho" else 2, cycle.x, cycle.period, a + gap,
+                                b - gap, settings, integration.array(),
+                                _checks.integer("max_points", continuation.max_points, 2), 50)
+        check_status(status, message, "slow-flow cycle branch")
+        halves.append((points[:, :n], multipliers[:, :n], amplitudes[:, :n],
+                       special[:, :n_special], int(stop)))
+    (p_lo, m_lo, a_lo, s_lo, stop_lo), (p_hi, m_hi, a_hi, s_hi, stop_hi) = halves
+    points = np.concatenate([p_lo[:, ::-1], p_hi[:, 1:]], axis=1)
+    multipliers = np.concatenate([m_lo[:, ::-1], m_hi[:, 1:]], axis=1)
+    amplitudes = np.concatenate([a_lo[:, ::-1], a_hi[:, 1:]], axis=1)
+    lam = points[0]
+    rho = lam if parameter == "rho" else np.full(lam.shape, params.rho)
+    A = lam if parameter == "A" else np.full(lam.shape, params.A)
+    period = points[5]
+
+    def special_point(kind, value, beat, x):
+        r = value if parameter == "rho" else params.rho
+        return CycleSpecialPoint(kind, float(r), float(value if parameter == "A" else params.A),
+                                 float(beat), np.asarray(x, dtype=float))
+
+    def hopf_point(h):
+        value = getattr(h, parameter)
+        r = value if parameter == "rho" else params.rho
+        steady = response.table
+        k = int(np.argmin(np.abs(steady[parameter] - value) + np.abs(steady["branch"] - h.branch)))
+        x = [steady[c][k] for c in ("re_B1", "im_B1", "re_B2", "im_B2")]
+        return special_point("hopf", value, r / h.frequency, x)
+
+    ends = ("hopf" if _STOPS.get(stop_lo) == "lambda_min" else _STOPS.get(stop_lo, "failed"),
+            "hopf" if _STOPS.get(stop_hi) == "lambda_max" else _STOPS.get(stop_hi, "failed"))
+    specials = [hopf_point(low)] if ends[0] == "hopf" else []
+    found = sorted((s for s in np.concatenate([s_lo, s_hi], axis=1).T), key=lambda s: s[1])
+    for s in found:
+        r = s[1] if parameter == "rho" else params.rho
+        specials.append(special_point(KINDS[int(s[0])], s[1], s[6] * r / (2 * np.pi), s[2:6]))
+    if ends[1] == "hopf":
+        specials.append(hopf_point(high))
+    return SlowFlowCycles(parameter, rho, A, period, period * rho / (2 * np.pi),
+                          points[1:5].T.copy(), (multipliers[:4] + 1j * multipliers[4:]).T,
+                          points[6] > 0.5, amplitudes.T.copy(), specials, ends,
+                          integration.method_used)

@@ -122,3 +122,88 @@ def test_namelist_spectrum_runs_the_same_spectrum(tmp_path):
     assert np.array_equal(table[:, 0], spectrum.periods)
     assert np.array_equal(table[:, 1:].T, spectrum.history)
     assert np.array_equal(table[-1, 1:], spectrum.exponents)
+
+
+# ---- the beats continued: limit cycles of the 3:1 slow flow ----------------------------------
+
+@pytest.fixture(scope="module")
+def beats():
+    from sloshdyn.figures import FIG12 as fig12
+    return fig12, sloshdyn.slow_flow_cycles(fig12, (0.49, 0.53))
+
+
+def test_beat_branch_joins_the_two_hopf_points_of_fig12(beats):
+    """From the Fig 14 cycle (rho = 0.509615) the branch runs down to one Hopf point of the
+    steady states and up to the other (the ends stop hopf_gap = 1e-3 of the interval short of
+    them), stable all along, with no fold, period doubling or Neimark-Sacker point between."""
+    fig12, beats = beats
+    hopf = sorted(s.rho for s in sloshdyn.frequency_response(fig12, (0.49, 0.53)).special_points
+                  if s.kind == "hopf")
+    assert beats.ends == ("hopf", "hopf")
+    gap = 1e-3 * (hopf[1] - hopf[0])
+    assert beats.rho[0] == pytest.approx(hopf[0] + gap, abs=1e-12)
+    assert beats.rho[-1] == pytest.approx(hopf[1] - gap, abs=1e-12)
+    assert [s.kind for s in beats.special_points] == ["hopf", "hopf"]
+    assert np.all(np.diff(beats.rho) > 0) and beats.stable.all()
+    trivial = beats.multipliers[np.arange(len(beats.rho)),
+                                np.argmin(np.abs(beats.multipliers - 1), axis=1)]
+    assert np.all(np.abs(trivial - 1) < 1e-6)          # the flow direction
+
+
+def test_beat_period_along_the_branch_is_the_one_point_cycle(beats):
+    """At rho = 0.509615 the period is the one-point slow_flow_cycle value (233.7648 forcing
+    periods, Fig 14); at other points of the branch too (slow_flow_cycle integrates from rest
+    and shoots with a section: an independent route to the same cycle)."""
+    fig12, beats = beats
+    k = int(np.argmin(np.abs(beats.rho - 0.509615)))
+    assert beats.rho[k] == 0.509615
+    assert beats.beat_periods[k] == pytest.approx(233.7648, rel=1e-6)
+    assert beats.beat_periods[k] == pytest.approx(sloshdyn.slow_flow_cycle(fig12).beat_periods,
+                                                  rel=1e-9)
+    for k in (5, len(beats.rho) - 8):
+        one = sloshdyn.slow_flow_cycle(fig12.replace(rho=beats.rho[k]))
+        assert beats.beat_periods[k] == pytest.approx(one.beat_periods, rel=1e-6)  # meas. 3e-12
+
+
+def test_beat_period_tends_to_the_hopf_frequency(beats):
+    """Near a Hopf point the cycle is the linear oscillation of the Hopf pair: its period tends
+    to 2 pi/omega (omega = sqrt(C3/C1) of the steady state's Routh-Hurwitz coefficients), in
+    forcing periods rho/omega; the last three points extrapolated (quadratic in rho) to the
+    Hopf point give it to 1e-5 (measured 7e-8), and each end is nearer to it than the point
+    before."""
+    fig12, beats = beats
+    low, high = beats.special_points[0], beats.special_points[-1]
+    for end, hopf in ((slice(0, 3), low), (slice(-1, -4, -1), high)):
+        rho, period = beats.rho[end], beats.beat_periods[end]
+        expected = hopf.rho / next(s.frequency for s in sloshdyn.frequency_response(
+            fig12, (0.49, 0.53)).special_points if s.kind == "hopf" and s.rho == hopf.rho)
+        assert hopf.beat_periods == pytest.approx(expected, rel=1e-15)
+        assert np.polyval(np.polyfit(rho, period, 2), hopf.rho) == pytest.approx(expected,
+                                                                                   rel=1e-5)
+        assert abs(period[0] - expected) < abs(period[1] - expected) < abs(period[2] - expected)
+        assert abs(period[0] / expected - 1) < 1e-3
+
+
+def test_beat_cycles_solve_eq53_by_scipy(beats):
+    """Every few points: eq (53) typed in numpy (test_response.complex_slow_flow) integrated by
+    scipy's DOP853 from the cycle's point over its period returns to it; the point lies where
+    Re B1 is extremal (the phase condition)."""
+    from scipy.integrate import solve_ivp
+    from test_response import complex_slow_flow
+    fig12, beats = beats
+    coefficients = sloshdyn.modal_coefficients(fig12)
+    for k in range(0, len(beats.rho), 10):
+        f = complex_slow_flow(coefficients, beats.rho[k], fig12.A)
+        x = beats.x[k]
+        run = solve_ivp(f, (0, beats.period[k]), x, method="DOP853", rtol=1e-11, atol=1e-14)
+        assert run.y[:, -1] == pytest.approx(x, abs=1e-7 * np.max(np.abs(x)))
+        assert abs(f(0, x)[0]) < 1e-9 * np.max(np.abs(f(0, run.y[:, len(run.t) // 3])))
+        assert beats.amplitudes[k, 1] == pytest.approx(np.max(np.hypot(run.y[0], run.y[1])),
+                                                       rel=1e-3)
+
+
+def test_no_beat_where_the_slow_flow_settles():
+    """Above the Hopf interval the steady states of Fig 12 are stable: no cycle, said so."""
+    from sloshdyn.figures import FIG12 as fig12
+    with pytest.raises(sloshdyn.ConvergenceError, match="no cycle: the slow flow settles"):
+        sloshdyn.slow_flow_cycles(fig12, (0.511, 0.53))
