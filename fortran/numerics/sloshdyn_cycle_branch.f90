@@ -28,14 +28,12 @@ module sloshdyn_cycle_branch
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues
   use sloshdyn_ode, only: ode_options
-  use sloshdyn_continuation, only: parametrised_system, branch_test, continuation_options, &
-                                   continue_branch, locate_fold, locate_zero_on_branch, &
-                                   stop_reason_name, STOP_LAMBDA_MIN, STOP_LAMBDA_MAX, &
-                                   STOP_CLOSED, STOP_MAX_POINTS
+  use sloshdyn_continuation, only: parametrised_system, continuation_options, &
+                                   continue_branch, stop_reason_name, STOP_LAMBDA_MIN, &
+                                   STOP_LAMBDA_MAX, STOP_CLOSED, STOP_MAX_POINTS
   use sloshdyn_shooting, only: periodic_problem, monodromy_matrix, period_doubling_test, &
-                               neimark_sacker_test, complex_pair_count
-  use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_PERIOD_DOUBLING, SPECIAL_NEIMARK_SACKER, &
-                             special_kind_name
+                               neimark_sacker_test, kind_test, locate_special_points
+  use sloshdyn_tables, only: SPECIAL_PERIOD_DOUBLING
   implicit none
   private
   public :: autonomous_family, cycle_branch, cycle_point, stable_cycle
@@ -62,9 +60,8 @@ module sloshdyn_cycle_branch
   end type cycle_system
 
   !> det(M + I) or the Neimark-Sacker product at a branch point, for locate_zero_on_branch.
-  type, extends(branch_test) :: cycle_test
+  type, extends(kind_test) :: cycle_test
     type(cycle_system) :: sys
-    integer :: kind = SPECIAL_PERIOD_DOUBLING
   contains
     procedure :: value => cycle_test_value
   end type cycle_test
@@ -104,9 +101,7 @@ contains
     type(cycle_system) :: sys
     type(cycle_test) :: test
     type(continuation_options) :: opt
-    real(wp), allocatable :: z(:, :), tangents(:, :), arclength(:), pd(:), ns(:), z_special(:), &
-                             row(:), mult(:)
-    integer, allocatable :: pairs(:)
+    real(wp), allocatable :: z(:, :), tangents(:, :), arclength(:)
     integer :: n, m, j, point_status
     character(len=message_len) :: point_message
 
@@ -142,12 +137,11 @@ contains
     opt%lambda_min = lambda_min
     opt%lambda_max = lambda_max
     allocate (z(m, max(options%max_points, 1)), tangents(m, max(options%max_points, 1)), &
-              arclength(max(options%max_points, 1)), z_special(m), row(n + 3), mult(2*n))
+              arclength(max(options%max_points, 1)))
     call continue_branch(sys, [y0, 1.0_wp], family%parameter(), opt, z, tangents, arclength, &
                          n_points, stop_reason, status, message)
     if (status /= SD_OK .and. n_points == 0) return
 
-    allocate (pd(n_points), ns(n_points), pairs(n_points))
     do j = 1, n_points
       call cycle_point(sys, z(:, j), points(:, j), multipliers(:, j), point_status, &
                        point_message)
@@ -159,22 +153,10 @@ contains
         n_points = j - 1
         exit
       end if
-      pd(j) = period_doubling_test(multipliers(1:n, j), multipliers(n + 1:, j))
-      ns(j) = neimark_sacker_test(multipliers(1:n, j), multipliers(n + 1:, j))
-      pairs(j) = complex_pair_count(multipliers(1:n, j), multipliers(n + 1:, j))
     end do
-
     test%sys = sys
-    do j = 1, n_points - 1
-      if (tangents(m, j)*tangents(m, j + 1) < 0) then
-        call locate_fold(sys, z(:, j), tangents(:, j), z(:, j + 1), tangents(:, j + 1), &
-                         z_special, point_status, point_message, opt)
-        call add_special(SPECIAL_FOLD)
-      end if
-      if (pd(j)*pd(j + 1) < 0) call locate_with(SPECIAL_PERIOD_DOUBLING)
-      if (pairs(j) == pairs(j + 1) .and. ns(j)*ns(j + 1) < 0) &
-        call locate_with(SPECIAL_NEIMARK_SACKER)
-    end do
+    call locate_special_points(sys, z, tangents, arclength, multipliers, n_points, .false., &
+                               test, opt, point_data, special, n_special, status, message)
 
     if (status == SD_OK .and. stop_reason == STOP_MAX_POINTS) then
       status = SD_CAPACITY
@@ -187,39 +169,13 @@ contains
 
   contains
 
-    subroutine locate_with(what)
-      integer, intent(in) :: what
-      test%kind = what
-      call locate_zero_on_branch(sys, z(:, j), tangents(:, j), arclength(j + 1) - arclength(j), &
-                                 test, z_special, point_status, point_message, opt)
-      call add_special(what)
-    end subroutine locate_with
-
-    subroutine add_special(what)
-      integer, intent(in) :: what
-      if (point_status == SD_OK) call cycle_point(sys, z_special, row, mult, point_status, &
-                                                  point_message)
-      if (point_status /= SD_OK) then
-        if (status == SD_OK) then
-          status = point_status
-          message = 'locating the '//special_kind_name(what)//' of cycles between lambda = '// &
-                    num2str(z(m, j))//' and '//num2str(z(m, j + 1))//' failed: '// &
-                    trim(point_message)
-        end if
-        return
-      end if
-      if (n_special >= size(special, 2)) then
-        if (status == SD_OK) then
-          status = SD_CAPACITY
-          message = 'special has '//num2str(size(special, 2))//' columns; more special '// &
-                    'points of cycles were found'
-        end if
-        return
-      end if
-      n_special = n_special + 1
-      special(1, n_special) = what
-      special(2:n + 3, n_special) = row(1:n + 2)
-    end subroutine add_special
+    subroutine point_data(zj, row, mult, st, msg)
+      real(wp), intent(in) :: zj(:)
+      real(wp), intent(out) :: row(:), mult(:)
+      integer, intent(out) :: st
+      character(len=message_len), intent(out) :: msg
+      call cycle_point(sys, zj, row, mult, st, msg)
+    end subroutine point_data
   end subroutine cycle_branch
 
   !> The stored row [lambda, y0, T, stable] and the multipliers [re, im] of the branch point
