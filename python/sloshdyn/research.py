@@ -203,3 +203,40 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
                           points[1:5].T.copy(), (multipliers[:4] + 1j * multipliers[4:]).T,
                           points[6] > 0.5, amplitudes.T.copy(), specials, ends,
                           integration.method_used)
+
+
+def plot_beats(response, cycles: SlowFlowCycles):
+    """The beats over the frequency response (Fig 12 with Fig 14's beat continued): the
+    response curves of plotting.frequency_response (|u1|, |u2| = |B1|, |B2| of the steady
+    states, dimensionless like x1 = x/L), the band min..max of |B1| and |B2| over each slow-flow
+    cycle shaded between its Hopf points, and a third panel with the beat period in forcing
+    periods T = 2 pi/rho."""
+    from . import plotting
+    import matplotlib.pyplot as plt
+
+    _checks.instance("cycles", cycles, SlowFlowCycles)
+    base = plotting.frequency_response(response)
+    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(7, 8.4))
+    for ax, old in zip(axes[:2], base.axes):
+        for line in old.lines:
+            ax.plot(line.get_xdata(), line.get_ydata(), ls=line.get_linestyle(),
+                    marker=line.get_marker(), color=line.get_color(), mfc=line.get_mfc(),
+                    ms=line.get_markersize(), lw=line.get_linewidth())
+    plt.close(base)
+    lam = cycles.rho if cycles.parameter == "rho" else cycles.A
+    for ax, k, name in ((axes[0], 0, "B_1"), (axes[1], 2, "B_2")):
+        ax.fill_between(lam, cycles.amplitudes[:, k], cycles.amplitudes[:, k + 1], color="C0",
+                        alpha=0.35, lw=0, label=f"beat: min..max $|{name}|$ over the cycle")
+        ax.set_ylabel(rf"$|{name}|$ [-] (amplitude / $L$)")
+        ax.legend(fontsize=8)
+    axes[2].plot(lam, cycles.beat_periods, color="C0", lw=1.2)
+    hopf = [s for s in cycles.special_points if s.kind == "hopf"]
+    axes[2].plot([s.rho if cycles.parameter == "rho" else s.A for s in hopf],
+                 [s.beat_periods for s in hopf], "s", mfc="none", color="r", ms=5,
+                 label=r"Hopf: $\rho/\omega$")
+    axes[2].set_ylabel("beat period\n[forcing periods]")
+    axes[2].legend(fontsize=8)
+    axes[2].set_xlabel(r"$\rho = \Omega/\omega$ [-]" if cycles.parameter == "rho"
+                       else "A [-]")
+    fig.tight_layout()
+    return fig

@@ -207,3 +207,19 @@ def test_no_beat_where_the_slow_flow_settles():
     from sloshdyn.figures import FIG12 as fig12
     with pytest.raises(sloshdyn.ConvergenceError, match="no cycle: the slow flow settles"):
         sloshdyn.slow_flow_cycles(fig12, (0.511, 0.53))
+
+
+def test_beat_plot_draws_the_cycles_over_the_response(beats, tmp_path):
+    """The band is the cycles' min..max |B1| (and |B2|); the beat period panel ends on the Hopf
+    points' rho/omega; every axis says its unit."""
+    fig12, cycles = beats
+    from sloshdyn.research import plot_beats
+    response = sloshdyn.frequency_response(fig12, (0.505, 0.515))
+    fig = plot_beats(response, cycles)
+    band = fig.axes[0].collections[0].get_paths()[0].vertices
+    assert np.isclose(band[:, 1].max(), cycles.amplitudes[:, 1].max())
+    assert np.isclose(band[:, 1].min(), cycles.amplitudes[:, 0].min())
+    assert np.array_equal(fig.axes[2].lines[0].get_ydata(), cycles.beat_periods)
+    assert all("[" in ax.get_ylabel() for ax in fig.axes) and "[" in fig.axes[2].get_xlabel()
+    fig.savefig(tmp_path / "beats.png")
+    assert (tmp_path / "beats.png").stat().st_size > 1000
