@@ -208,7 +208,7 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
 def plot_beats(response, cycles: SlowFlowCycles):
     """The beats over the frequency response (Fig 12 with Fig 14's beat continued): the
     response curves of plotting.frequency_response (|u1|, |u2| = |B1|, |B2| of the steady
-    states, dimensionless like x1 = x/L), the band min..max of |B1| and |B2| over each slow-flow
+    states: modal amplitudes, x = P u, x1 = theta/theta0), the band min..max of |B1| and |B2| over each slow-flow
     cycle shaded between its Hopf points, and a third panel with the beat period in forcing
     periods T = 2 pi/rho."""
     from . import plotting
@@ -227,7 +227,7 @@ def plot_beats(response, cycles: SlowFlowCycles):
     for ax, k, name in ((axes[0], 0, "B_1"), (axes[1], 2, "B_2")):
         ax.fill_between(lam, cycles.amplitudes[:, k], cycles.amplitudes[:, k + 1], color="C0",
                         alpha=0.35, lw=0, label=f"beat: min..max $|{name}|$ over the cycle")
-        ax.set_ylabel(rf"$|{name}|$ [-] (amplitude / $L$)")
+        ax.set_ylabel(rf"$|{name}|$ [-] (modal, $x = P u$)")
         ax.legend(fontsize=8)
     axes[2].plot(lam, cycles.beat_periods, color="C0", lw=1.2)
     hopf = [s for s in cycles.special_points if s.kind == "hopf"]
