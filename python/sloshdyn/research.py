@@ -11,7 +11,7 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import ConvergenceError, InputError, check_status
+from ._errors import ConvergenceError, InputError, SloshdynError, check_status
 from .asymptotics import Continuation, continuation_range, frequency_response, slow_flow_cycle
 from .parameters import Parameters, convert_fields
 from .simulation import Integration
@@ -106,7 +106,8 @@ class SlowFlowCycles:
     stable: np.ndarray           #: bool: all but the trivial multiplier inside the unit circle
     amplitudes: np.ndarray       #: (n, 4): min|B1|, max|B1|, min|B2|, max|B2| over the cycle
     special_points: list         #: CycleSpecialPoint: the Hopf ends and what lies between
-    ends: tuple                  #: (low end, high end): 'hopf' or why the branch stopped
+    ends: tuple                  #: (low end, high end): 'hopf', 'range end' or why the branch
+                                 #: stopped ('failed: <the core's message>', 'max_points')
     method: str = ""             #: the integration method used ('auto' resolved)
 
 
@@ -117,8 +118,9 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
                      integration: Integration = Integration(rtol=1e-10, atol=1e-13)
                      ) -> SlowFlowCycles:
     """The beats continued: the limit cycles of the 3:1 slow flow between two consecutive Hopf
-    points of its steady states in rho_range (or A_range): the cycle is found at params' rho
-    (or A) if that lies between them, else midway (sloshdyn.slow_flow_cycle), then followed
+    points of its steady states in rho_range (or A_range; a range end stands in for a missing
+    Hopf point): the cycle is found at params' rho (or A) if that lies between them, else
+    midway (sloshdyn.slow_flow_cycle), then followed
     both ways by pseudo-arclength continuation (single shooting, the period unknown, phase
     condition d(Re B1)/dtau = 0) with its Floquet multipliers, folds of cycles, period
     doublings and Neimark-Sacker points, up to hopf_gap times the Hopf interval before each
@@ -138,37 +140,48 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     response = frequency_response(params, **{f"{parameter}_range": (lo, hi)})
     hopfs = sorted((s for s in response.special_points if s.kind == "hopf"),
                    key=lambda s: getattr(s, parameter))
-    if len(hopfs) < 2:
-        raise ConvergenceError(
-            f"no cycle: the slow flow settles to an equilibrium for {parameter} in [{lo}, {hi}] "
-            f"(its steady states have {len(hopfs)} Hopf point{'s' if len(hopfs) != 1 else ''} "
-            "there; a branch of beats needs a pair)")
+    # the interval between consecutive Hopf points (or the range's ends) holding params' value,
+    # else the first one bounded by two Hopf points
     here = getattr(params, parameter)
-    pairs = list(zip(hopfs[:-1], hopfs[1:]))
-    low, high = next(((a, b) for a, b in pairs
-                      if getattr(a, parameter) < here < getattr(b, parameter)), pairs[0])
-    a, b = getattr(low, parameter), getattr(high, parameter)
+    bounds = [None] + hopfs + [None]
+    value = [lo] + [getattr(h, parameter) for h in hopfs] + [hi]
+    intervals = list(range(len(bounds) - 1))
+    inside = [i for i in intervals if value[i] < here < value[i + 1]]
+    paired = [i for i in intervals if bounds[i] is not None and bounds[i + 1] is not None]
+    if not inside and not paired:
+        raise ConvergenceError(
+            f"no cycle: the slow flow settles to an equilibrium at {parameter} = {here} (outside "
+            f"[{lo}, {hi}]) and its steady states have {len(hopfs)} Hopf point(s) in the range, "
+            "no pair")
+    i = (inside or paired)[0]
+    low, high = bounds[i], bounds[i + 1]
+    a, b = value[i], value[i + 1]
     start = params if a < here < b else params.replace(**{parameter: 0.5 * (a + b)})
     try:
         cycle = slow_flow_cycle(start, integration=integration)
-    except ConvergenceError as exc:
+    except SloshdynError as exc:
         raise ConvergenceError(
             f"no cycle: the slow flow from rest settles to an equilibrium at {parameter} = "
-            f"{getattr(start, parameter)}, between the Hopf points at {a} and {b} ({exc})") from exc
+            f"{getattr(start, parameter)} (between the Hopf points or range ends {a} and {b}: "
+            f"{exc})") from exc
     gap = hopf_gap * (b - a)
+    a_end, b_end = a + (gap if low is not None else 0), b - (gap if high is not None else 0)
     halves = []
     for direction in (-1.0, 1.0):
         settings = np.array([continuation.ds, continuation.ds_min, continuation.ds_max,
                              continuation.x_scale, direction])
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
          message) = cancellable(_bridge.slow_flow_cycle_branch, *start.arrays(),
-                                1 if parameter == "rho" else 2, cycle.x, cycle.period, a + gap,
-                                b - gap, settings, integration.array(),
+                                1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,
+                                b_end, settings, integration.array(),
                                 _checks.integer("max_points", continuation.max_points, 2), 50)
-        check_status(status, message, "slow-flow cycle branch")
+        if status and n == 0:
+            check_status(status, message, "slow-flow cycle branch")
+        text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) \
+            else str(message).strip()
         halves.append((points[:, :n], multipliers[:, :n], amplitudes[:, :n],
-                       special[:, :n_special], int(stop)))
-    (p_lo, m_lo, a_lo, s_lo, stop_lo), (p_hi, m_hi, a_hi, s_hi, stop_hi) = halves
+                       special[:, :n_special], int(stop), text if status else ""))
+    (p_lo, m_lo, a_lo, s_lo, stop_lo, why_lo), (p_hi, m_hi, a_hi, s_hi, stop_hi, why_hi) = halves
     points = np.concatenate([p_lo[:, ::-1], p_hi[:, 1:]], axis=1)
     multipliers = np.concatenate([m_lo[:, ::-1], m_hi[:, 1:]], axis=1)
     amplitudes = np.concatenate([a_lo[:, ::-1], a_hi[:, 1:]], axis=1)
@@ -190,8 +203,13 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
         x = [steady[c][k] for c in ("re_B1", "im_B1", "re_B2", "im_B2")]
         return special_point("hopf", value, r / h.frequency, x)
 
-    ends = ("hopf" if _STOPS.get(stop_lo) == "lambda_min" else _STOPS.get(stop_lo, "failed"),
-            "hopf" if _STOPS.get(stop_hi) == "lambda_max" else _STOPS.get(stop_hi, "failed"))
+    def end(stop, bound, hopf, why):
+        reason = _STOPS.get(stop, "failed")
+        if reason == bound:
+            return "hopf" if hopf is not None else "range end"
+        return f"{reason}: {why}" if why else reason
+
+    ends = (end(stop_lo, "lambda_min", low, why_lo), end(stop_hi, "lambda_max", high, why_hi))
     specials = [hopf_point(low)] if ends[0] == "hopf" else []
     found = sorted((s for s in np.concatenate([s_lo, s_hi], axis=1).T), key=lambda s: s[1])
     for s in found:
