@@ -1256,7 +1256,8 @@ contains
   end subroutine lyapunov_spectrum
   !> The branch of slow-flow limit cycles (the beats) through the cycle (x_cycle, period [tau])
   !> at the model's rho and A, in rho (which = 1) or A (2) over [lambda_min, lambda_max];
-  !> settings = [ds, ds_min, ds_max, x_scale, direction]. points(7, :) = [lambda, x(4), T,
+  !> settings = [ds, ds_min, ds_max, x_scale, direction, x_tol, f_tol, max_iter] (the last three:
+  !> Newton's, sloshdyn_continuation's newton_options). points(7, :) = [lambda, x(4), T,
   !> stable], multipliers(8, :) = [re(4), im(4)], amplitudes(4, :) = [min|B1|, max|B1|, min|B2|,
   !> max|B2|], special(7, :) = [kind, lambda, x(4), T]; stop_reason: sloshdyn_continuation's.
   subroutine slow_flow_cycle_branch(rpar, ipar, which, x_cycle, period, lambda_min, lambda_max, &
@@ -1269,7 +1270,7 @@ contains
     use sloshdyn_slowflow_cycles, only: core => slow_flow_cycle_branch
     use sloshdyn_layouts, only: to_ode_options, to_method, to_int
     real(c_double), intent(in) :: rpar(10), x_cycle(4), period, lambda_min, lambda_max, &
-                                  settings(5), integration(7)
+                                  settings(8), integration(7)
     integer(c_int), intent(in) :: ipar(2), which, max_points, max_special
     real(c_double), intent(out) :: points(7, max_points), multipliers(8, max_points), &
                                    amplitudes(4, max_points), special(7, max_special)
@@ -1285,6 +1286,9 @@ contains
     options%ds_max = settings(3)
     options%x_scale = settings(4)
     options%direction = to_int(settings(5))
+    options%newton%x_tol = settings(6)
+    options%newton%f_tol = settings(7)
+    options%newton%max_iter = to_int(settings(8))
     options%max_points = max_points
     call model_from_arrays(rpar, int(ipar), model, code, message)
     if (code == 0) call core(model, int(which), x_cycle, period, lambda_min, lambda_max, &

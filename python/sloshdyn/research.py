@@ -114,7 +114,7 @@ class SlowFlowCycles:
 def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
                      continuation: Continuation = Continuation(ds=0.01, ds_max=0.05,
                                                                max_points=500),
-                     hopf_gap=1e-3,
+                     hopf_gap=1e-3, x_tol=1e-10, f_tol=1e-9, max_iter=20,
                      integration: Integration = Integration(rtol=1e-10, atol=1e-13)
                      ) -> SlowFlowCycles:
     """The beats continued: the limit cycles of the 3:1 slow flow between two consecutive Hopf
@@ -126,7 +126,11 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     doublings and Neimark-Sacker points, up to hopf_gap times the Hopf interval before each
     Hopf point (at the Hopf point the cycle has shrunk to the steady state). continuation:
     ds, ds_min, ds_max, x_scale and max_points (per direction) are used; the arclength norm
-    has the four amplitudes and the period relative to the start's.
+    has the four amplitudes and the period relative to the start's. Newton (start, corrector,
+    special points) stops at a step <= x_tol (1 + max|x|) and a residual max|y(T) - y0| <=
+    f_tol, within max_iter iterations: f_tol must lie above the integration's error over a
+    period (a shot of ~5000 tau at rtol 1e-10 leaves ~1e-11, so the continuation's default
+    1e-11 would make Newton miss by noise and the steps shrink).
 
     Raises ConvergenceError saying "no cycle" when the steady states have no Hopf point in the
     range (the slow flow settles to an equilibrium there) or no cycle is found between them."""
@@ -135,6 +139,8 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     _checks.instance("integration", integration, Integration)
     parameter, (lo, hi) = continuation_range(rho_range, A_range)
     hopf_gap = _checks.real("hopf_gap", hopf_gap)
+    x_tol, f_tol = _checks.real("x_tol", x_tol), _checks.real("f_tol", f_tol)
+    max_iter = _checks.integer("max_iter", max_iter)
     if not 0 < hopf_gap < 0.5:
         raise InputError(f"hopf_gap = {hopf_gap} is out of range: it must lie in (0, 0.5)")
     response = frequency_response(params, **{f"{parameter}_range": (lo, hi)})
@@ -169,7 +175,7 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     halves = []
     for direction in (-1.0, 1.0):
         settings = np.array([continuation.ds, continuation.ds_min, continuation.ds_max,
-                             continuation.x_scale, direction])
+                             continuation.x_scale, direction, x_tol, f_tol, max_iter])
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
          message) = cancellable(_bridge.slow_flow_cycle_branch, *start.arrays(),
                                 1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,

@@ -223,3 +223,20 @@ def test_beat_plot_draws_the_cycles_over_the_response(beats, tmp_path):
     assert all("[" in ax.get_ylabel() for ax in fig.axes) and "[" in fig.axes[2].get_xlabel()
     fig.savefig(tmp_path / "beats.png")
     assert (tmp_path / "beats.png").stat().st_size > 1000
+
+
+def test_beat_continued_in_A_from_its_hopf_point_to_the_range_end():
+    """In A at rho = 0.509615 the steady states of Fig 12 have one Hopf point below
+    A = 0.00075: the branch runs from it (period tending to rho/omega there, quadratic
+    extrapolation to 1e-5) to the range's end, the one-point cycle's period on the way."""
+    from sloshdyn.figures import FIG12 as fig12
+    beats = sloshdyn.slow_flow_cycles(fig12, A_range=(1e-4, 0.0009))
+    assert beats.ends == ("hopf", "range end") and beats.parameter == "A"
+    assert beats.A[-1] == 0.0009 and np.all(beats.rho == fig12.rho)
+    hopf = beats.special_points[0]
+    assert hopf.kind == "hopf" and beats.A[0] > hopf.A
+    assert np.polyval(np.polyfit(beats.A[:3], beats.beat_periods[:3], 2),
+                      hopf.A) == pytest.approx(hopf.beat_periods, rel=1e-5)
+    k = 5
+    one = sloshdyn.slow_flow_cycle(fig12.replace(A=beats.A[k]))
+    assert beats.beat_periods[k] == pytest.approx(one.beat_periods, rel=1e-6)   # meas. 6e-12
