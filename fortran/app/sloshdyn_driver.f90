@@ -16,8 +16,9 @@ module sloshdyn_driver
                              POINT_ROWS, SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_A1, &
                              SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_HOPF, POINT_BRANCH, &
                              MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
-                             SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, &
-                             TANK_SI_SIZE, HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
+                             SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, &
+                             PEAKS_IMPACT_FORCE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+                             HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
                              CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
@@ -550,12 +551,12 @@ contains
                    num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s)'
     else
       print '(a)', '  the wave does not reach the roof: its peak is '// &
-                   num2str(100*peaks(5)/config%tank%freeboard, significant=3)// &
+                   num2str(100*peaks(PEAKS_WAVE_HEIGHT)/config%tank%freeboard, significant=3)// &
                    ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
     end if
     ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
     print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
-                 num2str(peaks(11)/(config%tank_props%sloshing_mass*config%tank%gravity), &
+                 num2str(peaks(PEAKS_IMPACT_FORCE)/(config%tank_props%sloshing_mass*config%tank%gravity), &
                          significant=3)//' times the sloshing weight m g'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)

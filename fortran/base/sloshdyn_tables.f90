@@ -7,7 +7,7 @@
 module sloshdyn_tables
   implicit none
   private
-  public :: table_header, table_formats, table_size, kind_names, code_name, special_kind_name, &
+  public :: table_header, table_formats, table_size, count_items, kind_names, code_name, special_kind_name, &
             motion_name, verdict_name
   public :: SPECIAL_FOLD, SPECIAL_HOPF, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
             SPECIAL_NEIMARK_SACKER
@@ -21,8 +21,10 @@ module sloshdyn_tables
             POINT_DELTA3, POINT_X
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
-  public :: ROUTH_SIZE, COUNTS_SIZE
-  public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+  public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
+            PERIODIC_SPECIAL_ROWS
+  public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
+            CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
@@ -90,6 +92,11 @@ module sloshdyn_tables
 
   !> Routh-Hurwitz of eq (20) at the trivial equilibrium; work counts of an integration.
   integer, parameter :: ROUTH_SIZE = 8, COUNTS_SIZE = 4
+  !> A branch of periodic orbits (sloshdyn_periodic_response): its points (the first 7 columns of
+  !> 'periodic_branch'), their Floquet multipliers (the other 8) and its special points
+  !> ('periodic_special_points').
+  integer, parameter :: PERIODIC_POINT_ROWS = 7, PERIODIC_MULTIPLIER_ROWS = 8, &
+                        PERIODIC_SPECIAL_ROWS = 7
 
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
   !> output time, then x1 and x2; the peaks of the loads (value, time) with the roof's strikes;
@@ -105,7 +112,7 @@ module sloshdyn_tables
     'time_impact_force [s],peak_base_shear [N],time_base_shear [s],'// &
     'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
     'first_roof_time [s],roof_impacts'
-  integer, parameter :: PEAKS_SIZE = 19
+  integer, parameter :: PEAKS_SIZE = 19, PEAKS_WAVE_HEIGHT = 5, PEAKS_IMPACT_FORCE = 11
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
   character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
@@ -239,15 +246,19 @@ contains
   !> Number of columns of a result table.
   pure integer function table_size(name) result(columns)
     character(len=*), intent(in) :: name
-    character(len=:), allocatable :: header
-    integer :: i
-    header = table_header(name)
-    columns = 0
-    if (len(header) > 0) columns = 1
-    do i = 1, len(header)
-      if (header(i:i) == ',') columns = columns + 1
-    end do
+    columns = count_items(table_header(name))
   end function table_size
+
+  !> Number of items of a comma-separated list (0 for '').
+  pure integer function count_items(list) result(n)
+    character(len=*), intent(in) :: list
+    integer :: i
+    n = 0
+    if (len(list) > 0) n = 1
+    do i = 1, len(list)
+      if (list(i:i) == ',') n = n + 1
+    end do
+  end function count_items
 
   !> The names of the codes of a kind list ('special', 'motion', 'verdict'), comma-separated,
   !> in code order; first = the first code.

@@ -1,10 +1,11 @@
 !> The f2py bridge: the only Fortran that Python sees. Scalars and explicit-shape arrays of
 !> c_double/c_int cross the boundary; every routine returns status (0 = success) and a fixed-length
-!> message. Parameter layout (see sloshdyn_model):
-!>   rpar(10) = [s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta], ipar(2) = [n, p]
-!> Settings arrays (integration, steady, response, lyapunov): the layouts of sloshdyn_layouts;
-!> array sizes are literals here (f2py cannot use another module's constants): the compiler checks
-!> them against the layouts' named sizes where the arrays are converted.
+!> message.
+!> Every flat array has a named layout: the field names of the settings and small results in
+!> sloshdyn_layouts, the model's rpar = real_param_names and ipar = [n, p] of sloshdyn_model, the
+!> columns of result tables in sloshdyn_tables; Python asks for them (names) and builds and
+!> decodes the arrays by name. Array sizes are the layouts' named constants: f2py copies their
+!> names into its C wrapper, where the build defines them from the core (sloshdyn_bridge_sizes).
 !> Threads: the routines that compute (every one but the namelist reader and the name lists of
 !> the app layer) carry `!f2py threadsafe`, so f2py releases the GIL
 !> while the Fortran runs and Python threads (e.g. Dask's threaded workers) run them at once.
@@ -12,11 +13,10 @@
 !> and no deferred-length function results in the layers below the app (gfortran keeps their
 !> lengths in static variables; see sloshdyn_text). The one exception is the cancellation flag
 !> (sloshdyn_cancel): request_cancel, called from another Python thread, makes every running
-!> computation return status 10 (cancelled) within one step (python/sloshdyn/_cancel.py). The app layer (reader, driver, writers) has
-!> such statics, so its routines keep the GIL and run one at a time; run_input releases it so
-!> that Ctrl-C can cancel a run, and Python runs it one at a time (a lock in sloshdyn.cli).
-!> Result tables: the layouts of sloshdyn_tables (names gives the column names); work counts:
-!> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
+!> computation return status 10 (cancelled) within one step (python/sloshdyn/_cancel.py). The
+!> app layer (reader, driver, writers) has such statics, so its routines keep the GIL and run one
+!> at a time; run_input releases it so that Ctrl-C can cancel a run, and Python runs it one at a
+!> time (a lock in sloshdyn.cli).
 module sloshdyn_bridge
   use, intrinsic :: iso_c_binding, only: c_double, c_int
   implicit none
@@ -27,9 +27,10 @@ contains
   !> pendulum = [l, m, d1, m0, d0, m_F].
   subroutine tank_pendulum(radius, depth, density, liquid_mass, pendulum, status, message)
     !f2py threadsafe
+    use sloshdyn_layouts, only: PENDULUM_SIZE
     use sloshdyn_tank, only: core => tank_pendulum
     real(c_double), intent(in) :: radius, depth, density, liquid_mass
-    real(c_double), intent(out) :: pendulum(6)
+    real(c_double), intent(out) :: pendulum(PENDULUM_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
@@ -42,9 +43,10 @@ contains
   !> groups = [s1, mu1, kappa, beta, gamma, delta].
   subroutine dimensionless_groups(physical, groups, status, message)
     !f2py threadsafe
+    use sloshdyn_layouts, only: PHYSICAL_SIZE, GROUPS_SIZE
     use sloshdyn_model, only: model_from_physical
-    real(c_double), intent(in) :: physical(10)
-    real(c_double), intent(out) :: groups(6)
+    real(c_double), intent(in) :: physical(PHYSICAL_SIZE)
+    real(c_double), intent(out) :: groups(GROUPS_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
@@ -58,9 +60,9 @@ contains
   !> Validate the parameters; coefficients a1..a6, b1..b6 of eq (11).
   subroutine model_coefficients(rpar, ipar, a, b, status, message)
     !f2py threadsafe
-    use sloshdyn_model, only: model_t, model_from_arrays
-    real(c_double), intent(in) :: rpar(10)
-    integer(c_int), intent(in) :: ipar(2)
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    real(c_double), intent(in) :: rpar(n_real_params)
+    integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: a(6), b(6)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
@@ -75,14 +77,14 @@ contains
   !> Inertia matrix (eq 13), forcing vector (eq 14/31), y' (eq 15) and the Jacobian dy'/dy.
   subroutine equations_of_motion(rpar, ipar, tau, y, mass, force, dydt, jacobian, status, message)
     !f2py threadsafe
-    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use sloshdyn_status, only: SD_NON_FINITE
     use sloshdyn_text, only: num2str
     use sloshdyn_motion, only: inertia_matrix, forcing_vector, core_eom => equations_of_motion, &
                                motion_jacobian
-    real(c_double), intent(in) :: rpar(10), tau, y(4)
-    integer(c_int), intent(in) :: ipar(2)
+    real(c_double), intent(in) :: rpar(n_real_params), tau, y(4)
+    integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: mass(2, 2), force(2), dydt(4), jacobian(4, 4)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
@@ -110,11 +112,12 @@ contains
   subroutine natural_frequencies(rpar, ipar, omegas, stiffness, modal, modal_inverse, status, &
                                  message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_linear, only: stiffness_matrix, core => natural_frequencies, &
                                natural_frequencies_eig, modal_matrix
-    real(c_double), intent(in) :: rpar(10)
-    integer(c_int), intent(in) :: ipar(2)
+    real(c_double), intent(in) :: rpar(n_real_params)
+    integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: omegas(4), stiffness(2, 2), modal(2, 2), modal_inverse(2, 2)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
@@ -178,10 +181,11 @@ contains
   subroutine equilibrium_angles(rpar, ipar, which, max_roots, roots, n_roots, truncated, &
                                 status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_equilibria, only: theta_roots, phi_roots
-    real(c_double), intent(in) :: rpar(10)
-    integer(c_int), intent(in) :: ipar(2), which, max_roots
+    real(c_double), intent(in) :: rpar(n_real_params)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, max_roots
     real(c_double), intent(out) :: roots(max_roots)
     integer(c_int), intent(out) :: n_roots, truncated, status
     character(len=256), intent(out) :: message
@@ -208,12 +212,14 @@ contains
   subroutine equilibria(rpar, ipar, max_eq, theta, phi, physical, eig_re, eig_im, verdict, &
                         n_eq, truncated, routh, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_layouts, only: ROUTH_TRIVIAL_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_equilibria, only: core => equilibria, trivial_routh_hurwitz
-    real(c_double), intent(in) :: rpar(10)
-    integer(c_int), intent(in) :: ipar(2), max_eq
+    real(c_double), intent(in) :: rpar(n_real_params)
+    integer(c_int), intent(in) :: ipar(n_int_params), max_eq
     real(c_double), intent(out) :: theta(max_eq), phi(max_eq), eig_re(4, max_eq), &
-                                   eig_im(4, max_eq), routh(7)
+                                   eig_im(4, max_eq), routh(ROUTH_TRIVIAL_SIZE)
     integer(c_int), intent(out) :: physical(max_eq), verdict(max_eq), n_eq, truncated, status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -244,11 +250,12 @@ contains
   subroutine modal_expansion(rpar, ipar, scalars, c, exponents, g, g_forcing, h, h_forcing, &
                              status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_polynomial, only: monomial_exponents, poly
-    real(c_double), intent(in) :: rpar(10)
-    integer(c_int), intent(in) :: ipar(2)
+    real(c_double), intent(in) :: rpar(n_real_params)
+    integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: scalars(5), c(2, 3), g(2, 34), g_forcing(2, 0:34), h(2, 34), &
                                    h_forcing(2, 0:34)
     integer(c_int), intent(out) :: exponents(4, 34), status
@@ -286,12 +293,12 @@ contains
   !> Every real solution |u1| of eq (49) at each rho (A from rpar): amplitudes(1:counts(i), i).
   subroutine nonresonant_amplitudes(rpar, ipar, n, rho, amplitudes, counts, status, message)
     !f2py threadsafe
-    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_slowflow, only: core => nonresonant_amplitudes
     use sloshdyn_text, only: num2str
-    real(c_double), intent(in) :: rpar(10), rho(n)
-    integer(c_int), intent(in) :: ipar(2), n
+    real(c_double), intent(in) :: rpar(n_real_params), rho(n)
+    integer(c_int), intent(in) :: ipar(n_int_params), n
     real(c_double), intent(out) :: amplitudes(3, n)
     integer(c_int), intent(out) :: counts(n), status
     character(len=256), intent(out) :: message
@@ -310,20 +317,22 @@ contains
     status = info
   end subroutine nonresonant_amplitudes
 
-  !> Time history at tau_out (ascending, >= tau0): history(9, n_out) in the rows of
+  !> Time history at tau_out (ascending, >= tau0): history(HISTORY_ROWS, n_out) in the rows of
   !> the 'history' table after tau. On failure the columns not reached are NaN.
   subroutine simulate(rpar, ipar, tau0, y0, n_out, tau_out, integration, history, counts, status, &
                       message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: HISTORY_ROWS, COUNTS_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_ode, only: ode_stats
     use sloshdyn_simulation, only: time_history
-    use sloshdyn_tables, only: HISTORY_ROWS
     use sloshdyn_layouts, only: to_ode_options, to_method, counts_array
-    real(c_double), intent(in) :: rpar(10), tau0, y0(4), tau_out(n_out), &
-                                  integration(7)
-    integer(c_int), intent(in) :: ipar(2), n_out
-    real(c_double), intent(out) :: history(9, n_out), counts(4)
+    real(c_double), intent(in) :: rpar(n_real_params), tau0, y0(4), tau_out(n_out), &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n_out
+    real(c_double), intent(out) :: history(HISTORY_ROWS, n_out), counts(COUNTS_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -345,17 +354,19 @@ contains
   subroutine steady_state(rpar, ipar, y0, integration, steady, window, summary, poincare, y_end, &
                           counts, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: SUMMARY_SIZE, COUNTS_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_ode, only: ode_stats
     use sloshdyn_simulation, only: core => steady_state
-    use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady, counts_array
-    real(c_double), intent(in) :: rpar(10), y0(4), integration(7), &
-                                  steady(7)
-    integer(c_int), intent(in) :: ipar(2), window
-    real(c_double), intent(out) :: summary(11), poincare(4, window), y_end(4), &
-                                   counts(4)
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4), integration(INTEGRATION_SIZE), &
+                                  steady(STEADY_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), window
+    real(c_double), intent(out) :: summary(SUMMARY_SIZE), poincare(4, window), y_end(4), &
+                                   counts(COUNTS_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -372,19 +383,22 @@ contains
   end subroutine steady_state
 
   !> Steady states along values of rho (which = 1) or A (which = 2), each from the previous
-  !> final state; summaries(11, n) as for steady_state, n_done points completed.
+  !> final state; summaries(SUMMARY_SIZE, n) as for steady_state, n_done points completed.
   subroutine parameter_sweep(rpar, ipar, which, n, values, y0, integration, steady, summaries, &
                              y_final, n_done, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: SUMMARY_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_simulation, only: core => parameter_sweep
-    use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady
-    real(c_double), intent(in) :: rpar(10), values(n), y0(4), integration(7), &
-                                  steady(7)
-    integer(c_int), intent(in) :: ipar(2), which, n
-    real(c_double), intent(out) :: summaries(11, n), y_final(4)
+    real(c_double), intent(in) :: rpar(n_real_params), values(n), y0(4), &
+                                  integration(INTEGRATION_SIZE), &
+                                  steady(STEADY_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, n
+    real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_final(4)
     integer(c_int), intent(out) :: n_done, status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -403,15 +417,18 @@ contains
   subroutine independent_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
                             summaries, n_done, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: SUMMARY_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_simulation, only: core => independent_sweep
-    use sloshdyn_tables, only: SUMMARY_SIZE
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_steady
-    real(c_double), intent(in) :: rpar(10), values(n), y0(4), integration(7), &
-                                  steady(7)
-    integer(c_int), intent(in) :: ipar(2), which, n, n_threads
-    real(c_double), intent(out) :: summaries(11, n)
+    real(c_double), intent(in) :: rpar(n_real_params), values(n), y0(4), &
+                                  integration(INTEGRATION_SIZE), &
+                                  steady(STEADY_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, n, n_threads
+    real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n)
     integer(c_int), intent(out) :: n_done, status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -427,18 +444,24 @@ contains
 
   !> Steady states at the points (rho(i), A(i)) of a study task: each from y0(:, i) (carry = 0)
   !> or, carry = 1, the first from y0(:, 1) and each next from the previous final state.
-  !> summaries(11, n) in the 'summary' layout, y_end(4, n), orbit(16, n) in the layout of
+  !> summaries(SUMMARY_SIZE, n) in the 'summary' layout, y_end(4, n), orbit(ORBIT_ROWS,
+  !> n) in the layout of
   !> sloshdyn_studies, impact(n) = 1 where max|x1| >= 1 (the wall is reached), point_status(n);
   !> status and message of the first failing point.
   subroutine steady_path(rpar, ipar, n, rho, A, y0, carry, integration, steady, summaries, &
                          y_end, orbit, impact, point_status, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_studies, only: ORBIT_ROWS
+    use sloshdyn_tables, only: SUMMARY_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_studies, only: core => steady_path, roof_impact
     use sloshdyn_layouts, only: to_ode_options, to_method, to_steady
-    real(c_double), intent(in) :: rpar(10), rho(n), A(n), y0(4, n), integration(7), steady(7)
-    integer(c_int), intent(in) :: ipar(2), n, carry
-    real(c_double), intent(out) :: summaries(11, n), y_end(4, n), orbit(16, n)
+    real(c_double), intent(in) :: rpar(n_real_params), rho(n), A(n), y0(4, n), &
+                                  integration(INTEGRATION_SIZE), steady(STEADY_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n, carry
+    real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n)
     integer(c_int), intent(out) :: impact(n), point_status(n), status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -458,17 +481,24 @@ contains
   end subroutine steady_path
 
   !> Steady states from the initial states y0(:, i) at the excitation of rpar, with the orbit
-  !> each periodic one settled on (sloshdyn_studies: orbit(16, n), orbit_points(4, 8, n)).
+  !> each periodic one settled on (sloshdyn_studies: orbit(ORBIT_ROWS, n), orbit_points(4,
+  !> MAX_ORBIT_PERIODS, n)).
   subroutine attractor_points(rpar, ipar, n, y0, integration, steady, summaries, y_end, orbit, &
                               orbit_points, point_status, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_simulation, only: MAX_ORBIT_PERIODS => max_period
+    use sloshdyn_studies, only: ORBIT_ROWS
+    use sloshdyn_tables, only: SUMMARY_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_studies, only: core => attractor_points
     use sloshdyn_layouts, only: to_ode_options, to_method, to_steady
-    real(c_double), intent(in) :: rpar(10), y0(4, n), integration(7), steady(7)
-    integer(c_int), intent(in) :: ipar(2), n
-    real(c_double), intent(out) :: summaries(11, n), y_end(4, n), orbit(16, n), &
-                                   orbit_points(4, 8, n)
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4, n), integration(INTEGRATION_SIZE), &
+                                  steady(STEADY_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n
+    real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n), &
+                                   orbit_points(4, MAX_ORBIT_PERIODS, n)
     integer(c_int), intent(out) :: point_status(n), status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -490,9 +520,10 @@ contains
   subroutine label_attractors(n, motions, periods, orbit_points, tol, label, n_attractors, &
                               representative)
     !f2py threadsafe
+    use sloshdyn_simulation, only: MAX_ORBIT_PERIODS => max_period
     use sloshdyn_studies, only: core => label_attractors
     integer(c_int), intent(in) :: n
-    real(c_double), intent(in) :: motions(n), periods(n), orbit_points(4, 8, n), tol
+    real(c_double), intent(in) :: motions(n), periods(n), orbit_points(4, MAX_ORBIT_PERIODS, n), tol
     integer(c_int), intent(out) :: label(n), n_attractors, representative(n)
     integer :: labels(n), found, first(n)
     call core(motions, periods, orbit_points, tol, labels, found, first)
@@ -509,14 +540,17 @@ contains
                                 max_points, max_special, table, n_points, special, n_special, &
                                 complete, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: POINT_ROWS, SPECIAL_ROWS
+    use sloshdyn_layouts, only: RESPONSE_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_response, only: core => frequency_response
-    use sloshdyn_tables, only: SPECIAL_ROWS
     use sloshdyn_layouts, only: to_response
-    real(c_double), intent(in) :: rpar(10), lambda_min, lambda_max, settings(10)
-    integer(c_int), intent(in) :: ipar(2), resonance, which, max_points, max_special
-    real(c_double), intent(out) :: table(28, max_points), &
-                                   special(9, max_special)
+    real(c_double), intent(in) :: rpar(n_real_params), lambda_min, lambda_max, &
+                                  settings(RESPONSE_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), resonance, which, max_points, max_special
+    real(c_double), intent(out) :: table(POINT_ROWS, max_points), &
+                                   special(SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, complete, status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -534,16 +568,21 @@ contains
   end subroutine frequency_response
 
   !> A periodic orbit of period k T by shooting from the guess y0 (full equations):
-  !> y_orbit(4), monodromy(4, 4), multipliers(2, 4) = (Re, Im), info(2) = [iterations, max|x1|].
+  !> y_orbit(4), monodromy(4, 4), multipliers(2, 4) = (Re, Im),
+  !> info(ORBIT_INFO_SIZE) = [iterations, max|x1|].
   subroutine periodic_orbit(rpar, ipar, y0, k, integration, newton_tol, max_iter, y_orbit, &
                             monodromy, multipliers, info, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, ORBIT_INFO_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_periodic_response, only: core => periodic_orbit
     use sloshdyn_layouts, only: to_ode_options, to_method
-    real(c_double), intent(in) :: rpar(10), y0(4), integration(7), newton_tol
-    integer(c_int), intent(in) :: ipar(2), k, max_iter
-    real(c_double), intent(out) :: y_orbit(4), monodromy(4, 4), multipliers(2, 4), info(2)
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4), integration(INTEGRATION_SIZE), &
+                                  newton_tol
+    integer(c_int), intent(in) :: ipar(n_int_params), k, max_iter
+    real(c_double), intent(out) :: y_orbit(4), monodromy(4, 4), multipliers(2, 4), &
+                                   info(ORBIT_INFO_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -568,15 +607,20 @@ contains
                              integration, max_points, max_special, points, multipliers, n_points, &
                              special, n_special, complete, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, CONTINUATION_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_continuation, only: continuation_options
     use sloshdyn_periodic_response, only: periodic_response
-    use sloshdyn_layouts, only: to_ode_options, to_method, to_int
-    real(c_double), intent(in) :: rpar(10), y0(4), lambda_min, lambda_max, settings(5), &
-                                  integration(7)
-    integer(c_int), intent(in) :: ipar(2), which, k, max_points, max_special
-    real(c_double), intent(out) :: points(7, max_points), multipliers(8, max_points), &
-                                   special(7, max_special)
+    use sloshdyn_layouts, only: to_ode_options, to_method, to_continuation
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4), lambda_min, lambda_max, &
+                                  settings(CONTINUATION_SIZE), &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, k, max_points, max_special
+    real(c_double), intent(out) :: points(PERIODIC_POINT_ROWS, max_points), &
+                                   multipliers(PERIODIC_MULTIPLIER_ROWS, max_points), &
+                                   special(PERIODIC_SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, complete, status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -584,11 +628,7 @@ contains
     integer :: code, found, found_special
     logical :: done
     points = 0; multipliers = 0; special = 0; found = 0; found_special = 0; done = .false.
-    options%ds = settings(1)
-    options%ds_min = settings(2)
-    options%ds_max = settings(3)
-    options%x_scale = settings(4)
-    options%direction = to_int(settings(5))
+    options = to_continuation(settings)
     options%max_points = max_points
     call model_from_arrays(rpar, int(ipar), model, code, message)
     if (code == 0) call periodic_response(model, int(which), y0, int(k), lambda_min, &
@@ -606,14 +646,16 @@ contains
   subroutine lyapunov_exponent(rpar, ipar, y0, settings, integration, n_hist, exponent, history, &
                                status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, LYAPUNOV_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_periodic_response, only: core => lyapunov_exponent, lyapunov_options, &
                                           check_lyapunov
     use sloshdyn_layouts, only: to_ode_options, to_method, &
                                 to_lyapunov
-    real(c_double), intent(in) :: rpar(10), y0(4), settings(3), &
-                                  integration(7)
-    integer(c_int), intent(in) :: ipar(2), n_hist
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4), settings(LYAPUNOV_SIZE), &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n_hist
     real(c_double), intent(out) :: exponent, history(n_hist)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
@@ -633,13 +675,13 @@ contains
   !> The slow flow (3:1 internal resonance: resonance = 1, n = 4; none: 0, n = 2) at the model's
   !> rho and A: f(x) and its Jacobian (sloshdyn_slowflow_chart; x = Re B1, Im B1, Re B2, Im B2).
   subroutine slow_flow_field(rpar, ipar, resonance, n, x, f, jacobian, status, message)
-    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_slowflow_chart, only: field_t => slow_flow_field, make_slow_flow_field, &
                                        CHART_RHO, CHART_A
     use sloshdyn_status, only: SD_BAD_INPUT
     use sloshdyn_text, only: num2str
-    real(c_double), intent(in) :: rpar(10), x(n)
-    integer(c_int), intent(in) :: ipar(2), resonance, n
+    real(c_double), intent(in) :: rpar(n_real_params), x(n)
+    integer(c_int), intent(in) :: ipar(n_int_params), resonance, n
     real(c_double), intent(out) :: f(n), jacobian(n, n)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
@@ -668,11 +710,14 @@ contains
   subroutine slow_flow_cycle(rpar, ipar, settle_time, max_period, n_samples, integration, &
                              x_cycle, period, multipliers, iterations, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_layouts, only: INTEGRATION_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_slowflow_cycle, only: core => slow_flow_cycle
     use sloshdyn_layouts, only: to_ode_options, to_method
-    real(c_double), intent(in) :: rpar(10), settle_time, max_period, integration(7)
-    integer(c_int), intent(in) :: ipar(2), n_samples
+    real(c_double), intent(in) :: rpar(n_real_params), settle_time, max_period, &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n_samples
     real(c_double), intent(out) :: x_cycle(4), period, multipliers(2, 4)
     integer(c_int), intent(out) :: iterations, status
     character(len=256), intent(out) :: message
@@ -693,9 +738,10 @@ contains
 
   !> The &chart defaults (layouts' chart array).
   subroutine chart_defaults(chart)
+    use sloshdyn_layouts, only: CHART_SETTINGS_SIZE
     use sloshdyn_stability_chart, only: chart_settings
     use sloshdyn_layouts, only: from_chart
-    real(c_double), intent(out) :: chart(14)
+    real(c_double), intent(out) :: chart(CHART_SETTINGS_SIZE)
     type(chart_settings) :: defaults
     chart = from_chart(defaults)
   end subroutine chart_defaults
@@ -706,16 +752,20 @@ contains
   !> needed). complete = 0 if a curve stopped early; notes = a line per such curve.
   subroutine stability_chart(rpar, ipar, settings, max_points, max_codim2, max_curves, n_cells, &
                              curves, codim2, ends, grid, sizes, complete, notes, status, message)
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS
+    use sloshdyn_layouts, only: CHART_SETTINGS_SIZE
     use sloshdyn_model, only: model_t, model_from_arrays
     use sloshdyn_status, only: SD_CAPACITY
     use sloshdyn_text, only: num2str
     use sloshdyn_stability_chart, only: chart_result, core => stability_chart, chart_tables, &
                                         chart_table_sizes
     use sloshdyn_layouts, only: to_chart
-    real(c_double), intent(in) :: rpar(10), settings(14)
-    integer(c_int), intent(in) :: ipar(2), max_points, max_codim2, max_curves, n_cells
-    real(c_double), intent(out) :: curves(13, max_points), codim2(7, max_codim2), &
-                                   ends(7, max_curves), grid(8, n_cells)
+    real(c_double), intent(in) :: rpar(n_real_params), settings(CHART_SETTINGS_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), max_points, max_codim2, max_curves, n_cells
+    real(c_double), intent(out) :: curves(CHART_CURVE_ROWS, max_points), &
+                                   codim2(CHART_CODIM2_ROWS, max_codim2), &
+                                   ends(CHART_END_ROWS, max_curves), grid(CHART_GRID_ROWS, n_cells)
     integer(c_int), intent(out) :: sizes(4), complete, status
     character(len=4096), intent(out) :: notes
     character(len=256), intent(out) :: message
@@ -747,14 +797,16 @@ contains
     status = info
   end subroutine stability_chart
 
-  ! ---- a tank in SI units under ground motion (layouts tank(17), ground(4) of sloshdyn_layouts;
+  ! ---- a tank in SI units under ground motion (layouts tank(TANK_SIZE),
+  ! ground(GROUND_SIZE) of sloshdyn_layouts;
   ! ---- samples(n) the record's accelerations [m/s^2], n = 0 for harmonic motion) -------------
 
   !> The tank's defaults (tank_t).
   subroutine tank_defaults(tank)
+    use sloshdyn_layouts, only: TANK_SIZE
     use sloshdyn_vessel, only: tank_t
     use sloshdyn_layouts, only: from_tank
-    real(c_double), intent(out) :: tank(17)
+    real(c_double), intent(out) :: tank(TANK_SIZE)
     type(tank_t) :: defaults
     tank = from_tank(defaults)
   end subroutine tank_defaults
@@ -762,17 +814,20 @@ contains
   !> The tank's properties (the 'tank_si' table's row) and its dimensionless model.
   subroutine tank_properties(tank, row, rpar, ipar, status, message)
     !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_tables, only: TANK_SI_SIZE
+    use sloshdyn_layouts, only: TANK_SIZE
     use sloshdyn_model, only: model_t, model_to_arrays
     use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
     use sloshdyn_seismic, only: tank_summary
     use sloshdyn_layouts, only: to_tank
-    real(c_double), intent(in) :: tank(17)
-    real(c_double), intent(out) :: row(28), rpar(10)
-    integer(c_int), intent(out) :: ipar(2), status
+    real(c_double), intent(in) :: tank(TANK_SIZE)
+    real(c_double), intent(out) :: row(TANK_SI_SIZE), rpar(n_real_params)
+    integer(c_int), intent(out) :: ipar(n_int_params), status
     character(len=256), intent(out) :: message
     type(model_t) :: model
     type(tank_properties_t) :: props
-    integer :: info, ints(2)
+    integer :: info, ints(n_int_params)
     row = 0; rpar = 0; ipar = 0
     call tank_model(to_tank(tank), model, props, info, message)
     if (info == 0) then
@@ -786,10 +841,11 @@ contains
   !> The rules of a ground motion (sloshdyn_ground's check_ground).
   subroutine check_ground(ground, n, samples, status, message)
     !f2py threadsafe
+    use sloshdyn_layouts, only: GROUND_SIZE
     use sloshdyn_ground, only: core => check_ground
     use sloshdyn_layouts, only: to_ground
     integer(c_int), intent(in) :: n
-    real(c_double), intent(in) :: ground(4), samples(n)
+    real(c_double), intent(in) :: ground(GROUND_SIZE), samples(n)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
@@ -844,12 +900,14 @@ contains
   subroutine scale_ground(ground, n, samples, scale_factor, target_pga, target_sa, &
                           target_period, target_damping, scaled, scaled_samples, status, message)
     !f2py threadsafe
+    use sloshdyn_layouts, only: GROUND_SIZE
     use sloshdyn_ground, only: ground_motion_t, core => scale_ground
     use sloshdyn_layouts, only: to_ground, from_ground
     integer(c_int), intent(in) :: n
-    real(c_double), intent(in) :: ground(4), samples(n), scale_factor, target_pga, target_sa, &
+    real(c_double), intent(in) :: ground(GROUND_SIZE), samples(n), scale_factor, target_pga, &
+                                  target_sa, &
                                   target_period, target_damping
-    real(c_double), intent(out) :: scaled(4), scaled_samples(n)
+    real(c_double), intent(out) :: scaled(GROUND_SIZE), scaled_samples(n)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(ground_motion_t) :: motion
@@ -867,10 +925,12 @@ contains
   subroutine ground_spectrum(ground, n, samples, m, periods, damping, tail_duration, duration, &
                              sd, sv, psa, status, message)
     !f2py threadsafe
+    use sloshdyn_layouts, only: GROUND_SIZE
     use sloshdyn_ground, only: core => ground_spectrum
     use sloshdyn_layouts, only: to_ground
     integer(c_int), intent(in) :: n, m
-    real(c_double), intent(in) :: ground(4), samples(n), periods(m), damping, tail_duration, &
+    real(c_double), intent(in) :: ground(GROUND_SIZE), samples(n), periods(m), damping, &
+                                  tail_duration, &
                                   duration
     real(c_double), intent(out) :: sd(m), sv(m), psa(m)
     integer(c_int), intent(out) :: status
@@ -885,14 +945,15 @@ contains
   !> ones are <= 0: chosen = [t_end, n_out].
   subroutine seismic_defaults(tank, ground, n, samples, t_end, n_out, chosen, status, message)
     !f2py threadsafe
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, SEISMIC_SIZE
     use sloshdyn_model, only: model_t
     use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
     use sloshdyn_ground, only: check_ground
     use sloshdyn_seismic, only: core => seismic_defaults
     use sloshdyn_layouts, only: to_tank, to_ground
     integer(c_int), intent(in) :: n, n_out
-    real(c_double), intent(in) :: tank(17), ground(4), samples(n), t_end
-    real(c_double), intent(out) :: chosen(2)
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end
+    real(c_double), intent(out) :: chosen(SEISMIC_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -911,16 +972,20 @@ contains
     status = info
   end subroutine seismic_defaults
 
-  !> The tank's response from rest (sloshdyn_seismic): table(11, n_out) in the 'seismic' layout
-  !> and peaks(19) in the 'seismic_peaks' layout.
+  !> The tank's response from rest (sloshdyn_seismic): table(SEISMIC_ROWS,
+  !> n_out) in the 'seismic' layout
+  !> and peaks(PEAKS_SIZE) in the 'seismic_peaks' layout.
   subroutine seismic_response(tank, ground, n, samples, t_end, n_out, integration, table, &
                               peaks, status, message)
     !f2py threadsafe
+    use sloshdyn_tables, only: SEISMIC_ROWS, PEAKS_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE
     use sloshdyn_seismic, only: core => seismic_response
     use sloshdyn_layouts, only: to_tank, to_ground, to_ode_options, to_method
     integer(c_int), intent(in) :: n, n_out
-    real(c_double), intent(in) :: tank(17), ground(4), samples(n), t_end, integration(7)
-    real(c_double), intent(out) :: table(11, n_out), peaks(19)
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end, &
+                                  integration(INTEGRATION_SIZE)
+    real(c_double), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
@@ -930,20 +995,25 @@ contains
   end subroutine seismic_response
 
   !> Steady states of the tank under harmonic ground motion of the ground's peak acceleration
-  !> at each frequency [Hz] (sloshdyn_seismic's harmonic_sweep): summaries(11, n) in the
-  !> 'summary' layout and table(9, n) in the 'harmonic_sweep' layout; carry = 1: each point
+  !> at each frequency [Hz] (sloshdyn_seismic's harmonic_sweep): summaries(SUMMARY_SIZE, n) in the
+  !> 'summary' layout and table(HARMONIC_SWEEP_ROWS,
+  !> n) in the 'harmonic_sweep' layout; carry = 1: each point
   !> from the previous one's final state (threads = 1; y_final the last one's), else each from
   !> y0.
   subroutine harmonic_sweep(tank, ground, n, frequencies, y0, integration, steady, carry, &
                             threads, summaries, table, y_final, n_done, status, message)
     !f2py threadsafe
+    use sloshdyn_tables, only: SUMMARY_SIZE, HARMONIC_SWEEP_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, TANK_SIZE, GROUND_SIZE
     use sloshdyn_ground, only: harmonic_ground
     use sloshdyn_seismic, only: core => harmonic_sweep
     use sloshdyn_layouts, only: to_tank, to_ode_options, to_method, to_steady
     integer(c_int), intent(in) :: n, carry, threads
-    real(c_double), intent(in) :: tank(17), ground(4), frequencies(n), y0(4), integration(7), &
-                                  steady(7)
-    real(c_double), intent(out) :: summaries(11, n), table(9, n), y_final(4)
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), frequencies(n), y0(4), &
+                                  integration(INTEGRATION_SIZE), &
+                                  steady(STEADY_SIZE)
+    real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), table(HARMONIC_SWEEP_ROWS, n), &
+                                   y_final(4)
     integer(c_int), intent(out) :: n_done, status
     character(len=256), intent(out) :: message
     integer :: info, done
@@ -954,14 +1024,17 @@ contains
     status = info
   end subroutine harmonic_sweep
 
-  !> The tank's sloshing parameters by sloshdyn and by the design codes, codes(6, 4) in the
+  !> The tank's sloshing parameters by sloshdyn and by the design codes, codes(CODES_COLUMNS,
+  !> CODES_ROWS) in the
   !> 'design_codes' layout; wave heights need the ground motion (has_ground = 1).
   subroutine design_codes(tank, has_ground, ground, n, samples, codes, status, message)
+    use sloshdyn_tables, only: CODES_COLUMNS, CODES_ROWS
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE
     use sloshdyn_seismic, only: design_code_checks
     use sloshdyn_layouts, only: to_tank, to_ground
     integer(c_int), intent(in) :: has_ground, n
-    real(c_double), intent(in) :: tank(17), ground(4), samples(n)
-    real(c_double), intent(out) :: codes(6, 4)
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n)
+    real(c_double), intent(out) :: codes(CODES_COLUMNS, CODES_ROWS)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
@@ -997,8 +1070,9 @@ contains
 
   !> Read and validate a namelist input file (the executable's reader) and return it flattened:
   !> the model (rpar, ipar); the analysis code (1-based index into the 'analyses' names) with
-  !> analysis_values = [sigma1, kappa_min, kappa_max]; the output directory; tank(17) and
-  !> ground(4) in their layouts with has_tank, has_ground (1/0) and n_samples (the record's
+  !> analysis_values = [sigma1, kappa_min, kappa_max]; the output directory; tank(TANK_SIZE) and
+  !> ground(GROUND_SIZE) in their layouts with has_tank,
+  !> has_ground (1/0) and n_samples (the record's
   !> length, for input_record); seismic = [t_end, n_out]; integration, steady, response and
   !> lyapunov in their layouts; simulation = [t_end, n_out, y0(4)]; sweep = [parameter (1 rho,
   !> 2 A, 3 frequency [Hz]), start, stop, n_points, direction (1 up, 2 down, 3 both),
@@ -1014,21 +1088,30 @@ contains
                         has_ground, ground, n_samples, seismic, integration, steady, response, &
                         lyapunov, simulation, sweep, response_range, chart, study, study_store, &
                         study_figure, study_scheduler, study_records, status, message)
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
+                                TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
+                                SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
+                                ANALYSIS_SIZE
     use sloshdyn_model, only: model_to_arrays
     use sloshdyn_namelist, only: run_config, core => read_input
     use sloshdyn_layouts, only: from_ode_options, from_steady, from_response, from_lyapunov, &
                                 from_tank, from_ground, from_chart
     character(len=*), intent(in) :: path
-    real(c_double), intent(out) :: rpar(10), analysis_values(3), tank(17), ground(4), &
-                                   seismic(2), integration(7), steady(7), response(10), &
-                                   lyapunov(3), simulation(6), sweep(7), response_range(4), &
-                                   chart(14), study(22)
-    integer(c_int), intent(out) :: ipar(2), analysis, has_tank, has_ground, n_samples, status
+    real(c_double), intent(out) :: rpar(n_real_params), analysis_values(ANALYSIS_SIZE), &
+                                   tank(TANK_SIZE), ground(GROUND_SIZE), &
+                                   seismic(SEISMIC_SIZE), integration(INTEGRATION_SIZE), &
+                                     steady(STEADY_SIZE), response(RESPONSE_SIZE), &
+                                   lyapunov(LYAPUNOV_SIZE), simulation(SIMULATION_SIZE), &
+                                     sweep(SWEEP_SIZE), response_range(RESPONSE_RANGE_SIZE), &
+                                   chart(CHART_SETTINGS_SIZE), study(STUDY_SIZE)
+    integer(c_int), intent(out) :: ipar(n_int_params), analysis, has_tank, has_ground, &
+                                   n_samples, status
     character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler, &
                                         study_records
     character(len=256), intent(out) :: message
     type(run_config) :: config
-    integer :: info, ints(2)
+    integer :: info, ints(n_int_params)
     rpar = 0; ipar = 0; analysis = 0; analysis_values = 0; tank = 0; integration = 0
     steady = 0; response = 0; lyapunov = 0; simulation = 0; sweep = 0; response_range = 0
     has_tank = 0; has_ground = 0; ground = 0; n_samples = 0; seismic = 0; chart = 0
@@ -1145,13 +1228,22 @@ contains
     text = written
   end subroutine namelist_defaults
 
-  !> Names: a result table's comma-separated column names (list = 'table:NAME'), the analyses
-  !> (list = 'analyses'), the integration methods ('methods', from code 0), or the kinds of a
-  !> kind list ('special', 'motion', 'verdict'); first = the code of the first name.
+  !> Names: a result table's comma-separated column names (list = 'table:NAME') or their format
+  !> letters ('formats:NAME'), a settings or model array's field names ('layout:NAME',
+  !> sloshdyn_layouts), or the names of the codes of an enumerated option: 'analyses',
+  !> 'methods', 'chart_models', 'chart_axes', 'excitation_parameters', 'directions',
+  !> 'study_kinds', 'worker_kinds', 'continuations', 'ground_kinds', 'resonances' and the kind
+  !> lists of sloshdyn_tables ('special', 'motion', 'verdict', ...); first = the code of the
+  !> first name.
   subroutine names(list, text, first, status, message)
     use sloshdyn_tables, only: table_header, table_formats, kind_names
-    use sloshdyn_namelist, only: known_analyses, chart_models
+    use sloshdyn_namelist, only: known_analyses, chart_models, direction_names, study_kinds, &
+                                 worker_kinds, continuation_names, DIRECTION_UP
     use sloshdyn_integrator, only: method_names
+    use sloshdyn_excitation, only: PARAMETER_RHO
+    use sloshdyn_ground, only: GROUND_HARMONIC
+    use sloshdyn_layouts, only: layout_fields, join, excitation_parameters, ground_kinds, &
+                                resonances, chart_axes, CHART_RHO
     character(len=*), intent(in) :: list
     character(len=1024), intent(out) :: text
     integer(c_int), intent(out) :: first, status
@@ -1165,15 +1257,36 @@ contains
       joined = table_header(list(7:))
     else if (index(list, 'formats:') == 1) then
       joined = table_formats(list(9:))
-    else if (list == 'analyses') then
-      joined = join(known_analyses)
-    else if (list == 'methods') then
-      joined = join(method_names)
-      code = lbound(method_names, 1)
-    else if (list == 'chart_models') then
-      joined = join(chart_models)
+    else if (index(list, 'layout:') == 1) then
+      joined = layout_fields(list(8:))
     else
-      call kind_names(list, joined, code)
+      select case (list)
+      case ('analyses');      joined = join(known_analyses)
+      case ('methods')
+        joined = join(method_names)
+        code = lbound(method_names, 1)
+      case ('chart_models');  joined = join(chart_models)
+      case ('chart_axes')
+        joined = chart_axes()
+        code = CHART_RHO
+      case ('excitation_parameters')
+        joined = join(excitation_parameters)
+        code = PARAMETER_RHO
+      case ('directions')
+        joined = join(direction_names)
+        code = DIRECTION_UP
+      case ('study_kinds');   joined = join(study_kinds)
+      case ('worker_kinds');  joined = join(worker_kinds)
+      case ('continuations'); joined = join(continuation_names)
+      case ('ground_kinds')
+        joined = join(ground_kinds)
+        code = GROUND_HARMONIC
+      case ('resonances')
+        joined = join(resonances)
+        code = 0
+      case default
+        call kind_names(list, joined, code)
+      end select
     end if
     first = code
     text = joined
@@ -1181,45 +1294,46 @@ contains
       status = 1
       message = "no names for '"//list//"'"
     end if
-  contains
-    pure function join(items) result(joined_items)
-      character(len=*), intent(in) :: items(:)
-      character(len=:), allocatable :: joined_items
-      integer :: i
-      joined_items = trim(items(1))
-      do i = 2, size(items)
-        joined_items = joined_items//','//trim(items(i))
-      end do
-    end function join
   end subroutine names
 
-  !> The defaults of the option types: model = [beta, gamma, delta, n, p, zeta]; integration, steady,
-  !> response and lyapunov in their layouts; shooting = [newton_tol, max_iter].
   !> The method code that runs for the settings integration (layout of sloshdyn_layouts):
   !> the method itself, or for 'auto' the pair chosen for its rtol.
   subroutine method_used(integration, code)
     !f2py threadsafe
+    use sloshdyn_layouts, only: INTEGRATION_SIZE
     use sloshdyn_integrator, only: chosen_method
-    use sloshdyn_layouts, only: to_method
-    real(c_double), intent(in) :: integration(7)
+    use sloshdyn_ode, only: ode_options
+    use sloshdyn_layouts, only: to_method, to_ode_options
+    real(c_double), intent(in) :: integration(INTEGRATION_SIZE)
     integer(c_int), intent(out) :: code
-    code = int(chosen_method(to_method(integration), integration(1)), c_int)
+    type(ode_options) :: options
+    options = to_ode_options(integration)
+    code = int(chosen_method(to_method(integration), options%rtol), c_int)
   end subroutine method_used
 
-  subroutine defaults(model, integration, steady, response, lyapunov, shooting)
+  !> The defaults of the option types, each in its layout: the model (rpar, ipar of
+  !> sloshdyn_model; its excitation and groups 0), integration, steady, response, lyapunov and
+  !> shooting.
+  subroutine defaults(model, model_integers, integration, steady, response, lyapunov, shooting)
     !f2py threadsafe
-    use sloshdyn_model, only: model_t
+    use sloshdyn_model, only: n_real_params, n_int_params
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
+                                SHOOTING_SIZE
+    use sloshdyn_model, only: model_t, model_to_arrays
     use sloshdyn_ode, only: ode_options
     use sloshdyn_simulation, only: steady_options
     use sloshdyn_response, only: response_options
     use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
     use sloshdyn_integrator, only: METHOD_AUTO
-    use sloshdyn_layouts, only: &
-                                from_ode_options, from_steady, from_response, from_lyapunov
-    real(c_double), intent(out) :: model(6), integration(7), steady(7), &
-                                   response(10), lyapunov(3), shooting(2)
+    use sloshdyn_layouts, only: from_ode_options, from_steady, from_response, from_lyapunov
+    real(c_double), intent(out) :: model(n_real_params), integration(INTEGRATION_SIZE), &
+                                   steady(STEADY_SIZE), response(RESPONSE_SIZE), &
+                                   lyapunov(LYAPUNOV_SIZE), shooting(SHOOTING_SIZE)
+    integer(c_int), intent(out) :: model_integers(n_int_params)
     type(model_t) :: m
-    model = [m%beta, m%gamma, m%delta, real(m%n, c_double), real(m%p, c_double), m%zeta]
+    integer :: ints(n_int_params)
+    call model_to_arrays(m, model, ints)
+    model_integers = ints
     integration = from_ode_options(ode_options(), METHOD_AUTO)
     steady = from_steady(steady_options())
     response = from_response(response_options())

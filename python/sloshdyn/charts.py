@@ -18,8 +18,8 @@ from ._errors import check_status
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge
-_DEFAULTS = _bridge.chart_defaults()
-AXES = ("rho", "A", "gamma", "kappa")             #: the chart parameters, by code 1, 2, 3, 4
+_DEFAULTS = _tables.unpack("chart", _bridge.chart_defaults())
+AXES = _tables.names("chart_axes")[0]             #: the chart parameters: rho, A, gamma, kappa
 MODELS = _tables.names("chart_models")[0]         #: 'slow_flow_3:1', 'slow_flow_nonresonant'
 CURVE_KINDS = _tables.codes("curve")              #: {1: 'fold', 2: 'hopf', ...}
 CODIM2_KINDS = _tables.codes("codim2")            #: {0: 'none', 1: 'bogdanov_takens', ...}
@@ -86,9 +86,9 @@ class StabilityChart:
 
 
 def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
-                    model="slow_flow_3:1", n_x=int(_DEFAULTS[7]), n_y=int(_DEFAULTS[8]),
-                    n_scan=int(_DEFAULTS[9]), max_points=int(_DEFAULTS[10]),
-                    max_curves=int(_DEFAULTS[11]), brute_force_starts=0, threads=1,
+                    model="slow_flow_3:1", n_x=int(_DEFAULTS["n_x"]), n_y=int(_DEFAULTS["n_y"]),
+                    n_scan=int(_DEFAULTS["n_scan"]), max_points=int(_DEFAULTS["max_points"]),
+                    max_curves=int(_DEFAULTS["max_curves"]), brute_force_starts=0, threads=1,
                     capacity=200_000) -> StabilityChart:
     """The stability chart of the slow flow of `params` (model 'slow_flow_3:1' or
     'slow_flow_nonresonant') for x in x_range and y in y_range: x is rho or A (it is varied by
@@ -113,9 +113,11 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
     _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
     _checks.output_size("max_curves", 10 * max(max_curves, 1), 7)
     _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))
-    settings = np.array([MODELS.index(model) + 1, AXES.index(x) + 1, AXES.index(y) + 1, x_min,
-                         x_max, y_min, y_max, n_x, n_y, n_scan, max_points, max_curves,
-                         brute_force_starts, threads], dtype=np.float64)
+    settings = _tables.pack("chart", {
+        "model": _tables.code("chart_models", model), "x": _tables.code("chart_axes", x),
+        "y": _tables.code("chart_axes", y), "x_min": x_min, "x_max": x_max, "y_min": y_min,
+        "y_max": y_max, "n_x": n_x, "n_y": n_y, "n_scan": n_scan, "max_points": max_points,
+        "max_curves": max_curves, "brute_force_starts": brute_force_starts, "threads": threads})
     n_cells = max(n_x, 1) * max(n_y, 1)
     (curves, codim2, ends, grid, sizes, complete, notes, status,
      message) = _bridge.stability_chart(*params.arrays(), settings, max(capacity, 1),
