@@ -281,11 +281,8 @@ contains
   pure function to_continuation(a) result(options)
     real(wp), intent(in) :: a(CONTINUATION_SIZE)
     type(continuation_options) :: options
-    options%ds = a(1)
-    options%ds_min = a(2)
-    options%ds_max = a(3)
-    options%x_scale = a(4)
-    options%direction = to_int(a(5))
+    options = continuation_options(ds=a(1), ds_min=a(2), ds_max=a(3), x_scale=a(4), &
+                                   direction=to_int(a(5)))
   end function to_continuation
 
   !> tank(TANK_SIZE) in the order of tank_t's components (n and p as reals).
