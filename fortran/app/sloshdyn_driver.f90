@@ -19,7 +19,13 @@ module sloshdyn_driver
                              SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, &
                              PEAKS_IMPACT_FORCE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
                              HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
-                             CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name
+                             CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name, &
+                             CHART_GRID_N_STABLE, CHART_GRID_NEAR_CURVE, &
+                             CHART_GRID_BRUTE_FORCE_STABLE, HISTORY_X1, HISTORY_X2, &
+                             HARMONIC_SWEEP_WAVE_HEIGHT, PERIODIC_POINT_ROWS, &
+                             PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS, &
+                             PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, PERIODIC_SPECIAL_MAX_X1, &
+                             COUNTS_SIZE
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
@@ -138,13 +144,16 @@ contains
     allocate (curves(CHART_CURVE_ROWS, n_points), codim2(CHART_CODIM2_ROWS, n_codim2), &
               ends(CHART_END_ROWS, n_curves), grid(CHART_GRID_ROWS, n_cells))
     call chart_tables(chart, curves, codim2, ends, grid)
-    print '(a)', '  grid of '//num2str(n_cells)//' cells: '//num2str(count(grid(5, :) == 0))// &
-                 ' with no stable steady state, '//num2str(count(grid(5, :) == 1))//' with one, '// &
-                 num2str(count(grid(5, :) > 1))//' with more; '// &
-                 num2str(count(grid(7, :) > 0))//' near a curve'
+    print '(a)', '  grid of '//num2str(n_cells)//' cells: '// &
+                 num2str(count(grid(CHART_GRID_N_STABLE, :) == 0))// &
+                 ' with no stable steady state, '// &
+                 num2str(count(grid(CHART_GRID_N_STABLE, :) == 1))//' with one, '// &
+                 num2str(count(grid(CHART_GRID_N_STABLE, :) > 1))//' with more; '// &
+                 num2str(count(grid(CHART_GRID_NEAR_CURVE, :) > 0))//' near a curve'
     if (config%chart%brute_force_starts > 0) then
-      checked = count(grid(7, :) == 0)
-      agree = count(grid(7, :) == 0 .and. grid(8, :) == grid(5, :))
+      checked = count(grid(CHART_GRID_NEAR_CURVE, :) == 0)
+      agree = count(grid(CHART_GRID_NEAR_CURVE, :) == 0 .and. &
+                    grid(CHART_GRID_BRUTE_FORCE_STABLE, :) == grid(CHART_GRID_N_STABLE, :))
       print '(a)', '  brute force ('//num2str(config%chart%brute_force_starts)// &
                    ' integrations per cell): the same number of stable steady states in '// &
                    num2str(agree)//' of the '//num2str(checked)//' cells away from the curves'
@@ -290,13 +299,15 @@ contains
     end associate
     print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
                  num2str(stats%n_rejected)//', right-hand sides '//num2str(stats%n_rhs)
-    print '(a)', '  max|x1| = '//num2str(maxval(abs(history(2, :))))//', max|x2| = '// &
-                 num2str(maxval(abs(history(4, :))))//' at the output times'
+    print '(a)', '  max|x1| = '//num2str(maxval(abs(history(1 + HISTORY_X1, :))))// &
+                 ', max|x2| = '// &
+                 num2str(maxval(abs(history(1 + HISTORY_X2, :))))//' at the output times'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('history.csv', 'history', history, status, &
                                                 message)
     if (status == SD_OK) call files%write_table('simulation.csv', 'simulation', &
-                                                reshape(counts_array(stats), [4, 1]), status, message)
+                                                reshape(counts_array(stats), [COUNTS_SIZE, 1]), &
+                                                status, message)
   end subroutine run_simulate
 
   !> Steady state at (rho, A) from y0: amplitudes, kind of motion and Poincare points.
@@ -426,7 +437,7 @@ contains
                pad(num2str(summaries(SUMMARY_MAX_X2, i)), 14)// &
                pad(num2str(summaries(SUMMARY_MAX_U1, i)), 14)// &
                pad(num2str(summaries(SUMMARY_MAX_U2, i)), 14)
-        if (in_frequency) line = line//pad(num2str(si(3, i)), 14)
+        if (in_frequency) line = line//pad(num2str(si(HARMONIC_SWEEP_WAVE_HEIGHT, i)), 14)
         print '(a)', line//motion_text(summaries(SUMMARY_MOTION, i), summaries(SUMMARY_PERIOD, i))
       end do
       flush (output_unit)
@@ -489,7 +500,9 @@ contains
 
     associate (r => config%response)
       capacity = r%options%continuation%max_points
-      allocate (points(7, capacity), multipliers(8, capacity), special(7, 100))
+      allocate (points(PERIODIC_POINT_ROWS, capacity), &
+                multipliers(PERIODIC_MULTIPLIER_ROWS, capacity), &
+                special(PERIODIC_SPECIAL_ROWS, 100))
       call periodic_response_from_rest(config%model, r%parameter, config%simulation%y0, &
                                        r%start, r%stop, config%steady, r%options%continuation, &
                                        config%integration, config%method, points, multipliers, &
@@ -503,13 +516,17 @@ contains
     end associate
     print '(a)', '  '//num2str(n_points)//' orbits; special points:'
     do i = 1, n_special
-      print '(a)', '  '//pad(special_kind_name(nint(special(1, i))), 16)//name//' = '// &
-                   pad(num2str(special(2, i)), 14)//'max|x1| = '//num2str(special(7, i))
+      print '(a)', '  '//pad(special_kind_name(nint(special(PERIODIC_SPECIAL_KIND, i))), 16)// &
+                   name//' = '// &
+                   pad(num2str(special(PERIODIC_SPECIAL_LAMBDA, i)), 14)//'max|x1| = '// &
+                   num2str(special(PERIODIC_SPECIAL_MAX_X1, i))
     end do
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('periodic_branch.csv', 'periodic_branch', &
                                                 reshape([(points(:, i), multipliers(:, i), &
-                                                i = 1, n_points)], [15, n_points]), status, &
+                                                i = 1, n_points)], &
+                                                [PERIODIC_POINT_ROWS + PERIODIC_MULTIPLIER_ROWS, &
+                                                 n_points]), status, &
                                                 message)
     if (status == SD_OK) call files%write_table('periodic_special_points.csv', &
                                                 'periodic_special_points', &
@@ -556,7 +573,8 @@ contains
     end if
     ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
     print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
-                 num2str(peaks(PEAKS_IMPACT_FORCE)/(config%tank_props%sloshing_mass*config%tank%gravity), &
+                 num2str(peaks(PEAKS_IMPACT_FORCE)/ &
+                         (config%tank_props%sloshing_mass*config%tank%gravity), &
                          significant=3)//' times the sloshing weight m g'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)

@@ -22,7 +22,10 @@ module sloshdyn_tables
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
-            PERIODIC_SPECIAL_ROWS
+            PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
+            PERIODIC_SPECIAL_MAX_X1
+  public :: HISTORY_X1, HISTORY_X2, HARMONIC_SWEEP_WAVE_HEIGHT, CHART_GRID_N_STABLE, &
+            CHART_GRID_NEAR_CURVE, CHART_GRID_BRUTE_FORCE_STABLE
   public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
             CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS
@@ -64,7 +67,7 @@ module sloshdyn_tables
   !> Time history rows (after tau): state, modal coordinates (eq 34), impact force (eq 4),
   !> angles [rad].
   character(len=*), parameter :: history_columns = 'x1,dx1,x2,dx2,u1,u2,impact_force,theta,phi'
-  integer, parameter :: HISTORY_ROWS = 9
+  integer, parameter :: HISTORY_ROWS = 9, HISTORY_X1 = 1, HISTORY_X2 = 3
 
   !> One steady-state summary.
   character(len=*), parameter :: summary_columns = 'rho,A,max_x1,max_x2,max_u1,max_u2,motion,'// &
@@ -96,7 +99,8 @@ module sloshdyn_tables
   !> 'periodic_branch'), their Floquet multipliers (the other 8) and its special points
   !> ('periodic_special_points').
   integer, parameter :: PERIODIC_POINT_ROWS = 7, PERIODIC_MULTIPLIER_ROWS = 8, &
-                        PERIODIC_SPECIAL_ROWS = 7
+                        PERIODIC_SPECIAL_ROWS = 7, PERIODIC_SPECIAL_KIND = 1, &
+                        PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
 
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
   !> output time, then x1 and x2; the peaks of the loads (value, time) with the roof's strikes;
@@ -123,11 +127,12 @@ module sloshdyn_tables
   character(len=*), parameter :: chart_grid_columns = 'rho,A,gamma,kappa,n_stable,n_steady,'// &
     'near_curve,brute_force_stable'
   integer, parameter :: CHART_CURVE_ROWS = 13, CHART_CODIM2_ROWS = 7, CHART_END_ROWS = 7, &
-                        CHART_GRID_ROWS = 8
+                        CHART_GRID_ROWS = 8, CHART_GRID_N_STABLE = 5, CHART_GRID_NEAR_CURVE = 7, &
+                        CHART_GRID_BRUTE_FORCE_STABLE = 8
   character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
     'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
     'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
-  integer, parameter :: HARMONIC_SWEEP_ROWS = 9
+  integer, parameter :: HARMONIC_SWEEP_ROWS = 9, HARMONIC_SWEEP_WAVE_HEIGHT = 3
   character(len=*), parameter :: codes_columns_names = 'source,convective_period [s],'// &
     'convective_mass [kg],impulsive_mass [kg],convective_height [m],impulsive_height [m],'// &
     'wave_height [m]'

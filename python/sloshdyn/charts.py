@@ -111,7 +111,7 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
             ("max_curves", max_curves), ("brute_force_starts", brute_force_starts),
             ("threads", threads), ("capacity", capacity)))
     _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
-    _checks.output_size("max_curves", 10 * max(max_curves, 1), 7)
+    _checks.output_size("max_curves", 10 * max(max_curves, 1), len(_tables.columns("chart_codim2")))
     _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))
     settings = _tables.pack("chart", {
         "model": _tables.code("chart_models", model), "x": _tables.code("chart_axes", x),
@@ -143,17 +143,24 @@ def _chart(x, y, model, curves, codim2, ends, grid, complete, notes, params):
     columns = _tables.columns("chart_curves")
     table = dict(zip(columns, curves))
     curve_list = []
-    for k, end in enumerate(ends.T, start=1):
+    for k, column in enumerate(ends.T, start=1):
+        end = dict(zip(_tables.columns("chart_ends"), column))
         on = table["curve"] == k
         curve_list.append(Curve(
-            kind=CURVE_KINDS[int(end[1])], rho=table["rho"][on], A=table["A"][on],
+            kind=CURVE_KINDS[int(end["kind"])], rho=table["rho"][on], A=table["A"][on],
             gamma=table["gamma"][on], kappa=table["kappa"][on],
             state=np.array([table[f"x{i}"][on] for i in range(1, 5)]),
             omega=table["omega"][on], l1=table["l1"][on],
-            codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]], complete=bool(end[3]),
-            ends=(CURVE_ENDS[int(end[4])], CURVE_ENDS[int(end[5])]), note=note_of.get(k, "")))
-    points = [Codim2Point(CODIM2_KINDS[int(r[0])], *(float(v) for v in r[2:7]), int(r[1]) - 1)
-              for r in codim2.T]
+            codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]], complete=bool(end["complete"]),
+            ends=(CURVE_ENDS[int(end["first_end"])], CURVE_ENDS[int(end["last_end"])]),
+            note=note_of.get(k, "")))
+    points = []
+    for column in codim2.T:
+        point = dict(zip(_tables.columns("chart_codim2"), column))
+        points.append(Codim2Point(CODIM2_KINDS[int(point["kind"])],
+                                  *(float(point[name]) for name in ("rho", "A", "gamma", "kappa",
+                                                                    "omega")),
+                                  int(point["curve"]) - 1))
     grid_table = {name: values.copy() for name, values in zip(_tables.columns("chart_grid"), grid)}
     return StabilityChart(x, y, model, curve_list, points, grid_table, complete, params)
 
@@ -176,8 +183,9 @@ def chart_from_files(directory, x="rho", y="A", model="slow_flow_3:1", params=No
         return data.T
 
     ends = read("chart_ends.csv", "chart_ends")
-    notes = "\n".join(f"curve {int(e[0])}: stopped ({CURVE_ENDS[int(e[5])]})"
-                      for e in ends.T if not e[3])
+    table = dict(zip(_tables.columns("chart_ends"), ends))
+    notes = "\n".join(f"curve {int(curve)}: stopped ({CURVE_ENDS[int(last)]})" for curve, last, done
+                      in zip(table["curve"], table["last_end"], table["complete"]) if not done)
     return _chart(x, y, model, read("chart_curves.csv", "chart_curves"),
                   read("chart_codim2.csv", "chart_codim2"), ends,
                   read("chart_grid.csv", "chart_grid"), bool(np.all(ends[3] > 0)), notes, params)
