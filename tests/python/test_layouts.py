@@ -260,3 +260,18 @@ def test_a_tank_and_its_ground_motion_read_through_python_by_name(tmp_path):
     again = sloshdyn.GroundMotion._from_arrays(ground, samples)
     assert again.kind == inp.ground_motion.kind == "record"
     assert again.dt == inp.ground_motion.dt and np.array_equal(again.acceleration, samples)
+
+
+def test_result_tables_have_the_columns_the_core_names():
+    """The bridge's result arrays are sized by the core's tables (a build that kept an old size
+    in f2py's wrapper would give another number of rows, or corrupt memory)."""
+    tank = Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0,
+                tank_mass=5.0e4, support_frequency=2.0, support_damping=0.02)
+    ground, samples = sloshdyn.GroundMotion.harmonic(0.05, 0.3)._arrays()
+    table, peaks, status, _ = _bridge.seismic_response(tank.array(), ground, samples, 2.0, 3,
+                                                       Integration().array())
+    assert status == 0
+    assert table.shape == (len(_tables.columns("seismic")), 3)
+    assert peaks.shape == (len(_tables.columns("seismic_peaks")),)
+    row, *_ = _bridge.tank_properties(tank.array())
+    assert row.shape == (len(_tables.columns("tank_si")),)
