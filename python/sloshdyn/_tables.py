@@ -13,7 +13,7 @@ import numpy as np
 from . import _core
 from ._errors import check_status
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_tables
 
 
 def _text(raw):

@@ -13,7 +13,7 @@ from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters, convert_fields
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_asymptotics
 
 # eq (33): g_r = sum sign * name * monomial; exponents of (x1, x2, x1', x2')
 HAT_TERMS = {
@@ -144,15 +144,18 @@ class Continuation:
     """Settings of the branch search and continuation (&response): the fields of the core's
     layout, in order, with its defaults."""
 
-    n_scan: int = int(_RESPONSE["n_scan"])            #: parameter values where steady states are searched
-    n_amplitudes: int = int(_RESPONSE["n_amplitudes"])      #: Newton starts per mode: log-spaced |B| ...
+    #: parameter values where steady states are searched
+    n_scan: int = int(_RESPONSE["n_scan"])
+    #: Newton starts per mode: log-spaced |B| ...
+    n_amplitudes: int = int(_RESPONSE["n_amplitudes"])
     n_phases: int = int(_RESPONSE["n_phases"])          #: ... times equally spaced phases
     amplitude_min: float = float(_RESPONSE["amplitude_min"])
     amplitude_max: float = float(_RESPONSE["amplitude_max"])
     ds: float = float(_RESPONSE["ds"])            #: first pseudo-arclength step
     ds_min: float = float(_RESPONSE["ds_min"])
     ds_max: float = float(_RESPONSE["ds_max"])
-    x_scale: float = float(_RESPONSE["x_scale"])       #: weight of the amplitudes in the arclength norm
+    #: weight of the amplitudes in the arclength norm
+    x_scale: float = float(_RESPONSE["x_scale"])
     max_points: int = int(_RESPONSE["max_points"])        #: points per branch and direction at most
 
     def __post_init__(self):

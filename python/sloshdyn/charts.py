@@ -17,7 +17,7 @@ from . import _checks, _core, _tables
 from ._errors import check_status
 from .parameters import Parameters
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_charts
 _DEFAULTS = _tables.unpack("chart", _bridge.chart_defaults())
 AXES = _tables.names("chart_axes")[0]             #: the chart parameters: rho, A, gamma, kappa
 MODELS = _tables.names("chart_models")[0]         #: 'slow_flow_3:1', 'slow_flow_nonresonant'
@@ -151,7 +151,8 @@ def _chart(x, y, model, curves, codim2, ends, grid, complete, notes, params):
             gamma=table["gamma"][on], kappa=table["kappa"][on],
             state=np.array([table[f"x{i}"][on] for i in range(1, 5)]),
             omega=table["omega"][on], l1=table["l1"][on],
-            codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]], complete=bool(end["complete"]),
+            codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]],
+            complete=bool(end["complete"]),
             ends=(CURVE_ENDS[int(end["first_end"])], CURVE_ENDS[int(end["last_end"])]),
             note=note_of.get(k, "")))
     points = []

@@ -10,7 +10,7 @@ from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_model
 MAX_EQUILIBRIA = 4096
 MAX_ROOTS = 256
 VERDICTS = _tables.codes("verdict")

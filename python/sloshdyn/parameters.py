@@ -58,7 +58,8 @@ class Parameters:
     def arrays(self):
         """The flat arrays of the f2py bridge: rpar, ipar in the core's layouts 'model' and
         'model_integers'."""
-        rpar = _tables.pack("model", {name: getattr(self, name) for name in _tables.layout("model")})
+        rpar = _tables.pack("model", {name: getattr(self, name)
+                                      for name in _tables.layout("model")})
         ipar = _tables.pack("model_integers", {name: getattr(self, name) for name in
                                                _tables.layout("model_integers")}, dtype=np.int32)
         return rpar, ipar
@@ -72,7 +73,7 @@ class Parameters:
 
     def coefficients(self):
         """a1..a6 and b1..b6 of eq (11) as two arrays."""
-        a, b, status, message = _core.sloshdyn_bridge.model_coefficients(*self.arrays())
+        a, b, status, message = _core.sloshdyn_bridge_model.model_coefficients(*self.arrays())
         check_status(status, message)
         return a, b
 
@@ -106,7 +107,7 @@ class Parameters:
             l, m = pendulum.l, pendulum.m
         l, m = _checks.real("l", l), _checks.real("m", m)
         physical = np.array([M, L, k, c, b or 0.0, d or 0.0, g, theta0, l, m], dtype=np.float64)
-        groups, status, message = _core.sloshdyn_bridge.dimensionless_groups(physical)
+        groups, status, message = _core.sloshdyn_bridge_model.dimensionless_groups(physical)
         check_status(status, message)
         s1, mu1, kappa, beta, gamma, delta = (float(x) for x in groups)
         beta = float(_MODEL_DEFAULTS["beta"]) if b is None else beta
@@ -150,12 +151,13 @@ class TankPendulum:
 def tank_pendulum(R, h, rho_liquid=None, m_liquid=None):
     """Pendulum of the first sloshing mode of a cylindrical tank of radius R and liquid depth h,
     from the liquid density rho_liquid or the liquid mass m_liquid (give one), eq (2)-(3)."""
-    pendulum, status, message = _core.sloshdyn_bridge.tank_pendulum(
+    pendulum, status, message = _core.sloshdyn_bridge_model.tank_pendulum(
         _checks.real("R", R), _checks.real("h", h),
         _checks.optional_real("rho_liquid", rho_liquid, 0.0),
         _checks.optional_real("m_liquid", m_liquid, 0.0))
     check_status(status, message)
-    return TankPendulum(**{name: float(x) for name, x in _tables.unpack("pendulum", pendulum).items()})
+    return TankPendulum(**{name: float(x)
+                           for name, x in _tables.unpack("pendulum", pendulum).items()})
 
 
 @dataclass(frozen=True)
@@ -190,7 +192,7 @@ def read_namelist(path):
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
      study, store, figure, scheduler, study_records, status,
-     message) = _core.sloshdyn_bridge.read_input(path)
+     message) = _core.sloshdyn_bridge_input.read_input(path)
     check_status(status, message)
     tank = ground_motion = None
     if has_tank:
@@ -198,7 +200,7 @@ def read_namelist(path):
     if has_ground:
         samples = np.zeros(0)
         if n_samples > 0:
-            samples, status, message = _core.sloshdyn_bridge.input_record(path, n_samples)
+            samples, status, message = _core.sloshdyn_bridge_input.input_record(path, n_samples)
             check_status(status, message)
         ground_motion = GroundMotion._from_arrays(ground, samples.copy())
     excitation_parameters = _tables.codes("excitation_parameters")

@@ -17,7 +17,7 @@ from .model import linear_modes
 from .parameters import Parameters
 from .simulation import Integration, Steady, steady_state
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
 _NEWTON_TOL, _MAX_ITER = (float(_tables.defaults()["shooting"][name])
                           for name in ("newton_tol", "max_iter"))
@@ -165,8 +165,10 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     return branch
 
 
-def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=int(_LYAPUNOV["transient_periods"]),
-                      n_periods=int(_LYAPUNOV["n_periods"]), renormalise_every=int(_LYAPUNOV["renormalise_every"]),
+def lyapunov_exponent(params: Parameters, y0=None, *,
+                      transient_periods=int(_LYAPUNOV["transient_periods"]),
+                      n_periods=int(_LYAPUNOV["n_periods"]),
+                      renormalise_every=int(_LYAPUNOV["renormalise_every"]),
                       integration: Integration = Integration()):
     """Largest Lyapunov exponent per unit tau (Benettin: one tangent vector renormalised every
     renormalise_every forcing periods), and its running estimate after each renormalisation

@@ -20,7 +20,7 @@ from ._errors import InputError, check_status
 from .parameters import Parameters, convert_fields
 from .simulation import Integration, Steady
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_seismic
 _TANK_DEFAULTS = _tables.unpack("tank", _bridge.tank_defaults())
 
 
@@ -48,11 +48,16 @@ class Tank:
     support_frequency: float = float(_TANK_DEFAULTS["support_frequency"])   #: [Hz]
     support_damping: float = float(_TANK_DEFAULTS["support_damping"])     #: ratio of critical
     support_stiffness: float = float(_TANK_DEFAULTS["support_stiffness"])   #: [N m/rad]
-    support_damping_coefficient: float = float(_TANK_DEFAULTS["support_damping_coefficient"])   #: [N m s/rad]
-    support_height: float = float(_TANK_DEFAULTS["support_height"])     #: rod length L [m]; 0: h + freeboard
-    sloshing_damping: float = float(_TANK_DEFAULTS["sloshing_damping"])   #: ratio of critical (linear)
-    impact_stiffness: float = float(_TANK_DEFAULTS["impact_stiffness"])   #: beta (dimensionless, eq 4)
-    impact_damping: float = float(_TANK_DEFAULTS["impact_damping"])     #: delta (dimensionless, eq 5)
+    support_damping_coefficient: float = float(
+        _TANK_DEFAULTS["support_damping_coefficient"])   #: [N m s/rad]
+    #: rod length L [m]; 0: h + freeboard
+    support_height: float = float(_TANK_DEFAULTS["support_height"])
+    #: ratio of critical (linear)
+    sloshing_damping: float = float(_TANK_DEFAULTS["sloshing_damping"])
+    #: beta (dimensionless, eq 4)
+    impact_stiffness: float = float(_TANK_DEFAULTS["impact_stiffness"])
+    #: delta (dimensionless, eq 5)
+    impact_damping: float = float(_TANK_DEFAULTS["impact_damping"])
     n: int = int(_TANK_DEFAULTS["n"])                      #: exponent of eq (4)
     p: int = int(_TANK_DEFAULTS["p"])                      #: exponent of eq (5)
     gravity: float = float(_TANK_DEFAULTS["gravity"])            #: [m/s^2]

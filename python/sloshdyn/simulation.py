@@ -13,7 +13,7 @@ from ._cancel import cancellable
 from ._errors import InputError, IntegrationError, check_status
 from .parameters import Parameters, convert_fields
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_simulation
 MOTIONS = _tables.codes("motion")
 METHODS = {name: code for code, name in _tables.codes("methods").items()}
 SUMMARY_COLUMNS = _tables.columns("summary")
@@ -63,8 +63,10 @@ class Steady:
                                                       #: less (relative); 0: fixed transient
     max_transient_periods: float = float(_STEADY["max_transient_periods"])
     window_periods: int = int(_STEADY["window_periods"])             #: measuring window
-    samples_per_period: int = int(_STEADY["samples_per_period"])         #: dense-output samples per period
-    periodic_tol: float = float(_STEADY["periodic_tol"])           #: Poincare points this close coincide
+    #: dense-output samples per period
+    samples_per_period: int = int(_STEADY["samples_per_period"])
+    #: Poincare points this close coincide
+    periodic_tol: float = float(_STEADY["periodic_tol"])
     shooting: bool = bool(_STEADY["shooting"])                 #: with settle_tol > 0: once the
     #: Poincare map contracts, jump to the periodic orbit by Newton shooting (kept only if
     #: stable and the attractor being approached); False: integration only

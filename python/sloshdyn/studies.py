@@ -29,7 +29,7 @@ from ._errors import InputError, SloshdynError
 from .parameters import Parameters
 from .simulation import Integration, Steady
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_studies
 SUMMARY_COLUMNS = _tables.columns("summary")
 MOTIONS = _tables.codes("motion")
 MOTION_CODES = {name: code for code, name in MOTIONS.items()}
@@ -869,12 +869,13 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
     out["status"] = np.zeros(shape, np.int16)
     for i, (ground, samples) in enumerate(records):
         for j, sa in enumerate(intensities):
-            scaled, scaled_samples, status, _ = _bridge.scale_ground(
+            scaled, scaled_samples, status, _ = _core.sloshdyn_bridge_seismic.scale_ground(
                 ground, samples, 1.0, 0.0, sa * sa_factor, period, damping)
             if status == 0:
-                chosen, status, _ = _bridge.seismic_defaults(tank, scaled, scaled_samples, 0.0, 0)
+                chosen, status, _ = _core.sloshdyn_bridge_seismic.seismic_defaults(
+                    tank, scaled, scaled_samples, 0.0, 0)
             if status == 0:
-                _, peaks, status, _ = _bridge.seismic_response(
+                _, peaks, status, _ = _core.sloshdyn_bridge_seismic.seismic_response(
                     tank, scaled, scaled_samples, float(chosen[0]), int(chosen[1]), integration)
             out["status"][i, j] = status
             if status != 0:

@@ -16,7 +16,8 @@ from sloshdyn.parameters import Parameters, TankPendulum
 from sloshdyn.seismic import Tank
 from sloshdyn.simulation import METHODS, Integration, Steady
 
-_bridge = _core.sloshdyn_bridge
+_model, _seismic, _input = (_core.sloshdyn_bridge_model, _core.sloshdyn_bridge_seismic,
+                           _core.sloshdyn_bridge_input)
 
 MODEL = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.804897259, theta0 = 0.7853981633974483, "
          "gamma = 0.001 /\n&excitation A = 0.00075, rho = 0.51 /\n")
@@ -47,23 +48,24 @@ def test_an_unknown_layout_or_code_list_is_an_error():
 
 def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     """Every array the core returns has as many entries as its layout has names."""
-    model, model_integers, *settings = _bridge.defaults()
+    model, model_integers, *settings = _core.sloshdyn_bridge_tables.defaults()
     arrays = {"model": model, "model_integers": model_integers,
               **dict(zip(("integration", "steady", "response", "lyapunov", "shooting"), settings)),
-              "tank": _bridge.tank_defaults(), "chart": _bridge.chart_defaults()}
+              "tank": _seismic.tank_defaults(),
+              "chart": _core.sloshdyn_bridge_charts.chart_defaults()}
     path = tmp_path / "input.nml"
     path.write_text(MODEL + "&analysis kind = 'stability_chart' /\n")
     (rpar, ipar, _, analysis, _, _, tank, _, ground, _, seismic, integration, steady, response,
-     lyapunov, simulation, sweep, response_range, chart, study, *_) = _bridge.read_input(str(path))
+     lyapunov, simulation, sweep, response_range, chart, study, *_) = _input.read_input(str(path))
     arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
                   sweep=sweep, response_range=response_range, study=study)
     for name, array in (("model", rpar), ("model_integers", ipar), ("tank", tank),
                         ("integration", integration), ("steady", steady),
                         ("response", response), ("lyapunov", lyapunov), ("chart", chart)):
         assert len(array) == len(arrays[name]), name
-    pendulum, status, _ = _bridge.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
-    groups, status, _ = _bridge.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
-    *_, routh, _, _ = _bridge.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
+    pendulum, status, _ = _model.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
+    groups, status, _ = _model.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
+    *_, routh, _, _ = _model.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
                                                      theta0=0.5).arrays(), 4)
     arrays.update(pendulum=pendulum, groups=groups, routh=routh)
     for name, array in arrays.items():
@@ -75,7 +77,7 @@ def test_an_input_array_of_another_size_is_refused():
     """f2py sizes the bridge's arrays by the layouts: one entry more or less does not pass."""
     for n in (len(_tables.layout("physical")) - 1, len(_tables.layout("physical")) + 1):
         with pytest.raises(ValueError):
-            _bridge.dimensionless_groups(np.ones(n))
+            _model.dimensionless_groups(np.ones(n))
 
 
 @pytest.mark.parametrize("cls, layout", [(Integration, "integration"), (Steady, "steady"),
@@ -91,7 +93,7 @@ def test_settings_classes_have_the_cores_defaults():
                         (Continuation, "response")):
         assert dict(zip(_tables.layout(layout), cls().array())) == pytest.approx(
             {k: float(v) for k, v in defaults[layout].items()}), layout
-    tank = _tables.unpack("tank", _bridge.tank_defaults())
+    tank = _tables.unpack("tank", _seismic.tank_defaults())
     for f in dataclasses.fields(Tank):
         if f.default is not dataclasses.MISSING:
             assert f.default == tank[f.name], f.name
@@ -268,10 +270,10 @@ def test_result_tables_have_the_columns_the_core_names():
     tank = Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0,
                 tank_mass=5.0e4, support_frequency=2.0, support_damping=0.02)
     ground, samples = sloshdyn.GroundMotion.harmonic(0.05, 0.3)._arrays()
-    table, peaks, status, _ = _bridge.seismic_response(tank.array(), ground, samples, 2.0, 3,
+    table, peaks, status, _ = _seismic.seismic_response(tank.array(), ground, samples, 2.0, 3,
                                                        Integration().array())
     assert status == 0
     assert table.shape == (len(_tables.columns("seismic")), 3)
     assert peaks.shape == (len(_tables.columns("seismic_peaks")),)
-    row, *_ = _bridge.tank_properties(tank.array())
+    row, *_ = _seismic.tank_properties(tank.array())
     assert row.shape == (len(_tables.columns("tank_si")),)

@@ -22,7 +22,7 @@ def test_python_examples_run(tmp_path, monkeypatch):
 
 def reader_groups():
     """{group: {variable: default text}} as the Fortran reader writes its groups."""
-    text = sloshdyn._core.sloshdyn_bridge.namelist_defaults().decode().strip()
+    text = sloshdyn._core.sloshdyn_bridge_input.namelist_defaults().decode().strip()
     groups = {}
     for match in re.finditer(r"&(\w+)(.*?)/\s*$", text, re.M):
         items = re.findall(r"(\w+)=\s*(\"[^\"]*\"|[^,]*?)\s*,", match.group(2))
