@@ -1,8 +1,9 @@
 !> The f2py bridge of model.py and parameters.py: the model, its linear analysis and equilibria.
 !>
-!> The f2py bridge: the only Fortran that Python sees. Scalars and explicit-shape arrays of
-!> c_double/c_int cross the boundary; every routine returns status (0 = success) and a fixed-length
-!> message.
+!> The f2py bridge, the only Fortran that Python sees: the modules sloshdyn_bridge_*, one per
+!> module of the Python package, all in the one extension sloshdyn._core. Scalars and
+!> explicit-shape arrays of c_double/c_int cross the boundary; every routine returns status
+!> (0 = success) and a fixed-length message.
 !> Every flat array has a named layout: the field names of the settings and small results in
 !> sloshdyn_layouts, the model's rpar = real_param_names and ipar = [n, p] of sloshdyn_model, the
 !> columns of result tables in sloshdyn_tables; Python asks for them (names) and builds and
