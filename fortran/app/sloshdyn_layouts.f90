@@ -122,7 +122,8 @@ module sloshdyn_layouts
                         SWEEP_SIZE = size(sweep_fields), &
                         SIMULATION_SIZE = size(simulation_fields), &
                         RESPONSE_RANGE_SIZE = size(response_range_fields), &
-                        SEISMIC_SIZE = size(seismic_fields), ANALYSIS_SIZE = size(analysis_fields), &
+                        SEISMIC_SIZE = size(seismic_fields), &
+                        ANALYSIS_SIZE = size(analysis_fields), &
                         CONTINUATION_SIZE = size(continuation_fields), &
                         SHOOTING_SIZE = size(shooting_fields), &
                         PENDULUM_SIZE = size(pendulum_fields), &

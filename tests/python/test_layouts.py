@@ -277,3 +277,24 @@ def test_result_tables_have_the_columns_the_core_names():
     assert peaks.shape == (len(_tables.columns("seismic_peaks")),)
     row, *_ = _seismic.tank_properties(tank.array())
     assert row.shape == (len(_tables.columns("tank_si")),)
+
+
+def test_seismic_results_are_named_by_the_cores_tables():
+    """SeismicResponse, its peaks, the tank's properties and the design-code table take their
+    names from the core's tables, in the core's order."""
+    tank = Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0,
+                tank_mass=5.0e4, support_frequency=2.0, support_damping=0.02)
+    ground = sloshdyn.GroundMotion.harmonic(0.05, 0.3)
+    response = sloshdyn.seismic_response(tank, ground, t_end=2.0, n_out=3)
+    names = [c.split(" [")[0] for c in _tables.columns("seismic")]
+    assert response.columns == names
+    for name, row in zip(names, response.table):
+        assert np.array_equal(getattr(response, name), row, equal_nan=True), name
+    peaks = [c.split(" [")[0] for c in _tables.columns("seismic_peaks")]
+    assert list(response.peak_table) == peaks
+    assert set(response.peaks) == {p[len("peak_"):] for p in peaks if p.startswith("peak_")}
+    assert list(tank.properties) == [c.split(" [")[0] for c in _tables.columns("tank_si")]
+    codes = tank.design_codes(ground)
+    assert codes.sources == list(_tables.names("source")[0])
+    assert codes.columns == [c.split(" [")[0] for c in _tables.columns("design_codes")[1:]]
+    assert codes.table.shape == (len(codes.columns), len(codes.sources))
