@@ -25,7 +25,7 @@ module sloshdyn_driver
                              HARMONIC_SWEEP_WAVE_HEIGHT, PERIODIC_POINT_ROWS, &
                              PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS, &
                              PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, PERIODIC_SPECIAL_MAX_X1, &
-                             COUNTS_SIZE
+                             COUNTS_SIZE, ROUTH_SIZE, table_size
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
@@ -256,22 +256,23 @@ contains
     if (status /= SD_OK) return
     call files%write_table('frequencies.csv', 'frequencies', reshape([omega1, omega2, &
                            omega1_eig, omega2_eig, omega2/omega1, k(1, 1), -k(1, 2), -k(2, 1), &
-                           k(2, 2)], [9, 1]), status, message)
+                           k(2, 2)], [table_size('frequencies'), 1]), status, message)
     if (status /= SD_OK) return
-    allocate (rows(14, n_eq))
+    allocate (rows(table_size('equilibria'), n_eq))
     do i = 1, n_eq
       rows(1:6, i) = [theta(i), phi(i), theta(i)/model%theta0, phi(i)/model%theta0, &
                       merge(1.0_wp, 0.0_wp, physical(i)), real(verdict(i), wp)]
-      rows(7:14, i) = [(eig_re(j, i), eig_im(j, i), j = 1, 4)]
+      rows(7:, i) = [(eig_re(j, i), eig_im(j, i), j = 1, 4)]
     end do
     call files%write_table('equilibria.csv', 'equilibria', rows, status, message)
     if (status /= SD_OK) return
     call files%write_table('routh_hurwitz.csv', 'routh_hurwitz', reshape([rh_coefficients, &
                            hurwitz(2:3), merge(1.0_wp, 0.0_wp, routh_stable), &
-                           real(verdict(trivial), wp)], [8, 1]), status, message)
+                           real(verdict(trivial), wp)], [ROUTH_SIZE, 1]), status, message)
     if (status /= SD_OK) return
     call files%write_table('kappa_31.csv', 'kappa_31', reshape([(config%sigma1, &
-                           kappa_roots(i), i = 1, n_kappa)], [2, n_kappa]), status, message)
+                           kappa_roots(i), i = 1, n_kappa)], [table_size('kappa_31'), n_kappa]), &
+                           status, message)
   end subroutine run_linear
 
   !> Time history from y0 at tau = 0 to t_end, n_out evenly spaced outputs (dense output).
@@ -322,7 +323,7 @@ contains
     integer :: i, window
 
     window = config%steady%window_periods
-    allocate (poincare(4, window), rows(5, window))
+    allocate (poincare(4, window), rows(table_size('poincare'), window))
     call steady_state(config%model, config%simulation%y0, config%integration, config%method, &
                       config%steady, summary, poincare, y_end, stats, status, message)
     call in_context('steady state', status, message)
@@ -628,7 +629,7 @@ contains
       call files%write_table('parameters.csv', 'parameters', reshape([m%s1, m%mu1, m%kappa, &
                              m%theta0, m%beta, m%gamma, m%delta, m%zeta, real(m%n, wp), &
                              real(m%p, wp), m%excitation%A, m%excitation%rho, m%a_coef, &
-                             m%b_coef], [24, 1]), status, message)
+                             m%b_coef], [table_size('parameters'), 1]), status, message)
     end associate
     if (status /= SD_OK .or. .not. config%dimensional) return
     call tank_summary(config%tank, config%tank_props, config%model, row)
