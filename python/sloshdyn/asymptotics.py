@@ -60,7 +60,7 @@ def modal_coefficients(params: Parameters) -> dict:
     n >= 2, p >= 1): omega1, omega2 (eq 28), c11..c23 and F11 (eq 36, 44, 52), the modal
     damping gamma11, gamma22, every named coefficient of eq (33) ('alpha_hat11', ...,
     'F_hat23') and of eq (36) ('alpha11', 'gamma17', ..., 'F24'), derived from the equations of
-    motion (not typed in from Appendix A, which has misprints: see ERRATA.md). Also 'g', 'h',
+    motion (not typed in from Appendix A, which has misprints: see docs/errata.md). Also 'g', 'h',
     'g_forcing', 'h_forcing': {exponents: coefficient} polynomials of eq (32) and (35)."""
     _checks.instance("params", params, Parameters)
     (scalars, c, exponents, g, g_forcing, h, h_forcing, status,
