@@ -5,6 +5,8 @@ limit cycles of the 3:1 slow flow, between their Hopf points. Computed by the Fo
 
 from __future__ import annotations
 
+import dataclasses
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,7 +18,7 @@ from .asymptotics import Continuation, continuation_range, frequency_response, s
 from .parameters import Parameters, convert_fields
 from .simulation import Integration
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_research
 _LYAPUNOV = _tables.defaults()["lyapunov"]
 KINDS = _tables.codes("special")
 #: why a continuation stopped (sloshdyn_continuation's STOP_* codes)
@@ -28,16 +30,16 @@ class Lyapunov:
     """How Lyapunov exponents are measured (&lyapunov); times in forcing periods T = 2 pi/rho.
     Fields in the core's layout, with its defaults."""
 
-    transient_periods: int = int(_LYAPUNOV[0])   #: integrated before measuring
-    n_periods: int = int(_LYAPUNOV[1])           #: measured; a multiple of renormalise_every
-    renormalise_every: int = int(_LYAPUNOV[2])   #: periods between QR renormalisations
+    transient_periods: int = int(_LYAPUNOV["transient_periods"])   #: integrated before measuring
+    n_periods: int = int(_LYAPUNOV["n_periods"])   #: measured; a multiple of renormalise_every
+    renormalise_every: int = int(_LYAPUNOV["renormalise_every"])   #: periods between QR steps
 
     def __post_init__(self):
         convert_fields(self)
 
     def array(self):
-        return np.array([self.transient_periods, self.n_periods, self.renormalise_every],
-                        dtype=np.float64)
+        """The lyapunov layout of the core (the spectrum asked for)."""
+        return _tables.pack("lyapunov", {**dataclasses.asdict(self), "spectrum": 1})
 
 
 @dataclass(frozen=True)
@@ -174,8 +176,10 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     a_end, b_end = a + (gap if low is not None else 0), b - (gap if high is not None else 0)
     halves = []
     for direction in (-1.0, 1.0):
-        settings = np.array([continuation.ds, continuation.ds_min, continuation.ds_max,
-                             continuation.x_scale, direction, x_tol, f_tol, max_iter])
+        settings = _tables.pack("cycle_continuation", {
+            "ds": continuation.ds, "ds_min": continuation.ds_min, "ds_max": continuation.ds_max,
+            "x_scale": continuation.x_scale, "direction": direction, "x_tol": x_tol,
+            "f_tol": f_tol, "max_iter": max_iter})
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
          message) = cancellable(_bridge.slow_flow_cycle_branch, *start.arrays(),
                                 1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,
