@@ -669,8 +669,10 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp) :: transient_periods
     integer :: n_periods, renormalise_every
+    logical :: spectrum
     type(namelist_reader) :: reader
-    namelist /lyapunov/ transient_periods, n_periods, renormalise_every
+    namelist /lyapunov/ transient_periods, n_periods, renormalise_every, spectrum
+    spectrum = options%spectrum
     transient_periods = options%transient_periods
     n_periods = options%n_periods
     renormalise_every = options%renormalise_every
@@ -691,7 +693,7 @@ contains
       message = '&lyapunov: '//trim(message)
       return
     end if
-    options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every)
+    options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every, spectrum)
   end subroutine read_lyapunov
 
   !> &chart: a stability chart of the slow flow (sloshdyn_stability_chart): the model, the
@@ -892,7 +894,7 @@ contains
           'record', 'format', 'units', 'store', 'figure', 'scheduler', 'worker_kind', &
           'continuation', 'records')
       text = name//' must be a quoted string'
-    case ('shooting')
+    case ('shooting', 'spectrum')
       text = name//' must be .true. or .false.'
     case ('y0')
       text = 'y0 must be four real numbers (x1, x1'', x2, x2''), or y0(i) = one of them, i = 1..4'

@@ -13,6 +13,8 @@ from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, eq
                     natural_frequencies)
 from .periodic import (PeriodicBranch, PeriodicOrbit, PeriodicSpecialPoint, lyapunov_exponent,
                        periodic_orbit, periodic_response)
+from .research import (CycleSpecialPoint, Lyapunov, LyapunovSpectrum, SlowFlowCycles,
+                       lyapunov_spectrum, slow_flow_cycles)
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
 from .charts import Codim2Point, Curve, StabilityChart, stability_chart
 from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, Spectrum, Tank,
@@ -43,6 +45,8 @@ __all__ = [
     "Codim2Point", "Curve", "StabilityChart", "stability_chart",
     "FragilityFit", "basins", "fit_fragility", "fragility_study", "impact_parameters",
     "response_map",
+    "Lyapunov", "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
+    "slow_flow_cycles",
 ]
 
 

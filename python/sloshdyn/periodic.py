@@ -17,9 +17,10 @@ from .model import linear_modes
 from .parameters import Parameters
 from .simulation import Integration, Steady, steady_state
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
-_NEWTON_TOL, _MAX_ITER = (float(x) for x in _tables.defaults()["shooting"])
+_NEWTON_TOL, _MAX_ITER = (float(_tables.defaults()["shooting"][name])
+                          for name in ("newton_tol", "max_iter"))
 _LYAPUNOV = _tables.defaults()["lyapunov"]
 
 
@@ -59,8 +60,10 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
     y, monodromy, multipliers, info, status, message = cancellable(_bridge.periodic_orbit,
         *params.arrays(), y0, periods, integration.array(), newton_tol, max_iter)
     check_status(status, message, "periodic orbit")
-    return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
-                         int(info[0]), int(periods), integration.method_used)
+    info = _tables.unpack("orbit_info", info)
+    return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy,
+                         float(info["max_x1"]), int(info["iterations"]), int(periods),
+                         integration.method_used)
 
 
 def start_state(params: Parameters, start="simulation"):
@@ -123,26 +126,33 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
         ("ds", ds), ("ds_min", ds_min), ("ds_max", ds_max), ("x_scale", x_scale)))
     periods = _checks.integer("periods", periods)
     max_points = _checks.output_size("max_points", _checks.integer("max_points", max_points, 1),
-                                     15)
+                                     len(_tables.columns("periodic_branch")))
     first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
     if y0 is None:
         y0 = periodic_orbit(first, start_state(first, start), periods=periods,
                             integration=integration).y0
-    settings = np.array([ds, ds_min, ds_max, x_scale, 1.0 if from_end == "low" else -1.0])
+    settings = _tables.pack("continuation", {"ds": ds, "ds_min": ds_min, "ds_max": ds_max,
+                                             "x_scale": x_scale,
+                                             "direction": 1.0 if from_end == "low" else -1.0})
     points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
         *first.arrays(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
         periods, lo, hi, settings, integration.array(), max_points, 100)
-    lam = points[0, :n]
+    rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
+    lam = rows["lambda"]
     table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
              "A": lam if parameter == "A" else np.full(n, params.A)}
-    for i in range(4):
-        table[f"y{i + 1}"] = points[1 + i, :n]
-        table[f"mu{i + 1}"] = multipliers[i, :n] + 1j * multipliers[4 + i, :n]
-    table["max_x1"] = points[5, :n]
-    table["stable"] = points[6, :n]
-    specials = [PeriodicSpecialPoint(KINDS[int(s[0])], float(s[1]) if parameter == "rho" else params.rho,
-                                     float(s[1]) if parameter == "A" else params.A, float(s[6]),
-                                     s[2:6].copy()) for s in special[:, :n_special].T]
+    for i in range(1, 5):
+        table[f"y{i}"] = rows[f"y{i}"]
+        table[f"mu{i}"] = rows[f"re_mu{i}"] + 1j * rows[f"im_mu{i}"]
+    table["max_x1"] = rows["max_x1"]
+    table["stable"] = rows["stable"]
+    specials = []
+    for column in special[:, :n_special].T:
+        point = dict(zip(_tables.columns("periodic_special_points"), column))
+        specials.append(PeriodicSpecialPoint(
+            KINDS[int(point["kind"])], float(point["lambda"]) if parameter == "rho" else params.rho,
+            float(point["lambda"]) if parameter == "A" else params.A, float(point["max_x1"]),
+            np.array([point[f"y{i}"] for i in range(1, 5)])))
     text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
     branch = PeriodicBranch(parameter, table, specials, bool(complete), text,
                             integration.method_used)
@@ -155,8 +165,10 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     return branch
 
 
-def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=int(_LYAPUNOV[0]),
-                      n_periods=int(_LYAPUNOV[1]), renormalise_every=int(_LYAPUNOV[2]),
+def lyapunov_exponent(params: Parameters, y0=None, *,
+                      transient_periods=int(_LYAPUNOV["transient_periods"]),
+                      n_periods=int(_LYAPUNOV["n_periods"]),
+                      renormalise_every=int(_LYAPUNOV["renormalise_every"]),
                       integration: Integration = Integration()):
     """Largest Lyapunov exponent per unit tau (Benettin: one tangent vector renormalised every
     renormalise_every forcing periods), and its running estimate after each renormalisation
@@ -170,7 +182,10 @@ def lyapunov_exponent(params: Parameters, y0=None, *, transient_periods=int(_LYA
                                                            ("n_periods", n_periods),
                                                            ("renormalise_every", renormalise_every)))
     blocks = max(n_periods // max(renormalise_every, 1), 1)
-    settings = np.array([transient_periods, n_periods, renormalise_every], dtype=np.float64)
+    settings = _tables.pack("lyapunov", {"transient_periods": transient_periods,
+                                         "n_periods": n_periods,
+                                         "renormalise_every": renormalise_every,
+                                         "spectrum": 0})
     exponent, history, status, message = cancellable(
         _bridge.lyapunov_exponent, *params.arrays(), y0, settings, integration.array(), blocks)
     check_status(status, message, "Lyapunov exponent")

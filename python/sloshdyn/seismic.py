@@ -22,13 +22,12 @@ from ._errors import InputError, SloshdynError, check_status
 from .parameters import Parameters, convert_fields
 from .simulation import Integration, Steady
 
-_bridge = _core.sloshdyn_bridge
-_TANK_DEFAULTS = _bridge.tank_defaults()
-_HARMONIC, _RECORD = 1, 2          # the ground kinds of sloshdyn_ground
+_bridge = _core.sloshdyn_bridge_seismic
+_TANK_DEFAULTS = _tables.unpack("tank", _bridge.tank_defaults())
 #: the damping ratio of a spectral acceleration when none is given: the convective 0.5 % of
 #: the design codes, the core's one default (sloshdyn_vessel convective_damping, a tank's
 #: sloshing_damping; &ground_motion target_damping, &study spectral_damping)
-CONVECTIVE_DAMPING = float(_TANK_DEFAULTS[11])
+CONVECTIVE_DAMPING = float(_TANK_DEFAULTS["sloshing_damping"])
 #: the largest record file the core reads (sloshdyn_records max_record_bytes, 1 GiB)
 _MAX_RECORD_BYTES = 1 << 30
 
@@ -51,20 +50,25 @@ class Tank:
     radius: float                       #: R [m]
     liquid_depth: float                 #: h [m]
     freeboard: float                    #: liquid surface to the roof [m]
-    liquid_density: float = float(_TANK_DEFAULTS[3])      #: [kg/m^3]
-    liquid_mass: float = float(_TANK_DEFAULTS[4])         #: [kg]
+    liquid_density: float = float(_TANK_DEFAULTS["liquid_density"])      #: [kg/m^3]
+    liquid_mass: float = float(_TANK_DEFAULTS["liquid_mass"])         #: [kg]
     tank_mass: float                    #: shell and roof [kg]
-    support_frequency: float = float(_TANK_DEFAULTS[6])   #: [Hz]
-    support_damping: float = float(_TANK_DEFAULTS[7])     #: ratio of critical
-    support_stiffness: float = float(_TANK_DEFAULTS[8])   #: [N m/rad]
-    support_damping_coefficient: float = float(_TANK_DEFAULTS[9])   #: [N m s/rad]
-    support_height: float = float(_TANK_DEFAULTS[10])     #: rod length L [m]; 0: h + freeboard
-    sloshing_damping: float = float(_TANK_DEFAULTS[11])   #: ratio of critical (linear)
-    impact_stiffness: float = float(_TANK_DEFAULTS[12])   #: beta (dimensionless, eq 4)
-    impact_damping: float = float(_TANK_DEFAULTS[13])     #: delta (dimensionless, eq 5)
-    n: int = int(_TANK_DEFAULTS[14])                      #: exponent of eq (4)
-    p: int = int(_TANK_DEFAULTS[15])                      #: exponent of eq (5)
-    gravity: float = float(_TANK_DEFAULTS[16])            #: [m/s^2]
+    support_frequency: float = float(_TANK_DEFAULTS["support_frequency"])   #: [Hz]
+    support_damping: float = float(_TANK_DEFAULTS["support_damping"])     #: ratio of critical
+    support_stiffness: float = float(_TANK_DEFAULTS["support_stiffness"])   #: [N m/rad]
+    support_damping_coefficient: float = float(
+        _TANK_DEFAULTS["support_damping_coefficient"])   #: [N m s/rad]
+    #: rod length L [m]; 0: h + freeboard
+    support_height: float = float(_TANK_DEFAULTS["support_height"])
+    #: ratio of critical (linear)
+    sloshing_damping: float = float(_TANK_DEFAULTS["sloshing_damping"])
+    #: beta (dimensionless, eq 4)
+    impact_stiffness: float = float(_TANK_DEFAULTS["impact_stiffness"])
+    #: delta (dimensionless, eq 5)
+    impact_damping: float = float(_TANK_DEFAULTS["impact_damping"])
+    n: int = int(_TANK_DEFAULTS["n"])                      #: exponent of eq (4)
+    p: int = int(_TANK_DEFAULTS["p"])                      #: exponent of eq (5)
+    gravity: float = float(_TANK_DEFAULTS["gravity"])            #: [m/s^2]
 
     def __post_init__(self):
         convert_fields(self)
@@ -74,9 +78,15 @@ class Tank:
         object.__setattr__(self, "_model", (rpar.copy(), ipar.copy()))
 
     def array(self):
-        """The core's layout tank(17)."""
-        return np.array([float(getattr(self, f.name)) for f in dataclasses.fields(self)],
-                        dtype=np.float64)
+        """The flat array of the core's layout 'tank'."""
+        return _tables.pack("tank", {name: getattr(self, name) for name in _tables.layout("tank")})
+
+    @classmethod
+    def from_array(cls, array):
+        """The tank of a flat array in the core's layout 'tank'."""
+        kinds = {f.name: f.type for f in dataclasses.fields(cls)}
+        return cls(**{name: (int(x) if kinds[name] == "int" else float(x))
+                      for name, x in _tables.unpack("tank", array).items()})
 
     @property
     def properties(self):
@@ -117,8 +127,6 @@ class Tank:
     def parameters(self, ground_motion=None):
         """The dimensionless model (Parameters) of the tank; with harmonic ground motion, its
         excitation A, rho as well."""
-        rpar, ipar = self._model
-        s1, mu1, kappa, theta0, beta, gamma, delta, _, _, zeta = (float(x) for x in rpar)
         A = rho = 0.0
         if ground_motion is not None:
             if ground_motion.kind != "harmonic":
@@ -128,8 +136,7 @@ class Tank:
             rho = 2 * math.pi * ground_motion.frequency / p["omega"]
             A = ground_motion.peak_acceleration / (
                 p["support_height"] * (2 * math.pi * ground_motion.frequency) ** 2)
-        return Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
-                          delta=delta, n=int(ipar[0]), p=int(ipar[1]), zeta=zeta, A=A, rho=rho)
+        return Parameters.from_arrays(*self._model, A=A, rho=rho)
 
     def design_codes(self, ground_motion=None):
         """The tank's sloshing parameters by sloshdyn and by API 650 Annex E, EN 1998-4 Annex A
@@ -255,9 +262,20 @@ class GroundMotion:
             raise
 
     def _arrays(self):
-        ground = np.array([_HARMONIC if self.kind == "harmonic" else _RECORD,
-                           self.peak_acceleration, self.frequency, self.dt], dtype=np.float64)
+        """The flat arrays of the bridge: the core's layout 'ground' and the samples [m/s^2]."""
+        ground = _tables.pack("ground", {"kind": _tables.code("ground_kinds", self.kind),
+                                         "peak_acceleration": self.peak_acceleration,
+                                         "frequency": self.frequency, "dt": self.dt})
         return ground, np.asarray(self.acceleration, dtype=np.float64)
+
+    @classmethod
+    def _from_arrays(cls, ground, samples):
+        """The ground motion of the bridge's arrays (SI units)."""
+        values = _tables.unpack("ground", ground)
+        if _tables.codes("ground_kinds")[int(values["kind"])] == "record":
+            return cls(dt=float(values["dt"]), acceleration=samples)
+        return cls(peak_acceleration=float(values["peak_acceleration"]),
+                   frequency=float(values["frequency"]))
 
     @property
     def duration(self):
@@ -295,10 +313,7 @@ class GroundMotion:
             0.0 if sa is None else _real("sa", sa) * to_si,
             0.0 if period is None else _real("period", period), damping)
         check_status(status, message)
-        if self.kind == "record":
-            copy = GroundMotion(dt=self.dt, acceleration=scaled_samples.copy())
-        else:
-            copy = GroundMotion(peak_acceleration=float(scaled[1]), frequency=float(scaled[2]))
+        copy = GroundMotion._from_arrays(scaled, scaled_samples.copy())
         copy.scale_factor = copy.pga / self.pga if (pga or sa) and self.pga > 0 else factor
         if pga is not None:
             copy.scaling = f"PGA = {pga:g} {units}"
