@@ -220,7 +220,7 @@ contains
     case ('lyapunov')
       formats = 'ir'
     case ('seismic_peaks')
-      formats = repeat('r', 16)//'iririr'
+      formats = repeat('r', 16)//'irirr'
     case ('design_codes')
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')
