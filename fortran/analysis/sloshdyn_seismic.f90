@@ -22,6 +22,7 @@ module sloshdyn_seismic
   use sloshdyn_design_codes, only: aci350_parameters, api650_parameters, ec8_parameters, &
                                    aci350_circular, aci350_wave_height, api650_circular, &
                                    api650_wave_height, ec8_circular, ec8_wave_height
+  use sloshdyn_roof, only: roof_loads
   use sloshdyn_ode, only: ode_options, ode_stats, observed_quantities, linear_observation, &
                           peak_tracker
   use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
@@ -139,6 +140,12 @@ contains
     end do
     call roof_contact(model, props, tau(n_out), options, method, peaks(2*LOAD_ROWS - 1:), status, &
                       message)
+    ! the roof loads of the free wave (sloshdyn_roof), beside the model's impact force
+    if (status == SD_OK) &
+      call roof_loads(tank%radius, tank%freeboard, peaks(2*LOAD_ROWS + 2), props%liquid_mass/ &
+                      (pi*tank%radius**2*tank%liquid_depth), tank%gravity, props%sloshing_mass, &
+                      peaks(2*LOAD_ROWS + 4), peaks(2*LOAD_ROWS + 5), peaks(2*LOAD_ROWS + 6), &
+                      status, message)
   end subroutine seismic_response
 
   !> The loads (rows 2..LOAD_ROWS of tank_loads) of the state y at tau.

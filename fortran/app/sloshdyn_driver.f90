@@ -544,15 +544,24 @@ contains
       print '(a)', '  '//pad(trim(loads(i)), 24)//pad(num2str(peaks(2*i - 1))//' '// &
                    trim(units(i)), 26)//'at t = '//num2str(peaks(2*i))//' s'
     end do
-    if (peaks(2*SEISMIC_LOADS - 1) > 0) then
-      print '(a)', '  the wave reaches the roof: first at t = '// &
-                   num2str(peaks(2*SEISMIC_LOADS))//' s, '// &
-                   num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s)'
-    else
-      print '(a)', '  the wave does not reach the roof: its peak is '// &
-                   num2str(100*peaks(5)/config%tank%freeboard, significant=3)// &
-                   ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
-    end if
+    ! the roof contact and loads of the free wave (no roof; sloshdyn_seismic's roof_contact)
+    associate (free_wave => peaks(2*SEISMIC_LOADS + 2))
+      if (peaks(2*SEISMIC_LOADS - 1) > 0) then
+        print '(a)', '  the wave reaches the roof: first at t = '// &
+                     num2str(peaks(2*SEISMIC_LOADS))//' s, '// &
+                     num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s); the free wave '// &
+                     'rises to '//num2str(free_wave, significant=5)//' m at the wall'
+        print '(a)', '  flat roof, restricted sloshing: head '// &
+                     num2str(peaks(2*SEISMIC_LOADS + 4), significant=5)//' m, uplift '// &
+                     num2str(peaks(2*SEISMIC_LOADS + 5)/1.0e6_wp, significant=5)// &
+                     ' MN, confined convective mass '// &
+                     num2str(peaks(2*SEISMIC_LOADS + 6), significant=5)//' kg (impulsive)'
+      else
+        print '(a)', '  the wave does not reach the roof: the free wave''s peak is '// &
+                     num2str(100*free_wave/config%tank%freeboard, significant=3)// &
+                     ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
+      end if
+    end associate
     ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
     print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
                  num2str(peaks(11)/(config%tank_props%sloshing_mass*config%tank%gravity), &

@@ -94,7 +94,8 @@ module sloshdyn_tables
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
   !> output time, then x1 and x2; the peaks of the loads (value, time), then the roof contact of
   !> the free wave (no roof): reached, first contact, entries above the freeboard, the free
-  !> wave's largest height at the wall and its excess over the freeboard;
+  !> wave's largest height at the wall and its excess over the freeboard, and the roof loads of
+  !> that wave (sloshdyn_roof: head d - f, uplift on a flat roof, confined convective mass);
   !> the design-code cross-check (one row per source); the tank's properties.
   character(len=*), parameter :: seismic_columns = 't [s],ground_acceleration [m/s^2],'// &
     'sloshing_displacement [m],wave_height [m],pendulum_angle [rad],tank_drift [m],'// &
@@ -106,8 +107,9 @@ module sloshdyn_tables
     'time_pendulum_angle [s],peak_tank_drift [m],time_tank_drift [s],peak_impact_force [N],'// &
     'time_impact_force [s],peak_base_shear [N],time_base_shear [s],'// &
     'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
-    'first_roof_time [s],roof_impacts,free_wave_height [m],roof_excess [m]'
-  integer, parameter :: PEAKS_SIZE = 21
+    'first_roof_time [s],roof_impacts,free_wave_height [m],roof_excess [m],roof_head [m],'// &
+    'roof_uplift_force [N],confined_convective_mass [kg]'
+  integer, parameter :: PEAKS_SIZE = 24
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
   character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
@@ -220,7 +222,7 @@ contains
     case ('lyapunov')
       formats = 'ir'
     case ('seismic_peaks')
-      formats = repeat('r', 16)//'irirr'
+      formats = repeat('r', 16)//'irirrrrr'
     case ('design_codes')
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')

@@ -912,7 +912,7 @@ contains
   end subroutine seismic_defaults
 
   !> The tank's response from rest (sloshdyn_seismic): table(11, n_out) in the 'seismic' layout
-  !> and peaks(21) in the 'seismic_peaks' layout.
+  !> and peaks(24) in the 'seismic_peaks' layout.
   subroutine seismic_response(tank, ground, n, samples, t_end, n_out, integration, table, &
                               peaks, status, message)
     !f2py threadsafe
@@ -920,7 +920,7 @@ contains
     use sloshdyn_layouts, only: to_tank, to_ground, to_ode_options, to_method
     integer(c_int), intent(in) :: n, n_out
     real(c_double), intent(in) :: tank(17), ground(4), samples(n), t_end, integration(7)
-    real(c_double), intent(out) :: table(11, n_out), peaks(21)
+    real(c_double), intent(out) :: table(11, n_out), peaks(24)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info

@@ -152,3 +152,35 @@ def test_first_contact_is_where_the_free_tank_first_reaches_the_freeboard():
         free.peaks["wave_height"][0], rel=1e-9)
     assert located.peak_table["roof_excess"] == pytest.approx(
         free.peaks["wave_height"][0] - TANK["freeboard"], rel=1e-9)
+
+
+def test_roof_loads_are_the_hand_calculation_of_the_free_wave():
+    """Restricted sloshing on a flat roof (sloshdyn_roof), typed again from its formulas and
+    integrated by scipy's dblquad over the roof disc: head d - f, uplift rho g
+    integral of (eta - f)+ with eta = d J1(xi r/R)/J1(xi) cos(theta), and the confined
+    convective mass m_c (1 - f/d), d the free wave's height at the wall. Below the freeboard all
+    three are 0."""
+    from scipy.integrate import dblquad
+    from scipy.special import j1, jnp_zeros
+
+    xi = float(jnp_zeros(1, 1)[0])
+    tank = sloshdyn.Tank(**TANK)
+    rho = 1000.0
+    for ratio, ground in ((1.5, scaled_records(1.5)["burst"]), (0.6, scaled_records(0.6)["burst"])):
+        run = sloshdyn.seismic_response(tank, ground)
+        d, f, radius = run.peak_table["free_wave_height"], TANK["freeboard"], TANK["radius"]
+        if ratio < 1:
+            assert (run.peak_table["roof_head"], run.peak_table["roof_uplift_force"],
+                    run.peak_table["confined_convective_mass"]) == (0, 0, 0)
+            continue
+
+        def excess(theta, r):
+            return max(d * j1(xi * r / radius) / j1(xi) * np.cos(theta) - f, 0.0) * r
+
+        integral, _ = dblquad(excess, 0, radius, -np.pi / 2, np.pi / 2, epsabs=1e-10,
+                              epsrel=1e-10)
+        assert run.peak_table["roof_head"] == pytest.approx(d - f, rel=1e-12)
+        assert run.peak_table["roof_uplift_force"] == pytest.approx(rho * 9.80665 * integral,
+                                                                    rel=1e-6)
+        assert run.peak_table["confined_convective_mass"] == pytest.approx(
+            tank.convective_mass * (1 - f / d), rel=1e-12)
