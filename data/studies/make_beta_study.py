@@ -29,7 +29,7 @@ def records():
     frequency, a chirp through it, a decaying pulse train (as tests/python/test_roof_and_peaks)."""
     f = 1 / sloshdyn.Tank(**TANK).sloshing_period
     t = np.arange(0, 25, 0.01)
-    kt = sloshdyn.GroundMotion.from_file(HERE / "synthetic_kt.AT2")
+    kt = sloshdyn.GroundMotion.from_file(HERE.parent / "examples" / "records" / "synthetic_kt.AT2")
     return {"synthetic_kt": kt.acceleration,
             "burst": np.sin(2 * np.pi * f * t) * np.exp(-((t - 8) / 4) ** 2),
             "chirp": np.sin(2 * np.pi * (0.5 * f + 0.04 * f * t) * t) * np.minimum(1, t / 3)
