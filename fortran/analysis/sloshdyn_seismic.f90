@@ -196,7 +196,7 @@ contains
     free%beta = 0
     free%delta = 0
     call set_coefficients(free)
-    x1%c = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [1, 4])
+    x1 = linear_observation(reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [1, 4]))
     tracker%level = [1.0_wp]
     call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [tau_end], options, &
                       method, history, stats, status, message, x1, tracker)
