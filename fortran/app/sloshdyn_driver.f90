@@ -527,8 +527,10 @@ contains
     character(len=*), parameter :: loads(SEISMIC_LOADS - 1) = [character(len=22) :: &
       'ground acceleration', 'sloshing displacement', 'wave height', 'pendulum angle', &
       'tank drift', 'impact force', 'base shear', 'overturning moment']
+    ! engineering precision: 5 significant digits, forces in MN and moments in MN m
     character(len=*), parameter :: units(SEISMIC_LOADS - 1) = [character(len=6) :: &
-      'm/s^2', 'm', 'm', 'rad', 'm', 'N', 'N', 'N m']
+      'm/s^2', 'm', 'm', 'rad', 'm', 'MN', 'MN', 'MN m']
+    real(wp), parameter :: unit_exponents(SEISMIC_LOADS - 1) = [0, 0, 0, 0, 0, 6, 6, 6]
 
     t_end = config%seismic_t_end
     n_out = config%seismic_n_out
@@ -541,14 +543,15 @@ contains
     print '(/a)', 'Seismic response ('//used_method(config)//') from rest, t = 0 to '// &
                   num2str(t_end)//' s, '//num2str(n_out)//' outputs; peaks:'
     do i = 1, SEISMIC_LOADS - 1
-      print '(a)', '  '//pad(trim(loads(i)), 24)//pad(num2str(peaks(2*i - 1))//' '// &
-                   trim(units(i)), 26)//'at t = '//num2str(peaks(2*i))//' s'
+      print '(a)', '  '//pad(trim(loads(i)), 24)// &
+                   pad(num2str(peaks(2*i - 1)/10.0_wp**unit_exponents(i), significant=5)//' '// &
+                   trim(units(i)), 18)//'at t = '//num2str(peaks(2*i), significant=5)//' s'
     end do
     ! the roof contact and loads of the free wave (no roof; sloshdyn_seismic's roof_contact)
     associate (free_wave => peaks(2*SEISMIC_LOADS + 2))
       if (peaks(2*SEISMIC_LOADS - 1) > 0) then
         print '(a)', '  the wave reaches the roof: first at t = '// &
-                     num2str(peaks(2*SEISMIC_LOADS))//' s, '// &
+                     num2str(peaks(2*SEISMIC_LOADS), significant=5)//' s, '// &
                      num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s); the free wave '// &
                      'rises to '//num2str(free_wave, significant=5)//' m at the wall'
         print '(a)', '  flat roof, restricted sloshing: head '// &
