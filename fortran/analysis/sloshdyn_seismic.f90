@@ -1,7 +1,8 @@
 !> A real tank under ground motion, in SI units: the time histories of the sloshing
 !> displacement, the wave height at the wall, the pendulum angle, the tank drift, the impact
-!> force, the base shear and the overturning moment (sloshdyn_vessel's loads), their peaks, and
-!> whether and when the wave reaches the roof; and the cross-check of the tank's sloshing
+!> force, the base shear and the overturning moment (sloshdyn_vessel's loads), their peaks
+!> (located between the integrator's steps, not read at the output times), and whether and when
+!> the wave reaches the roof (judged on the free wave, see roof_contact); and the cross-check of the tank's sloshing
 !> parameters against the design codes (API 650 Annex E, Eurocode 8-4 Annex A, ACI 350.3).
 !>
 !> Table layouts (sloshdyn_tables): 'seismic' (one column per output time), 'seismic_peaks' (one
@@ -12,7 +13,7 @@ module sloshdyn_seismic
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CANCELLED, check_real
   use sloshdyn_cancel, only: check_cancel
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t
+  use sloshdyn_model, only: model_t, set_coefficients
   use sloshdyn_motion, only: equations_of_motion
   use sloshdyn_excitation, only: base_acceleration
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS
@@ -22,9 +23,13 @@ module sloshdyn_seismic
   use sloshdyn_design_codes, only: aci350_parameters, api650_parameters, ec8_parameters, &
                                    aci350_circular, aci350_wave_height, api650_circular, &
                                    api650_wave_height, ec8_circular, ec8_wave_height
-  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_roof, only: roof_loads
+  use sloshdyn_ode, only: ode_options, ode_stats, observed_quantities, linear_observation, &
+                          peak_tracker
   use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
-  use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, &
+  use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_ROOF_REACHED, &
+                             PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, &
+                             PEAKS_CONFINED_MASS, CODES_COLUMNS, CODES_ROWS, &
                              HARMONIC_SWEEP_ROWS, SUMMARY_SIZE, SUMMARY_RHO, SUMMARY_A, &
                              SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
   implicit none
@@ -41,6 +46,17 @@ module sloshdyn_seismic
                         max_seismic_outputs = 10000000
   !> Outputs between two polls of the cancellation flag (sloshdyn_cancel) in the loads loop.
   integer, parameter :: outputs_per_poll = 4096
+
+  !> The loads of sloshdyn_vessel (rows 2..LOAD_ROWS: ground acceleration to overturning moment)
+  !> as quantities observed along the integration, for their peaks between the steps.
+  type, extends(observed_quantities) :: tank_load_observation
+    type(tank_t) :: tank
+    type(tank_properties) :: props
+    type(model_t) :: model
+  contains
+    procedure :: values => load_values
+    procedure :: count => load_count
+  end type tank_load_observation
 
 contains
 
@@ -97,8 +113,10 @@ contains
     type(model_t) :: model
     type(tank_properties) :: props
     type(ode_stats) :: stats
+    type(tank_load_observation) :: loads
+    type(peak_tracker) :: tracker
     real(wp), allocatable :: tau(:), history(:, :)
-    real(wp) :: dydt(4), y0(4)
+    real(wp) :: y0(4)
     integer :: i, run_status
     character(len=message_len) :: run_message
 
@@ -118,54 +136,97 @@ contains
     allocate (tau(n_out), history(HISTORY_ROWS, n_out))
     tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]
     y0 = 0
+    loads = tank_load_observation(tank, props, model)
     call time_history(model, 0.0_wp, y0, tau, options, method, history, stats, run_status, &
-                      run_message)
+                      run_message, loads, tracker)
     do i = 1, n_out
       if (tau(i) > stats%t_reached) exit
       if (mod(i, outputs_per_poll) == 0) call check_cancel(run_status, run_message)
       if (run_status == SD_CANCELLED) exit
-      call equations_of_motion(model, tau(i), history(1:4, i), dydt)
-      table(1:LOAD_ROWS, i) = tank_loads(tank, props, model, tau(i), history(1:4, i), dydt, &
-                                         props%rod_length*props%omega**2* &
-                                         base_acceleration(model%excitation, tau(i)))
+      call loads%values(tau(i), history(1:4, i), table(2:LOAD_ROWS, i))
+      table(1, i) = tau(i)/props%omega
       table(LOAD_ROWS + 1, i) = history(1, i)
       table(LOAD_ROWS + 2, i) = history(3, i)
     end do
     status = run_status
     message = run_message
     if (status /= SD_OK) return
-    peaks = peak_values(table)
+    do i = 1, LOAD_ROWS - 1
+      peaks(2*i - 1:2*i) = [tracker%peak(i), tracker%time(i)/props%omega]
+    end do
+    call roof_contact(model, props, tau(n_out), options, method, peaks(PEAKS_ROOF_REACHED:), &
+                      status, message)
+    ! the roof loads of the free wave (sloshdyn_roof), beside the model's impact force
+    if (status == SD_OK) &
+      call roof_loads(tank%radius, tank%freeboard, peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
+                      (pi*tank%radius**2*tank%liquid_depth), tank%gravity, props%sloshing_mass, &
+                      peaks(PEAKS_ROOF_HEAD), peaks(PEAKS_ROOF_UPLIFT), &
+                      peaks(PEAKS_CONFINED_MASS), status, message)
   end subroutine seismic_response
 
-  !> For each load (rows 2..LOAD_ROWS of the table): the largest |value| and its time; then
-  !> whether the wave reached the roof (|x1| >= 1), the first time it did, and how many times it
-  !> struck (entries into |x1| >= 1).
-  pure function peak_values(table) result(peaks)
-    real(wp), intent(in) :: table(:, :)
-    real(wp) :: peaks(PEAKS_SIZE)
-    integer :: row, k, strikes
-    logical :: on_roof
-    do row = 2, LOAD_ROWS
-      k = maxloc(abs(table(row, :)), dim=1)
-      peaks(2*row - 3:2*row - 2) = [abs(table(row, k)), table(1, k)]
-    end do
-    strikes = 0
-    on_roof = .false.
-    peaks(2*LOAD_ROWS - 1:2*LOAD_ROWS + 1) = [0.0_wp, ieee_value(1.0_wp, ieee_quiet_nan), 0.0_wp]
-    do k = 1, size(table, 2)
-      if (abs(table(LOAD_ROWS + 1, k)) >= 1) then
-        if (.not. on_roof) then
-          strikes = strikes + 1
-          if (strikes == 1) peaks(2*LOAD_ROWS) = table(1, k)
-        end if
-        on_roof = .true.
-      else
-        on_roof = .false.
-      end if
-    end do
-    peaks(2*LOAD_ROWS - 1) = merge(1.0_wp, 0.0_wp, strikes > 0)
-    peaks(2*LOAD_ROWS + 1) = strikes
-  end function peak_values
+  !> The loads (rows 2..LOAD_ROWS of tank_loads) of the state y at tau.
+  pure subroutine load_values(self, t, y, g)
+    class(tank_load_observation), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: g(:)
+    real(wp) :: dydt(4), row(LOAD_ROWS)
+    call equations_of_motion(self%model, t, y(1:4), dydt)
+    row = tank_loads(self%tank, self%props, self%model, t, y(1:4), dydt, &
+                     self%props%rod_length*self%props%omega**2* &
+                     base_acceleration(self%model%excitation, t))
+    g = row(2:LOAD_ROWS)
+  end subroutine load_values
+
+  pure integer function load_count(self)
+    class(tank_load_observation), intent(in) :: self
+    load_count = LOAD_ROWS - 1
+  end function load_count
+
+  !> Whether and when the wave reaches the roof, independent of the contact model (beta, delta):
+  !> until the liquid touches the roof the roof exerts no force, so the motion up to the first
+  !> contact is that of the tank without a roof, and contact begins when that free wave's
+  !> height at the wall, 2 R/(xi^2 - 1) sin(theta), reaches the freeboard, i.e. |x1| = 1. The
+  !> free motion (beta = delta = 0, the same supports and damping) is integrated from rest over
+  !> [0, tau_end] and the entries of |x1| into [1, inf) are located on its dense output
+  !> (peak_tracker). The smooth wall of eq (4) pushes back before |x1| = 1 (at x1 = 0.9 with
+  !> n = 6 already 0.31 beta m g), so the model's own x1 would depend on beta. After the first
+  !> contact the free wave is what the design codes and Malhotra compare with the freeboard:
+  !> its entries above the freeboard are counted and its largest height is reported.
+  !> roof(1:5) = [reached (1/0), first contact [s] (NaN: none), entries, largest free wave
+  !> height [m], its excess over the freeboard [m] (negative: the margin left)].
+  subroutine roof_contact(model, props, tau_end, options, method, roof, status, message)
+    type(model_t), intent(in) :: model
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(in) :: tau_end
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    real(wp), intent(out) :: roof(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: free
+    type(linear_observation) :: x1
+    type(peak_tracker) :: tracker
+    type(ode_stats) :: stats
+    real(wp) :: history(HISTORY_ROWS, 1), freeboard
+    free = model
+    free%beta = 0
+    free%delta = 0
+    call set_coefficients(free)
+    x1 = linear_observation(reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [1, 4]))
+    tracker%level = [1.0_wp]
+    call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [tau_end], options, &
+                      method, history, stats, status, message, x1, tracker)
+    if (status /= SD_OK) then
+      message = 'the free wave (no roof, for the roof contact): '//trim(message)
+      return
+    end if
+    freeboard = props%wave_factor*sin(model%theta0)
+    roof(1:5) = [merge(1.0_wp, 0.0_wp, tracker%crossings(1) > 0), &
+                 tracker%first_crossing(1)/props%omega, real(tracker%crossings(1), wp), &
+                 props%wave_factor*sin(min(model%theta0*tracker%peak(1), pi/2)), &
+                 0.0_wp]
+    roof(5) = roof(4) - freeboard
+  end subroutine roof_contact
 
   !> The tank's sloshing parameters by sloshdyn's model and by the design codes, one row per
   !> source (sloshdyn, API 650, EC8-4, ACI 350.3) in the 'design_codes' layout: convective

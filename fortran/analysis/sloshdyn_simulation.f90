@@ -11,7 +11,8 @@ module sloshdyn_simulation
                                  set_excitation_parameter
   use sloshdyn_linear, only: modal_matrix
   use sloshdyn_system, only: tank_system
-  use sloshdyn_ode, only: ode_options, ode_stats, rk_integrator
+  use sloshdyn_ode, only: ode_options, ode_stats, rk_integrator, observed_quantities, &
+                          linear_observation, peak_tracker
   use sloshdyn_integrator, only: new_integrator, integrate
   use sloshdyn_tables, only: HISTORY_ROWS, SUMMARY_SIZE, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
                              MOTION_IRREGULAR, MOTION_SETTLING
@@ -20,7 +21,7 @@ module sloshdyn_simulation
   implicit none
   private
   public :: time_history, steady_options, steady_state, check_steady, parameter_sweep, &
-            independent_sweep, steady_orbit, max_period, max_tau_span, max_state
+            independent_sweep, steady_orbit, max_period, max_tau_span, max_state, amplitudes
 
   !> Longest span of one time history in tau = omega1 t: 1e7, about 1.6 million natural
   !> periods and an hour or more of work at the integrators' usual steps (a few per period up
@@ -45,7 +46,9 @@ module sloshdyn_simulation
     real(wp) :: settle_tol = 1.0e-7_wp
     real(wp) :: max_transient_periods = 20000
     integer :: window_periods = 200          !< periods over which amplitudes are measured
-    integer :: samples_per_period = 128      !< dense-output samples per period for the maxima
+    !> probes per period at least of the scan that brackets the maxima (which are then located
+    !> exactly on the dense output, sloshdyn_ode's peak_tracker)
+    integer :: samples_per_period = 128
     !> Poincare points closer than this (relative) count as the same point
     real(wp) :: periodic_tol = 1.0e-4_wp
     !> with settle_tol > 0: once the Poincare map contracts, jump to the periodic orbit by
@@ -83,9 +86,10 @@ contains
 
   !> y, u, impact force, theta and phi (the rows of the 'history' table after tau) at the times
   !> tau_out (ascending, >= tau0) from y0 at tau0. On failure the columns reached are filled and
-  !> the rest are NaN; stats%t_reached says where.
+  !> the rest are NaN; stats%t_reached says where. With observed and tracker: the peaks of the
+  !> observed quantities over [tau0, tau_out(n)], located between the steps (peak_tracker).
   subroutine time_history(model, tau0, y0, tau_out, options, method, history, stats, status, &
-                          message)
+                          message, observed, tracker)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: tau0, y0(4), tau_out(:)
     type(ode_options), intent(in) :: options
@@ -94,6 +98,8 @@ contains
     type(ode_stats), intent(out) :: stats
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    class(observed_quantities), intent(in), optional :: observed
+    type(peak_tracker), intent(inout), optional :: tracker
     type(tank_system) :: system
     type(ode_options) :: settings
     real(wp) :: p_inv(2, 2), span
@@ -120,7 +126,7 @@ contains
     settings%breakpoint_step = breakpoint_step(model%excitation)
     settings%breakpoint_end = record_end(model%excitation)
     call integrate(method, system, tau0, y0, tau_out, history(1:4, :), settings, stats, status, &
-                   message)
+                   message, observed, tracker)
     call inverse_modal_matrix(model, p_inv)
     do i = 1, size(tau_out)
       history(5:9, i) = derived_quantities(model, p_inv, history(1:4, i))
@@ -154,6 +160,18 @@ contains
     if (status /= SD_OK) p_inv = ieee_value(1.0_wp, ieee_quiet_nan)
   end subroutine inverse_modal_matrix
 
+  !> |x1|, |x2|, |u1|, |u2| (eq 34) of a state y as C y: the steady-state amplitudes.
+  pure function amplitudes(p_inv) result(observation)
+    real(wp), intent(in) :: p_inv(2, 2)
+    type(linear_observation) :: observation
+    allocate (observation%c(4, 4))
+    observation%c = 0
+    observation%c(1, 1) = 1
+    observation%c(2, 3) = 1
+    observation%c(3:4, 1) = p_inv(:, 1)
+    observation%c(3:4, 3) = p_inv(:, 2)
+  end function amplitudes
+
   !> u1, u2 (eq 34), impact force beta x1^(2n-1) (eq 4), theta, phi from y.
   pure function derived_quantities(model, p_inv, y) result(d)
     type(model_t), intent(in) :: model
@@ -165,7 +183,8 @@ contains
   end function derived_quantities
 
   !> Integrate from y0 at tau = 0 through a transient, then measure over a window: the maxima of
-  !> |x1|, |x2|, |u1|, |u2| (dense output, samples_per_period per period), the Poincare points at
+  !> |x1|, |x2|, |u1|, |u2| (located on the dense output between the steps, sloshdyn_ode's
+  !> peak_tracker, whose scan probes samples_per_period points per period), the Poincare points at
   !> tau = k T (forcing phase 0), and the kind of motion. y_end is the state at the end of the
   !> window, again at forcing phase 0, so the next point of a sweep can start from it at tau = 0.
   !>
@@ -192,11 +211,13 @@ contains
     character(len=message_len), intent(out) :: message
     type(steady_orbit), intent(out), optional :: orbit
     type(tank_system) :: system
-    class(rk_integrator), allocatable :: integ
+    class(rk_integrator), allocatable, target :: integ
     real(wp) :: period, p_inv(2, 2), maxima(4), y(4), previous(4), spread, scale
-    real(wp) :: tau_window, transient
-    integer :: k, n_samples, sample, motion, repeat
-    logical :: settled, use_shooting
+    real(wp) :: tau_window, tau_end, transient
+    integer :: k, sample, motion, repeat
+    logical :: settled, use_shooting, watching
+    type(linear_observation) :: observed
+    type(peak_tracker) :: tracker
     ! shooting: the last 2 max_period + 1 Poincare points (ring), the orbit found
     real(wp) :: recent(4, 0:2*max_period), last_failed_gap
     integer :: last_failed_k
@@ -215,6 +236,9 @@ contains
     system%model = model
     period = forcing_period(model%excitation)
     call inverse_modal_matrix(model, p_inv)
+    observed = amplitudes(p_inv)
+    tracker%spacing = period/steady%samples_per_period
+    watching = .false.
     ! one spare period: sample times computed in steps must not round past t_bound
     call new_integrator(method, options%rtol, integ, status, message)
     if (status == SD_OK) &
@@ -251,17 +275,20 @@ contains
     if (status == SD_OK .and. jump%found) then
       call measure_orbit()
     else if (status == SD_OK) then
-      ! window: maxima from dense output, Poincare points at its period boundaries
+      ! window: maxima between the steps, Poincare points at its period boundaries
       tau_window = k*period
-      maxima = 0
-      n_samples = steady%window_periods*steady%samples_per_period
-      do sample = 1, n_samples
+      tau_end = tau_window + steady%window_periods*period
+      call tracker%start(observed, tau_window, y)
+      call tracker%watch(integ, observed, tau_window, tau_end, status, message)
+      watching = .true.
+      do sample = steady%samples_per_period, steady%window_periods*steady%samples_per_period, &
+                  steady%samples_per_period
+        if (status /= SD_OK) exit
         call advance_to(tau_window + sample*period/steady%samples_per_period, y)
         if (status /= SD_OK) exit
-        maxima = max(maxima, abs([y(1), y(3), matmul(p_inv, [y(1), y(3)])]))
-        if (mod(sample, steady%samples_per_period) == 0) &
-          poincare(:, sample/steady%samples_per_period) = y
+        poincare(:, sample/steady%samples_per_period) = y
       end do
+      maxima = tracker%peak
     end if
     stats = integ%statistics()
     if (present(orbit)) orbit = jump
@@ -349,37 +376,41 @@ contains
     !> state at phase 0, sampled at the window's phases for the maxima; its Poincare points
     !> repeated over the window.
     subroutine measure_orbit()
-      class(rk_integrator), allocatable :: orbit_integ
-      real(wp) :: z(4), points(4, max_period)
+      class(rk_integrator), allocatable, target :: orbit_integ
+      real(wp) :: z(4), points(4, max_period), t_sample
       integer :: p, i
       p = jump%periods
       call new_integrator(method, options%rtol, orbit_integ, status, message)
       if (status == SD_OK) call orbit_integ%init(system, 0.0_wp, jump%y, (p + 1)*period, &
                                                  options, status, message)
       if (status /= SD_OK) return
-      maxima = 0
-      n_samples = p*steady%samples_per_period
-      do sample = 1, n_samples
-        do while (orbit_integ%t < sample*period/steady%samples_per_period)
+      call tracker%start(observed, 0.0_wp, jump%y)
+      do i = 1, p
+        t_sample = (i*steady%samples_per_period)*period/steady%samples_per_period
+        do while (orbit_integ%t < t_sample)
           call orbit_integ%step(system, status, message)
+          if (status == SD_OK) call tracker%watch(orbit_integ, observed, 0.0_wp, p*period, &
+                                                  status, message)
           if (status /= SD_OK) return
         end do
-        call orbit_integ%dense(sample*period/steady%samples_per_period, z)
-        maxima = max(maxima, abs([z(1), z(3), matmul(p_inv, [z(1), z(3)])]))
-        if (mod(sample, steady%samples_per_period) == 0) &
-          points(:, sample/steady%samples_per_period) = z
+        call orbit_integ%dense(t_sample, z)
+        points(:, i) = z
       end do
+      maxima = tracker%peak
       do i = 1, steady%window_periods
         poincare(:, i) = points(:, mod(i - 1, p) + 1)
       end do
     end subroutine measure_orbit
 
-    !> Step until the integrator passes tau, then read the state at tau by dense output.
+    !> Step until the integrator passes tau, then read the state at tau by dense output (in the
+    !> window, every step is watched for the maxima).
     subroutine advance_to(tau, y)
       real(wp), intent(in) :: tau
       real(wp), intent(out) :: y(4)
       do while (integ%t < tau)
         call integ%step(system, status, message)
+        if (status == SD_OK .and. watching) call tracker%watch(integ, observed, tau_window, &
+                                                               tau_end, status, message)
         if (status /= SD_OK) return
       end do
       call integ%dense(tau, y)

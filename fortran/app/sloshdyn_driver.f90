@@ -17,7 +17,10 @@ module sloshdyn_driver
                              SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_HOPF, POINT_BRANCH, &
                              MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
                              SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, &
-                             PEAKS_IMPACT_FORCE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+                             PEAKS_IMPACT_FORCE, PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, &
+                             PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, &
+                             PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
+                             CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
                              HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
                              CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name, &
                              CHART_GRID_N_STABLE, CHART_GRID_NEAR_CURVE, &
@@ -547,8 +550,10 @@ contains
     character(len=*), parameter :: loads(SEISMIC_LOADS - 1) = [character(len=22) :: &
       'ground acceleration', 'sloshing displacement', 'wave height', 'pendulum angle', &
       'tank drift', 'impact force', 'base shear', 'overturning moment']
+    ! engineering precision: 5 significant digits, forces in MN and moments in MN m
     character(len=*), parameter :: units(SEISMIC_LOADS - 1) = [character(len=6) :: &
-      'm/s^2', 'm', 'm', 'rad', 'm', 'N', 'N', 'N m']
+      'm/s^2', 'm', 'm', 'rad', 'm', 'MN', 'MN', 'MN m']
+    real(wp), parameter :: unit_exponents(SEISMIC_LOADS - 1) = [0, 0, 0, 0, 0, 6, 6, 6]
 
     t_end = config%seismic%t_end
     n_out = config%seismic%n_out
@@ -561,18 +566,28 @@ contains
     print '(/a)', 'Seismic response ('//used_method(config)//') from rest, t = 0 to '// &
                   num2str(t_end)//' s, '//num2str(n_out)//' outputs; peaks:'
     do i = 1, SEISMIC_LOADS - 1
-      print '(a)', '  '//pad(trim(loads(i)), 24)//pad(num2str(peaks(2*i - 1))//' '// &
-                   trim(units(i)), 26)//'at t = '//num2str(peaks(2*i))//' s'
+      print '(a)', '  '//pad(trim(loads(i)), 24)// &
+                   pad(num2str(peaks(2*i - 1)/10.0_wp**unit_exponents(i), significant=5)//' '// &
+                   trim(units(i)), 18)//'at t = '//num2str(peaks(2*i), significant=5)//' s'
     end do
-    if (peaks(2*SEISMIC_LOADS - 1) > 0) then
-      print '(a)', '  the wave reaches the roof: first at t = '// &
-                   num2str(peaks(2*SEISMIC_LOADS))//' s, '// &
-                   num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s)'
-    else
-      print '(a)', '  the wave does not reach the roof: its peak is '// &
-                   num2str(100*peaks(PEAKS_WAVE_HEIGHT)/config%tank%freeboard, significant=3)// &
-                   ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
-    end if
+    ! the roof contact and loads of the free wave (no roof; sloshdyn_seismic's roof_contact)
+    associate (free_wave => peaks(PEAKS_FREE_WAVE))
+      if (peaks(PEAKS_ROOF_REACHED) > 0) then
+        print '(a)', '  the wave reaches the roof: first at t = '// &
+                     num2str(peaks(PEAKS_FIRST_ROOF_TIME), significant=5)//' s, '// &
+                     num2str(nint(peaks(PEAKS_ROOF_IMPACTS)))//' time(s); the free wave '// &
+                     'rises to '//num2str(free_wave, significant=5)//' m at the wall'
+        print '(a)', '  flat roof, restricted sloshing: head '// &
+                     num2str(peaks(PEAKS_ROOF_HEAD), significant=5)//' m, uplift '// &
+                     num2str(peaks(PEAKS_ROOF_UPLIFT)/1.0e6_wp, significant=5)// &
+                     ' MN, confined convective mass '// &
+                     num2str(peaks(PEAKS_CONFINED_MASS), significant=5)//' kg (impulsive)'
+      else
+        print '(a)', '  the wave does not reach the roof: the free wave''s peak is '// &
+                     num2str(100*free_wave/config%tank%freeboard, significant=3)// &
+                     ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
+      end if
+    end associate
     ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
     print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
                  num2str(peaks(PEAKS_IMPACT_FORCE)/ &

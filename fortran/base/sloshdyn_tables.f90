@@ -27,6 +27,8 @@ module sloshdyn_tables
   public :: HISTORY_X1, HISTORY_X2, HARMONIC_SWEEP_WAVE_HEIGHT, CHART_GRID_N_STABLE, &
             CHART_GRID_NEAR_CURVE, CHART_GRID_BRUTE_FORCE_STABLE
   public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
+            PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, &
+            PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
             CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
@@ -103,7 +105,10 @@ module sloshdyn_tables
                         PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
 
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
-  !> output time, then x1 and x2; the peaks of the loads (value, time) with the roof's strikes;
+  !> output time, then x1 and x2; the peaks of the loads (value, time), then the roof contact of
+  !> the free wave (no roof): reached, first contact, entries above the freeboard, the free
+  !> wave's largest height at the wall and its excess over the freeboard, and the roof loads of
+  !> that wave (sloshdyn_roof: head d - f, uplift on a flat roof, confined convective mass);
   !> the design-code cross-check (one row per source); the tank's properties.
   character(len=*), parameter :: seismic_columns = 't [s],ground_acceleration [m/s^2],'// &
     'sloshing_displacement [m],wave_height [m],pendulum_angle [rad],tank_drift [m],'// &
@@ -115,8 +120,12 @@ module sloshdyn_tables
     'time_pendulum_angle [s],peak_tank_drift [m],time_tank_drift [s],peak_impact_force [N],'// &
     'time_impact_force [s],peak_base_shear [N],time_base_shear [s],'// &
     'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
-    'first_roof_time [s],roof_impacts'
-  integer, parameter :: PEAKS_SIZE = 19, PEAKS_WAVE_HEIGHT = 5, PEAKS_IMPACT_FORCE = 11
+    'first_roof_time [s],roof_impacts,free_wave_height [m],roof_excess [m],roof_head [m],'// &
+    'roof_uplift_force [N],confined_convective_mass [kg]'
+  integer, parameter :: PEAKS_SIZE = 24, PEAKS_WAVE_HEIGHT = 5, PEAKS_IMPACT_FORCE = 11, &
+                        PEAKS_ROOF_REACHED = 17, PEAKS_FIRST_ROOF_TIME = 18, &
+                        PEAKS_ROOF_IMPACTS = 19, PEAKS_FREE_WAVE = 20, PEAKS_ROOF_HEAD = 22, &
+                        PEAKS_ROOF_UPLIFT = 23, PEAKS_CONFINED_MASS = 24
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
   character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
@@ -234,7 +243,7 @@ contains
     case ('lyapunov_spectrum')
       formats = 'irrrr'
     case ('seismic_peaks')
-      formats = repeat('r', 16)//'iri'
+      formats = repeat('r', 16)//'irirrrrr'
     case ('design_codes')
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')

@@ -7,7 +7,8 @@ module sloshdyn_integrator
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
-  use sloshdyn_ode, only: ode_system, ode_options, ode_stats, rk_integrator, integrate_with
+  use sloshdyn_ode, only: ode_system, ode_options, ode_stats, rk_integrator, integrate_with, &
+                          observed_quantities, peak_tracker
   use sloshdyn_dopri5, only: dopri5_integrator
   use sloshdyn_dop853, only: dop853_integrator
   use sloshdyn_vern9, only: vern9_integrator
@@ -82,8 +83,10 @@ contains
     end select
   end subroutine new_integrator
 
-  !> y at every t_out by the chosen method (see integrate_with for failures).
-  subroutine integrate(method, sys, t0, y0, t_out, y_out, options, stats, status, message)
+  !> y at every t_out by the chosen method (see integrate_with for failures and the optional
+  !> peak tracking).
+  subroutine integrate(method, sys, t0, y0, t_out, y_out, options, stats, status, message, &
+                       observed, tracker)
     integer, intent(in) :: method
     class(ode_system), intent(in) :: sys
     real(wp), intent(in) :: t0, y0(:), t_out(:)
@@ -92,12 +95,15 @@ contains
     type(ode_stats), intent(out) :: stats
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    class(observed_quantities), intent(in), optional :: observed
+    type(peak_tracker), intent(inout), optional :: tracker
     class(rk_integrator), allocatable :: integ
     call new_integrator(method, options%rtol, integ, status, message)
     if (status /= SD_OK) then
       y_out = 0
       return
     end if
-    call integrate_with(integ, sys, t0, y0, t_out, y_out, options, stats, status, message)
+    call integrate_with(integ, sys, t0, y0, t_out, y_out, options, stats, status, message, &
+                        observed, tracker)
   end subroutine integrate
 end module sloshdyn_integrator

@@ -21,11 +21,13 @@ module sloshdyn_ode
                              SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_cancel, only: check_cancel
+  use sloshdyn_roots, only: bracketed_function, brent_zero, brent_minimum
   implicit none
   private
   public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
   public :: check_options, integrate_with, rms_error_norm, dense_from_state
   public :: default_rtol, default_atol, default_max_steps
+  public :: observed_quantities, linear_observation, peak_tracker
 
   real(wp), parameter :: default_rtol = 1.0e-9_wp   !< relative tolerance unless given
   real(wp), parameter :: default_atol = 1.0e-12_wp  !< absolute tolerance unless given
@@ -175,6 +177,75 @@ module sloshdyn_ode
       integer, intent(in) :: n
     end subroutine method_allocate
   end interface
+
+  !> Quantities g(t, y) observed along an integration (loads of a state, components of it),
+  !> whose largest |g_i| a peak_tracker finds on the integrator's continuous extension.
+  type, abstract :: observed_quantities
+  contains
+    procedure(observe), deferred :: values
+    procedure(observed_count), deferred :: count
+  end type observed_quantities
+
+  abstract interface
+    pure subroutine observe(self, t, y, g)
+      import :: wp, observed_quantities
+      class(observed_quantities), intent(in) :: self
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: g(:)
+    end subroutine observe
+
+    pure integer function observed_count(self)
+      import :: observed_quantities
+      class(observed_quantities), intent(in) :: self
+    end function observed_count
+  end interface
+
+  !> g = C y(1:size(C, 2)): components of the state or linear combinations of them.
+  type, extends(observed_quantities) :: linear_observation
+    real(wp), allocatable :: c(:, :)
+  contains
+    procedure :: values => linear_values
+    procedure :: count => linear_count
+  end type linear_observation
+
+  !> The largest |g_i| of observed quantities over an integration (or a window [t_from, t_to]
+  !> of it), located between the steps: after each accepted step `watch` scans the continuous
+  !> extension over the step at probe points, and where the best probe could hide a larger
+  !> value (its rise over its lower neighbour could lie beyond it) Brent's localmin on the
+  !> neighbouring probes finds the maximum of the interpolant. The result does not depend on
+  !> the output times or on sampling; only on the steps, which output times never change.
+  !> With a level_i > 0 it also counts the entries of |g_i| into [level_i, inf) and locates
+  !> the first one (Brent's zero on the interpolant).
+  type :: peak_tracker
+    real(wp), allocatable :: peak(:)            !< largest |g_i|
+    real(wp), allocatable :: time(:)            !< where it is
+    real(wp), allocatable :: level(:)           !< crossing levels (set before start; 0 = none)
+    integer, allocatable :: crossings(:)        !< entries of |g_i| into [level_i, inf)
+    real(wp), allocatable :: first_crossing(:)  !< time of the first (NaN: none)
+    !> > 0: probes at most this far apart (besides at least step_probes + 1 per step)
+    real(wp) :: spacing = 0
+    logical, allocatable :: above(:)
+  contains
+    procedure :: start => tracker_start
+    procedure :: watch => tracker_watch
+  end type peak_tracker
+
+  !> Probe intervals per step at least, and at most, of a peak_tracker's scan.
+  integer, parameter :: step_probes = 4, max_probes = 100000
+  !> A maximum is located to this part of the step (its value then to ~1e-20 relative).
+  real(wp), parameter :: locate_tol = 1.0e-10_wp
+
+  !> |g_i| - level (sign = 1, for zeros) or -|g_i| (sign = -1, for the maximum) on the
+  !> continuous extension of the last step at t = a + s (b - a), s in [0, 1].
+  type, extends(bracketed_function) :: dense_quantity
+    class(rk_integrator), pointer :: integ => null()
+    class(observed_quantities), pointer :: obs => null()
+    real(wp) :: a = 0, b = 0, level = 0, sign = 1
+    integer :: i = 1
+    real(wp), allocatable :: y(:), g(:)
+  contains
+    procedure :: value => dense_quantity_value
+  end type dense_quantity
 
   !> In fixed-step mode a remainder this much longer than the step (relative) is taken as one
   !> last step, so rounding in t never leaves a sliver step at t_bound.
@@ -376,8 +447,11 @@ contains
   !> y_out(:, j) = y(t_out(j)), shape (size(y0), size(t_out)). On failure the columns already
   !> reached are filled, the rest are NaN, and stats%t_reached says how far the integration got.
   !> When every output time after t0 is the final one, the continuous extension is skipped.
-  subroutine integrate_with(integ, sys, t0, y0, t_out, y_out, options, stats, status, message)
-    class(rk_integrator), intent(inout) :: integ
+  !> With observed and tracker: the peaks of the observed quantities over [t0, t_out(n)]
+  !> (tracker%level and tracker%spacing as set by the caller).
+  subroutine integrate_with(integ, sys, t0, y0, t_out, y_out, options, stats, status, message, &
+                            observed, tracker)
+    class(rk_integrator), intent(inout), target :: integ
     class(ode_system), intent(in) :: sys
     real(wp), intent(in) :: t0, y0(:), t_out(:)
     real(wp), intent(out) :: y_out(:, :)
@@ -385,7 +459,10 @@ contains
     type(ode_stats), intent(out) :: stats
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    class(observed_quantities), intent(in), optional, target :: observed
+    type(peak_tracker), intent(inout), optional :: tracker
     integer :: j, n_out
+    logical :: tracking
 
     status = SD_OK
     message = ''
@@ -411,6 +488,8 @@ contains
     end do
     call check_options(options, y0, status, message)
     if (status /= SD_OK) return
+    tracking = present(observed) .and. present(tracker)
+    if (tracking) call tracker%start(observed, t0, y0)
 
     ! outputs at t0 itself need no step
     j = 1
@@ -422,9 +501,11 @@ contains
     if (j > n_out) return
 
     call integ%init(sys, t0, y0, t_out(n_out), options, status, message, &
-                    dense_output=t_out(j) < t_out(n_out))
+                    dense_output=t_out(j) < t_out(n_out) .or. tracking)
     do while (status == SD_OK .and. j <= n_out)
       call integ%step(sys, status, message)
+      if (status /= SD_OK) exit
+      if (tracking) call tracker%watch(integ, observed, t0, t_out(n_out), status, message)
       if (status /= SD_OK) exit
       do while (j <= n_out)
         if (t_out(j) > integ%t) exit
@@ -438,6 +519,176 @@ contains
     end do
     stats = integ%statistics()
   end subroutine integrate_with
+
+  pure subroutine linear_values(self, t, y, g)
+    class(linear_observation), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: g(:)
+    g = matmul(self%c, y(1:size(self%c, 2)))
+  end subroutine linear_values
+
+  pure integer function linear_count(self)
+    class(linear_observation), intent(in) :: self
+    linear_count = size(self%c, 1)
+  end function linear_count
+
+  !> Begin tracking at (t, y): the peaks are |g(t, y)|; an |g_i| already at or above level_i
+  !> counts as an entry at t.
+  subroutine tracker_start(self, obs, t, y)
+    class(peak_tracker), intent(inout) :: self
+    class(observed_quantities), intent(in) :: obs
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: g(obs%count())
+    if (.not. allocated(self%level)) then
+      allocate (self%level(obs%count()))
+      self%level = 0
+    end if
+    call obs%values(t, y, g)
+    self%peak = abs(g)
+    self%time = spread(t, 1, size(g))
+    self%above = self%level > 0 .and. abs(g) >= self%level
+    self%crossings = merge(1, 0, self%above)
+    self%first_crossing = merge(t, ieee_value(1.0_wp, ieee_quiet_nan), self%above)
+  end subroutine tracker_start
+
+  !> Take in the part [a, b] = [t_old, t] & [t_from, t_to] of the integrator's last accepted
+  !> step (see peak_tracker). The interpolant of a step taken without dense output is not
+  !> available: then only its end counts.
+  subroutine tracker_watch(self, integ, obs, t_from, t_to, status, message)
+    class(peak_tracker), intent(inout) :: self
+    class(rk_integrator), intent(in), target :: integ
+    class(observed_quantities), intent(in), target :: obs
+    real(wp), intent(in) :: t_from, t_to
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(dense_quantity) :: f
+    real(wp), allocatable :: s(:), g(:, :)
+    real(wp) :: a, b, best, rise, s_best, f_best, s_left, s_right, s_root, f_root, v_left, v
+    integer :: m, n, i, j, k, n_points
+    integer, allocatable :: order(:)
+
+    status = SD_OK
+    message = ''
+    if (integ%h_done == 0) return
+    a = max(integ%t_old, t_from)
+    b = min(integ%t, t_to)
+    if (b <= a) return
+    m = obs%count()
+    n = step_probes
+    if (self%spacing > 0) n = max(n, min(max_probes, ceiling((b - a)/self%spacing)))
+    if (.not. integ%dense_output) then
+      a = b
+      n = 0
+    end if
+    ! the probes, and room for one refined maximum per quantity
+    allocate (s(0:n + 1), g(m, 0:n + 1), order(0:n + 1))
+    f%integ => integ
+    f%obs => obs
+    f%a = a
+    f%b = b
+    allocate (f%y(size(integ%y)), f%g(m))
+    do j = 0, n
+      s(j) = real(j, wp)/max(n, 1)
+      call state_at(s(j), g(:, j))
+    end do
+    do i = 1, m
+      f%i = i
+      j = maxloc(abs(g(i, 0:n)), dim=1) - 1
+      best = abs(g(i, j))
+      s_best = s(j)
+      n_points = n
+      rise = 0
+      if (j > 0) rise = max(rise, best - abs(g(i, j - 1)))
+      if (j < n) rise = max(rise, best - abs(g(i, j + 1)))
+      if (n > 0 .and. (best + rise >= self%peak(i) .or. &
+                       (self%level(i) > 0 .and. best + rise >= self%level(i)))) then
+        s_left = s(max(j - 1, 0))
+        s_right = s(min(j + 1, n))
+        f%level = 0
+        f%sign = -1
+        call brent_minimum(f, s_left, s_right, locate_tol, s_best, f_best, status, message)
+        if (status /= SD_OK) return
+        n_points = n + 1
+        s(n_points) = s_best
+        g(i, n_points) = -f_best
+        if (-f_best > best) then
+          best = -f_best
+        else
+          s_best = s(j)
+        end if
+      end if
+      if (best > self%peak(i)) then
+        self%peak(i) = best
+        self%time(i) = a + s_best*(b - a)
+      end if
+      if (.not. self%level(i) > 0) cycle
+      ! entries into [level, inf) along the probes and the refined maximum, in order
+      order(0:n_points) = [(k, k = 0, n_points)]
+      if (n_points > n) then
+        do k = n_points, 1, -1
+          if (s(order(k - 1)) <= s(n_points)) exit
+          order(k) = order(k - 1)
+          order(k - 1) = n_points
+        end do
+      end if
+      v_left = abs(g(i, order(0)))
+      if (n == 0) v_left = merge(self%level(i), 0.0_wp, self%above(i))
+      do k = merge(1, 0, n > 0), n_points
+        v = abs(g(i, order(k)))
+        if (v >= self%level(i) .and. .not. self%above(i)) then
+          self%crossings(i) = self%crossings(i) + 1
+          if (self%crossings(i) == 1) then
+            if (k == 0) then
+              s_root = s(order(k))
+            else
+              f%level = self%level(i)
+              f%sign = 1
+              call brent_zero(f, s(order(k - 1)), s(order(k)), v_left - self%level(i), &
+                              v - self%level(i), 0.0_wp, 0.0_wp, s_root, f_root, status, message)
+              if (status /= SD_OK) return
+            end if
+            self%first_crossing(i) = a + s_root*(b - a)
+          end if
+        end if
+        self%above(i) = v >= self%level(i)
+        v_left = v
+      end do
+    end do
+
+  contains
+
+    !> g at s in [0, 1] of [a, b]: the state itself at the step's end.
+    subroutine state_at(s_point, g_point)
+      real(wp), intent(in) :: s_point
+      real(wp), intent(out) :: g_point(:)
+      real(wp) :: t
+      t = a + s_point*(b - a)
+      if (s_point >= 1) then
+        t = b
+        if (b == integ%t) then
+          call obs%values(t, integ%y, g_point)
+          return
+        end if
+      end if
+      call integ%dense(t, f%y)
+      call obs%values(t, f%y, g_point)
+    end subroutine state_at
+  end subroutine tracker_watch
+
+  subroutine dense_quantity_value(self, x, fx, status, message)
+    class(dense_quantity), intent(inout) :: self
+    real(wp), intent(in) :: x
+    real(wp), intent(out) :: fx
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: t
+    status = SD_OK
+    message = ''
+    t = self%a + x*(self%b - self%a)
+    call self%integ%dense(t, self%y)
+    call self%obs%values(t, self%y, self%g)
+    fx = self%sign*(abs(self%g(self%i)) - self%level)
+  end subroutine dense_quantity_value
 
   !> Hairer's RMS error norm, scale sk = atol_i + rtol*max(|y0_i|, |y1_i|). Zero error terms are
   !> skipped so that a component with sk = 0 (atol_i = 0, y_i = 0) cannot give 0/0.

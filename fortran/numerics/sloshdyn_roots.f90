@@ -1,14 +1,16 @@
 !> Zeros of scalar functions: Brent's method on a bracket (the one implementation, also used by
 !> the continuation to locate special points along a branch), and all real roots of a smooth
 !> function on an interval: a grid finds sign changes and extrema (so pairs of close roots and
-!> double roots are not missed), Brent's method refines.
+!> double roots are not missed), Brent's method refines. Also Brent's local minimum on an
+!> interval (the peaks of an integration on its dense output, sloshdyn_ode).
 module sloshdyn_roots
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_CAPACITY, SD_NOT_CONVERGED
   use sloshdyn_text, only: num2str
   implicit none
   private
-  public :: scalar_function, find_all_roots, bracketed_function, bracketed_value, brent_zero
+  public :: scalar_function, find_all_roots, bracketed_function, bracketed_value, brent_zero, &
+            brent_minimum
 
   !> A function f(x) with its derivative; extend it to carry the parameters f depends on.
   type, abstract :: scalar_function
@@ -232,4 +234,94 @@ contains
     message = 'no zero to '//num2str(x_tol)//' in '//num2str(max_brent_iterations)// &
               ' iterations of Brent''s method; last x = '//num2str(b)//', f(x) = '//num2str(fb)
   end subroutine brent_zero
+
+  !> Brent's local minimum (R. P. Brent, Algorithms for Minimization without Derivatives, 1973,
+  !> ch. 5, "localmin"): golden section safeguarding parabolic interpolation, for a minimum of f
+  !> in (a, b); x is located to within 2 sqrt(epsilon) |x| + x_tol (the ends themselves are
+  !> never evaluated: compare them yourself). A failed evaluation of f ends the search with
+  !> its status; no convergence in 200 iterations is SD_NOT_CONVERGED.
+  subroutine brent_minimum(f, a_in, b_in, x_tol, x, fx, status, message)
+    class(bracketed_function), intent(inout) :: f
+    real(wp), intent(in) :: a_in, b_in, x_tol
+    real(wp), intent(out) :: x, fx
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), parameter :: golden = 0.5_wp*(3 - sqrt(5.0_wp))
+    real(wp) :: a, b, d, e, m, p, q, r, tol, t2, u, v, w, fu, fv, fw
+    integer :: iteration
+
+    status = SD_OK
+    message = ''
+    a = min(a_in, b_in)
+    b = max(a_in, b_in)
+    v = a + golden*(b - a)
+    w = v
+    x = v
+    d = 0
+    e = 0
+    call f%value(x, fx, status, message)
+    if (status /= SD_OK) return
+    fv = fx
+    fw = fx
+    do iteration = 1, max_brent_iterations
+      m = (a + b)/2
+      tol = sqrt(epsilon(x))*abs(x) + x_tol/3
+      t2 = 2*tol
+      if (abs(x - m) <= t2 - (b - a)/2) return
+      p = 0
+      q = 0
+      r = 0
+      if (abs(e) > tol) then
+        ! a parabola through x, v and w
+        r = (x - w)*(fx - fv)
+        q = (x - v)*(fx - fw)
+        p = (x - v)*q - (x - w)*r
+        q = 2*(q - r)
+        if (q > 0) then
+          p = -p
+        else
+          q = -q
+        end if
+        r = e
+        e = d
+      end if
+      if (abs(p) < abs(q*r/2) .and. p > q*(a - x) .and. p < q*(b - x)) then
+        d = p/q
+        u = x + d
+        if (u - a < t2 .or. b - u < t2) d = sign(tol, m - x)
+      else
+        ! golden section into the larger part
+        e = merge(a - x, b - x, x >= m)
+        d = golden*e
+      end if
+      u = x + merge(d, sign(tol, d), abs(d) >= tol)
+      call f%value(u, fu, status, message)
+      if (status /= SD_OK) return
+      if (fu <= fx) then
+        if (u < x) then
+          b = x
+        else
+          a = x
+        end if
+        v = w; fv = fw
+        w = x; fw = fx
+        x = u; fx = fu
+      else
+        if (u < x) then
+          a = u
+        else
+          b = u
+        end if
+        if (fu <= fw .or. w == x) then
+          v = w; fv = fw
+          w = u; fw = fu
+        else if (fu <= fv .or. v == x .or. v == w) then
+          v = u; fv = fu
+        end if
+      end if
+    end do
+    status = SD_NOT_CONVERGED
+    message = 'no minimum to '//num2str(x_tol)//' in '//num2str(max_brent_iterations)// &
+              ' iterations of Brent''s localmin; last x = '//num2str(x)//', f(x) = '//num2str(fx)
+  end subroutine brent_minimum
 end module sloshdyn_roots

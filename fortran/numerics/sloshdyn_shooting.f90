@@ -26,7 +26,7 @@ module sloshdyn_shooting
                              SD_CAPACITY, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues, solve_linear
-  use sloshdyn_ode, only: ode_system, ode_options, rk_integrator
+  use sloshdyn_ode, only: ode_system, ode_options, rk_integrator, linear_observation, peak_tracker
   use sloshdyn_integrator, only: new_integrator
   use sloshdyn_continuation, only: parametrised_system, branch_test, continuation_options, &
                                    continue_branch, locate_fold, locate_zero_on_branch, &
@@ -46,7 +46,8 @@ module sloshdyn_shooting
 
   !> Floquet kinds: all |mu| < 1 - tol; max |mu| within tol of 1; some |mu| > 1 + tol.
   integer, parameter :: FLOQUET_STABLE = 1, FLOQUET_NEUTRAL = 2, FLOQUET_UNSTABLE = 3
-  !> Dense-output samples per forcing period for max|y1| over an orbit.
+  !> max|y1| over an orbit is located on the dense output (sloshdyn_ode's peak_tracker), whose
+  !> scan probes at least this many points per forcing period.
   integer, parameter :: samples_per_period = 64
   !> Newton's convergence scale is tol*(max|y0| + scale_floor), so that the rest state converges.
   real(wp), parameter :: scale_floor = 1.0e-12_wp
@@ -679,10 +680,12 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(variational_system) :: sys
-    class(rk_integrator), allocatable :: integ
-    real(wp), allocatable :: z0(:), sample(:), f_end(:)
-    real(wp) :: period, t_end, t_sample
-    integer :: n, j, i_sample, n_samples, size_z
+    class(rk_integrator), allocatable, target :: integ
+    real(wp), allocatable :: z0(:), f_end(:)
+    real(wp) :: period, t_end
+    integer :: n, j, size_z
+    type(linear_observation) :: first
+    type(peak_tracker) :: tracker
 
     n = setup%sys%n
     sys = setup%sys
@@ -695,7 +698,7 @@ contains
                     'the forcing period must be finite and > 0 (e.g. rho > 0)', status, message)
     if (status /= SD_OK) return
     size_z = n*(1 + sys%columns + merge(1, 0, sys%sensitivity))
-    allocate (z0(size_z), sample(size_z), f_end(n), result%y_end(n), result%monodromy(n, n), &
+    allocate (z0(size_z), f_end(n), result%y_end(n), result%monodromy(n, n), &
               result%dlambda(n))
     z0 = 0
     z0(1:n) = x
@@ -705,20 +708,17 @@ contains
     call new_integrator(setup%method, setup%options%rtol, integ, status, message)
     if (status /= SD_OK) return
     call integ%init(sys, 0.0_wp, z0, t_end, setup%options, status, message)
-    n_samples = samples_per_period*setup%k
-    result%max_y1 = abs(x(1))
-    i_sample = 1
+    ! the largest |y1| of the orbit, on the continuous extension between the steps
+    allocate (first%c(1, size_z))
+    first%c = 0
+    first%c(1, 1) = 1
+    tracker%spacing = period/samples_per_period
+    call tracker%start(first, 0.0_wp, z0)
     do while (status == SD_OK .and. integ%t < t_end)
       call integ%step(sys, status, message)
-      if (status /= SD_OK) exit
-      do while (i_sample < n_samples)
-        t_sample = i_sample*(t_end/n_samples)
-        if (t_sample > integ%t) exit
-        call integ%dense(t_sample, sample)
-        result%max_y1 = max(result%max_y1, abs(sample(1)))
-        i_sample = i_sample + 1
-      end do
+      if (status == SD_OK) call tracker%watch(integ, first, 0.0_wp, t_end, status, message)
     end do
+    result%max_y1 = tracker%peak(1)
     if (status /= SD_OK) then
       message = 'integrating the variational equations from tau = 0 to k T = '// &
                 num2str(t_end)//' (lambda = '//num2str(lambda)// &

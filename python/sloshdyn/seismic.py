@@ -415,7 +415,9 @@ class SeismicResponse:
     [rad], tank_drift [m] (relative to the ground), impact_force [N] (roof/walls on the
     liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2; and
     `peaks` {quantity: (largest |value|, its time [s])}, roof_reached, first_roof_time [s],
-    roof_impacts. Columns are those of seismic.csv and seismic_peaks.csv; `method`, the
+    roof_impacts (of the free wave, without a roof: beta-independent); `peak_table` adds
+    free_wave_height, roof_excess and the roof loads (roof_head, roof_uplift_force,
+    confined_convective_mass). Columns are those of seismic.csv and seismic_peaks.csv; `method`, the
     integration method used ('auto' resolved)."""
 
     def __init__(self, tank, ground_motion, table, peaks):
@@ -458,7 +460,9 @@ def seismic_defaults(tank, ground_motion, t_end=None, n_out=None):
 def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=Integration()):
     """The tank at rest at t = 0 under the ground motion, to t_end [s] (default: the record
     plus 5 sloshing periods), at n_out evenly spaced times (default: seismic_defaults): a
-    SeismicResponse. Its peaks are the largest values at the output times."""
+    SeismicResponse. Its peaks are those of the integrated solution, located between the
+    integrator's steps (independent of n_out); the roof contact is judged on the free wave
+    (no roof), so it does not depend on impact_stiffness or impact_damping."""
     _checks.instance("tank", tank, Tank)
     _checks.instance("integration", integration, Integration)
     t_end, n_out = seismic_defaults(tank, ground_motion, t_end, n_out)

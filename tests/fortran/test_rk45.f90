@@ -83,7 +83,7 @@ program test_rk45
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
                              SD_NON_FINITE
   use sloshdyn_text, only: num2str
-  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_ode, only: ode_options, ode_stats, linear_observation, peak_tracker
   use sloshdyn_dopri5, only: dopri5_integrator
   use sloshdyn_integrator, only: integrate, METHOD_DOPRI5
   use rk45_test_systems, only: riccati, oscillator, nan_beyond
@@ -96,6 +96,7 @@ program test_rk45
   call test_dense_output_order()
   call test_adaptive_tolerances()
   call test_stepwise_api()
+  call test_peak_tracker()
   call test_failures()
   call test_bad_input()
   call finish()
@@ -253,6 +254,41 @@ contains
   end subroutine test_adaptive_tolerances
 
   !> Driving the integrator step by step, reading dense output and replacing the state.
+  !> The peaks of an integration are located between the steps, whatever the output times:
+  !> y1 = cos t, y2 = -sin t on [0, 10]; max|y2| = 1 at pi/2 + k pi, |y2| enters [0.5, 1] at
+  !> pi/6 + k pi (four times), first at pi/6 (closed forms).
+  subroutine test_peak_tracker()
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
+    type(linear_observation) :: y2
+    type(peak_tracker) :: coarse, fine
+    real(wp) :: y_coarse(2, 2), y_fine(2, 1001)
+    integer :: status, j
+    character(len=message_len) :: message
+
+    opt%rtol = 1.0e-11_wp
+    opt%atol = 1.0e-13_wp
+    osc%force = 0
+    y2 = linear_observation(reshape([0.0_wp, 1.0_wp], [1, 2]))
+    coarse%level = [0.5_wp]
+    fine%level = [0.5_wp]
+    call integrate(METHOD_DOPRI5, osc, 0.0_wp, [1.0_wp, 0.0_wp], [5.0_wp, 10.0_wp], y_coarse, &
+                   opt, stats, status, message, y2, coarse)
+    call check_true('peak tracker: runs: '//trim(message), status == SD_OK)
+    call integrate(METHOD_DOPRI5, osc, 0.0_wp, [1.0_wp, 0.0_wp], &
+                   [(0.01_wp*j, j = 0, 1000)], y_fine, opt, stats, status, message, y2, fine)
+    call check_close('peak tracker: max|sin t| = 1 (1e-9)', coarse%peak(1), 1.0_wp, 1.0e-9_wp)
+    call check_close('peak tracker: at pi/2 + k pi (1e-5)', &
+                     modulo(coarse%time(1) - pi/2 + 1, pi) - 1, 0.0_wp, 0.0_wp, 1.0e-5_wp)
+    call check_true('peak tracker: the same peak and time for 2 and 1001 output times', &
+                    coarse%peak(1) == fine%peak(1) .and. coarse%time(1) == fine%time(1))
+    call check_true('peak tracker: |sin t| enters [0.5, 1] 4 times on [0, 10], got '// &
+                    num2str(coarse%crossings(1)), coarse%crossings(1) == 4)
+    call check_close('peak tracker: first entry at pi/6 (1e-9)', coarse%first_crossing(1), &
+                     pi/6, 1.0e-9_wp)
+  end subroutine test_peak_tracker
+
   subroutine test_stepwise_api()
     type(oscillator) :: osc
     type(dopri5_integrator) :: integ
