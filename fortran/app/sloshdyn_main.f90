@@ -28,6 +28,10 @@ program sloshdyn_main
     print '(a)', usage
     stop
   end if
+  if (path == '--version') then
+    print '(a)', 'sloshdyn '//SLOSHDYN_VERSION   ! defined by fortran/app/meson.build
+    stop
+  end if
   call install_signal_handlers()
   call read_input(path, config, status, message)
   if (status /= SD_OK) call finish(exit_code(status, reading=.true.), trim(message))
