@@ -34,6 +34,10 @@ program sloshdyn_main
     print '(a)', usage
     stop
   end if
+  if (path == '--version') then
+    print '(a)', 'sloshdyn '//SLOSHDYN_VERSION   ! defined by fortran/app/meson.build
+    stop
+  end if
   if (.not. standard_output_writable()) call finish(EXIT_IO, no_output)
   call install_exit_handlers()
   call read_input(path, config, status, message)

@@ -25,7 +25,10 @@ from .simulation import (Integration, Simulation, Steady, SteadyState, Sweep, am
                          beat_period, frequency_sweep, poincare_section, simulate, spectrum,
                          steady_state, sweep_values)
 
-__version__ = "0.1.0"
+from importlib.metadata import version as _installed_version  # noqa: E402
+
+#: the version set once, in meson.build's project() (installed with the package's metadata)
+__version__ = _installed_version(__name__)
 
 __all__ = [
     "CapacityError", "ConvergenceError", "Equilibria", "Equilibrium", "FileError", "Input",

@@ -1,4 +1,20 @@
-from .cli import main
+"""`python -m sloshdyn` and the console script sloshdyn-py: the command line of sloshdyn.cli,
+which draws figures, so it needs the 'plot' extra (matplotlib)."""
+
+import sys
+
+
+def main(argv=None):
+    """Run sloshdyn.cli's main; without matplotlib, an error naming the extra to install."""
+    from ._errors import exit_code
+    from ._extras import MissingExtraError
+    try:
+        from .cli import main as cli_main
+    except MissingExtraError as exc:
+        print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
+        return exit_code(exc)
+    return cli_main(argv)
+
 
 # guarded: Dask's worker processes (spawn) import the parent's __main__ module again
 if __name__ == "__main__":

@@ -5,7 +5,10 @@ from __future__ import annotations
 
 import os
 
-import matplotlib
+from ._extras import require
+
+require("plot", "matplotlib")
+import matplotlib  # noqa: E402
 
 if not os.environ.get("DISPLAY") and not os.environ.get("MPLBACKEND"):
     matplotlib.use("Agg")

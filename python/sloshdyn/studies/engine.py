@@ -25,6 +25,7 @@ import numpy as np
 
 from .. import _checks
 from .._errors import FileError, InputError
+from .._extras import require
 
 #: points per task unless told: about 8 tasks per worker for the load balance, within these
 #: bounds (measured by benchmarks/studies.py: the engine's overhead is ~20 % of the work at 8
@@ -489,6 +490,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
     missing or damaged (attrs['repaired'] says which variables). derive(dataset), if given,
     adds the variables derived from all the points (basins' attractor list, the fragility
     fit): they join the store too, derived again by every rerun."""
+    require("studies", "dask.distributed", "xarray", "zarr")
     import xarray as xr
 
     path = _check_store(store)

@@ -15,6 +15,7 @@ import numpy as np
 
 from .. import _checks, _core, _tables
 from .._errors import InputError
+from .._extras import require
 from ..simulation import Integration
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
 
@@ -231,6 +232,7 @@ def fit_fragility(intensities, failures, counts=None) -> FragilityFit:
     """Maximum-likelihood lognormal fragility fit (the incremental dynamic analysis and FEMA
     P695 practice). intensities: intensity measure per observation (> 0); failures: 0/1 per
     observation, or the number of failures out of counts at each intensity."""
+    require("studies", "scipy")
     from scipy.optimize import minimize
     from scipy.stats import norm
     x = _checks.reals("intensities", intensities, finite=False).ravel()

@@ -1,0 +1,94 @@
+"""Packaging (issue 29): the version is set in one place, meson.build's project(), and both front
+doors print it; `pip install sloshdyn` is the core, and a missing extra (plot, studies) is a
+sloshdyn error naming the extra that pyproject.toml says installs the missing package.
+The wheel itself is checked by .ci/wheel_check.sh (`bash .ci/dev wheel`)."""
+
+import re
+import subprocess
+import sys
+import sysconfig
+import tomllib
+from pathlib import Path
+
+import pytest
+
+import sloshdyn
+from conftest import ROOT
+
+PROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+#: the project version as meson.build's project() sets it
+VERSION = re.search(r"^project\([^)]*?\bversion: '([^']+)'", (ROOT / "meson.build").read_text(),
+                    re.M | re.S).group(1)
+
+
+def test_the_version_is_set_once_in_meson_build():
+    assert "version" not in PROJECT and "version" in PROJECT["dynamic"]
+    assert sloshdyn.__version__ == VERSION
+
+
+@pytest.mark.parametrize("command", ["sloshdyn", "sloshdyn-py"])
+def test_both_front_doors_print_the_version(command):
+    path = Path(sysconfig.get_path("scripts")) / command
+    out = subprocess.run([str(path), "--version"], capture_output=True, text=True, timeout=60)
+    assert (out.returncode, out.stdout.strip()) == (0, f"sloshdyn {VERSION}")
+
+
+def run_without(modules, code):
+    """Run Python code in a fresh interpreter where importing `modules` fails."""
+    block = "import sys\n" + "".join(f"sys.modules[{m!r}] = None\n" for m in modules)
+    return subprocess.run([sys.executable, "-c", block + code], capture_output=True,
+                          text=True, timeout=120, cwd=ROOT / "tests")
+
+
+EXTRAS = {"plot": ["matplotlib"], "studies": ["dask", "distributed", "xarray", "zarr", "scipy"]}
+
+
+def test_the_core_runs_without_any_extra():
+    """import sloshdyn and the core analyses need none of the extras' packages."""
+    out = run_without(sum(EXTRAS.values(), []), "\n".join([
+        "import sloshdyn",
+        "p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.785, A=0.00075)",
+        "sloshdyn.simulate(p, t_end=10.0); sloshdyn.equilibria(p)",
+        "assert not {'matplotlib', 'dask', 'xarray', 'zarr', 'scipy'} & set(m for m in "
+        "sys.modules if sys.modules[m] is not None), 'an extra was imported'"]))
+    assert out.returncode == 0, out.stderr
+
+
+STORE = "str(__import__('pathlib').Path(__import__('tempfile').mkdtemp()) / 's.zarr')"
+
+
+@pytest.mark.parametrize("extra, module, call", [
+    ("plot", "matplotlib", "sloshdyn.plotting"),
+    ("studies", "dask", f"sloshdyn.response_map(p, [0.5], [1e-3], {STORE})"),
+    ("studies", "xarray", f"sloshdyn.basins(p, (-1, 1), (-1, 1), n=2, store={STORE})"),
+    ("studies", "zarr", f"sloshdyn.response_map(p, [0.5], [1e-3], {STORE})"),
+    ("studies", "scipy", "sloshdyn.fit_fragility([1.0, 2.0], [0, 1])"),
+])
+def test_a_missing_extra_is_an_error_naming_it(extra, module, call):
+    """The error is a SloshdynError and an ImportError, and the extra it names installs the
+    missing package (pyproject.toml's optional dependencies)."""
+    assert any(req.startswith(module) or req.startswith(f"{module}[")
+               for req in PROJECT["optional-dependencies"][extra])
+    out = run_without([module], "\n".join([
+        "import sloshdyn",
+        "p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.785, A=0.00075,"
+        "                        rho=0.51)",
+        "try:",
+        f"    {call}",
+        "except ImportError as exc:",
+        "    assert isinstance(exc, sloshdyn.SloshdynError), type(exc)",
+        "    print(exc)",
+        "else:",
+        "    raise SystemExit('no error')"]))
+    assert out.returncode == 0, out.stderr
+    assert f"{module} is not installed" in out.stdout
+    assert f"pip install 'sloshdyn[{extra}]'" in out.stdout
+
+
+def test_sloshdyn_py_without_matplotlib_names_the_plot_extra():
+    """Every command of sloshdyn-py draws figures: without matplotlib, an error, no traceback."""
+    out = run_without(["matplotlib"], "from sloshdyn.__main__ import main\n"
+                                      "raise SystemExit(main(['--version']))")
+    assert out.returncode == 3     # a SloshdynError without a status: the input/setup code
+    assert out.stderr.strip() == ("sloshdyn-py: error: matplotlib is not installed; it comes "
+                                  "with the 'plot' extra: pip install 'sloshdyn[plot]'")
