@@ -106,7 +106,7 @@ class Tank:
         """The pendulum angle at which the linear wave reaches the roof [rad]."""
         return self.properties["theta0"]
 
-    def parameters(self, ground_motion=None):
+    def parameters(self, ground_motion=None) -> Parameters:
         """The dimensionless model (Parameters) of the tank; with harmonic ground motion, its
         excitation A, rho as well."""
         rpar, ipar = self._model
@@ -123,7 +123,7 @@ class Tank:
         return Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
                           delta=delta, n=int(ipar[0]), p=int(ipar[1]), zeta=zeta, A=A, rho=rho)
 
-    def design_codes(self, ground_motion=None):
+    def design_codes(self, ground_motion=None) -> DesignCodes:
         """The tank's sloshing parameters by sloshdyn and by API 650 Annex E, EN 1998-4 Annex A
         and ACI 350.3 side by side (DesignCodes); wave heights from the ground motion's
         pseudo-spectral acceleration when one is given."""
@@ -194,13 +194,16 @@ class GroundMotion:
     (piecewise linear between samples, at rest after the last one), or harmonic motion
     u'' = -peak_acceleration sin(2 pi frequency t).
 
-    GroundMotion(dt=0.01, acceleration=a)                 a record, a in `units`
+    GroundMotion(dt=0.01, acceleration=a)                 a record, a in `units` (g)
     GroundMotion.from_file('x.AT2')                       PEER NGA .AT2 (in g)
     GroundMotion.from_file('x.csv', units='cm/s^2')       two columns: time [s], acceleration
-    GroundMotion.harmonic(0.2, 0.3, units='g')            peak 0.2 g at 0.3 Hz
+    GroundMotion.harmonic(0.2, 0.3)                       peak 0.2 g at 0.3 Hz
+
+    Accelerations given to sloshdyn are in `units`, 'g' unless told (as in &ground_motion);
+    the attributes and every result are in SI units (m/s^2).
     """
 
-    def __init__(self, dt=None, acceleration=None, *, units="m/s^2", peak_acceleration=None,
+    def __init__(self, dt=None, acceleration=None, *, units="g", peak_acceleration=None,
                  frequency=None):
         factor = acceleration_factor(units)
         if acceleration is not None or dt is not None:
@@ -242,7 +245,7 @@ class GroundMotion:
             n_max = 2    # the core names what is wrong (missing, a directory), as for &ground_motion
         dt, samples, n, status, message = _bridge.read_record(path, format, units, n_max)
         check_status(status, message)
-        return cls(dt=float(dt), acceleration=samples[:n].copy())
+        return cls(dt=float(dt), acceleration=samples[:n].copy(), units="m/s^2")
 
     def _arrays(self):
         ground = np.array([_HARMONIC if self.kind == "harmonic" else _RECORD,
@@ -267,7 +270,7 @@ class GroundMotion:
         return self.peak_acceleration
 
     def scaled(self, factor=None, *, pga=None, sa=None, period=None, damping=0.05,
-               units="m/s^2"):
+               units="g"):
         """A copy scaled by a factor, to a peak ground acceleration pga, or to a pseudo-spectral
         acceleration sa at period [s] for the damping ratio (give one; pga and sa in `units`)."""
         to_si = acceleration_factor(units)
@@ -281,8 +284,9 @@ class GroundMotion:
             0.0 if period is None else _real("period", period), _real("damping", damping))
         check_status(status, message)
         if self.kind == "record":
-            return GroundMotion(dt=self.dt, acceleration=scaled_samples.copy())
-        return GroundMotion(peak_acceleration=float(scaled[1]), frequency=float(scaled[2]))
+            return GroundMotion(dt=self.dt, acceleration=scaled_samples.copy(), units="m/s^2")
+        return GroundMotion(peak_acceleration=float(scaled[1]), frequency=float(scaled[2]),
+                            units="m/s^2")
 
     def response_spectrum(self, periods, damping=0.05, tail_duration=None, duration=None):
         """Peak responses of linear oscillators (exact for the piecewise linear record) at
@@ -311,7 +315,7 @@ class GroundMotion:
                 f"{self.frequency:.4g} Hz)")
 
 
-def acceleration_factor(units):
+def acceleration_factor(units) -> float:
     """The factor that turns an acceleration in units 'g' (9.80665 m/s^2), 'm/s^2' or
     'cm/s^2' into m/s^2."""
     factor, status, message = _bridge.acceleration_units(_checks.text("units", units))
@@ -339,28 +343,53 @@ def _ground_arrays(ground_motion):
     return ground_motion._arrays()
 
 
+@dataclass(frozen=True)
 class SeismicResponse:
     """The response of a tank to ground motion from rest, SI units. One array per quantity
     over the output times `t` [s]: ground_acceleration [m/s^2], sloshing_displacement [m] (of
     the sloshing mass relative to the tank), wave_height [m] (at the wall), pendulum_angle
     [rad], tank_drift [m] (relative to the ground), impact_force [N] (roof/walls on the
-    liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2; and
-    `peaks` {quantity: (largest |value|, its time [s])}, roof_reached, first_roof_time [s],
-    roof_impacts. Columns are those of seismic.csv and seismic_peaks.csv; `method`, the
-    integration method used ('auto' resolved)."""
+    liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2 (the
+    columns of seismic.csv, `table` holds them in order); `peak_table` (the columns of
+    seismic_peaks.csv), `peaks` {quantity: (largest |value|, its time [s])}, roof_reached,
+    first_roof_time [s], roof_impacts; `method`, the integration method used ('auto'
+    resolved)."""
 
-    def __init__(self, tank, ground_motion, table, peaks):
-        self.tank, self.ground_motion = tank, ground_motion
-        self.table = table
-        for column, row in zip(_tables.columns("seismic"), table):
-            setattr(self, _name(column), row)
-        self.peak_table = {_name(c): float(v) for c, v in zip(_tables.columns("seismic_peaks"),
-                                                              peaks)}
-        self.peaks = {name[len("peak_"):]: (value, self.peak_table["time_" + name[5:]])
-                      for name, value in self.peak_table.items() if name.startswith("peak_")}
-        self.roof_reached = bool(self.peak_table["roof_reached"])
-        self.first_roof_time = self.peak_table["first_roof_time"]
-        self.roof_impacts = int(self.peak_table["roof_impacts"])
+    tank: Tank
+    ground_motion: GroundMotion
+    t: np.ndarray
+    ground_acceleration: np.ndarray
+    sloshing_displacement: np.ndarray
+    wave_height: np.ndarray
+    pendulum_angle: np.ndarray
+    tank_drift: np.ndarray
+    impact_force: np.ndarray
+    base_shear: np.ndarray
+    overturning_moment: np.ndarray
+    x1: np.ndarray
+    x2: np.ndarray
+    table: np.ndarray = dataclasses.field(repr=False)
+    peak_table: dict = dataclasses.field(repr=False)
+    peaks: dict = dataclasses.field(repr=False)
+    roof_reached: bool
+    first_roof_time: float
+    roof_impacts: int
+    method: str
+
+    @classmethod
+    def from_tables(cls, tank, ground_motion, table, peaks, method):
+        """The response from the core's 'seismic' table and 'seismic_peaks' row."""
+        peak_table = {_name(c): float(v) for c, v in zip(_tables.columns("seismic_peaks"),
+                                                          peaks)}
+        return cls(tank=tank, ground_motion=ground_motion, table=table,
+                   **{_name(column): row for column, row in zip(_tables.columns("seismic"),
+                                                                 table)},
+                   peak_table=peak_table,
+                   peaks={name[len("peak_"):]: (value, peak_table["time_" + name[5:]])
+                          for name, value in peak_table.items() if name.startswith("peak_")},
+                   roof_reached=bool(peak_table["roof_reached"]),
+                   first_roof_time=peak_table["first_roof_time"],
+                   roof_impacts=int(peak_table["roof_impacts"]), method=method)
 
     @property
     def columns(self):
@@ -373,8 +402,17 @@ class SeismicResponse:
                 f"roof {'reached' if self.roof_reached else 'not reached'})")
 
 
-def seismic_defaults(tank, ground_motion, t_end=None, n_out=None):
-    """(t_end [s], n_out) as seismic_response chooses them: t_end = the record plus 5 sloshing
+@dataclass(frozen=True)
+class SeismicTimes:
+    """The output times of a seismic response: n_out evenly spaced from 0 to t_end [s]."""
+
+    t_end: float
+    n_out: int
+
+
+def seismic_defaults(tank: Tank, ground_motion: GroundMotion, t_end=None,
+                     n_out=None) -> SeismicTimes:
+    """t_end [s] and n_out as seismic_response chooses them: t_end = the record plus 5 sloshing
     periods (harmonic: 40 forcing periods); outputs at the finest of the record's step, 50 per
     sloshing (or forcing) period and 20 per period of the tank on its supports."""
     _checks.instance("tank", tank, Tank)
@@ -383,44 +421,63 @@ def seismic_defaults(tank, ground_motion, t_end=None, n_out=None):
         tank.array(), ground, samples, 0.0 if t_end is None else _real("t_end", t_end),
         0 if n_out is None else _checks.integer("n_out", n_out))
     check_status(status, message)
-    return float(chosen[0]), int(chosen[1])
+    return SeismicTimes(float(chosen[0]), int(chosen[1]))
 
 
-def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=Integration()):
+def seismic_response(tank: Tank, ground_motion: GroundMotion, t_end=None, n_out=None, *,
+                     integration: Integration = Integration()) -> SeismicResponse:
     """The tank at rest at t = 0 under the ground motion, to t_end [s] (default: the record
     plus 5 sloshing periods), at n_out evenly spaced times (default: seismic_defaults): a
     SeismicResponse. Its peaks are the largest values at the output times."""
     _checks.instance("tank", tank, Tank)
     _checks.instance("integration", integration, Integration)
-    t_end, n_out = seismic_defaults(tank, ground_motion, t_end, n_out)
+    times = seismic_defaults(tank, ground_motion, t_end, n_out)
+    t_end, n_out = times.t_end, times.n_out
     _checks.output_size("n_out", n_out, len(_tables.columns("seismic")))
     ground, samples = _ground_arrays(ground_motion)
     table, peaks, status, message = cancellable(_bridge.seismic_response,
         tank.array(), ground, samples, t_end, n_out, integration.array())
     check_status(status, message)
-    response = SeismicResponse(tank, ground_motion, table.copy(), peaks.copy())
-    response.method = integration.method_used
-    return response
+    return SeismicResponse.from_tables(tank, ground_motion, table.copy(), peaks.copy(),
+                                       integration.method_used)
 
 
+@dataclass(frozen=True)
 class HarmonicSweep:
     """Steady states of a tank under harmonic ground motion of one peak acceleration at each
     frequency: `points` (SteadyState, dimensionless, as frequency_sweep gives) and one SI array
-    per column of harmonic_sweep.csv: frequency [Hz], peak_ground_acceleration [m/s^2],
-    wave_height [m], sloshing_displacement [m], pendulum_angle [rad], tank_drift [m] (their
-    largest values over the measuring window), roof_reached (1/0), motion (code), period
-    [forcing periods]; `method`, the integration method used ('auto' resolved)."""
+    per column of harmonic_sweep.csv (`table` holds them in order): frequency [Hz],
+    peak_ground_acceleration [m/s^2], wave_height [m], sloshing_displacement [m],
+    pendulum_angle [rad], tank_drift [m] (their largest values over the measuring window),
+    roof_reached (1/0), motion (code), period [forcing periods]; y_final, the final state
+    (None for independent points); `method`, the integration method used ('auto' resolved)."""
 
-    def __init__(self, tank, points, table, y_final, method=""):
-        self.tank, self.points, self.table, self.y_final = tank, points, table, y_final
-        self.method = method
-        for column, row in zip(_tables.columns("harmonic_sweep"), table):
-            setattr(self, _name(column), row)
+    tank: Tank
+    points: list
+    frequency: np.ndarray
+    peak_ground_acceleration: np.ndarray
+    wave_height: np.ndarray
+    sloshing_displacement: np.ndarray
+    pendulum_angle: np.ndarray
+    tank_drift: np.ndarray
+    roof_reached: np.ndarray
+    motion: np.ndarray
+    period: np.ndarray
+    table: np.ndarray = dataclasses.field(repr=False)
+    y_final: np.ndarray
+    method: str
+
+    @classmethod
+    def from_table(cls, tank, points, table, y_final, method):
+        """The sweep from the core's 'harmonic_sweep' table."""
+        return cls(tank=tank, points=points, table=table, y_final=y_final, method=method,
+                   **{_name(column): row for column, row in zip(
+                       _tables.columns("harmonic_sweep"), table)})
 
 
-def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
-                   steady=None, integration=Integration(), progress=False, threads=1,
-                   start_from="previous"):
+def harmonic_sweep(tank: Tank, peak_acceleration, frequencies, y0=None, *, units="g",
+                   steady: Steady = Steady(), integration: Integration = Integration(),
+                   progress=False, threads=1, start_from="previous") -> HarmonicSweep:
     """Steady states of the tank under harmonic ground motion of constant peak_acceleration (in
     `units`) at each of the frequencies [Hz], in the given order (ascending = up); start_from,
     threads and steady as for sloshdyn.frequency_sweep. A HarmonicSweep."""
@@ -428,7 +485,7 @@ def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
 
     _checks.instance("tank", tank, Tank)
     _checks.instance("integration", integration, Integration)
-    steady = Steady() if steady is None else _checks.instance("steady", steady, Steady)
+    _checks.instance("steady", steady, Steady)
     frequencies = _checks.reals("frequencies", frequencies)
     if frequencies.ndim != 1 or frequencies.size == 0:
         raise InputError(f"frequencies has shape {frequencies.shape}: give a 1-D array of "
@@ -442,6 +499,7 @@ def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
             int(carry), int(threads))
         return summaries, table, (y_final if carry else y), status, message
 
+    method = integration.method_used
     points, table, y = run_sweep("frequency", frequencies, y0, progress, threads, start_from,
-                                 run, lambda points, y: None)
-    return HarmonicSweep(tank, points, table, y, integration.method_used)
+                                 run, lambda points, y: None, method)
+    return HarmonicSweep.from_table(tank, points, table, y, method)

@@ -85,26 +85,28 @@ def tapered_sines(dt=0.01, duration=20.0, pga=0.05):
     a = np.sin(np.pi * t / t[-1])**2 * (np.sin(2 * np.pi * 0.2 * t) +
                                         0.8 * np.sin(2 * np.pi * 0.3 * t + 1) +
                                         0.5 * np.sin(2 * np.pi * 1.1 * t + 2))
-    return sloshdyn.GroundMotion(dt=dt, acceleration=a * pga / np.max(np.abs(a)))
+    return sloshdyn.GroundMotion(dt=dt, acceleration=a * pga / np.max(np.abs(a)),
+                                 units="m/s^2")
 
 
 def sine_pulse(dt=0.01, duration=12.0, pga=0.05):
     """One cycle of a 0.5 Hz sine, then rest: a near-fault pulse."""
     t = dt * np.arange(int(round(duration / dt)) + 1)
     return sloshdyn.GroundMotion(dt=dt, acceleration=np.where(t <= 2.0, pga * np.sin(np.pi * t),
-                                                              0.0))
+                                                              0.0), units="m/s^2")
 
 
 def truncated_sine(dt=0.02, pga=0.05):
     """A 0.3 Hz sine cut off at 2.5 s, where it is at -pga: the ground stops abruptly."""
     t = dt * np.arange(int(round(2.5 / dt)) + 1)
-    return sloshdyn.GroundMotion(dt=dt, acceleration=pga * np.sin(2 * np.pi * 0.3 * t))
+    return sloshdyn.GroundMotion(dt=dt, acceleration=pga * np.sin(2 * np.pi * 0.3 * t),
+                                 units="m/s^2")
 
 
 def example_record(pga=0.05):
     """The example's synthetic Kanai-Tajimi record (filtered noise; ends at -1e-3 g, not at 0)."""
     return sloshdyn.GroundMotion.from_file(EXAMPLES / "records" / "synthetic_kt.AT2").scaled(
-        pga=pga)
+        pga=pga, units="m/s^2")
 
 
 # --- 1. linear limit: peak sloshing displacement = the exact SDOF response -------------------
@@ -714,7 +716,8 @@ def test_free_decay_has_the_logarithmic_decrement_of_zeta(zeta):
     assert p.zeta == zeta
     step = 2 * np.pi / 256
     tau = step * np.arange(20 * 256 + 1)
-    x = sloshdyn.simulate(p, tau[-1], [0.01, 0, 0, 0], tau_out=tau, rtol=1e-12, atol=1e-15).x1
+    x = sloshdyn.simulate(p, tau[-1], [0.01, 0, 0, 0], tau_out=tau,
+                          integration=sloshdyn.Integration(rtol=1e-12, atol=1e-15)).x1
     i = np.flatnonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:])) + 1
     before, at, after = x[i - 1], x[i], x[i + 1]
     shift = 0.5 * (before - after) / (before - 2 * at + after)    # the parabola's vertex
@@ -790,7 +793,7 @@ def test_jacobian_with_zeta_matches_finite_differences():
 def spike(index, dt=0.002, n=5001):
     a = np.zeros(n)
     a[index] = 1.0
-    return sloshdyn.GroundMotion(dt=dt, acceleration=a)
+    return sloshdyn.GroundMotion(dt=dt, acceleration=a, units="m/s^2")
 
 
 @pytest.mark.parametrize("index", [1000, 5000], ids=["inside", "last sample"])
