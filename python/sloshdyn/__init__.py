@@ -3,9 +3,9 @@ excitation, by the equivalent mechanical model of Farid & Gendelman (a pendulum 
 tank walls through a high-power smooth potential). Numerics run in the Fortran core.
 """
 
-from .asymptotics import (Continuation, FrequencyResponse, SlowFlowCycle, SpecialPoint,
-                          frequency_response, modal_coefficients, nonresonant_amplitudes,
-                          slow_flow_cycle)
+from .asymptotics import (Continuation, FrequencyResponse, ModalCoefficients, SlowFlowCycle,
+                          SpecialPoint, frequency_response, modal_coefficients,
+                          nonresonant_amplitudes, slow_flow_cycle)
 from ._errors import (CapacityError, ConvergenceError, FileError, InputError, IntegrationError,
                       LapackError, SingularMatrixError, SloshdynError)
 from .model import (Equilibria, Equilibrium, EquilibriumAngles, LinearModes, Motion, equilibria,
@@ -37,7 +37,7 @@ __all__ = [
     "AmplitudeSpectrum", "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
     "beat_period", "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state",
     "sweep_values",
-    "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
+    "ModalCoefficients", "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
     "nonresonant_amplitudes", "SlowFlowCycle", "slow_flow_cycle", "PeriodicBranch",
     "PeriodicOrbit", "PeriodicSpecialPoint", "Lyapunov", "LyapunovExponent", "Shooting",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",

@@ -56,13 +56,26 @@ def _table(exponents, coefficients, forcing=False):
     return table
 
 
-def modal_coefficients(params: Parameters) -> dict:
+@dataclass(frozen=True)
+class ModalCoefficients:
+    """The coefficients of the multiple-scales analysis, derived from the equations of motion
+    (not typed in from Appendix A, which has misprints: see docs/errata.md)."""
+
+    omega1: float              #: eq (28)
+    omega2: float
+    coefficients: dict         #: {name: value}: c11..c23 and F11 (eq 36, 44, 52), the modal
+    #: damping gamma11, gamma22, every named coefficient of eq (33) ('alpha_hat11', ...,
+    #: 'F_hat23') and of eq (36) ('alpha11', 'gamma17', ..., 'F24')
+    g: list                    #: eq (32), per row: {exponents of (x1, x2, x1', x2'): coefficient}
+    g_forcing: list            #: the forcing of eq (32), per row (constant term at (0, 0, 0, 0))
+    h: list                    #: eq (35), per row: {exponents of (u1, u2, u1', u2'): coefficient}
+    h_forcing: list            #: the forcing of eq (35), per row
+
+
+def modal_coefficients(params: Parameters) -> ModalCoefficients:
     """The coefficients of the multiple-scales analysis at the given parameters (kappa > s1,
-    n >= 2, p >= 1): omega1, omega2 (eq 28), c11..c23 and F11 (eq 36, 44, 52), the modal
-    damping gamma11, gamma22, every named coefficient of eq (33) ('alpha_hat11', ...,
-    'F_hat23') and of eq (36) ('alpha11', 'gamma17', ..., 'F24'), derived from the equations of
-    motion (not typed in from Appendix A, which has misprints: see ERRATA.md). Also 'g', 'h',
-    'g_forcing', 'h_forcing': {exponents: coefficient} polynomials of eq (32) and (35)."""
+    n >= 2, p >= 1): omega1, omega2, the named coefficients and the polynomials of eq (32) and
+    (35)."""
     _checks.instance("params", params, Parameters)
     (scalars, c, exponents, g, g_forcing, h, h_forcing, status,
      message) = _bridge.modal_expansion(*params.array())
@@ -85,8 +98,8 @@ def modal_coefficients(params: Parameters) -> dict:
             result.setdefault(name.format(r=r), -polys["h"][r - 1][e])
         for name, sign, e in _MODAL_FORCING[r]:
             result.setdefault(name, sign * polys["h_forcing"][r - 1][e])
-    result.update(polys)
-    return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in result.items()}
+    omega1, omega2 = (float(result.pop(name)) for name in ("omega1", "omega2"))
+    return ModalCoefficients(omega1, omega2, {k: float(v) for k, v in result.items()}, **polys)
 
 
 _COLUMNS = _tables.columns("response")
@@ -211,7 +224,7 @@ def continuation_range(rho_range, A_range):
     return "A", _checks.interval("A_range", A_range)
 
 
-def nonresonant_amplitudes(params: Parameters, rho):
+def nonresonant_amplitudes(params: Parameters, rho) -> list:
     """Every real solution |u1| of eq (49) (no internal resonance) at each rho (A from params):
     a list of ascending arrays, one per rho (1 or 3 values)."""
     _checks.instance("params", params, Parameters)

@@ -96,8 +96,7 @@ class Chart:
     y, with n_scan parameter values searched and at most max_points points each, seed at most
     max_curves curves. brute_force_starts > 0 integrates the slow flow from that many starts
     in every cell and counts the stable steady states reached (a small basin may be missed; it
-    never finds more than there are). threads share out the runs and cells (same result on
-    any number)."""
+    never finds more than there are)."""
 
     n_x: int = int(_DEFAULTS[7])
     n_y: int = int(_DEFAULTS[8])
@@ -105,21 +104,21 @@ class Chart:
     max_points: int = int(_DEFAULTS[10])
     max_curves: int = int(_DEFAULTS[11])
     brute_force_starts: int = 0
-    threads: int = 1
 
     def __post_init__(self):
         convert_fields(self)
 
 
 def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
-                    model="slow_flow_3:1", chart: Chart = Chart(),
+                    model="slow_flow_3:1", chart: Chart = Chart(), threads=1,
                     capacity=200_000) -> StabilityChart:
     """The stability chart of the slow flow of `params` (model 'slow_flow_3:1' or
     'slow_flow_nonresonant') for x in x_range and y in y_range: x is rho or A (it is varied by
     the one-parameter runs at chart.n_y values of y, which seed the curves), y any other of
     rho, A, gamma, kappa; the values of the others come from params. A curve that stops early
     is kept up to where it stopped (complete False, with its note) and a warning is issued.
-    capacity: room for the curves' points."""
+    threads share out the runs and cells (same result on any number); capacity: room for the
+    curves' points."""
     _checks.instance("params", params, Parameters)
     _checks.instance("chart", chart, Chart)
     _checks.choice("model", model, MODELS)
@@ -127,10 +126,10 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
     _checks.choice("y", y, AXES)
     (x_min, x_max), (y_min, y_max) = (_checks.interval("x_range", x_range),
                                       _checks.interval("y_range", y_range))
-    capacity = _checks.integer("capacity", capacity)
-    n_x, n_y, n_scan, max_points, max_curves, brute_force_starts, threads = (
+    threads, capacity = _checks.integer("threads", threads), _checks.integer("capacity", capacity)
+    n_x, n_y, n_scan, max_points, max_curves, brute_force_starts = (
         chart.n_x, chart.n_y, chart.n_scan, chart.max_points, chart.max_curves,
-        chart.brute_force_starts, chart.threads)
+        chart.brute_force_starts)
     _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
     _checks.output_size("max_curves", 10 * max(max_curves, 1), 7)
     _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))

@@ -246,7 +246,7 @@ def _figure(inp, out):
     if inp.analysis == "seismic":
         from .seismic import SeismicResponse
         t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
-        response = SeismicResponse.from_tables(
+        response = SeismicResponse._from_tables(
             inp.tank, inp.ground_motion, np.array(list(t.values())),
             np.array([column[0] for column in peaks.values()]), method)
         return "seismic.png", plotting.seismic(response)
@@ -260,7 +260,7 @@ def _figure(inp, out):
         from .seismic import HarmonicSweep
         t = _table(out / "harmonic_sweep.csv")
         return "harmonic_sweep.png", plotting.harmonic_sweep(
-            HarmonicSweep.from_table(inp.tank, [], np.array(list(t.values())), None, method))
+            HarmonicSweep._from_table(inp.tank, [], np.array(list(t.values())), None, method))
     if inp.analysis == "sweep":
         t = _table(out / "sweep.csv")
         points = [_summary(np.array([column[k] for column in t.values()]), method)

@@ -205,15 +205,15 @@ def _response_columns(response):
 def _fig9(out, kappa, letter, kind):
     p = Parameters(kappa=kappa, **FIG9)
     m = modal_coefficients(p)
-    w1 = m["omega1"]
+    w1 = m.omega1
     response = frequency_response(p, (w1 - 0.04, w1 + 0.04), resonance="none")
     fig = plotting.frequency_response(response, columns=("a1",))
     folds = sorted(s.rho for s in response.special_points if s.kind == "fold")
-    values = {f"fig9{letter}_c11": m["c11"]}
+    values = {f"fig9{letter}_c11": m.coefficients["c11"]}
     return Figure(f"9{letter}", f"Frequency response graph of |u1| for s1=1.5, μ1=0.5, θ0=π/4, "
                   f"γ=0.0025, A=0.0005: κ={kappa} and c11 ≈ {'-0.03188' if letter == 'a' else '0.30585'}, "
                   f"{kind} effect.", _save(fig, out, f"fig09{letter}", _response_columns(response)),
-                  values, f"c11 = {m['c11']:.6f}; ω1 = {w1:.6f}; folds at ρ = "
+                  values, f"c11 = {m.coefficients['c11']:.6f}; ω1 = {w1:.6f}; folds at ρ = "
                   + ", ".join(f"{f:.6f}" for f in folds)
                   + f" ({'below' if kind == 'softening' else 'above'} ω1).")
 
@@ -228,7 +228,8 @@ def fig09b(out, quick=False):
 
 def fig10(out, quick=False):
     kappa = np.linspace(1.55, 6.0, 90 if quick else 446)
-    c11 = np.array([modal_coefficients(Parameters(kappa=k, **FIG9))["c11"] for k in kappa])
+    c11 = np.array([modal_coefficients(Parameters(kappa=k, **FIG9)).coefficients["c11"]
+                    for k in kappa])
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.plot(kappa, c11, "-", color="k")
     ax.axhline(0, color="0.6", lw=0.6)

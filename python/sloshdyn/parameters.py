@@ -178,7 +178,7 @@ class Input:
     study: dict = field(default_factory=dict)         #: &study (empty if none): kind, store, ...
 
 
-def read_namelist(path):
+def read_namelist(path) -> Input:
     """Read and validate a namelist input file with the executable's reader (same rules, defaults
     and messages)."""
     from .seismic import GroundMotion, Tank

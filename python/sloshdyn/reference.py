@@ -206,7 +206,7 @@ def _equilibria(quick):
 
 
 def _c11(quick):
-    return {f"fig9{letter}_c11": modal_coefficients(Parameters(kappa=k, **figures.FIG9))["c11"]
+    return {f"fig9{letter}_c11": modal_coefficients(Parameters(kappa=k, **figures.FIG9)).coefficients["c11"]
             for letter, k in (("a", 4.7), ("b", 4.5))}
 
 

@@ -377,7 +377,7 @@ class SeismicResponse:
     method: str
 
     @classmethod
-    def from_tables(cls, tank, ground_motion, table, peaks, method):
+    def _from_tables(cls, tank, ground_motion, table, peaks, method):
         """The response from the core's 'seismic' table and 'seismic_peaks' row."""
         peak_table = {_name(c): float(v) for c, v in zip(_tables.columns("seismic_peaks"),
                                                           peaks)}
@@ -438,7 +438,7 @@ def seismic_response(tank: Tank, ground_motion: GroundMotion, t_end=None, n_out=
     table, peaks, status, message = cancellable(_bridge.seismic_response,
         tank.array(), ground, samples, t_end, n_out, integration.array())
     check_status(status, message)
-    return SeismicResponse.from_tables(tank, ground_motion, table.copy(), peaks.copy(),
+    return SeismicResponse._from_tables(tank, ground_motion, table.copy(), peaks.copy(),
                                        integration.method_used)
 
 
@@ -468,7 +468,7 @@ class HarmonicSweep:
     method: str
 
     @classmethod
-    def from_table(cls, tank, points, table, y_final, method):
+    def _from_table(cls, tank, points, table, y_final, method):
         """The sweep from the core's 'harmonic_sweep' table."""
         return cls(tank=tank, points=points, table=table, y_final=y_final, method=method,
                    **{_name(column): row for column, row in zip(
@@ -502,4 +502,4 @@ def harmonic_sweep(tank: Tank, peak_acceleration, frequencies, y0=None, *, units
     method = integration.method_used
     points, table, y = run_sweep("frequency", frequencies, y0, progress, threads, start_from,
                                  run, lambda points, y: None, method)
-    return HarmonicSweep.from_table(tank, points, table, y, method)
+    return HarmonicSweep._from_table(tank, points, table, y, method)

@@ -99,7 +99,7 @@ def test_fig11_fold_pair_is_born_at_the_cusp():
 
 def test_brute_force_finds_the_stable_states_the_grid_counts():
     chart = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(
-        n_x=5, n_y=3, brute_force_starts=200, threads=2))
+        n_x=5, n_y=3, brute_force_starts=200), threads=2)
     g = chart.grid
     away = g["near_curve"] == 0
     assert away.sum() >= 5
@@ -108,8 +108,8 @@ def test_brute_force_finds_the_stable_states_the_grid_counts():
 
 
 def test_threads_do_not_change_the_chart():
-    one = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(n_x=5, n_y=3, threads=1))
-    two = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(n_x=5, n_y=3, threads=2))
+    one = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(n_x=5, n_y=3), threads=1)
+    two = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(n_x=5, n_y=3), threads=2)
     for a, b in zip(one.curves, two.curves):
         assert np.array_equal(a.rho, b.rho) and np.array_equal(a.A, b.A)
     for name in one.grid:
@@ -163,7 +163,7 @@ def test_bad_chart_input(exe, tmp_path, change, words):
 def test_full_model_neimark_sacker_curve_meets_the_periodic_response():
     # rows at A = 0.000675 and 0.000825: the curves cross A = 0.00075 between their points
     chart = sloshdyn.stability_chart(FIG12, (0.505, 0.515), (0.0006, 0.0009), model="full",
-                                     chart=sloshdyn.Chart(n_x=5, n_y=2, threads=2))
+                                     chart=sloshdyn.Chart(n_x=5, n_y=2), threads=2)
     ns = [c for c in chart.curves if c.kind == "neimark_sacker"]
     assert ns and all(c.complete for c in ns)
     crossings = []

@@ -126,7 +126,7 @@ API = {
     "stability_chart": (("P", (0.5, 0.52), (0.0005, 0.001)),
                         dict(chart={"__class__": "Chart", "n_x": 2, "n_y": 2, "n_scan": 10}),
                         {1: arrays_like([0.5, 0.52]), "chart.n_x": ints, "chart.n_y": ints,
-                         "chart.max_curves": ints, "capacity": ints, "chart.threads": ints,
+                         "chart.max_curves": ints, "capacity": ints, "threads": ints,
                          "x": texts, "model": texts, "chart": objects}),
     "fit_fragility": (([0.1, 0.2, 0.3, 0.4], [0, 1, 0, 1]), {},
                       {0: arrays_like([0.1, 0.2, 0.3, 0.4]), 1: arrays_like([0, 1, 0, 1])}),

@@ -760,7 +760,8 @@ def test_linear_analysis_includes_zeta(changes):
         shapes = shapes[:, np.argsort(squares)]
         modal = np.linalg.solve(shapes, damping @ shapes)
         m = sloshdyn.modal_coefficients(p)
-        assert [m["gamma11"], m["gamma22"]] == pytest.approx(np.diag(modal), rel=1e-12)
+        assert [m.coefficients["gamma11"], m.coefficients["gamma22"]] == pytest.approx(
+            np.diag(modal), rel=1e-12)
 
 
 def test_jacobian_with_zeta_matches_finite_differences():
