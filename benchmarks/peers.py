@@ -315,7 +315,7 @@ def fortran_rhs_cost(p, n_calls=5_000_000):
                 break
         else:
             return None, "could not compile the driver: " + res.stderr.strip()[-300:]
-        rpar, ipar = p.arrays()
+        rpar, ipar = p.array()
         text = " ".join(repr(float(x)) for x in rpar) + " " + " ".join(str(int(i)) for i in ipar)
         best = None
         for _ in range(3):
