@@ -212,9 +212,9 @@ def test_the_runner_names_deaths_hangs_and_generic_errors():
     """The harness itself: a case that ends the process (os._exit(0) stands in for XERBLA's
     exit) is a death, one that does not finish a hang, a TypeError a generic error; the cases
     after them still run."""
-    outcomes = run_cases([("fine", "natural_frequencies", ("P",), {}),
+    outcomes = run_cases([("fine", "linear_modes", ("P",), {}),
                           ("dies", "os._exit", (0,), {}),
-                          ("after death", "natural_frequencies", ("P",), {}),
+                          ("after death", "linear_modes", ("P",), {}),
                           ("hangs", "time.sleep", (60,), {}),
                           ("generic", "Parameters", (), {"s1": 1.5, "typo": 1}),
                           ("rejected", "Parameters", (), dict(s1=math.nan, mu1=0.5, kappa=1.8,

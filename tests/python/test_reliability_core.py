@@ -143,7 +143,7 @@ CTRL_C = textwrap.dedent("""\
 
 
 @pytest.mark.parametrize("call", [
-    "lambda p: sloshdyn.simulate(p, 1e7, n_out=11, max_steps=2000000000)",
+    "lambda p: sloshdyn.simulate(p, 1e7, n_out=11, integration=sloshdyn.Integration(max_steps=2000000000))",
     "lambda p: sloshdyn.lyapunov_exponent(p, lyapunov=sloshdyn.Lyapunov(n_periods=10000000, transient_periods=0))",
 ])
 def test_ctrl_c_stops_a_long_call_in_python(tmp_path, call):
