@@ -292,18 +292,16 @@ class GroundMotion:
         """Peak responses of linear oscillators (exact for the piecewise linear record) at
         `periods` [s]: Spectrum(periods, sd [m], sv [m/s], psa [m/s^2]). A free-vibration tail
         of tail_duration [s] (default 5 times the longest period) follows the record; harmonic
-        motion is sampled over `duration` [s] (default 40 forcing periods)."""
+        motion is sampled over `duration` [s] (default: the core's, 40 forcing periods)."""
         periods = np.atleast_1d(_checks.reals("periods", periods))
         if periods.ndim != 1:
             raise InputError(f"periods has shape {periods.shape}: give a number or a 1-D array")
         _checks.output_size("periods", periods.size, 3)
         if tail_duration is None:
             tail_duration = 5 * float(np.max(periods)) if periods.size else 0.0
-        if duration is None:
-            duration = 40 / self.frequency if self.kind == "harmonic" else self.duration
         sd, sv, psa, status, message = _bridge.ground_spectrum(
             *self._arrays(), periods, _real("damping", damping),
-            _real("tail_duration", tail_duration), _real("duration", duration))
+            _real("tail_duration", tail_duration), _checks.optional_real("duration", duration, 0.0))
         check_status(status, message)
         return Spectrum(periods, sd.copy(), sv.copy(), psa.copy(), float(damping))
 

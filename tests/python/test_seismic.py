@@ -278,6 +278,32 @@ def test_design_code_table_columns():
     assert codes.difference("API 650", "convective_period") == pytest.approx(-0.527, abs=1e-3)
 
 
+def test_harmonic_motion_lasts_40_forcing_periods_unless_told():
+    """One default, the core's (sloshdyn_ground's harmonic_periods), for GroundMotion's
+    spectrum and the design codes' wave heights: the Sa of harmonic motion is that of its
+    samples (200 per period) over 40 forcing periods taken as a record (expm, tail 5 times the
+    longest period)."""
+    tank = sloshdyn.Tank(**TANK, support_frequency=2.0)
+    f, a = 0.25, 0.5
+    ground = sloshdyn.GroundMotion.harmonic(a, f, units="m/s^2")
+    dt = 1 / (200 * f)
+    t = dt * np.arange(int(40 / f / dt) + 1)
+    sampled = sloshdyn.GroundMotion(dt=dt, acceleration=-a * np.sin(2 * np.pi * f * t),
+                                    units="m/s^2")
+    codes = tank.design_codes(ground)
+    periods = [codes.value(source, "convective_period") for source in codes.sources]
+    tail = 5 * max(periods)
+    sa = spectral_acceleration(sampled, tank.sloshing_period, tank.sloshing_damping, tail)
+    spectrum = ground.response_spectrum([tank.sloshing_period], damping=tank.sloshing_damping,
+                                        tail_duration=tail)
+    assert spectrum.psa[0] == pytest.approx(sa, rel=1e-9)
+    assert codes.value("sloshdyn", "wave_height") == pytest.approx(
+        2 * TANK["radius"] / (1.84**2 - 1) * sa / G, rel=1e-9)
+    shorter = ground.response_spectrum([tank.sloshing_period], damping=tank.sloshing_damping,
+                                       tail_duration=tail, duration=2 / f)
+    assert shorter.psa[0] != pytest.approx(sa, rel=1e-3)     # the duration matters
+
+
 # --- 4. base shear = rate of change of the total horizontal momentum; 5. energy balance -------
 
 def write_at2(path, ground):
