@@ -113,13 +113,10 @@ class Tank:
         s1, mu1, kappa, theta0, beta, gamma, delta, _, _, zeta = (float(x) for x in rpar)
         A = rho = 0.0
         if ground_motion is not None:
-            if ground_motion.kind != "harmonic":
-                raise InputError("a record has no A and rho: parameters() takes harmonic ground "
-                                 "motion only")
-            p = self.properties
-            rho = 2 * math.pi * ground_motion.frequency / p["omega"]
-            A = ground_motion.peak_acceleration / (
-                p["support_height"] * (2 * math.pi * ground_motion.frequency) ** 2)
+            A, rho, status, message = _bridge.tank_excitation(self.array(),
+                                                              _ground_arrays(ground_motion)[0])
+            check_status(status, message)
+            A, rho = float(A), float(rho)
         return Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
                           delta=delta, n=int(ipar[0]), p=int(ipar[1]), zeta=zeta, A=A, rho=rho)
 

@@ -304,6 +304,26 @@ def test_harmonic_motion_lasts_40_forcing_periods_unless_told():
     assert shorter.psa[0] != pytest.approx(sa, rel=1e-3)     # the duration matters
 
 
+@pytest.mark.parametrize("peak_g, frequency", [(0.05, 0.29872), (0.3, 1.7)])
+def test_a_tanks_harmonic_A_and_rho_are_the_namelists(tmp_path, peak_g, frequency):
+    """Tank.parameters(harmonic ground motion) has the A and rho that the namelist reader sets
+    for &tank with &ground_motion, bit for bit (one routine of the core), and they are
+    rho = Omega/omega and A = a/(L Omega^2) (the base displacement amplitude over L)."""
+    tank = sloshdyn.Tank(**TANK, support_frequency=2.0)
+    (tmp_path / "in.nml").write_text(namelist(
+        tank, f"peak_acceleration = {peak_g!r}, frequency = {frequency!r}",
+        "&analysis kind = 'seismic' /\n"))
+    read = sloshdyn.read_namelist(tmp_path / "in.nml").params
+    python = tank.parameters(sloshdyn.GroundMotion.harmonic(peak_g, frequency))
+    assert (python.A, python.rho) == (read.A, read.rho)
+    omega, big_omega = tank.properties["omega"], 2 * math.pi * frequency
+    assert python.rho == pytest.approx(big_omega / omega, rel=1e-14)
+    assert python.A == pytest.approx(peak_g * G / (tank.properties["support_height"]
+                                                   * big_omega**2), rel=1e-14)
+    with pytest.raises(sloshdyn.InputError, match="record has no A and rho"):
+        tank.parameters(truncated_sine())
+
+
 # --- 4. base shear = rate of change of the total horizontal momentum; 5. energy balance -------
 
 def write_at2(path, ground):
