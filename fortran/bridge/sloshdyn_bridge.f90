@@ -990,6 +990,13 @@ contains
 
   !> The tank's sloshing parameters by sloshdyn and by the design codes, codes(6, 4) in the
   !> 'design_codes' layout; wave heights need the ground motion (has_ground = 1).
+  subroutine design_codes_text(codes, text)
+    use sloshdyn_driver, only: design_codes_table
+    real(c_double), intent(in) :: codes(6, 4)
+    character(len=2048), intent(out) :: text
+    text = design_codes_table(codes)
+  end subroutine design_codes_text
+
   subroutine design_codes(tank, has_ground, ground, n, samples, codes, status, message)
     use sloshdyn_seismic, only: design_code_checks
     use sloshdyn_layouts, only: to_tank, to_ground

@@ -156,34 +156,10 @@ class DesignCodes:
         return 100 * (self.value(source, column) - ours) / ours
 
     def __str__(self):
-        """The table the executable prints: values, and each code's difference in %."""
-        lines = ["  " + "".ljust(24) + "sloshdyn".ljust(14) +
-                 "".join(s.ljust(22) for s in self.sources[1:]).rstrip()]
-        for i, column in enumerate(_tables.columns("design_codes")[1:]):
-            cells = [_pad(_value_text(self.table[i, 0]), 14)]
-            for k, source in enumerate(self.sources[1:], start=1):
-                text = _value_text(self.table[i, k])
-                if not math.isnan(self.table[i, k]):
-                    text += f" ({self.difference(source, _name(column)):+.1f}%)"
-                cells.append(_pad(text, 22))
-            lines.append(("  " + column.replace("_", " ").ljust(24) + "".join(cells)).rstrip())
-        return "\n".join(lines)
-
-
-def _pad(text, width):
-    """As the executable pads: to width, and at least one blank after."""
-    return text.ljust(max(width, len(text) + 1))
-
-
-def _value_text(x):
-    """As the executable prints it: 6 significant digits, no trailing zeros."""
-    if math.isnan(x):
-        return "-"
-    x = float(f"{x:.5e}")
-    if x == 0 or 1e-4 <= abs(x) < 1e9:
-        return f"{x:.10f}".rstrip("0").rstrip(".")
-    mantissa, exponent = f"{x:.9e}".split("e")
-    return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+        """The table the executable prints (the core writes it): values, and each code's
+        difference from sloshdyn in %."""
+        text = _bridge.design_codes_text(self.table)
+        return (text.decode() if isinstance(text, bytes) else str(text)).rstrip()
 
 
 class GroundMotion:

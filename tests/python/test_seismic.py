@@ -569,6 +569,22 @@ def test_python_api_gives_the_numbers_of_the_csv_files(both_doors):
     assert np.array_equal(peaks, list(r.peak_table.values()), equal_nan=True)
 
 
+@pytest.mark.parametrize("example", ["tank_harmonic.nml", "tank_linear.nml"])
+def test_python_prints_the_design_code_table_of_the_executable(exe, tmp_path, example):
+    """str(DesignCodes) is the table the executable prints, line for line (one formatter, the
+    driver's): with wave heights (ground motion) and without (NaN cells as '-')."""
+    copy_example(example, tmp_path / "run")
+    result = subprocess.run([exe, example], cwd=tmp_path / "run", capture_output=True,
+                            text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    inp = sloshdyn.read_namelist(EXAMPLES / example)
+    table = str(inp.tank.design_codes(inp.ground_motion)).splitlines()
+    printed = result.stdout.splitlines()
+    first = printed.index(table[0])
+    assert printed[first:first + len(table)] == table and len(table) == 7
+    assert "ACI 350.3" in table[0] and table[1].startswith("  convective period [s]")
+
+
 # --- 7. bad input through every front door; the record file untouched -----------------------
 
 AT2_HEAD = "TITLE\nSOURCE\nACCELERATION TIME SERIES IN UNITS OF G\n"
