@@ -9,7 +9,6 @@ the same objects (README, "Namelist reference"), and docs/model.md gives the rel
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 
 import numpy as np
