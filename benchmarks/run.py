@@ -492,7 +492,8 @@ class Bench:
             return ""
         try:
             n = min(pr.periods, 400)
-            lam, _ = fn(pr.params, pr.y0, transient_periods=0, n_periods=n)
+            lam = fn(pr.params, pr.y0, lyapunov=sloshdyn.Lyapunov(transient_periods=0,
+                                                                  n_periods=n)).exponent
         except Exception as exc:   # noqa: BLE001 - diagnostic only
             return f" (sloshdyn.lyapunov_exponent failed: {exc})"
         if lam <= 0:

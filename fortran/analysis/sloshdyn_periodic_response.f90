@@ -27,6 +27,7 @@ module sloshdyn_periodic_response
     integer :: transient_periods = 1000   !< integrated before measuring
     integer :: n_periods = 2000           !< measured; a multiple of renormalise_every
     integer :: renormalise_every = 1      !< periods between renormalisations of the tangent
+    logical :: spectrum = .false.         !< all four exponents (QR method), not the largest only
   end type lyapunov_options
 
 contains

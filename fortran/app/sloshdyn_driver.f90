@@ -27,6 +27,7 @@ module sloshdyn_driver
   use sloshdyn_simulation, only: time_history, steady_state, parameter_sweep, independent_sweep
   use sloshdyn_response, only: frequency_response
   use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent
+  use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
   use sloshdyn_namelist, only: run_config, known_analyses, ANALYSIS_LINEAR, ANALYSIS_SIMULATE, &
                                ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, ANALYSIS_FREQUENCY_RESPONSE, &
                                ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, &
@@ -530,8 +531,8 @@ contains
     character(len=*), parameter :: units(SEISMIC_LOADS - 1) = [character(len=6) :: &
       'm/s^2', 'm', 'm', 'rad', 'm', 'N', 'N', 'N m']
 
-    t_end = config%seismic_t_end
-    n_out = config%seismic_n_out
+    t_end = config%seismic%t_end
+    n_out = config%seismic%n_out
     call seismic_defaults(config%tank_props, config%ground, t_end, n_out)
     allocate (table(SEISMIC_ROWS, n_out))
     call seismic_response(config%tank, config%ground, t_end, n_out, config%integration, &
@@ -573,6 +574,10 @@ contains
     real(wp) :: exponent
     integer :: i
 
+    if (config%lyapunov%spectrum) then
+      call run_lyapunov_spectrum(config, files, status, message)
+      return
+    end if
     associate (ly => config%lyapunov)
       allocate (history(ly%n_periods/ly%renormalise_every))
       call lyapunov_exponent(config%model, config%simulation%y0, ly%transient_periods, &
@@ -593,6 +598,37 @@ contains
                                                   [2, size(history)]), status, message)
     end associate
   end subroutine run_lyapunov
+
+  !> &lyapunov spectrum = .true.: all four Lyapunov exponents (QR method) from y0, their running
+  !> estimates and the Kaplan-Yorke dimension.
+  subroutine run_lyapunov_spectrum(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), allocatable :: history(:, :)
+    real(wp) :: exponents(4), dimension_ky
+    integer :: i
+
+    associate (ly => config%lyapunov)
+      allocate (history(4, ly%n_periods/ly%renormalise_every))
+      call tank_lyapunov_spectrum(config%model, config%simulation%y0, ly, config%integration, &
+                                  config%method, exponents, history, dimension_ky, status, &
+                                  message)
+      call in_context('Lyapunov spectrum', status, message)
+      if (status /= SD_OK) return
+      print '(/a)', 'Lyapunov spectrum (per unit tau; QR method; '//used_method(config)//'):'
+      print '(a)', '  '//num2str(exponents(1))//', '//num2str(exponents(2))//', '// &
+                   num2str(exponents(3))//', '//num2str(exponents(4))
+      print '(a)', '  sum (mean phase-space contraction rate) = '//num2str(sum(exponents))// &
+                   '; Kaplan-Yorke dimension = '//num2str(dimension_ky)
+      call begin_files(config, files, status, message)
+      if (status == SD_OK) call files%write_table('lyapunov_spectrum.csv', 'lyapunov_spectrum', &
+                                                  reshape([(real(i*ly%renormalise_every, wp), &
+                                                  history(:, i), i = 1, size(history, 2))], &
+                                                  [5, size(history, 2)]), status, message)
+    end associate
+  end subroutine run_lyapunov_spectrum
 
   !> Create the output directory (only once the analysis succeeded) and write the parameters
   !> (and, for a tank, its properties and the design-code cross-check).

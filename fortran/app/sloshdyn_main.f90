@@ -13,7 +13,7 @@ program sloshdyn_main
   use sloshdyn_text, only: num2str
   implicit none
 
-  character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (see README.md for the '// &
+  character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (see docs/namelist.md for the '// &
                                          'namelist groups and variables)'
   character(len=:), allocatable :: path
   character(len=message_len) :: message

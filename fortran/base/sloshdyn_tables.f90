@@ -173,6 +173,8 @@ contains
       header = 'kind,lambda,y1,y2,y3,y4,max_x1'
     case ('lyapunov')
       header = 'periods,estimate'
+    case ('lyapunov_spectrum')
+      header = 'periods,lambda1,lambda2,lambda3,lambda4'
     case ('seismic')
       header = seismic_columns
     case ('seismic_peaks')
@@ -217,6 +219,8 @@ contains
       formats = 'iiir'
     case ('lyapunov')
       formats = 'ir'
+    case ('lyapunov_spectrum')
+      formats = 'irrrr'
     case ('seismic_peaks')
       formats = repeat('r', 16)//'iri'
     case ('design_codes')

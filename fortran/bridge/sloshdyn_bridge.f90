@@ -1090,7 +1090,7 @@ contains
       ground = from_ground(config%ground)
       if (allocated(config%ground%acceleration)) n_samples = size(config%ground%acceleration)
     end if
-    seismic = [config%seismic_t_end, real(config%seismic_n_out, c_double)]
+    seismic = [config%seismic%t_end, real(config%seismic%n_out, c_double)]
     chart = from_chart(config%chart)
     integration = from_ode_options(config%integration, config%method)
     steady = from_steady(config%steady)
@@ -1267,4 +1267,79 @@ contains
     lyapunov = from_lyapunov(lyapunov_options())
     shooting = [newton_tol_default, real(max_iter_default, c_double)]
   end subroutine defaults
+
+  ! ==== research toolkit (issue 27): Lyapunov spectrum, slow-flow cycles, branch switching ====
+  ! Added at the end in one block for the lead to move into the reorganised bridge.
+
+  !> All four Lyapunov exponents per unit tau from y0 (QR method), their running estimates
+  !> history(4, n_hist) after each renormalisation block and the Kaplan-Yorke dimension;
+  !> settings in the lyapunov layout.
+  subroutine lyapunov_spectrum(rpar, ipar, y0, settings, integration, n_hist, exponents, &
+                               history, dimension_ky, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
+    use sloshdyn_layouts, only: to_ode_options, to_method, to_lyapunov
+    real(c_double), intent(in) :: rpar(10), y0(4), settings(3), integration(7)
+    integer(c_int), intent(in) :: ipar(2), n_hist
+    real(c_double), intent(out) :: exponents(4), history(4, n_hist), dimension_ky
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code
+    exponents = 0; history = 0; dimension_ky = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call tank_lyapunov_spectrum(model, y0, to_lyapunov(settings), &
+                                               to_ode_options(integration), &
+                                               to_method(integration), exponents, history, &
+                                               dimension_ky, code, message)
+    status = code
+  end subroutine lyapunov_spectrum
+  !> The branch of slow-flow limit cycles (the beats) through the cycle (x_cycle, period [tau])
+  !> at the model's rho and A, in rho (which = 1) or A (2) over [lambda_min, lambda_max];
+  !> settings = [ds, ds_min, ds_max, x_scale, direction, x_tol, f_tol, max_iter] (the last three:
+  !> Newton's, sloshdyn_continuation's newton_options). points(7, :) = [lambda, x(4), T,
+  !> stable], multipliers(8, :) = [re(4), im(4)], amplitudes(4, :) = [min|B1|, max|B1|, min|B2|,
+  !> max|B2|], special(7, :) = [kind, lambda, x(4), T]; stop_reason: sloshdyn_continuation's.
+  subroutine slow_flow_cycle_branch(rpar, ipar, which, x_cycle, period, lambda_min, lambda_max, &
+                                    settings, integration, max_points, max_special, points, &
+                                    multipliers, amplitudes, n_points, special, n_special, &
+                                    stop_reason, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t, model_from_arrays
+    use sloshdyn_continuation, only: continuation_options
+    use sloshdyn_slowflow_cycles, only: core => slow_flow_cycle_branch
+    use sloshdyn_layouts, only: to_ode_options, to_method, to_int
+    real(c_double), intent(in) :: rpar(10), x_cycle(4), period, lambda_min, lambda_max, &
+                                  settings(8), integration(7)
+    integer(c_int), intent(in) :: ipar(2), which, max_points, max_special
+    real(c_double), intent(out) :: points(7, max_points), multipliers(8, max_points), &
+                                   amplitudes(4, max_points), special(7, max_special)
+    integer(c_int), intent(out) :: n_points, n_special, stop_reason, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(continuation_options) :: options
+    integer :: code, found, found_special, reason
+    points = 0; multipliers = 0; amplitudes = 0; special = 0
+    found = 0; found_special = 0; reason = 0
+    options%ds = settings(1)
+    options%ds_min = settings(2)
+    options%ds_max = settings(3)
+    options%x_scale = settings(4)
+    options%direction = to_int(settings(5))
+    options%newton%x_tol = settings(6)
+    options%newton%f_tol = settings(7)
+    options%newton%max_iter = to_int(settings(8))
+    options%max_points = max_points
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, int(which), x_cycle, period, lambda_min, lambda_max, &
+                             options, to_ode_options(integration), to_method(integration), &
+                             points, multipliers, amplitudes, found, special, found_special, &
+                             reason, code, message)
+    n_points = found
+    n_special = found_special
+    stop_reason = reason
+    status = code
+  end subroutine slow_flow_cycle_branch
+  ! ==== end of the research toolkit block ====
 end module sloshdyn_bridge

@@ -4,7 +4,7 @@
 !>
 !> The expansion is derived here from eq (15)/(29), Q'' = M^-1 F with M^-1 expanded, by exact
 !> arithmetic on truncated polynomials, instead of typing in Appendix A, which has misprints
-!> (ERRATA.md). Terms beyond cubic order are dropped, as in the paper: the impact force
+!> (docs/errata.md). Terms beyond cubic order are dropped, as in the paper: the impact force
 !> beta x1^(2n-1) enters only for n = 2 and the dissipation delta x1^(2p) x1' only for p = 1.
 module sloshdyn_modal
   use sloshdyn_kinds, only: wp, message_len
@@ -118,7 +118,7 @@ contains
       mc%c(2, 1) = -3*h2(0, 3, 0, 0) - h2(0, 1, 0, 2)*w2**2
       ! c22 = gamma211 w1^2 + alpha23
       mc%c(2, 2) = -h2(0, 1, 2, 0)*w1**2 - h2(2, 1, 0, 0)
-      ! c23 = gamma27 w1^2 - alpha21 (ERRATA: eq 53 uses c23 without defining it)
+      ! c23 = gamma27 w1^2 - alpha21 (docs/errata.md: eq 53 uses c23 without defining it)
       mc%c(2, 3) = -h2(1, 0, 2, 0)*w1**2 + h2(3, 0, 0, 0)
     end associate
   end subroutine expand_model

@@ -31,11 +31,11 @@ module sloshdyn_model
     real(wp) :: kappa = 0   !< k/(omega^2 L^2 M), rod stiffness
     real(wp) :: theta0 = 0  !< wall angle [rad]
     !> impact coefficient b/(omega^2 m l^2); the paper gives none: 10 makes the wall stiff but
-    !> absent from small sloshing (README, "Impact and dissipation defaults")
+    !> absent from small sloshing (docs/namelist.md, "Impact and dissipation defaults")
     real(wp) :: beta = 10
     real(wp) :: gamma = 0   !< rod damping c/(omega L^2 M)
     !> sloshing dissipation d/(omega m l^2); the paper gives none: 0.1 is about 5 % of critical
-    !> at the wall and nothing at small amplitude (README)
+    !> at the wall and nothing at small amplitude (docs/namelist.md)
     real(wp) :: delta = 0.1_wp
     !> linear sloshing damping, as a ratio of critical for the pendulum alone: the term
     !> 2 zeta x1' in the pendulum's equation (0 in the paper; the design codes take 0.005)

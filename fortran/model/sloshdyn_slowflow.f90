@@ -199,7 +199,7 @@ contains
 
   !> Coefficients of eq (49) as a cubic in z = a1^2 without internal resonance:
   !> k^2 z^3 - 2 sigma k z^2 + (sigma^2 + (gamma11/2)^2) z - F^2 = 0, k = c11/(8 omega1),
-  !> sigma = rho - omega1, F = rho^2 A F11/(2 omega1) (eq 49-50 with the square of ERRATA).
+  !> sigma = rho - omega1, F = rho^2 A F11/(2 omega1) (eq 49-50 with the square of docs/errata.md).
   pure function nonresonant_cubic(modal, rho, amplitude) result(cubic)
     type(modal_coefficients), intent(in) :: modal
     real(wp), intent(in) :: rho, amplitude

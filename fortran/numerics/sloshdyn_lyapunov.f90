@@ -1,5 +1,7 @@
-!> The largest Lyapunov exponent of a periodically forced system (Benettin's method), by the
-!> integrator family: the orbit and one tangent vector of the variational equations together.
+!> Lyapunov exponents of a periodically forced system, by the integrator family: the largest
+!> (Benettin's method: the orbit and one tangent vector of the variational equations) and the
+!> spectrum (QR method: the orbit and m tangent vectors, orthonormalised by modified
+!> Gram-Schmidt), and the Kaplan-Yorke dimension.
 module sloshdyn_lyapunov
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -10,19 +12,16 @@ module sloshdyn_lyapunov
   use sloshdyn_shooting, only: periodic_problem, shooting_setup, make_setup, check_setup
   implicit none
   private
-  public :: largest_lyapunov, check_lyapunov_counts
+  public :: largest_lyapunov, lyapunov_spectrum, kaplan_yorke, check_lyapunov_counts
 
   integer, parameter :: max_periods = 10000000
 
 contains
 
-  !> Largest Lyapunov exponent (per unit tau) from y0 at tau = 0: the orbit and one tangent
-  !> vector v' = J v are integrated together; every renormalise_every forcing periods (at the
-  !> first step end on or after each boundary) |v| is reset to 1 by set_state and log|v|
-  !> is summed (Benettin's method). The first transient_periods are not counted; exponent =
-  !> sum log|v| / measured time over n_periods (a multiple of renormalise_every).
-  !> history(j) = the running estimate after measurement block j (n_periods/renormalise_every
-  !> blocks; entries beyond are NaN). On a periodic orbit it tends to log(max|mu|)/(k T).
+  !> Largest Lyapunov exponent (per unit tau) from y0 at tau = 0 (Benettin's method): the
+  !> spectrum's first exponent, with one tangent vector (lyapunov_spectrum with one column).
+  !> history(j) = the running estimate after measurement block j. On a periodic orbit it tends
+  !> to log(max|mu|)/(k T).
   subroutine largest_lyapunov(problem, y0, transient_periods, n_periods, renormalise_every, &
                               options, method, exponent, history, status, message)
     class(periodic_problem), intent(in) :: problem
@@ -32,37 +31,76 @@ contains
     real(wp), intent(out) :: exponent, history(:)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp) :: exponents(1), histories(1, size(history))
+
+    call lyapunov_spectrum(problem, y0, transient_periods, n_periods, renormalise_every, &
+                           options, method, exponents, histories, status, message)
+    exponent = exponents(1)
+    history = histories(1, :)
+  end subroutine largest_lyapunov
+
+  !> The m = size(exponents) largest Lyapunov exponents (per unit tau, m <= n = size(y0)) from
+  !> y0 at tau = 0 by the QR method: the orbit and m tangent vectors V' = J V of the variational
+  !> equations are integrated together; every renormalise_every forcing periods (at the first
+  !> step end on or after each boundary) V is orthonormalised by modified Gram-Schmidt,
+  !> V = Q R, and log R(j, j) is summed for each j (Benettin et al. 1980; Shimada and Nagashima
+  !> 1979). The first transient_periods are not counted; exponents(j) = sum log R(j, j) /
+  !> measured time over n_periods (a multiple of renormalise_every), in decreasing order as the
+  !> run converges. history(:, b) = the running estimates after measurement block b
+  !> (n_periods/renormalise_every blocks; later columns are NaN). The start frame is the
+  !> orthonormalised first m columns of the Hilbert matrix (column 1 the direction 1/i of the
+  !> one-vector method). On a periodic orbit exponents(j) tends to log|mu_j|/(k T); their sum
+  !> over all n is the mean of trace J along the run (Liouville).
+  subroutine lyapunov_spectrum(problem, y0, transient_periods, n_periods, renormalise_every, &
+                               options, method, exponents, history, status, message)
+    class(periodic_problem), intent(in) :: problem
+    real(wp), intent(in) :: y0(:)
+    integer, intent(in) :: transient_periods, n_periods, renormalise_every, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: exponents(:), history(:, :)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
     type(shooting_setup) :: setup
     class(rk_integrator), allocatable :: integ
-    real(wp), allocatable :: z(:)
-    real(wp) :: period, t_end, growth, sum_log, t_start
-    integer :: n, i, next_count, total, n_blocks, blocks_done
+    real(wp), allocatable :: z(:), sum_log(:), growth(:)
+    real(wp) :: period, t_end, t_start
+    integer :: n, m, i, j, next_count, total, n_blocks, blocks_done
     logical :: measuring
 
     n = size(y0)
-    exponent = ieee_value(1.0_wp, ieee_quiet_nan)
+    m = size(exponents)
+    exponents = ieee_value(1.0_wp, ieee_quiet_nan)
     history = ieee_value(1.0_wp, ieee_quiet_nan)
     call check_setup(problem, y0, 1, status, message)
     if (status /= SD_OK) return
     call check_lyapunov_counts(transient_periods, n_periods, renormalise_every, status, message)
     if (status /= SD_OK) return
-    n_blocks = n_periods/renormalise_every
-    if (size(history) < n_blocks) then
+    if (m < 1 .or. m > n) then
       status = SD_BAD_INPUT
-      message = 'history has size '//num2str(size(history))//'; it needs n_periods/'// &
-                'renormalise_every = '//num2str(n_blocks)//' entries'
+      message = 'the number of exponents is '//num2str(m)//'; it must lie in [1, size(y0) = '// &
+                num2str(n)//']'
+      return
+    end if
+    n_blocks = n_periods/renormalise_every
+    if (size(history, 1) /= m .or. size(history, 2) < n_blocks) then
+      status = SD_BAD_INPUT
+      message = 'history has shape ('//num2str(size(history, 1))//', '// &
+                num2str(size(history, 2))//'); it needs ('//num2str(m)//', n_periods/'// &
+                'renormalise_every = '//num2str(n_blocks)//')'
       return
     end if
 
-    call make_setup(setup, problem, n, 1, 1, .false., options, method)
+    call make_setup(setup, problem, n, 1, m, .false., options, method)
     period = problem%period()
     total = transient_periods + n_periods
     t_end = total*period
-    allocate (z(2*n))
+    allocate (z(n*(m + 1)), sum_log(m), growth(m))
     z(1:n) = y0
-    ! a generic start direction (not aligned with any coordinate)
-    z(n + 1:2*n) = [(1.0_wp/i, i = 1, n)]
-    z(n + 1:2*n) = z(n + 1:2*n)/norm2(z(n + 1:2*n))
+    ! a generic start frame (not aligned with any coordinate): columns of the Hilbert matrix
+    do j = 1, m
+      z(n*j + 1:n*j + n) = [(1.0_wp/(i + j - 1), i = 1, n)]
+    end do
+    call orthonormalise(z(n + 1:), growth)
     call new_integrator(method, setup%options%rtol, integ, status, message)
     if (status == SD_OK) call integ%init(setup%sys, 0.0_wp, z, t_end, setup%options, status, &
                                          message)
@@ -84,21 +122,24 @@ contains
         return
       end if
       if (integ%t < next_count*period) cycle
-      ! renormalise; the growth since the last renormalisation counts once measuring
+      ! renormalise (V = Q R); the growths R(j, j) since the last renormalisation count once
+      ! measuring
       z = integ%y
-      growth = norm2(z(n + 1:2*n))
-      if (.not. (growth > 0 .and. growth <= huge(growth))) then
-        status = SD_NON_FINITE
-        message = 'the tangent vector norm is '//num2str(growth)//' at tau = '// &
-                  num2str(integ%t)//' (renormalise more often)'
-        return
-      end if
+      call orthonormalise(z(n + 1:), growth)
+      do j = 1, m
+        if (.not. (growth(j) > 0 .and. growth(j) <= huge(growth))) then
+          status = SD_NON_FINITE
+          message = 'the tangent vector norm is '//num2str(growth(j))//' at tau = '// &
+                    num2str(integ%t)//' (renormalise more often)'
+          return
+        end if
+      end do
       if (measuring) sum_log = sum_log + log(growth)
       do while (next_count <= total)
         if (next_count*period > integ%t) exit
         if (next_count > transient_periods) then
           blocks_done = blocks_done + 1
-          history(blocks_done) = sum_log/(integ%t - t_start)
+          history(:, blocks_done) = sum_log/(integ%t - t_start)
         end if
         next_count = next_boundary(next_count)
       end do
@@ -106,7 +147,6 @@ contains
         measuring = .true.
         t_start = integ%t
       end if
-      z(n + 1:2*n) = z(n + 1:2*n)/growth
       call integ%set_state(setup%sys, z, status, message)
       if (status /= SD_OK) then
         message = 'Lyapunov exponent, renormalising at tau = '//num2str(integ%t)//': '// &
@@ -114,7 +154,7 @@ contains
         return
       end if
     end do
-    exponent = sum_log/(t_end - t_start)
+    exponents = sum_log/(t_end - t_start)
 
   contains
 
@@ -128,7 +168,43 @@ contains
         next_boundary = count + renormalise_every
       end if
     end function next_boundary
-  end subroutine largest_lyapunov
+
+    !> Modified Gram-Schmidt on the m columns of length n stored one after another in v:
+    !> v := Q, r_diag = diag(R). A column with r_diag not > 0 is left unscaled.
+    pure subroutine orthonormalise(v, r_diag)
+      real(wp), intent(inout) :: v(:)
+      real(wp), intent(out) :: r_diag(:)
+      integer :: a, b
+      do b = 1, m
+        associate (vb => v(n*(b - 1) + 1:n*b))
+          do a = 1, b - 1
+            vb = vb - dot_product(v(n*(a - 1) + 1:n*a), vb)*v(n*(a - 1) + 1:n*a)
+          end do
+          r_diag(b) = norm2(vb)
+          if (r_diag(b) > 0) vb = vb/r_diag(b)
+        end associate
+      end do
+    end subroutine orthonormalise
+  end subroutine lyapunov_spectrum
+
+  !> The Kaplan-Yorke (Lyapunov) dimension of exponents in decreasing order: D = k +
+  !> (l_1 + .. + l_k)/|l_{k+1}| with k the largest count whose partial sum is >= 0; 0 when
+  !> l_1 < 0 and n when the sum of all n is >= 0 (Kaplan and Yorke 1979).
+  pure real(wp) function kaplan_yorke(exponents) result(d_ky)
+    real(wp), intent(in) :: exponents(:)
+    real(wp) :: partial
+    integer :: k
+    d_ky = 0
+    partial = 0
+    do k = 1, size(exponents)
+      if (partial + exponents(k) < 0) then
+        if (k > 1) d_ky = (k - 1) + partial/abs(exponents(k))
+        return
+      end if
+      partial = partial + exponents(k)
+    end do
+    d_ky = size(exponents)
+  end function kaplan_yorke
 
   !> The counts of largest_lyapunov, checked before anything is allocated for them (readers call
   !> this first): n_periods at most max_periods (each period integrates the 4 + 16 variational

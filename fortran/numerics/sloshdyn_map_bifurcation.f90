@@ -84,13 +84,15 @@ module sloshdyn_map_bifurcation
   use sloshdyn_shooting, only: periodic_problem, monodromy_matrix, fold_test, &
                                period_doubling_test
   use sloshdyn_bifurcation, only: two_parameter_field, curve_options, bifurcation_curve, &
-                                  curve_system, fold_system, hopf_system, max_curve_tests, &
-                                  setup_system, split_x_p, point_x_p, bordered_vectors, &
-                                  inverse_iteration, curve_of_kind, curve_kind_name, &
+                                  curve_system, max_curve_tests, setup_system, split_x_p, &
+                                  point_x_p, inverse_iteration, null_vectors, nearest_pair, &
+                                  curve_of_kind, &
+                                  curve_kind_name, &
                                   CURVE_FOLD, CURVE_HOPF, CURVE_PERIOD_DOUBLING, &
                                   CURVE_NEIMARK_SACKER, CODIM2_R1, CODIM2_R2, CODIM2_R3, &
                                   CODIM2_R4, CODIM2_CUSP, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS, &
                                   CODIM2_FLIP_NS, END_RESONANCE
+  use sloshdyn_fold_hopf, only: fold_system, hopf_system
   implicit none
   private
   public :: two_parameter_map, map_evaluate, stroboscopic_map, map_problem
@@ -153,7 +155,6 @@ module sloshdyn_map_bifurcation
   type, extends(fold_system) :: map_fold_system
   contains
     procedure :: diagnose => map_fold_diagnose
-    procedure :: codim2_kind => map_fold_codim2_kind
     procedure :: confirm_codim2 => map_fold_confirm
     procedure :: codim2_frequency => map_fold_codim2_frequency
   end type map_fold_system
@@ -164,12 +165,9 @@ module sloshdyn_map_bifurcation
   contains
     procedure :: evaluate => ns_evaluate
     procedure :: diagnose => ns_diagnose
-    procedure :: codim2_kind => ns_codim2_kind
     procedure :: confirm_codim2 => ns_confirm
     procedure :: codim2_frequency => ns_codim2_frequency
-    procedure :: masked_by => ns_masked_by
-    procedure :: terminal => ns_terminal
-    procedure :: check_point => ns_check_point
+    procedure :: neutral_saddle => ns_neutral_saddle
     procedure :: frequency_of => ns_frequency_of
   end type neimark_sacker_system
 
@@ -369,7 +367,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: px(size(x0)), mx(size(x0), size(x0)), a(size(x0), size(x0)), v(size(x0)), &
-                w(size(x0)), re(size(x0)), im(size(x0)), shift, scale, radius
+                w(size(x0)), re(size(x0)), im(size(x0)), shift, radius
     integer :: n, i, best
 
     n = size(x0)
@@ -386,9 +384,7 @@ contains
       do i = 1, n
         a(i, i) = a(i, i) + shift
       end do
-      scale = max(maxval(abs(a)), tiny(1.0_wp))
-      call inverse_iteration(a, scale, v, status, message)
-      if (status == SD_OK) call inverse_iteration(transpose(a), scale, w, status, message)
+      call null_vectors(a, v, w, status, message)
       if (status /= SD_OK) then
         message = 'no null vector of M '//merge('- I', '+ I', kind == CURVE_FOLD)// &
                   ' at the start point: '//trim(message)
@@ -400,9 +396,14 @@ contains
         proto%c = v
         proto%b = w
         proto%shift = shift + 1   ! on f_x = M - I
-        proto%n_tests = merge(4, 3, kind == CURVE_FOLD)
       end select
-      call setup_system(proto, field, kind, n, 0, p0, options)
+      if (kind == CURVE_FOLD) then
+        call setup_system(proto, field, kind, n, 0, p0, options, &
+                          [CODIM2_R1, CODIM2_CUSP, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS])
+      else
+        call setup_system(proto, field, kind, n, 0, p0, options, &
+                          [CODIM2_R2, CODIM2_FOLD_FLIP, CODIM2_FLIP_NS])
+      end if
       s0 = [x0, p0]
     case (CURVE_NEIMARK_SACKER)
       if (n < 2) then
@@ -412,15 +413,7 @@ contains
       end if
       call eigenvalues(mx, re, im, status, message)
       if (status /= SD_OK) return
-      best = 0
-      do i = 1, n
-        if (im(i) <= 0) cycle
-        if (best == 0) then
-          best = i
-        else if (abs(hypot(re(i), im(i)) - 1) < abs(hypot(re(best), im(best)) - 1)) then
-          best = i
-        end if
-      end do
+      best = nearest_pair(im, abs(hypot(re, im) - 1), 0.0_wp, huge(1.0_wp))
       if (best == 0) then
         status = SD_BAD_INPUT
         message = 'M has no complex multiplier pair at p = ('//num2str(p0(1))//', '// &
@@ -439,10 +432,12 @@ contains
       select type (proto)
       type is (neimark_sacker_system)
         proto%kappa_scale = 1
-        proto%n_tests = 6
         allocate (proto%v_ref(n), proto%u_ref(n))
       end select
-      call setup_system(proto, field, kind, n, n + 1, p0, options)
+      ! the 1:1 and 1:2 resonances end the curve (the pair leaves the unit circle)
+      call setup_system(proto, field, kind, n, n + 1, p0, options, [CODIM2_R1, CODIM2_R2, &
+                        CODIM2_R3, CODIM2_R4, CODIM2_FOLD_NS, CODIM2_FLIP_NS], &
+                        ends=[END_RESONANCE, END_RESONANCE])
       s0 = [x0, v, 2*re(best)/radius, p0]
     case default
       status = SD_BAD_INPUT
@@ -461,7 +456,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), &
-                mm(self%n, self%n), v(self%n), w(self%n), g, bvv(self%n)
+                mm(self%n, self%n), v(self%n), w(self%n), bvv(self%n)
     integer :: i
     logical :: is_fold
 
@@ -477,13 +472,8 @@ contains
     end do
     call eigenvalues(mm, re, im, status, message)
     if (status /= SD_OK) return
-    call bordered_vectors(jj, self%b, self%c, v, w, g, status, self%shift)
-    if (status /= SD_OK) then
-      message = 'the bordered matrix is singular'
-      return
-    end if
-    v = v/norm2(v)
-    w = w/norm2(w)
+    call self%null_vectors(jj, v, w, status, message)
+    if (status /= SD_OK) return
     tests(1) = sum(w*v)
     if (is_fold) then
       call self%field%second_derivative(xx, p, v, v, bvv)
@@ -495,19 +485,6 @@ contains
       tests(3) = pair_product_without(re, im, -1.0_wp)
     end if
   end subroutine map_fold_diagnose
-
-  pure integer function map_fold_codim2_kind(self, which) result(kind)
-    class(map_fold_system), intent(in) :: self
-    integer, intent(in) :: which
-    integer, parameter :: fold_kinds(4) = [CODIM2_R1, CODIM2_CUSP, CODIM2_FOLD_FLIP, &
-                                           CODIM2_FOLD_NS], &
-                          flip_kinds(3) = [CODIM2_R2, CODIM2_FOLD_FLIP, CODIM2_FLIP_NS]
-    if (self%kind == CURVE_FOLD) then
-      kind = fold_kinds(which)
-    else
-      kind = flip_kinds(which)
-    end if
-  end function map_fold_codim2_kind
 
   !> Fold-NS and flip-NS need a complex pair on the unit circle (not a real pair mu, 1/mu).
   logical function map_fold_confirm(self, kind, re, im, tests) result(confirmed)
@@ -537,18 +514,8 @@ contains
   pure integer function circle_pair(re, im) result(best)
     real(wp), intent(in) :: re(:), im(:)
     real(wp) :: scale
-    integer :: i
     scale = max(maxval(hypot(re, im)), 1.0_wp)
-    best = 0
-    do i = 1, size(re)
-      if (.not. im(i) > circle_tol*scale) cycle
-      if (abs(hypot(re(i), im(i)) - 1) > circle_tol*scale) cycle
-      if (best == 0) then
-        best = i
-      else if (abs(hypot(re(i), im(i)) - 1) < abs(hypot(re(best), im(best)) - 1)) then
-        best = i
-      end if
-    end do
+    best = nearest_pair(im, abs(hypot(re, im) - 1), circle_tol*scale, circle_tol*scale)
   end function circle_pair
 
   !> prod_{i<j} (mu_i mu_j - 1) over the multipliers but the one nearest `skip` (real): zero
@@ -689,14 +656,6 @@ contains
     end if
   end function kappa_angle
 
-  pure integer function ns_codim2_kind(self, which) result(kind)
-    class(neimark_sacker_system), intent(in) :: self
-    integer, intent(in) :: which
-    integer, parameter :: kinds(6) = [CODIM2_R1, CODIM2_R2, CODIM2_R3, CODIM2_R4, &
-                                      CODIM2_FOLD_NS, CODIM2_FLIP_NS]
-    kind = kinds(which)
-  end function ns_codim2_kind
-
   !> R3, R4, fold-NS and flip-NS need the pair on the unit circle (|kappa| < 2).
   logical function ns_confirm(self, kind, re, im, tests) result(confirmed)
     class(neimark_sacker_system), intent(in) :: self
@@ -720,39 +679,15 @@ contains
     end select
   end function ns_codim2_frequency
 
-  !> Fold-NS and flip-NS tests are free of the pair: nothing masks them.
-  pure integer function ns_masked_by(self, which) result(mask)
-    class(neimark_sacker_system), intent(in) :: self
-    integer, intent(in) :: which
-    mask = 0
-  end function ns_masked_by
-
-  pure integer function ns_terminal(self, kind, neutral_saddles) result(reason)
-    class(neimark_sacker_system), intent(in) :: self
-    integer, intent(in) :: kind
-    logical, intent(in) :: neutral_saddles
-    reason = 0
-    if ((kind == CODIM2_R1 .or. kind == CODIM2_R2) .and. .not. neutral_saddles) &
-      reason = END_RESONANCE
-  end function ns_terminal
-
-  !> A Neimark-Sacker point has |kappa| < 2 (unless neutral saddles are asked for).
-  subroutine ns_check_point(self, s, neutral_saddles, status, message)
+  !> A Neimark-Sacker point has |kappa| < 2; else it is a neutral saddle of the map.
+  function ns_neutral_saddle(self, s) result(saddle)
     class(neimark_sacker_system), intent(in) :: self
     real(wp), intent(in) :: s(:)
-    logical, intent(in) :: neutral_saddles
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    integer :: k
-    status = SD_OK
-    message = ''
-    k = self%n + self%n_extra
-    if (neutral_saddles .or. abs(s(2*self%n + 1)) < 2) return
-    status = SD_BAD_INPUT
-    message = 'the point converged to a neutral saddle of the map (real multipliers mu, 1/mu, '// &
-              'mu + 1/mu = kappa = '//num2str(s(2*self%n + 1))//') at p = ('// &
-              num2str(s(k + 1))//', '//num2str(s(k + 2))//'), not to a Neimark-Sacker point'
-  end subroutine ns_check_point
+    character(len=:), allocatable :: saddle
+    saddle = ''
+    if (.not. abs(s(2*self%n + 1)) < 2) saddle = 'a neutral saddle of the map (real '// &
+      'multipliers mu, 1/mu, mu + 1/mu = kappa = '//num2str(s(2*self%n + 1))//')'
+  end function ns_neutral_saddle
 
   real(wp) function ns_frequency_of(self, s) result(angle)
     class(neimark_sacker_system), intent(in) :: self

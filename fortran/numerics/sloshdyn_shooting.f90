@@ -39,7 +39,8 @@ module sloshdyn_shooting
   public :: periodic_problem, periodic_jacobian, periodic_scalar, periodic_parameter_derivative, &
             periodic_set_parameter, variational_system, shooting_setup, make_setup
   public :: monodromy_matrix, shooting_newton, floquet_kind, fold_test, period_doubling_test, &
-            neimark_sacker_test, complex_pair_count, periodic_branch, check_setup
+            neimark_sacker_test, complex_pair_count, periodic_branch, check_setup, kind_test, &
+            branch_point_data, locate_special_points
   public :: FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE
   public :: samples_per_period
 
@@ -127,10 +128,27 @@ module sloshdyn_shooting
     procedure :: evaluate => shooting_evaluate
   end type shooting_system
 
-  !> Multiplier test functions along the branch (det(M - I), det(M + I), Neimark-Sacker).
-  type, extends(branch_test) :: multiplier_test
-    type(shooting_setup) :: setup
+  !> A test function along a branch for the special-point kind (SPECIAL_*) that
+  !> locate_special_points sets before each location.
+  type, abstract, extends(branch_test) :: kind_test
     integer :: kind = SPECIAL_PERIOD_DOUBLING
+  end type kind_test
+
+  !> The stored row [lambda, y0(1:n), a measure, stable] and multipliers [re; im] at a point
+  !> z = (x, lambda) of a branch (for locate_special_points).
+  abstract interface
+    subroutine branch_point_data(zj, row, mult, status, message)
+      import :: wp, message_len
+      real(wp), intent(in) :: zj(:)
+      real(wp), intent(out) :: row(:), mult(:)
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine branch_point_data
+  end interface
+
+  !> Multiplier test functions along the branch (det(M - I), det(M + I), Neimark-Sacker).
+  type, extends(kind_test) :: multiplier_test
+    type(shooting_setup) :: setup
   contains
     procedure :: value => multiplier_test_value
   end type multiplier_test
@@ -365,9 +383,7 @@ contains
     type(shooting_system) :: sys
     type(multiplier_test) :: test
     type(continuation_options) :: opt
-    real(wp), allocatable :: z(:, :), tangents(:, :), arclength(:), re(:), im(:), &
-                             det_minus(:), det_plus(:), ns(:), z_special(:)
-    integer, allocatable :: pairs(:)
+    real(wp), allocatable :: z(:, :), tangents(:, :), arclength(:), re(:), im(:)
     real(wp) :: lambda0
     integer :: n, m, k, j, stop_reason, locate_status
     character(len=message_len) :: locate_message
@@ -401,14 +417,13 @@ contains
     call make_setup(sys%setup, problem, n, k, n, .true., ode_settings, method)
     test%setup = sys%setup
     allocate (z(m, max(options%max_points, 1)), tangents(m, max(options%max_points, 1)), &
-              arclength(max(options%max_points, 1)), re(n), im(n), z_special(m))
+              arclength(max(options%max_points, 1)), re(n), im(n))
     call continue_branch(sys, y0, lambda0, opt, z, tangents, arclength, n_points, stop_reason, &
                          status, message)
     if (status /= SD_OK) call integration_failure()
     if (status /= SD_OK .and. n_points == 0) return
 
-    ! multipliers, max|y1| and the test functions at every point
-    allocate (det_minus(n_points), det_plus(n_points), ns(n_points), pairs(n_points))
+    ! multipliers and max|y1| at every point
     do j = 1, n_points
       call point_data(z(:, j), points(:, j), multipliers(:, j), locate_status, locate_message)
       if (locate_status /= SD_OK) then
@@ -419,25 +434,9 @@ contains
         n_points = j - 1
         exit
       end if
-      det_minus(j) = fold_test(re, im)
-      det_plus(j) = period_doubling_test(re, im)
-      ns(j) = neimark_sacker_test(re, im)
-      pairs(j) = complex_pair_count(re, im)
     end do
-
-    ! special points between consecutive points
-    do j = 1, n_points - 1
-      if (tangents(m, j)*tangents(m, j + 1) < 0) then
-        call locate_fold(sys, z(:, j), tangents(:, j), z(:, j + 1), tangents(:, j + 1), &
-                         z_special, locate_status, locate_message, opt)
-        call add_special(SPECIAL_FOLD)
-      else if (det_minus(j)*det_minus(j + 1) < 0) then
-        call locate_with(SPECIAL_BRANCH_POINT)
-      end if
-      if (det_plus(j)*det_plus(j + 1) < 0) call locate_with(SPECIAL_PERIOD_DOUBLING)
-      if (pairs(j) == pairs(j + 1) .and. ns(j)*ns(j + 1) < 0) &
-        call locate_with(SPECIAL_NEIMARK_SACKER)
-    end do
+    call locate_special_points(sys, z, tangents, arclength, multipliers, n_points, .true., &
+                               test, opt, point_data, special, n_special, status, message)
 
     if (status == SD_OK) then
       select case (stop_reason)
@@ -471,7 +470,80 @@ contains
       if (st /= SD_OK) message = trim(message)//'; '//trim(msg)
     end subroutine integration_failure
 
-    !> Locate a zero of a multiplier test between points j and j + 1 and store it.
+    !> The stored row [lambda, y0, max|y1|, stable] and multipliers of branch point zj; re, im
+    !> keep the multipliers.
+    subroutine point_data(zj, row, mult, st, msg)
+      real(wp), intent(in) :: zj(:)
+      real(wp), intent(out) :: row(:), mult(:)
+      integer, intent(out) :: st
+      character(len=message_len), intent(out) :: msg
+      type(shot) :: result
+      call shoot(sys%setup, zj(1:n), zj(m), result, st, msg)
+      if (st == SD_OK) call eigenvalues(result%monodromy, re, im, st, msg)
+      if (st /= SD_OK) return
+      row(1) = zj(m)
+      row(2:n + 1) = zj(1:n)
+      row(n + 2) = result%max_y1
+      row(n + 3) = merge(1.0_wp, 0.0_wp, floquet_kind(re, im, stability_tol) == FLOQUET_STABLE)
+      mult(1:n) = re
+      mult(n + 1:2*n) = im
+    end subroutine point_data
+  end subroutine periodic_branch
+
+  !> Special points between consecutive points 1..n_points of a branch (z = (x, lambda) with
+  !> its tangents and arclength; multipliers(:, j) = [re; im] at point j): folds where the
+  !> tangent's lambda component changes sign (locate_fold), else, with branch_points, branch
+  !> points where det(M - I) does; period doublings (det(M + I)) and Neimark-Sacker points
+  !> (complex pair moduli, at equal complex_pair_count), located by locate_zero_on_branch with
+  !> test (its kind set to each). Each is stored as special(:, n_special) = [kind,
+  !> row(1:n + 2)], row from point_data. The first failure sets status and message if they are
+  !> still SD_OK (SD_CAPACITY when special has no more columns); the others are skipped.
+  subroutine locate_special_points(sys, z, tangents, arclength, multipliers, n_points, &
+                                   branch_points, test, opt, point_data, special, n_special, &
+                                   status, message)
+    class(parametrised_system), intent(in) :: sys
+    real(wp), intent(in) :: z(:, :), tangents(:, :), arclength(:), multipliers(:, :)
+    integer, intent(in) :: n_points
+    logical, intent(in) :: branch_points
+    class(kind_test), intent(inout) :: test
+    type(continuation_options), intent(in) :: opt
+    procedure(branch_point_data) :: point_data
+    real(wp), intent(inout) :: special(:, :)
+    integer, intent(inout) :: n_special, status
+    character(len=message_len), intent(inout) :: message
+    real(wp) :: z_special(size(z, 1))
+    real(wp), allocatable :: det_minus(:), det_plus(:), ns(:)
+    integer, allocatable :: pairs(:)
+    integer :: n, m, j, locate_status
+    character(len=message_len) :: locate_message
+
+    m = size(z, 1)
+    n = size(multipliers, 1)/2
+    allocate (det_minus(n_points), det_plus(n_points), ns(n_points), pairs(n_points))
+    do j = 1, n_points
+      associate (re => multipliers(1:n, j), im => multipliers(n + 1:2*n, j))
+        det_minus(j) = fold_test(re, im)
+        det_plus(j) = period_doubling_test(re, im)
+        ns(j) = neimark_sacker_test(re, im)
+        pairs(j) = complex_pair_count(re, im)
+      end associate
+    end do
+    do j = 1, n_points - 1
+      if (tangents(m, j)*tangents(m, j + 1) < 0) then
+        call locate_fold(sys, z(:, j), tangents(:, j), z(:, j + 1), tangents(:, j + 1), &
+                         z_special, locate_status, locate_message, opt)
+        call add_special(SPECIAL_FOLD)
+      else if (branch_points .and. det_minus(j)*det_minus(j + 1) < 0) then
+        call locate_with(SPECIAL_BRANCH_POINT)
+      end if
+      if (det_plus(j)*det_plus(j + 1) < 0) call locate_with(SPECIAL_PERIOD_DOUBLING)
+      if (pairs(j) == pairs(j + 1) .and. ns(j)*ns(j + 1) < 0) &
+        call locate_with(SPECIAL_NEIMARK_SACKER)
+    end do
+
+  contains
+
+    !> Locate a zero of the test of kind what between points j and j + 1 and store it.
     subroutine locate_with(what)
       integer, intent(in) :: what
       test%kind = what
@@ -509,26 +581,7 @@ contains
       special(1, n_special) = what
       special(2:n + 3, n_special) = row(1:n + 2)
     end subroutine add_special
-
-    !> The stored row [lambda, y0, max|y1|, stable] and multipliers of branch point zj; re, im
-    !> keep the multipliers.
-    subroutine point_data(zj, row, mult, st, msg)
-      real(wp), intent(in) :: zj(:)
-      real(wp), intent(out) :: row(:), mult(:)
-      integer, intent(out) :: st
-      character(len=message_len), intent(out) :: msg
-      type(shot) :: result
-      call shoot(sys%setup, zj(1:n), zj(m), result, st, msg)
-      if (st == SD_OK) call eigenvalues(result%monodromy, re, im, st, msg)
-      if (st /= SD_OK) return
-      row(1) = zj(m)
-      row(2:n + 1) = zj(1:n)
-      row(n + 2) = result%max_y1
-      row(n + 3) = merge(1.0_wp, 0.0_wp, floquet_kind(re, im, stability_tol) == FLOQUET_STABLE)
-      mult(1:n) = re
-      mult(n + 1:2*n) = im
-    end subroutine point_data
-  end subroutine periodic_branch
+  end subroutine locate_special_points
 
   !> Inputs every public routine checks: y0 finite and of the problem's size, k >= 1, T > 0.
   subroutine check_setup(problem, y0, k, status, message)

@@ -11,7 +11,8 @@
 !> The coefficients below are the published decimal values; the transcription was checked
 !> (row sums = nodes, the quadrature conditions of both weights up to orders 9 and 8, the
 !> interpolant's weights at theta = 1 equal to b and its quadrature conditions up to order 8),
-!> and tests/fortran/test_vern9.f90 measures the orders of the step and of the interpolant.
+!> and tests/fortran/test_dop853.f90 measures the orders of the step and of the interpolant
+!> (test_vern9_fixed_step_order, test_vern9_dense_output_order).
 module sloshdyn_vern9
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp

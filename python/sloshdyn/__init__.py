@@ -14,6 +14,8 @@ from .model import (Equilibria, Equilibrium, EquilibriumAngles, LinearModes, Mot
 from .periodic import (Lyapunov, LyapunovExponent, PeriodicBranch, PeriodicOrbit,
                        PeriodicSpecialPoint, Shooting, lyapunov_exponent, periodic_orbit,
                        periodic_response)
+from .research import (CycleSpecialPoint, LyapunovSpectrum, SlowFlowCycles, lyapunov_spectrum,
+                       slow_flow_cycles)
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
 from .charts import Chart, Codim2Point, Curve, StabilityChart, stability_chart
 from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, SeismicTimes,
@@ -47,6 +49,8 @@ __all__ = [
     "Chart", "Codim2Point", "Curve", "StabilityChart", "stability_chart",
     "FragilityFit", "basins", "fit_fragility", "fragility_study", "impact_parameters",
     "response_map",
+    "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
+    "slow_flow_cycles",
 ]
 
 

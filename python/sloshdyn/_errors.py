@@ -73,7 +73,7 @@ _BY_STATUS = {
 }
 
 
-#: the exit codes of both front doors and what each says (README, "Failure behaviour")
+#: the exit codes of both front doors and what each says (docs/failure.md)
 EXIT_MEANINGS = {
     0: "success: every result file of the run is complete",
     1: "check: a quantity is outside its tolerance",

@@ -32,7 +32,7 @@ def main(argv=None):
                               description="Run the analysis a namelist file asks for (the same "
                               "input as the Fortran executable), print a summary, and write its "
                               "CSV files and a figure into the &output directory.")
-    run.add_argument("input", help="namelist file (see README.md, Namelist reference)")
+    run.add_argument("input", help="namelist file (see docs/namelist.md)")
 
     rep = commands.add_parser("reproduce", help="recompute every figure of the paper",
                               description="Recompute every numerical figure of the paper (PNG "
@@ -55,11 +55,11 @@ def main(argv=None):
 
     sty = commands.add_parser("study", help="run a parameter study (&study) on Dask",
                               description="Run the parameter study of a namelist file's &study "
-                              "group (a response map or basins of attraction) on Dask: results "
-                              "go to its Zarr store as tasks finish (rerun to resume), then a "
-                              "summary and a figure. See README.md, Studies.")
-    sty.add_argument("input", help="namelist file with &model (or &tank + &structure), "
-                     "&excitation, &study and optionally &integration, &steady, &simulation")
+                              "group (a response map, basins of attraction or a fragility study) "
+                              "on Dask: results go to its Zarr store as tasks finish (rerun to "
+                              "resume), then a summary and a figure. See docs/studies.md.")
+    sty.add_argument("input", help="namelist file with &study, the system (&model with "
+                     "&excitation, or &tank) and optionally &integration, &steady, &simulation")
     sty.add_argument("--scheduler", metavar="ADDRESS",
                      help="a running Dask scheduler (e.g. tcp://host:8786, or one started by "
                      "dask-jobqueue on SLURM) instead of the embedded local cluster; overrides "
@@ -81,8 +81,8 @@ def main(argv=None):
     except SloshdynError as exc:
         print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
         return exit_code(exc, getattr(exc, "reading", False))
-    except _Terminated:
-        print(f"sloshdyn-py: terminated; {_KEPT}", file=sys.stderr)
+    except _Terminated as exc:
+        print(f"sloshdyn-py: terminated; {str(exc) or _KEPT}", file=sys.stderr)
         return EXIT_TERMINATED
     except KeyboardInterrupt as exc:
         print(f"sloshdyn-py: interrupted; {str(exc) or _KEPT}", file=sys.stderr)
@@ -154,7 +154,7 @@ def run_study(path, scheduler=None, workers=None, progress=True):
         raise
     st = inp.study
     if not st:
-        raise InputError(f"{path}: no &study group: a study file needs one (README.md, Studies)")
+        raise InputError(f"{path}: no &study group: a study file needs one (docs/studies.md)")
     base = Path(path).resolve().parent
     store = Path(st["store"]) if os.path.isabs(st["store"]) else base / st["store"]
     common = dict(client=None, scheduler=scheduler or st["scheduler"] or None,
@@ -212,6 +212,9 @@ def run_study(path, scheduler=None, workers=None, progress=True):
                   f"(max |mu| = {float(ds.attractor_max_multiplier.values[j]):.6g}), share "
                   f"{float(ds.attractor_share.values[j]):.3f}, max |x1| = "
                   f"{float(ds.attractor_max_x1.values[j]):.6g}")
+    if ds.attrs["points_repaired"]:
+        print(f"repaired: {ds.attrs['points_repaired']} finished points of the store whose "
+              f"stored data were missing or damaged ({ds.attrs['repaired']}) computed again")
     figure = Path(st["figure"]) if st["figure"] else store.with_suffix(".png")
     if not figure.is_absolute() and st["figure"]:
         figure = base / figure
@@ -312,7 +315,7 @@ def write_report(out, reproduced, verdicts, seconds):
              "Farid & Gendelman, *Internal resonances and dynamic responses in equivalent mechanical "
              f"model of partially liquid-filled vessel*. Recomputed by sloshdyn {__version__} in "
              f"{seconds:.0f} s. Impact coefficient β = 10 and dissipation δ = 0.1 where the paper "
-             "gives none (README, \"Impact and dissipation defaults\").", "",
+             "gives none (docs/namelist.md, \"Impact and dissipation defaults\").", "",
              "## Numbers the paper quotes", "", reference.format_table(verdicts), "",
              "## Figures", ""]
     for fig in reproduced:

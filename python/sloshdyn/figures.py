@@ -23,7 +23,7 @@ from .simulation import Steady, amplitude_sweep, beat_period, simulate, spectrum
 plt = plotting.plt
 
 THETA0 = math.pi / 4
-#: the Fig 12 / Fig 14 system (sec 4.2); beta, delta: README "Impact and dissipation defaults"
+#: the Fig 12 / Fig 14 system (sec 4.2); beta, delta: docs/namelist.md, "Impact and dissipation defaults"
 FIG12 = Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=THETA0, gamma=0.001, A=0.00075,
                    rho=0.509615)
 FIG9 = dict(s1=1.5, mu1=0.5, theta0=THETA0, gamma=0.0025, A=0.0005)

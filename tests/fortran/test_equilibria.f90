@@ -1,6 +1,6 @@
 !> Equilibria (sec 3.1): the bifurcation of eq (17) near beta^ = 0.012 for n = 2 (Fig 4), the
 !> pitchfork of eq (18) at kappa^ = 1 (Fig 5-6), Routh-Hurwitz (eq 20) against the eigenvalues,
-!> and the Jacobian at a tilted equilibrium against eq (22) as corrected in ERRATA.md.
+!> and the Jacobian at a tilted equilibrium against eq (22) as corrected in docs/errata.md.
 program test_equilibria
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_model, only: model_t, model_from_arrays
@@ -87,7 +87,7 @@ program test_equilibria
   end do
   call check_true('eq 20: Routh-Hurwitz verdict = eigenvalue verdict (kappa^ 0.7..1.5, gamma 0..0.01)', agree)
 
-  ! eq (22) as corrected in ERRATA.md, at the tilted equilibrium of kappa^ = 0.9 (x1 = 0, x3 = x2)
+  ! eq (22) as corrected in docs/errata.md, at the tilted equilibrium of kappa^ = 0.9 (x1 = 0, x3 = x2)
   call with_kappa_hat(0.9_wp, 0.01_wp)
   call phi_roots(model, roots, n, truncated, status, message)
   x3 = roots(3)/theta0

@@ -1,6 +1,6 @@
 """The multiple-scales coefficients against the paper's quoted numbers, against Taylor
 coefficients of the right-hand side fitted numerically, and against Appendix A (confirming the
-misprints of ERRATA.md)."""
+misprints of docs/errata.md)."""
 
 import itertools
 import math
@@ -89,7 +89,7 @@ def test_forcing_terms_match_numerical_taylor_coefficients():
 
 
 def appendix_as_printed(s1, mu1, kappa, theta0, gamma):
-    """Appendix A, typed in as printed (with the corrections of ERRATA.md marked)."""
+    """Appendix A, typed in as printed (with the corrections of docs/errata.md marked)."""
     t2, q, d = theta0**2, 1 - mu1, kappa - s1
     return {
         "gamma_hat11": gamma / (s1 * q),
@@ -140,7 +140,7 @@ def test_appendix_a_and_its_misprints(kappa):
 
 
 def test_c11_with_appendix_as_printed_is_wrong():
-    """ERRATA: with alpha_hat23 as printed every c_ij is wrong (c11 = 2.31 instead of -0.03188)."""
+    """docs/errata.md: with alpha_hat23 as printed every c_ij is wrong (c11 = 2.31 instead of -0.03188)."""
     p = sloshdyn.Parameters(kappa=4.7, **FIG9)
     m = sloshdyn.modal_coefficients(p)
     paper = appendix_as_printed(p.s1, p.mu1, p.kappa, p.theta0, p.gamma)

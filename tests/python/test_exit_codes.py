@@ -1,4 +1,4 @@
-"""One exit-code table for both front doors (README, "Failure behaviour"): sloshdyn-py exits as
+"""One exit-code table for both front doors (docs/failure.md): sloshdyn-py exits as
 the executable does for the same failure, never with a traceback for a sloshdyn error; `check`
 tells a bad file (exit 3, naming the file and the line) from a quantity out of tolerance
 (exit 1) and refuses an empty table."""
@@ -24,7 +24,7 @@ def sloshdyn_py(*args, cwd):
 
 def test_every_exit_code_of_the_core_has_a_meaning():
     """The codes the core gives any status (its exit_code, which both doors apply) are the
-    documented ones: a new code needs its row in EXIT_MEANINGS and the README."""
+    documented ones: a new code needs its row in EXIT_MEANINGS and docs/failure.md."""
     for reading in (False, True):
         for status in range(0, 16):
             assert int(_core.sloshdyn_bridge.exit_code(status, reading)) in EXIT_MEANINGS
@@ -143,12 +143,11 @@ def test_check_out_of_tolerance_is_exit_1_not_a_bad_file(tmp_path):
     assert "omega1" in result.stdout.splitlines()[-1]
 
 
-def test_the_readme_table_is_the_exit_code_table_and_its_tests_exist():
-    """README, "Failure behaviour": its table is EXIT_MEANINGS, and every test it names exists."""
+def test_the_failure_page_table_is_the_exit_code_table_and_its_tests_exist():
+    """docs/failure.md: its table is EXIT_MEANINGS, and every test it names exists."""
     import re
     from conftest import ROOT
-    readme = (ROOT / "README.md").read_text()
-    section = readme.split("## Failure behaviour", 1)[1].split("\n## ", 1)[0]
+    section = (ROOT / "docs" / "failure.md").read_text()
     rows = dict(re.findall(r"^\| (\d+) \| (.*?) \|$", section, re.M))
     assert {int(code): text.replace("`", "") for code, text in rows.items()} == EXIT_MEANINGS
     module = None

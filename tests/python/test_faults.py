@@ -2,7 +2,7 @@
 tmpfs), a read-only directory, kill -9 and SIGTERM while writing, two runs into one directory.
 After each, the output directory holds the complete results of one run or nothing of it (no
 file under a final name, no temporary left where the process could clean up), and the exit code
-says which (README, "Failure behaviour")."""
+says which (docs/failure.md)."""
 
 import contextlib
 import signal

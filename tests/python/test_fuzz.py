@@ -1,7 +1,7 @@
 """Fuzzing both front doors with hostile values: NaN, +-Inf, +-0, denormals, 1e308, huge
 integers, wrong types and shapes, malformed namelist text.
 
-The invariant (README, "Failure behaviour"): every call ends in a sloshdyn exception or a
+The invariant (docs/failure.md): every call ends in a sloshdyn exception or a
 finite result -- never another exception, a process death, a hang past CASE_SECONDS, or a
 result holding NaN; every run of the executable exits 0 with its files, or 3/4 with a message
 naming the input and no file under a final name.
@@ -287,7 +287,7 @@ def _run_executable(exe, text, tmp):
     return result.returncode, result.stderr
 
 
-#: result files whose NaN cells are documented values (README: a design code gives none; the
+#: result files whose NaN cells are documented values (docs/namelist.md: a design code gives none; the
 #: first roof time of a run that never reaches the roof)
 NAN_BY_DEFINITION = {"design_codes.csv", "seismic_peaks.csv"}
 

@@ -5,7 +5,7 @@ process death shows as a failure and not as a dead test run.
 
 Independent sources: the file-size limit set here (RLIMIT_FSIZE) decides which files can be
 written; the files' row counts come from n_out; the exit codes are the table of
-fortran/base/sloshdyn_status.f90 (README, "Failure behaviour"); the dynamic linker's own report
+fortran/base/sloshdyn_status.f90 (docs/failure.md); the dynamic linker's own report
 (LD_DEBUG=bindings) says which XERBLA LAPACK calls.
 """
 

@@ -26,7 +26,7 @@ def test_fig12_hopf_points_match_the_paper(fig12_response):
 
 
 def test_hopf_frequency_is_sqrt_c3_over_c1(fig12_response):
-    """ERRATA: after eq (55) the Hopf frequency is omega^2 = C3/C1 (printed C1/C3)."""
+    """docs/errata.md: after eq (55) the Hopf frequency is omega^2 = C3/C1 (printed C1/C3)."""
     t = fig12_response.table
     for s in fig12_response.special_points:
         if s.kind != "hopf":
@@ -121,7 +121,7 @@ def test_fig9_nonresonant_response(kappa, kind):
     w1 = m.omega1
     response = sloshdyn.frequency_response(p, (w1 - 0.04, w1 + 0.04), resonance="none")
     t = response.table
-    # every point satisfies eq (50) with the square on eps a1 (ERRATA)
+    # every point satisfies eq (50) with the square on eps a1 (docs/errata.md)
     lhs = t["rho"] ** 4 * p.A**2 * m.coefficients["F11"] ** 2 / (4 * w1**2)
     rhs = t["a1"] ** 2 * (m.coefficients["gamma11"] ** 2 / 4 + (t["rho"] - w1 - m.coefficients["c11"] / (8 * w1) * t["a1"] ** 2) ** 2)
     assert np.allclose(rhs, lhs, rtol=1e-8)

@@ -31,7 +31,7 @@ XI = float(jnp_zeros(1, 1)[0])    # 1.8411837813406593, first root of J1' (the p
 
 
 def stiff_tank(**changes):
-    """The README's tank on 50 Hz supports: (f_sloshing/f_supports)^2 = 4e-5, so the tank
+    """The tank of docs/python.md on 50 Hz supports: (f_sloshing/f_supports)^2 = 4e-5, so the tank
     follows the ground and the pendulum is an SDOF on a rigid base."""
     return sloshdyn.Tank(**{**TANK, "support_frequency": 50.0, "sloshing_damping": 0.01,
                             **changes})
@@ -70,7 +70,7 @@ def sdof_exact(knots, accel, omega, zeta, t_out):
 
 def record_knots(ground, t_end):
     """Knots of the ground acceleration of a record: its samples, then rest to t_end (knots at
-    the same step; the ground stops right after the last sample, as README's &ground_motion
+    the same step; the ground stops right after the last sample, as &ground_motion in docs/namelist.md
     says, hence a repeated knot there)."""
     n_rest = int(math.ceil((t_end - ground.duration) / ground.dt)) + 1
     t = ground.dt * np.arange(len(ground.acceleration) + n_rest)
@@ -398,7 +398,7 @@ def record_run(exe, tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def harmonic_run():
-    """The README's tank under 0.3 g at its sloshing frequency (the impact force reaches 2.8
+    """The tank of docs/python.md under 0.3 g at its sloshing frequency (the impact force reaches 2.8
     times the sloshing weight):
     states from simulate, loads from seismic_response, 400 outputs per second."""
     tank = sloshdyn.Tank(**TANK, support_frequency=2.0, support_damping=0.02)
@@ -954,7 +954,7 @@ def test_frequency_sweep_example_reduced_through_both_doors(exe, tmp_path):
 # --- loads: their definitions, and the rigid liquid under slow motion -------------------------
 
 def test_loads_are_the_documented_functions_of_the_state(record_run):
-    """seismic.csv's columns from x1, x2 (README, docs): pendulum angle theta = theta0 x1, sloshing
+    """seismic.csv's columns from x1, x2 (docs/namelist.md, docs/model.md): pendulum angle theta = theta0 x1, sloshing
     displacement l sin(theta), wave height 2 R sin(theta)/(1.84^2 - 1), tank drift L sin(phi),
     impact force b x1^(2n-1)/l with b = beta m g l."""
     s = record_run

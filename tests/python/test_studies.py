@@ -598,6 +598,12 @@ def test_fragility_study_of_a_tank(client, tmp_path):
     assert float(ds.fragility_dispersion) == pytest.approx(fit.beta, rel=1e-12)
     assert intensities[0] < float(ds.fragility_median) < intensities[-1]
     assert ds.fragility_median.attrs["units"] == "g"
+    # and the store holds it (issue 22 item 5)
+    stored = xr.open_zarr(tmp_path / "f.zarr").load()
+    for name in ("fragility_median", "fragility_dispersion", "fragility_median_se",
+                 "fragility_dispersion_se"):
+        assert float(stored[name]) == float(ds[name]), name
+        assert stored[name].attrs == ds[name].attrs
 
 
 def test_fragility_study_bad_input(tmp_path):
@@ -695,3 +701,339 @@ def test_the_engine_chooses_the_task_size_from_the_workers():
     assert choose(10000, 2) == 128        # 2 workers: big tasks, the overhead ~2 %
     assert choose(10000, 64) == 20        # 64 workers: ~8 tasks each for the load balance
     assert choose(6, 2) == 8              # never below 8 points (overhead ~20 % at 8)
+
+
+# ---- damaged stores, scheduler addresses, bounds, signals (issue 22, items 1-5) -------------
+
+DAMAGE_F, DAMAGE_A = [0.505, 0.52], [0.0005, 0.00075]
+
+
+@pytest.fixture(scope="module")
+def damage_reference():
+    """The points of the damaged-store tests from the independent source, a serial loop."""
+    return serial(DAMAGE_F, DAMAGE_A)
+
+
+def small_study(client, store):
+    return sloshdyn.response_map(FIG12, DAMAGE_F, DAMAGE_A, store, client=client, steady=QUICK,
+                                 points_per_task=2, progress=False)
+
+
+def truncate(path):
+    path.write_bytes(path.read_bytes()[:len(path.read_bytes()) // 2])
+
+
+def garble(path):
+    data = bytearray(path.read_bytes())
+    data[-3] ^= 0x5A
+    path.write_bytes(bytes(data))
+
+
+@pytest.mark.parametrize("damage", [
+    lambda s: (s / "max_x1" / "0.1").unlink(),           # a deleted chunk
+    lambda s: truncate(s / "max_x2" / "0.0"),            # a truncated chunk
+    lambda s: garble(s / "motion" / "0.1"),              # a garbled chunk
+    lambda s: garble(s / "done" / "0.0"),                # a garbled done mask
+    lambda s: (s / "done" / "0.1").unlink(),             # a lost done mark
+], ids=["deleted", "truncated", "garbled", "garbled-done", "deleted-done"])
+def test_a_damaged_chunk_is_computed_again_and_counted(client, tmp_path, damage,
+                                                       damage_reference):
+    store = tmp_path / "d.zarr"
+    small_study(client, store)                    # 2 chunks of 2 points, one per amplitude
+    damage(store)
+    ds = small_study(client, store)
+    assert ds.attrs["points_computed"] == 2       # the damaged chunk's points, no other
+    assert_equals_serial(ds, damage_reference)    # never NaN, never garbled values
+    assert bool(ds["done"].all())
+    assert small_study(client, store).attrs["points_computed"] == 0     # repaired on disk
+
+
+def test_a_damaged_chunk_is_reported_by_the_study_command(tmp_path):
+    from conftest import write
+    nml = write(tmp_path, STUDY_NML.format(extra=", points_per_task = 2"))
+    command = [sys.executable, "-m", "sloshdyn", "study", str(nml), "--no-progress"]
+    assert subprocess.run(command, cwd=tmp_path, capture_output=True, timeout=300).returncode == 0
+    (tmp_path / "map.zarr" / "max_x1" / "0.0").unlink()
+    again = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr[-2000:]
+    assert "2 points computed now" in again.stdout
+    assert "repaired: 2 finished points" in again.stdout and "max_x1" in again.stdout
+    ds = xr.open_zarr(tmp_path / "map.zarr").load()
+    assert_equals_serial(ds, serial(np.linspace(0.505, 0.52, 3), AMPLITUDES))
+
+
+@pytest.mark.parametrize("damage, what", [
+    (lambda s: __import__("shutil").rmtree(s / "max_x1"), "array 'max_x1' is missing"),
+    (lambda s: (s / ".zmetadata").unlink(), ".zmetadata is missing"),
+    (lambda s: (s / "frequency" / "0").write_bytes(b"junk"), "coordinate 'frequency'"),
+    (lambda s: (s / ".zattrs").write_text("{"), "not a sloshdyn study store"),
+])
+def test_a_store_that_cannot_be_repaired_is_refused_naming_the_damage(client, tmp_path, damage,
+                                                                      what):
+    from sloshdyn._errors import exit_code
+    store = tmp_path / "d.zarr"
+    small_study(client, store)
+    damage(store)
+    before = sorted(p.name for p in store.rglob("*"))
+    with pytest.raises(sloshdyn.InputError, match=f"d.zarr.*{what}") as refused:
+        small_study(client, store)
+    assert exit_code(refused.value) == 3            # a bad file
+    assert sorted(p.name for p in store.rglob("*")) == before
+
+
+NO_GUARD = """
+import sys, math, sloshdyn
+p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4, gamma=0.001,
+                        A=0.00075, rho=0.50)
+ds = sloshdyn.response_map(p, [0.505, 0.52], [0.0005], {store!r}, workers=1,
+                           steady=sloshdyn.Steady(max_transient_periods=600, window_periods=32),
+                           progress=False)
+print("computed", ds.attrs["points_computed"], float(ds.max_x1.max()))
+"""
+
+
+@pytest.mark.parametrize("how", ["script", "stdin"])
+def test_a_study_started_without_the_main_guard_runs_on_threads(tmp_path, how):
+    """Worker processes import the main module again: a script without the main guard (or
+    standard input) runs the study on threads instead, with the same numbers, and says why."""
+    store = tmp_path / "g.zarr"
+    script = tmp_path / "noguard.py"
+    script.write_text(NO_GUARD.format(store=str(store)))
+    command = [sys.executable, str(script)] if how == "script" else [sys.executable, "-"]
+    result = subprocess.run(command, input=script.read_text() if how == "stdin" else None,
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert "Traceback" not in result.stderr
+    assert "runs on 1 threads, not worker processes" in result.stderr
+    expected = max(st.max_x1 for row in serial([0.505, 0.52], [0.0005]) for st in row)
+    assert result.stdout.split() == ["computed", "2", repr(expected)]
+
+
+def test_the_main_guard_is_read_from_the_source():
+    from sloshdyn.studies.engine import _guarded
+    source = ("import x\n"                                    # 1
+              "run()\n"                                       # 2
+              "if __name__ == '__main__':\n"                  # 3
+              "    run()\n"                                   # 4
+              "    run()\n"                                   # 5
+              "if '__main__' == __name__:\n"                  # 6
+              "    run()\n"                                   # 7
+              "if __name__ != '__main__':\n"                  # 8
+              "    run()\n")                                  # 9
+    import tempfile
+    with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as f:
+        f.write(source)
+    try:
+        assert [_guarded(f.name, line) for line in range(1, 10)] == [
+            False, False, False, True, True, False, True, False, False]
+    finally:
+        os.remove(f.name)
+
+
+def silent_server(kind):
+    """A loopback server for the scheduler tests, in a thread that stops by itself: 'http'
+    (Python's HTTP server), 'greeting' (answers HTTP bytes at once), 'mute' (accepts, never
+    answers), or bytes (answers them and closes). Returns (address, stop)."""
+    import http.server
+    stop = threading.Event()
+    if kind == "http":
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", 0),
+                                                 http.server.BaseHTTPRequestHandler)
+        server.timeout = 0.2
+        port = server.server_address[1]
+
+        def serve():
+            deadline = time.monotonic() + 60
+            while not stop.is_set() and time.monotonic() < deadline:
+                server.handle_request()
+            server.server_close()
+    else:
+        listener = socket.socket()
+        listener.bind(("127.0.0.1", 0))
+        listener.listen(8)
+        listener.settimeout(0.2)
+        port = listener.getsockname()[1]
+
+        def serve():
+            deadline = time.monotonic() + 60
+            held = []
+            while not stop.is_set() and time.monotonic() < deadline:
+                try:
+                    conn, _ = listener.accept()
+                except OSError:
+                    continue
+                held.append(conn)
+                if kind == "greeting":
+                    conn.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n")
+                elif isinstance(kind, bytes):
+                    conn.sendall(kind)
+                    conn.close()
+            for conn in held:
+                conn.close()
+            listener.close()
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+
+    def close():
+        stop.set()
+        thread.join()
+    return f"tcp://127.0.0.1:{port}", close
+
+
+@pytest.mark.parametrize("kind, match", [
+    ("http", "did not answer within 5 s"),       # HTTP waits for a request: Dask's was 3 EiB
+    ("greeting", "is not a Dask scheduler: it answered b'HTTP/1.1"),
+    ("mute", "did not answer within 5 s"),
+])
+def test_a_scheduler_address_of_another_service_is_refused_within_the_timeout(tmp_path, kind,
+                                                                              match):
+    address, close = silent_server(kind)
+    try:
+        start = time.monotonic()
+        with pytest.raises(sloshdyn.InputError, match=f"scheduler = '{address}' {match}"):
+            sloshdyn.response_map(FIG12, [0.5], [0.001], tmp_path / "x.zarr", scheduler=address,
+                                  progress=False)
+        assert time.monotonic() - start < 5 + 10    # the stated 5 s (the old client: ~50 s)
+    finally:
+        close()
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("address, match", [
+    ("notanaddress", "give tcp://host:port"),
+    ("tcp://host:notaport", "give tcp://host:port"),
+    ("tcp://host:0", "port in 1..65535"),
+    ("tcp://host:70000", "port in 1..65535"),
+    ("ftp://x:1", "its scheme 'ftp' is not one of"),
+    ("", "give the address of a Dask scheduler"),
+])
+def test_a_malformed_scheduler_address_is_named(tmp_path, address, match):
+    with pytest.raises(sloshdyn.InputError, match=match):
+        sloshdyn.response_map(FIG12, [0.5], [0.001], tmp_path / "x.zarr", scheduler=address or 1,
+                              progress=False)
+    assert not list(tmp_path.iterdir())
+
+
+def test_a_study_too_large_for_the_machine_is_refused_before_anything_runs(tmp_path):
+    f = np.linspace(0.5, 0.52, 100000)
+    a = np.linspace(0.0, 0.001, 100000)
+    with pytest.raises(sloshdyn.InputError, match=r"100000 frequency x 100000 amplitude values "
+                                                  r"\(10000000000 points\) is too large"):
+        sloshdyn.response_map(FIG12, f, a, tmp_path / "x.zarr", progress=False)
+    assert not list(tmp_path.iterdir())
+
+
+def test_more_workers_than_the_machine_runs_are_refused_before_anything_runs(tmp_path):
+    bound = studies.engine.max_workers("processes")
+    assert bound <= 4 * os.cpu_count()
+    for kind in ("threads", "processes"):
+        n = studies.engine.max_workers(kind) + 1
+        with pytest.raises(sloshdyn.InputError, match=f"workers = {n} is out of range"):
+            sloshdyn.response_map(FIG12, [0.5], [0.001], tmp_path / "x.zarr", workers=n,
+                                  worker_kind=kind, progress=False)
+    assert not list(tmp_path.iterdir())
+
+
+def test_the_study_command_refuses_a_huge_grid_and_too_many_workers(tmp_path):
+    from conftest import write
+    base = STUDY_NML.format(extra="").replace(", workers = 1, worker_kind = 'threads'", "")
+    for change, match in [
+            ("n_frequencies = 100000, n_amplitudes = 100000", "too large"),
+            ("n_frequencies = 3, n_amplitudes = 2, workers = 1024",
+             "workers = 1024 is out of range")]:
+        text = base.replace("n_frequencies = 3", "").replace("n_amplitudes = 2", change)
+        nml = write(tmp_path, text)
+        result = subprocess.run([sys.executable, "-m", "sloshdyn", "study", str(nml)],
+                                cwd=tmp_path, capture_output=True, text=True, timeout=120)
+        assert result.returncode == 3, result.stderr[-2000:]
+        assert match in result.stderr and "Traceback" not in result.stderr
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["input.nml"]
+
+
+def full_disk(monkeypatch, where):
+    """Zarr's file writes fail with ENOSPC (no space left on device) in paths containing
+    `where`, as on a full disk."""
+    import errno
+    from zarr.storage import _local
+    put = _local._put
+
+    def failing(path, value, exclusive=False):
+        if where in str(path):
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+        return put(path, value, exclusive)
+    monkeypatch.setattr(_local, "_put", failing)
+
+
+def test_a_full_disk_while_the_store_is_created_leaves_nothing(client, tmp_path, monkeypatch):
+    from sloshdyn._errors import exit_code
+    full_disk(monkeypatch, ".creating-")
+    with pytest.raises(sloshdyn.FileError, match=r"f\.zarr' cannot be written: No space left")\
+            as failed:
+        sloshdyn.response_map(FIG12, [0.505 + 0.001 * k for k in range(20)], [0.0005, 0.00075],
+                              tmp_path / "f.zarr", client=client, progress=False)
+    assert exit_code(failed.value) == 5
+    time.sleep(0.5)                  # writes that were under way would show up by now
+    assert not list(tmp_path.iterdir())
+
+
+def test_a_full_disk_while_results_are_written_is_a_file_error(client, tmp_path, monkeypatch,
+                                                               damage_reference):
+    from sloshdyn._errors import exit_code
+    store = tmp_path / "f.zarr"
+    small_study(client, store)
+    (store / "max_x1" / "0.1").unlink()          # one chunk to write again
+    full_disk(monkeypatch, "f.zarr/")
+    with pytest.raises(sloshdyn.FileError, match=r"f\.zarr'.*cannot be written.*No space left.*"
+                                                 "rerun the same study") as failed:
+        small_study(client, store)
+    assert exit_code(failed.value) == 5
+    monkeypatch.undo()
+    ds = small_study(client, store)              # nothing lost: resumed once there is space
+    assert ds.attrs["points_computed"] == 2
+    assert_equals_serial(ds, damage_reference)
+
+
+SLOW_STUDY = ("&steady settle_tol = 0, transient_periods = 800, window_periods = 16, "
+              "shooting = .false. /")
+
+
+def slow_study_file(tmp_path, kind):
+    from conftest import write
+    text = STUDY_NML.format(extra=", points_per_task = 1").replace(
+        "&steady max_transient_periods = 600, window_periods = 32 /", SLOW_STUDY).replace(
+        "n_frequencies = 3", "n_frequencies = 6").replace("worker_kind = 'threads'",
+                                                          f"worker_kind = '{kind}'")
+    return write(tmp_path, text)
+
+
+def interrupt_study(tmp_path, kind, signum, group):
+    nml = slow_study_file(tmp_path, kind)
+    child = subprocess.Popen([sys.executable, "-m", "sloshdyn", "study", str(nml),
+                              "--no-progress"], cwd=tmp_path, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        deadline = time.monotonic() + 120
+        while done_count(tmp_path / "map.zarr") < 1 and time.monotonic() < deadline \
+                and child.poll() is None:
+            time.sleep(0.02)
+        (os.killpg if group else os.kill)(child.pid, signum)
+        out, err = child.communicate(timeout=120)
+    finally:
+        if child.poll() is None:
+            os.killpg(child.pid, signal.SIGKILL)
+            child.wait()
+    return child.returncode, err
+
+
+def test_ctrl_c_to_the_process_group_prints_no_worker_tracebacks(tmp_path):
+    """Ctrl-C in a terminal reaches every process of its group: the worker processes too."""
+    code, err = interrupt_study(tmp_path, "processes", signal.SIGINT, group=True)
+    assert code == 130, err[-2000:]
+    assert "study interrupted" in err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err[-2000:]
+
+
+def test_sigterm_during_a_study_exits_143(tmp_path):
+    code, err = interrupt_study(tmp_path, "threads", signal.SIGTERM, group=False)
+    assert code == 143, err[-2000:]
+    assert "terminated; study interrupted" in err and "rerun the same study" in err
