@@ -16,9 +16,16 @@ module sloshdyn_driver
                              POINT_ROWS, SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_A1, &
                              SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_HOPF, POINT_BRANCH, &
                              MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
-                             SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, &
-                             TANK_SI_SIZE, HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
-                             CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name
+                             SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, &
+                             PEAKS_IMPACT_FORCE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+                             HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
+                             CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name, &
+                             CHART_GRID_N_STABLE, CHART_GRID_NEAR_CURVE, &
+                             CHART_GRID_BRUTE_FORCE_STABLE, HISTORY_X1, HISTORY_X2, &
+                             HARMONIC_SWEEP_WAVE_HEIGHT, PERIODIC_POINT_ROWS, &
+                             PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS, &
+                             PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, PERIODIC_SPECIAL_MAX_X1, &
+                             COUNTS_SIZE, ROUTH_SIZE, table_size
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
@@ -138,13 +145,16 @@ contains
     allocate (curves(CHART_CURVE_ROWS, n_points), codim2(CHART_CODIM2_ROWS, n_codim2), &
               ends(CHART_END_ROWS, n_curves), grid(CHART_GRID_ROWS, n_cells))
     call chart_tables(chart, curves, codim2, ends, grid)
-    print '(a)', '  grid of '//num2str(n_cells)//' cells: '//num2str(count(grid(5, :) == 0))// &
-                 ' with no stable steady state, '//num2str(count(grid(5, :) == 1))//' with one, '// &
-                 num2str(count(grid(5, :) > 1))//' with more; '// &
-                 num2str(count(grid(7, :) > 0))//' near a curve'
+    print '(a)', '  grid of '//num2str(n_cells)//' cells: '// &
+                 num2str(count(grid(CHART_GRID_N_STABLE, :) == 0))// &
+                 ' with no stable steady state, '// &
+                 num2str(count(grid(CHART_GRID_N_STABLE, :) == 1))//' with one, '// &
+                 num2str(count(grid(CHART_GRID_N_STABLE, :) > 1))//' with more; '// &
+                 num2str(count(grid(CHART_GRID_NEAR_CURVE, :) > 0))//' near a curve'
     if (config%chart%brute_force_starts > 0) then
-      checked = count(grid(7, :) == 0)
-      agree = count(grid(7, :) == 0 .and. grid(8, :) == grid(5, :))
+      checked = count(grid(CHART_GRID_NEAR_CURVE, :) == 0)
+      agree = count(grid(CHART_GRID_NEAR_CURVE, :) == 0 .and. &
+                    grid(CHART_GRID_BRUTE_FORCE_STABLE, :) == grid(CHART_GRID_N_STABLE, :))
       print '(a)', '  brute force ('//num2str(config%chart%brute_force_starts)// &
                    ' integrations per cell): the same number of stable steady states in '// &
                    num2str(agree)//' of the '//num2str(checked)//' cells away from the curves'
@@ -247,22 +257,23 @@ contains
     if (status /= SD_OK) return
     call files%write_table('frequencies.csv', 'frequencies', reshape([omega1, omega2, &
                            omega1_eig, omega2_eig, omega2/omega1, k(1, 1), -k(1, 2), -k(2, 1), &
-                           k(2, 2)], [9, 1]), status, message)
+                           k(2, 2)], [table_size('frequencies'), 1]), status, message)
     if (status /= SD_OK) return
-    allocate (rows(14, n_eq))
+    allocate (rows(table_size('equilibria'), n_eq))
     do i = 1, n_eq
       rows(1:6, i) = [theta(i), phi(i), theta(i)/model%theta0, phi(i)/model%theta0, &
                       merge(1.0_wp, 0.0_wp, physical(i)), real(verdict(i), wp)]
-      rows(7:14, i) = [(eig_re(j, i), eig_im(j, i), j = 1, 4)]
+      rows(7:, i) = [(eig_re(j, i), eig_im(j, i), j = 1, 4)]
     end do
     call files%write_table('equilibria.csv', 'equilibria', rows, status, message)
     if (status /= SD_OK) return
     call files%write_table('routh_hurwitz.csv', 'routh_hurwitz', reshape([rh_coefficients, &
                            hurwitz(2:3), merge(1.0_wp, 0.0_wp, routh_stable), &
-                           real(verdict(trivial), wp)], [8, 1]), status, message)
+                           real(verdict(trivial), wp)], [ROUTH_SIZE, 1]), status, message)
     if (status /= SD_OK) return
     call files%write_table('kappa_31.csv', 'kappa_31', reshape([(config%sigma1, &
-                           kappa_roots(i), i = 1, n_kappa)], [2, n_kappa]), status, message)
+                           kappa_roots(i), i = 1, n_kappa)], [table_size('kappa_31'), n_kappa]), &
+                           status, message)
   end subroutine run_linear
 
   !> Time history from y0 at tau = 0 to t_end, n_out evenly spaced outputs (dense output).
@@ -290,13 +301,15 @@ contains
     end associate
     print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
                  num2str(stats%n_rejected)//', right-hand sides '//num2str(stats%n_rhs)
-    print '(a)', '  max|x1| = '//num2str(maxval(abs(history(2, :))))//', max|x2| = '// &
-                 num2str(maxval(abs(history(4, :))))//' at the output times'
+    print '(a)', '  max|x1| = '//num2str(maxval(abs(history(1 + HISTORY_X1, :))))// &
+                 ', max|x2| = '// &
+                 num2str(maxval(abs(history(1 + HISTORY_X2, :))))//' at the output times'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('history.csv', 'history', history, status, &
                                                 message)
     if (status == SD_OK) call files%write_table('simulation.csv', 'simulation', &
-                                                reshape(counts_array(stats), [4, 1]), status, message)
+                                                reshape(counts_array(stats), [COUNTS_SIZE, 1]), &
+                                                status, message)
   end subroutine run_simulate
 
   !> Steady state at (rho, A) from y0: amplitudes, kind of motion and Poincare points.
@@ -311,7 +324,7 @@ contains
     integer :: i, window
 
     window = config%steady%window_periods
-    allocate (poincare(4, window), rows(5, window))
+    allocate (poincare(4, window), rows(table_size('poincare'), window))
     call steady_state(config%model, config%simulation%y0, config%integration, config%method, &
                       config%steady, summary, poincare, y_end, stats, status, message)
     call in_context('steady state', status, message)
@@ -426,7 +439,7 @@ contains
                pad(num2str(summaries(SUMMARY_MAX_X2, i)), 14)// &
                pad(num2str(summaries(SUMMARY_MAX_U1, i)), 14)// &
                pad(num2str(summaries(SUMMARY_MAX_U2, i)), 14)
-        if (in_frequency) line = line//pad(num2str(si(3, i)), 14)
+        if (in_frequency) line = line//pad(num2str(si(HARMONIC_SWEEP_WAVE_HEIGHT, i)), 14)
         print '(a)', line//motion_text(summaries(SUMMARY_MOTION, i), summaries(SUMMARY_PERIOD, i))
       end do
       flush (output_unit)
@@ -489,7 +502,9 @@ contains
 
     associate (r => config%response)
       capacity = r%options%continuation%max_points
-      allocate (points(7, capacity), multipliers(8, capacity), special(7, 100))
+      allocate (points(PERIODIC_POINT_ROWS, capacity), &
+                multipliers(PERIODIC_MULTIPLIER_ROWS, capacity), &
+                special(PERIODIC_SPECIAL_ROWS, 100))
       call periodic_response_from_rest(config%model, r%parameter, config%simulation%y0, &
                                        r%start, r%stop, config%steady, r%options%continuation, &
                                        config%integration, config%method, points, multipliers, &
@@ -503,13 +518,17 @@ contains
     end associate
     print '(a)', '  '//num2str(n_points)//' orbits; special points:'
     do i = 1, n_special
-      print '(a)', '  '//pad(special_kind_name(nint(special(1, i))), 16)//name//' = '// &
-                   pad(num2str(special(2, i)), 14)//'max|x1| = '//num2str(special(7, i))
+      print '(a)', '  '//pad(special_kind_name(nint(special(PERIODIC_SPECIAL_KIND, i))), 16)// &
+                   name//' = '// &
+                   pad(num2str(special(PERIODIC_SPECIAL_LAMBDA, i)), 14)//'max|x1| = '// &
+                   num2str(special(PERIODIC_SPECIAL_MAX_X1, i))
     end do
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('periodic_branch.csv', 'periodic_branch', &
                                                 reshape([(points(:, i), multipliers(:, i), &
-                                                i = 1, n_points)], [15, n_points]), status, &
+                                                i = 1, n_points)], &
+                                                [PERIODIC_POINT_ROWS + PERIODIC_MULTIPLIER_ROWS, &
+                                                 n_points]), status, &
                                                 message)
     if (status == SD_OK) call files%write_table('periodic_special_points.csv', &
                                                 'periodic_special_points', &
@@ -551,12 +570,13 @@ contains
                    num2str(nint(peaks(2*SEISMIC_LOADS + 1)))//' time(s)'
     else
       print '(a)', '  the wave does not reach the roof: its peak is '// &
-                   num2str(100*peaks(5)/config%tank%freeboard, significant=3)// &
+                   num2str(100*peaks(PEAKS_WAVE_HEIGHT)/config%tank%freeboard, significant=3)// &
                    ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
     end if
     ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
     print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
-                 num2str(peaks(11)/(config%tank_props%sloshing_mass*config%tank%gravity), &
+                 num2str(peaks(PEAKS_IMPACT_FORCE)/ &
+                         (config%tank_props%sloshing_mass*config%tank%gravity), &
                          significant=3)//' times the sloshing weight m g'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
@@ -645,7 +665,7 @@ contains
       call files%write_table('parameters.csv', 'parameters', reshape([m%s1, m%mu1, m%kappa, &
                              m%theta0, m%beta, m%gamma, m%delta, m%zeta, real(m%n, wp), &
                              real(m%p, wp), m%excitation%A, m%excitation%rho, m%a_coef, &
-                             m%b_coef], [24, 1]), status, message)
+                             m%b_coef], [table_size('parameters'), 1]), status, message)
     end associate
     if (status /= SD_OK .or. .not. config%dimensional) return
     call tank_summary(config%tank, config%tank_props, config%model, row)

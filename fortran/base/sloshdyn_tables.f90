@@ -7,7 +7,7 @@
 module sloshdyn_tables
   implicit none
   private
-  public :: table_header, table_formats, table_size, kind_names, code_name, special_kind_name, &
+  public :: table_header, table_formats, table_size, count_items, kind_names, code_name, special_kind_name, &
             motion_name, verdict_name
   public :: SPECIAL_FOLD, SPECIAL_HOPF, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
             SPECIAL_NEIMARK_SACKER
@@ -21,8 +21,13 @@ module sloshdyn_tables
             POINT_DELTA3, POINT_X
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
-  public :: ROUTH_SIZE, COUNTS_SIZE
-  public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+  public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
+            PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
+            PERIODIC_SPECIAL_MAX_X1
+  public :: HISTORY_X1, HISTORY_X2, HARMONIC_SWEEP_WAVE_HEIGHT, CHART_GRID_N_STABLE, &
+            CHART_GRID_NEAR_CURVE, CHART_GRID_BRUTE_FORCE_STABLE
+  public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
+            CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
@@ -62,7 +67,7 @@ module sloshdyn_tables
   !> Time history rows (after tau): state, modal coordinates (eq 34), impact force (eq 4),
   !> angles [rad].
   character(len=*), parameter :: history_columns = 'x1,dx1,x2,dx2,u1,u2,impact_force,theta,phi'
-  integer, parameter :: HISTORY_ROWS = 9
+  integer, parameter :: HISTORY_ROWS = 9, HISTORY_X1 = 1, HISTORY_X2 = 3
 
   !> One steady-state summary.
   character(len=*), parameter :: summary_columns = 'rho,A,max_x1,max_x2,max_u1,max_u2,motion,'// &
@@ -90,6 +95,12 @@ module sloshdyn_tables
 
   !> Routh-Hurwitz of eq (20) at the trivial equilibrium; work counts of an integration.
   integer, parameter :: ROUTH_SIZE = 8, COUNTS_SIZE = 4
+  !> A branch of periodic orbits (sloshdyn_periodic_response): its points (the first 7 columns of
+  !> 'periodic_branch'), their Floquet multipliers (the other 8) and its special points
+  !> ('periodic_special_points').
+  integer, parameter :: PERIODIC_POINT_ROWS = 7, PERIODIC_MULTIPLIER_ROWS = 8, &
+                        PERIODIC_SPECIAL_ROWS = 7, PERIODIC_SPECIAL_KIND = 1, &
+                        PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
 
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
   !> output time, then x1 and x2; the peaks of the loads (value, time) with the roof's strikes;
@@ -105,7 +116,7 @@ module sloshdyn_tables
     'time_impact_force [s],peak_base_shear [N],time_base_shear [s],'// &
     'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
     'first_roof_time [s],roof_impacts'
-  integer, parameter :: PEAKS_SIZE = 19
+  integer, parameter :: PEAKS_SIZE = 19, PEAKS_WAVE_HEIGHT = 5, PEAKS_IMPACT_FORCE = 11
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
   character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
@@ -116,11 +127,12 @@ module sloshdyn_tables
   character(len=*), parameter :: chart_grid_columns = 'rho,A,gamma,kappa,n_stable,n_steady,'// &
     'near_curve,brute_force_stable'
   integer, parameter :: CHART_CURVE_ROWS = 13, CHART_CODIM2_ROWS = 7, CHART_END_ROWS = 7, &
-                        CHART_GRID_ROWS = 8
+                        CHART_GRID_ROWS = 8, CHART_GRID_N_STABLE = 5, CHART_GRID_NEAR_CURVE = 7, &
+                        CHART_GRID_BRUTE_FORCE_STABLE = 8
   character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
     'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
     'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
-  integer, parameter :: HARMONIC_SWEEP_ROWS = 9
+  integer, parameter :: HARMONIC_SWEEP_ROWS = 9, HARMONIC_SWEEP_WAVE_HEIGHT = 3
   character(len=*), parameter :: codes_columns_names = 'source,convective_period [s],'// &
     'convective_mass [kg],impulsive_mass [kg],convective_height [m],impulsive_height [m],'// &
     'wave_height [m]'
@@ -243,15 +255,19 @@ contains
   !> Number of columns of a result table.
   pure integer function table_size(name) result(columns)
     character(len=*), intent(in) :: name
-    character(len=:), allocatable :: header
-    integer :: i
-    header = table_header(name)
-    columns = 0
-    if (len(header) > 0) columns = 1
-    do i = 1, len(header)
-      if (header(i:i) == ',') columns = columns + 1
-    end do
+    columns = count_items(table_header(name))
   end function table_size
+
+  !> Number of items of a comma-separated list (0 for '').
+  pure integer function count_items(list) result(n)
+    character(len=*), intent(in) :: list
+    integer :: i
+    n = 0
+    if (len(list) > 0) n = 1
+    do i = 1, len(list)
+      if (list(i:i) == ',') n = n + 1
+    end do
+  end function count_items
 
   !> The names of the codes of a kind list ('special', 'motion', 'verdict'), comma-separated,
   !> in code order; first = the first code.

@@ -17,7 +17,7 @@ import threading
 
 from . import _core
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_input
 
 
 def cancellable(function, *args):

@@ -94,7 +94,7 @@ def exit_code(error, reading=False):
     """The exit code of a SloshdynError: the core's rule for its status (any status while the
     input is read is an input error)."""
     from . import _core
-    return int(_core.sloshdyn_bridge.exit_code(int(error.status or 1), bool(reading)))
+    return int(_core.sloshdyn_bridge_input.exit_code(int(error.status or 1), bool(reading)))
 
 
 def check_status(status, message, context=None):

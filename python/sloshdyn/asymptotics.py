@@ -14,7 +14,7 @@ from ._errors import InputError, check_status
 from .parameters import Parameters, convert_fields
 from .simulation import Integration
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_asymptotics
 
 # eq (33): g_r = sum sign * name * monomial; exponents of (x1, x2, x1', x2')
 HAT_TERMS = {
@@ -158,16 +158,19 @@ class Continuation:
     """Settings of the branch search and continuation (&response): the fields of the core's
     layout, in order, with its defaults."""
 
-    n_scan: int = int(_RESPONSE[0])            #: parameter values where steady states are searched
-    n_amplitudes: int = int(_RESPONSE[1])      #: Newton starts per mode: log-spaced |B| ...
-    n_phases: int = int(_RESPONSE[2])          #: ... times equally spaced phases
-    amplitude_min: float = float(_RESPONSE[3])
-    amplitude_max: float = float(_RESPONSE[4])
-    ds: float = float(_RESPONSE[5])            #: first pseudo-arclength step
-    ds_min: float = float(_RESPONSE[6])
-    ds_max: float = float(_RESPONSE[7])
-    x_scale: float = float(_RESPONSE[8])       #: weight of the amplitudes in the arclength norm
-    max_points: int = int(_RESPONSE[9])        #: points per branch and direction at most
+    #: parameter values where steady states are searched
+    n_scan: int = int(_RESPONSE["n_scan"])
+    #: Newton starts per mode: log-spaced |B| ...
+    n_amplitudes: int = int(_RESPONSE["n_amplitudes"])
+    n_phases: int = int(_RESPONSE["n_phases"])          #: ... times equally spaced phases
+    amplitude_min: float = float(_RESPONSE["amplitude_min"])
+    amplitude_max: float = float(_RESPONSE["amplitude_max"])
+    ds: float = float(_RESPONSE["ds"])            #: first pseudo-arclength step
+    ds_min: float = float(_RESPONSE["ds_min"])
+    ds_max: float = float(_RESPONSE["ds_max"])
+    #: weight of the amplitudes in the arclength norm
+    x_scale: float = float(_RESPONSE["x_scale"])
+    max_points: int = int(_RESPONSE["max_points"])        #: points per branch and direction at most
 
     def __post_init__(self):
         convert_fields(self)
@@ -178,8 +181,9 @@ class Continuation:
         return cls(**{f.name: response[f.name] for f in dataclasses.fields(cls)})
 
     def array(self):
-        return np.array([getattr(self, f.name) for f in dataclasses.fields(self)],
-                        dtype=np.float64)
+        """The flat array of the core's layout 'response'."""
+        return _tables.pack("response", {name: getattr(self, name) for name in
+                                         _tables.layout("response")})
 
 
 def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A_range=None,

@@ -17,9 +17,9 @@ from . import _checks, _core, _tables
 from ._errors import check_status
 from .parameters import Parameters, convert_fields
 
-_bridge = _core.sloshdyn_bridge
-_DEFAULTS = _bridge.chart_defaults()
-AXES = ("rho", "A", "gamma", "kappa")             #: the chart parameters, by code 1, 2, 3, 4
+_bridge = _core.sloshdyn_bridge_charts
+_DEFAULTS = _tables.unpack("chart", _bridge.chart_defaults())
+AXES = _tables.names("chart_axes")[0]             #: the chart parameters: rho, A, gamma, kappa
 MODELS = _tables.names("chart_models")[0]         #: 'slow_flow_3:1', 'slow_flow_nonresonant'
 CURVE_KINDS = _tables.codes("curve")              #: {1: 'fold', 2: 'hopf', ...}
 CODIM2_KINDS = _tables.codes("codim2")            #: {0: 'none', 1: 'bogdanov_takens', ...}
@@ -98,11 +98,11 @@ class Chart:
     in every cell and counts the stable steady states reached (a small basin may be missed; it
     never finds more than there are)."""
 
-    n_x: int = int(_DEFAULTS[7])
-    n_y: int = int(_DEFAULTS[8])
-    n_scan: int = int(_DEFAULTS[9])
-    max_points: int = int(_DEFAULTS[10])
-    max_curves: int = int(_DEFAULTS[11])
+    n_x: int = int(_DEFAULTS["n_x"])
+    n_y: int = int(_DEFAULTS["n_y"])
+    n_scan: int = int(_DEFAULTS["n_scan"])
+    max_points: int = int(_DEFAULTS["max_points"])
+    max_curves: int = int(_DEFAULTS["max_curves"])
     brute_force_starts: int = 0
 
     def __post_init__(self):
@@ -131,11 +131,13 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
         chart.n_x, chart.n_y, chart.n_scan, chart.max_points, chart.max_curves,
         chart.brute_force_starts)
     _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
-    _checks.output_size("max_curves", 10 * max(max_curves, 1), 7)
+    _checks.output_size("max_curves", 10 * max(max_curves, 1), len(_tables.columns("chart_codim2")))
     _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))
-    settings = np.array([MODELS.index(model) + 1, AXES.index(x) + 1, AXES.index(y) + 1, x_min,
-                         x_max, y_min, y_max, n_x, n_y, n_scan, max_points, max_curves,
-                         brute_force_starts, threads], dtype=np.float64)
+    settings = _tables.pack("chart", {
+        "model": _tables.code("chart_models", model), "x": _tables.code("chart_axes", x),
+        "y": _tables.code("chart_axes", y), "x_min": x_min, "x_max": x_max, "y_min": y_min,
+        "y_max": y_max, "n_x": n_x, "n_y": n_y, "n_scan": n_scan, "max_points": max_points,
+        "max_curves": max_curves, "brute_force_starts": brute_force_starts, "threads": threads})
     n_cells = max(n_x, 1) * max(n_y, 1)
     (curves, codim2, ends, grid, sizes, complete, notes, status,
      message) = _bridge.stability_chart(*params.array(), settings, max(capacity, 1),
@@ -161,17 +163,25 @@ def _chart(x, y, model, curves, codim2, ends, grid, complete, notes, params):
     columns = _tables.columns("chart_curves")
     table = dict(zip(columns, curves))
     curve_list = []
-    for k, end in enumerate(ends.T, start=1):
+    for k, column in enumerate(ends.T, start=1):
+        end = dict(zip(_tables.columns("chart_ends"), column))
         on = table["curve"] == k
         curve_list.append(Curve(
-            kind=CURVE_KINDS[int(end[1])], rho=table["rho"][on], A=table["A"][on],
+            kind=CURVE_KINDS[int(end["kind"])], rho=table["rho"][on], A=table["A"][on],
             gamma=table["gamma"][on], kappa=table["kappa"][on],
             state=np.array([table[f"x{i}"][on] for i in range(1, 5)]),
             omega=table["omega"][on], l1=table["l1"][on],
-            codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]], complete=bool(end[3]),
-            ends=(CURVE_ENDS[int(end[4])], CURVE_ENDS[int(end[5])]), note=note_of.get(k, "")))
-    points = [Codim2Point(CODIM2_KINDS[int(r[0])], *(float(v) for v in r[2:7]), int(r[1]) - 1)
-              for r in codim2.T]
+            codim2=[CODIM2_KINDS[int(c)] for c in table["codim2"][on]],
+            complete=bool(end["complete"]),
+            ends=(CURVE_ENDS[int(end["first_end"])], CURVE_ENDS[int(end["last_end"])]),
+            note=note_of.get(k, "")))
+    points = []
+    for column in codim2.T:
+        point = dict(zip(_tables.columns("chart_codim2"), column))
+        points.append(Codim2Point(CODIM2_KINDS[int(point["kind"])],
+                                  *(float(point[name]) for name in ("rho", "A", "gamma", "kappa",
+                                                                    "omega")),
+                                  int(point["curve"]) - 1))
     grid_table = {name: values.copy() for name, values in zip(_tables.columns("chart_grid"), grid)}
     return StabilityChart(x, y, model, curve_list, points, grid_table, complete, params)
 
@@ -194,8 +204,9 @@ def chart_from_files(directory, x="rho", y="A", model="slow_flow_3:1", params=No
         return data.T
 
     ends = read("chart_ends.csv", "chart_ends")
-    notes = "\n".join(f"curve {int(e[0])}: stopped ({CURVE_ENDS[int(e[5])]})"
-                      for e in ends.T if not e[3])
+    table = dict(zip(_tables.columns("chart_ends"), ends))
+    notes = "\n".join(f"curve {int(curve)}: stopped ({CURVE_ENDS[int(last)]})" for curve, last, done
+                      in zip(table["curve"], table["last_end"], table["complete"]) if not done)
     return _chart(x, y, model, read("chart_curves.csv", "chart_curves"),
                   read("chart_codim2.csv", "chart_codim2"), ends,
                   read("chart_grid.csv", "chart_grid"), bool(np.all(ends[3] > 0)), notes, params)

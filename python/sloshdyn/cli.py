@@ -129,7 +129,7 @@ def run_input(path):
         exc.reading = True
         raise
     with _ONE_RUN_AT_A_TIME:     # the app layer's static string lengths: one call at a time
-        status, message = cancellable(_core.sloshdyn_bridge.run_input, os.fspath(path))
+        status, message = cancellable(_core.sloshdyn_bridge_input.run_input, os.fspath(path))
     sys.stdout.flush()
     check_status(status, message)
     figure = _figure(inp, Path(inp.directory))

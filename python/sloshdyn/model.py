@@ -10,7 +10,7 @@ from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_model
 MAX_EQUILIBRIA = 4096
 MAX_ROOTS = 256
 VERDICTS = _tables.codes("verdict")
@@ -156,5 +156,6 @@ def equilibria(params: Parameters) -> Equilibria:
     check_status(status, message)
     points = [Equilibrium(float(theta[i]), float(phi[i]), bool(physical[i]),
                           re[:, i] + 1j * im[:, i], VERDICTS[int(verdict[i])]) for i in range(n)]
-    return Equilibria(points, bool(truncated), routh[:4].copy(), float(routh[4]),
-                      float(routh[5]), bool(routh[6]))
+    routh = _tables.unpack("routh", routh)
+    return Equilibria(points, bool(truncated), np.array([routh[f"c{i}"] for i in range(1, 5)]),
+                      float(routh["delta2"]), float(routh["delta3"]), bool(routh["routh_stable"]))

@@ -16,7 +16,7 @@ from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from ._files import atomic_path
 
-_MODEL_DEFAULTS = _tables.defaults()["model"]   # beta, gamma, delta, n, p of the core
+_MODEL_DEFAULTS = _tables.defaults()["model"]   # the core's model_t defaults, by name
 
 
 def convert_fields(settings):
@@ -41,13 +41,13 @@ class Parameters:
     mu1: float
     kappa: float
     theta0: float
-    beta: float = float(_MODEL_DEFAULTS[0])   #: the paper gives none; see README "Impact and
+    beta: float = float(_MODEL_DEFAULTS["beta"])   #: the paper gives none; see README "Impact and
                                               #: dissipation defaults"
-    gamma: float = float(_MODEL_DEFAULTS[1])
-    delta: float = float(_MODEL_DEFAULTS[2])  #: the paper gives none; see README
-    n: int = int(_MODEL_DEFAULTS[3])
-    p: int = int(_MODEL_DEFAULTS[4])
-    zeta: float = float(_MODEL_DEFAULTS[5])   #: linear sloshing damping ratio (0: the paper)
+    gamma: float = float(_MODEL_DEFAULTS["gamma"])
+    delta: float = float(_MODEL_DEFAULTS["delta"])  #: the paper gives none; see README
+    n: int = int(_MODEL_DEFAULTS["n"])
+    p: int = int(_MODEL_DEFAULTS["p"])
+    zeta: float = float(_MODEL_DEFAULTS["zeta"])   #: linear sloshing damping ratio (0: the paper)
     A: float = 0.0
     rho: float = 0.0
 
@@ -56,15 +56,24 @@ class Parameters:
         self.coefficients()  # validates in the Fortran core
 
     def array(self):
-        """The flat arrays of the f2py bridge: rpar(10), ipar(2)."""
-        rpar = np.array([self.s1, self.mu1, self.kappa, self.theta0, self.beta, self.gamma,
-                         self.delta, self.A, self.rho, self.zeta], dtype=np.float64)
-        ipar = np.array([self.n, self.p], dtype=np.int32)
+        """The flat arrays of the f2py bridge: rpar, ipar in the core's layouts 'model' and
+        'model_integers'."""
+        rpar = _tables.pack("model", {name: getattr(self, name)
+                                      for name in _tables.layout("model")})
+        ipar = _tables.pack("model_integers", {name: getattr(self, name) for name in
+                                               _tables.layout("model_integers")}, dtype=np.int32)
         return rpar, ipar
+
+    @classmethod
+    def from_array(cls, rpar, ipar, **changes):
+        """The parameters of the bridge's arrays rpar, ipar (with some fields changed)."""
+        fields = {name: float(x) for name, x in _tables.unpack("model", rpar).items()}
+        fields.update({name: int(x) for name, x in _tables.unpack("model_integers", ipar).items()})
+        return cls(**{**fields, **changes})
 
     def coefficients(self):
         """a1..a6 and b1..b6 of eq (11) as two arrays."""
-        a, b, status, message = _core.sloshdyn_bridge.model_coefficients(*self.array())
+        a, b, status, message = _core.sloshdyn_bridge_model.model_coefficients(*self.array())
         check_status(status, message)
         return a, b
 
@@ -101,11 +110,11 @@ class Parameters:
             l, m = pendulum.pendulum_length, pendulum.sloshing_mass
         l, m = _checks.real("l", l), _checks.real("m", m)
         physical = np.array([M, L, k, c, b or 0.0, d or 0.0, g, theta0, l, m], dtype=np.float64)
-        groups, status, message = _core.sloshdyn_bridge.dimensionless_groups(physical)
+        groups, status, message = _core.sloshdyn_bridge_model.dimensionless_groups(physical)
         check_status(status, message)
         s1, mu1, kappa, beta, gamma, delta = (float(x) for x in groups)
-        beta = float(_MODEL_DEFAULTS[0]) if b is None else beta
-        delta = float(_MODEL_DEFAULTS[2]) if d is None else delta
+        beta = float(_MODEL_DEFAULTS["beta"]) if b is None else beta
+        delta = float(_MODEL_DEFAULTS["delta"]) if d is None else delta
         return cls(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
                    delta=delta, n=n, p=p, A=A, rho=rho)
 
@@ -147,12 +156,13 @@ def tank_pendulum(radius, liquid_depth, *, liquid_density=None,
                   liquid_mass=None) -> TankPendulum:
     """Pendulum of the first sloshing mode of a cylindrical tank of a radius and liquid depth
     [m], from the liquid density [kg/m^3] or the liquid mass [kg] (give one), eq (2)-(3)."""
-    pendulum, status, message = _core.sloshdyn_bridge.tank_pendulum(
+    pendulum, status, message = _core.sloshdyn_bridge_model.tank_pendulum(
         _checks.real("radius", radius), _checks.real("liquid_depth", liquid_depth),
         _checks.optional_real("liquid_density", liquid_density, 0.0),
         _checks.optional_real("liquid_mass", liquid_mass, 0.0))
     check_status(status, message)
-    return TankPendulum(*(float(x) for x in pendulum))
+    return TankPendulum(**{name: float(x)
+                           for name, x in _tables.unpack("pendulum", pendulum).items()})
 
 
 @dataclass(frozen=True)
@@ -187,93 +197,106 @@ def read_namelist(path) -> Input:
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
      study, store, figure, scheduler, study_records, status,
-     message) = _core.sloshdyn_bridge.read_input(path)
+     message) = _core.sloshdyn_bridge_input.read_input(path)
     check_status(status, message)
-    s1, mu1, kappa, theta0, beta, gamma, delta, A, rho, zeta = (float(x) for x in rpar)
-    params = Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
-                        delta=delta, n=int(ipar[0]), p=int(ipar[1]), A=A, rho=rho, zeta=zeta)
-    analyses, first = _tables.names("analyses")
-    methods, first_method = _tables.names("methods")
     tank = ground_motion = None
     if has_tank:
-        tank = Tank(**{f.name: (int(x) if f.type == "int" else float(x))
-                       for f, x in zip(dataclasses.fields(Tank), tank_array)})
-    if has_ground and n_samples > 0:
-        samples, status, message = _core.sloshdyn_bridge.input_record(path, n_samples)
-        check_status(status, message)
-        ground_motion = GroundMotion(dt=float(ground[3]), acceleration=samples.copy(),
-                                     units="m/s^2")
-    elif has_ground:
-        ground_motion = GroundMotion(peak_acceleration=float(ground[1]),
-                                     frequency=float(ground[2]), units="m/s^2")
-    excitation_parameter = {1: "rho", 2: "A", 3: "frequency"}
+        tank = Tank.from_array(tank_array)
+    if has_ground:
+        samples = np.zeros(0)
+        if n_samples > 0:
+            samples, status, message = _core.sloshdyn_bridge_input.input_record(path, n_samples)
+            check_status(status, message)
+        ground_motion = GroundMotion._from_arrays(ground, samples.copy())
+    excitation_parameters = _tables.codes("excitation_parameters")
+    sweep = _tables.unpack("sweep", sweep)
+    response_range = _tables.unpack("response_range", response_range)
+    simulation = _tables.unpack("simulation", simulation)
     return Input(
-        params=params, analysis=analyses[int(analysis) - first], sigma1=float(values[0]),
-        kappa_min=float(values[1]), kappa_max=float(values[2]),
+        params=Parameters.from_array(rpar, ipar),
+        analysis=_tables.codes("analyses")[int(analysis)],
+        **{name: float(x) for name, x in _tables.unpack("analysis", values).items()},
         directory=_tables._text(directory), tank=tank, ground_motion=ground_motion,
-        seismic={"t_end": float(seismic[0]), "n_out": int(seismic[1])},
+        seismic=_typed(_tables.unpack("seismic", seismic), integers=("n_out",)),
         chart=_chart_settings(chart),
-        integration={**{name: float(x) for name, x in zip(
-            ("rtol", "atol", "h_initial", "h_max", "h_min"), integration[:5])},
-            "max_steps": int(integration[5]), "method": methods[int(integration[6]) - first_method]},
-        simulation={"t_end": float(simulation[0]), "n_out": int(simulation[1]),
-                    "y0": [float(x) for x in simulation[2:6]]},
-        steady={"transient_periods": float(steady[0]), "settle_tol": float(steady[1]),
-                "max_transient_periods": float(steady[2]), "window_periods": int(steady[3]),
-                "samples_per_period": int(steady[4]), "periodic_tol": float(steady[5]),
-                "shooting": bool(steady[6])},
-        sweep={"parameter": excitation_parameter[int(sweep[0])], "start": float(sweep[1]),
-               "stop": float(sweep[2]), "n_points": int(sweep[3]),
-               "direction": ("up", "down", "both")[int(sweep[4]) - 1],
-               "start_from": "previous" if sweep[5] else "y0", "threads": int(sweep[6])},
-        response={"resonance": "3:1" if response_range[0] else "none",
-                  "parameter": excitation_parameter[int(response_range[1])],
-                  "start": float(response_range[2]), "stop": float(response_range[3]),
-                  **{name: int(x) for name, x in zip(("n_scan", "n_amplitudes", "n_phases"),
-                                                       response[:3])},
-                  **{name: float(x) for name, x in zip(
-                      ("amplitude_min", "amplitude_max", "ds", "ds_min", "ds_max", "x_scale"),
-                      response[3:9])},
-                  "max_points": int(response[9])},
-        lyapunov={name: int(x) for name, x in zip(
-            ("transient_periods", "n_periods", "renormalise_every"), lyapunov)},
+        integration=_integration_settings(integration),
+        simulation={"t_end": float(simulation["t_end"]), "n_out": int(simulation["n_out"]),
+                    "y0": [float(simulation[f"y0_{i}"]) for i in range(1, 5)]},
+        steady=_steady_settings(steady),
+        sweep={"parameter": excitation_parameters[int(sweep["parameter"])],
+               "start": float(sweep["start"]), "stop": float(sweep["stop"]),
+               "n_points": int(sweep["n_points"]),
+               "direction": _tables.codes("directions")[int(sweep["direction"])],
+               "start_from": "previous" if sweep["carry_state"] else "y0",
+               "threads": int(sweep["threads"])},
+        response={"resonance": _tables.codes("resonances")[int(response_range["resonance"])],
+                  "parameter": excitation_parameters[int(response_range["parameter"])],
+                  "start": float(response_range["start"]), "stop": float(response_range["stop"]),
+                  **_response_settings(response)},
+        lyapunov=_typed(_tables.unpack("lyapunov", lyapunov),
+                        integers=("transient_periods", "n_periods", "renormalise_every"),
+                        flags=("spectrum",)),
         study=_study(study, store, figure, scheduler, study_records))
+
+
+def _typed(values, integers=(), flags=()):
+    """{field: value} with Python floats, ints for the fields in integers, bools for flags."""
+    return {name: (int(x) if name in integers else bool(x) if name in flags else float(x))
+            for name, x in values.items()}
+
+
+def _integration_settings(array):
+    """The integration layout as simulation.Integration's fields (the method by name)."""
+    values = _typed(_tables.unpack("integration", array), integers=("max_steps", "method"))
+    values["method"] = _tables.codes("methods")[values["method"]]
+    return values
+
+
+def _steady_settings(array):
+    """The steady layout as simulation.Steady's fields."""
+    return _typed(_tables.unpack("steady", array),
+                  integers=("window_periods", "samples_per_period"), flags=("shooting",))
+
+
+def _response_settings(array):
+    """The response layout (the numbers of &response)."""
+    return _typed(_tables.unpack("response", array),
+                  integers=("n_scan", "n_amplitudes", "n_phases", "max_points"))
 
 
 def _study(values, store, figure, scheduler, records):
     """&study as a dict (empty when the file has none)."""
-    if not values[0]:
+    values = _tables.unpack("study", values)
+    if not values["given"]:
         return {}
-    kind = ("response_map", "basins", "fragility")[int(values[1]) - 1]
+    kind = _tables.codes("study_kinds")[int(values["kind"])]
     study = {"kind": kind, "store": _tables._text(store), "figure": _tables._text(figure),
-             "scheduler": _tables._text(scheduler), "workers": int(values[2]),
-             "worker_kind": ("processes", "threads")[int(values[3]) - 1],
-             "points_per_task": int(values[4])}
+             "scheduler": _tables._text(scheduler), "workers": int(values["workers"]),
+             "worker_kind": _tables.codes("worker_kinds")[int(values["worker_kind"])],
+             "points_per_task": int(values["points_per_task"])}
+    integers = ("n_frequencies", "n_amplitudes", "n_grid", "n_intensities")
+    fields = {"response_map": ("frequency_start", "frequency_stop", "n_frequencies",
+                               "amplitude_start", "amplitude_stop", "n_amplitudes"),
+              "basins": ("x1_start", "x1_stop", "dx1_start", "dx1_stop", "n_grid", "tol"),
+              "fragility": ("intensity_start", "intensity_stop", "n_intensities",
+                            "spectral_damping")}[kind]
+    study.update(_typed({name: values[name] for name in fields}, integers=integers))
     if kind == "response_map":
-        study.update(frequency_start=float(values[5]), frequency_stop=float(values[6]),
-                     n_frequencies=int(values[7]), amplitude_start=float(values[8]),
-                     amplitude_stop=float(values[9]), n_amplitudes=int(values[10]),
-                     continuation=("none", "up", "down", "both")[int(values[11]) - 1])
-    elif kind == "basins":
-        study.update(x1_start=float(values[12]), x1_stop=float(values[13]),
-                     dx1_start=float(values[14]), dx1_stop=float(values[15]),
-                     n_grid=int(values[16]), tol=float(values[17]))
-    else:
-        study.update(records=_tables._text(records), intensity_start=float(values[18]),
-                     intensity_stop=float(values[19]), n_intensities=int(values[20]),
-                     spectral_damping=float(values[21]))
+        study["continuation"] = _tables.codes("continuations")[int(values["continuation"])]
+    elif kind == "fragility":
+        study["records"] = _tables._text(records)
     return study
 
 
 def _chart_settings(chart):
-    """&chart as the arguments of sloshdyn.stability_chart (the layout of the core's chart
-    array: model, x, y, x_min, x_max, y_min, y_max, n_x, n_y, n_scan, max_points, max_curves,
-    brute_force_starts, threads)."""
-    models, axes = _tables.names("chart_models")[0], ("rho", "A", "gamma")
-    values = [float(v) for v in chart]
-    return {"model": models[int(values[0]) - 1], "x": axes[int(values[1]) - 1],
-            "y": axes[int(values[2]) - 1], "x_range": (values[3], values[4]),
-            "y_range": (values[5], values[6]),
-            **{name: int(v) for name, v in zip(("n_x", "n_y", "n_scan", "max_points",
-                                                 "max_curves", "brute_force_starts", "threads"),
-                                                values[7:])}}
+    """&chart as the arguments of sloshdyn.stability_chart (the core's layout 'chart', the model
+    and axes by their codes)."""
+    values = _tables.unpack("chart", chart)
+    axes = _tables.codes("chart_axes")
+    return {"model": _tables.codes("chart_models")[int(values["model"])],
+            "x": axes[int(values["x"])], "y": axes[int(values["y"])],
+            "x_range": (float(values["x_min"]), float(values["x_max"])),
+            "y_range": (float(values["y_min"]), float(values["y_max"])),
+            **{name: int(values[name]) for name in ("n_x", "n_y", "n_scan", "max_points",
+                                                    "max_curves", "brute_force_starts",
+                                                    "threads")}}

@@ -18,7 +18,7 @@ from .model import linear_modes
 from .parameters import Parameters, convert_fields
 from .simulation import Integration, Steady, steady_state
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
 _SHOOTING = _tables.defaults()["shooting"]
 _LYAPUNOV = _tables.defaults()["lyapunov"]
@@ -28,8 +28,8 @@ _LYAPUNOV = _tables.defaults()["lyapunov"]
 class Shooting:
     """Settings of the Newton shooting for a periodic orbit, with the core's defaults."""
 
-    newton_tol: float = float(_SHOOTING[0])   #: on the orbit's state, relative
-    max_iter: int = int(_SHOOTING[1])         #: Newton iterations at most
+    newton_tol: float = float(_SHOOTING["newton_tol"])   #: on the orbit's state, relative
+    max_iter: int = int(_SHOOTING["max_iter"])           #: Newton iterations at most
 
     def __post_init__(self):
         convert_fields(self)
@@ -40,16 +40,17 @@ class Lyapunov:
     """Settings of the largest Lyapunov exponent (&lyapunov), in forcing periods: the fields of
     the core's layout, in order, with its defaults."""
 
-    transient_periods: int = int(_LYAPUNOV[0])    #: integrated before measuring
-    n_periods: int = int(_LYAPUNOV[1])            #: measured
-    renormalise_every: int = int(_LYAPUNOV[2])    #: the tangent vector is renormalised
+    transient_periods: int = int(_LYAPUNOV["transient_periods"])   #: integrated before measuring
+    n_periods: int = int(_LYAPUNOV["n_periods"])   #: measured; a multiple of renormalise_every
+    renormalise_every: int = int(_LYAPUNOV["renormalise_every"])   #: periods between
+    #: renormalisations of the tangent vectors
 
     def __post_init__(self):
         convert_fields(self)
 
-    def array(self):
-        return np.array([getattr(self, f.name) for f in dataclasses.fields(self)],
-                        dtype=np.float64)
+    def array(self, spectrum=False):
+        """The core's lyapunov layout (spectrum: the four exponents, not the largest only)."""
+        return _tables.pack("lyapunov", {**dataclasses.asdict(self), "spectrum": int(spectrum)})
 
 
 @dataclass(frozen=True)
@@ -86,8 +87,10 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
         *params.array(), y0, periods, integration.array(), shooting.newton_tol,
         shooting.max_iter)
     check_status(status, message, "periodic orbit")
-    return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy, float(info[1]),
-                         int(info[0]), int(periods), integration.method_used)
+    info = _tables.unpack("orbit_info", info)
+    return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy,
+                         float(info["max_x1"]), int(info["iterations"]), int(periods),
+                         integration.method_used)
 
 
 def start_state(params: Parameters, start="simulation"):
@@ -157,26 +160,33 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     c = continuation
     periods = _checks.integer("periods", periods)
     max_points = _checks.output_size("max_points", _checks.integer("max_points", c.max_points, 1),
-                                     15)
+                                     len(_tables.columns("periodic_branch")))
     first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
     if y0 is None:
         y0 = periodic_orbit(first, start_state(first, start), periods=periods,
                             integration=integration).y0
-    settings = np.array([c.ds, c.ds_min, c.ds_max, c.x_scale, 1.0 if from_end == "low" else -1.0])
+    settings = _tables.pack("continuation", {"ds": c.ds, "ds_min": c.ds_min, "ds_max": c.ds_max,
+                                             "x_scale": c.x_scale,
+                                             "direction": 1.0 if from_end == "low" else -1.0})
     points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
         *first.array(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
         periods, lo, hi, settings, integration.array(), max_points, 100)
-    lam = points[0, :n]
+    rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
+    lam = rows["lambda"]
     table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
              "A": lam if parameter == "A" else np.full(n, params.A)}
-    for i in range(4):
-        table[f"y{i + 1}"] = points[1 + i, :n]
-        table[f"mu{i + 1}"] = multipliers[i, :n] + 1j * multipliers[4 + i, :n]
-    table["max_x1"] = points[5, :n]
-    table["stable"] = points[6, :n]
-    specials = [PeriodicSpecialPoint(KINDS[int(s[0])], float(s[1]) if parameter == "rho" else params.rho,
-                                     float(s[1]) if parameter == "A" else params.A, float(s[6]),
-                                     s[2:6].copy()) for s in special[:, :n_special].T]
+    for i in range(1, 5):
+        table[f"y{i}"] = rows[f"y{i}"]
+        table[f"mu{i}"] = rows[f"re_mu{i}"] + 1j * rows[f"im_mu{i}"]
+    table["max_x1"] = rows["max_x1"]
+    table["stable"] = rows["stable"]
+    specials = []
+    for column in special[:, :n_special].T:
+        point = dict(zip(_tables.columns("periodic_special_points"), column))
+        specials.append(PeriodicSpecialPoint(
+            KINDS[int(point["kind"])], float(point["lambda"]) if parameter == "rho" else params.rho,
+            float(point["lambda"]) if parameter == "A" else params.A, float(point["max_x1"]),
+            np.array([point[f"y{i}"] for i in range(1, 5)])))
     text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
     branch = PeriodicBranch(parameter, table, specials, bool(complete), text,
                             integration.method_used)

@@ -5,6 +5,8 @@ limit cycles of the 3:1 slow flow, between their Hopf points. Computed by the Fo
 
 from __future__ import annotations
 
+import dataclasses
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,7 +19,7 @@ from .parameters import Parameters
 from .periodic import Lyapunov
 from .simulation import Integration
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_research
 KINDS = _tables.codes("special")
 #: why a continuation stopped (sloshdyn_continuation's STOP_* codes)
 _STOPS = {1: "lambda_min", 2: "lambda_max", 3: "max_points", 4: "closed", 5: "x_max", 6: "failed"}
@@ -51,7 +53,7 @@ def lyapunov_spectrum(params: Parameters, y0=None, *, lyapunov: Lyapunov = Lyapu
     y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
     blocks = max(lyapunov.n_periods // max(lyapunov.renormalise_every, 1), 1)
     exponents, history, dimension, status, message = cancellable(
-        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(), integration.array(),
+        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(spectrum=True), integration.array(),
         blocks)
     check_status(status, message, "Lyapunov spectrum")
     periods = lyapunov.renormalise_every * np.arange(1, blocks + 1, dtype=float)
@@ -157,8 +159,10 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     a_end, b_end = a + (gap if low is not None else 0), b - (gap if high is not None else 0)
     halves = []
     for direction in (-1.0, 1.0):
-        settings = np.array([continuation.ds, continuation.ds_min, continuation.ds_max,
-                             continuation.x_scale, direction, x_tol, f_tol, max_iter])
+        settings = _tables.pack("cycle_continuation", {
+            "ds": continuation.ds, "ds_min": continuation.ds_min, "ds_max": continuation.ds_max,
+            "x_scale": continuation.x_scale, "direction": direction, "x_tol": x_tol,
+            "f_tol": f_tol, "max_iter": max_iter})
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
          message) = cancellable(_bridge.slow_flow_cycle_branch, *start.array(),
                                 1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,

@@ -19,9 +19,8 @@ from ._errors import InputError, check_status
 from .parameters import Parameters, convert_fields
 from .simulation import Integration, Steady
 
-_bridge = _core.sloshdyn_bridge
-_TANK_DEFAULTS = _bridge.tank_defaults()
-_HARMONIC, _RECORD = 1, 2          # the ground kinds of sloshdyn_ground
+_bridge = _core.sloshdyn_bridge_seismic
+_TANK_DEFAULTS = _tables.unpack("tank", _bridge.tank_defaults())
 
 
 def _name(column):
@@ -42,20 +41,25 @@ class Tank:
     radius: float                       #: R [m]
     liquid_depth: float                 #: h [m]
     freeboard: float                    #: liquid surface to the roof [m]
-    liquid_density: float = float(_TANK_DEFAULTS[3])      #: [kg/m^3]
-    liquid_mass: float = float(_TANK_DEFAULTS[4])         #: [kg]
+    liquid_density: float = float(_TANK_DEFAULTS["liquid_density"])      #: [kg/m^3]
+    liquid_mass: float = float(_TANK_DEFAULTS["liquid_mass"])         #: [kg]
     tank_mass: float                    #: shell and roof [kg]
-    support_frequency: float = float(_TANK_DEFAULTS[6])   #: [Hz]
-    support_damping: float = float(_TANK_DEFAULTS[7])     #: ratio of critical
-    support_stiffness: float = float(_TANK_DEFAULTS[8])   #: [N m/rad]
-    support_damping_coefficient: float = float(_TANK_DEFAULTS[9])   #: [N m s/rad]
-    support_height: float = float(_TANK_DEFAULTS[10])     #: rod length L [m]; 0: h + freeboard
-    sloshing_damping: float = float(_TANK_DEFAULTS[11])   #: ratio of critical (linear)
-    impact_stiffness: float = float(_TANK_DEFAULTS[12])   #: beta (dimensionless, eq 4)
-    impact_damping: float = float(_TANK_DEFAULTS[13])     #: delta (dimensionless, eq 5)
-    n: int = int(_TANK_DEFAULTS[14])                      #: exponent of eq (4)
-    p: int = int(_TANK_DEFAULTS[15])                      #: exponent of eq (5)
-    gravity: float = float(_TANK_DEFAULTS[16])            #: [m/s^2]
+    support_frequency: float = float(_TANK_DEFAULTS["support_frequency"])   #: [Hz]
+    support_damping: float = float(_TANK_DEFAULTS["support_damping"])     #: ratio of critical
+    support_stiffness: float = float(_TANK_DEFAULTS["support_stiffness"])   #: [N m/rad]
+    support_damping_coefficient: float = float(
+        _TANK_DEFAULTS["support_damping_coefficient"])   #: [N m s/rad]
+    #: rod length L [m]; 0: h + freeboard
+    support_height: float = float(_TANK_DEFAULTS["support_height"])
+    #: ratio of critical (linear)
+    sloshing_damping: float = float(_TANK_DEFAULTS["sloshing_damping"])
+    #: beta (dimensionless, eq 4)
+    impact_stiffness: float = float(_TANK_DEFAULTS["impact_stiffness"])
+    #: delta (dimensionless, eq 5)
+    impact_damping: float = float(_TANK_DEFAULTS["impact_damping"])
+    n: int = int(_TANK_DEFAULTS["n"])                      #: exponent of eq (4)
+    p: int = int(_TANK_DEFAULTS["p"])                      #: exponent of eq (5)
+    gravity: float = float(_TANK_DEFAULTS["gravity"])            #: [m/s^2]
 
     def __post_init__(self):
         convert_fields(self)
@@ -65,9 +69,15 @@ class Tank:
         object.__setattr__(self, "_model", (rpar.copy(), ipar.copy()))
 
     def array(self):
-        """The core's layout tank(17)."""
-        return np.array([float(getattr(self, f.name)) for f in dataclasses.fields(self)],
-                        dtype=np.float64)
+        """The flat array of the core's layout 'tank'."""
+        return _tables.pack("tank", {name: getattr(self, name) for name in _tables.layout("tank")})
+
+    @classmethod
+    def from_array(cls, array):
+        """The tank of a flat array in the core's layout 'tank'."""
+        kinds = {f.name: f.type for f in dataclasses.fields(cls)}
+        return cls(**{name: (int(x) if kinds[name] == "int" else float(x))
+                      for name, x in _tables.unpack("tank", array).items()})
 
     @property
     def properties(self):
@@ -108,16 +118,13 @@ class Tank:
     def parameters(self, ground_motion=None) -> Parameters:
         """The dimensionless model (Parameters) of the tank; with harmonic ground motion, its
         excitation A, rho as well."""
-        rpar, ipar = self._model
-        s1, mu1, kappa, theta0, beta, gamma, delta, _, _, zeta = (float(x) for x in rpar)
         A = rho = 0.0
         if ground_motion is not None:
             A, rho, status, message = _bridge.tank_excitation(self.array(),
                                                               _ground_arrays(ground_motion)[0])
             check_status(status, message)
             A, rho = float(A), float(rho)
-        return Parameters(s1=s1, mu1=mu1, kappa=kappa, theta0=theta0, beta=beta, gamma=gamma,
-                          delta=delta, n=int(ipar[0]), p=int(ipar[1]), zeta=zeta, A=A, rho=rho)
+        return Parameters.from_array(*self._model, A=A, rho=rho)
 
     def design_codes(self, ground_motion=None) -> DesignCodes:
         """The tank's sloshing parameters by sloshdyn and by API 650 Annex E, EN 1998-4 Annex A
@@ -220,9 +227,20 @@ class GroundMotion:
         return cls(dt=float(dt), acceleration=samples[:n].copy(), units="m/s^2")
 
     def _arrays(self):
-        ground = np.array([_HARMONIC if self.kind == "harmonic" else _RECORD,
-                           self.peak_acceleration, self.frequency, self.dt], dtype=np.float64)
+        """The flat arrays of the bridge: the core's layout 'ground' and the samples [m/s^2]."""
+        ground = _tables.pack("ground", {"kind": _tables.code("ground_kinds", self.kind),
+                                         "peak_acceleration": self.peak_acceleration,
+                                         "frequency": self.frequency, "dt": self.dt})
         return ground, np.asarray(self.acceleration, dtype=np.float64)
+
+    @classmethod
+    def _from_arrays(cls, ground, samples):
+        """The ground motion of the bridge's arrays (SI units)."""
+        values = _tables.unpack("ground", ground)
+        if _tables.codes("ground_kinds")[int(values["kind"])] == "record":
+            return cls(dt=float(values["dt"]), acceleration=samples, units="m/s^2")
+        return cls(peak_acceleration=float(values["peak_acceleration"]),
+                   frequency=float(values["frequency"]), units="m/s^2")
 
     @property
     def duration(self):
@@ -255,10 +273,7 @@ class GroundMotion:
             0.0 if sa is None else _real("sa", sa) * to_si,
             0.0 if period is None else _real("period", period), _real("damping", damping))
         check_status(status, message)
-        if self.kind == "record":
-            return GroundMotion(dt=self.dt, acceleration=scaled_samples.copy(), units="m/s^2")
-        return GroundMotion(peak_acceleration=float(scaled[1]), frequency=float(scaled[2]),
-                            units="m/s^2")
+        return GroundMotion._from_arrays(scaled, scaled_samples.copy())
 
     def response_spectrum(self, periods, damping=0.05, tail_duration=None, duration=None):
         """Peak responses of linear oscillators (exact for the piecewise linear record) at

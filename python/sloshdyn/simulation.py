@@ -13,7 +13,7 @@ from ._cancel import cancellable
 from ._errors import InputError, IntegrationError, check_status
 from .parameters import Parameters, convert_fields
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_simulation
 MOTIONS = _tables.codes("motion")
 METHODS = {name: code for code, name in _tables.codes("methods").items()}
 SUMMARY_COLUMNS = _tables.columns("summary")
@@ -26,13 +26,13 @@ class Integration:
     """Settings of the integrators (&integration): the fields of the core's layout, in order,
     with the core's defaults."""
 
-    rtol: float = float(_INTEGRATION[0])
-    atol: float = float(_INTEGRATION[1])
-    h_initial: float = float(_INTEGRATION[2])    #: 0 = automatic
-    h_max: float = float(_INTEGRATION[3])        #: 0 = no limit
-    h_min: float = float(_INTEGRATION[4])        #: 0 = 1e-14 max(1, |tau|)
-    max_steps: int = int(_INTEGRATION[5])
-    method: str = _tables.codes("methods")[int(_INTEGRATION[6])]   #: 'auto' (by rtol, see
+    rtol: float = float(_INTEGRATION["rtol"])
+    atol: float = float(_INTEGRATION["atol"])
+    h_initial: float = float(_INTEGRATION["h_initial"])    #: 0 = automatic
+    h_max: float = float(_INTEGRATION["h_max"])        #: 0 = no limit
+    h_min: float = float(_INTEGRATION["h_min"])        #: 0 = 1e-14 max(1, |tau|)
+    max_steps: int = int(_INTEGRATION["max_steps"])
+    method: str = _tables.codes("methods")[int(_INTEGRATION["method"])]   #: 'auto' (by rtol, see
     #: method_used), 'rk45' (Dormand-Prince 5(4)), 'dop853' (8(5,3)) or 'vern9' (Verner 9(8))
 
     @property
@@ -46,8 +46,10 @@ class Integration:
         _checks.choice("method", self.method, tuple(METHODS))
 
     def array(self):
-        return np.array([self.rtol, self.atol, self.h_initial, self.h_max, self.h_min,
-                         self.max_steps, METHODS[self.method]], dtype=np.float64)
+        """The flat array of the core's layout 'integration' (the method by its code)."""
+        return _tables.pack("integration", {**{name: getattr(self, name) for name in
+                                               _tables.layout("integration")},
+                                            "method": METHODS[self.method]})
 
 
 @dataclass(frozen=True)
@@ -55,15 +57,17 @@ class Steady:
     """How a steady state is reached and measured (&steady); times in forcing periods
     T = 2 pi/rho. Fields in the core's layout, with its defaults."""
 
-    transient_periods: float = float(_STEADY[0])      #: minimum transient
-    settle_tol: float = float(_STEADY[1])             #: > 0: extend the transient until
+    transient_periods: float = float(_STEADY["transient_periods"])      #: minimum transient
+    settle_tol: float = float(_STEADY["settle_tol"])             #: > 0: extend the transient until
                                                       #: successive Poincare points differ by
                                                       #: less (relative); 0: fixed transient
-    max_transient_periods: float = float(_STEADY[2])
-    window_periods: int = int(_STEADY[3])             #: measuring window
-    samples_per_period: int = int(_STEADY[4])         #: dense-output samples per period
-    periodic_tol: float = float(_STEADY[5])           #: Poincare points this close coincide
-    shooting: bool = bool(_STEADY[6])                 #: with settle_tol > 0: once the
+    max_transient_periods: float = float(_STEADY["max_transient_periods"])
+    window_periods: int = int(_STEADY["window_periods"])             #: measuring window
+    #: dense-output samples per period
+    samples_per_period: int = int(_STEADY["samples_per_period"])
+    #: Poincare points this close coincide
+    periodic_tol: float = float(_STEADY["periodic_tol"])
+    shooting: bool = bool(_STEADY["shooting"])                 #: with settle_tol > 0: once the
     #: Poincare map contracts, jump to the periodic orbit by Newton shooting (kept only if
     #: stable and the attractor being approached); False: integration only
 
@@ -71,9 +75,9 @@ class Steady:
         convert_fields(self)
 
     def array(self):
-        return np.array([self.transient_periods, self.settle_tol, self.max_transient_periods,
-                         self.window_periods, self.samples_per_period, self.periodic_tol,
-                         float(self.shooting)], dtype=np.float64)
+        """The flat array of the core's layout 'steady'."""
+        return _tables.pack("steady", {name: float(getattr(self, name)) for name in
+                                       _tables.layout("steady")})
 
 
 @dataclass(frozen=True)

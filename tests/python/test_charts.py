@@ -31,7 +31,7 @@ def one_parameter(params, A, rho_range=RHO, n_scan=41, ds_max=None):
 
 
 def slow_flow_jacobian(params, rho, A, state):
-    f, jacobian, status, message = sloshdyn._core.sloshdyn_bridge.slow_flow_field(
+    f, jacobian, status, message = sloshdyn._core.sloshdyn_bridge_charts.slow_flow_field(
         *params.replace(rho=rho, A=A).array(), 1, state)
     assert status == 0, message
     return f, jacobian

@@ -27,7 +27,7 @@ def test_every_exit_code_of_the_core_has_a_meaning():
     documented ones: a new code needs its row in EXIT_MEANINGS and docs/failure.md."""
     for reading in (False, True):
         for status in range(0, 16):
-            assert int(_core.sloshdyn_bridge.exit_code(status, reading)) in EXIT_MEANINGS
+            assert int(_core.sloshdyn_bridge_input.exit_code(status, reading)) in EXIT_MEANINGS
 
 
 FAILURES = {

@@ -17,7 +17,7 @@ from sloshdyn import _core
 from sloshdyn._errors import EXIT_TERMINATED
 
 #: the exit code of a write failure, by the core's rule (status SD_IO_ERROR = 8)
-EXIT_IO = int(_core.sloshdyn_bridge.exit_code(8, False))
+EXIT_IO = int(_core.sloshdyn_bridge_input.exit_code(8, False))
 SIMULATE = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.8049, theta0 = 0.785, gamma = 0.001 /\n"
             "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'simulate' /\n"
             "&simulation t_end = {t_end}, n_out = {n_out} /\n&output directory = '{out}' /\n")

@@ -123,7 +123,7 @@ def test_readme_indexes_every_docs_page():
 
 def reader_groups():
     """{group: {variable: default text}} as the Fortran reader writes its groups."""
-    text = sloshdyn._core.sloshdyn_bridge.namelist_defaults().decode().strip()
+    text = sloshdyn._core.sloshdyn_bridge_input.namelist_defaults().decode().strip()
     groups = {}
     for match in re.finditer(r"&(\w+)(.*?)/\s*$", text, re.M):
         items = re.findall(r"(\w+)=\s*(\"[^\"]*\"|[^,]*?)\s*,", match.group(2))

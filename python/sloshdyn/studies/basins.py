@@ -17,7 +17,7 @@ from .engine import SECONDS, Plan, Variable, positive_int, run_plan, version
 from .points import (MAX_PERIOD, MOTIONS, ORBIT_FOUND, ORBIT_MAX_MU, ORBIT_Y, SUMMARY_COLUMNS,
                      common_attrs, settings_arrays, summary_variables, unpack)
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_studies
 
 
 def _basin_task(rpar, ipar, y0, integration, steady):

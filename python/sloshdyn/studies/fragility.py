@@ -18,7 +18,7 @@ from .._errors import InputError
 from ..simulation import Integration
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_seismic
 
 
 _PEAKS = [c.split(" [")[0] for c in _tables.columns("seismic_peaks")]

@@ -17,7 +17,7 @@ from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, versi
 from .points import (ORBIT_FOUND, ORBIT_MAX_MU, SUMMARY_COLUMNS, common_attrs, settings_arrays,
                      summary_variables, unpack)
 
-_bridge = _core.sloshdyn_bridge
+_bridge = _core.sloshdyn_bridge_studies
 
 
 def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_grid=False):

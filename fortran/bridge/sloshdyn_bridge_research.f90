@@ -1,0 +1,79 @@
+!> The f2py bridge of research.py: the Lyapunov spectrum of the full equations and the
+!> continuation of the slow flow's limit cycles (the beats).
+!> The bridge's contract (c_double/c_int arrays in named layouts, status and message,
+!> threads and the GIL) is written once, in sloshdyn_bridge_model.f90.
+module sloshdyn_bridge_research
+  use, intrinsic :: iso_c_binding, only: c_double, c_int
+  implicit none
+
+contains
+
+  !> All four Lyapunov exponents per unit tau from y0 (QR method), their running estimates
+  !> history(4, n_hist) after each renormalisation block and the Kaplan-Yorke dimension;
+  !> settings in the lyapunov layout.
+  subroutine lyapunov_spectrum(rpar, ipar, y0, settings, integration, n_hist, exponents, &
+                               history, dimension_ky, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, LYAPUNOV_SIZE, to_ode_options, to_method, &
+                                to_lyapunov
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4), settings(LYAPUNOV_SIZE), &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n_hist
+    real(c_double), intent(out) :: exponents(4), history(4, n_hist), dimension_ky
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code
+    exponents = 0; history = 0; dimension_ky = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call tank_lyapunov_spectrum(model, y0, to_lyapunov(settings), &
+                                               to_ode_options(integration), &
+                                               to_method(integration), exponents, history, &
+                                               dimension_ky, code, message)
+    status = code
+  end subroutine lyapunov_spectrum
+
+  !> The branch of slow-flow limit cycles (the beats) through the cycle (x_cycle, period [tau])
+  !> at the model's rho and A, in rho (which = 1) or A (2) over [lambda_min, lambda_max];
+  !> settings in the cycle_continuation layout. points(7, :) = [lambda, x(4), T, stable],
+  !> multipliers(8, :) = [re(4), im(4)], amplitudes(4, :) = [min|B1|, max|B1|, min|B2|,
+  !> max|B2|], special(7, :) = [kind, lambda, x(4), T]; stop_reason: sloshdyn_continuation's.
+  subroutine slow_flow_cycle_branch(rpar, ipar, which, x_cycle, period, lambda_min, lambda_max, &
+                                    settings, integration, max_points, max_special, points, &
+                                    multipliers, amplitudes, n_points, special, n_special, &
+                                    stop_reason, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_continuation, only: continuation_options
+    use sloshdyn_slowflow_cycles, only: core => slow_flow_cycle_branch
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, CYCLE_CONTINUATION_SIZE, to_ode_options, &
+                                to_method, to_cycle_continuation
+    real(c_double), intent(in) :: rpar(n_real_params), x_cycle(4), period, lambda_min, &
+                                  lambda_max, settings(CYCLE_CONTINUATION_SIZE), &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, max_points, max_special
+    real(c_double), intent(out) :: points(7, max_points), multipliers(8, max_points), &
+                                   amplitudes(4, max_points), special(7, max_special)
+    integer(c_int), intent(out) :: n_points, n_special, stop_reason, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(continuation_options) :: options
+    integer :: code, found, found_special, reason
+    points = 0; multipliers = 0; amplitudes = 0; special = 0
+    found = 0; found_special = 0; reason = 0
+    options = to_cycle_continuation(settings)
+    options%max_points = max_points
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, int(which), x_cycle, period, lambda_min, lambda_max, &
+                             options, to_ode_options(integration), to_method(integration), &
+                             points, multipliers, amplitudes, found, special, found_special, &
+                             reason, code, message)
+    n_points = found
+    n_special = found_special
+    stop_reason = reason
+    status = code
+  end subroutine slow_flow_cycle_branch
+
+end module sloshdyn_bridge_research

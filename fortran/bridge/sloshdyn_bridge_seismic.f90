@@ -1,0 +1,290 @@
+!> The f2py bridge of seismic.py: a tank in SI units under ground motion; tank(TANK_SIZE) and
+!> ground(GROUND_SIZE) in the layouts of sloshdyn_layouts, samples(n) the record's accelerations
+!> [m/s^2] (n = 0 for harmonic motion).
+!> The bridge's contract (c_double/c_int arrays in named layouts, status and message,
+!> threads and the GIL) is written once, in sloshdyn_bridge_model.f90.
+module sloshdyn_bridge_seismic
+  use, intrinsic :: iso_c_binding, only: c_double, c_int
+  implicit none
+
+contains
+
+  !> The tank's defaults (tank_t).
+  subroutine tank_defaults(tank)
+    use sloshdyn_layouts, only: TANK_SIZE, from_tank
+    use sloshdyn_vessel, only: tank_t
+    real(c_double), intent(out) :: tank(TANK_SIZE)
+    type(tank_t) :: defaults
+    tank = from_tank(defaults)
+  end subroutine tank_defaults
+
+  !> The tank's properties (the 'tank_si' table's row) and its dimensionless model.
+  subroutine tank_properties(tank, row, rpar, ipar, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_to_arrays
+    use sloshdyn_tables, only: TANK_SI_SIZE
+    use sloshdyn_layouts, only: TANK_SIZE, to_tank
+    use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
+    use sloshdyn_seismic, only: tank_summary
+    real(c_double), intent(in) :: tank(TANK_SIZE)
+    real(c_double), intent(out) :: row(TANK_SI_SIZE), rpar(n_real_params)
+    integer(c_int), intent(out) :: ipar(n_int_params), status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties_t) :: props
+    integer :: info, ints(n_int_params)
+    row = 0; rpar = 0; ipar = 0
+    call tank_model(to_tank(tank), model, props, info, message)
+    if (info == 0) then
+      call tank_summary(to_tank(tank), props, model, row)
+      call model_to_arrays(model, rpar, ints)
+      ipar = ints
+    end if
+    status = info
+  end subroutine tank_properties
+
+  !> A and rho of a tank's model under harmonic ground motion (sloshdyn_ground's
+  !> ground_excitation, as the namelist reader sets them for &tank with &ground_motion).
+  subroutine tank_excitation(tank, ground, A, rho, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, to_tank, to_ground
+    use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
+    use sloshdyn_ground, only: ground_motion_t, ground_excitation, GROUND_HARMONIC
+    use sloshdyn_excitation, only: excitation_t
+    use sloshdyn_status, only: SD_BAD_INPUT
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE)
+    real(c_double), intent(out) :: A, rho
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties_t) :: props
+    type(excitation_t) :: excitation
+    type(ground_motion_t) :: motion
+    real(c_double) :: no_samples(0)
+    integer :: info
+    A = 0; rho = 0
+    motion = to_ground(ground, no_samples)
+    call tank_model(to_tank(tank), model, props, info, message)
+    if (info == 0 .and. motion%kind /= GROUND_HARMONIC) then
+      info = SD_BAD_INPUT
+      message = 'a record has no A and rho: they are those of harmonic ground motion'
+    end if
+    if (info == 0) call ground_excitation(motion, props%omega, props%rod_length, excitation, &
+                                          info, message)
+    if (info == 0) then
+      A = excitation%A
+      rho = excitation%rho
+    end if
+    status = info
+  end subroutine tank_excitation
+
+  !> The rules of a ground motion (sloshdyn_ground's check_ground).
+  subroutine check_ground(ground, n, samples, status, message)
+    !f2py threadsafe
+    use sloshdyn_layouts, only: GROUND_SIZE, to_ground
+    use sloshdyn_ground, only: core => check_ground
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: ground(GROUND_SIZE), samples(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_ground(ground, samples), info, message)
+    status = info
+  end subroutine check_ground
+
+  !> The factor that turns an acceleration in the named units (g, m/s^2, cm/s^2) into m/s^2.
+  subroutine acceleration_units(name, factor, status, message)
+    use sloshdyn_records, only: units_code, units_factor
+    character(len=*), intent(in) :: name
+    real(c_double), intent(out) :: factor
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: code, info
+    call units_code(name, code, info, message)
+    factor = 0
+    if (info == 0) call units_factor(code, factor, info, message)
+    status = info
+  end subroutine acceleration_units
+
+  !> A record file (sloshdyn_records' load_record): dt [s] and the first n of samples [m/s^2].
+  !> n_max must be at least the number of samples (the file's count of numbers is enough).
+  subroutine read_record(path, format, units, n_max, dt, samples, n, status, message)
+    use sloshdyn_kinds, only: wp
+    use sloshdyn_status, only: SD_BAD_INPUT
+    use sloshdyn_records, only: load_record
+    use sloshdyn_text, only: num2str
+    character(len=*), intent(in) :: path, format, units
+    integer(c_int), intent(in) :: n_max
+    real(c_double), intent(out) :: dt, samples(n_max)
+    integer(c_int), intent(out) :: n, status
+    character(len=256), intent(out) :: message
+    real(wp), allocatable :: accel(:)
+    integer :: info
+    samples = 0; n = 0
+    call load_record(path, format, units, dt, accel, info, message)
+    if (info == 0) then
+      if (size(accel) > n_max) then
+        info = SD_BAD_INPUT
+        message = path//' has '//num2str(size(accel))//' samples, more than n_max = '// &
+                  num2str(int(n_max))
+      else
+        n = size(accel)
+        samples(1:n) = accel
+      end if
+    end if
+    status = info
+  end subroutine read_record
+
+  !> The ground motion scaled (sloshdyn_ground's scale_ground; SI units).
+  subroutine scale_ground(ground, n, samples, scale_factor, target_pga, target_sa, &
+                          target_period, target_damping, scaled, scaled_samples, status, message)
+    !f2py threadsafe
+    use sloshdyn_layouts, only: GROUND_SIZE, to_ground, from_ground
+    use sloshdyn_ground, only: ground_motion_t, core => scale_ground
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: ground(GROUND_SIZE), samples(n), scale_factor, target_pga, &
+                                  target_sa, &
+                                  target_period, target_damping
+    real(c_double), intent(out) :: scaled(GROUND_SIZE), scaled_samples(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(ground_motion_t) :: motion
+    integer :: info
+    motion = to_ground(ground, samples)
+    call core(motion, scale_factor, target_pga, target_sa, target_period, target_damping, info, &
+              message)
+    scaled = from_ground(motion)
+    scaled_samples = samples
+    if (info == 0 .and. n > 0) scaled_samples = motion%acceleration
+    status = info
+  end subroutine scale_ground
+
+  !> Response spectrum of the ground motion (sloshdyn_ground's ground_spectrum).
+  subroutine ground_spectrum(ground, n, samples, m, periods, damping, tail_duration, duration, &
+                             sd, sv, psa, status, message)
+    !f2py threadsafe
+    use sloshdyn_layouts, only: GROUND_SIZE, to_ground
+    use sloshdyn_ground, only: core => ground_spectrum
+    integer(c_int), intent(in) :: n, m
+    real(c_double), intent(in) :: ground(GROUND_SIZE), samples(n), periods(m), damping, &
+                                  tail_duration, &
+                                  duration
+    real(c_double), intent(out) :: sd(m), sv(m), psa(m)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_ground(ground, samples), periods, damping, tail_duration, duration, sd, sv, &
+              psa, info, message)
+    status = info
+  end subroutine ground_spectrum
+
+  !> t_end [s] and n_out of a seismic response, the defaults (sloshdyn_seismic) where the given
+  !> ones are <= 0: chosen = [t_end, n_out].
+  subroutine seismic_defaults(tank, ground, n, samples, t_end, n_out, chosen, status, message)
+    !f2py threadsafe
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, SEISMIC_SIZE, to_tank, to_ground
+    use sloshdyn_model, only: model_t
+    use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
+    use sloshdyn_ground, only: check_ground
+    use sloshdyn_seismic, only: core => seismic_defaults
+    integer(c_int), intent(in) :: n, n_out
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end
+    real(c_double), intent(out) :: chosen(SEISMIC_SIZE)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties_t) :: props
+    real(c_double) :: duration
+    integer :: info, count
+    chosen = 0
+    call tank_model(to_tank(tank), model, props, info, message)
+    if (info == 0) call check_ground(to_ground(ground, samples), info, message)
+    if (info == 0) then
+      duration = t_end
+      count = n_out
+      call core(props, to_ground(ground, samples), duration, count)
+      chosen = [duration, real(count, c_double)]
+    end if
+    status = info
+  end subroutine seismic_defaults
+
+  !> The tank's response from rest (sloshdyn_seismic): table(SEISMIC_ROWS,
+  !> n_out) in the 'seismic' layout
+  !> and peaks(PEAKS_SIZE) in the 'seismic_peaks' layout.
+  subroutine seismic_response(tank, ground, n, samples, t_end, n_out, integration, table, &
+                              peaks, status, message)
+    !f2py threadsafe
+    use sloshdyn_tables, only: SEISMIC_ROWS, PEAKS_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE, to_tank, to_ground, &
+                                to_ode_options, to_method
+    use sloshdyn_seismic, only: core => seismic_response
+    integer(c_int), intent(in) :: n, n_out
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end, &
+                                  integration(INTEGRATION_SIZE)
+    real(c_double), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_tank(tank), to_ground(ground, samples), t_end, int(n_out), &
+              to_ode_options(integration), to_method(integration), table, peaks, info, message)
+    status = info
+  end subroutine seismic_response
+
+  !> Steady states of the tank under harmonic ground motion of the ground's peak acceleration
+  !> at each frequency [Hz] (sloshdyn_seismic's harmonic_sweep): summaries(SUMMARY_SIZE, n) in the
+  !> 'summary' layout and table(HARMONIC_SWEEP_ROWS,
+  !> n) in the 'harmonic_sweep' layout; carry = 1: each point
+  !> from the previous one's final state (threads = 1; y_final the last one's), else each from
+  !> y0.
+  subroutine harmonic_sweep(tank, ground, n, frequencies, y0, integration, steady, carry, &
+                            threads, summaries, table, y_final, n_done, status, message)
+    !f2py threadsafe
+    use sloshdyn_tables, only: SUMMARY_SIZE, HARMONIC_SWEEP_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, TANK_SIZE, GROUND_SIZE, to_tank, &
+                                to_ode_options, to_method, to_steady
+    use sloshdyn_ground, only: harmonic_ground
+    use sloshdyn_seismic, only: core => harmonic_sweep
+    integer(c_int), intent(in) :: n, carry, threads
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), frequencies(n), y0(4), &
+                                  integration(INTEGRATION_SIZE), &
+                                  steady(STEADY_SIZE)
+    real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), table(HARMONIC_SWEEP_ROWS, n), &
+                                   y_final(4)
+    integer(c_int), intent(out) :: n_done, status
+    character(len=256), intent(out) :: message
+    integer :: info, done
+    call core(to_tank(tank), harmonic_ground(ground(2), ground(3)), frequencies, y0, &
+              to_ode_options(integration), to_method(integration), to_steady(steady), carry /= 0, &
+              int(threads), summaries, table, y_final, done, info, message)
+    n_done = done
+    status = info
+  end subroutine harmonic_sweep
+
+  !> The tank's sloshing parameters by sloshdyn and by the design codes, codes(CODES_COLUMNS,
+  !> CODES_ROWS) in the
+  !> 'design_codes' layout; wave heights need the ground motion (has_ground = 1).
+  subroutine design_codes(tank, has_ground, ground, n, samples, codes, status, message)
+    use sloshdyn_tables, only: CODES_COLUMNS, CODES_ROWS
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, to_tank, to_ground
+    use sloshdyn_seismic, only: design_code_checks
+    integer(c_int), intent(in) :: has_ground, n
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n)
+    real(c_double), intent(out) :: codes(CODES_COLUMNS, CODES_ROWS)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call design_code_checks(to_tank(tank), to_ground(ground, samples), has_ground /= 0, codes, &
+                            info, message)
+    status = info
+  end subroutine design_codes
+
+  !> The design-code table as the executable prints it (sloshdyn_driver's design_codes_table).
+  subroutine design_codes_text(codes, text)
+    use sloshdyn_tables, only: CODES_COLUMNS, CODES_ROWS
+    use sloshdyn_driver, only: design_codes_table
+    real(c_double), intent(in) :: codes(CODES_COLUMNS, CODES_ROWS)
+    character(len=2048), intent(out) :: text
+    text = design_codes_table(codes)
+  end subroutine design_codes_text
+end module sloshdyn_bridge_seismic

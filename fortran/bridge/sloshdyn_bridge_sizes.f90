@@ -1,0 +1,72 @@
+!> Writes the C header that gives f2py's wrapper of the bridge the sizes of the named layouts
+!> (sloshdyn_layouts, sloshdyn_tables, sloshdyn_model, sloshdyn_studies): the bridge declares its
+!> arrays with these constants, f2py copies their names into C (lower case, --lower), and the
+!> build includes this program's output there, so no size is written twice.
+program sloshdyn_bridge_sizes
+  use sloshdyn_model, only: n_real_params, n_int_params
+  use sloshdyn_simulation, only: max_period
+  use sloshdyn_studies, only: ORBIT_ROWS
+  use sloshdyn_tables, only: HISTORY_ROWS, SUMMARY_SIZE, COUNTS_SIZE, POINT_ROWS, SPECIAL_ROWS, &
+                             PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
+                             PERIODIC_SPECIAL_ROWS, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, &
+                             CHART_END_ROWS, CHART_GRID_ROWS, TANK_SI_SIZE, CODES_COLUMNS, &
+                             CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS
+  use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
+                              TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
+                              SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
+                              ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
+                              SHOOTING_SIZE, PENDULUM_SIZE, &
+                              PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
+  implicit none
+  call define('n_real_params', n_real_params)
+  call define('n_int_params', n_int_params)
+  call define('orbit_rows', ORBIT_ROWS)
+  call define('max_orbit_periods', max_period)
+  call define('history_rows', HISTORY_ROWS)
+  call define('summary_size', SUMMARY_SIZE)
+  call define('counts_size', COUNTS_SIZE)
+  call define('point_rows', POINT_ROWS)
+  call define('special_rows', SPECIAL_ROWS)
+  call define('periodic_point_rows', PERIODIC_POINT_ROWS)
+  call define('periodic_multiplier_rows', PERIODIC_MULTIPLIER_ROWS)
+  call define('periodic_special_rows', PERIODIC_SPECIAL_ROWS)
+  call define('chart_curve_rows', CHART_CURVE_ROWS)
+  call define('chart_codim2_rows', CHART_CODIM2_ROWS)
+  call define('chart_end_rows', CHART_END_ROWS)
+  call define('chart_grid_rows', CHART_GRID_ROWS)
+  call define('tank_si_size', TANK_SI_SIZE)
+  call define('codes_columns', CODES_COLUMNS)
+  call define('codes_rows', CODES_ROWS)
+  call define('seismic_rows', SEISMIC_ROWS)
+  call define('peaks_size', PEAKS_SIZE)
+  call define('harmonic_sweep_rows', HARMONIC_SWEEP_ROWS)
+  call define('integration_size', INTEGRATION_SIZE)
+  call define('steady_size', STEADY_SIZE)
+  call define('response_size', RESPONSE_SIZE)
+  call define('lyapunov_size', LYAPUNOV_SIZE)
+  call define('tank_size', TANK_SIZE)
+  call define('ground_size', GROUND_SIZE)
+  call define('chart_settings_size', CHART_SETTINGS_SIZE)
+  call define('study_size', STUDY_SIZE)
+  call define('sweep_size', SWEEP_SIZE)
+  call define('simulation_size', SIMULATION_SIZE)
+  call define('response_range_size', RESPONSE_RANGE_SIZE)
+  call define('seismic_size', SEISMIC_SIZE)
+  call define('analysis_size', ANALYSIS_SIZE)
+  call define('continuation_size', CONTINUATION_SIZE)
+  call define('cycle_continuation_size', CYCLE_CONTINUATION_SIZE)
+  call define('shooting_size', SHOOTING_SIZE)
+  call define('pendulum_size', PENDULUM_SIZE)
+  call define('physical_size', PHYSICAL_SIZE)
+  call define('groups_size', GROUPS_SIZE)
+  call define('routh_trivial_size', ROUTH_TRIVIAL_SIZE)
+  call define('orbit_info_size', ORBIT_INFO_SIZE)
+contains
+  subroutine define(name, value)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: value
+    character(len=12) :: text
+    write (text, '(i0)') value
+    print '(a)', '#define '//name//' '//trim(text)
+  end subroutine define
+end program sloshdyn_bridge_sizes

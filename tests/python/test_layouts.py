@@ -1,0 +1,303 @@
+"""The core publishes the layout of every flat array that crosses the bridge (its field names)
+and the codes of every enumerated option; Python builds and decodes the arrays by name
+(issue 21). These tests walk every layout and code list the core gives and check Python's
+classes and the namelist reader's results against them; the expected values of the namelist
+tests are the text of the files they write (an independent source)."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import sloshdyn
+from sloshdyn import _core, _tables, charts
+from sloshdyn.asymptotics import Continuation
+from sloshdyn.parameters import Parameters, TankPendulum
+from sloshdyn.seismic import Tank
+from sloshdyn.simulation import METHODS, Integration, Steady
+
+_model, _seismic, _input = (_core.sloshdyn_bridge_model, _core.sloshdyn_bridge_seismic,
+                           _core.sloshdyn_bridge_input)
+
+MODEL = ("&model s1 = 1.5, mu1 = 0.5, kappa = 1.804897259, theta0 = 0.7853981633974483, "
+         "gamma = 0.001 /\n&excitation A = 0.00075, rho = 0.51 /\n")
+#: a range of each chart axis around the paper's Fig 12 point
+AXIS_RANGE = {"rho": (0.49, 0.53), "A": (0.0, 0.002), "gamma": (0.0, 0.01),
+              "kappa": (1.7, 1.9)}
+
+
+def _read(tmp_path, text):
+    path = tmp_path / "input.nml"
+    path.write_text(text)
+    return sloshdyn.read_namelist(path)
+
+
+def test_every_layout_names_distinct_fields():
+    for name in _tables.LAYOUTS:
+        fields = _tables.layout(name)
+        assert fields and all(fields), name
+        assert len(set(fields)) == len(fields), name
+
+
+def test_an_unknown_layout_or_code_list_is_an_error():
+    with pytest.raises(sloshdyn.SloshdynError, match="no names for 'layout:nothing'"):
+        _tables.layout("nothing")
+    with pytest.raises(sloshdyn.SloshdynError, match="no names for 'nothing'"):
+        _tables.names("nothing")
+
+
+def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
+    """Every array the core returns has as many entries as its layout has names."""
+    model, model_integers, *settings = _core.sloshdyn_bridge_tables.defaults()
+    arrays = {"model": model, "model_integers": model_integers,
+              **dict(zip(("integration", "steady", "response", "lyapunov", "shooting"), settings)),
+              "tank": _seismic.tank_defaults(),
+              "chart": _core.sloshdyn_bridge_charts.chart_defaults()}
+    path = tmp_path / "input.nml"
+    path.write_text(MODEL + "&analysis kind = 'stability_chart' /\n")
+    (rpar, ipar, _, analysis, _, _, tank, _, ground, _, seismic, integration, steady, response,
+     lyapunov, simulation, sweep, response_range, chart, study, *_) = _input.read_input(str(path))
+    arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
+                  sweep=sweep, response_range=response_range, study=study)
+    for name, array in (("model", rpar), ("model_integers", ipar), ("tank", tank),
+                        ("integration", integration), ("steady", steady),
+                        ("response", response), ("lyapunov", lyapunov), ("chart", chart)):
+        assert len(array) == len(arrays[name]), name
+    pendulum, status, _ = _model.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
+    groups, status, _ = _model.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
+    *_, routh, _, _ = _model.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
+                                                     theta0=0.5).array(), 4)
+    arrays.update(pendulum=pendulum, groups=groups, routh=routh)
+    for name, array in arrays.items():
+        assert len(array) == len(_tables.layout(name)), name
+    assert set(_tables.LAYOUTS) - set(arrays) <= {"physical", "continuation", "cycle_continuation",
+                                                  "orbit_info"}
+
+
+def test_an_input_array_of_another_size_is_refused():
+    """f2py sizes the bridge's arrays by the layouts: one entry more or less does not pass."""
+    for n in (len(_tables.layout("physical")) - 1, len(_tables.layout("physical")) + 1):
+        with pytest.raises(ValueError):
+            _model.dimensionless_groups(np.ones(n))
+
+
+@pytest.mark.parametrize("cls, layout", [(Integration, "integration"), (Steady, "steady"),
+                                         (Continuation, "response"), (Tank, "tank"),
+                                         (TankPendulum, "pendulum")])
+def test_settings_classes_have_the_fields_of_their_layouts(cls, layout):
+    assert tuple(f.name for f in dataclasses.fields(cls)) == _tables.layout(layout)
+
+
+def test_settings_classes_have_the_cores_defaults():
+    defaults = _tables.defaults()
+    for cls, layout in ((Integration, "integration"), (Steady, "steady"),
+                        (Continuation, "response")):
+        assert dict(zip(_tables.layout(layout), cls().array())) == pytest.approx(
+            {k: float(v) for k, v in defaults[layout].items()}), layout
+    tank = _tables.unpack("tank", _seismic.tank_defaults())
+    for f in dataclasses.fields(Tank):
+        if f.default is not dataclasses.MISSING:
+            assert f.default == tank[f.name], f.name
+    model = Parameters(s1=1.5, mu1=0.5, kappa=2.0, theta0=0.5)
+    for name in ("beta", "gamma", "delta", "zeta", "n", "p"):
+        assert getattr(model, name) == defaults["model"][name], name
+
+
+def test_parameters_carry_the_model_layouts():
+    params = Parameters(s1=1.5, mu1=0.5, kappa=2.0, theta0=0.5, beta=3.0, gamma=0.01,
+                        delta=0.2, n=4, p=3, zeta=0.01, A=0.001, rho=0.5)
+    rpar, ipar = params.array()
+    assert dict(zip(_tables.layout("model"), rpar)) == {
+        name: getattr(params, name) for name in _tables.layout("model")}
+    assert list(ipar) == [getattr(params, name) for name in _tables.layout("model_integers")]
+    assert {f.name for f in dataclasses.fields(Parameters)} == (
+        set(_tables.layout("model")) | set(_tables.layout("model_integers")))
+    assert Parameters.from_array(rpar, ipar) == params
+
+
+def test_every_code_list_of_the_core_is_named_and_used_by_python():
+    for list_name in _tables.CODE_LISTS:
+        items, _ = _tables.names(list_name)
+        assert items and all(items) and len(set(items)) == len(items), list_name
+    assert charts.AXES == _tables.names("chart_axes")[0]
+    assert "kappa" in charts.AXES
+    assert charts.MODELS == _tables.names("chart_models")[0]
+    assert set(METHODS) == set(_tables.names("methods")[0])
+    assert {name: code for code, name in _tables.codes("methods").items()} == METHODS
+
+
+def _chart_nml(model, x, y):
+    return (MODEL + "&analysis kind = 'stability_chart' /\n"
+            f"&chart model = '{model}', x = '{x}', y = '{y}', x_min = {AXIS_RANGE[x][0]}, "
+            f"x_max = {AXIS_RANGE[x][1]}, y_min = {AXIS_RANGE[y][0]}, "
+            f"y_max = {AXIS_RANGE[y][1]}, n_x = 5, n_y = 6 /\n")
+
+
+def test_chart_kappa_reads_through_python(tmp_path):
+    """The defect of issue 21: a valid file with &chart y = 'kappa' made read_namelist raise
+    IndexError (Python kept its own list of axes without kappa)."""
+    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", "rho", "kappa")).chart
+    assert chart["x"] == "rho" and chart["y"] == "kappa"
+    assert chart["y_range"] == AXIS_RANGE["kappa"]
+
+
+@pytest.mark.parametrize("x", ["rho", "A"])
+@pytest.mark.parametrize("y", sorted(AXIS_RANGE))
+def test_every_chart_axis_reads_through_python(tmp_path, x, y):
+    assert set(AXIS_RANGE) == set(_tables.names("chart_axes")[0])
+    if x == y:
+        return
+    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", x, y)).chart
+    assert (chart["x"], chart["y"]) == (x, y)
+    assert (chart["x_range"], chart["y_range"]) == (AXIS_RANGE[x], AXIS_RANGE[y])
+    assert (chart["n_x"], chart["n_y"]) == (5, 6)
+
+
+@pytest.mark.parametrize("model", _tables.names("chart_models")[0])
+def test_every_chart_model_reads_through_python(tmp_path, model):
+    assert _read(tmp_path, _chart_nml(model, "rho", "A")).chart["model"] == model
+
+
+@pytest.mark.parametrize("method", _tables.names("methods")[0])
+def test_every_method_reads_through_python(tmp_path, method):
+    inp = _read(tmp_path, MODEL + f"&integration method = '{method}' /\n")
+    assert inp.integration["method"] == method
+    assert Integration(**inp.integration).method == method
+
+
+@pytest.mark.parametrize("direction", _tables.names("directions")[0])
+@pytest.mark.parametrize("parameter", ["rho", "A"])
+def test_every_sweep_direction_and_parameter_reads_through_python(tmp_path, direction,
+                                                                  parameter):
+    inp = _read(tmp_path, MODEL + "&analysis kind = 'sweep' /\n"
+                f"&sweep parameter = '{parameter}', start = 0.5, stop = 0.52, n_points = 3, "
+                f"direction = '{direction}', start_from = 'y0', threads = 2 /\n")
+    assert inp.sweep == {"parameter": parameter, "start": 0.5, "stop": 0.52, "n_points": 3,
+                         "direction": direction, "start_from": "y0", "threads": 2}
+
+
+def test_the_sweep_in_frequency_reads_through_python(tmp_path):
+    from conftest import EXAMPLES
+    assert "frequency" in _tables.names("excitation_parameters")[0]
+    inp = sloshdyn.read_namelist(EXAMPLES / "tank_frequency_sweep.nml")
+    assert inp.sweep["parameter"] == "frequency" and inp.ground_motion.kind == "harmonic"
+
+
+@pytest.mark.parametrize("resonance", _tables.names("resonances")[0])
+@pytest.mark.parametrize("parameter", ["rho", "A"])
+def test_every_resonance_reads_through_python(tmp_path, resonance, parameter):
+    inp = _read(tmp_path, MODEL + f"&response resonance = '{resonance}', "
+                f"parameter = '{parameter}', start = 0.49, stop = 0.53, n_scan = 7, "
+                "n_amplitudes = 5, n_phases = 3, amplitude_min = 1e-4, amplitude_max = 2.0, "
+                "ds = 0.002, ds_min = 1e-9, ds_max = 0.02, x_scale = 2.0, max_points = 900 /\n")
+    assert inp.response == {"resonance": resonance, "parameter": parameter, "start": 0.49,
+                            "stop": 0.53, "n_scan": 7, "n_amplitudes": 5, "n_phases": 3,
+                            "amplitude_min": 1e-4, "amplitude_max": 2.0, "ds": 0.002,
+                            "ds_min": 1e-9, "ds_max": 0.02, "x_scale": 2.0, "max_points": 900}
+
+
+@pytest.mark.parametrize("continuation", _tables.names("continuations")[0])
+@pytest.mark.parametrize("worker_kind", _tables.names("worker_kinds")[0])
+def test_every_study_code_reads_through_python(tmp_path, continuation, worker_kind):
+    inp = _read(tmp_path, MODEL + "&study kind = 'response_map', store = 'map.zarr', "
+                "frequency_start = 0.505, frequency_stop = 0.52, n_frequencies = 3, "
+                "amplitude_start = 0.0005, amplitude_stop = 0.00075, n_amplitudes = 2, "
+                f"workers = 2, worker_kind = '{worker_kind}', continuation = '{continuation}' /\n")
+    assert inp.study["worker_kind"] == worker_kind
+    assert inp.study["continuation"] == continuation
+    assert (inp.study["frequency_start"], inp.study["n_amplitudes"]) == (0.505, 2)
+
+
+def test_every_study_kind_reads_through_python(tmp_path):
+    assert set(_tables.names("study_kinds")[0]) == {"response_map", "basins", "fragility"}
+    basins = _read(tmp_path, MODEL + "&study kind = 'basins', store = 'b.zarr', x1_start = -0.5, "
+                   "x1_stop = 0.5, dx1_start = -0.2, dx1_stop = 0.2, n_grid = 7, tol = 2e-3 /\n")
+    assert {k: basins.study[k] for k in ("kind", "x1_start", "x1_stop", "dx1_start",
+                                         "dx1_stop", "n_grid", "tol")} == {
+        "kind": "basins", "x1_start": -0.5, "x1_stop": 0.5, "dx1_start": -0.2,
+        "dx1_stop": 0.2, "n_grid": 7, "tol": 2e-3}
+    from conftest import EXAMPLES
+    tank = (EXAMPLES / "tank_harmonic.nml").read_text().split("&analysis")[0]
+    fragility = _read(tmp_path, tank + "&study kind = 'fragility', store = 'f.zarr', "
+                      "records = 'rec/*.csv', intensity_start = 1.0, intensity_stop = 4.0, "
+                      "n_intensities = 4, spectral_damping = 0.02 /\n")
+    assert {k: fragility.study[k] for k in ("kind", "records", "intensity_start",
+                                            "intensity_stop", "n_intensities",
+                                            "spectral_damping")} == {
+        "kind": "fragility", "records": "rec/*.csv", "intensity_start": 1.0,
+        "intensity_stop": 4.0, "n_intensities": 4, "spectral_damping": 0.02}
+
+
+def test_every_analysis_is_named_by_the_core(tmp_path):
+    from conftest import EXAMPLES
+    analyses = _tables.names("analyses")[0]
+    read = {sloshdyn.read_namelist(path).analysis for path in EXAMPLES.glob("*.nml")}
+    assert read <= set(analyses) and len(read) >= len(analyses) - 1
+
+
+def test_settings_groups_read_through_python_by_name(tmp_path):
+    """Every &integration, &steady, &lyapunov, &simulation and &seismic variable, each with a
+    value of its own, comes back under its own name."""
+    inp = _read(tmp_path, MODEL + (
+        "&integration rtol = 1.5e-7, atol = 2.5e-9, h_initial = 0.03, h_max = 0.4, "
+        "h_min = 5e-12, max_steps = 123456, method = 'vern9' /\n"
+        "&steady transient_periods = 11, settle_tol = 2e-6, max_transient_periods = 333, "
+        "window_periods = 17, samples_per_period = 41, periodic_tol = 3e-5, shooting = .false. /\n"
+        "&lyapunov transient_periods = 21, n_periods = 301, renormalise_every = 3, "
+        "spectrum = .true. /\n"
+        "&simulation t_end = 12.5, n_out = 77, y0 = 0.1, 0.2, 0.3, 0.4 /\n"))
+    assert inp.integration == {"rtol": 1.5e-7, "atol": 2.5e-9, "h_initial": 0.03, "h_max": 0.4,
+                               "h_min": 5e-12, "max_steps": 123456, "method": "vern9"}
+    assert inp.steady == {"transient_periods": 11.0, "settle_tol": 2e-6,
+                          "max_transient_periods": 333.0, "window_periods": 17,
+                          "samples_per_period": 41, "periodic_tol": 3e-5, "shooting": False}
+    assert inp.lyapunov == {"transient_periods": 21, "n_periods": 301, "renormalise_every": 3,
+                            "spectrum": True}
+    assert inp.simulation == {"t_end": 12.5, "n_out": 77, "y0": [0.1, 0.2, 0.3, 0.4]}
+    assert Steady(**inp.steady).array().tolist() == [11, 2e-6, 333, 17, 41, 3e-5, 0]
+
+
+def test_a_tank_and_its_ground_motion_read_through_python_by_name(tmp_path):
+    from conftest import EXAMPLES
+    inp = sloshdyn.read_namelist(EXAMPLES / "tank_seismic.nml")
+    assert Tank.from_array(inp.tank.array()) == inp.tank
+    ground, samples = inp.ground_motion._arrays()
+    again = sloshdyn.GroundMotion._from_arrays(ground, samples)
+    assert again.kind == inp.ground_motion.kind == "record"
+    assert again.dt == inp.ground_motion.dt and np.array_equal(again.acceleration, samples)
+
+
+def test_result_tables_have_the_columns_the_core_names():
+    """The bridge's result arrays are sized by the core's tables (a build that kept an old size
+    in f2py's wrapper would give another number of rows, or corrupt memory)."""
+    tank = Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0,
+                tank_mass=5.0e4, support_frequency=2.0, support_damping=0.02)
+    ground, samples = sloshdyn.GroundMotion.harmonic(0.05, 0.3)._arrays()
+    table, peaks, status, _ = _seismic.seismic_response(tank.array(), ground, samples, 2.0, 3,
+                                                       Integration().array())
+    assert status == 0
+    assert table.shape == (len(_tables.columns("seismic")), 3)
+    assert peaks.shape == (len(_tables.columns("seismic_peaks")),)
+    row, *_ = _seismic.tank_properties(tank.array())
+    assert row.shape == (len(_tables.columns("tank_si")),)
+
+
+def test_seismic_results_are_named_by_the_cores_tables():
+    """SeismicResponse, its peaks, the tank's properties and the design-code table take their
+    names from the core's tables, in the core's order."""
+    tank = Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0,
+                tank_mass=5.0e4, support_frequency=2.0, support_damping=0.02)
+    ground = sloshdyn.GroundMotion.harmonic(0.05, 0.3)
+    response = sloshdyn.seismic_response(tank, ground, t_end=2.0, n_out=3)
+    names = [c.split(" [")[0] for c in _tables.columns("seismic")]
+    assert response.columns == names
+    for name, row in zip(names, response.table):
+        assert np.array_equal(getattr(response, name), row, equal_nan=True), name
+    peaks = [c.split(" [")[0] for c in _tables.columns("seismic_peaks")]
+    assert list(response.peak_table) == peaks
+    assert set(response.peaks) == {p[len("peak_"):] for p in peaks if p.startswith("peak_")}
+    assert list(tank.properties) == [c.split(" [")[0] for c in _tables.columns("tank_si")]
+    codes = tank.design_codes(ground)
+    assert codes.sources == list(_tables.names("source")[0])
+    assert codes.columns == [c.split(" [")[0] for c in _tables.columns("design_codes")[1:]]
+    assert codes.table.shape == (len(codes.columns), len(codes.sources))
