@@ -22,7 +22,8 @@ def run(out, root):
     p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4,
                             beta=1.0, gamma=0.001, A=0.00075, rho=0.509615)
     arrays = {}
-    sim = sloshdyn.simulate(p, t_end=200.0, y0=[0.01, 0, 0, 0], rtol=1e-10, atol=1e-13)
+    sim = sloshdyn.simulate(p, t_end=200.0, y0=[0.01, 0, 0, 0],
+                           integration=sloshdyn.Integration(rtol=1e-10, atol=1e-13))
     arrays.update(sim_tau=sim.tau, sim_u=sim.u, sim_impact=sim.impact_force)
     eq = sloshdyn.equilibria(p)
     arrays["equilibria"] = np.array([[e.theta, e.phi] for e in eq.points])

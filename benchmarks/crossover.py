@@ -38,8 +38,9 @@ RK45_TIGHTEST = 1e-11     # rk45 below this takes seconds per run and is never t
 def run_dense(problem, rtol, method):
     """As peers.run_sloshdyn, with output 8 times per forcing period."""
     tau = np.linspace(0.0, problem.t_end, 8 * problem.periods + 1)
-    sim = sloshdyn.simulate(problem.params, problem.t_end, problem.y0, tau_out=tau, rtol=rtol,
-                            atol=rtol * ATOL_FACTOR, method=method)
+    sim = sloshdyn.simulate(problem.params, problem.t_end, problem.y0, tau_out=tau,
+                            integration=sloshdyn.Integration(rtol=rtol, atol=rtol * ATOL_FACTOR,
+                                                             method=method))
     return peers.Run(sim.y[:, -1].copy(), sim.n_rhs, sim.n_accepted + sim.n_rejected,
                      sim.n_rejected)
 

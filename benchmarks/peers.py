@@ -262,7 +262,8 @@ def run_sloshdyn(problem, rtol, atol, method):
     """method 'auto' is the default path: simulate is called without method=."""
     chosen = {} if method == "auto" else {"method": method}
     sim = sloshdyn.simulate(problem.params, problem.t_end, problem.y0,
-                            tau_out=[0.0, problem.t_end], rtol=rtol, atol=atol, **chosen)
+                            tau_out=[0.0, problem.t_end],
+                            integration=sloshdyn.Integration(rtol=rtol, atol=atol, **chosen))
     return Run(sim.y[:, -1].copy(), sim.n_rhs, sim.n_accepted + sim.n_rejected, sim.n_rejected)
 
 
@@ -315,7 +316,7 @@ def fortran_rhs_cost(p, n_calls=5_000_000):
                 break
         else:
             return None, "could not compile the driver: " + res.stderr.strip()[-300:]
-        rpar, ipar = p.arrays()
+        rpar, ipar = p.array()
         text = " ".join(repr(float(x)) for x in rpar) + " " + " ".join(str(int(i)) for i in ipar)
         best = None
         for _ in range(3):

@@ -492,7 +492,8 @@ class Bench:
             return ""
         try:
             n = min(pr.periods, 400)
-            lam, _ = fn(pr.params, pr.y0, transient_periods=0, n_periods=n)
+            lam = fn(pr.params, pr.y0, lyapunov=sloshdyn.Lyapunov(transient_periods=0,
+                                                                  n_periods=n)).exponent
         except Exception as exc:   # noqa: BLE001 - diagnostic only
             return f" (sloshdyn.lyapunov_exponent failed: {exc})"
         if lam <= 0:
@@ -663,7 +664,7 @@ class Bench:
         try:   # the Fortran call alone, without building the Python result (private API)
             from sloshdyn import asymptotics as _as
             s = _as.Continuation()
-            args = (*p.arrays(), 1, 1, 0.49, 0.53, s.array(), s.max_points, 200)
+            args = (*p.array(), 1, 1, 0.49, 0.53, s.array(), s.max_points, 200)
             bridge_t = timed(lambda: _as._bridge.frequency_response(*args), reps)[0]
         except Exception:   # noqa: BLE001 - diagnostic only
             pass
@@ -692,13 +693,13 @@ class Bench:
 
         rows = [["sloshdyn.equations_of_motion(p, 0.0, y)",
                  fmt_t(per_call(lambda: sloshdyn.equations_of_motion(p, 0.0, y)))],
-                ["sloshdyn.natural_frequencies(p)",
-                 fmt_t(per_call(lambda: sloshdyn.natural_frequencies(p)))],
-                ["  of which p.arrays() (parameters to the flat bridge arrays)",
-                 fmt_t(per_call(p.arrays))]]
+                ["sloshdyn.linear_modes(p)",
+                 fmt_t(per_call(lambda: sloshdyn.linear_modes(p)))],
+                ["  of which p.array() (parameters to the flat bridge arrays)",
+                 fmt_t(per_call(p.array))]]
         try:
             from sloshdyn import model as _model
-            rpar, ipar = p.arrays()
+            rpar, ipar = p.array()
             rows.append(["  bridge equations_of_motion alone (f2py call, no Python wrapper)",
                          fmt_t(per_call(lambda: _model._bridge.equations_of_motion(
                              rpar, ipar, 0.0, y)))])

@@ -21,7 +21,8 @@ from test_response import scipy_return_time  # noqa: E402  (eq 53 typed in numpy
 
 #: the slow flow is first order in eps, with eps^2 the detuning (omega2 - 3 omega1)/omega1 of
 #: sec 4.2 (eps^2 sigma1 = 0.005): its amplitudes and rates err by O(eps) relative
-W1, W2 = sloshdyn.natural_frequencies(figures.FIG12)
+MODES = sloshdyn.linear_modes(figures.FIG12)
+W1, W2 = MODES.omega1, MODES.omega2
 EPS = math.sqrt(abs(W2 - 3 * W1) / W1)
 ASYMPTOTIC = (f"asymptotic error: the slow flow is first order in eps, eps = sqrt((omega2 - 3 omega1)"
               f"/omega1) = {EPS:.4f}, so the full equations agree to O(eps) relative")

@@ -40,10 +40,12 @@ def records():
 def scaled(acceleration):
     scale = 1.0
     for _ in range(2):
-        ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale)
+        ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
+                                       units="m/s^2")
         run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
         scale *= RATIO * TANK["freeboard"] / run.peak_table["free_wave_height"]
-    return sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale), scale
+    return sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
+                                 units="m/s^2"), scale
 
 
 def main():

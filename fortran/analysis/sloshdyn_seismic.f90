@@ -18,7 +18,7 @@ module sloshdyn_seismic
   use sloshdyn_excitation, only: base_acceleration
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, ground_duration, ground_spectrum, &
-                             GROUND_RECORD, GROUND_HARMONIC
+                             GROUND_RECORD, GROUND_HARMONIC, harmonic_periods
   use sloshdyn_excitation, only: PARAMETER_FREQUENCY
   use sloshdyn_design_codes, only: aci350_parameters, api650_parameters, ec8_parameters, &
                                    aci350_circular, aci350_wave_height, api650_circular, &
@@ -39,7 +39,7 @@ module sloshdyn_seismic
 
   !> After a record ends the liquid goes on sloshing: t_end defaults to the record plus this
   !> many sloshing periods; harmonic motion runs this many forcing periods.
-  integer, parameter :: free_periods = 5, harmonic_periods = 40
+  integer, parameter :: free_periods = 5
   !> Outputs per sloshing period and per period of the tank on its supports at least, and at
   !> most this many outputs in all.
   integer, parameter :: outputs_per_period = 50, outputs_per_support_period = 20, &
@@ -248,7 +248,7 @@ contains
     type(ec8_parameters) :: ec8
     type(aci350_parameters) :: aci
     real(wp) :: periods(CODES_ROWS), sd(CODES_ROWS), sv(CODES_ROWS), psa(CODES_ROWS), &
-                wave(CODES_ROWS), nan, duration
+                wave(CODES_ROWS), nan
 
     nan = ieee_value(1.0_wp, ieee_quiet_nan)
     codes = nan
@@ -279,10 +279,8 @@ contains
 
     !> Each source's wave height from the pseudo-spectral acceleration at its period.
     subroutine code_wave_heights()
-      duration = ground_duration(ground)
-      if (duration <= 0) duration = harmonic_periods/ground%frequency
       call ground_spectrum(ground, periods, tank%sloshing_damping, free_periods*maxval(periods), &
-                           duration, sd, sv, psa, status, message)
+                           0.0_wp, sd, sv, psa, status, message)
       if (status /= SD_OK) then
         message = 'the spectrum for the design codes: '//trim(message)
         return

@@ -53,7 +53,7 @@ module sloshdyn_driver
   use sloshdyn_layouts, only: counts_array
   implicit none
   private
-  public :: run_analysis, print_model, sweep_points
+  public :: run_analysis, print_model, sweep_points, design_codes_table
 
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
   !> Room for the slow-flow response table and its special points.
@@ -722,12 +722,8 @@ contains
   subroutine print_tank(config)
     type(run_config), intent(in) :: config
     real(wp) :: codes(CODES_COLUMNS, CODES_ROWS)
-    integer :: status, i, j
+    integer :: status
     character(len=message_len) :: message
-    character(len=*), parameter :: quantities(CODES_COLUMNS) = [character(len=24) :: &
-      'convective period [s]', 'convective mass [kg]', 'impulsive mass [kg]', &
-      'convective height [m]', 'impulsive height [m]', 'wave height [m]']
-    character(len=:), allocatable :: line
 
     associate (t => config%tank, p => config%tank_props)
       print '(/a)', 'Tank (SI): radius R = '//num2str(t%radius)//' m, liquid depth h = '// &
@@ -777,16 +773,30 @@ contains
       print '(/a)', 'Design-code cross-check (difference from sloshdyn in %; no ground motion, '// &
                     'so no wave heights)'
     end if
-    print '(a)', '  '//pad('', 24)//pad('sloshdyn', 14)//pad('API 650', 22)//pad('EC8-4', 22)// &
-                 'ACI 350.3'
+    print '(a)', design_codes_table(codes)
+  end subroutine print_tank
+
+  !> The design-code cross-check as the executable prints it (and Python's str(DesignCodes)):
+  !> a header, then a line per quantity: sloshdyn's value and each code's, with its difference
+  !> from sloshdyn in %; lines end with new_line('a'), the last one not.
+  pure function design_codes_table(codes) result(text)
+    real(wp), intent(in) :: codes(CODES_COLUMNS, CODES_ROWS)
+    character(len=:), allocatable :: text
+    character(len=*), parameter :: quantities(CODES_COLUMNS) = [character(len=24) :: &
+      'convective period [s]', 'convective mass [kg]', 'impulsive mass [kg]', &
+      'convective height [m]', 'impulsive height [m]', 'wave height [m]']
+    character(len=:), allocatable :: line
+    integer :: i, j
+    text = '  '//pad('', 24)//pad('sloshdyn', 14)//pad('API 650', 22)//pad('EC8-4', 22)// &
+           'ACI 350.3'
     do i = 1, CODES_COLUMNS
       line = '  '//pad(trim(quantities(i)), 24)//pad(value_text(codes(i, 1)), 14)
       do j = 2, CODES_ROWS
         line = line//pad(value_text(codes(i, j))//difference(codes(i, j), codes(i, 1)), 22)
       end do
-      print '(a)', trim(line)
+      text = text//new_line('a')//trim(line)
     end do
-  end subroutine print_tank
+  end function design_codes_table
 
   !> The name of a swept or continued parameter.
   pure function parameter_label(parameter) result(label)

@@ -101,7 +101,7 @@ module sloshdyn_layouts
   !> values of eq (9) and their dimensionless groups; Routh-Hurwitz of eq (20) at the trivial
   !> equilibrium (routh_stable 1/0); a periodic orbit's Newton iterations and max|x1|.
   character(len=*), parameter :: pendulum_fields(*) = [character(len=field_len) :: &
-    'l', 'm', 'd1', 'm0', 'd0', 'm_F']
+    'pendulum_length', 'sloshing_mass', 'd1', 'rigid_mass', 'd0', 'liquid_mass']
   character(len=*), parameter :: physical_fields(*) = [character(len=field_len) :: &
     'M', 'L', 'k', 'c', 'b', 'd', 'g', 'theta0', 'l', 'm']
   character(len=*), parameter :: groups_fields(*) = [character(len=field_len) :: &

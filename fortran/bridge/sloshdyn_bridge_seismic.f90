@@ -43,6 +43,42 @@ contains
     status = info
   end subroutine tank_properties
 
+  !> A and rho of a tank's model under harmonic ground motion (sloshdyn_ground's
+  !> ground_excitation, as the namelist reader sets them for &tank with &ground_motion).
+  subroutine tank_excitation(tank, ground, A, rho, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: model_t
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, to_tank, to_ground
+    use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
+    use sloshdyn_ground, only: ground_motion_t, ground_excitation, GROUND_HARMONIC
+    use sloshdyn_excitation, only: excitation_t
+    use sloshdyn_status, only: SD_BAD_INPUT
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE)
+    real(c_double), intent(out) :: A, rho
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(tank_properties_t) :: props
+    type(excitation_t) :: excitation
+    type(ground_motion_t) :: motion
+    real(c_double) :: no_samples(0)
+    integer :: info
+    A = 0; rho = 0
+    motion = to_ground(ground, no_samples)
+    call tank_model(to_tank(tank), model, props, info, message)
+    if (info == 0 .and. motion%kind /= GROUND_HARMONIC) then
+      info = SD_BAD_INPUT
+      message = 'a record has no A and rho: they are those of harmonic ground motion'
+    end if
+    if (info == 0) call ground_excitation(motion, props%omega, props%rod_length, excitation, &
+                                          info, message)
+    if (info == 0) then
+      A = excitation%A
+      rho = excitation%rho
+    end if
+    status = info
+  end subroutine tank_excitation
+
   !> The rules of a ground motion (sloshdyn_ground's check_ground).
   subroutine check_ground(ground, n, samples, status, message)
     !f2py threadsafe
@@ -242,4 +278,13 @@ contains
                             info, message)
     status = info
   end subroutine design_codes
+
+  !> The design-code table as the executable prints it (sloshdyn_driver's design_codes_table).
+  subroutine design_codes_text(codes, text)
+    use sloshdyn_tables, only: CODES_COLUMNS, CODES_ROWS
+    use sloshdyn_driver, only: design_codes_table
+    real(c_double), intent(in) :: codes(CODES_COLUMNS, CODES_ROWS)
+    character(len=2048), intent(out) :: text
+    text = design_codes_table(codes)
+  end subroutine design_codes_text
 end module sloshdyn_bridge_seismic

@@ -15,9 +15,12 @@ module sloshdyn_ground
   private
   public :: ground_motion_t, harmonic_ground, record_ground, check_ground, ground_excitation, &
             ground_acceleration, ground_duration, ground_spectrum, scale_to_pga, scale_to_sa, scale_ground
-  public :: GROUND_HARMONIC, GROUND_RECORD
+  public :: GROUND_HARMONIC, GROUND_RECORD, harmonic_periods
 
   integer, parameter :: GROUND_HARMONIC = 1, GROUND_RECORD = 2
+  !> Forcing periods that harmonic motion lasts unless told: its spectrum's samples, a seismic
+  !> response's t_end (sloshdyn_seismic).
+  integer, parameter :: harmonic_periods = 40
   !> Samples per period when a harmonic motion is sampled for its spectrum.
   integer, parameter :: samples_per_period = 200
   !> The finest time step of a record [s] (a thousand times finer than a 1 kHz accelerograph)
@@ -143,7 +146,8 @@ contains
   !> peak relative displacement sd [m], pseudo-velocity sv [m/s], pseudo-acceleration psa
   !> [m/s^2] at each period [s] for the damping ratio, followed by a free-vibration tail of
   !> tail_duration [s] so that late peaks count. Harmonic motion is sampled at 200 points per
-  !> period over `duration` seconds.
+  !> period over `duration` seconds (0: harmonic_periods forcing periods); a record is taken
+  !> whole (duration is not used).
   subroutine ground_spectrum(ground, periods, damping, tail_duration, duration, sd, sv, &
                              psa, status, message)
     type(ground_motion_t), intent(in) :: ground
@@ -151,7 +155,7 @@ contains
     real(wp), intent(out) :: sd(size(periods)), sv(size(periods)), psa(size(periods))
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: dt
+    real(wp) :: dt, span
     integer :: i, n
     sd = 0; sv = 0; psa = 0
     call check_ground(ground, status, message)
@@ -160,12 +164,15 @@ contains
       call response_spectrum(ground%dt, ground%acceleration, periods, damping, sd, sv, psa, &
                              status, message, tail_duration)
     else
-      call check_real('duration', duration, 0.0_wp, 1.0e7_wp/ground%frequency, .true., .false., &
-                      'the duration of harmonic motion for a spectrum must be > 0 and at most '// &
-                      '1e7 periods', status, message)
+      span = duration
+      if (duration == 0) span = harmonic_periods/ground%frequency
+      call check_real('duration', span, 0.0_wp, 1.0e7_wp/ground%frequency, .true., .false., &
+                      'the duration of harmonic motion for a spectrum must be > 0 (0: '// &
+                      num2str(real(harmonic_periods, wp))//' periods) and at most 1e7 periods', &
+                      status, message)
       if (status /= SD_OK) return
       dt = 1/(samples_per_period*ground%frequency)
-      n = int(duration/dt) + 1
+      n = int(span/dt) + 1
       call response_spectrum(dt, ground_acceleration(ground, [(dt*(i - 1), i = 1, n)]), periods, &
                              damping, sd, sv, psa, status, message, tail_duration)
     end if

@@ -32,23 +32,23 @@ contains
     status = SD_OK
     message = ''
     l = 0; m = 0; d1 = 0; m0 = 0; d0 = 0; mf = 0
-    call check_real('R', radius, min_tank_size, max_tank_size, .false., .false., &
+    call check_real('radius', radius, min_tank_size, max_tank_size, .false., .false., &
                     'the tank radius R [m] must lie in [1e-3, 1e3]: Abramson''s pendulum '// &
                     'holds for tanks from a millimetre to a kilometre', status, message)
-    call check_real('h', depth, min_tank_size, max_tank_size, .false., .false., &
+    call check_real('liquid_depth', depth, min_tank_size, max_tank_size, .false., .false., &
                     'the liquid depth h [m] must lie in [1e-3, 1e3]: Abramson''s pendulum '// &
                     'holds for tanks from a millimetre to a kilometre', status, message)
     if (status /= SD_OK) return
     if ((density > 0) .eqv. (liquid_mass > 0)) then
       status = SD_BAD_INPUT
-      message = 'rho_liquid and m_liquid: give exactly one of them, > 0 (the liquid density '// &
+      message = 'liquid_density and liquid_mass: give exactly one of them, > 0 (the liquid density '// &
                 '[kg/m^3] or the liquid mass [kg])'
       return
     end if
-    call check_real('rho_liquid', max(density, 0.0_wp), 0.0_wp, max_liquid_density, .false., &
+    call check_real('liquid_density', max(density, 0.0_wp), 0.0_wp, max_liquid_density, .false., &
                     .false., 'the liquid density [kg/m^3] must lie in [0, 1e5]: every '// &
                     'liquid is lighter', status, message)
-    call check_real('m_liquid', max(liquid_mass, 0.0_wp), 0.0_wp, big, .false., .true., &
+    call check_real('liquid_mass', max(liquid_mass, 0.0_wp), 0.0_wp, big, .false., .true., &
                     'the liquid mass must be finite', status, message)
     if (status /= SD_OK) return
 

@@ -3,26 +3,28 @@ excitation, by the equivalent mechanical model of Farid & Gendelman (a pendulum 
 tank walls through a high-power smooth potential). Numerics run in the Fortran core.
 """
 
-from .asymptotics import (Continuation, FrequencyResponse, SlowFlowCycle, SpecialPoint,
-                          frequency_response, modal_coefficients, nonresonant_amplitudes,
-                          slow_flow_cycle)
+from .asymptotics import (Continuation, FrequencyResponse, ModalCoefficients, SlowFlowCycle,
+                          SpecialPoint, frequency_response, modal_coefficients,
+                          nonresonant_amplitudes, slow_flow_cycle)
 from ._errors import (CapacityError, ConvergenceError, FileError, InputError, IntegrationError,
                       LapackError, SingularMatrixError, SloshdynError)
-from .model import (Equilibria, Equilibrium, LinearModes, Motion, equilibria, equilibrium_angles,
-                    equations_of_motion, frequency_ratio, kappa_for_detuning, linear_modes,
-                    natural_frequencies)
-from .periodic import (PeriodicBranch, PeriodicOrbit, PeriodicSpecialPoint, lyapunov_exponent,
-                       periodic_orbit, periodic_response)
-from .research import (CycleSpecialPoint, Lyapunov, LyapunovSpectrum, SlowFlowCycles,
-                       lyapunov_spectrum, slow_flow_cycles)
+from .model import (Equilibria, Equilibrium, EquilibriumAngles, LinearModes, Motion, equilibria,
+                    equilibrium_angles, equations_of_motion, frequency_ratio, kappa_for_detuning,
+                    linear_modes)
+from .periodic import (Lyapunov, LyapunovExponent, PeriodicBranch, PeriodicOrbit,
+                       PeriodicSpecialPoint, Shooting, lyapunov_exponent, periodic_orbit,
+                       periodic_response)
+from .research import (CycleSpecialPoint, LyapunovSpectrum, SlowFlowCycles, lyapunov_spectrum,
+                       slow_flow_cycles)
 from .parameters import Input, Parameters, TankPendulum, read_namelist, tank_pendulum
-from .charts import Codim2Point, Curve, StabilityChart, stability_chart
-from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, Spectrum, Tank,
-                      acceleration_factor, harmonic_sweep, seismic_defaults, seismic_response)
+from .charts import Chart, Codim2Point, Curve, StabilityChart, stability_chart
+from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, SeismicTimes,
+                      Spectrum, Tank, acceleration_factor, harmonic_sweep, seismic_defaults,
+                      seismic_response)
 from .studies import (FragilityFit, basins, fit_fragility, fragility_study, impact_parameters,
                       response_map)
-from .simulation import (Integration, Simulation, Steady, SteadyState, Sweep, amplitude_sweep,
-                         beat_period, frequency_sweep, poincare_section, simulate, spectrum,
+from .simulation import (AmplitudeSpectrum, Integration, Simulation, Steady, SteadyState, Sweep,
+                         amplitude_sweep, beat_period, frequency_sweep, poincare_section, simulate, spectrum,
                          steady_state, sweep_values)
 
 from importlib.metadata import version as _installed_version  # noqa: E402
@@ -31,24 +33,26 @@ from importlib.metadata import version as _installed_version  # noqa: E402
 __version__ = _installed_version(__name__)
 
 __all__ = [
-    "CapacityError", "ConvergenceError", "Equilibria", "Equilibrium", "FileError", "Input",
+    "CapacityError", "ConvergenceError", "Equilibria", "Equilibrium", "EquilibriumAngles",
+    "FileError", "Input",
     "InputError", "IntegrationError", "LapackError", "LinearModes", "Motion", "Parameters",
     "SingularMatrixError", "SloshdynError", "TankPendulum", "equilibria", "equilibrium_angles",
     "equations_of_motion", "frequency_ratio", "kappa_for_detuning", "linear_modes",
-    "natural_frequencies", "read_namelist", "tank_pendulum",
-    "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
+    "read_namelist", "tank_pendulum",
+    "AmplitudeSpectrum", "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
     "beat_period", "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state",
     "sweep_values",
-    "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
+    "ModalCoefficients", "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
     "nonresonant_amplitudes", "SlowFlowCycle", "slow_flow_cycle", "PeriodicBranch",
-    "PeriodicOrbit", "PeriodicSpecialPoint",
+    "PeriodicOrbit", "PeriodicSpecialPoint", "Lyapunov", "LyapunovExponent", "Shooting",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
-    "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "Spectrum", "Tank",
+    "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "SeismicTimes",
+    "Spectrum", "Tank",
     "acceleration_factor", "harmonic_sweep", "seismic_defaults", "seismic_response",
-    "Codim2Point", "Curve", "StabilityChart", "stability_chart",
+    "Chart", "Codim2Point", "Curve", "StabilityChart", "stability_chart",
     "FragilityFit", "basins", "fit_fragility", "fragility_study", "impact_parameters",
     "response_map",
-    "Lyapunov", "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
+    "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
     "slow_flow_cycles",
 ]
 

@@ -12,6 +12,7 @@ from ._cancel import cancellable
 from . import _checks, _core, _tables
 from ._errors import InputError, check_status
 from .parameters import Parameters, convert_fields
+from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_asymptotics
 
@@ -55,16 +56,29 @@ def _table(exponents, coefficients, forcing=False):
     return table
 
 
-def modal_coefficients(params: Parameters) -> dict:
+@dataclass(frozen=True)
+class ModalCoefficients:
+    """The coefficients of the multiple-scales analysis, derived from the equations of motion
+    (not typed in from Appendix A, which has misprints: see docs/errata.md)."""
+
+    omega1: float              #: eq (28)
+    omega2: float
+    coefficients: dict         #: {name: value}: c11..c23 and F11 (eq 36, 44, 52), the modal
+    #: damping gamma11, gamma22, every named coefficient of eq (33) ('alpha_hat11', ...,
+    #: 'F_hat23') and of eq (36) ('alpha11', 'gamma17', ..., 'F24')
+    g: list                    #: eq (32), per row: {exponents of (x1, x2, x1', x2'): coefficient}
+    g_forcing: list            #: the forcing of eq (32), per row (constant term at (0, 0, 0, 0))
+    h: list                    #: eq (35), per row: {exponents of (u1, u2, u1', u2'): coefficient}
+    h_forcing: list            #: the forcing of eq (35), per row
+
+
+def modal_coefficients(params: Parameters) -> ModalCoefficients:
     """The coefficients of the multiple-scales analysis at the given parameters (kappa > s1,
-    n >= 2, p >= 1): omega1, omega2 (eq 28), c11..c23 and F11 (eq 36, 44, 52), the modal
-    damping gamma11, gamma22, every named coefficient of eq (33) ('alpha_hat11', ...,
-    'F_hat23') and of eq (36) ('alpha11', 'gamma17', ..., 'F24'), derived from the equations of
-    motion (not typed in from Appendix A, which has misprints: see docs/errata.md). Also 'g', 'h',
-    'g_forcing', 'h_forcing': {exponents: coefficient} polynomials of eq (32) and (35)."""
+    n >= 2, p >= 1): omega1, omega2, the named coefficients and the polynomials of eq (32) and
+    (35)."""
     _checks.instance("params", params, Parameters)
     (scalars, c, exponents, g, g_forcing, h, h_forcing, status,
-     message) = _bridge.modal_expansion(*params.arrays())
+     message) = _bridge.modal_expansion(*params.array())
     check_status(status, message)
     result = {"omega1": scalars[0], "omega2": scalars[1], "gamma11": scalars[2],
               "gamma22": scalars[3], "F11": scalars[4]}
@@ -84,8 +98,8 @@ def modal_coefficients(params: Parameters) -> dict:
             result.setdefault(name.format(r=r), -polys["h"][r - 1][e])
         for name, sign, e in _MODAL_FORCING[r]:
             result.setdefault(name, sign * polys["h_forcing"][r - 1][e])
-    result.update(polys)
-    return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in result.items()}
+    omega1, omega2 = (float(result.pop(name)) for name in ("omega1", "omega2"))
+    return ModalCoefficients(omega1, omega2, {k: float(v) for k, v in result.items()}, **polys)
 
 
 _COLUMNS = _tables.columns("response")
@@ -110,7 +124,7 @@ class SpecialPoint:
                          #: slow flow (the beat frequency); 0 for folds
 
 
-@dataclass
+@dataclass(frozen=True)
 class FrequencyResponse:
     """Branches of steady states of the slow flow with their stability (sec 3.3, 4.1-4.2).
 
@@ -125,7 +139,7 @@ class FrequencyResponse:
     table: dict
     special_points: list
     complete: bool
-    message: str = ""
+    message: str                 #: why an incomplete response stopped ('' if complete)
 
     @property
     def branches(self):
@@ -173,7 +187,7 @@ class Continuation:
 
 
 def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A_range=None,
-                       settings: Continuation = Continuation()):
+                       continuation: Continuation = Continuation()) -> FrequencyResponse:
     """Steady states of the slow flow (eq 46 without, eq 53 with the 3:1 internal resonance)
     for rho in rho_range (A from params), or for A in A_range (rho from params): every branch
     found, with stability and the folds and Hopf points located on it.
@@ -181,13 +195,13 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
     Raises ConvergenceError (with ``partial``, the response computed so far, marked incomplete)
     if a branch could not be finished."""
     _checks.instance("params", params, Parameters)
-    _checks.instance("settings", settings, Continuation)
+    _checks.instance("continuation", continuation, Continuation)
     _checks.choice("resonance", resonance, ("3:1", "none"))
     parameter, (lo, hi) = continuation_range(rho_range, A_range)
     (table, n_points, special, n_special, complete, status,
-     message) = cancellable(_bridge.frequency_response, *params.arrays(), 1 if resonance == "3:1" else 0,
+     message) = cancellable(_bridge.frequency_response, *params.array(), 1 if resonance == "3:1" else 0,
                                            1 if parameter == "rho" else 2, float(lo), float(hi),
-                                           settings.array(), MAX_TABLE_POINTS, MAX_SPECIAL_POINTS)
+                                           continuation.array(), MAX_TABLE_POINTS, MAX_SPECIAL_POINTS)
     columns = {name: table[i, :n_points].copy() for i, name in enumerate(_COLUMNS)}
     points = []
     for column in special[:, :n_special].T:
@@ -214,7 +228,7 @@ def continuation_range(rho_range, A_range):
     return "A", _checks.interval("A_range", A_range)
 
 
-def nonresonant_amplitudes(params: Parameters, rho):
+def nonresonant_amplitudes(params: Parameters, rho) -> list:
     """Every real solution |u1| of eq (49) (no internal resonance) at each rho (A from params):
     a list of ascending arrays, one per rho (1 or 3 values)."""
     _checks.instance("params", params, Parameters)
@@ -222,7 +236,7 @@ def nonresonant_amplitudes(params: Parameters, rho):
     if rho.ndim != 1:
         raise InputError(f"rho has shape {rho.shape}: give a number or a 1-D array")
     _checks.output_size("rho", rho.size, 4)
-    amplitudes, counts, status, message = _bridge.nonresonant_amplitudes(*params.arrays(), rho)
+    amplitudes, counts, status, message = _bridge.nonresonant_amplitudes(*params.array(), rho)
     check_status(status, message)
     return [amplitudes[:c, i].copy() for i, c in enumerate(counts)]
 
@@ -237,22 +251,24 @@ class SlowFlowCycle:
     beat_periods: float        #: the period in forcing periods T = 2 pi/rho
     multipliers: np.ndarray    #: Floquet multipliers of the cycle (one is 1)
     iterations: int            #: Newton shots
+    method: str                #: the integration method used ('auto' resolved)
 
 
 def slow_flow_cycle(params: Parameters, *, settle_periods=5000, max_periods=2000,
-                    n_samples=20000, integration=None) -> SlowFlowCycle:
+                    n_samples=20000, integration: Integration = Integration()) -> SlowFlowCycle:
     """The limit cycle of the 3:1 slow flow at params' rho and A (sloshdyn_slowflow_cycle): the
     slow flow integrated from rest for settle_periods forcing periods, the period guessed by
     the first return to a section (searched up to max_periods on n_samples samples), then
     cycle and period by Newton shooting with the period unknown."""
-    from .simulation import Integration
-    integration = Integration() if integration is None else integration
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
     if not params.rho > 0:
         raise InputError(f"rho = {params.rho} is not valid: the slow flow needs rho > 0")
     period = 2 * np.pi / params.rho
     x, tau, multipliers, iterations, status, message = _bridge.slow_flow_cycle(
-        *params.arrays(), float(settle_periods) * period, float(max_periods) * period,
+        *params.array(), float(settle_periods) * period, float(max_periods) * period,
         int(n_samples), integration.array())
     check_status(status, message, "slow-flow limit cycle")
     return SlowFlowCycle(x.copy(), float(tau), float(tau) / period,
-                         multipliers[0] + 1j * multipliers[1], int(iterations))
+                         multipliers[0] + 1j * multipliers[1], int(iterations),
+                         integration.method_used)

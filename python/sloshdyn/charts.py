@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._errors import check_status
-from .parameters import Parameters
+from .parameters import Parameters, convert_fields
 
 _bridge = _core.sloshdyn_bridge_charts
 _DEFAULTS = _tables.unpack("chart", _bridge.chart_defaults())
@@ -26,7 +26,7 @@ CODIM2_KINDS = _tables.codes("codim2")            #: {0: 'none', 1: 'bogdanov_ta
 CURVE_ENDS = _tables.codes("curve_end")
 
 
-@dataclass
+@dataclass(frozen=True)
 class Curve:
     """A fold or Hopf curve, point by point along it (rho, A, gamma and kappa at every point; two
     of them vary). state: (4, n) slow-flow state (Re B1, Im B1, Re B2, Im B2; the last two 0 without the
@@ -43,12 +43,12 @@ class Curve:
     omega: np.ndarray
     l1: np.ndarray
     codim2: list
-    complete: bool = True
-    ends: tuple = ("", "")
-    note: str = ""              #: why an incomplete curve stopped
+    complete: bool
+    ends: tuple                 #: how the curve ends at its first and last point
+    note: str                   #: why an incomplete curve stopped ('' if complete)
 
 
-@dataclass
+@dataclass(frozen=True)
 class Codim2Point:
     """A codimension-2 point: 'cusp', 'bogdanov_takens', 'fold_hopf', 'generalised_hopf'."""
 
@@ -61,7 +61,7 @@ class Codim2Point:
     curve: int                  #: index into StabilityChart.curves
 
 
-@dataclass
+@dataclass(frozen=True)
 class StabilityChart:
     """A chart in (x, y) = two of rho, A, gamma, kappa: its curves, codimension-2 points and
     grid (arrays over the cells: rho, A, gamma, kappa, n_stable, n_steady, near_curve (1/0),
@@ -74,42 +74,62 @@ class StabilityChart:
     codim2_points: list
     grid: dict
     complete: bool
-    params: Parameters = field(repr=False, default=None)
+    params: Parameters = field(repr=False)   #: None for a chart read from files
 
-    def frequency_and_acceleration(self, tank, rho, A):
-        """(frequency [Hz], peak ground acceleration [g]) of chart points of a tank's model:
+    def frequency_and_acceleration(self, tank, rho, A, *, units="g"):
+        """(frequency [Hz], peak ground acceleration [units]) of chart points of a tank's model:
         f = rho omega/(2 pi), a = A rho^2 L omega^2 (harmonic ground motion)."""
+        from .seismic import acceleration_factor
+
         p = tank.properties
         rho, A = np.asarray(rho, dtype=float), np.asarray(A, dtype=float)
-        return (rho * p["omega"] / (2 * math.pi),
-                A * rho**2 * p["support_height"] * p["omega"] ** 2 / tank.gravity)
+        acceleration = A * rho**2 * p["support_height"] * p["omega"] ** 2
+        # 'g' is the tank's gravity, as before (acceleration_factor's g is standard gravity)
+        scale = tank.gravity if units == "g" else acceleration_factor(units)
+        return rho * p["omega"] / (2 * math.pi), acceleration / scale
+
+
+@dataclass(frozen=True)
+class Chart:
+    """Settings of a stability chart's grid and curves (&chart), with the core's defaults. The
+    grid has n_x by n_y cells (their midpoints); the one-parameter runs in x at n_y values of
+    y, with n_scan parameter values searched and at most max_points points each, seed at most
+    max_curves curves. brute_force_starts > 0 integrates the slow flow from that many starts
+    in every cell and counts the stable steady states reached (a small basin may be missed; it
+    never finds more than there are)."""
+
+    n_x: int = int(_DEFAULTS["n_x"])
+    n_y: int = int(_DEFAULTS["n_y"])
+    n_scan: int = int(_DEFAULTS["n_scan"])
+    max_points: int = int(_DEFAULTS["max_points"])
+    max_curves: int = int(_DEFAULTS["max_curves"])
+    brute_force_starts: int = 0
+
+    def __post_init__(self):
+        convert_fields(self)
 
 
 def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
-                    model="slow_flow_3:1", n_x=int(_DEFAULTS["n_x"]), n_y=int(_DEFAULTS["n_y"]),
-                    n_scan=int(_DEFAULTS["n_scan"]), max_points=int(_DEFAULTS["max_points"]),
-                    max_curves=int(_DEFAULTS["max_curves"]), brute_force_starts=0, threads=1,
+                    model="slow_flow_3:1", chart: Chart = Chart(), threads=1,
                     capacity=200_000) -> StabilityChart:
     """The stability chart of the slow flow of `params` (model 'slow_flow_3:1' or
     'slow_flow_nonresonant') for x in x_range and y in y_range: x is rho or A (it is varied by
-    the one-parameter runs at n_y values of y, which seed the curves), y any other of rho, A,
-    gamma; the values of the third come from params. The grid has n_x by n_y cells (their
-    midpoints). brute_force_starts > 0 integrates the slow flow from that many starts in every
-    cell and counts the stable steady states reached (a small basin may be missed; it never
-    finds more than there are). threads share out the runs and cells (same result on any
-    number). A curve that stops early is kept up to where it stopped (complete False, with
-    its note) and a warning is issued."""
+    the one-parameter runs at chart.n_y values of y, which seed the curves), y any other of
+    rho, A, gamma, kappa; the values of the others come from params. A curve that stops early
+    is kept up to where it stopped (complete False, with its note) and a warning is issued.
+    threads share out the runs and cells (same result on any number); capacity: room for the
+    curves' points."""
     _checks.instance("params", params, Parameters)
+    _checks.instance("chart", chart, Chart)
     _checks.choice("model", model, MODELS)
     _checks.choice("x", x, AXES)
     _checks.choice("y", y, AXES)
     (x_min, x_max), (y_min, y_max) = (_checks.interval("x_range", x_range),
                                       _checks.interval("y_range", y_range))
-    n_x, n_y, n_scan, max_points, max_curves, brute_force_starts, threads, capacity = (
-        _checks.integer(name, value) for name, value in (
-            ("n_x", n_x), ("n_y", n_y), ("n_scan", n_scan), ("max_points", max_points),
-            ("max_curves", max_curves), ("brute_force_starts", brute_force_starts),
-            ("threads", threads), ("capacity", capacity)))
+    threads, capacity = _checks.integer("threads", threads), _checks.integer("capacity", capacity)
+    n_x, n_y, n_scan, max_points, max_curves, brute_force_starts = (
+        chart.n_x, chart.n_y, chart.n_scan, chart.max_points, chart.max_curves,
+        chart.brute_force_starts)
     _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
     _checks.output_size("max_curves", 10 * max(max_curves, 1), len(_tables.columns("chart_codim2")))
     _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))
@@ -120,7 +140,7 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
         "max_curves": max_curves, "brute_force_starts": brute_force_starts, "threads": threads})
     n_cells = max(n_x, 1) * max(n_y, 1)
     (curves, codim2, ends, grid, sizes, complete, notes, status,
-     message) = _bridge.stability_chart(*params.arrays(), settings, max(capacity, 1),
+     message) = _bridge.stability_chart(*params.array(), settings, max(capacity, 1),
                                         10 * max(max_curves, 1), max(max_curves, 1), n_cells)
     if status == 9:   # SD_CAPACITY: name the Python argument that sets the room
         message = (_tables._text(message) + f"; give capacity >= {int(sizes[0])} (now "

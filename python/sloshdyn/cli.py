@@ -20,7 +20,7 @@ from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError
 from ._files import run_directory, save_figure, write_text
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
-from .simulation import Simulation, Sweep, _summary
+from .simulation import Integration, Simulation, Sweep, _summary
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="sloshdyn-py", description=(
@@ -258,17 +258,19 @@ def _table(path):
 
 def _figure(inp, out):
     """(file name, Figure) for the analyses that have one, from their result files."""
+    method = Integration(**inp.integration).method_used
     if inp.analysis == "simulate":
         t = _table(out / "history.csv")
         sim = Simulation(t["tau"], np.array([t[k] for k in ("x1", "dx1", "x2", "dx2")]),
                          np.array([t["u1"], t["u2"]]), t["impact_force"], t["theta"], t["phi"],
-                         0, 0, 0, float(t["tau"][-1]))
+                         0, 0, 0, float(t["tau"][-1]), method)
         return "history.png", plotting.time_history(sim, ("x1", "x2", "impact_force"))
     if inp.analysis == "seismic":
         from .seismic import SeismicResponse
         t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
-        response = SeismicResponse(inp.tank, inp.ground_motion, np.array(list(t.values())),
-                                   np.array([column[0] for column in peaks.values()]))
+        response = SeismicResponse._from_tables(
+            inp.tank, inp.ground_motion, np.array(list(t.values())),
+            np.array([column[0] for column in peaks.values()]), method)
         return "seismic.png", plotting.seismic(response)
     if inp.analysis == "stability_chart":
         from .charts import chart_from_files
@@ -280,12 +282,12 @@ def _figure(inp, out):
         from .seismic import HarmonicSweep
         t = _table(out / "harmonic_sweep.csv")
         return "harmonic_sweep.png", plotting.harmonic_sweep(
-            HarmonicSweep(inp.tank, [], np.array(list(t.values())), None))
+            HarmonicSweep._from_table(inp.tank, [], np.array(list(t.values())), None, method))
     if inp.analysis == "sweep":
         t = _table(out / "sweep.csv")
-        points = [_summary(np.array([column[k] for column in t.values()]))
+        points = [_summary(np.array([column[k] for column in t.values()]), method)
                   for k in range(len(t["rho"]))]
-        return "sweep.png", plotting.sweep(Sweep(inp.sweep["parameter"], points, None))
+        return "sweep.png", plotting.sweep(Sweep(inp.sweep["parameter"], points, None, method))
     if inp.analysis == "frequency_response":
         t = _table(out / "response.csv")
         s = _table(out / "special_points.csv")
@@ -293,7 +295,7 @@ def _figure(inp, out):
                    in zip(s["kind"], s["branch"], s["rho"], s["A"], s["a1"], s["a2"],
                           s["frequency"])]
         response = FrequencyResponse(inp.response["parameter"], inp.response["resonance"], t,
-                                     special, True)
+                                     special, True, "")
         return "response.png", plotting.frequency_response(response)
     return None
 

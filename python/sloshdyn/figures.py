@@ -4,6 +4,7 @@ next to it (for the report and for `check`)."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -15,7 +16,7 @@ from ._files import save_figure, write_csv
 from .asymptotics import frequency_response, modal_coefficients, slow_flow_cycle
 from ._errors import SloshdynError
 from .model import equilibria, equilibrium_angles, frequency_ratio, kappa_for_detuning, linear_modes
-from .periodic import lyapunov_exponent, periodic_response
+from .periodic import PERIODIC_CONTINUATION, Lyapunov, lyapunov_exponent, periodic_response
 from .parameters import Parameters
 from .simulation import Steady, amplitude_sweep, beat_period, simulate, spectrum, steady_state
 
@@ -28,7 +29,7 @@ FIG12 = Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=THETA0, gamma=0.00
 FIG9 = dict(s1=1.5, mu1=0.5, theta0=THETA0, gamma=0.0025, A=0.0005)
 
 
-@dataclass
+@dataclass(frozen=True)
 class Figure:
     """One reproduced figure: its files, the paper's caption, and the numbers computed."""
 
@@ -68,7 +69,7 @@ def _beta_hat_bifurcation():
     low, high = 0.005, 0.08
     for _ in range(50):
         mid = 0.5 * (low + high)
-        roots, _ = equilibrium_angles(_with_beta_hat(mid), "theta")
+        roots = equilibrium_angles(_with_beta_hat(mid), "theta").angles
         low, high = (mid, high) if len(roots) > 1 else (low, mid)
     return low
 
@@ -88,7 +89,7 @@ def fig04(out, quick=False):
         curve = -beta_hat * theta**3
         columns[f"minus_beta_hat_theta3_{beta_hat}"] = curve
         ax.plot(theta, curve, ls, color=color, label=rf"$-\hat\beta\theta^3$, $\hat\beta$ = {beta_hat}")
-        roots, _ = equilibrium_angles(_with_beta_hat(beta_hat), "theta")
+        roots = equilibrium_angles(_with_beta_hat(beta_hat), "theta").angles
         ax.plot(roots, np.sin(roots), "o", color=color, mfc="none")
         values[f"fig4_equilibria_beta_hat_{beta_hat}"] = len(roots)
     ax.set_ylim(-2, 2)
@@ -115,7 +116,7 @@ def fig05(out, quick=False):
     for kappa_hat, ls, color in ((1.3, "-", "k"), (1.0, "--", "r"), (0.9, ":", "m")):
         columns[f"kappa_hat_phi_{kappa_hat}"] = kappa_hat * phi
         ax.plot(phi, kappa_hat * phi, ls, color=color, label=rf"$\hat\kappa\varphi$, $\hat\kappa$ = {kappa_hat}")
-        roots, _ = equilibrium_angles(_with_kappa_hat(kappa_hat), "phi")
+        roots = equilibrium_angles(_with_kappa_hat(kappa_hat), "phi").angles
         ax.plot(roots, np.sin(roots), "o", color=color, mfc="none")
         values[f"fig5_equilibria_kappa_hat_{kappa_hat}"] = len(roots)
     ax.set_ylim(-1.5, 1.5)
@@ -130,7 +131,7 @@ def _pitchfork():
     low, high = 0.5, 1.5
     for _ in range(50):
         mid = 0.5 * (low + high)
-        roots, _ = equilibrium_angles(_with_kappa_hat(mid), "phi")
+        roots = equilibrium_angles(_with_kappa_hat(mid), "phi").angles
         low, high = (low, mid) if len(roots) == 1 else (mid, high)
     return high
 
@@ -204,15 +205,15 @@ def _response_columns(response):
 def _fig9(out, kappa, letter, kind):
     p = Parameters(kappa=kappa, **FIG9)
     m = modal_coefficients(p)
-    w1 = m["omega1"]
+    w1 = m.omega1
     response = frequency_response(p, (w1 - 0.04, w1 + 0.04), resonance="none")
     fig = plotting.frequency_response(response, columns=("a1",))
     folds = sorted(s.rho for s in response.special_points if s.kind == "fold")
-    values = {f"fig9{letter}_c11": m["c11"]}
+    values = {f"fig9{letter}_c11": m.coefficients["c11"]}
     return Figure(f"9{letter}", f"Frequency response graph of |u1| for s1=1.5, μ1=0.5, θ0=π/4, "
                   f"γ=0.0025, A=0.0005: κ={kappa} and c11 ≈ {'-0.03188' if letter == 'a' else '0.30585'}, "
                   f"{kind} effect.", _save(fig, out, f"fig09{letter}", _response_columns(response)),
-                  values, f"c11 = {m['c11']:.6f}; ω1 = {w1:.6f}; folds at ρ = "
+                  values, f"c11 = {m.coefficients['c11']:.6f}; ω1 = {w1:.6f}; folds at ρ = "
                   + ", ".join(f"{f:.6f}" for f in folds)
                   + f" ({'below' if kind == 'softening' else 'above'} ω1).")
 
@@ -227,7 +228,8 @@ def fig09b(out, quick=False):
 
 def fig10(out, quick=False):
     kappa = np.linspace(1.55, 6.0, 90 if quick else 446)
-    c11 = np.array([modal_coefficients(Parameters(kappa=k, **FIG9))["c11"] for k in kappa])
+    c11 = np.array([modal_coefficients(Parameters(kappa=k, **FIG9)).coefficients["c11"]
+                    for k in kappa])
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.plot(kappa, c11, "-", color="k")
     ax.axhline(0, color="0.6", lw=0.6)
@@ -423,7 +425,8 @@ def fig15_17(out, quick=False):
         columns = {"tau": sim.tau, "x1": sim.x1, "x2": sim.x2}
         lines = []
         for signal, ls, label in ((sim.x1, "-", r"$x_1$"), (sim.x2, "--", r"$x_2$")):
-            omega, amp = spectrum(signal[:-1], period / per, window=None)
+            line = spectrum(signal[:-1], period / per, window=None)
+            omega, amp = line.omega, line.amplitude
             axes[2].plot(omega, amp, ls, lw=0.8, label=label)
             lines.append((omega, amp))
         axes[2].set_xlim(0, 8 * q.rho)
@@ -511,8 +514,9 @@ def impact_route(out, quick=False):
     p = FIG12.replace(rho=0.513)
     lower = periodic_response(p.replace(A=0.00075), A_range=(0.00075, 0.002))
     try:
-        upper = periodic_response(p.replace(A=0.0011), A_range=(0.0011, 2.0), ds_max=0.05,
-                                  max_points=3000)
+        upper = periodic_response(p.replace(A=0.0011), A_range=(0.0011, 2.0),
+                                  continuation=dataclasses.replace(
+                                      PERIODIC_CONTINUATION, ds_max=0.05, max_points=3000))
     except SloshdynError as exc:          # a special point that could not be located
         upper = exc.partial
     a_values = np.concatenate([np.geomspace(0.00075, 1.0, 10 if quick else 30),
@@ -526,9 +530,8 @@ def impact_route(out, quick=False):
         sim_max.append(st.max_x1)
         poincare_a.extend([A] * st.poincare.shape[1])
         poincare_x1.extend(st.poincare[0])
-        lam, _ = lyapunov_exponent(p.replace(A=float(A)), y, transient_periods=0,
-                                   n_periods=200 if quick else 800)
-        lyap.append(lam)
+        lyap.append(lyapunov_exponent(p.replace(A=float(A)), y, lyapunov=Lyapunov(
+            transient_periods=0, n_periods=200 if quick else 800)).exponent)
     fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 9))
     for branch in (lower, upper):
         _styled(axes[0], branch.table["A"], branch.table["max_x1"], branch.table["stable"], "k")

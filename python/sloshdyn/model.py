@@ -30,7 +30,7 @@ def equations_of_motion(params: Parameters, tau, y) -> Motion:
     """Evaluate eq (13)-(15) with X = A sin(rho tau) at state y = (x1, x1', x2, x2')."""
     _checks.instance("params", params, Parameters)
     y, tau = _checks.reals("y", y, (4,)), _checks.real("tau", tau)
-    mass, force, dydt, jac, status, message = _bridge.equations_of_motion(*params.arrays(), tau, y)
+    mass, force, dydt, jac, status, message = _bridge.equations_of_motion(*params.array(), tau, y)
     check_status(status, message)
     return Motion(mass, force, dydt, jac)
 
@@ -55,18 +55,12 @@ class LinearModes:
 def linear_modes(params: Parameters) -> LinearModes:
     """Natural frequencies by eq (28) and by dgeev, K, P and P^-1 (needs kappa > s1)."""
     _checks.instance("params", params, Parameters)
-    omegas, k, p, p_inv, status, message = _bridge.natural_frequencies(*params.arrays())
+    omegas, k, p, p_inv, status, message = _bridge.natural_frequencies(*params.array())
     check_status(status, message)
     return LinearModes(*(float(w) for w in omegas), k, p, p_inv)
 
 
-def natural_frequencies(params: Parameters):
-    """(omega1, omega2) of eq (28), omega1 < omega2 (needs kappa > s1)."""
-    modes = linear_modes(params)
-    return modes.omega1, modes.omega2
-
-
-def frequency_ratio(sigma_tilde, mu_tilde):
+def frequency_ratio(sigma_tilde, mu_tilde) -> np.ndarray:
     """omega2/omega1 as a function of sigma~ = kappa - s1 and mu~ = 1 - mu1 (Fig 7, 8);
     broadcasts like numpy."""
     sigma_tilde, mu_tilde = _checks.reals("sigma_tilde", sigma_tilde), _checks.reals("mu_tilde",
@@ -84,7 +78,7 @@ def frequency_ratio(sigma_tilde, mu_tilde):
     return ratio.reshape(sigma_tilde.shape) if sigma_tilde.ndim else float(ratio[0])
 
 
-def kappa_for_detuning(s1, mu1, sigma1, kappa_min=None, kappa_max=None):
+def kappa_for_detuning(s1, mu1, sigma1, kappa_min=None, kappa_max=None) -> np.ndarray:
     """All kappa in (max(kappa_min, s1), kappa_max] with omega2 - 3 omega1 = sigma1 (eq 51),
     ascending; kappa_max defaults to s1 + 1000."""
     s1, mu1, sigma1 = (_checks.real(n, v) for n, v in (("s1", s1), ("mu1", mu1),
@@ -97,15 +91,24 @@ def kappa_for_detuning(s1, mu1, sigma1, kappa_min=None, kappa_max=None):
     return roots[:n].copy()
 
 
-def equilibrium_angles(params: Parameters, which: str):
+@dataclass(frozen=True)
+class EquilibriumAngles:
+    """The real roots of eq (17) or eq (18)."""
+
+    which: str                 #: 'theta' (eq 17) or 'phi' (eq 18)
+    angles: np.ndarray         #: the roots [rad], ascending
+    truncated: bool            #: the search stopped at |angle| = 32 pi
+
+
+def equilibrium_angles(params: Parameters, which: str) -> EquilibriumAngles:
     """Real roots of eq (17) (which='theta') or eq (18) (which='phi') in radians, ascending,
     and whether the search stopped at |angle| = 32 pi."""
     _checks.instance("params", params, Parameters)
     code = {"theta": 1, "phi": 2}[_checks.choice("which", which, ("theta", "phi"))]
-    roots, n, truncated, status, message = _bridge.equilibrium_angles(*params.arrays(), code,
+    roots, n, truncated, status, message = _bridge.equilibrium_angles(*params.array(), code,
                                                                       MAX_ROOTS)
     check_status(status, message)
-    return roots[:n].copy(), bool(truncated)
+    return EquilibriumAngles(which, roots[:n].copy(), bool(truncated))
 
 
 @dataclass(frozen=True)
@@ -149,7 +152,7 @@ def equilibria(params: Parameters) -> Equilibria:
     """Every equilibrium (theta, phi) of eq (16)-(18) with eigenvalues and verdict."""
     _checks.instance("params", params, Parameters)
     (theta, phi, physical, re, im, verdict, n, truncated, routh, status,
-     message) = _bridge.equilibria(*params.arrays(), MAX_EQUILIBRIA)
+     message) = _bridge.equilibria(*params.array(), MAX_EQUILIBRIA)
     check_status(status, message)
     points = [Equilibrium(float(theta[i]), float(phi[i]), bool(physical[i]),
                           re[:, i] + 1j * im[:, i], VERDICTS[int(verdict[i])]) for i in range(n)]

@@ -56,7 +56,7 @@ class Parameters:
         convert_fields(self)
         self.coefficients()  # validates in the Fortran core
 
-    def arrays(self):
+    def array(self):
         """The flat arrays of the f2py bridge: rpar, ipar in the core's layouts 'model' and
         'model_integers'."""
         rpar = _tables.pack("model", {name: getattr(self, name)
@@ -66,7 +66,7 @@ class Parameters:
         return rpar, ipar
 
     @classmethod
-    def from_arrays(cls, rpar, ipar, **changes):
+    def from_array(cls, rpar, ipar, **changes):
         """The parameters of the bridge's arrays rpar, ipar (with some fields changed)."""
         fields = {name: float(x) for name, x in _tables.unpack("model", rpar).items()}
         fields.update({name: int(x) for name, x in _tables.unpack("model_integers", ipar).items()})
@@ -74,7 +74,7 @@ class Parameters:
 
     def coefficients(self):
         """a1..a6 and b1..b6 of eq (11) as two arrays."""
-        a, b, status, message = _core.sloshdyn_bridge_model.model_coefficients(*self.arrays())
+        a, b, status, message = _core.sloshdyn_bridge_model.model_coefficients(*self.array())
         check_status(status, message)
         return a, b
 
@@ -88,11 +88,12 @@ class Parameters:
         return self.kappa / self.s1
 
     @classmethod
-    def from_physical(cls, *, M, L, k, theta0, R=None, h=None, rho_liquid=None, m_liquid=None,
-                      l=None, m=None, c=0.0, b=None, d=None, g=9.80665, n=6, p=2, A=0.0,
-                      rho=0.0):
+    def from_physical(cls, *, M, L, k, theta0, radius=None, liquid_depth=None,
+                      liquid_density=None, liquid_mass=None, l=None, m=None, c=0.0, b=None,
+                      d=None, g=9.80665, n=6, p=2, A=0.0, rho=0.0):
         """Dimensionless groups of eq (9) from SI values. The pendulum (l, m) is given directly or
-        computed from a cylindrical tank (R, h and rho_liquid or m_liquid, eq 2). Without the
+        computed from a cylindrical tank (radius, liquid_depth and liquid_density or
+        liquid_mass, eq 2; the names of sloshdyn.Tank). Without the
         impact coefficient b [N m] or the dissipation d [N m s], beta and delta take the same
         defaults as Parameters and &model (README, "Impact and dissipation defaults"). For a
         whole tank in SI units (freeboard, supports by frequency, damping ratios) see
@@ -102,10 +103,12 @@ class Parameters:
             ("rho", rho)))
         b, d = _checks.optional_real("b", b, None), _checks.optional_real("d", d, None)
         if l is None or m is None:
-            if R is None or h is None:
-                raise InputError("give the pendulum (l, m) or the tank (R, h with rho_liquid or m_liquid)")
-            pendulum = tank_pendulum(R, h, rho_liquid=rho_liquid, m_liquid=m_liquid)
-            l, m = pendulum.l, pendulum.m
+            if radius is None or liquid_depth is None:
+                raise InputError("give the pendulum (l, m) or the tank (radius, liquid_depth with "
+                                 "liquid_density or liquid_mass)")
+            pendulum = tank_pendulum(radius, liquid_depth, liquid_density=liquid_density,
+                                     liquid_mass=liquid_mass)
+            l, m = pendulum.pendulum_length, pendulum.sloshing_mass
         l, m = _checks.real("l", l), _checks.real("m", m)
         physical = np.array([M, L, k, c, b or 0.0, d or 0.0, g, theta0, l, m], dtype=np.float64)
         groups, status, message = _core.sloshdyn_bridge_model.dimensionless_groups(physical)
@@ -139,23 +142,25 @@ class Parameters:
 
 @dataclass(frozen=True)
 class TankPendulum:
-    """Equivalent pendulum of a cylindrical tank (eq 2-3), SI units."""
+    """Equivalent pendulum of a cylindrical tank (eq 2-3), SI units; the names of the tank's
+    table (tank.csv, Tank.properties)."""
 
-    l: float    #: pendulum length [m]
-    m: float    #: sloshing mass [kg]
-    d1: float   #: pendulum distance d1 [m]
-    m0: float   #: rigid (non-sloshing) liquid mass [kg]
-    d0: float   #: rigid mass distance below the free surface [m]
-    m_F: float  #: total liquid mass [kg]
+    pendulum_length: float  #: l [m]
+    sloshing_mass: float    #: m [kg]
+    d1: float               #: pendulum distance d1 [m]
+    rigid_mass: float       #: m0, the rigid (non-sloshing) liquid mass [kg]
+    d0: float               #: rigid mass distance below the free surface [m]
+    liquid_mass: float      #: m_F, the total liquid mass [kg]
 
 
-def tank_pendulum(R, h, rho_liquid=None, m_liquid=None):
-    """Pendulum of the first sloshing mode of a cylindrical tank of radius R and liquid depth h,
-    from the liquid density rho_liquid or the liquid mass m_liquid (give one), eq (2)-(3)."""
+def tank_pendulum(radius, liquid_depth, *, liquid_density=None,
+                  liquid_mass=None) -> TankPendulum:
+    """Pendulum of the first sloshing mode of a cylindrical tank of a radius and liquid depth
+    [m], from the liquid density [kg/m^3] or the liquid mass [kg] (give one), eq (2)-(3)."""
     pendulum, status, message = _core.sloshdyn_bridge_model.tank_pendulum(
-        _checks.real("R", R), _checks.real("h", h),
-        _checks.optional_real("rho_liquid", rho_liquid, 0.0),
-        _checks.optional_real("m_liquid", m_liquid, 0.0))
+        _checks.real("radius", radius), _checks.real("liquid_depth", liquid_depth),
+        _checks.optional_real("liquid_density", liquid_density, 0.0),
+        _checks.optional_real("liquid_mass", liquid_mass, 0.0))
     check_status(status, message)
     return TankPendulum(**{name: float(x)
                            for name, x in _tables.unpack("pendulum", pendulum).items()})
@@ -184,7 +189,7 @@ class Input:
     study: dict = field(default_factory=dict)         #: &study (empty if none): kind, store, ...
 
 
-def read_namelist(path):
+def read_namelist(path) -> Input:
     """Read and validate a namelist input file with the executable's reader (same rules, defaults
     and messages)."""
     from .seismic import GroundMotion, Tank
@@ -210,7 +215,7 @@ def read_namelist(path):
     response_range = _tables.unpack("response_range", response_range)
     simulation = _tables.unpack("simulation", simulation)
     return Input(
-        params=Parameters.from_arrays(rpar, ipar),
+        params=Parameters.from_array(rpar, ipar),
         analysis=_tables.codes("analyses")[int(analysis)],
         **{name: float(x) for name, x in _tables.unpack("analysis", values).items()},
         directory=_tables._text(directory), tank=tank, ground_motion=ground_motion,

@@ -5,6 +5,7 @@ Lyapunov exponent. Computed by the Fortran core (sloshdyn_periodic)."""
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -12,19 +13,47 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import check_status
-from .asymptotics import continuation_range, frequency_response
+from .asymptotics import Continuation, continuation_range, frequency_response
 from .model import linear_modes
-from .parameters import Parameters
+from .parameters import Parameters, convert_fields
 from .simulation import Integration, Steady, steady_state
 
 _bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
-_NEWTON_TOL, _MAX_ITER = (float(_tables.defaults()["shooting"][name])
-                          for name in ("newton_tol", "max_iter"))
+_SHOOTING = _tables.defaults()["shooting"]
 _LYAPUNOV = _tables.defaults()["lyapunov"]
 
 
-@dataclass
+@dataclass(frozen=True)
+class Shooting:
+    """Settings of the Newton shooting for a periodic orbit, with the core's defaults."""
+
+    newton_tol: float = float(_SHOOTING["newton_tol"])   #: on the orbit's state, relative
+    max_iter: int = int(_SHOOTING["max_iter"])           #: Newton iterations at most
+
+    def __post_init__(self):
+        convert_fields(self)
+
+
+@dataclass(frozen=True)
+class Lyapunov:
+    """Settings of the largest Lyapunov exponent (&lyapunov), in forcing periods: the fields of
+    the core's layout, in order, with its defaults."""
+
+    transient_periods: int = int(_LYAPUNOV["transient_periods"])   #: integrated before measuring
+    n_periods: int = int(_LYAPUNOV["n_periods"])   #: measured; a multiple of renormalise_every
+    renormalise_every: int = int(_LYAPUNOV["renormalise_every"])   #: periods between
+    #: renormalisations of the tangent vectors
+
+    def __post_init__(self):
+        convert_fields(self)
+
+    def array(self, spectrum=False):
+        """The core's lyapunov layout (spectrum: the four exponents, not the largest only)."""
+        return _tables.pack("lyapunov", {**dataclasses.asdict(self), "spectrum": int(spectrum)})
+
+
+@dataclass(frozen=True)
 class PeriodicOrbit:
     """A periodic orbit of period k T (T = 2 pi/rho), through y0 at forcing phase 0."""
 
@@ -34,31 +63,29 @@ class PeriodicOrbit:
     max_x1: float               #: max |x1| over the orbit (64 samples per forcing period)
     iterations: int
     periods: int
-    method: str = ""            #: the integration method used ('auto' resolved)
+    method: str                 #: the integration method used ('auto' resolved)
 
     @property
     def stable(self):
         return bool(np.all(np.abs(self.multipliers) < 1))
 
 
-
-
 def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation",
-                   newton_tol=_NEWTON_TOL, max_iter=int(_MAX_ITER),
+                   shooting: Shooting = Shooting(),
                    integration: Integration = Integration()) -> PeriodicOrbit:
     """The periodic orbit near a start: y0, or (y0 None) a steady state of a direct simulation
     from rest (start='simulation') or the 3:1 slow-flow steady state of smallest |u1|
     (start='slow_flow', through eq 34 and 42)."""
     _checks.instance("params", params, Parameters)
+    _checks.instance("shooting", shooting, Shooting)
     _checks.instance("integration", integration, Integration)
     periods = _checks.integer("periods", periods)
-    newton_tol = _checks.real("newton_tol", newton_tol)
-    max_iter = _checks.integer("max_iter", max_iter)
     if y0 is None:
         y0 = start_state(params, start)
     y0 = _checks.reals("y0", y0, (4,))
     y, monodromy, multipliers, info, status, message = cancellable(_bridge.periodic_orbit,
-        *params.arrays(), y0, periods, integration.array(), newton_tol, max_iter)
+        *params.array(), y0, periods, integration.array(), shooting.newton_tol,
+        shooting.max_iter)
     check_status(status, message, "periodic orbit")
     info = _tables.unpack("orbit_info", info)
     return PeriodicOrbit(y, multipliers[0] + 1j * multipliers[1], monodromy,
@@ -97,7 +124,7 @@ class PeriodicSpecialPoint:
     y0: np.ndarray
 
 
-@dataclass
+@dataclass(frozen=True)
 class PeriodicBranch:
     """A branch of periodic orbits of the full equations, with Floquet stability."""
 
@@ -106,36 +133,43 @@ class PeriodicBranch:
                                  #: max_x1, stable, and mu1..mu4 (complex multipliers)
     special_points: list
     complete: bool
-    message: str = ""
-    method: str = ""             #: the integration method used ('auto' resolved)
+    message: str                 #: why an incomplete branch stopped ('' if complete)
+    method: str                  #: the integration method used ('auto' resolved)
+
+
+#: the arclength steps of a periodic branch unless told (the executable takes &response's)
+PERIODIC_CONTINUATION = Continuation(ds=0.002, ds_min=1e-9, ds_max=0.01, x_scale=1.0,
+                                     max_points=2000)
 
 
 def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
-                      start="simulation", from_end="low", ds=0.002, ds_min=1e-9, ds_max=0.01,
-                      x_scale=1.0, max_points=2000,
+                      start="simulation", from_end="low",
+                      continuation: Continuation = PERIODIC_CONTINUATION,
                       integration: Integration = Integration()) -> PeriodicBranch:
     """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
     in A over A_range, starting at the low end (from_end='low') going up, or at the high end
-    going down. Raises ConvergenceError (with ``partial``) if the branch stops before the end
-    of the range or a special point on it could not be located."""
+    going down, with the arclength steps ds, ds_min, ds_max, x_scale and at most max_points
+    points of `continuation` (its branch-search fields are not used). Raises ConvergenceError
+    (with ``partial``) if the branch stops before the end of the range or a special point on
+    it could not be located."""
     _checks.instance("params", params, Parameters)
+    _checks.instance("continuation", continuation, Continuation)
     _checks.instance("integration", integration, Integration)
     parameter, (lo, hi) = continuation_range(rho_range, A_range)
     _checks.choice("from_end", from_end, ("low", "high"))
-    ds, ds_min, ds_max, x_scale = (_checks.real(name, value) for name, value in (
-        ("ds", ds), ("ds_min", ds_min), ("ds_max", ds_max), ("x_scale", x_scale)))
+    c = continuation
     periods = _checks.integer("periods", periods)
-    max_points = _checks.output_size("max_points", _checks.integer("max_points", max_points, 1),
+    max_points = _checks.output_size("max_points", _checks.integer("max_points", c.max_points, 1),
                                      len(_tables.columns("periodic_branch")))
     first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
     if y0 is None:
         y0 = periodic_orbit(first, start_state(first, start), periods=periods,
                             integration=integration).y0
-    settings = _tables.pack("continuation", {"ds": ds, "ds_min": ds_min, "ds_max": ds_max,
-                                             "x_scale": x_scale,
+    settings = _tables.pack("continuation", {"ds": c.ds, "ds_min": c.ds_min, "ds_max": c.ds_max,
+                                             "x_scale": c.x_scale,
                                              "direction": 1.0 if from_end == "low" else -1.0})
     points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
-        *first.arrays(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
+        *first.array(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
         periods, lo, hi, settings, integration.array(), max_points, 100)
     rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
     lam = rows["lambda"]
@@ -165,28 +199,28 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     return branch
 
 
-def lyapunov_exponent(params: Parameters, y0=None, *,
-                      transient_periods=int(_LYAPUNOV["transient_periods"]),
-                      n_periods=int(_LYAPUNOV["n_periods"]),
-                      renormalise_every=int(_LYAPUNOV["renormalise_every"]),
-                      integration: Integration = Integration()):
+@dataclass(frozen=True)
+class LyapunovExponent:
+    """The largest Lyapunov exponent per unit tau, and its running estimate after each
+    renormalisation block (for a convergence check)."""
+
+    exponent: float
+    history: np.ndarray
+    method: str                  #: the integration method used ('auto' resolved)
+
+
+def lyapunov_exponent(params: Parameters, y0=None, *, lyapunov: Lyapunov = Lyapunov(),
+                      integration: Integration = Integration()) -> LyapunovExponent:
     """Largest Lyapunov exponent per unit tau (Benettin: one tangent vector renormalised every
-    renormalise_every forcing periods), and its running estimate after each renormalisation
-    block (for a convergence check). Negative: a stable periodic response; about 0:
-    quasi-periodic; positive: chaotic."""
+    renormalise_every forcing periods) from y0 (default: rest). Negative: a stable periodic
+    response; about 0: quasi-periodic; positive: chaotic."""
     _checks.instance("params", params, Parameters)
+    _checks.instance("lyapunov", lyapunov, Lyapunov)
     _checks.instance("integration", integration, Integration)
     y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
-    transient_periods, n_periods, renormalise_every = (_checks.integer(name, value) for name, value
-                                                       in (("transient_periods", transient_periods),
-                                                           ("n_periods", n_periods),
-                                                           ("renormalise_every", renormalise_every)))
-    blocks = max(n_periods // max(renormalise_every, 1), 1)
-    settings = _tables.pack("lyapunov", {"transient_periods": transient_periods,
-                                         "n_periods": n_periods,
-                                         "renormalise_every": renormalise_every,
-                                         "spectrum": 0})
+    blocks = max(lyapunov.n_periods // max(lyapunov.renormalise_every, 1), 1)
     exponent, history, status, message = cancellable(
-        _bridge.lyapunov_exponent, *params.arrays(), y0, settings, integration.array(), blocks)
+        _bridge.lyapunov_exponent, *params.array(), y0, lyapunov.array(), integration.array(),
+        blocks)
     check_status(status, message, "Lyapunov exponent")
-    return float(exponent), history
+    return LyapunovExponent(float(exponent), history, integration.method_used)

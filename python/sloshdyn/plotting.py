@@ -328,7 +328,7 @@ def json_value(ds, name):
     return json.loads(ds.attrs["parameters"])[name]
 
 
-def fragility(fit, intensities=None, failures=None, unit="g", label="intensity measure"):
+def fragility(fit, intensities=None, failures=None, units="g", label="intensity measure"):
     """A lognormal fragility curve (sloshdyn.fit_fragility) with its median and dispersion,
     the runs (0/1, slightly jittered) and the observed fraction at each intensity."""
     fig, ax = plt.subplots(figsize=(6.5, 4))
@@ -337,7 +337,7 @@ def fragility(fit, intensities=None, failures=None, unit="g", label="intensity m
         upper = max(upper, float(np.max(intensities)))
     x = np.linspace(upper / 500, upper, 400)
     ax.plot(x, fit.probability(x), "-", color="k",
-            label=rf"lognormal fit: median {fit.median:.3g} {unit}, $\beta$ = {fit.beta:.2f}")
+            label=rf"lognormal fit: median {fit.median:.3g} {units}, $\beta$ = {fit.beta:.2f}")
     if intensities is not None and failures is not None:
         xi = np.asarray(intensities, float)
         yi = np.asarray(failures, float)
@@ -347,7 +347,7 @@ def fragility(fit, intensities=None, failures=None, unit="g", label="intensity m
         ax.plot(levels, [yi[xi == v].mean() for v in levels], "s", color="r", ms=5,
                 label="fraction at each level")
     ax.axvline(fit.median, ls=":", color="k", lw=0.8)
-    ax.set_xlabel(f"{label} [{unit}]")
+    ax.set_xlabel(f"{label} [{units}]")
     ax.set_ylabel("probability of roof impact [-]")
     ax.set_ylim(-0.05, 1.05)
     ax.legend(fontsize=8, loc="lower right")

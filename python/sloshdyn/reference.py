@@ -16,7 +16,7 @@ from . import figures
 from ._errors import InputError
 from ._files import file_error
 from .asymptotics import frequency_response, modal_coefficients
-from .model import kappa_for_detuning, natural_frequencies
+from .model import kappa_for_detuning, linear_modes
 from .parameters import Parameters
 from .simulation import Steady, spectrum, simulate, steady_state
 
@@ -24,7 +24,7 @@ from .simulation import Steady, spectrum, simulate, steady_state
 PACKAGE_REFERENCE = Path(__file__).parent / "reference"
 
 
-@dataclass
+@dataclass(frozen=True)
 class Verdict:
     quantity: str
     place: str
@@ -186,8 +186,8 @@ def format_table(verdicts):
 # value providers: each computes a group of quantities whose names start with its prefix
 
 def _linear(quick):
-    w1, w2 = natural_frequencies(figures.FIG12)
-    return {"omega1": w1, "omega2": w2,
+    modes = linear_modes(figures.FIG12)
+    return {"omega1": modes.omega1, "omega2": modes.omega2,
             "kappa_31_sigma1_0": kappa_for_detuning(1.5, 0.5, 0.0)[0],
             "kappa_31_sigma1_0005": kappa_for_detuning(1.5, 0.5, 0.005)[0],
             "kappa_31_fig14": kappa_for_detuning(1.5, 0.5, 0.005)[0],
@@ -199,14 +199,14 @@ def _equilibria(quick):
     values = {"fig4_beta_hat_b": figures._beta_hat_bifurcation(),
               "fig6_pitchfork_kappa_hat": figures._pitchfork()}
     for b in (0.005, 0.08):
-        values[f"fig4_equilibria_beta_hat_{b}"] = len(equilibrium_angles(figures._with_beta_hat(b), "theta")[0])
+        values[f"fig4_equilibria_beta_hat_{b}"] = len(equilibrium_angles(figures._with_beta_hat(b), "theta").angles)
     for k in (1.3, 0.9):
-        values[f"fig5_equilibria_kappa_hat_{k}"] = len(equilibrium_angles(figures._with_kappa_hat(k), "phi")[0])
+        values[f"fig5_equilibria_kappa_hat_{k}"] = len(equilibrium_angles(figures._with_kappa_hat(k), "phi").angles)
     return values
 
 
 def _c11(quick):
-    return {f"fig9{letter}_c11": modal_coefficients(Parameters(kappa=k, **figures.FIG9))["c11"]
+    return {f"fig9{letter}_c11": modal_coefficients(Parameters(kappa=k, **figures.FIG9)).coefficients["c11"]
             for letter, k in (("a", 4.7), ("b", 4.5))}
 
 
@@ -235,7 +235,8 @@ def _fig15(quick):
     period = 2 * math.pi / p.rho
     tau = np.arange(256 * 32 + 1) * period / 32
     sim = simulate(p, tau[-1], st.y_end, tau_out=tau)
-    omega, amp = spectrum(sim.x1[:-1], period / 32, window=None)
+    line = spectrum(sim.x1[:-1], period / 32, window=None)
+    omega, amp = line.omega, line.amplitude
     top = omega[np.argsort(amp)[::-1][:2]] / p.rho
     return {"fig15_max_x1": st.max_x1, "fig15_first_line_over_rho": min(top),
             "fig15_second_line_over_rho": max(top),
@@ -307,7 +308,7 @@ def _full_model(quick):
 
 
 def _lyapunov(quick):
-    from .periodic import lyapunov_exponent
+    from .periodic import Lyapunov, lyapunov_exponent
     from .simulation import Steady
     values = {}
     for name, p, steady in (("lyapunov_fig14", figures.FIG12, Steady(settle_tol=0, transient_periods=5000)),
@@ -315,7 +316,8 @@ def _lyapunov(quick):
                             ("lyapunov_fig17", figures.FIG12.replace(rho=0.513, A=2.0),
                              Steady(max_transient_periods=2000))):
         st = steady_state(p, steady=steady)
-        values[name], _ = lyapunov_exponent(p, st.y_end, transient_periods=100, n_periods=2000)
+        values[name] = lyapunov_exponent(p, st.y_end, lyapunov=Lyapunov(
+            transient_periods=100, n_periods=2000)).exponent
     return values
 
 

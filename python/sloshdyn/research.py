@@ -15,31 +15,14 @@ from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import ConvergenceError, InputError, SloshdynError, check_status
 from .asymptotics import Continuation, continuation_range, frequency_response, slow_flow_cycle
-from .parameters import Parameters, convert_fields
+from .parameters import Parameters
+from .periodic import Lyapunov
 from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_research
-_LYAPUNOV = _tables.defaults()["lyapunov"]
 KINDS = _tables.codes("special")
 #: why a continuation stopped (sloshdyn_continuation's STOP_* codes)
 _STOPS = {1: "lambda_min", 2: "lambda_max", 3: "max_points", 4: "closed", 5: "x_max", 6: "failed"}
-
-
-@dataclass(frozen=True)
-class Lyapunov:
-    """How Lyapunov exponents are measured (&lyapunov); times in forcing periods T = 2 pi/rho.
-    Fields in the core's layout, with its defaults."""
-
-    transient_periods: int = int(_LYAPUNOV["transient_periods"])   #: integrated before measuring
-    n_periods: int = int(_LYAPUNOV["n_periods"])   #: measured; a multiple of renormalise_every
-    renormalise_every: int = int(_LYAPUNOV["renormalise_every"])   #: periods between QR steps
-
-    def __post_init__(self):
-        convert_fields(self)
-
-    def array(self):
-        """The lyapunov layout of the core (the spectrum asked for)."""
-        return _tables.pack("lyapunov", {**dataclasses.asdict(self), "spectrum": 1})
 
 
 @dataclass(frozen=True)
@@ -50,7 +33,7 @@ class LyapunovSpectrum:
     history: np.ndarray          #: (4, blocks): running estimates after each renormalisation
     periods: np.ndarray          #: forcing periods measured at the end of each block
     kaplan_yorke: float          #: Kaplan-Yorke dimension of the sorted exponents
-    method: str = ""             #: the integration method used ('auto' resolved)
+    method: str                  #: the integration method used ('auto' resolved)
 
     @property
     def sum(self):
@@ -70,7 +53,7 @@ def lyapunov_spectrum(params: Parameters, y0=None, *, lyapunov: Lyapunov = Lyapu
     y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
     blocks = max(lyapunov.n_periods // max(lyapunov.renormalise_every, 1), 1)
     exponents, history, dimension, status, message = cancellable(
-        _bridge.lyapunov_spectrum, *params.arrays(), y0, lyapunov.array(), integration.array(),
+        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(spectrum=True), integration.array(),
         blocks)
     check_status(status, message, "Lyapunov spectrum")
     periods = lyapunov.renormalise_every * np.arange(1, blocks + 1, dtype=float)
@@ -110,7 +93,7 @@ class SlowFlowCycles:
     special_points: list         #: CycleSpecialPoint: the Hopf ends and what lies between
     ends: tuple                  #: (low end, high end): 'hopf', 'range end' or why the branch
                                  #: stopped ('failed: <the core's message>', 'max_points')
-    method: str = ""             #: the integration method used ('auto' resolved)
+    method: str                         #: the integration method used ('auto' resolved)
 
 
 def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
@@ -181,7 +164,7 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
             "x_scale": continuation.x_scale, "direction": direction, "x_tol": x_tol,
             "f_tol": f_tol, "max_iter": max_iter})
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
-         message) = cancellable(_bridge.slow_flow_cycle_branch, *start.arrays(),
+         message) = cancellable(_bridge.slow_flow_cycle_branch, *start.array(),
                                 1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,
                                 b_end, settings, integration.array(),
                                 _checks.integer("max_points", continuation.max_points, 2), 50)

@@ -124,21 +124,18 @@ class Tank:
         """The pendulum angle at which the linear wave reaches the roof [rad]."""
         return self.properties["theta0"]
 
-    def parameters(self, ground_motion=None):
+    def parameters(self, ground_motion=None) -> Parameters:
         """The dimensionless model (Parameters) of the tank; with harmonic ground motion, its
         excitation A, rho as well."""
         A = rho = 0.0
         if ground_motion is not None:
-            if ground_motion.kind != "harmonic":
-                raise InputError("a record has no A and rho: parameters() takes harmonic ground "
-                                 "motion only")
-            p = self.properties
-            rho = 2 * math.pi * ground_motion.frequency / p["omega"]
-            A = ground_motion.peak_acceleration / (
-                p["support_height"] * (2 * math.pi * ground_motion.frequency) ** 2)
-        return Parameters.from_arrays(*self._model, A=A, rho=rho)
+            A, rho, status, message = _bridge.tank_excitation(self.array(),
+                                                              _ground_arrays(ground_motion)[0])
+            check_status(status, message)
+            A, rho = float(A), float(rho)
+        return Parameters.from_array(*self._model, A=A, rho=rho)
 
-    def design_codes(self, ground_motion=None):
+    def design_codes(self, ground_motion=None) -> DesignCodes:
         """The tank's sloshing parameters by sloshdyn and by API 650 Annex E, EN 1998-4 Annex A
         and ACI 350.3 side by side (DesignCodes); wave heights from the ground motion's
         pseudo-spectral acceleration when one is given."""
@@ -174,34 +171,10 @@ class DesignCodes:
         return 100 * (self.value(source, column) - ours) / ours
 
     def __str__(self):
-        """The table the executable prints: values, and each code's difference in %."""
-        lines = ["  " + "".ljust(24) + "sloshdyn".ljust(14) +
-                 "".join(s.ljust(22) for s in self.sources[1:]).rstrip()]
-        for i, column in enumerate(_tables.columns("design_codes")[1:]):
-            cells = [_pad(_value_text(self.table[i, 0]), 14)]
-            for k, source in enumerate(self.sources[1:], start=1):
-                text = _value_text(self.table[i, k])
-                if not math.isnan(self.table[i, k]):
-                    text += f" ({self.difference(source, _name(column)):+.1f}%)"
-                cells.append(_pad(text, 22))
-            lines.append(("  " + column.replace("_", " ").ljust(24) + "".join(cells)).rstrip())
-        return "\n".join(lines)
-
-
-def _pad(text, width):
-    """As the executable pads: to width, and at least one blank after."""
-    return text.ljust(max(width, len(text) + 1))
-
-
-def _value_text(x):
-    """As the executable prints it: 6 significant digits, no trailing zeros."""
-    if math.isnan(x):
-        return "-"
-    x = float(f"{x:.5e}")
-    if x == 0 or 1e-4 <= abs(x) < 1e9:
-        return f"{x:.10f}".rstrip("0").rstrip(".")
-    mantissa, exponent = f"{x:.9e}".split("e")
-    return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+        """The table the executable prints (the core writes it): values, and each code's
+        difference from sloshdyn in %."""
+        text = _bridge.design_codes_text(self.table)
+        return (text.decode() if isinstance(text, bytes) else str(text)).rstrip()
 
 
 class GroundMotion:
@@ -209,13 +182,16 @@ class GroundMotion:
     (piecewise linear between samples, at rest after the last one), or harmonic motion
     u'' = -peak_acceleration sin(2 pi frequency t).
 
-    GroundMotion(dt=0.01, acceleration=a)                 a record, a in `units`
+    GroundMotion(dt=0.01, acceleration=a)                 a record, a in `units` (g)
     GroundMotion.from_file('x.AT2')                       PEER NGA .AT2 (in g)
     GroundMotion.from_file('x.csv', units='cm/s^2')       two columns: time [s], acceleration
-    GroundMotion.harmonic(0.2, 0.3, units='g')            peak 0.2 g at 0.3 Hz
+    GroundMotion.harmonic(0.2, 0.3)                       peak 0.2 g at 0.3 Hz
+
+    Accelerations given to sloshdyn are in `units`, 'g' unless told (as in &ground_motion);
+    the attributes and every result are in SI units (m/s^2).
     """
 
-    def __init__(self, dt=None, acceleration=None, *, units="m/s^2", peak_acceleration=None,
+    def __init__(self, dt=None, acceleration=None, *, units="g", peak_acceleration=None,
                  frequency=None):
         factor = acceleration_factor(units)
         if acceleration is not None or dt is not None:
@@ -256,7 +232,7 @@ class GroundMotion:
             dt, samples, n, status, message = _bridge.read_record(
                 os.fsencode(path), format, units, _fields_in(path))
             check_status(status, message)
-            return cls(dt=float(dt), acceleration=samples[:n].copy())
+            return cls(dt=float(dt), acceleration=samples[:n].copy(), units="m/s^2")
         except SloshdynError as exc:
             exc.reading = True
             raise
@@ -273,9 +249,9 @@ class GroundMotion:
         """The ground motion of the bridge's arrays (SI units)."""
         values = _tables.unpack("ground", ground)
         if _tables.codes("ground_kinds")[int(values["kind"])] == "record":
-            return cls(dt=float(values["dt"]), acceleration=samples)
+            return cls(dt=float(values["dt"]), acceleration=samples, units="m/s^2")
         return cls(peak_acceleration=float(values["peak_acceleration"]),
-                   frequency=float(values["frequency"]))
+                   frequency=float(values["frequency"]), units="m/s^2")
 
     @property
     def duration(self):
@@ -329,18 +305,17 @@ class GroundMotion:
         `periods` [s] for the damping ratio (default 0.5 %, the convective damping, as scaled):
         Spectrum(periods, sd [m], sv [m/s], psa [m/s^2]). A free-vibration tail
         of tail_duration [s] (default 5 times the longest period) follows the record; harmonic
-        motion is sampled over `duration` [s] (default 40 forcing periods)."""
+        motion is sampled over `duration` [s] (default: the core's, 40 forcing periods)."""
         periods = np.atleast_1d(_checks.reals("periods", periods))
         if periods.ndim != 1:
             raise InputError(f"periods has shape {periods.shape}: give a number or a 1-D array")
         _checks.output_size("periods", periods.size, 3)
         if tail_duration is None:
             tail_duration = 5 * float(np.max(periods)) if periods.size else 0.0
-        if duration is None:
-            duration = 40 / self.frequency if self.kind == "harmonic" else self.duration
         sd, sv, psa, status, message = cancellable(
             _bridge.ground_spectrum, *self._arrays(), periods, _real("damping", damping),
-            _real("tail_duration", tail_duration), _real("duration", duration))
+            _real("tail_duration", tail_duration),
+            _checks.optional_real("duration", duration, 0.0))
         check_status(status, message)
         return Spectrum(periods, sd.copy(), sv.copy(), psa.copy(), float(damping))
 
@@ -380,7 +355,7 @@ def _fields_in(path):
     return max(2, count + bool(tail))
 
 
-def acceleration_factor(units):
+def acceleration_factor(units) -> float:
     """The factor that turns an acceleration in units 'g' (9.80665 m/s^2), 'm/s^2' or
     'cm/s^2' into m/s^2."""
     factor, status, message = _bridge.acceleration_units(_checks.text("units", units))
@@ -408,30 +383,54 @@ def _ground_arrays(ground_motion):
     return ground_motion._arrays()
 
 
+@dataclass(frozen=True)
 class SeismicResponse:
     """The response of a tank to ground motion from rest, SI units. One array per quantity
     over the output times `t` [s]: ground_acceleration [m/s^2], sloshing_displacement [m] (of
     the sloshing mass relative to the tank), wave_height [m] (at the wall), pendulum_angle
     [rad], tank_drift [m] (relative to the ground), impact_force [N] (roof/walls on the
-    liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2; and
-    `peaks` {quantity: (largest |value|, its time [s])}, roof_reached, first_roof_time [s],
-    roof_impacts (of the free wave, without a roof: beta-independent); `peak_table` adds
-    free_wave_height, roof_excess and the roof loads (roof_head, roof_uplift_force,
-    confined_convective_mass). Columns are those of seismic.csv and seismic_peaks.csv; `method`, the
-    integration method used ('auto' resolved)."""
+    liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2 (the
+    columns of seismic.csv, `table` holds them in order); `peak_table` (the columns of
+    seismic_peaks.csv: also free_wave_height, roof_excess and the roof loads roof_head,
+    roof_uplift_force, confined_convective_mass), `peaks` {quantity: (largest |value|, its time
+    [s])}, roof_reached, first_roof_time [s], roof_impacts (of the free wave, without a roof:
+    independent of beta and delta); `method`, the integration method used ('auto' resolved)."""
 
-    def __init__(self, tank, ground_motion, table, peaks):
-        self.tank, self.ground_motion = tank, ground_motion
-        self.table = table
-        for column, row in zip(_tables.columns("seismic"), table):
-            setattr(self, _name(column), row)
-        self.peak_table = {_name(c): float(v) for c, v in zip(_tables.columns("seismic_peaks"),
-                                                              peaks)}
-        self.peaks = {name[len("peak_"):]: (value, self.peak_table["time_" + name[5:]])
-                      for name, value in self.peak_table.items() if name.startswith("peak_")}
-        self.roof_reached = bool(self.peak_table["roof_reached"])
-        self.first_roof_time = self.peak_table["first_roof_time"]
-        self.roof_impacts = int(self.peak_table["roof_impacts"])
+    tank: Tank
+    ground_motion: GroundMotion
+    t: np.ndarray
+    ground_acceleration: np.ndarray
+    sloshing_displacement: np.ndarray
+    wave_height: np.ndarray
+    pendulum_angle: np.ndarray
+    tank_drift: np.ndarray
+    impact_force: np.ndarray
+    base_shear: np.ndarray
+    overturning_moment: np.ndarray
+    x1: np.ndarray
+    x2: np.ndarray
+    table: np.ndarray = dataclasses.field(repr=False)
+    peak_table: dict = dataclasses.field(repr=False)
+    peaks: dict = dataclasses.field(repr=False)
+    roof_reached: bool
+    first_roof_time: float
+    roof_impacts: int
+    method: str
+
+    @classmethod
+    def _from_tables(cls, tank, ground_motion, table, peaks, method):
+        """The response from the core's 'seismic' table and 'seismic_peaks' row."""
+        peak_table = {_name(c): float(v) for c, v in zip(_tables.columns("seismic_peaks"),
+                                                          peaks)}
+        return cls(tank=tank, ground_motion=ground_motion, table=table,
+                   **{_name(column): row for column, row in zip(_tables.columns("seismic"),
+                                                                 table)},
+                   peak_table=peak_table,
+                   peaks={name[len("peak_"):]: (value, peak_table["time_" + name[5:]])
+                          for name, value in peak_table.items() if name.startswith("peak_")},
+                   roof_reached=bool(peak_table["roof_reached"]),
+                   first_roof_time=peak_table["first_roof_time"],
+                   roof_impacts=int(peak_table["roof_impacts"]), method=method)
 
     @property
     def columns(self):
@@ -444,8 +443,17 @@ class SeismicResponse:
                 f"roof {'reached' if self.roof_reached else 'not reached'})")
 
 
-def seismic_defaults(tank, ground_motion, t_end=None, n_out=None):
-    """(t_end [s], n_out) as seismic_response chooses them: t_end = the record plus 5 sloshing
+@dataclass(frozen=True)
+class SeismicTimes:
+    """The output times of a seismic response: n_out evenly spaced from 0 to t_end [s]."""
+
+    t_end: float
+    n_out: int
+
+
+def seismic_defaults(tank: Tank, ground_motion: GroundMotion, t_end=None,
+                     n_out=None) -> SeismicTimes:
+    """t_end [s] and n_out as seismic_response chooses them: t_end = the record plus 5 sloshing
     periods (harmonic: 40 forcing periods); outputs at the finest of the record's step, 50 per
     sloshing (or forcing) period and 20 per period of the tank on its supports."""
     _checks.instance("tank", tank, Tank)
@@ -454,10 +462,11 @@ def seismic_defaults(tank, ground_motion, t_end=None, n_out=None):
         tank.array(), ground, samples, 0.0 if t_end is None else _real("t_end", t_end),
         0 if n_out is None else _checks.integer("n_out", n_out))
     check_status(status, message)
-    return float(chosen[0]), int(chosen[1])
+    return SeismicTimes(float(chosen[0]), int(chosen[1]))
 
 
-def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=Integration()):
+def seismic_response(tank: Tank, ground_motion: GroundMotion, t_end=None, n_out=None, *,
+                     integration: Integration = Integration()) -> SeismicResponse:
     """The tank at rest at t = 0 under the ground motion, to t_end [s] (default: the record
     plus 5 sloshing periods), at n_out evenly spaced times (default: seismic_defaults): a
     SeismicResponse. Its peaks are those of the integrated solution, located between the
@@ -465,35 +474,53 @@ def seismic_response(tank, ground_motion, t_end=None, n_out=None, integration=In
     (no roof), so it does not depend on impact_stiffness or impact_damping."""
     _checks.instance("tank", tank, Tank)
     _checks.instance("integration", integration, Integration)
-    t_end, n_out = seismic_defaults(tank, ground_motion, t_end, n_out)
+    times = seismic_defaults(tank, ground_motion, t_end, n_out)
+    t_end, n_out = times.t_end, times.n_out
     _checks.output_size("n_out", n_out, len(_tables.columns("seismic")))
     ground, samples = _ground_arrays(ground_motion)
     table, peaks, status, message = cancellable(_bridge.seismic_response,
         tank.array(), ground, samples, t_end, n_out, integration.array())
     check_status(status, message)
-    response = SeismicResponse(tank, ground_motion, table.copy(), peaks.copy())
-    response.method = integration.method_used
-    return response
+    return SeismicResponse._from_tables(tank, ground_motion, table.copy(), peaks.copy(),
+                                       integration.method_used)
 
 
+@dataclass(frozen=True)
 class HarmonicSweep:
     """Steady states of a tank under harmonic ground motion of one peak acceleration at each
     frequency: `points` (SteadyState, dimensionless, as frequency_sweep gives) and one SI array
-    per column of harmonic_sweep.csv: frequency [Hz], peak_ground_acceleration [m/s^2],
-    wave_height [m], sloshing_displacement [m], pendulum_angle [rad], tank_drift [m] (their
-    largest values over the measuring window), roof_reached (1/0), motion (code), period
-    [forcing periods]; `method`, the integration method used ('auto' resolved)."""
+    per column of harmonic_sweep.csv (`table` holds them in order): frequency [Hz],
+    peak_ground_acceleration [m/s^2], wave_height [m], sloshing_displacement [m],
+    pendulum_angle [rad], tank_drift [m] (their largest values over the measuring window),
+    roof_reached (1/0), motion (code), period [forcing periods]; y_final, the final state
+    (None for independent points); `method`, the integration method used ('auto' resolved)."""
 
-    def __init__(self, tank, points, table, y_final, method=""):
-        self.tank, self.points, self.table, self.y_final = tank, points, table, y_final
-        self.method = method
-        for column, row in zip(_tables.columns("harmonic_sweep"), table):
-            setattr(self, _name(column), row)
+    tank: Tank
+    points: list
+    frequency: np.ndarray
+    peak_ground_acceleration: np.ndarray
+    wave_height: np.ndarray
+    sloshing_displacement: np.ndarray
+    pendulum_angle: np.ndarray
+    tank_drift: np.ndarray
+    roof_reached: np.ndarray
+    motion: np.ndarray
+    period: np.ndarray
+    table: np.ndarray = dataclasses.field(repr=False)
+    y_final: np.ndarray
+    method: str
+
+    @classmethod
+    def _from_table(cls, tank, points, table, y_final, method):
+        """The sweep from the core's 'harmonic_sweep' table."""
+        return cls(tank=tank, points=points, table=table, y_final=y_final, method=method,
+                   **{_name(column): row for column, row in zip(
+                       _tables.columns("harmonic_sweep"), table)})
 
 
-def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
-                   steady=None, integration=Integration(), progress=False, threads=1,
-                   start_from="previous"):
+def harmonic_sweep(tank: Tank, peak_acceleration, frequencies, y0=None, *, units="g",
+                   steady: Steady = Steady(), integration: Integration = Integration(),
+                   progress=False, threads=1, start_from="previous") -> HarmonicSweep:
     """Steady states of the tank under harmonic ground motion of constant peak_acceleration (in
     `units`) at each of the frequencies [Hz], in the given order (ascending = up); start_from,
     threads and steady as for sloshdyn.frequency_sweep. A HarmonicSweep."""
@@ -501,7 +528,7 @@ def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
 
     _checks.instance("tank", tank, Tank)
     _checks.instance("integration", integration, Integration)
-    steady = Steady() if steady is None else _checks.instance("steady", steady, Steady)
+    _checks.instance("steady", steady, Steady)
     frequencies = _checks.reals("frequencies", frequencies)
     if frequencies.ndim != 1 or frequencies.size == 0:
         raise InputError(f"frequencies has shape {frequencies.shape}: give a 1-D array of "
@@ -515,6 +542,7 @@ def harmonic_sweep(tank, peak_acceleration, frequencies, *, units="g", y0=None,
             int(carry), int(threads))
         return summaries, table, (y_final if carry else y), status, message
 
+    method = integration.method_used
     points, table, y = run_sweep("frequency", frequencies, y0, progress, threads, start_from,
-                                 run, lambda points, y: None)
-    return HarmonicSweep(tank, points, table, y, integration.method_used)
+                                 run, lambda points, y: None, method)
+    return HarmonicSweep._from_table(tank, points, table, y, method)

@@ -80,7 +80,7 @@ class Steady:
                                        _tables.layout("steady")})
 
 
-@dataclass
+@dataclass(frozen=True)
 class Simulation:
     """A time history. Arrays run over the output times tau."""
 
@@ -94,7 +94,7 @@ class Simulation:
     n_accepted: int
     n_rejected: int
     tau_reached: float
-    method: str = ""            #: the integration method used ('auto' resolved)
+    method: str                 #: the integration method used ('auto' resolved)
 
     @property
     def x1(self):
@@ -123,16 +123,14 @@ def _settings(params, integration, steady=None):
 
 
 def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_start=0.0,
-             integration: Integration = Integration(), **tolerances) -> Simulation:
+             integration: Integration = Integration()) -> Simulation:
     """Integrate from y0 (default: rest) at t_start to t_end; output at tau_out, or at n_out
-    evenly spaced times (default: 20 per forcing or natural period). Tolerances may be given
-    directly: simulate(p, 100, rtol=1e-10, atol=1e-13).
+    evenly spaced times (default: 20 per forcing or natural period); tolerances and method in
+    `integration`: simulate(p, 100, integration=Integration(rtol=1e-10, atol=1e-13)).
 
     On failure raises IntegrationError whose ``partial`` attribute holds the history up to
     where the integration stopped (later columns are NaN)."""
     _settings(params, integration)
-    if tolerances:
-        integration = Integration(**{**integration.__dict__, **tolerances})
     t_end, t_start = _checks.real("t_end", t_end), _checks.real("t_start", t_start)
     if tau_out is None:
         if n_out is None:
@@ -147,7 +145,7 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
         tau_out = np.linspace(t_start, t_end, n_out)
     tau_out = _checks.reals("tau_out", tau_out, ndim=1)
     history, counts, status, message = cancellable(
-        _bridge.simulate, *params.arrays(), t_start, _state(y0), tau_out, integration.array())
+        _bridge.simulate, *params.array(), t_start, _state(y0), tau_out, integration.array())
     result = Simulation(tau_out, history[0:4], history[4:6], history[6], history[7], history[8],
                         *_counts(counts), method=integration.method_used)
     if status:
@@ -159,7 +157,7 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
     return result
 
 
-@dataclass
+@dataclass(frozen=True)
 class SteadyState:
     """Steady response at one (rho, A): amplitudes over the window and the kind of motion."""
 
@@ -175,17 +173,18 @@ class SteadyState:
     transient_periods: float    #: transient actually integrated
     spread: float               #: largest distance of a Poincare point from the first, relative
     settled: bool               #: the settle test passed (always True without settle_tol)
+    method: str                 #: the integration method used ('auto' resolved)
     poincare: np.ndarray = field(repr=False, default=None)   #: (4, window) points at tau = k T
+                                #: (None in a sweep: only summaries are kept)
     y_end: np.ndarray = field(repr=False, default=None)      #: final state, forcing phase 0
-    method: str = ""            #: the integration method used ('auto' resolved)
 
 
-def _summary(row, poincare=None, y_end=None):
+def _summary(row, method, poincare=None, y_end=None):
     """A SteadyState from one column of the core's 'summary' table (its names are the fields)."""
     values = dict(zip(SUMMARY_COLUMNS, row))
     kinds = {"motion": lambda x: MOTIONS[int(x)], "period": int, "settled": bool}
     return SteadyState(**{name: kinds.get(name, float)(x) for name, x in values.items()},
-                       poincare=poincare, y_end=y_end)
+                       method=method, poincare=poincare, y_end=y_end)
 
 
 def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),
@@ -195,35 +194,34 @@ def steady_state(params: Parameters, y0=None, *, steady: Steady = Steady(),
     _settings(params, integration, steady)
     window = _checks.output_size("window_periods", max(steady.window_periods, 1), 4)
     summary, poincare, y_end, counts, status, message = cancellable(_bridge.steady_state,
-        *params.arrays(), _state(y0), integration.array(), steady.array(), window)
+        *params.array(), _state(y0), integration.array(), steady.array(), window)
     check_status(status, message, "steady state")
-    result = _summary(summary, poincare, y_end)
-    result.method = integration.method_used
-    return result
+    return _summary(summary, integration.method_used, poincare, y_end)
 
 
-def poincare_section(params: Parameters, n_points, y0=None, *, transient_periods=0,
-                     integration: Integration = Integration()):
-    """Stroboscopic Poincare section: the states at tau = k 2 pi/rho, k = transient_periods + 1
-    ... transient_periods + n_points (dense output, steps never shortened). Shape (4, n_points)."""
+def poincare_section(params: Parameters, n_points, y0=None, *, skip_periods=0,
+                     integration: Integration = Integration()) -> Simulation:
+    """Stroboscopic Poincare section: the motion at tau = k 2 pi/rho, k = skip_periods + 1
+    ... skip_periods + n_points (dense output, steps never shortened); its states `y` have
+    shape (4, n_points)."""
     _settings(params, integration)
     if not params.rho > 0:
         raise InputError(f"rho = {params.rho} is out of range: a Poincare section needs rho > 0")
     period = 2 * math.pi / params.rho
-    k0 = _checks.integer("transient_periods", transient_periods, 0)
+    k0 = _checks.integer("skip_periods", skip_periods, 0)
     n_points = _checks.output_size("n_points", _checks.integer("n_points", n_points, 1), 9)
     tau = period * np.arange(k0 + 1, k0 + n_points + 1)
-    return simulate(params, tau[-1], y0, tau_out=tau, integration=integration).y
+    return simulate(params, tau[-1], y0, tau_out=tau, integration=integration)
 
 
-@dataclass
+@dataclass(frozen=True)
 class Sweep:
     """Steady states along a sweep (only per-point summaries are kept)."""
 
     parameter: str              #: 'rho' or 'A'
     points: list                #: SteadyState per value, in sweep order
-    y_final: np.ndarray
-    method: str = ""            #: the integration method used ('auto' resolved)
+    y_final: np.ndarray         #: None for independent points (start_from='y0')
+    method: str                 #: the integration method used ('auto' resolved)
 
     def column(self, name):
         return np.array([getattr(p, name) for p in self.points])
@@ -233,7 +231,7 @@ class Sweep:
         return self.column(self.parameter)
 
 
-def sweep_values(start, stop, n, direction="up"):
+def sweep_values(start, stop, n, direction="up") -> np.ndarray:
     """Sweep values from start to stop ('up'), back ('down'), or up then down ('both')."""
     start, stop = _checks.real("start", start), _checks.real("stop", stop)
     n = _checks.output_size("n", _checks.integer("n", n, 1))
@@ -253,26 +251,25 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
     def run(chunk, y, carry):
         if carry:
             summaries, y, n_done, status, message = cancellable(_bridge.parameter_sweep,
-                *params.arrays(), which, chunk, y, integration.array(), steady.array())
+                *params.array(), which, chunk, y, integration.array(), steady.array())
         else:
             summaries, n_done, status, message = cancellable(_bridge.independent_sweep,
-                *params.arrays(), which, chunk, y, integration.array(), steady.array(),
+                *params.array(), which, chunk, y, integration.array(), steady.array(),
                 int(threads))
         return summaries, None, y, status, message
 
     method = integration.method_used
     points, _, y = run_sweep(parameter, values, y0, progress, threads, start_from, run,
-                             lambda points, y: Sweep(parameter, points, y, method))
-    for point in points:
-        point.method = method
+                             lambda points, y: Sweep(parameter, points, y, method), method)
     return Sweep(parameter, points, y, method)
 
 
-def run_sweep(label, values, y0, progress, threads, start_from, run, partial):
+def run_sweep(label, values, y0, progress, threads, start_from, run, partial, method):
     """The points of a sweep by run(chunk, y, carry) -> (summaries, extra, y_final, status,
-    message), a chunk at a time so that progress shows: the SteadyStates, the extras stacked as
-    columns (or None), and the final state (None for independent points). On failure the
-    exception carries `partial(points, y)`, the points done."""
+    message), a chunk at a time so that progress shows: the SteadyStates (integrated by
+    `method`), the extras stacked as columns (or None), and the final state (None for
+    independent points). On failure the exception carries `partial(points, y)`, the points
+    done."""
     _checks.choice("start_from", start_from, ("previous", "y0"))
     threads = _checks.integer("threads", threads)
     carry = start_from == "previous"
@@ -299,7 +296,7 @@ def run_sweep(label, values, y0, progress, threads, start_from, run, partial):
                 except Exception as exc:
                     exc.partial = partial(points, y if carry else None)
                     raise
-            points.extend(_summary(summaries[:, k]) for k in range(len(chunk)))
+            points.extend(_summary(summaries[:, k], method) for k in range(len(chunk)))
             if extra is not None:
                 extras.append(extra)
             if bar:
@@ -332,8 +329,16 @@ def amplitude_sweep(params: Parameters, A_values, y0=None, *, steady: Steady = S
     return _sweep(params, "A", A_values, y0, steady, integration, progress, threads, start_from)
 
 
-def spectrum(signal, dt, window="hann"):
-    """One-sided amplitude spectrum of an evenly sampled signal: (angular frequencies [rad per
+@dataclass(frozen=True)
+class AmplitudeSpectrum:
+    """A one-sided amplitude spectrum."""
+
+    omega: np.ndarray           #: angular frequencies [rad per unit time of the signal]
+    amplitude: np.ndarray       #: amplitude at each
+
+
+def spectrum(signal, dt, window="hann") -> AmplitudeSpectrum:
+    """One-sided amplitude spectrum of an evenly sampled signal (angular frequencies [rad per
     unit time], amplitudes). The mean is removed; the window ('hann' or None) is normalised so a
     sinusoid of amplitude a shows a peak of height about a."""
     x = _checks.reals("signal", signal, ndim=1, min_size=4)
@@ -349,10 +354,10 @@ def spectrum(signal, dt, window="hann"):
         raise InputError(f"window = {window!r} is not valid: it must be 'hann' or None")
     amplitude = 2 * np.abs(np.fft.rfft(x * w)) / w.sum()
     omega = 2 * np.pi * np.fft.rfftfreq(x.size, dt)
-    return omega, amplitude
+    return AmplitudeSpectrum(omega, amplitude)
 
 
-def beat_period(poincare):
+def beat_period(poincare) -> float:
     """The beat period of a quasi-periodic motion, in forcing periods, from its Poincare points
     (rows x1, x1' of a (>= 2, n) array, one point per forcing period): the points turn about
     their closed curve, so their angle about the centroid, unwrapped, counts the turns; the

@@ -35,8 +35,8 @@ program test_model
   call tank_pendulum(2.0_wp, 0.5_wp, 1000.0_wp, 500.0_wp, l, m, d1, m0, d0, mf, status, message)
   call check_true('tank: density and mass both given is rejected', status == SD_BAD_INPUT)
   call tank_pendulum(-2.0_wp, 0.5_wp, 1000.0_wp, 0.0_wp, l, m, d1, m0, d0, mf, status, message)
-  call check_true('tank: R < 0 rejected, message names R', &
-                  status == SD_BAD_INPUT .and. index(message, 'R = -2') == 1)
+  call check_true('tank: radius < 0 rejected, message names radius (as &tank and Python)', &
+                  status == SD_BAD_INPUT .and. index(message, 'radius = -2') == 1)
 
   ! eq (9) by hand: g = 9.81, l = 0.5, omega^2 = 19.62, L = 2, M = 100, m = 10, k = 7848:
   ! s1 = 0.25, mu1 = 0.1, kappa = 7848/(19.62*4*100) = 1, beta = b/(19.62*10*0.25) = 49.05/49.05

@@ -4,7 +4,9 @@ XERBLA, a segfault, an abort) or a hang is caught and blamed on its case.
 A case is (label, function name, args, kwargs); the names "P", "TANK", "GROUND" among the args
 stand for valid Parameters (Fig 12), a valid Tank and valid harmonic ground motion, built in
 the child (and "RECORD" a recorded ground motion, "STORE" a new store path, "NO_CLUSTER" a
-Dask client that stops a study whose inputs passed every check). The parent pickles a batch of cases to the child's standard input; the child prints
+Dask client that stops a study whose inputs passed every check); a dict {"__class__": NAME,
+**fields} stands for the settings object sloshdyn.NAME(**fields), built in the child so that
+its own checks are fuzzed too. The parent pickles a batch of cases to the child's standard input; the child prints
 "CASE i" before and "DONE i <outcome>" after each one. A child that dies or stops answering is
 restarted after the case it was running, which is reported as 'death' or 'hang'.
 
@@ -47,7 +49,8 @@ def _valid(name):
     if name == "P":
         return FIG12
     if name == "RECORD":
-        return sloshdyn.GroundMotion(dt=0.01, acceleration=[0.0, 0.5, -0.5, 0.2, 0.0])
+        return sloshdyn.GroundMotion(dt=0.01, acceleration=[0.0, 0.5, -0.5, 0.2, 0.0],
+                                      units="m/s^2")
     if name == "STORE":
         return os.path.join(tempfile.mkdtemp(prefix="sloshdyn-fuzz-"), "study.zarr")
     if name == "NO_CLUSTER":
@@ -63,6 +66,10 @@ def _valid(name):
 def _resolve(value):
     if isinstance(value, str) and value in SENTINELS:
         return _valid(value)
+    if isinstance(value, dict) and "__class__" in value:
+        import sloshdyn
+        fields = {k: v for k, v in value.items() if k != "__class__"}
+        return getattr(sloshdyn, value["__class__"])(**fields)
     if isinstance(value, list):
         return [_resolve(v) for v in value]
     return value

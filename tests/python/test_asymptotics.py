@@ -14,8 +14,8 @@ FIG9 = dict(s1=1.5, mu1=0.5, theta0=math.pi / 4, gamma=0.0025, A=0.0005)
 
 
 def test_c11_matches_fig9_caption():
-    c11_47 = sloshdyn.modal_coefficients(sloshdyn.Parameters(kappa=4.7, **FIG9))["c11"]
-    c11_45 = sloshdyn.modal_coefficients(sloshdyn.Parameters(kappa=4.5, **FIG9))["c11"]
+    c11_47 = sloshdyn.modal_coefficients(sloshdyn.Parameters(kappa=4.7, **FIG9)).coefficients["c11"]
+    c11_45 = sloshdyn.modal_coefficients(sloshdyn.Parameters(kappa=4.5, **FIG9)).coefficients["c11"]
     assert abs(c11_47 - (-0.03188)) < 1e-5      # Fig 9a: softening
     assert abs(c11_45 - 0.30585) < 1e-5         # Fig 9b: hardening
 
@@ -51,8 +51,8 @@ def test_expansion_matches_numerical_taylor_coefficients(kappa, n, p_exp):
     monomials = odd_monomials()
     for r in range(2):
         fitted = fit(points, g[:, r], monomials)
-        scale = max(abs(v) for v in m["g"][r].values())
-        for e, value in m["g"][r].items():
+        scale = max(abs(v) for v in m.g[r].values())
+        for e, value in m.g[r].items():
             assert fitted.get(e, 0.0) == pytest.approx(value, abs=2e-6 * scale), (r, e)
     # the modal form: h(u, u') = P^-1 g(P u, P u')
     modes = sloshdyn.linear_modes(p)
@@ -61,8 +61,8 @@ def test_expansion_matches_numerical_taylor_coefficients(kappa, n, p_exp):
     h = rhs_samples(p, points) @ modes.modal_inverse.T
     for r in range(2):
         fitted = fit(u_points, h[:, r], monomials)
-        scale = max(abs(v) for v in m["h"][r].values())
-        for e, value in m["h"][r].items():
+        scale = max(abs(v) for v in m.h[r].values())
+        for e, value in m.h[r].items():
             assert fitted.get(e, 0.0) == pytest.approx(value, abs=2e-6 * scale), (r, e)
 
 
@@ -83,9 +83,9 @@ def test_forcing_terms_match_numerical_taylor_coefficients():
     monomials = [(0, 0), (2, 0), (1, 1), (0, 2), (4, 0), (3, 1), (2, 2), (1, 3), (0, 4)]
     for r in range(2):
         fitted = fit(points, g[:, r], monomials)
-        assert fitted[(0, 0)] == pytest.approx(m["g_forcing"][r][(0, 0, 0, 0)], abs=1e-9)
+        assert fitted[(0, 0)] == pytest.approx(m.g_forcing[r][(0, 0, 0, 0)], abs=1e-9)
         for (i, j) in [(2, 0), (1, 1), (0, 2)]:
-            assert fitted[(i, j)] == pytest.approx(m["g_forcing"][r].get((i, j, 0, 0), 0.0), abs=1e-5)
+            assert fitted[(i, j)] == pytest.approx(m.g_forcing[r].get((i, j, 0, 0), 0.0), abs=1e-5)
 
 
 def appendix_as_printed(s1, mu1, kappa, theta0, gamma):
@@ -123,20 +123,20 @@ def test_appendix_a_and_its_misprints(kappa):
     for name, value in paper.items():
         if name.endswith("_printed"):
             continue
-        ours = m[name.removesuffix("_corrected")]
+        ours = m.coefficients[name.removesuffix("_corrected")]
         assert ours == pytest.approx(value, rel=1e-12, abs=1e-15), name
     # the misprints are real: as printed, these differ from the equations of motion
-    assert m["gamma_hat12"] != pytest.approx(paper["gamma_hat12_printed"], rel=1e-3)
-    assert m["gamma_hat14"] == pytest.approx(2 * paper["gamma_hat14_printed"], rel=1e-12)
-    assert m["alpha_hat23"] != pytest.approx(paper["alpha_hat23_printed"], rel=1e-3)
+    assert m.coefficients["gamma_hat12"] != pytest.approx(paper["gamma_hat12_printed"], rel=1e-3)
+    assert m.coefficients["gamma_hat14"] == pytest.approx(2 * paper["gamma_hat14_printed"], rel=1e-12)
+    assert m.coefficients["alpha_hat23"] != pytest.approx(paper["alpha_hat23_printed"], rel=1e-3)
     # the pairs Appendix A states as equal
-    assert m["gamma_hat16"] == pytest.approx(m["gamma_hat13"]) and m["gamma_hat18"] == pytest.approx(m["gamma_hat15"])
-    assert m["gamma_hat17"] == pytest.approx(m["gamma_hat12"]) and m["gamma_hat24"] == pytest.approx(2 * m["gamma_hat22"])
-    assert m["gamma_hat25"] == pytest.approx(m["gamma_hat13"]) and m["gamma_hat26"] == pytest.approx(m["gamma_hat23"])
-    assert m["gamma_hat27"] == pytest.approx(m["gamma_hat22"]) and m["gamma_hat28"] == pytest.approx(m["gamma_hat25"])
+    assert m.coefficients["gamma_hat16"] == pytest.approx(m.coefficients["gamma_hat13"]) and m.coefficients["gamma_hat18"] == pytest.approx(m.coefficients["gamma_hat15"])
+    assert m.coefficients["gamma_hat17"] == pytest.approx(m.coefficients["gamma_hat12"]) and m.coefficients["gamma_hat24"] == pytest.approx(2 * m.coefficients["gamma_hat22"])
+    assert m.coefficients["gamma_hat25"] == pytest.approx(m.coefficients["gamma_hat13"]) and m.coefficients["gamma_hat26"] == pytest.approx(m.coefficients["gamma_hat23"])
+    assert m.coefficients["gamma_hat27"] == pytest.approx(m.coefficients["gamma_hat22"]) and m.coefficients["gamma_hat28"] == pytest.approx(m.coefficients["gamma_hat25"])
     # modal forcing, eq (36): F11 = F_hat21/(omega2^2 - omega1^2), and +F11 in h2
-    assert m["F11"] == pytest.approx(m["F_hat21"] / (m["omega2"]**2 - m["omega1"]**2), rel=1e-12)
-    assert m["h_forcing"][1][(0, 0, 0, 0)] == pytest.approx(m["F11"], rel=1e-12)
+    assert m.coefficients["F11"] == pytest.approx(m.coefficients["F_hat21"] / (m.omega2**2 - m.omega1**2), rel=1e-12)
+    assert m.h_forcing[1][(0, 0, 0, 0)] == pytest.approx(m.coefficients["F11"], rel=1e-12)
 
 
 def test_c11_with_appendix_as_printed_is_wrong():
@@ -144,7 +144,7 @@ def test_c11_with_appendix_as_printed_is_wrong():
     p = sloshdyn.Parameters(kappa=4.7, **FIG9)
     m = sloshdyn.modal_coefficients(p)
     paper = appendix_as_printed(p.s1, p.mu1, p.kappa, p.theta0, p.gamma)
-    w1, w2, k12 = m["omega1"], m["omega2"], (p.kappa - p.s1) / ((1 - p.mu1) * p.s1)
+    w1, w2, k12 = m.omega1, m.omega2, (p.kappa - p.s1) / ((1 - p.mu1) * p.s1)
     a, b, k11 = w1**2 - 1 / (1 - p.mu1), w2**2 - 1 / (1 - p.mu1), 1 / (1 - p.mu1)
 
     def alpha11(hat23):
@@ -155,6 +155,6 @@ def test_c11_with_appendix_as_printed_is_wrong():
                 + (r * paper["alpha_hat14"] + paper["alpha_hat24"]) * a**3) / (w2**2 - w1**2)
 
     # Appendix A's alpha11 with the corrected alpha_hat23 is ours; as printed it is not
-    assert alpha11(paper["alpha_hat23_corrected"]) == pytest.approx(m["alpha11"], rel=1e-10)
-    gamma17 = m["gamma17"]
+    assert alpha11(paper["alpha_hat23_corrected"]) == pytest.approx(m.coefficients["alpha11"], rel=1e-10)
+    gamma17 = m.coefficients["gamma17"]
     assert gamma17 * w1**2 + 3 * alpha11(paper["alpha_hat23_printed"]) == pytest.approx(2.31, abs=0.01)

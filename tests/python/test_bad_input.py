@@ -186,4 +186,4 @@ def test_parameters_validate(fig12, field, value, words):
 
 def test_kappa_hat_rule_names_kappa(fig12):
     with pytest.raises(sloshdyn.InputError, match=r"kappa = 1.4.*kappa_hat"):
-        sloshdyn.natural_frequencies(fig12.replace(kappa=1.4))
+        sloshdyn.linear_modes(fig12.replace(kappa=1.4))

@@ -19,7 +19,7 @@ RHO, A_RANGE = (0.49, 0.53), (0.0, 0.002)
 
 @pytest.fixture(scope="module")
 def fig12_chart():
-    return sloshdyn.stability_chart(FIG12, RHO, A_RANGE, n_x=11, n_y=5)
+    return sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(n_x=11, n_y=5))
 
 
 def one_parameter(params, A, rho_range=RHO, n_scan=41, ds_max=None):
@@ -27,12 +27,12 @@ def one_parameter(params, A, rho_range=RHO, n_scan=41, ds_max=None):
     if ds_max:
         settings = sloshdyn.Continuation(n_scan=n_scan, ds_max=ds_max, ds=min(0.002, ds_max))
     return sloshdyn.frequency_response(params.replace(A=A), rho_range, resonance="3:1",
-                                       settings=settings)
+                                       continuation=settings)
 
 
 def slow_flow_jacobian(params, rho, A, state):
     f, jacobian, status, message = sloshdyn._core.sloshdyn_bridge_charts.slow_flow_field(
-        *params.replace(rho=rho, A=A).arrays(), 1, state)
+        *params.replace(rho=rho, A=A).array(), 1, state)
     assert status == 0, message
     return f, jacobian
 
@@ -87,7 +87,7 @@ def fold_count(A, rho_range):
 
 
 def test_fig11_fold_pair_is_born_at_the_cusp():
-    chart = sloshdyn.stability_chart(FIG11, RHO, (0.0002, 0.0006), n_x=5, n_y=3)
+    chart = sloshdyn.stability_chart(FIG11, RHO, (0.0002, 0.0006), chart=sloshdyn.Chart(n_x=5, n_y=3))
     cusps = [q for q in chart.codim2_points if q.kind == "cusp"]
     assert len(cusps) == 1
     cusp = cusps[0]
@@ -98,8 +98,8 @@ def test_fig11_fold_pair_is_born_at_the_cusp():
 
 
 def test_brute_force_finds_the_stable_states_the_grid_counts():
-    chart = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, n_x=5, n_y=3, brute_force_starts=200,
-                                     threads=2)
+    chart = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(
+        n_x=5, n_y=3, brute_force_starts=200), threads=2)
     g = chart.grid
     away = g["near_curve"] == 0
     assert away.sum() >= 5
@@ -108,8 +108,8 @@ def test_brute_force_finds_the_stable_states_the_grid_counts():
 
 
 def test_threads_do_not_change_the_chart():
-    one = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, n_x=5, n_y=3, threads=1)
-    two = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, n_x=5, n_y=3, threads=2)
+    one = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(n_x=5, n_y=3), threads=1)
+    two = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=sloshdyn.Chart(n_x=5, n_y=3), threads=2)
     for a, b in zip(one.curves, two.curves):
         assert np.array_equal(a.rho, b.rho) and np.array_equal(a.A, b.A)
     for name in one.grid:
@@ -163,7 +163,7 @@ def test_bad_chart_input(exe, tmp_path, change, words):
 def test_full_model_neimark_sacker_curve_meets_the_periodic_response():
     # rows at A = 0.000675 and 0.000825: the curves cross A = 0.00075 between their points
     chart = sloshdyn.stability_chart(FIG12, (0.505, 0.515), (0.0006, 0.0009), model="full",
-                                     n_x=5, n_y=2, threads=2)
+                                     chart=sloshdyn.Chart(n_x=5, n_y=2), threads=2)
     ns = [c for c in chart.curves if c.kind == "neimark_sacker"]
     assert ns and all(c.complete for c in ns)
     crossings = []
@@ -180,7 +180,8 @@ def test_full_model_neimark_sacker_curve_meets_the_periodic_response():
 
 def test_kappa_chart_crosses_the_fig12_kappa_at_its_hopf_points():
     # kappa as the second parameter: the modal coefficients are expanded again at every kappa
-    chart = sloshdyn.stability_chart(FIG12, RHO, (1.79, 1.82), y="kappa", n_x=11, n_y=5)
+    chart = sloshdyn.stability_chart(FIG12, RHO, (1.79, 1.82), y="kappa",
+                                     chart=sloshdyn.Chart(n_x=11, n_y=5))
     crossings = []
     for c in (c for c in chart.curves if c.kind == "hopf"):
         s = np.sign(c.kappa - FIG12.kappa)

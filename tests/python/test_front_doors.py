@@ -77,10 +77,10 @@ def test_physical_route_matches_the_groups_of_eq_9():
 
 def test_tank_pendulum_hand_values():
     # R = h = 1 m, water (worked in tests/fortran/test_model.f90)
-    t = sloshdyn.tank_pendulum(1.0, 1.0, rho_liquid=1000.0)
-    assert np.allclose([t.l, t.m, t.d1, t.m0, t.d0], [0.571604, 1357.73, 0.0137169, 1783.86, -0.445500],
-                       rtol=1e-5)
-    assert math.isclose(t.m_F, 1000 * math.pi)
+    t = sloshdyn.tank_pendulum(1.0, 1.0, liquid_density=1000.0)
+    assert np.allclose([t.pendulum_length, t.sloshing_mass, t.d1, t.rigid_mass, t.d0],
+                       [0.571604, 1357.73, 0.0137169, 1783.86, -0.445500], rtol=1e-5)
+    assert math.isclose(t.liquid_mass, 1000 * math.pi)
 
 
 def _analysis_case(tmp_path, analysis, extra):
@@ -152,7 +152,7 @@ def test_frequency_response_same_numbers(exe, tmp_path):
     r = inp.response
     response = sloshdyn.frequency_response(inp.params, (r["start"], r["stop"]),
                                            resonance=r["resonance"],
-                                           settings=sloshdyn.Continuation.from_namelist(r))
+                                           continuation=sloshdyn.Continuation.from_namelist(r))
     rows = read_csv(tmp_path / inp.directory / "response.csv")
     assert [row["a1"] for row in rows] == list(response.table["a1"])
     assert [row["delta3"] for row in rows] == list(response.table["delta3"])

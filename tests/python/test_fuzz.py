@@ -70,9 +70,9 @@ API = {
     "Parameters": ((), dict(s1=1.5, mu1=0.5, kappa=1.8049, theta0=0.785, A=0.001, rho=0.51),
                    {**{k: reals for k in ("s1", "mu1", "kappa", "theta0", "beta", "gamma",
                                           "delta", "zeta", "A", "rho")}, "n": ints, "p": ints}),
-    "tank_pendulum": ((5.0, 6.0), dict(rho_liquid=1000.0),
-                      {0: reals, 1: reals, "rho_liquid": reals, "m_liquid": reals}),
-    "natural_frequencies": (("P",), {}, {0: objects}),
+    "tank_pendulum": ((5.0, 6.0), dict(liquid_density=1000.0),
+                      {0: reals, 1: reals, "liquid_density": reals, "liquid_mass": reals}),
+    "linear_modes": (("P",), {}, {0: objects}),
     "equilibria": (("P",), {}, {0: objects}),
     "modal_coefficients": (("P",), {}, {0: objects}),
     "equations_of_motion": (("P", 0.3, STATE), {}, {1: reals, 2: arrays_like(STATE)}),
@@ -81,10 +81,11 @@ API = {
                                                  "kappa_min": reals, "kappa_max": reals}),
     "equilibrium_angles": (("P", "theta"), {}, {1: texts}),
     "nonresonant_amplitudes": (("P", [0.5, 0.9]), {}, {1: arrays_like([0.5, 0.9])}),
-    "simulate": (("P", 5.0), dict(y0=STATE, n_out=20),
+    "simulate": (("P", 5.0), dict(y0=STATE, n_out=20, integration={"__class__": "Integration"}),
                  {1: reals, "y0": arrays_like(STATE), "n_out": ints, "t_start": reals,
-                  "tau_out": arrays_like([0.0, 1.0, 2.0]), "rtol": reals, "max_steps": ints,
-                  "method": texts, "integration": objects}),
+                  "tau_out": arrays_like([0.0, 1.0, 2.0]), "integration.rtol": reals,
+                  "integration.max_steps": ints, "integration.method": texts,
+                  "integration": objects}),
     "spectrum": ((np.sin(np.arange(64.0)), 0.1), {}, {0: arrays_like(np.sin(np.arange(64.0))),
                                                       1: reals, "window": texts}),
     "sweep_values": ((0.4, 0.6, 5), {}, {0: reals, 1: reals, 2: ints, "direction": texts}),
@@ -99,6 +100,11 @@ API = {
                                                     "max_points")},
                               **{k: reals for k in ("amplitude_min", "amplitude_max", "ds",
                                                      "ds_min", "ds_max", "x_scale")}}),
+    "Lyapunov": ((), {}, {k: ints for k in ("transient_periods", "n_periods",
+                                            "renormalise_every")}),
+    "Shooting": ((), {}, {"newton_tol": reals, "max_iter": ints}),
+    "Chart": ((), {}, {k: ints for k in ("n_x", "n_y", "n_scan", "max_points", "max_curves",
+                                         "brute_force_starts")}),
     "Tank": ((), dict(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0,
                       tank_mass=5e4, support_frequency=2.0),
              {**{k: reals for k in ("radius", "liquid_depth", "freeboard", "liquid_density",
@@ -115,15 +121,18 @@ API = {
     "seismic_defaults": (("TANK", "GROUND"), {}, {0: objects, 1: objects, "t_end": reals,
                                                   "n_out": ints}),
     "frequency_response": (("P", (0.5, 0.52)), {}, {1: arrays_like([0.5, 0.52]),
-                                                    "resonance": texts, "settings": objects}),
-    "lyapunov_exponent": (("P", STATE), dict(transient_periods=1, n_periods=4,
-                                             renormalise_every=1),
-                          {1: arrays_like(STATE), "transient_periods": ints, "n_periods": ints,
-                           "renormalise_every": ints}),
-    "stability_chart": (("P", (0.5, 0.52), (0.0005, 0.001)), dict(n_x=2, n_y=2, n_scan=10),
-                        {1: arrays_like([0.5, 0.52]), "n_x": ints, "n_y": ints,
-                         "max_curves": ints, "capacity": ints, "threads": ints,
-                         "x": texts, "model": texts}),
+                                                    "resonance": texts, "continuation": objects}),
+    "lyapunov_exponent": (("P", STATE), dict(lyapunov={"__class__": "Lyapunov",
+                                                       "transient_periods": 1, "n_periods": 4,
+                                                       "renormalise_every": 1}),
+                          {1: arrays_like(STATE), "lyapunov.transient_periods": ints,
+                           "lyapunov.n_periods": ints, "lyapunov.renormalise_every": ints,
+                           "lyapunov": objects}),
+    "stability_chart": (("P", (0.5, 0.52), (0.0005, 0.001)),
+                        dict(chart={"__class__": "Chart", "n_x": 2, "n_y": 2, "n_scan": 10}),
+                        {1: arrays_like([0.5, 0.52]), "chart.n_x": ints, "chart.n_y": ints,
+                         "chart.max_curves": ints, "capacity": ints, "threads": ints,
+                         "x": texts, "model": texts, "chart": objects}),
     "fit_fragility": (([0.1, 0.2, 0.3, 0.4], [0, 1, 0, 1]), {},
                       {0: arrays_like([0.1, 0.2, 0.3, 0.4]), 1: arrays_like([0, 1, 0, 1])}),
     # the studies: a study whose inputs pass stops at the client (fuzz_runner.NO_CLUSTER)
@@ -141,8 +150,10 @@ API = {
 }
 #: arguments whose hostile but valid values start computations of unbounded length: a bound on
 #: them is the core's (issue 11), so their big valid values are not drawn here
-UNBOUNDED = {("simulate", 1), ("simulate", "tau_out"), ("stability_chart", "n_x"), ("stability_chart", "n_y"),
-             ("lyapunov_exponent", "n_periods"), ("lyapunov_exponent", "transient_periods")}
+UNBOUNDED = {("simulate", 1), ("simulate", "tau_out"), ("stability_chart", "chart.n_x"),
+             ("stability_chart", "chart.n_y"),
+             ("lyapunov_exponent", "lyapunov.n_periods"),
+             ("lyapunov_exponent", "lyapunov.transient_periods")}
 
 
 @st.composite
@@ -155,6 +166,9 @@ def api_case(draw, function):
     args, kwargs = list(args), dict(kwargs)
     if isinstance(slot, int):
         args[slot] = value
+    elif "." in slot:             # a field of a settings object: "lyapunov.n_periods"
+        name, field = slot.split(".")
+        kwargs[name] = {**kwargs[name], field: value}
     else:
         kwargs[slot] = value
     return (f"{function}({slot}={value!r:.60})", function, tuple(args), kwargs)
@@ -173,12 +187,12 @@ def _violations(outcomes):
             if not (outcome == "finite" or outcome.startswith("sloshdyn "))}
 
 
-GROUPS = {"model": ["Parameters", "tank_pendulum", "natural_frequencies", "equilibria",
+GROUPS = {"model": ["Parameters", "tank_pendulum", "linear_modes", "equilibria",
                     "modal_coefficients", "equations_of_motion", "frequency_ratio",
                     "kappa_for_detuning", "equilibrium_angles", "nonresonant_amplitudes"],
           "integration": ["simulate", "spectrum", "sweep_values", "Integration", "Steady",
-                          "Continuation", "lyapunov_exponent", "frequency_response",
-                          "fit_fragility"],
+                          "Continuation", "Lyapunov", "Shooting", "Chart", "lyapunov_exponent",
+                          "frequency_response", "fit_fragility"],
           "seismic": ["Tank", "GroundMotion", "acceleration_factor", "GROUND.scaled",
                       "GROUND.response_spectrum", "TANK.design_codes", "seismic_defaults",
                       "stability_chart"],
@@ -203,9 +217,9 @@ def test_the_runner_names_deaths_hangs_and_generic_errors():
     """The harness itself: a case that ends the process (os._exit(0) stands in for XERBLA's
     exit) is a death, one that does not finish a hang, a TypeError a generic error; the cases
     after them still run."""
-    outcomes = run_cases([("fine", "natural_frequencies", ("P",), {}),
+    outcomes = run_cases([("fine", "linear_modes", ("P",), {}),
                           ("dies", "os._exit", (0,), {}),
-                          ("after death", "natural_frequencies", ("P",), {}),
+                          ("after death", "linear_modes", ("P",), {}),
                           ("hangs", "time.sleep", (60,), {}),
                           ("generic", "Parameters", (), {"s1": 1.5, "typo": 1}),
                           ("rejected", "Parameters", (), dict(s1=math.nan, mu1=0.5, kappa=1.8,
@@ -374,12 +388,14 @@ def test_a_group_after_the_slash_on_the_same_line_is_not_ignored(tmp_path):
 
 NONFINITE_RESULTS = {
     # name: (case, the start of the error it must raise)
-    "tank_pendulum R = 1e308": (("tank_pendulum", (1e308, 6.0), {"rho_liquid": 1000.0}),
-                                "sloshdyn InputError: R = "),
-    "tank_pendulum R = 2.2e-308": (("tank_pendulum", (2.2e-308, 6.0), {"rho_liquid": 1000.0}),
-                                   "sloshdyn InputError: R = "),
-    "tank_pendulum rho_liquid = 1e308": (("tank_pendulum", (5.0, 6.0), {"rho_liquid": 1e308}),
-                                         "sloshdyn InputError: rho_liquid = "),
+    "tank_pendulum radius = 1e308": (("tank_pendulum", (1e308, 6.0), {"liquid_density": 1000.0}),
+                                     "sloshdyn InputError: radius = "),
+    "tank_pendulum radius = 2.2e-308": (("tank_pendulum", (2.2e-308, 6.0),
+                                         {"liquid_density": 1000.0}),
+                                        "sloshdyn InputError: radius = "),
+    "tank_pendulum liquid_density = 1e308": (("tank_pendulum", (5.0, 6.0),
+                                              {"liquid_density": 1e308}),
+                                             "sloshdyn InputError: liquid_density = "),
     "equations_of_motion at y = 1e308": (("equations_of_motion", ("P", 0.0, [1e308] * 4), {}),
                                          "sloshdyn "),
 }

@@ -66,7 +66,7 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     pendulum, status, _ = _model.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
     groups, status, _ = _model.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
     *_, routh, _, _ = _model.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
-                                                     theta0=0.5).arrays(), 4)
+                                                     theta0=0.5).array(), 4)
     arrays.update(pendulum=pendulum, groups=groups, routh=routh)
     for name, array in arrays.items():
         assert len(array) == len(_tables.layout(name)), name
@@ -106,13 +106,13 @@ def test_settings_classes_have_the_cores_defaults():
 def test_parameters_carry_the_model_layouts():
     params = Parameters(s1=1.5, mu1=0.5, kappa=2.0, theta0=0.5, beta=3.0, gamma=0.01,
                         delta=0.2, n=4, p=3, zeta=0.01, A=0.001, rho=0.5)
-    rpar, ipar = params.arrays()
+    rpar, ipar = params.array()
     assert dict(zip(_tables.layout("model"), rpar)) == {
         name: getattr(params, name) for name in _tables.layout("model")}
     assert list(ipar) == [getattr(params, name) for name in _tables.layout("model_integers")]
     assert {f.name for f in dataclasses.fields(Parameters)} == (
         set(_tables.layout("model")) | set(_tables.layout("model_integers")))
-    assert Parameters.from_arrays(rpar, ipar) == params
+    assert Parameters.from_array(rpar, ipar) == params
 
 
 def test_every_code_list_of_the_core_is_named_and_used_by_python():

@@ -56,8 +56,9 @@ def test_steady_and_lyapunov_keep_their_own_transient(tmp_path):
     exe_out, py_out, (exe, py) = both_front_doors(tmp_path, text)
     assert exe.returncode == 0 and py.returncode == 0, (exe.stderr, py.stderr)
     same_csv_files(exe_out, py_out)
-    exponent, history = sloshdyn.lyapunov_exponent(inp.params, transient_periods=20, n_periods=40,
-                                                   renormalise_every=2)
+    result = sloshdyn.lyapunov_exponent(inp.params, lyapunov=sloshdyn.Lyapunov(
+        transient_periods=20, n_periods=40, renormalise_every=2))
+    exponent, history = result.exponent, result.history
     estimates = np.loadtxt(exe_out / "lyapunov.csv", delimiter=",", skiprows=1)[:, 1]
     assert list(estimates) == list(history) and estimates[-1] == exponent
 
@@ -83,7 +84,7 @@ def test_a_branch_cut_by_max_points_is_an_error_in_both(tmp_path):
     inp = sloshdyn.read_namelist(tmp_path / "exe" / "input.nml")
     with pytest.raises(sloshdyn.CapacityError) as info:
         sloshdyn.frequency_response(inp.params, (0.49, 0.53),
-                                    settings=sloshdyn.Continuation.from_namelist(inp.response))
+                                    continuation=sloshdyn.Continuation.from_namelist(inp.response))
     assert not info.value.partial.complete and len(info.value.partial.table["a1"]) > 0
 
 
@@ -126,7 +127,7 @@ def test_one_set_of_integration_defaults():
     assert (defaults.rtol, defaults.atol, defaults.max_steps) == (1e-9, 1e-12, 10**8)
     for function in (sloshdyn.periodic_orbit, sloshdyn.periodic_response, sloshdyn.lyapunov_exponent):
         assert inspect.signature(function).parameters["integration"].default == defaults
-    assert inspect.signature(sloshdyn.lyapunov_exponent).parameters["transient_periods"].default == 1000
+    assert sloshdyn.Lyapunov().transient_periods == 1000
 
 
 def test_namelist_defaults_are_the_python_defaults(tmp_path):

@@ -78,14 +78,17 @@ def test_upper_fold_moves_at_larger_amplitude(branches):
 def test_lyapunov_exponents_of_known_cases():
     periodic = FIG12.replace(rho=0.513)
     st = sloshdyn.steady_state(periodic)
-    lam, _ = sloshdyn.lyapunov_exponent(periodic, st.y_end, transient_periods=100, n_periods=1500)
+    lam = sloshdyn.lyapunov_exponent(periodic, st.y_end, lyapunov=sloshdyn.Lyapunov(
+        transient_periods=100, n_periods=1500)).exponent
     orbit = sloshdyn.periodic_orbit(periodic, st.y_end)
     expected = math.log(max(abs(orbit.multipliers))) * periodic.rho / (2 * math.pi)
     assert lam < -1e-4 and lam == pytest.approx(expected, rel=0.05)     # Floquet: log|mu|/T
 
     quasi = FIG12.replace(rho=0.509615)                                # Fig 14: a torus
     st = sloshdyn.steady_state(quasi, steady=sloshdyn.Steady(settle_tol=0, transient_periods=5000))
-    lam, history = sloshdyn.lyapunov_exponent(quasi, st.y_end, transient_periods=100, n_periods=2000)
+    result = sloshdyn.lyapunov_exponent(quasi, st.y_end, lyapunov=sloshdyn.Lyapunov(
+        transient_periods=100, n_periods=2000))
+    lam, history = result.exponent, result.history
     assert abs(lam) < 3e-5                        # zero, against decay rates ~3.5e-4
     assert abs(history[-1]) < abs(history[199])   # and still closing in on zero
 
@@ -93,6 +96,8 @@ def test_lyapunov_exponents_of_known_cases():
 def test_fig17_is_chaotic_with_a_converged_exponent():
     p = FIG12.replace(rho=0.513, A=2.0)
     st = sloshdyn.steady_state(p, steady=sloshdyn.Steady(max_transient_periods=2000))
-    lam, history = sloshdyn.lyapunov_exponent(p, st.y_end, transient_periods=100, n_periods=2000)
+    result = sloshdyn.lyapunov_exponent(p, st.y_end, lyapunov=sloshdyn.Lyapunov(
+        transient_periods=100, n_periods=2000))
+    lam, history = result.exponent, result.history
     assert lam > 0.05
     assert history[999] == pytest.approx(lam, rel=0.1)   # converged over the second half

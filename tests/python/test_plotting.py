@@ -18,7 +18,8 @@ def test_plots_draw_the_simulation(tmp_path, fig12):
     fig = plotting.phase_plane(sim, "x1", rho=p.rho)
     section = fig.axes[0].lines[1].get_xdata()
     assert len(section) == 41 and np.allclose(section, sim.x1[::16])
-    omega, amp = sloshdyn.spectrum(sim.x1, period / 16)
+    line = sloshdyn.spectrum(sim.x1, period / 16)
+    omega, amp = line.omega, line.amplitude
     plotting.spectrum(omega, amp, marks=(p.rho, 3 * p.rho)).savefig(tmp_path / "spectrum.png")
     assert (tmp_path / "history.png").stat().st_size > 1000
 

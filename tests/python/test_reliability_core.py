@@ -143,8 +143,8 @@ CTRL_C = textwrap.dedent("""\
 
 
 @pytest.mark.parametrize("call", [
-    "lambda p: sloshdyn.simulate(p, 1e7, n_out=11, max_steps=2000000000)",
-    "lambda p: sloshdyn.lyapunov_exponent(p, n_periods=10000000, transient_periods=0)",
+    "lambda p: sloshdyn.simulate(p, 1e7, n_out=11, integration=sloshdyn.Integration(max_steps=2000000000))",
+    "lambda p: sloshdyn.lyapunov_exponent(p, lyapunov=sloshdyn.Lyapunov(n_periods=10000000, transient_periods=0))",
 ])
 def test_ctrl_c_stops_a_long_call_in_python(tmp_path, call):
     script = write(tmp_path, CTRL_C.format(call=call), "ctrl_c.py")
@@ -227,7 +227,7 @@ def test_python_gets_the_same_bound_as_the_executable(tmp_path):
         import sloshdyn
         from sloshdyn.figures import FIG12
         try:
-            sloshdyn.frequency_response(FIG12, (0.45, 0.55), settings=sloshdyn.Continuation(
+            sloshdyn.frequency_response(FIG12, (0.45, 0.55), continuation=sloshdyn.Continuation(
                 n_amplitudes=100000, n_phases=100000))
         except sloshdyn.InputError as exc:
             print(exc)

@@ -52,21 +52,21 @@ def test_stability_changes_exactly_at_special_points(fig12_response):
 
 def polar_slow_flow(m, rho, A):
     """Eq (53) as printed, steady state in (a1, a2, phi1, phi2), eps = 1."""
-    w1, w2 = m["omega1"], m["omega2"]
+    w1, w2 = m.omega1, m.omega2
     s1, s2 = w2 - 3 * w1, rho - w1
-    f = m["F11"] * rho**2 * A
+    f = m.coefficients["F11"] * rho**2 * A
 
     def equations(z):
         a1, a2, p1, p2 = z
-        return [-0.5 * m["gamma11"] * a1 + m["c13"] / (8 * w1) * a1**2 * a2 * math.sin(p1)
+        return [-0.5 * m.coefficients["gamma11"] * a1 + m.coefficients["c13"] / (8 * w1) * a1**2 * a2 * math.sin(p1)
                 + f / (2 * w1) * math.cos(p2),
-                s1 + (m["c21"] / (8 * w2) - 3 * m["c12"] / (4 * w1)) * a2**2
-                + (m["c22"] / (4 * w2) - 3 * m["c11"] / (8 * w1)) * a1**2
-                - m["c23"] / (8 * w2) * a1**3 / a2 * math.cos(p1)
-                + 3 * m["c13"] / (8 * w1) * a1 * a2 * math.cos(p1) - 3 * f / (2 * w1 * a1) * math.sin(p2),
-                -0.5 * m["gamma22"] * a2 - m["c23"] / (8 * w2) * a1**3 * math.sin(p1),
-                s2 - m["c11"] / (8 * w1) * a1**2 - m["c12"] / (4 * w1) * a2**2
-                + m["c13"] / (8 * w1) * a1 * a2 * math.cos(p1) - f / (2 * w1 * a1) * math.sin(p2)]
+                s1 + (m.coefficients["c21"] / (8 * w2) - 3 * m.coefficients["c12"] / (4 * w1)) * a2**2
+                + (m.coefficients["c22"] / (4 * w2) - 3 * m.coefficients["c11"] / (8 * w1)) * a1**2
+                - m.coefficients["c23"] / (8 * w2) * a1**3 / a2 * math.cos(p1)
+                + 3 * m.coefficients["c13"] / (8 * w1) * a1 * a2 * math.cos(p1) - 3 * f / (2 * w1 * a1) * math.sin(p2),
+                -0.5 * m.coefficients["gamma22"] * a2 - m.coefficients["c23"] / (8 * w2) * a1**3 * math.sin(p1),
+                s2 - m.coefficients["c11"] / (8 * w1) * a1**2 - m.coefficients["c12"] / (4 * w1) * a2**2
+                + m.coefficients["c13"] / (8 * w1) * a1 * a2 * math.cos(p1) - f / (2 * w1 * a1) * math.sin(p2)]
     return equations
 
 
@@ -118,20 +118,20 @@ def test_brute_force_polar_scan_finds_nothing_the_continuation_missed(fig12_resp
 def test_fig9_nonresonant_response(kappa, kind):
     p = sloshdyn.Parameters(kappa=kappa, **FIG9)
     m = sloshdyn.modal_coefficients(p)
-    w1 = m["omega1"]
+    w1 = m.omega1
     response = sloshdyn.frequency_response(p, (w1 - 0.04, w1 + 0.04), resonance="none")
     t = response.table
     # every point satisfies eq (50) with the square on eps a1 (docs/errata.md)
-    lhs = t["rho"] ** 4 * p.A**2 * m["F11"] ** 2 / (4 * w1**2)
-    rhs = t["a1"] ** 2 * (m["gamma11"] ** 2 / 4 + (t["rho"] - w1 - m["c11"] / (8 * w1) * t["a1"] ** 2) ** 2)
+    lhs = t["rho"] ** 4 * p.A**2 * m.coefficients["F11"] ** 2 / (4 * w1**2)
+    rhs = t["a1"] ** 2 * (m.coefficients["gamma11"] ** 2 / 4 + (t["rho"] - w1 - m.coefficients["c11"] / (8 * w1) * t["a1"] ** 2) ** 2)
     assert np.allclose(rhs, lhs, rtol=1e-8)
     # as printed (no square) it does not hold
-    printed = t["a1"] * (m["gamma11"] ** 2 / 4 + (t["rho"] - w1 - m["c11"] / (8 * w1) * t["a1"] ** 2) ** 2)
+    printed = t["a1"] * (m.coefficients["gamma11"] ** 2 / 4 + (t["rho"] - w1 - m.coefficients["c11"] / (8 * w1) * t["a1"] ** 2) ** 2)
     assert not np.allclose(printed, lhs, rtol=1e-2)
     folds = sorted(s.rho for s in response.special_points if s.kind == "fold")
     assert len(folds) == 2
     # softening bends the peak below omega1, hardening above (sign of c11, sec 4.1)
-    assert (m["c11"] < 0) == (kind == "softening")
+    assert (m.coefficients["c11"] < 0) == (kind == "softening")
     assert all(f < w1 for f in folds) if kind == "softening" else all(f > w1 for f in folds)
     # three solutions of eq (49) between the folds, one outside; the unstable one in the middle
     middle = sloshdyn.nonresonant_amplitudes(p, 0.5 * (folds[0] + folds[1]))[0]
@@ -190,17 +190,17 @@ def test_bad_response_input():
 def complex_slow_flow(m, rho, A):
     """Eq (53) in the Cartesian unknowns B1 = a1 exp(-i phi2), B2 = a2 exp(i (phi1 - 3 phi2))
     (eq 42, 45), typed here from the modal coefficients: x = (Re B1, Im B1, Re B2, Im B2)."""
-    w1, w2 = m["omega1"], m["omega2"]
+    w1, w2 = m.omega1, m.omega2
     s2, s1 = rho - w1, w2 - 3 * w1
 
     def f(t, x):
         b1, b2 = x[0] + 1j * x[1], x[2] + 1j * x[3]
-        f1 = (-(m["gamma11"] / 2 + 1j * s2) * b1 + rho**2 * A * m["F11"] / (2 * w1)
-              + 1j / (8 * w1) * (m["c11"] * abs(b1)**2 * b1 + 2 * m["c12"] * abs(b2)**2 * b1
-                                 - m["c13"] * np.conj(b1)**2 * b2))
-        f2 = (-(m["gamma22"] / 2 + 1j * (3 * s2 - s1)) * b2
-              + 1j / (8 * w2) * (m["c21"] * abs(b2)**2 * b2 + 2 * m["c22"] * abs(b1)**2 * b2
-                                 - m["c23"] * b1**3))
+        f1 = (-(m.coefficients["gamma11"] / 2 + 1j * s2) * b1 + rho**2 * A * m.coefficients["F11"] / (2 * w1)
+              + 1j / (8 * w1) * (m.coefficients["c11"] * abs(b1)**2 * b1 + 2 * m.coefficients["c12"] * abs(b2)**2 * b1
+                                 - m.coefficients["c13"] * np.conj(b1)**2 * b2))
+        f2 = (-(m.coefficients["gamma22"] / 2 + 1j * (3 * s2 - s1)) * b2
+              + 1j / (8 * w2) * (m.coefficients["c21"] * abs(b2)**2 * b2 + 2 * m.coefficients["c22"] * abs(b1)**2 * b2
+                                 - m.coefficients["c23"] * b1**3))
         return [f1.real, f1.imag, f2.real, f2.imag]
     return f
 

@@ -26,7 +26,8 @@ LOADS = ["ground_acceleration", "sloshing_displacement", "wave_height", "pendulu
 def kt_record(scale=1.0):
     """The example record (synthetic Kanai-Tajimi noise, 30 s at 0.01 s), scaled."""
     ground = sloshdyn.GroundMotion.from_file(EXAMPLES / "records" / "synthetic_kt.AT2")
-    return sloshdyn.GroundMotion(dt=ground.dt, acceleration=ground.acceleration * scale)
+    return sloshdyn.GroundMotion(dt=ground.dt, acceleration=ground.acceleration * scale,
+                                 units="m/s^2")
 
 
 def synthetic_records():
@@ -49,7 +50,8 @@ def test_seismic_peaks_do_not_depend_on_n_out():
     peak is below the largest output sample."""
     tank = sloshdyn.Tank(**TANK)
     ground = kt_record(3.0)
-    t_end, n_out = sloshdyn.seismic_defaults(tank, ground)
+    times = sloshdyn.seismic_defaults(tank, ground)
+    t_end, n_out = times.t_end, times.n_out
     coarse = sloshdyn.seismic_response(tank, ground, t_end, n_out)
     fine = sloshdyn.seismic_response(tank, ground, t_end, 10 * (n_out - 1) + 1)
     for name in LOADS:
@@ -104,10 +106,12 @@ def scaled_records(ratio):
     for name, acceleration in synthetic_records().items():
         scale = 1.0
         for _ in range(2):
-            ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale)
+            ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
+                                           units="m/s^2")
             run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
             scale *= ratio * TANK["freeboard"] / run.peak_table["free_wave_height"]
-        records[name] = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale)
+        records[name] = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
+                                              units="m/s^2")
     return records
 
 
@@ -143,7 +147,8 @@ def test_first_contact_is_where_the_free_tank_first_reaches_the_freeboard():
     tank = sloshdyn.Tank(**TANK)
     located = sloshdyn.seismic_response(tank, ground)
     free_tank = sloshdyn.Tank(**TANK, impact_stiffness=0.0, impact_damping=0.0)
-    t_end, n_out = sloshdyn.seismic_defaults(free_tank, ground)
+    times = sloshdyn.seismic_defaults(free_tank, ground)
+    t_end, n_out = times.t_end, times.n_out
     free = sloshdyn.seismic_response(free_tank, ground, t_end, 10 * (n_out - 1) + 1)
     t = free.t
     first = int(np.argmax(np.abs(free.x1) >= 1))

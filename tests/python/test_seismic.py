@@ -85,20 +85,22 @@ def tapered_sines(dt=0.01, duration=20.0, pga=0.05):
     a = np.sin(np.pi * t / t[-1])**2 * (np.sin(2 * np.pi * 0.2 * t) +
                                         0.8 * np.sin(2 * np.pi * 0.3 * t + 1) +
                                         0.5 * np.sin(2 * np.pi * 1.1 * t + 2))
-    return sloshdyn.GroundMotion(dt=dt, acceleration=a * pga / np.max(np.abs(a)))
+    return sloshdyn.GroundMotion(dt=dt, acceleration=a * pga / np.max(np.abs(a)),
+                                 units="m/s^2")
 
 
 def sine_pulse(dt=0.01, duration=12.0, pga=0.05):
     """One cycle of a 0.5 Hz sine, then rest: a near-fault pulse."""
     t = dt * np.arange(int(round(duration / dt)) + 1)
     return sloshdyn.GroundMotion(dt=dt, acceleration=np.where(t <= 2.0, pga * np.sin(np.pi * t),
-                                                              0.0))
+                                                              0.0), units="m/s^2")
 
 
 def truncated_sine(dt=0.02, pga=0.05):
     """A 0.3 Hz sine cut off at 2.5 s, where it is at -pga: the ground stops abruptly."""
     t = dt * np.arange(int(round(2.5 / dt)) + 1)
-    return sloshdyn.GroundMotion(dt=dt, acceleration=pga * np.sin(2 * np.pi * 0.3 * t))
+    return sloshdyn.GroundMotion(dt=dt, acceleration=pga * np.sin(2 * np.pi * 0.3 * t),
+                                 units="m/s^2")
 
 
 def example_record(pga=0.05):
@@ -275,6 +277,52 @@ def test_design_code_table_columns():
     # rounded makes its period 0.53 % shorter
     assert codes.difference("ACI 350.3", "convective_period") == pytest.approx(0, abs=1e-12)
     assert codes.difference("API 650", "convective_period") == pytest.approx(-0.527, abs=1e-3)
+
+
+def test_harmonic_motion_lasts_40_forcing_periods_unless_told():
+    """One default, the core's (sloshdyn_ground's harmonic_periods), for GroundMotion's
+    spectrum and the design codes' wave heights: the Sa of harmonic motion is that of its
+    samples (200 per period) over 40 forcing periods taken as a record (expm, tail 5 times the
+    longest period)."""
+    tank = sloshdyn.Tank(**TANK, support_frequency=2.0)
+    f, a = 0.25, 0.5
+    ground = sloshdyn.GroundMotion.harmonic(a, f, units="m/s^2")
+    dt = 1 / (200 * f)
+    t = dt * np.arange(int(40 / f / dt) + 1)
+    sampled = sloshdyn.GroundMotion(dt=dt, acceleration=-a * np.sin(2 * np.pi * f * t),
+                                    units="m/s^2")
+    codes = tank.design_codes(ground)
+    periods = [codes.value(source, "convective_period") for source in codes.sources]
+    tail = 5 * max(periods)
+    sa = spectral_acceleration(sampled, tank.sloshing_period, tank.sloshing_damping, tail)
+    spectrum = ground.response_spectrum([tank.sloshing_period], damping=tank.sloshing_damping,
+                                        tail_duration=tail)
+    assert spectrum.psa[0] == pytest.approx(sa, rel=1e-9)
+    assert codes.value("sloshdyn", "wave_height") == pytest.approx(
+        2 * TANK["radius"] / (1.84**2 - 1) * sa / G, rel=1e-9)
+    shorter = ground.response_spectrum([tank.sloshing_period], damping=tank.sloshing_damping,
+                                       tail_duration=tail, duration=2 / f)
+    assert shorter.psa[0] != pytest.approx(sa, rel=1e-3)     # the duration matters
+
+
+@pytest.mark.parametrize("peak_g, frequency", [(0.05, 0.29872), (0.3, 1.7)])
+def test_a_tanks_harmonic_A_and_rho_are_the_namelists(tmp_path, peak_g, frequency):
+    """Tank.parameters(harmonic ground motion) has the A and rho that the namelist reader sets
+    for &tank with &ground_motion, bit for bit (one routine of the core), and they are
+    rho = Omega/omega and A = a/(L Omega^2) (the base displacement amplitude over L)."""
+    tank = sloshdyn.Tank(**TANK, support_frequency=2.0)
+    (tmp_path / "in.nml").write_text(namelist(
+        tank, f"peak_acceleration = {peak_g!r}, frequency = {frequency!r}",
+        "&analysis kind = 'seismic' /\n"))
+    read = sloshdyn.read_namelist(tmp_path / "in.nml").params
+    python = tank.parameters(sloshdyn.GroundMotion.harmonic(peak_g, frequency))
+    assert (python.A, python.rho) == (read.A, read.rho)
+    omega, big_omega = tank.properties["omega"], 2 * math.pi * frequency
+    assert python.rho == pytest.approx(big_omega / omega, rel=1e-14)
+    assert python.A == pytest.approx(peak_g * G / (tank.properties["support_height"]
+                                                   * big_omega**2), rel=1e-14)
+    with pytest.raises(sloshdyn.InputError, match="record has no A and rho"):
+        tank.parameters(truncated_sine())
 
 
 # --- 4. base shear = rate of change of the total horizontal momentum; 5. energy balance -------
@@ -522,6 +570,22 @@ def test_python_api_gives_the_numbers_of_the_csv_files(both_doors):
     assert np.array_equal(peaks, list(r.peak_table.values()), equal_nan=True)
 
 
+@pytest.mark.parametrize("example", ["tank_harmonic.nml", "tank_linear.nml"])
+def test_python_prints_the_design_code_table_of_the_executable(exe, tmp_path, example):
+    """str(DesignCodes) is the table the executable prints, line for line (one formatter, the
+    driver's): with wave heights (ground motion) and without (NaN cells as '-')."""
+    copy_example(example, tmp_path / "run")
+    result = subprocess.run([exe, example], cwd=tmp_path / "run", capture_output=True,
+                            text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    inp = sloshdyn.read_namelist(EXAMPLES / example)
+    table = str(inp.tank.design_codes(inp.ground_motion)).splitlines()
+    printed = result.stdout.splitlines()
+    first = printed.index(table[0])
+    assert printed[first:first + len(table)] == table and len(table) == 7
+    assert "ACI 350.3" in table[0] and table[1].startswith("  convective period [s]")
+
+
 # --- 7. bad input through every front door; the record file untouched -----------------------
 
 AT2_HEAD = "TITLE\nSOURCE\nACCELERATION TIME SERIES IN UNITS OF G\n"
@@ -715,7 +779,8 @@ def test_free_decay_has_the_logarithmic_decrement_of_zeta(zeta):
     assert p.zeta == zeta
     step = 2 * np.pi / 256
     tau = step * np.arange(20 * 256 + 1)
-    x = sloshdyn.simulate(p, tau[-1], [0.01, 0, 0, 0], tau_out=tau, rtol=1e-12, atol=1e-15).x1
+    x = sloshdyn.simulate(p, tau[-1], [0.01, 0, 0, 0], tau_out=tau,
+                          integration=sloshdyn.Integration(rtol=1e-12, atol=1e-15)).x1
     i = np.flatnonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:])) + 1
     before, at, after = x[i - 1], x[i], x[i + 1]
     shift = 0.5 * (before - after) / (before - 2 * at + after)    # the parabola's vertex
@@ -758,7 +823,8 @@ def test_linear_analysis_includes_zeta(changes):
         shapes = shapes[:, np.argsort(squares)]
         modal = np.linalg.solve(shapes, damping @ shapes)
         m = sloshdyn.modal_coefficients(p)
-        assert [m["gamma11"], m["gamma22"]] == pytest.approx(np.diag(modal), rel=1e-12)
+        assert [m.coefficients["gamma11"], m.coefficients["gamma22"]] == pytest.approx(
+            np.diag(modal), rel=1e-12)
 
 
 def test_jacobian_with_zeta_matches_finite_differences():
@@ -791,7 +857,7 @@ def test_jacobian_with_zeta_matches_finite_differences():
 def spike(index, dt=0.002, n=5001):
     a = np.zeros(n)
     a[index] = 1.0
-    return sloshdyn.GroundMotion(dt=dt, acceleration=a)
+    return sloshdyn.GroundMotion(dt=dt, acceleration=a, units="m/s^2")
 
 
 @pytest.mark.parametrize("index", [1000, 5000], ids=["inside", "last sample"])

@@ -26,11 +26,12 @@ def energy(p, y):
                          ids=["small", "impacting"])
 def test_energy_is_conserved(fig12, y0):
     p = fig12.replace(gamma=0.0, delta=0.0, A=0.0, beta=1.0)
-    omega1, _ = sloshdyn.natural_frequencies(p)
+    omega1 = sloshdyn.linear_modes(p).omega1
     t_end = 1000 * 2 * math.pi / omega1
     drifts = []
     for rtol in (1e-8, 1e-10):
-        sim = sloshdyn.simulate(p, t_end, y0, n_out=2001, rtol=rtol, atol=rtol * 1e-3)
+        sim = sloshdyn.simulate(p, t_end, y0, n_out=2001,
+                                integration=sloshdyn.Integration(rtol=rtol, atol=rtol * 1e-3))
         e = energy(p, sim.y)
         drifts.append(np.max(np.abs(e - e[0])) / abs(e[0]))
     if y0[0] > 1:   # the run really reaches the walls
@@ -47,16 +48,19 @@ def test_agrees_with_scipy_dop853(fig12):
     tau = np.linspace(0, t_end, 11)
     ref = solve_ivp(lambda t, y: eq10_numpy(p, t, y), (0, t_end), y0, method="DOP853",
                     rtol=1e-12, atol=1e-14, t_eval=tau)
-    sim = sloshdyn.simulate(p, t_end, y0, tau_out=tau, rtol=1e-12, atol=1e-14)
+    sim = sloshdyn.simulate(p, t_end, y0, tau_out=tau,
+                            integration=sloshdyn.Integration(rtol=1e-12, atol=1e-14))
     assert np.allclose(sim.y, ref.y, rtol=0, atol=1e-8)
 
 
 def test_free_vibration_shows_the_natural_frequencies(fig12):
     p = fig12.replace(gamma=0.0, A=0.0)
-    omega1, omega2 = sloshdyn.natural_frequencies(p)
+    modes = sloshdyn.linear_modes(p)
+    omega1, omega2 = modes.omega1, modes.omega2
     dt = 0.5
     sim = sloshdyn.simulate(p, 40000.0, (1e-3, 0.0, 1e-3, 0.0), n_out=80001)
-    omega, amplitude = sloshdyn.spectrum(sim.x1, dt)
+    line = sloshdyn.spectrum(sim.x1, dt)
+    omega, amplitude = line.omega, line.amplitude
     resolution = 2 * math.pi / 40000.0
     peaks = omega[np.argsort(amplitude)[::-1]]
     top = [peaks[0]]
@@ -77,7 +81,8 @@ def test_fig15_spectral_lines_at_rho_and_3rho(fig12):
     n_periods, per = 256, 32
     tau = np.arange(n_periods * per + 1) * period / per
     sim = sloshdyn.simulate(p, tau[-1], st.y_end, tau_out=tau)
-    omega, amplitude = sloshdyn.spectrum(sim.x1[:-1], period / per, window=None)
+    line = sloshdyn.spectrum(sim.x1[:-1], period / per, window=None)
+    omega, amplitude = line.omega, line.amplitude
     # whole periods, no window: lines fall on bins; the two largest are rho and 3 rho
     top = omega[np.argsort(amplitude)[::-1][:2]]
     assert sorted(top) == pytest.approx([p.rho, 3 * p.rho], rel=1e-9)
@@ -100,7 +105,8 @@ def test_fig14_beats(fig12):
     # (omega2 - 3 omega1)/omega1 of sec 4.2, so the two agree to O(eps) ~ 10 %)
     full = sloshdyn.beat_period(st.poincare)
     slow = sloshdyn.slow_flow_cycle(p)
-    w1, w2 = sloshdyn.natural_frequencies(p)
+    modes = sloshdyn.linear_modes(p)
+    w1, w2 = modes.omega1, modes.omega2
     eps = math.sqrt(abs(w2 - 3 * w1) / w1)
     assert full == pytest.approx(slow.beat_periods, rel=eps)
     # the envelope of u1 beats with that period: its autocorrelation peaks one beat later
@@ -127,7 +133,7 @@ def test_beat_period_of_points_turning_at_a_known_rate():
 
 def test_integration_failure_keeps_the_partial_history(fig12):
     with pytest.raises(sloshdyn.IntegrationError, match="max_steps") as info:
-        sloshdyn.simulate(fig12, 1000.0, n_out=101, max_steps=50)
+        sloshdyn.simulate(fig12, 1000.0, n_out=101, integration=sloshdyn.Integration(max_steps=50))
     partial = info.value.partial
     reached = partial.tau_reached
     assert 0 < reached < 1000
@@ -150,14 +156,14 @@ def test_dop853_method_agrees_with_rk45_in_fewer_steps(fig12):
     p = fig12.replace(beta=10.0, delta=0.1, A=0.3)
     t_end = 100 * 2 * math.pi / p.rho
     tau = np.linspace(0, t_end, 11)
-    rk45 = sloshdyn.simulate(p, t_end, (0.3, 0, 0.1, 0), tau_out=tau, rtol=1e-12, atol=1e-14,
-                             method="rk45")
-    dop853 = sloshdyn.simulate(p, t_end, (0.3, 0, 0.1, 0), tau_out=tau, rtol=1e-12, atol=1e-14,
-                               method="dop853")
+    rk45 = sloshdyn.simulate(p, t_end, (0.3, 0, 0.1, 0), tau_out=tau, integration=sloshdyn.Integration(
+        rtol=1e-12, atol=1e-14, method="rk45"))
+    dop853 = sloshdyn.simulate(p, t_end, (0.3, 0, 0.1, 0), tau_out=tau, integration=sloshdyn.Integration(
+        rtol=1e-12, atol=1e-14, method="dop853"))
     assert np.allclose(dop853.y, rk45.y, rtol=0, atol=1e-8)
     assert dop853.n_accepted < rk45.n_accepted / 3
     with pytest.raises(sloshdyn.InputError, match="method"):
-        sloshdyn.simulate(p, 10.0, method="euler")
+        sloshdyn.simulate(p, 10.0, integration=sloshdyn.Integration(method="euler"))
 
 
 def test_vern9_agrees_with_dop853_and_auto_runs_the_method_it_reports(fig12):
@@ -169,16 +175,18 @@ def test_vern9_agrees_with_dop853_and_auto_runs_the_method_it_reports(fig12):
     t_end = 100 * 2 * math.pi / p.rho
     tau = np.linspace(0, t_end, 11)
     y0 = (0.3, 0, 0.1, 0)
-    dop853 = sloshdyn.simulate(p, t_end, y0, tau_out=tau, rtol=1e-12, atol=1e-14,
-                               method="dop853")
-    vern9 = sloshdyn.simulate(p, t_end, y0, tau_out=tau, rtol=1e-12, atol=1e-14, method="vern9")
+    dop853 = sloshdyn.simulate(p, t_end, y0, tau_out=tau, integration=sloshdyn.Integration(
+        rtol=1e-12, atol=1e-14, method="dop853"))
+    vern9 = sloshdyn.simulate(p, t_end, y0, tau_out=tau, integration=sloshdyn.Integration(
+        rtol=1e-12, atol=1e-14, method="vern9"))
     assert np.allclose(vern9.y, dop853.y, rtol=0, atol=1e-8)
     assert vern9.n_accepted < dop853.n_accepted
     used = []
     for rtol in (1e-3, 1e-7, 1e-12):
-        auto = sloshdyn.simulate(p, t_end, y0, tau_out=tau, rtol=rtol, atol=rtol * 1e-3)
-        named = sloshdyn.simulate(p, t_end, y0, tau_out=tau, rtol=rtol, atol=rtol * 1e-3,
-                                  method=auto.method)
+        auto = sloshdyn.simulate(p, t_end, y0, tau_out=tau,
+                                 integration=sloshdyn.Integration(rtol=rtol, atol=rtol * 1e-3))
+        named = sloshdyn.simulate(p, t_end, y0, tau_out=tau, integration=sloshdyn.Integration(
+            rtol=rtol, atol=rtol * 1e-3, method=auto.method))
         assert named.method == auto.method
         assert np.array_equal(auto.y, named.y) and auto.n_rhs == named.n_rhs
         used.append(auto.method)

@@ -106,8 +106,9 @@ def test_impact_parameter_study_equals_a_serial_loop_of_the_same_points(client, 
         for j, delta in enumerate(deltas):
             q = p.replace(beta=beta, delta=delta)
             sweep = sloshdyn.amplitude_sweep(q, a, steady=steady)
-            exponent, _ = sloshdyn.lyapunov_exponent(q.replace(A=2.0), sweep.y_final,
-                                                     transient_periods=10, n_periods=60)
+            exponent = sloshdyn.lyapunov_exponent(q.replace(A=2.0), sweep.y_final,
+                                                  lyapunov=sloshdyn.Lyapunov(
+                                                      transient_periods=10, n_periods=60)).exponent
             assert list(ds["max_x1"].values[i, j]) == list(sweep.column("max_x1"))
             assert [studies.MOTIONS[int(m)] for m in ds["motion"].values[i, j]] == \
                 [pt.motion for pt in sweep.points]
@@ -565,9 +566,9 @@ def records():
     (measured at 0.24 g: 0.997, 0.993, 0.990, 1.015 m against the 1 m freeboard)."""
     base = sloshdyn.GroundMotion.from_file(ROOT / "data/examples/records/synthetic_kt.AT2")
     a = base.acceleration
-    return [base, sloshdyn.GroundMotion(dt=0.7 * base.dt, acceleration=a[::-1]),
-            sloshdyn.GroundMotion(dt=1.5 * base.dt, acceleration=a),
-            sloshdyn.GroundMotion(dt=2.0 * base.dt, acceleration=a)]
+    return [base, sloshdyn.GroundMotion(dt=0.7 * base.dt, acceleration=a[::-1], units="m/s^2"),
+            sloshdyn.GroundMotion(dt=1.5 * base.dt, acceleration=a, units="m/s^2"),
+            sloshdyn.GroundMotion(dt=2.0 * base.dt, acceleration=a, units="m/s^2")]
 
 
 NAMES = ["kt", "kt_reversed_fast", "kt_slow", "kt_slower"]

@@ -81,7 +81,7 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
     grid = np.zeros((4, n, n))
     grid[0], grid[1] = np.meshgrid(x1, dx1, indexing="ij")
     grid[2], grid[3] = x2, dx2
-    rpar, ipar = params.arrays()
+    rpar, ipar = params.array()
 
     def task(block):
         return _basin_task, (rpar, ipar, np.ascontiguousarray(grid[(slice(None),) + block]),

@@ -29,7 +29,7 @@ def _impact_task(params, betas, deltas, A_values, steady, integration, lyapunov)
     """One task of an impact-parameter study: at each (beta, delta) of the block, the carried
     continuation along A_values from rest (amplitude_sweep) and the largest Lyapunov exponent
     at the last A from the continuation's final state. Runs on a worker."""
-    from ..periodic import lyapunov_exponent
+    from ..periodic import Lyapunov, lyapunov_exponent
     from ..simulation import amplitude_sweep
     start = time.perf_counter()
     shape, n_a = (len(betas), len(deltas)), len(A_values)
@@ -40,9 +40,9 @@ def _impact_task(params, betas, deltas, A_values, steady, integration, lyapunov)
             p = params.replace(beta=float(beta), delta=float(delta))
             try:
                 sweep = amplitude_sweep(p, A_values, None, steady=steady, integration=integration)
-                out["lyapunov"][i, j], _ = lyapunov_exponent(
+                out["lyapunov"][i, j] = lyapunov_exponent(
                     p.replace(A=float(A_values[-1])), sweep.y_final, integration=integration,
-                    **lyapunov)
+                    lyapunov=Lyapunov(**lyapunov)).exponent
             except SloshdynError as exc:
                 out["status"][i, j] = exc.status or 1
                 continue

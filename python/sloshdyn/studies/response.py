@@ -117,7 +117,7 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
             return nf, max(1, min(na, ppt // nf))
         bf = min(nf, ppt)
         return bf, max(1, min(na, ppt // bf))
-    rpar, ipar = params.arrays()
+    rpar, ipar = params.array()
 
     def task(block):      # the block's (rho, A), made for each task: the grid may be large
         fs, amps = f[block[0]], a[block[1]]
