@@ -10,7 +10,7 @@
 module sloshdyn_seismic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CANCELLED, check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_CANCELLED, check_real, check_output_count
   use sloshdyn_cancel, only: check_cancel
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, set_coefficients
@@ -127,11 +127,7 @@ contains
                                                 model%excitation, status, message)
     call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
                     't_end must be > 0 [s]', status, message)
-    if (status == SD_OK .and. (n_out < 2 .or. n_out > max_seismic_outputs)) then
-      status = SD_BAD_INPUT
-      message = 'n_out = '//num2str(n_out)//' is out of range: it must lie in [2, '// &
-                num2str(max_seismic_outputs)//']'
-    end if
+    call check_output_count('n_out', n_out, max_seismic_outputs, .false., status, message)
     if (status /= SD_OK) return
     allocate (tau(n_out), history(HISTORY_ROWS, n_out))
     tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]

@@ -27,6 +27,8 @@ module sloshdyn_simulation
   !> periods and an hour or more of work at the integrators' usual steps (a few per period up
   !> to hundreds near impacts); a longer span is a mistake, not a study.
   real(wp), parameter :: max_tau_span = 1.0e7_wp
+  !> Most output times of one time history (&simulation n_out).
+  integer, parameter, public :: max_simulation_outputs = 10000000
   !> Largest |component| of an initial state: x1 = theta/theta0 is 1 at the walls and x2 =
   !> phi/theta0 is of the same order, so a state 1e3 times that lies outside every motion the
   !> model describes (the impact moment beta x1^(2n-1) of eq (4) would exceed any load, and

@@ -9,6 +9,7 @@
 !> (so the core's range checks report them) instead of letting them wrap or become 0.
 module sloshdyn_layouts
   use sloshdyn_kinds, only: wp
+  use sloshdyn_namelist_scanner, only: join
   use sloshdyn_model, only: real_param_names
   use sloshdyn_tables, only: count_items
   use sloshdyn_ode, only: ode_options, ode_stats
@@ -146,29 +147,29 @@ contains
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: fields
     select case (name)
-    case ('model');          fields = join(real_param_names)
+    case ('model');          fields = join(real_param_names, ',')
     case ('model_integers'); fields = 'n,p'
-    case ('integration');    fields = join(integration_fields)
-    case ('steady');         fields = join(steady_fields)
-    case ('response');       fields = join(response_fields)
-    case ('response_range'); fields = join(response_range_fields)
-    case ('lyapunov');       fields = join(lyapunov_fields)
-    case ('tank');           fields = join(tank_fields)
-    case ('ground');         fields = join(ground_fields)
-    case ('chart');          fields = join(chart_fields)
-    case ('study');          fields = join(study_fields)
-    case ('sweep');          fields = join(sweep_fields)
-    case ('simulation');     fields = join(simulation_fields)
-    case ('seismic');        fields = join(seismic_fields)
-    case ('analysis');       fields = join(analysis_fields)
-    case ('continuation');   fields = join(continuation_fields)
-    case ('cycle_continuation'); fields = join(cycle_continuation_fields)
-    case ('shooting');       fields = join(shooting_fields)
-    case ('pendulum');       fields = join(pendulum_fields)
-    case ('physical');       fields = join(physical_fields)
-    case ('groups');         fields = join(groups_fields)
-    case ('routh');          fields = join(routh_fields)
-    case ('orbit_info');     fields = join(orbit_info_fields)
+    case ('integration');    fields = join(integration_fields, ',')
+    case ('steady');         fields = join(steady_fields, ',')
+    case ('response');       fields = join(response_fields, ',')
+    case ('response_range'); fields = join(response_range_fields, ',')
+    case ('lyapunov');       fields = join(lyapunov_fields, ',')
+    case ('tank');           fields = join(tank_fields, ',')
+    case ('ground');         fields = join(ground_fields, ',')
+    case ('chart');          fields = join(chart_fields, ',')
+    case ('study');          fields = join(study_fields, ',')
+    case ('sweep');          fields = join(sweep_fields, ',')
+    case ('simulation');     fields = join(simulation_fields, ',')
+    case ('seismic');        fields = join(seismic_fields, ',')
+    case ('analysis');       fields = join(analysis_fields, ',')
+    case ('continuation');   fields = join(continuation_fields, ',')
+    case ('cycle_continuation'); fields = join(cycle_continuation_fields, ',')
+    case ('shooting');       fields = join(shooting_fields, ',')
+    case ('pendulum');       fields = join(pendulum_fields, ',')
+    case ('physical');       fields = join(physical_fields, ',')
+    case ('groups');         fields = join(groups_fields, ',')
+    case ('routh');          fields = join(routh_fields, ',')
+    case ('orbit_info');     fields = join(orbit_info_fields, ',')
     case default;            fields = ''
     end select
   end function layout_fields
@@ -189,17 +190,6 @@ contains
       names = names//','//chart_parameter_name(k)
     end do
   end function chart_axes
-
-  !> The items of a list of names, trimmed and comma-separated.
-  pure function join(items) result(joined)
-    character(len=*), intent(in) :: items(:)
-    character(len=:), allocatable :: joined
-    integer :: i
-    joined = trim(items(1))
-    do i = 2, size(items)
-      joined = joined//','//trim(items(i))
-    end do
-  end function join
 
   !> x as an integer; NaN and values beyond the integer range become -huge (out of every range).
   elemental integer function to_int(x)

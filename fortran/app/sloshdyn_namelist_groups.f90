@@ -4,7 +4,7 @@
 !> The groups and variables are documented in docs/namelist.md.
 module sloshdyn_namelist_groups
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real, check_output_count
   use sloshdyn_text, only: num2str
   use sloshdyn_namelist_scanner, only: input_file, group_reader, scan_file, start_description, &
                                        require, given, fail, lower, join
@@ -24,7 +24,7 @@ module sloshdyn_namelist_groups
                                      CHART_KAPPA
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_AUTO, method_names
-  use sloshdyn_simulation, only: steady_options
+  use sloshdyn_simulation, only: steady_options, max_simulation_outputs
   use sloshdyn_response, only: check_response_options
   use sloshdyn_periodic_response, only: lyapunov_options
   implicit none
@@ -274,11 +274,7 @@ contains
     call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .false., .true., &
                     't_end must be >= 0 [s] (0: the record plus 5 sloshing periods)', status, &
                     message)
-    if (status == SD_OK .and. (n_out < 0 .or. n_out == 1 .or. n_out > max_seismic_outputs)) then
-      status = SD_BAD_INPUT
-      message = 'n_out = '//num2str(n_out)//' is out of range: it must lie in [2, '// &
-                num2str(max_seismic_outputs)//'] (0: the default)'
-    end if
+    call check_output_count('n_out', n_out, max_seismic_outputs, .true., status, message)
     if (status /= SD_OK) then
       message = '&seismic: '//trim(message)
       return
@@ -472,10 +468,7 @@ contains
       if (status /= SD_OK) return
       call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
                       't_end must be > 0 (the simulation starts at tau = 0)', status, message)
-      if (status == SD_OK .and. (n_out < 2 .or. n_out > 10000000)) then
-        status = SD_BAD_INPUT
-        message = 'n_out = '//num2str(n_out)//' is out of range: it must lie in [2, 10000000]'
-      end if
+      call check_output_count('n_out', n_out, max_simulation_outputs, .false., status, message)
     end if
     if (status /= SD_OK) then
       message = '&simulation: '//trim(message)

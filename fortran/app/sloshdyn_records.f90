@@ -22,6 +22,8 @@ module sloshdyn_records
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR
   use sloshdyn_text, only: num2str
+  use sloshdyn_cancel, only: check_cancel
+  use sloshdyn_namelist_scanner, only: lower
   use sloshdyn_files, only: file_type, FILE_MISSING, FILE_REGULAR, FILE_DIRECTORY, FILE_OTHER
   use sloshdyn_ground, only: check_ground, record_ground
   use, intrinsic :: iso_fortran_env, only: int64
@@ -40,6 +42,8 @@ module sloshdyn_records
   integer(int64), parameter :: max_record_bytes = 2_int64**30
   !> The most characters of a file's text quoted in a message, escaped (excerpt).
   integer, parameter :: excerpt_len = 40
+  !> Lines read between two looks at the cancellation flag (a 1 GiB file has ~5e7 lines).
+  integer, parameter :: lines_per_poll = 4096
   character(len=*), parameter :: separators = ' ,;'//char(9)
   character(len=*), parameter :: number_characters = '0123456789+-.eEdD'
 
@@ -336,6 +340,10 @@ contains
       call next_line(text, position, first, last, found)
       if (.not. found) exit
       line_number = line_number + 1
+      if (mod(line_number, lines_per_poll) == 0) then   ! a long file: Ctrl-C and SIGTERM
+        call check_cancel(status, message)
+        if (status /= SD_OK) return
+      end if
       from = first
       do
         call next_token(text(1:last), from, token, after)
@@ -376,6 +384,10 @@ contains
       call next_line(text, position, first, last, found)
       if (.not. found) exit
       line_number = line_number + 1
+      if (mod(line_number, lines_per_poll) == 0) then   ! a long file: Ctrl-C and SIGTERM
+        call check_cancel(status, message)
+        if (status /= SD_OK) return
+      end if
       lead = verify(text(first:last), separators(1:1)//char(9))
       if (lead == 0) cycle                                   ! blank line
       if (text(first + lead - 1:first + lead - 1) == '#') cycle   ! comment line
@@ -593,16 +605,6 @@ contains
     quoted = quoted//''''
     if (i <= len(text)) quoted = quoted//'...'
   end function excerpt
-
-  pure function lower(text) result(low)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: low
-    integer :: i
-    low = text
-    do i = 1, len(text)
-      if (text(i:i) >= 'A' .and. text(i:i) <= 'Z') low(i:i) = achar(iachar(text(i:i)) + 32)
-    end do
-  end function lower
 
   pure function upper_case(text) result(up)
     character(len=*), intent(in) :: text

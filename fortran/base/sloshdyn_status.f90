@@ -6,7 +6,7 @@ module sloshdyn_status
   use sloshdyn_text, only: num2str
   implicit none
   private
-  public :: status_name, check_real, exit_code
+  public :: status_name, check_real, check_output_count, exit_code
   public :: EXIT_SUCCESS, EXIT_OUT_OF_TOLERANCE, EXIT_USAGE, EXIT_INPUT, EXIT_FAILURE, EXIT_IO, &
             EXIT_INTERRUPTED, EXIT_TERMINATED
   public :: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED, SD_SINGULAR, SD_LAPACK_FAILED, &
@@ -105,4 +105,22 @@ contains
       message = name//' = '//num2str(value)//' is out of range: '//rule
     end if
   end subroutine check_real
+
+  !> If no earlier check failed, check that a count of outputs lies in [2, n_max] (or is 0, the
+  !> default, where default_allowed); on failure a message naming the variable and the range.
+  pure subroutine check_output_count(name, n, n_max, default_allowed, status, message)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: n, n_max
+    logical, intent(in) :: default_allowed
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+
+    if (status /= SD_OK .or. (default_allowed .and. n == 0)) return
+    if (n < 2 .or. n > n_max) then
+      status = SD_BAD_INPUT
+      message = name//' = '//num2str(n)//' is out of range: it must lie in [2, '// &
+                num2str(n_max)//']'//trim(merge(' (0: the default)', '                 ', &
+                                                 default_allowed))
+    end if
+  end subroutine check_output_count
 end module sloshdyn_status

@@ -8,26 +8,19 @@ module sloshdyn_bridge_input
 
 contains
 
-  !> Read and validate a namelist input file (the executable's reader) and return it flattened:
-  !> the model (rpar, ipar); the analysis code (1-based index into the 'analyses' names) with
-  !> analysis_values = [sigma1, kappa_min, kappa_max]; the output directory; tank(TANK_SIZE) and
-  !> ground(GROUND_SIZE) in their layouts with has_tank,
-  !> has_ground (1/0) and n_samples (the record's
-  !> length, for input_record); seismic = [t_end, n_out]; integration, steady, response and
-  !> lyapunov in their layouts; simulation = [t_end, n_out, y0(4)]; sweep = [parameter (1 rho,
-  !> 2 A, 3 frequency [Hz]), start, stop, n_points, direction (1 up, 2 down, 3 both),
-  !> carry_state (1/0), threads]; response_range = [resonance (1 3:1, 0 none), parameter, start,
-  !> stop]; chart in its layout.
-  !> study = [given (1/0), kind (1 response_map, 2 basins), workers, worker_kind (1 processes,
-  !> 2 threads), points_per_task, frequency_start, frequency_stop, n_frequencies,
-  !> amplitude_start, amplitude_stop, n_amplitudes, continuation (1 none, 2 up, 3 down, 4 both),
-  !> x1_start, x1_stop, dx1_start, dx1_stop, n_grid, tol, intensity_start, intensity_stop,
-  !> n_intensities, spectral_damping] (kind 3: fragility); study_store, study_figure,
-  !> study_scheduler, study_records the &study strings.
+  !> Read and validate a namelist input file (the executable's reader) and return it flattened,
+  !> every array in its named layout (sloshdyn_layouts): the model (rpar, ipar); the analysis
+  !> code (1-based index into the 'analyses' names) with analysis_values ('analysis'); the
+  !> output directory; tank and ground with has_tank, has_ground (1/0) and n_samples (the
+  !> record's length, for input_record); seismic, integration, steady, response, lyapunov,
+  !> simulation, sweep, response_range, chart and study; study_store, study_figure,
+  !> study_scheduler, study_records the &study strings. It releases the GIL (Python calls it one
+  !> at a time, _cancel.app_call), so that Ctrl-C and SIGTERM cancel a long scaling.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
                         has_ground, ground, n_samples, seismic, integration, steady, response, &
                         lyapunov, simulation, sweep, response_range, chart, study, study_store, &
                         study_figure, study_scheduler, study_records, status, message)
+    !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_to_arrays
     use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                                 TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
@@ -103,6 +96,7 @@ contains
 
   !> The samples of the ground-motion record of a namelist file (as read_input reads it, scaled).
   subroutine input_record(path, n, samples, status, message)
+    !f2py threadsafe
     use sloshdyn_status, only: SD_BAD_INPUT
     use sloshdyn_namelist, only: run_config, core => read_input
     use sloshdyn_ground, only: GROUND_RECORD

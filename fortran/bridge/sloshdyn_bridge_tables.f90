@@ -41,28 +41,28 @@ contains
       joined = layout_fields(list(8:))
     else
       select case (list)
-      case ('analyses');      joined = join(known_analyses)
+      case ('analyses');      joined = join(known_analyses, ',')
       case ('methods')
-        joined = join(method_names)
+        joined = join(method_names, ',')
         code = lbound(method_names, 1)
-      case ('chart_models');  joined = join(chart_models)
+      case ('chart_models');  joined = join(chart_models, ',')
       case ('chart_axes')
         joined = chart_axes()
         code = CHART_RHO
       case ('excitation_parameters')
-        joined = join(excitation_parameters)
+        joined = join(excitation_parameters, ',')
         code = PARAMETER_RHO
       case ('directions')
-        joined = join(direction_names)
+        joined = join(direction_names, ',')
         code = DIRECTION_UP
-      case ('study_kinds');   joined = join(study_kinds)
-      case ('worker_kinds');  joined = join(worker_kinds)
-      case ('continuations'); joined = join(continuation_names)
+      case ('study_kinds');   joined = join(study_kinds, ',')
+      case ('worker_kinds');  joined = join(worker_kinds, ',')
+      case ('continuations'); joined = join(continuation_names, ',')
       case ('ground_kinds')
-        joined = join(ground_kinds)
+        joined = join(ground_kinds, ',')
         code = GROUND_HARMONIC
       case ('resonances')
-        joined = join(resonances)
+        joined = join(resonances, ',')
         code = 0
       case default
         call kind_names(list, joined, code)

@@ -49,3 +49,15 @@ def cancellable(function, *args):
     if "error" in outcome:
         raise outcome["error"]
     return outcome["value"]
+
+
+#: The app layer's routines (the reader, the driver: read_input, input_record, run_input)
+#: release the GIL so that Ctrl-C and SIGTERM can cancel them, but their modules keep static
+#: string lengths (docs/architecture.md, "Studies on Dask"): one such call at a time.
+_ONE_APP_CALL_AT_A_TIME = threading.Lock()
+
+
+def app_call(function, *args):
+    """function(*args), a routine of the app layer, cancellable and one at a time."""
+    with _ONE_APP_CALL_AT_A_TIME:
+        return cancellable(function, *args)

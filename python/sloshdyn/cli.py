@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._cancel import cancellable
+from ._cancel import app_call
 from . import __version__, _core, figures, plotting, reference
 from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError, InputError,
                       SloshdynError, check_status, exit_code)
@@ -116,9 +116,6 @@ def _check_standard_output():
                         "summary would be lost") from None
 
 
-#: run_input releases the GIL (so that Ctrl-C and SIGTERM cancel it) but is not re-entrant
-_ONE_RUN_AT_A_TIME = threading.Lock()
-
 _KEPT = "files already complete are kept, none is half-written"
 
 
@@ -147,8 +144,7 @@ def run_input(path):
     except SloshdynError as exc:
         exc.reading = True
         raise
-    with _ONE_RUN_AT_A_TIME:     # the app layer's static string lengths: one call at a time
-        status, message = cancellable(_core.sloshdyn_bridge_input.run_input, os.fsencode(path))
+    status, message = app_call(_core.sloshdyn_bridge_input.run_input, os.fsencode(path))
     sys.stdout.flush()
     check_status(status, message)
     figure = _figure(inp, Path(inp.directory))

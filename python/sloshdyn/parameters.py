@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _checks, _core, _tables
+from ._cancel import app_call
 from ._errors import InputError, check_status
 from ._files import atomic_path
 
@@ -198,7 +199,7 @@ def read_namelist(path) -> Input:
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
      study, store, figure, scheduler, study_records, status,
-     message) = _core.sloshdyn_bridge_input.read_input(os.fsencode(path))
+     message) = app_call(_core.sloshdyn_bridge_input.read_input, os.fsencode(path))
     check_status(status, message)
     tank = ground_motion = None
     if has_tank:
@@ -206,8 +207,8 @@ def read_namelist(path) -> Input:
     if has_ground:
         samples = np.zeros(0)
         if n_samples > 0:
-            samples, status, message = _core.sloshdyn_bridge_input.input_record(
-                os.fsencode(path), n_samples)
+            samples, status, message = app_call(_core.sloshdyn_bridge_input.input_record,
+                                                os.fsencode(path), n_samples)
             check_status(status, message)
         ground_motion = GroundMotion._from_arrays(ground, samples.copy())
     excitation_parameters = _tables.codes("excitation_parameters")
