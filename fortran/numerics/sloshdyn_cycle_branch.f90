@@ -32,7 +32,8 @@ module sloshdyn_cycle_branch
                                    continue_branch, stop_reason_name, STOP_LAMBDA_MIN, &
                                    STOP_LAMBDA_MAX, STOP_CLOSED, STOP_MAX_POINTS
   use sloshdyn_shooting, only: periodic_problem, monodromy_matrix, period_doubling_test, &
-                               neimark_sacker_test, kind_test, locate_special_points
+                               neimark_sacker_test, kind_test, locate_special_points, &
+                               branch_data
   use sloshdyn_tables, only: SPECIAL_PERIOD_DOUBLING
   implicit none
   private
@@ -102,8 +103,7 @@ contains
     type(cycle_test) :: test
     type(continuation_options) :: opt
     real(wp), allocatable :: z(:, :), tangents(:, :), arclength(:)
-    integer :: n, m, j, point_status
-    character(len=message_len) :: point_message
+    integer :: n, m
 
     n = size(y0)
     m = n + 2
@@ -142,18 +142,7 @@ contains
                          n_points, stop_reason, status, message)
     if (status /= SD_OK .and. n_points == 0) return
 
-    do j = 1, n_points
-      call cycle_point(sys, z(:, j), points(:, j), multipliers(:, j), point_status, &
-                       point_message)
-      if (point_status /= SD_OK) then
-        if (status == SD_OK) then
-          status = point_status
-          message = 'branch point '//num2str(j)//': '//trim(point_message)
-        end if
-        n_points = j - 1
-        exit
-      end if
-    end do
+    call branch_data(z, point_data, points, multipliers, n_points, status, message)
     test%sys = sys
     call locate_special_points(sys, z, tangents, arclength, multipliers, n_points, .false., &
                                test, opt, point_data, special, n_special, status, message)

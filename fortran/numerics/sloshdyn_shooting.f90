@@ -17,8 +17,8 @@
 !>   points(:, j)      = [lambda, y0(1:n), max|y1| over the orbit, stable (1/0)]   (n + 3 rows)
 !>   multipliers(:, j) = [Re mu(1:n), Im mu(1:n)]                                   (2 n rows)
 !>   special(:, j)     = [kind (SPECIAL_*), lambda, y0(1:n), max|y1|]               (n + 3 rows)
-!> max|y1| is sampled by dense output at t = j T/64 (j = 0 .. 64 k - 1), forcing phase fixed,
-!> so simulations sampled at the same phases reproduce it exactly.
+!> max|y1| is the maximum of the integrated orbit, located on the dense output between steps
+!> (sloshdyn_ode's peak_tracker).
 module sloshdyn_shooting
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -40,7 +40,7 @@ module sloshdyn_shooting
             periodic_set_parameter, variational_system, shooting_setup, make_setup
   public :: monodromy_matrix, shooting_newton, floquet_kind, fold_test, period_doubling_test, &
             neimark_sacker_test, complex_pair_count, periodic_branch, check_setup, kind_test, &
-            branch_point_data, locate_special_points
+            branch_point_data, branch_data, locate_special_points
   public :: FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE
   public :: samples_per_period
 
@@ -386,8 +386,7 @@ contains
     type(continuation_options) :: opt
     real(wp), allocatable :: z(:, :), tangents(:, :), arclength(:), re(:), im(:)
     real(wp) :: lambda0
-    integer :: n, m, k, j, stop_reason, locate_status
-    character(len=message_len) :: locate_message
+    integer :: n, m, k, stop_reason
 
     n = size(y0)
     m = n + 1
@@ -425,17 +424,7 @@ contains
     if (status /= SD_OK .and. n_points == 0) return
 
     ! multipliers and max|y1| at every point
-    do j = 1, n_points
-      call point_data(z(:, j), points(:, j), multipliers(:, j), locate_status, locate_message)
-      if (locate_status /= SD_OK) then
-        if (status == SD_OK) then
-          status = locate_status
-          message = 'branch point '//num2str(j)//': '//trim(locate_message)
-        end if
-        n_points = j - 1
-        exit
-      end if
-    end do
+    call branch_data(z, point_data, points, multipliers, n_points, status, message)
     call locate_special_points(sys, z, tangents, arclength, multipliers, n_points, .true., &
                                test, opt, point_data, special, n_special, status, message)
 
@@ -490,6 +479,31 @@ contains
       mult(n + 1:2*n) = im
     end subroutine point_data
   end subroutine periodic_branch
+
+  !> The data of every point of a branch (point_data: its row and Floquet multipliers); a point
+  !> whose data fail ends the branch before it (n_points = its index - 1), with that failure's
+  !> message unless the branch already had one.
+  subroutine branch_data(z, point_data, points, multipliers, n_points, status, message)
+    real(wp), intent(in) :: z(:, :)
+    procedure(branch_point_data) :: point_data
+    real(wp), intent(inout) :: points(:, :), multipliers(:, :)
+    integer, intent(inout) :: n_points, status
+    character(len=message_len), intent(inout) :: message
+    integer :: j, point_status
+    character(len=message_len) :: point_message
+
+    do j = 1, n_points
+      call point_data(z(:, j), points(:, j), multipliers(:, j), point_status, point_message)
+      if (point_status /= SD_OK) then
+        if (status == SD_OK) then
+          status = point_status
+          message = 'branch point '//num2str(j)//': '//trim(point_message)
+        end if
+        n_points = j - 1
+        exit
+      end if
+    end do
+  end subroutine branch_data
 
   !> Special points between consecutive points 1..n_points of a branch (z = (x, lambda) with
   !> its tangents and arclength; multipliers(:, j) = [re; im] at point j): folds where the
