@@ -15,7 +15,8 @@ module rk_checks
   implicit none
   private
   public :: riccati, oscillator, van_der_pol, nan_beyond
-  public :: check_orders, check_stepwise_api, check_failures, check_bad_input
+  public :: check_orders, fixed_step_errors, dense_output_errors, check_stepwise_api, &
+            check_failures, check_bad_input
 
   !> y' = -a t y**2, y(0) = 1: y = 1/(1 + a t**2/2) (nonautonomous, nonlinear)
   type, extends(ode_system) :: riccati
@@ -115,6 +116,89 @@ contains
       call check_close(label//', halving '//num2str(i), orders(i), expected, 0.0_wp, tol)
     end do
   end subroutine check_orders
+
+  !> Errors at the end of fixed-step runs of n, 2n, 4n, ... steps (n = ric_steps, osc_steps): the
+  !> riccati problem to t = 1 and the forced oscillator to t = 10. One output at the end only,
+  !> so no dense stages: stages evaluations per step + f(t0), and no step rejected.
+  subroutine fixed_step_errors(method, name, ric_steps, osc_steps, stages, err_ric, err_osc)
+    integer, intent(in) :: method, ric_steps, osc_steps, stages
+    character(len=*), intent(in) :: name
+    real(wp), intent(out) :: err_ric(0:), err_osc(0:)
+    type(riccati) :: ric
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
+    real(wp) :: y1(1, 1), y2(2, 1)
+    integer :: i, status, n_steps
+    character(len=message_len) :: message
+
+    do i = 0, ubound(err_ric, 1)
+      n_steps = ric_steps*2**i
+      opt%fixed_step = 1.0_wp/n_steps
+      call integrate(method, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
+      call check_true(name//', fixed steps on riccati: '//num2str(n_steps)//' steps, none '// &
+                      'rejected', status == SD_OK .and. stats%n_accepted == n_steps .and. &
+                      stats%n_rejected == 0)
+      err_ric(i) = abs(y1(1, 1) - ric%exact(1.0_wp))
+
+      n_steps = osc_steps*2**i
+      opt%fixed_step = 10.0_wp/n_steps
+      call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, &
+                     status, message)
+      call check_true(name//', fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
+                      status == SD_OK .and. stats%n_accepted == n_steps)
+      call check_true(name//' without dense output: n_rhs = '//num2str(stages)// &
+                      ' per step + 1', stats%n_rhs == stages*n_steps + 1)
+      err_osc(i) = maxval(abs(y2(:, 1) - osc%exact(10.0_wp)))
+    end do
+  end subroutine fixed_step_errors
+
+  !> Errors of the dense output on the riccati problem with fixed steps h = h0/2**i, i = 0, 1,
+  !> ...: err_local(i) at mid-step of one step from the exact y(t0), err_global(i) the largest
+  !> at the mid-steps of a run over [0, t_end]. The interpolant must pass through both ends of
+  !> the step, and a step with dense output costs stages new evaluations.
+  subroutine dense_output_errors(method, t0, h0, t_end, stages, err_local, err_global)
+    integer, intent(in) :: method, stages
+    real(wp), intent(in) :: t0, h0, t_end
+    real(wp), intent(out) :: err_local(0:), err_global(0:)
+    class(rk_integrator), allocatable :: integ
+    type(riccati) :: ric
+    type(ode_options) :: opt
+    real(wp) :: h, t_mid, y(1)
+    integer :: i, status
+    character(len=message_len) :: message
+
+    call new_integrator(method, 0.0_wp, integ, status, message)
+    do i = 0, ubound(err_local, 1)
+      h = h0/2**i
+      opt%fixed_step = h
+      call integ%init(ric, t0, [ric%exact(t0)], t0 + h, opt, status, message)
+      call integ%step(ric, status, message)
+      call check_true('one fixed step, h = '//num2str(h), status == SD_OK .and. integ%t == t0 + h)
+      call integ%dense(t0 + h/2, y)
+      err_local(i) = abs(y(1) - ric%exact(t0 + h/2))
+      ! the interpolant passes through both ends of the step
+      call integ%dense(t0, y)
+      call check_close('dense output at the step start, h = '//num2str(h), y(1), ric%exact(t0), &
+                       0.0_wp, 1.0e-15_wp)
+      call integ%dense(t0 + h, y)
+      call check_close('dense output at the step end, h = '//num2str(h), y(1), integ%y(1), &
+                       0.0_wp, 1.0e-15_wp)
+
+      call integ%init(ric, 0.0_wp, [1.0_wp], t_end, opt, status, message)
+      err_global(i) = 0
+      do while (status == SD_OK .and. integ%t < integ%t_bound)
+        call integ%step(ric, status, message)
+        t_mid = (integ%t_old + integ%t)/2
+        call integ%dense(t_mid, y)
+        err_global(i) = max(err_global(i), abs(y(1) - ric%exact(t_mid)))
+      end do
+      call check_true('fixed steps over [0, '//num2str(t_end)//'] with dense output, h = '// &
+                      num2str(h), status == SD_OK)
+      call check_true(num2str(stages)//' new evaluations per step with dense output, h = '// &
+                      num2str(h), integ%n_rhs == stages*integ%n_accepted + 1)
+    end do
+  end subroutine dense_output_errors
 
   !> Driving a new integrator of the method step by step, reading dense output and replacing
   !> the state; integrate with outputs at t0 and a repeated time.

@@ -11,8 +11,8 @@ program test_dop853
   use sloshdyn_vern9, only: vern9_integrator
   use sloshdyn_integrator, only: integrate, chosen_method, METHOD_DOPRI5, METHOD_DOP853, &
                                  METHOD_VERN9, METHOD_AUTO
-  use rk_checks, only: riccati, oscillator, van_der_pol, check_orders, check_stepwise_api, &
-                       check_failures, check_bad_input
+  use rk_checks, only: riccati, oscillator, van_der_pol, check_orders, fixed_step_errors, &
+                       dense_output_errors, check_stepwise_api, check_failures, check_bad_input
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -24,7 +24,6 @@ program test_dop853
   call test_without_dense_output()
   call check_failures(METHOD_DOP853)
   call check_bad_input(METHOD_DOP853)
-  call test_vern9_fixed_step_order()
   call test_vern9_dense_output_order()
   call test_vern9_adaptive()
   call test_auto_choice()
@@ -32,54 +31,29 @@ program test_dop853
 
 contains
 
-  !> Fixed steps: the global error of the 8th-order solution falls like h**8. An error that
-  !> falls by 256 per halving leaves room for only two or three halvings between the
+  !> DOP853, fixed steps: the global error of the 8th-order solution falls like h**8. An error
+  !> that falls by 256 per halving leaves room for only two or three halvings between the
   !> pre-asymptotic range and rounding (~1e-15), so: the riccati problem at t = 1 with 4, 8, 16
   !> steps (errors 2e-10 ... 3e-15; with 2 steps the ratio is still 8.5), and the forced
   !> oscillator at t = 10 with 20, 40, 80 steps (8e-9 ... 1e-13).
+  !> Verner's 9(8), fixed steps: the global error of the 9th-order solution falls like h**9
+  !> (512 per halving), on the forced oscillator at t = 10 with 10, 20, 40 steps (2e-7 ... 3e-13;
+  !> the next halving reaches rounding). The observed orders approach 9 from above (9.8, 9.7:
+  !> the h**10 term still shows), so they must lie in [9, 10]; an 8th-order method (a wrong
+  !> coefficient in a 9th-order condition) would show 8. The riccati problem (2, 4, 8 steps) has
+  !> a larger pre-asymptotic excess (10.8, 10.6) and only has to show at least order 9. 16
+  !> evaluations per step without dense output.
   subroutine test_fixed_step_order()
     real(wp) :: err_ric(0:2), err_osc(0:2)
 
     call fixed_step_errors(METHOD_DOP853, 'dop853', 4, 20, 12, err_ric, err_osc)
     call check_orders('order of y, riccati', err_ric, 8.0_wp, 0.5_wp)
     call check_orders('order of y, oscillator', err_osc, 8.0_wp, 0.5_wp)
+
+    call fixed_step_errors(METHOD_VERN9, 'vern9', 2, 10, 16, err_ric, err_osc)
+    call check_orders('vern9, order of y, riccati', err_ric, 10.0_wp, 1.0_wp)
+    call check_orders('vern9, order of y, oscillator', err_osc, 9.5_wp, 0.5_wp)
   end subroutine test_fixed_step_order
-
-  !> Errors at the end of fixed-step runs of n, 2n, 4n steps (n = ric_steps, osc_steps): the
-  !> riccati problem to t = 1 and the forced oscillator to t = 10. One output at the end only,
-  !> so no dense stages: stages evaluations per step + f(t0), and no step rejected.
-  subroutine fixed_step_errors(method, name, ric_steps, osc_steps, stages, err_ric, err_osc)
-    integer, intent(in) :: method, ric_steps, osc_steps, stages
-    character(len=*), intent(in) :: name
-    real(wp), intent(out) :: err_ric(0:2), err_osc(0:2)
-    type(riccati) :: ric
-    type(oscillator) :: osc
-    type(ode_options) :: opt
-    type(ode_stats) :: stats
-    real(wp) :: y1(1, 1), y2(2, 1)
-    integer :: i, status, n_steps
-    character(len=message_len) :: message
-
-    do i = 0, 2
-      n_steps = ric_steps*2**i
-      opt%fixed_step = 1.0_wp/n_steps
-      call integrate(method, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
-      call check_true(name//', fixed steps on riccati: '//num2str(n_steps)//' steps, none '// &
-                      'rejected', status == SD_OK .and. stats%n_accepted == n_steps .and. &
-                      stats%n_rejected == 0)
-      err_ric(i) = abs(y1(1, 1) - ric%exact(1.0_wp))
-
-      n_steps = osc_steps*2**i
-      opt%fixed_step = 10.0_wp/n_steps
-      call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, &
-                     status, message)
-      call check_true(name//', fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
-                      status == SD_OK .and. stats%n_accepted == n_steps)
-      call check_true(name//' without dense output: n_rhs = '//num2str(stages)// &
-                      ' per step + 1', stats%n_rhs == stages*n_steps + 1)
-      err_osc(i) = maxval(abs(y2(:, 1) - osc%exact(10.0_wp)))
-    end do
-  end subroutine fixed_step_errors
 
   !> The continuous extension (CONTD8) has order 7: one step of size h from the exact y(t0)
   !> leaves an error C(theta) h**8 inside the step (exponent 8 = order + 1; the end point, of
@@ -90,42 +64,9 @@ contains
   !> 8th-order method loses nothing globally). Measured at mid-step, h = 0.4 ... 0.05 (the
   !> interpolation error at h = 0.05 is ~1e-14, still 100 rounding units).
   subroutine test_dense_output_order()
-    type(riccati) :: ric
-    type(dop853_integrator) :: integ
-    type(ode_options) :: opt
-    real(wp) :: h, t_mid, err_local(0:3), err_global(0:3), y(1)
-    integer :: i, status
-    character(len=message_len) :: message
+    real(wp) :: err_local(0:3), err_global(0:3)
 
-    do i = 0, 3
-      h = 0.4_wp/2**i
-      opt%fixed_step = h
-      call integ%init(ric, 0.0_wp, [1.0_wp], h, opt, status, message)
-      call integ%step(ric, status, message)
-      call check_true('one fixed step, h = '//num2str(h), status == SD_OK .and. integ%t == h)
-      call integ%dense(h/2, y)
-      err_local(i) = abs(y(1) - ric%exact(h/2))
-      ! the interpolant passes through both ends of the step
-      call integ%dense(0.0_wp, y)
-      call check_close('dense output at the step start, h = '//num2str(h), y(1), 1.0_wp, &
-                       0.0_wp, 1.0e-15_wp)
-      call integ%dense(h, y)
-      call check_close('dense output at the step end, h = '//num2str(h), y(1), integ%y(1), &
-                       0.0_wp, 1.0e-15_wp)
-
-      call integ%init(ric, 0.0_wp, [1.0_wp], 4.0_wp, opt, status, message)
-      err_global(i) = 0
-      do while (status == SD_OK .and. integ%t < integ%t_bound)
-        call integ%step(ric, status, message)
-        t_mid = (integ%t_old + integ%t)/2
-        call integ%dense(t_mid, y)
-        err_global(i) = max(err_global(i), abs(y(1) - ric%exact(t_mid)))
-      end do
-      call check_true('fixed steps over [0, 4] with dense output, h = '//num2str(h), &
-                      status == SD_OK)
-      call check_true('15 new evaluations per step with dense output, h = '//num2str(h), &
-                      integ%n_rhs == 15*integ%n_accepted + 1)
-    end do
+    call dense_output_errors(METHOD_DOP853, 0.0_wp, 0.4_wp, 4.0_wp, 15, err_local, err_global)
     call check_orders('dense output at mid-step, local error exponent (order 7 + 1)', &
                       err_local, 8.0_wp, 0.5_wp)
     call check_orders('dense output at mid-steps, global error exponent', err_global, &
@@ -258,21 +199,6 @@ contains
     call integ%dense((integ%t_old + integ%t)/2, y)
     call check_true('dense_output = .false.: NaN inside the step', all(ieee_is_nan(y)))
   end subroutine test_without_dense_output
-
-  !> Verner's 9(8), fixed steps: the global error of the 9th-order solution falls like h**9
-  !> (512 per halving), on the forced oscillator at t = 10 with 10, 20, 40 steps (2e-7 ... 3e-13;
-  !> the next halving reaches rounding). The observed orders approach 9 from above (9.8, 9.7:
-  !> the h**10 term still shows), so they must lie in [9, 10]; an 8th-order method (a wrong
-  !> coefficient in a 9th-order condition) would show 8. The riccati problem (2, 4, 8 steps) has
-  !> a larger pre-asymptotic excess (10.8, 10.6) and only has to show at least order 9. 16
-  !> evaluations per step without dense output.
-  subroutine test_vern9_fixed_step_order()
-    real(wp) :: err_ric(0:2), err_osc(0:2)
-
-    call fixed_step_errors(METHOD_VERN9, 'vern9', 2, 10, 16, err_ric, err_osc)
-    call check_orders('vern9, order of y, riccati', err_ric, 10.0_wp, 1.0_wp)
-    call check_orders('vern9, order of y, oscillator', err_osc, 9.5_wp, 0.5_wp)
-  end subroutine test_vern9_fixed_step_order
 
   !> Verner's 8th-order interpolant: one step from the exact y(t0) leaves an error C(theta) h**9
   !> inside the step (exponent = order + 1), measured at mid-step for h = 0.8 ... 0.2 on the

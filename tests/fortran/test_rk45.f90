@@ -7,8 +7,8 @@ program test_rk45
   use sloshdyn_ode, only: ode_options, ode_stats, linear_observation, peak_tracker
   use sloshdyn_dopri5, only: dopri5_integrator
   use sloshdyn_integrator, only: integrate, METHOD_DOPRI5
-  use rk_checks, only: riccati, oscillator, check_orders, check_stepwise_api, check_failures, &
-                       check_bad_input
+  use rk_checks, only: riccati, oscillator, check_orders, fixed_step_errors, dense_output_errors, &
+                       check_stepwise_api, check_failures, check_bad_input
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -28,31 +28,9 @@ contains
   !> Fixed steps: the global error of the 5th-order solution falls like h**5, on the riccati
   !> problem over [0, 1] (h = 0.2 ... 0.0125) and the forced oscillator over [0, 10].
   subroutine test_fixed_step_order()
-    type(riccati) :: ric
-    type(oscillator) :: osc
-    type(ode_options) :: opt
-    type(ode_stats) :: stats
-    real(wp) :: err_ric(0:n_halvings), err_osc(0:n_halvings), y1(1, 1), y2(2, 1)
-    integer :: i, status, n_steps
-    character(len=message_len) :: message
+    real(wp) :: err_ric(0:n_halvings), err_osc(0:n_halvings)
 
-    do i = 0, n_halvings
-      n_steps = 5*2**i
-      opt%fixed_step = 1.0_wp/n_steps
-      call integrate(METHOD_DOPRI5, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
-      call check_true('fixed steps on riccati: '//num2str(n_steps)//' steps, none rejected', &
-                      status == SD_OK .and. stats%n_accepted == n_steps .and. &
-                      stats%n_rejected == 0)
-      err_ric(i) = abs(y1(1, 1) - ric%exact(1.0_wp))
-
-      n_steps = 20*2**i
-      opt%fixed_step = 10.0_wp/n_steps
-      call integrate(METHOD_DOPRI5, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, status, &
-                          message)
-      call check_true('fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
-                      status == SD_OK .and. stats%n_accepted == n_steps)
-      err_osc(i) = maxval(abs(y2(:, 1) - osc%exact(10.0_wp)))
-    end do
+    call fixed_step_errors(METHOD_DOPRI5, 'rk45', 5, 20, 6, err_ric, err_osc)
     call check_orders('order of y, riccati', err_ric, 5.0_wp, 0.3_wp)
     call check_orders('order of y, oscillator', err_osc, 5.0_wp, 0.3_wp)
   end subroutine test_fixed_step_order
@@ -64,42 +42,9 @@ contains
   !> interior points is O(h**5) + O(h**5): exponent 5 again, not 4.
   !> t0 = 1.5 because at t0 = 0 the h**5 term of this problem vanishes (exponent 6 seen).
   subroutine test_dense_output_order()
-    type(riccati) :: ric
-    type(dopri5_integrator) :: integ
-    type(ode_options) :: opt
-    real(wp), parameter :: t0 = 1.5_wp
-    real(wp) :: h, t_mid, err_local(0:n_halvings), err_global(0:n_halvings), y(1)
-    integer :: i, status
-    character(len=message_len) :: message
+    real(wp) :: err_local(0:n_halvings), err_global(0:n_halvings)
 
-    do i = 0, n_halvings
-      h = 0.2_wp/2**i
-      opt%fixed_step = h
-      call integ%init(ric, t0, [ric%exact(t0)], t0 + h, opt, status, message)
-      call integ%step(ric, status, message)
-      call check_true('one fixed step, h = '//num2str(h), status == SD_OK .and. integ%t == t0 + h)
-      call integ%dense(t0 + h/2, y)
-      err_local(i) = abs(y(1) - ric%exact(t0 + h/2))
-      ! the interpolant passes through both ends of the step
-      call integ%dense(t0, y)
-      call check_close('dense output at the step start, h = '//num2str(h), y(1), ric%exact(t0), &
-                       0.0_wp, 1.0e-15_wp)
-      call integ%dense(t0 + h, y)
-      call check_close('dense output at the step end, h = '//num2str(h), y(1), integ%y(1), &
-                       0.0_wp, 1.0e-15_wp)
-
-      opt%fixed_step = 0.2_wp/2**i
-      call integ%init(ric, 0.0_wp, [1.0_wp], 3.0_wp, opt, status, message)
-      err_global(i) = 0
-      do while (status == SD_OK .and. integ%t < integ%t_bound)
-        call integ%step(ric, status, message)
-        t_mid = (integ%t_old + integ%t)/2
-        call integ%dense(t_mid, y)
-        err_global(i) = max(err_global(i), abs(y(1) - ric%exact(t_mid)))
-      end do
-      call check_true('fixed steps over [0, 3] with dense output, h = '// &
-                      num2str(opt%fixed_step), status == SD_OK)
-    end do
+    call dense_output_errors(METHOD_DOPRI5, 1.5_wp, 0.2_wp, 3.0_wp, 6, err_local, err_global)
     call check_orders('dense output at mid-step, local error exponent (order 4 + 1)', &
                       err_local, 5.0_wp, 0.4_wp)
     call check_orders('dense output at mid-steps, global error exponent', err_global, &
