@@ -1,11 +1,12 @@
 !> What the tests of bifurcation curves share (test_bifurcation, test_orbit_chart): the options
-!> of a curve in a parameter box, and a report of a traced curve on standard output.
+!> of a curve in a parameter box, a report of a traced curve on standard output, and its
+!> codimension-2 points of a kind.
 module curve_checks
   use sloshdyn_kinds, only: wp
   use sloshdyn_bifurcation, only: curve_options, bifurcation_curve, curve_end_name, codim2_name
   implicit none
   private
-  public :: box, report
+  public :: box, report, find_codim2
 
 contains
 
@@ -19,6 +20,27 @@ contains
     opt%continuation%ds = ds
     opt%continuation%ds_max = ds_max
   end function box
+
+  !> The curve's codimension-2 points of a kind: how many (result), the first one's column of
+  !> the curve (column) and its place in curve%codim2 (first); 0 when there is none.
+  integer function find_codim2(curve, kind, column, first) result(count)
+    type(bifurcation_curve), intent(in) :: curve
+    integer, intent(in) :: kind
+    integer, intent(out), optional :: column, first
+    integer :: i, first_i
+    count = 0
+    first_i = 0
+    do i = 1, curve%n_codim2
+      if (curve%codim2(i)%kind /= kind) cycle
+      count = count + 1
+      if (first_i == 0) first_i = i
+    end do
+    if (present(first)) first = first_i
+    if (present(column)) then
+      column = 0
+      if (first_i > 0) column = curve%codim2(first_i)%index
+    end if
+  end function find_codim2
 
   !> The number of points, the ends, completeness and message of a curve, and its
   !> codimension-2 points.

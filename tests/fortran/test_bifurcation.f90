@@ -369,7 +369,7 @@ program test_bifurcation
                                   CODIM2_ZH, CODIM2_GH, END_BOX, END_BT, END_MAX_POINTS, &
                                   END_CLOSED, END_START, END_X_MAX, END_FAILED
   use bifurcation_test_fields
-  use curve_checks, only: box, report
+  use curve_checks, only: box, report, find_codim2
   use checks, only: check_close, check_true, finish
   implicit none
   !> the continuation steps of the curves traced in a box
@@ -390,21 +390,6 @@ program test_bifurcation
   call finish()
 
 contains
-
-  !> The curve's codimension-2 points of a kind: how many, and the first one's column.
-  integer function find_codim2(curve, kind, column) result(found)
-    type(bifurcation_curve), intent(in) :: curve
-    integer, intent(in) :: kind
-    integer, intent(out) :: column
-    integer :: i
-    found = 0
-    column = 0
-    do i = 1, curve%n_codim2
-      if (curve%codim2(i)%kind /= kind) cycle
-      found = found + 1
-      if (column == 0) column = curve%codim2(i)%index
-    end do
-  end function find_codim2
 
   !> l1 of z' = (b + i omega) z + l z|z|^2 at b = 0: 2 l/omega (unit eigenvector).
   subroutine test_hopf_normal_form()

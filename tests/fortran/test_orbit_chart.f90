@@ -235,7 +235,7 @@ program test_orbit_chart
   use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_NEIMARK_SACKER, SPECIAL_BRANCH_POINT
   use sloshdyn_orbit_chart, only: tank_orbit_map, orbit_chart_options, make_orbit_map, &
                                   orbit_curve_from_special, orbit_neimark_sacker_curve
-  use curve_checks, only: box, report
+  use curve_checks, only: box, report, find_codim2
   use checks, only: check_close, check_true, finish
   implicit none
   !> the continuation steps of the curves traced in a box
@@ -266,21 +266,6 @@ program test_orbit_chart
 
 contains
 
-  !> The column of the first codimension-2 point of the kind (0 if none); count = how many.
-  integer function find_codim2(curve, kind, count) result(column)
-    type(bifurcation_curve), intent(in) :: curve
-    integer, intent(in) :: kind
-    integer, intent(out) :: count
-    integer :: i
-    column = 0
-    count = 0
-    do i = 1, curve%n_codim2
-      if (curve%codim2(i)%kind /= kind) cycle
-      count = count + 1
-      if (column == 0) column = i
-    end do
-  end function find_codim2
-
   !> Check that the curve has exactly one codimension-2 point of the kind, at p_exact (tol)
   !> with the angle theta_exact (tol).
   subroutine check_codim2(label, curve, kind, p_exact, theta_exact, tol)
@@ -289,7 +274,7 @@ contains
     integer, intent(in) :: kind
     real(wp), intent(in) :: p_exact(2), theta_exact, tol
     integer :: i, count
-    i = find_codim2(curve, kind, count)
+    count = find_codim2(curve, kind, first=i)
     call check_true(label//': one '//codim2_name(kind)//' point', count == 1)
     if (i == 0) return
     print '(a, 2es10.2, a, es10.2)', '    '//label//': '//codim2_name(kind)// &
@@ -919,7 +904,7 @@ contains
     call check_true('Fig 12 fold curve: one curve through both folds, its crossings of A = '// &
                     '7.5e-4 are the one-parameter folds (3e-5 in rho)', status == SD_OK .and. &
                     n_found == n_folds .and. distance <= 3.0e-5_wp)
-    i = find_codim2(curve, CODIM2_CUSP, count)
+    count = find_codim2(curve, CODIM2_CUSP, first=i)
     call check_true('Fig 12 fold curve: the fold pair is born at one cusp of orbits', count == 1)
     if (i > 0) then
       print '(a, f12.8, a, es14.6, a, 2es11.3)', '    cusp of orbits at rho = ', &
