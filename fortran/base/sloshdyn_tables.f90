@@ -183,6 +183,9 @@ contains
       header = summary_columns
     case ('poincare')
       header = 'tau,x1,dx1,x2,dx2'
+    case ('study_orbit')
+      header = 'found,periods,attempts,y1,y2,y3,y4,re_mu1,re_mu2,re_mu3,re_mu4,im_mu1,im_mu2,'// &
+               'im_mu3,im_mu4,max_mu'
     case ('response')
       header = point_columns
     case ('special_points')

@@ -9,15 +9,6 @@ module sloshdyn_bridge_seismic
 
 contains
 
-  !> The tank's defaults (tank_t).
-  subroutine tank_defaults(tank)
-    use sloshdyn_layouts, only: TANK_SIZE, from_tank
-    use sloshdyn_vessel, only: tank_t
-    real(c_double), intent(out) :: tank(TANK_SIZE)
-    type(tank_t) :: defaults
-    tank = from_tank(defaults)
-  end subroutine tank_defaults
-
   !> The tank's properties (the 'tank_si' table's row) and its dimensionless model.
   subroutine tank_properties(tank, row, rpar, ipar, status, message)
     !f2py threadsafe

@@ -12,7 +12,7 @@ program sloshdyn_bridge_sizes
                              CHART_END_ROWS, CHART_GRID_ROWS, TANK_SI_SIZE, CODES_COLUMNS, &
                              CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
-                              TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
+                              TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
                               ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
@@ -46,7 +46,8 @@ program sloshdyn_bridge_sizes
   call define('lyapunov_size', LYAPUNOV_SIZE)
   call define('tank_size', TANK_SIZE)
   call define('ground_size', GROUND_SIZE)
-  call define('chart_settings_size', CHART_SETTINGS_SIZE)
+  call define('chart_size', CHART_SIZE)
+  call define('chart_range_size', CHART_RANGE_SIZE)
   call define('study_size', STUDY_SIZE)
   call define('sweep_size', SWEEP_SIZE)
   call define('simulation_size', SIMULATION_SIZE)

@@ -15,10 +15,10 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._errors import check_status
-from .parameters import Parameters, convert_fields
+from ._settings import settings
+from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_charts
-_DEFAULTS = _tables.unpack("chart", _bridge.chart_defaults())
 AXES = _tables.names("chart_axes")[0]             #: the chart parameters: rho, A, gamma, kappa
 MODELS = _tables.names("chart_models")[0]         #: 'slow_flow_3:1', 'slow_flow_nonresonant'
 CURVE_KINDS = _tables.codes("curve")              #: {1: 'fold', 2: 'hopf', ...}
@@ -89,24 +89,10 @@ class StabilityChart:
         return rho * p["omega"] / (2 * math.pi), acceleration / scale
 
 
-@dataclass(frozen=True)
+@settings("chart")
 class Chart:
-    """Settings of a stability chart's grid and curves (&chart), with the core's defaults. The
-    grid has n_x by n_y cells (their midpoints); the one-parameter runs in x at n_y values of
-    y, with n_scan parameter values searched and at most max_points points each, seed at most
-    max_curves curves. brute_force_starts > 0 integrates the slow flow from that many starts
-    in every cell and counts the stable steady states reached (a small basin may be missed; it
-    never finds more than there are)."""
-
-    n_x: int = int(_DEFAULTS["n_x"])
-    n_y: int = int(_DEFAULTS["n_y"])
-    n_scan: int = int(_DEFAULTS["n_scan"])
-    max_points: int = int(_DEFAULTS["max_points"])
-    max_curves: int = int(_DEFAULTS["max_curves"])
-    brute_force_starts: int = 0
-
-    def __post_init__(self):
-        convert_fields(self)
+    """Settings of a stability chart's grid and curves (&chart): the grid has n_x by n_y cells
+    (their midpoints); the one-parameter runs in x at n_y values of y seed the curves."""
 
 
 def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
@@ -127,20 +113,18 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
     (x_min, x_max), (y_min, y_max) = (_checks.interval("x_range", x_range),
                                       _checks.interval("y_range", y_range))
     threads, capacity = _checks.integer("threads", threads), _checks.integer("capacity", capacity)
-    n_x, n_y, n_scan, max_points, max_curves, brute_force_starts = (
-        chart.n_x, chart.n_y, chart.n_scan, chart.max_points, chart.max_curves,
-        chart.brute_force_starts)
+    n_x, n_y, max_curves = chart.n_x, chart.n_y, chart.max_curves
     _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
     _checks.output_size("max_curves", 10 * max(max_curves, 1), len(_tables.columns("chart_codim2")))
     _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))
-    settings = _tables.pack("chart", {
+    chart_range = _tables.pack("chart_range", {
         "model": _tables.code("chart_models", model), "x": _tables.code("chart_axes", x),
         "y": _tables.code("chart_axes", y), "x_min": x_min, "x_max": x_max, "y_min": y_min,
-        "y_max": y_max, "n_x": n_x, "n_y": n_y, "n_scan": n_scan, "max_points": max_points,
-        "max_curves": max_curves, "brute_force_starts": brute_force_starts, "threads": threads})
+        "y_max": y_max, "threads": threads})
     n_cells = max(n_x, 1) * max(n_y, 1)
     (curves, codim2, ends, grid, sizes, complete, notes, status,
-     message) = _bridge.stability_chart(*params.array(), settings, max(capacity, 1),
+     message) = _bridge.stability_chart(*params.array(), chart.array(), chart_range,
+                                        max(capacity, 1),
                                         10 * max(max_curves, 1), max(max_curves, 1), n_cells)
     if status == 9:   # SD_CAPACITY: name the Python argument that sets the room
         message = (_tables._text(message) + f"; give capacity >= {int(sizes[0])} (now "

@@ -15,42 +15,22 @@ from ._cancel import cancellable
 from ._errors import check_status
 from .asymptotics import Continuation, continuation_range, frequency_response
 from .model import linear_modes
-from .parameters import Parameters, convert_fields
+from ._settings import settings
+from .parameters import Parameters
 from .simulation import Integration, Steady, steady_state
 
 _bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
-_SHOOTING = _tables.defaults()["shooting"]
-_LYAPUNOV = _tables.defaults()["lyapunov"]
 
 
-@dataclass(frozen=True)
+@settings("shooting")
 class Shooting:
-    """Settings of the Newton shooting for a periodic orbit, with the core's defaults."""
-
-    newton_tol: float = float(_SHOOTING["newton_tol"])   #: on the orbit's state, relative
-    max_iter: int = int(_SHOOTING["max_iter"])           #: Newton iterations at most
-
-    def __post_init__(self):
-        convert_fields(self)
+    """Settings of the Newton shooting for a periodic orbit."""
 
 
-@dataclass(frozen=True)
+@settings("lyapunov")
 class Lyapunov:
-    """Settings of the largest Lyapunov exponent (&lyapunov), in forcing periods: the fields of
-    the core's layout, in order, with its defaults."""
-
-    transient_periods: int = int(_LYAPUNOV["transient_periods"])   #: integrated before measuring
-    n_periods: int = int(_LYAPUNOV["n_periods"])   #: measured; a multiple of renormalise_every
-    renormalise_every: int = int(_LYAPUNOV["renormalise_every"])   #: periods between
-    #: renormalisations of the tangent vectors
-
-    def __post_init__(self):
-        convert_fields(self)
-
-    def array(self, spectrum=False):
-        """The core's lyapunov layout (spectrum: the four exponents, not the largest only)."""
-        return _tables.pack("lyapunov", {**dataclasses.asdict(self), "spectrum": int(spectrum)})
+    """Settings of the Lyapunov exponents (&lyapunov), in forcing periods."""
 
 
 @dataclass(frozen=True)

@@ -53,7 +53,7 @@ def lyapunov_spectrum(params: Parameters, y0=None, *, lyapunov: Lyapunov = Lyapu
     y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
     blocks = max(lyapunov.n_periods // max(lyapunov.renormalise_every, 1), 1)
     exponents, history, dimension, status, message = cancellable(
-        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(spectrum=True), integration.array(),
+        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(), integration.array(),
         blocks)
     check_status(status, message, "Lyapunov spectrum")
     periods = lyapunov.renormalise_every * np.arange(1, blocks + 1, dtype=float)

@@ -136,7 +136,7 @@ def test_both_front_doors_give_the_same_chart(exe, tmp_path, fig12_chart):
     assert [r["n_stable"] for r in grid] == list(fig12_chart.grid["n_stable"])
     again = sloshdyn.charts.chart_from_files(tmp_path / "out")
     assert [q.kind for q in again.codim2_points] == [q.kind for q in fig12_chart.codim2_points]
-    assert sloshdyn.read_namelist(tmp_path / "input.nml").chart["x_range"] == RHO
+    assert sloshdyn.read_namelist(tmp_path / "input.nml").chart_range["x_range"] == RHO
 
 
 @pytest.mark.parametrize("change,words", [

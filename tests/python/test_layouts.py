@@ -12,7 +12,9 @@ import pytest
 import sloshdyn
 from sloshdyn import _core, _tables, charts
 from sloshdyn.asymptotics import Continuation
+from sloshdyn.charts import Chart
 from sloshdyn.parameters import Parameters, TankPendulum
+from sloshdyn.periodic import Lyapunov, Shooting
 from sloshdyn.seismic import Tank
 from sloshdyn.simulation import METHODS, Integration, Steady
 
@@ -33,7 +35,7 @@ def _read(tmp_path, text):
 
 
 def test_every_layout_names_distinct_fields():
-    for name in _tables.LAYOUTS:
+    for name in _tables.layouts():
         fields = _tables.layout(name)
         assert fields and all(fields), name
         assert len(set(fields)) == len(fields), name
@@ -48,21 +50,21 @@ def test_an_unknown_layout_or_code_list_is_an_error():
 
 def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     """Every array the core returns has as many entries as its layout has names."""
-    model, model_integers, *settings = _core.sloshdyn_bridge_tables.defaults()
-    arrays = {"model": model, "model_integers": model_integers,
-              **dict(zip(("integration", "steady", "response", "lyapunov", "shooting"), settings)),
-              "tank": _seismic.tank_defaults(),
-              "chart": _core.sloshdyn_bridge_charts.chart_defaults()}
+    arrays = {name: _core.sloshdyn_bridge_tables.layout_defaults(name, len(_tables.layout(name)))[0]
+              for name in ("model", "model_integers", "integration", "steady", "response",
+                           "lyapunov", "shooting", "tank", "chart")}
     path = tmp_path / "input.nml"
     path.write_text(MODEL + "&analysis kind = 'stability_chart' /\n")
     (rpar, ipar, _, analysis, _, _, tank, _, ground, _, seismic, integration, steady, response,
-     lyapunov, simulation, sweep, response_range, chart, study, *_) = _input.read_input(str(path))
-    arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
-                  sweep=sweep, response_range=response_range, study=study)
+     lyapunov, simulation, sweep, response_range, chart, chart_range, study,
+     *_) = _input.read_input(str(path))
     for name, array in (("model", rpar), ("model_integers", ipar), ("tank", tank),
                         ("integration", integration), ("steady", steady),
                         ("response", response), ("lyapunov", lyapunov), ("chart", chart)):
         assert len(array) == len(arrays[name]), name
+    arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
+                  sweep=sweep, response_range=response_range, chart_range=chart_range,
+                  study=study)
     pendulum, status, _ = _model.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
     groups, status, _ = _model.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
     *_, routh, _, _ = _model.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
@@ -70,8 +72,15 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     arrays.update(pendulum=pendulum, groups=groups, routh=routh)
     for name, array in arrays.items():
         assert len(array) == len(_tables.layout(name)), name
-    assert set(_tables.LAYOUTS) - set(arrays) <= {"physical", "continuation", "cycle_continuation",
-                                                  "orbit_info"}
+    assert set(_tables.layouts()) - set(arrays) <= {"physical", "continuation",
+                                                    "cycle_continuation", "orbit_info"}
+
+
+def test_a_layout_without_defaults_or_of_another_size_is_refused():
+    with pytest.raises(sloshdyn.SloshdynError, match="no defaults for 'pendulum'"):
+        _tables.defaults("pendulum")
+    _, status, message = _core.sloshdyn_bridge_tables.layout_defaults("steady", 3)
+    assert status != 0 and "has 7 fields, not 3" in _tables._text(message)
 
 
 def test_an_input_array_of_another_size_is_refused():
@@ -81,26 +90,60 @@ def test_an_input_array_of_another_size_is_refused():
             _model.dimensionless_groups(np.ones(n))
 
 
-@pytest.mark.parametrize("cls, layout", [(Integration, "integration"), (Steady, "steady"),
-                                         (Continuation, "response"), (Tank, "tank"),
-                                         (TankPendulum, "pendulum")])
+#: every settings class and the layout it is made from
+SETTINGS = [(Integration, "integration"), (Steady, "steady"), (Continuation, "response"),
+            (Lyapunov, "lyapunov"), (Shooting, "shooting"), (Chart, "chart")]
+
+
+@pytest.mark.parametrize("cls, layout", SETTINGS + [(Tank, "tank"), (TankPendulum, "pendulum")])
 def test_settings_classes_have_the_fields_of_their_layouts(cls, layout):
     assert tuple(f.name for f in dataclasses.fields(cls)) == _tables.layout(layout)
 
 
-def test_settings_classes_have_the_cores_defaults():
-    defaults = _tables.defaults()
-    for cls, layout in ((Integration, "integration"), (Steady, "steady"),
-                        (Continuation, "response")):
-        assert dict(zip(_tables.layout(layout), cls().array())) == pytest.approx(
-            {k: float(v) for k, v in defaults[layout].items()}), layout
-    tank = _tables.unpack("tank", _seismic.tank_defaults())
+def test_every_settings_class_is_made_from_a_layout():
+    """Every public settings class (a dataclass built from its defaults alone) is one of
+    SETTINGS, so none keeps its own copy of a layout's fields."""
+    public = {c for c in vars(sloshdyn).values() if isinstance(c, type)
+              and dataclasses.is_dataclass(c) and all(
+                  f.default is not dataclasses.MISSING for f in dataclasses.fields(c))}
+    assert public == {cls for cls, _ in SETTINGS}
+    assert all(cls.layout == layout for cls, layout in SETTINGS)
+
+
+@pytest.mark.parametrize("cls, layout", SETTINGS)
+def test_settings_classes_have_the_cores_kinds_defaults_and_docs(cls, layout):
+    """The type, default and help of every field are the core's, and the array of the defaults
+    is the core's array of its option type's defaults, entry for entry."""
+    kinds, docs = _tables.kinds(layout), _tables.docs(layout)
+    types = {"real": "float", "integer": "int", "flag": "bool"}
+    for f in dataclasses.fields(cls):
+        assert f.type == types.get(kinds[f.name], "str"), f.name
+        assert f.kw_only, f.name
+        if docs[f.name]:
+            assert docs[f.name] in " ".join(cls.__doc__.split()), f.name
+    assert cls.__dataclass_params__.frozen
+    core, status, _ = _core.sloshdyn_bridge_tables.layout_defaults(layout, len(kinds))
+    assert status == 0 and cls().array().tolist() == core.tolist()
+    assert cls.from_array(core) == cls()
+
+
+def test_a_settings_field_of_a_code_list_takes_its_names_only():
+    with pytest.raises(sloshdyn.InputError, match="method = 'rk4' is not valid: it must be one "
+                       "of 'rk45', 'dop853', 'vern9', 'auto'"):
+        Integration(method="rk4")
+    with pytest.raises(TypeError):
+        Integration(1e-6)           # keyword-only
+
+
+def test_tank_has_the_cores_defaults():
+    tank = _tables.defaults("tank")
     for f in dataclasses.fields(Tank):
         if f.default is not dataclasses.MISSING:
             assert f.default == tank[f.name], f.name
     model = Parameters(s1=1.5, mu1=0.5, kappa=2.0, theta0=0.5)
+    defaults = {**_tables.defaults("model"), **_tables.defaults("model_integers")}
     for name in ("beta", "gamma", "delta", "zeta", "n", "p"):
-        assert getattr(model, name) == defaults["model"][name], name
+        assert getattr(model, name) == defaults[name], name
 
 
 def test_parameters_carry_the_model_layouts():
@@ -116,7 +159,7 @@ def test_parameters_carry_the_model_layouts():
 
 
 def test_every_code_list_of_the_core_is_named_and_used_by_python():
-    for list_name in _tables.CODE_LISTS:
+    for list_name in _tables.code_lists():
         items, _ = _tables.names(list_name)
         assert items and all(items) and len(set(items)) == len(items), list_name
     assert charts.AXES == _tables.names("chart_axes")[0]
@@ -136,7 +179,7 @@ def _chart_nml(model, x, y):
 def test_chart_kappa_reads_through_python(tmp_path):
     """The defect of issue 21: a valid file with &chart y = 'kappa' made read_namelist raise
     IndexError (Python kept its own list of axes without kappa)."""
-    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", "rho", "kappa")).chart
+    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", "rho", "kappa")).chart_range
     assert chart["x"] == "rho" and chart["y"] == "kappa"
     assert chart["y_range"] == AXIS_RANGE["kappa"]
 
@@ -147,22 +190,22 @@ def test_every_chart_axis_reads_through_python(tmp_path, x, y):
     assert set(AXIS_RANGE) == set(_tables.names("chart_axes")[0])
     if x == y:
         return
-    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", x, y)).chart
+    inp = _read(tmp_path, _chart_nml("slow_flow_3:1", x, y))
+    chart = inp.chart_range
     assert (chart["x"], chart["y"]) == (x, y)
     assert (chart["x_range"], chart["y_range"]) == (AXIS_RANGE[x], AXIS_RANGE[y])
-    assert (chart["n_x"], chart["n_y"]) == (5, 6)
+    assert inp.chart == Chart(n_x=5, n_y=6)
 
 
 @pytest.mark.parametrize("model", _tables.names("chart_models")[0])
 def test_every_chart_model_reads_through_python(tmp_path, model):
-    assert _read(tmp_path, _chart_nml(model, "rho", "A")).chart["model"] == model
+    assert _read(tmp_path, _chart_nml(model, "rho", "A")).chart_range["model"] == model
 
 
 @pytest.mark.parametrize("method", _tables.names("methods")[0])
 def test_every_method_reads_through_python(tmp_path, method):
     inp = _read(tmp_path, MODEL + f"&integration method = '{method}' /\n")
-    assert inp.integration["method"] == method
-    assert Integration(**inp.integration).method == method
+    assert inp.integration == Integration(method=method)
 
 
 @pytest.mark.parametrize("direction", _tables.names("directions")[0])
@@ -190,10 +233,11 @@ def test_every_resonance_reads_through_python(tmp_path, resonance, parameter):
                 f"parameter = '{parameter}', start = 0.49, stop = 0.53, n_scan = 7, "
                 "n_amplitudes = 5, n_phases = 3, amplitude_min = 1e-4, amplitude_max = 2.0, "
                 "ds = 0.002, ds_min = 1e-9, ds_max = 0.02, x_scale = 2.0, max_points = 900 /\n")
-    assert inp.response == {"resonance": resonance, "parameter": parameter, "start": 0.49,
-                            "stop": 0.53, "n_scan": 7, "n_amplitudes": 5, "n_phases": 3,
-                            "amplitude_min": 1e-4, "amplitude_max": 2.0, "ds": 0.002,
-                            "ds_min": 1e-9, "ds_max": 0.02, "x_scale": 2.0, "max_points": 900}
+    assert inp.response_range == {"resonance": resonance, "parameter": parameter,
+                                  "start": 0.49, "stop": 0.53}
+    assert inp.response == Continuation(n_scan=7, n_amplitudes=5, n_phases=3,
+                                        amplitude_min=1e-4, amplitude_max=2.0, ds=0.002,
+                                        ds_min=1e-9, ds_max=0.02, x_scale=2.0, max_points=900)
 
 
 @pytest.mark.parametrize("continuation", _tables.names("continuations")[0])
@@ -246,15 +290,15 @@ def test_settings_groups_read_through_python_by_name(tmp_path):
         "&lyapunov transient_periods = 21, n_periods = 301, renormalise_every = 3, "
         "spectrum = .true. /\n"
         "&simulation t_end = 12.5, n_out = 77, y0 = 0.1, 0.2, 0.3, 0.4 /\n"))
-    assert inp.integration == {"rtol": 1.5e-7, "atol": 2.5e-9, "h_initial": 0.03, "h_max": 0.4,
-                               "h_min": 5e-12, "max_steps": 123456, "method": "vern9"}
-    assert inp.steady == {"transient_periods": 11.0, "settle_tol": 2e-6,
-                          "max_transient_periods": 333.0, "window_periods": 17,
-                          "samples_per_period": 41, "periodic_tol": 3e-5, "shooting": False}
-    assert inp.lyapunov == {"transient_periods": 21, "n_periods": 301, "renormalise_every": 3,
-                            "spectrum": True}
+    assert inp.integration == Integration(rtol=1.5e-7, atol=2.5e-9, h_initial=0.03, h_max=0.4,
+                                          h_min=5e-12, max_steps=123456, method="vern9")
+    assert inp.steady == Steady(transient_periods=11.0, settle_tol=2e-6,
+                                max_transient_periods=333.0, window_periods=17,
+                                samples_per_period=41, periodic_tol=3e-5, shooting=False)
+    assert inp.lyapunov == Lyapunov(transient_periods=21, n_periods=301, renormalise_every=3,
+                                    spectrum=True)
     assert inp.simulation == {"t_end": 12.5, "n_out": 77, "y0": [0.1, 0.2, 0.3, 0.4]}
-    assert Steady(**inp.steady).array().tolist() == [11, 2e-6, 333, 17, 41, 3e-5, 0]
+    assert inp.steady.array().tolist() == [11, 2e-6, 333, 17, 41, 3e-5, 0]
 
 
 def test_a_tank_and_its_ground_motion_read_through_python_by_name(tmp_path):
