@@ -15,7 +15,7 @@ module sloshdyn_layouts
   use sloshdyn_model, only: real_param_names, model_t, model_to_arrays, n_real_params, &
                             n_int_params
   use sloshdyn_ode, only: ode_options, ode_stats
-  use sloshdyn_continuation, only: continuation_options
+  use sloshdyn_continuation, only: continuation_options, newton_options
   use sloshdyn_simulation, only: steady_options
   use sloshdyn_response, only: response_options
   use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
@@ -30,7 +30,7 @@ module sloshdyn_layouts
   private
   public :: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, TANK_SIZE, GROUND_SIZE, &
             CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, SWEEP_SIZE, SIMULATION_SIZE, &
-            RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
+            RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
             PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
   public :: chart_axes, CHART_RHO
@@ -38,7 +38,7 @@ module sloshdyn_layouts
             excitation_parameters, ground_kinds, resonances
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
   public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
-  public :: to_continuation, to_cycle_continuation
+  public :: to_continuation
   public :: to_tank, from_tank, to_ground, from_ground, to_chart, from_chart, from_chart_range
   public :: from_analysis, from_simulation, from_sweep, from_response_range, from_seismic, &
             from_study
@@ -51,6 +51,12 @@ module sloshdyn_layouts
     character(len=32) :: kind = 'real'
     character(len=160) :: doc = ''
   end type field_t
+  !> Newton's settings of a continuation (sloshdyn_continuation's newton_options): the start,
+  !> the corrector and the special points
+  type(field_t), parameter :: newton_fields(*) = [ &
+    field_t('x_tol', doc='Newton converges at a step <= x_tol (1 + max|x|) ...'), &
+    field_t('f_tol', doc='... and a residual max|F| <= f_tol'), &
+    field_t('max_iter', 'integer', 'Newton iterations at most')]
   !> &integration (sloshdyn_ode's ode_options and the method code of sloshdyn_integrator)
   type(field_t), parameter :: integration_fields(*) = [ &
     field_t('rtol', doc='relative tolerance of the step-size control'), &
@@ -86,7 +92,8 @@ module sloshdyn_layouts
     field_t('ds_min', doc='smallest step; failing at it ends the branch'), &
     field_t('ds_max', doc='largest step'), &
     field_t('x_scale', doc='weight of the amplitudes in the arclength norm'), &
-    field_t('max_points', 'integer', 'points per branch and direction at most')]
+    field_t('max_points', 'integer', 'points per branch and direction at most'), &
+    newton_fields]
   !> &response's choices: resonance (code of resonances), parameter (of excitation_parameters)
   type(field_t), parameter :: response_range_fields(*) = [ &
     field_t('resonance', 'code:resonances'), field_t('parameter', 'code:excitation_parameters'), &
@@ -156,15 +163,12 @@ module sloshdyn_layouts
   !> &analysis's numbers (the 3:1 tuning search)
   type(field_t), parameter :: analysis_fields(*) = [ &
     field_t('sigma1'), field_t('kappa_min'), field_t('kappa_max')]
-  !> The continuation of periodic orbits (direction +1 from the low end, -1 from the high end)
+  !> A continuation of periodic orbits or of the slow flow's limit cycles: the steps, the
+  !> direction (+1 from the low end, -1 from the high end) and Newton's settings (its
+  !> max_points set apart)
   type(field_t), parameter :: continuation_fields(*) = [ &
     field_t('ds'), field_t('ds_min'), field_t('ds_max'), field_t('x_scale'), &
-    field_t('direction', 'integer')]
-  !> The continuation of limit cycles of the slow flow (sloshdyn_slowflow_cycles): the
-  !> continuation's steps and direction and Newton's tolerances (sloshdyn_continuation's
-  !> newton_options)
-  type(field_t), parameter :: cycle_continuation_fields(*) = [continuation_fields, &
-    field_t('x_tol'), field_t('f_tol'), field_t('max_iter', 'integer')]
+    field_t('direction', 'integer'), newton_fields]
   !> Newton shooting of periodic orbits
   type(field_t), parameter :: shooting_fields(*) = [ &
     field_t('newton_tol', doc='Newton''s tolerance on the orbit''s state, relative'), &
@@ -190,7 +194,7 @@ module sloshdyn_layouts
   !> rpar and ipar.
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
-    'seismic,analysis,continuation,cycle_continuation,shooting,pendulum,physical,groups,'// &
+    'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
     'routh,orbit_info'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
@@ -215,7 +219,6 @@ module sloshdyn_layouts
                         SEISMIC_SIZE = size(seismic_fields), &
                         ANALYSIS_SIZE = size(analysis_fields), &
                         CONTINUATION_SIZE = size(continuation_fields), &
-                        CYCLE_CONTINUATION_SIZE = size(cycle_continuation_fields), &
                         SHOOTING_SIZE = size(shooting_fields), &
                         PENDULUM_SIZE = size(pendulum_fields), &
                         PHYSICAL_SIZE = size(physical_fields), GROUPS_SIZE = size(groups_fields), &
@@ -248,7 +251,6 @@ contains
     case ('seismic');        fields = seismic_fields
     case ('analysis');       fields = analysis_fields
     case ('continuation');   fields = continuation_fields
-    case ('cycle_continuation'); fields = cycle_continuation_fields
     case ('shooting');       fields = shooting_fields
     case ('pendulum');       fields = pendulum_fields
     case ('physical');       fields = physical_fields
@@ -389,6 +391,7 @@ contains
     options%continuation%ds_max = a(8)
     options%continuation%x_scale = a(9)
     options%continuation%max_points = to_int(a(10))
+    options%continuation%newton = to_newton(a(11:13))
   end function to_response
 
   pure function from_response(options) result(a)
@@ -397,7 +400,7 @@ contains
     associate (c => options%continuation)
       a = [real(options%n_scan, wp), real(options%n_amplitudes, wp), &
            real(options%n_phases, wp), options%amplitude_min, options%amplitude_max, c%ds, &
-           c%ds_min, c%ds_max, c%x_scale, real(c%max_points, wp)]
+           c%ds_min, c%ds_max, c%x_scale, real(c%max_points, wp), from_newton(c%newton)]
     end associate
   end function from_response
 
@@ -414,23 +417,25 @@ contains
               merge(1, 0, options%spectrum)], wp)
   end function from_lyapunov
 
-  !> The continuation of periodic orbits (its max_points set apart).
+  !> A continuation of periodic orbits or slow-flow cycles (its max_points set apart).
   pure function to_continuation(a) result(options)
     real(wp), intent(in) :: a(CONTINUATION_SIZE)
     type(continuation_options) :: options
     options = continuation_options(ds=a(1), ds_min=a(2), ds_max=a(3), x_scale=a(4), &
-                                   direction=to_int(a(5)))
+                                   direction=to_int(a(5)), newton=to_newton(a(6:8)))
   end function to_continuation
 
-  !> The continuation of slow-flow cycles with Newton's tolerances (its max_points set apart).
-  pure function to_cycle_continuation(a) result(options)
-    real(wp), intent(in) :: a(CYCLE_CONTINUATION_SIZE)
-    type(continuation_options) :: options
-    options = to_continuation(a(:CONTINUATION_SIZE))
-    options%newton%x_tol = a(CONTINUATION_SIZE + 1)
-    options%newton%f_tol = a(CONTINUATION_SIZE + 2)
-    options%newton%max_iter = to_int(a(CONTINUATION_SIZE + 3))
-  end function to_cycle_continuation
+  pure function to_newton(a) result(options)
+    real(wp), intent(in) :: a(size(newton_fields))
+    type(newton_options) :: options
+    options = newton_options(x_tol=a(1), f_tol=a(2), max_iter=to_int(a(3)))
+  end function to_newton
+
+  pure function from_newton(options) result(a)
+    type(newton_options), intent(in) :: options
+    real(wp) :: a(size(newton_fields))
+    a = [options%x_tol, options%f_tol, real(options%max_iter, wp)]
+  end function from_newton
 
   !> tank(TANK_SIZE) in the order of tank_t's components (n and p as reals).
   pure function to_tank(a) result(tank)

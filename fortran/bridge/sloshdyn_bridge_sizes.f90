@@ -14,7 +14,7 @@ program sloshdyn_bridge_sizes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
-                              ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
+                              ANALYSIS_SIZE, CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
                               PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
   implicit none
@@ -55,7 +55,6 @@ program sloshdyn_bridge_sizes
   call define('seismic_size', SEISMIC_SIZE)
   call define('analysis_size', ANALYSIS_SIZE)
   call define('continuation_size', CONTINUATION_SIZE)
-  call define('cycle_continuation_size', CYCLE_CONTINUATION_SIZE)
   call define('shooting_size', SHOOTING_SIZE)
   call define('pendulum_size', PENDULUM_SIZE)
   call define('physical_size', PHYSICAL_SIZE)

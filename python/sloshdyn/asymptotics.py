@@ -3,7 +3,6 @@ modal form and the coefficients of the solvability conditions, computed by the F
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -190,6 +189,14 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
             exc.partial = result
             raise
     return result
+
+
+def continuation_array(continuation: Continuation, direction):
+    """The core's 'continuation' layout (periodic orbits, slow-flow cycles) from the fields of
+    a Continuation of the same names and the first step's direction (+1 up, -1 down)."""
+    return _tables.pack("continuation", {
+        name: direction if name == "direction" else getattr(continuation, name)
+        for name in _tables.layout("continuation")})
 
 
 def continuation_range(rho_range, A_range):

@@ -14,7 +14,8 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import ConvergenceError, InputError, SloshdynError, check_status
-from .asymptotics import Continuation, continuation_range, frequency_response, slow_flow_cycle
+from .asymptotics import (Continuation, continuation_array, continuation_range, frequency_response,
+                          slow_flow_cycle)
 from .parameters import Parameters
 from .periodic import Lyapunov
 from .simulation import Integration
@@ -98,8 +99,9 @@ class SlowFlowCycles:
 
 def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
                      continuation: Continuation = Continuation(ds=0.01, ds_max=0.05,
-                                                               max_points=500),
-                     hopf_gap=1e-3, x_tol=1e-10, f_tol=1e-9, max_iter=20,
+                                                               max_points=500, x_tol=1e-10,
+                                                               f_tol=1e-9),
+                     hopf_gap=1e-3,
                      integration: Integration = Integration(rtol=1e-10, atol=1e-13)
                      ) -> SlowFlowCycles:
     """The beats continued: the limit cycles of the 3:1 slow flow between two consecutive Hopf
@@ -110,12 +112,12 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     condition d(Re B1)/dtau = 0) with its Floquet multipliers, folds of cycles, period
     doublings and Neimark-Sacker points, up to hopf_gap times the Hopf interval before each
     Hopf point (at the Hopf point the cycle has shrunk to the steady state). continuation:
-    ds, ds_min, ds_max, x_scale and max_points (per direction) are used; the arclength norm
-    has the four amplitudes and the period relative to the start's. Newton (start, corrector,
-    special points) stops at a step <= x_tol (1 + max|x|) and a residual max|y(T) - y0| <=
-    f_tol, within max_iter iterations: f_tol must lie above the integration's error over a
-    period (a shot of ~5000 tau at rtol 1e-10 leaves ~1e-11, so the continuation's default
-    1e-11 would make Newton miss by noise and the steps shrink).
+    ds, ds_min, ds_max, x_scale, max_points (per direction), x_tol, f_tol and max_iter are used;
+    the arclength norm has the four amplitudes and the period relative to the start's. Newton
+    (start, corrector, special points) stops at a step <= x_tol (1 + max|x|) and a residual
+    max|y(T) - y0| <= f_tol, within max_iter iterations: f_tol must lie above the integration's
+    error over a period (a shot of ~5000 tau at rtol 1e-10 leaves ~1e-11, so the
+    continuation's default 1e-11 would make Newton miss by noise and the steps shrink).
 
     Raises ConvergenceError saying "no cycle" when the steady states have no Hopf point in the
     range (the slow flow settles to an equilibrium there) or no cycle is found between them."""
@@ -124,8 +126,6 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     _checks.instance("integration", integration, Integration)
     parameter, (lo, hi) = continuation_range(rho_range, A_range)
     hopf_gap = _checks.real("hopf_gap", hopf_gap)
-    x_tol, f_tol = _checks.real("x_tol", x_tol), _checks.real("f_tol", f_tol)
-    max_iter = _checks.integer("max_iter", max_iter)
     if not 0 < hopf_gap < 0.5:
         raise InputError(f"hopf_gap = {hopf_gap} is out of range: it must lie in (0, 0.5)")
     response = frequency_response(params, **{f"{parameter}_range": (lo, hi)})
@@ -159,10 +159,7 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     a_end, b_end = a + (gap if low is not None else 0), b - (gap if high is not None else 0)
     halves = []
     for direction in (-1.0, 1.0):
-        settings = _tables.pack("cycle_continuation", {
-            "ds": continuation.ds, "ds_min": continuation.ds_min, "ds_max": continuation.ds_max,
-            "x_scale": continuation.x_scale, "direction": direction, "x_tol": x_tol,
-            "f_tol": f_tol, "max_iter": max_iter})
+        settings = continuation_array(continuation, direction)
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
          message) = cancellable(_bridge.slow_flow_cycle_branch, *start.array(),
                                 1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,
