@@ -32,9 +32,10 @@ module sloshdyn_layouts
             CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, SWEEP_SIZE, SIMULATION_SIZE, &
             RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
-            PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
+            PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
+            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE
   public :: chart_axes, CHART_RHO
-  public :: layout_names, layout_fields, layout_kinds, layout_docs, layout_defaults, join, &
+  public :: layout_names, layout_text, layout_defaults, join, &
             excitation_parameters, ground_kinds, resonances
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
   public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
@@ -190,12 +191,19 @@ module sloshdyn_layouts
     field_t('delta3'), field_t('routh_stable', 'flag')]
   type(field_t), parameter :: orbit_info_fields(*) = [ &
     field_t('iterations', 'integer'), field_t('max_x1')]
+  !> The scalars of the modal expansion (sloshdyn_modal: eq 34-36) and the sizes of a stability
+  !> chart's four tables (sloshdyn_stability_chart's chart_table_sizes).
+  type(field_t), parameter :: modal_scalars_fields(*) = [ &
+    field_t('omega1'), field_t('omega2'), field_t('gamma11'), field_t('gamma22'), field_t('F11')]
+  type(field_t), parameter :: chart_sizes_fields(*) = [ &
+    field_t('curve_points', 'integer'), field_t('codim2_points', 'integer'), &
+    field_t('curves', 'integer'), field_t('cells', 'integer')]
   !> Every named layout (names('layouts')); 'model' and 'model_integers' are sloshdyn_model's
   !> rpar and ipar.
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
     'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
-    'routh,orbit_info'
+    'routh,orbit_info,modal_scalars,chart_sizes'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
@@ -223,7 +231,9 @@ module sloshdyn_layouts
                         PENDULUM_SIZE = size(pendulum_fields), &
                         PHYSICAL_SIZE = size(physical_fields), GROUPS_SIZE = size(groups_fields), &
                         ROUTH_TRIVIAL_SIZE = size(routh_fields), &
-                        ORBIT_INFO_SIZE = size(orbit_info_fields)
+                        ORBIT_INFO_SIZE = size(orbit_info_fields), &
+                        MODAL_SCALARS_SIZE = size(modal_scalars_fields), &
+                        CHART_SIZES_SIZE = size(chart_sizes_fields)
 
 contains
 
@@ -257,40 +267,28 @@ contains
     case ('groups');         fields = groups_fields
     case ('routh');          fields = routh_fields
     case ('orbit_info');     fields = orbit_info_fields
+    case ('modal_scalars');  fields = modal_scalars_fields
+    case ('chart_sizes');    fields = chart_sizes_fields
     case default;            allocate (fields(0))
     end select
   end function layout_of
 
-  !> The comma-separated field names of a named layout, '' for an unknown name.
-  pure function layout_fields(name) result(text)
-    character(len=*), intent(in) :: name
+  !> One column of a named layout's fields, joined: what = 'name' (comma-separated), 'kind'
+  !> (comma-separated: real, integer, flag or code:LIST) or 'doc' (one line per field, a
+  !> newline for a layout without docs); '' for an unknown layout.
+  pure function layout_text(name, what) result(text)
+    character(len=*), intent(in) :: name, what
     character(len=:), allocatable :: text
     type(field_t), allocatable :: fields(:)
     fields = layout_of(name)
     text = ''
-    if (size(fields) > 0) text = join(fields%name, ',')
-  end function layout_fields
-
-  !> The comma-separated kinds of a named layout's fields ('real', 'integer', 'flag',
-  !> 'code:LIST'), '' for an unknown name.
-  pure function layout_kinds(name) result(text)
-    character(len=*), intent(in) :: name
-    character(len=:), allocatable :: text
-    type(field_t), allocatable :: fields(:)
-    fields = layout_of(name)
-    text = ''
-    if (size(fields) > 0) text = join(fields%kind, ',')
-  end function layout_kinds
-
-  !> What each field of a named layout is, one line per field ('' for an unknown name).
-  pure function layout_docs(name) result(text)
-    character(len=*), intent(in) :: name
-    character(len=:), allocatable :: text
-    type(field_t), allocatable :: fields(:)
-    fields = layout_of(name)
-    text = ''
-    if (size(fields) > 0) text = join(fields%doc, new_line('a'))
-  end function layout_docs
+    if (size(fields) == 0) return
+    select case (what)
+    case ('kind'); text = join(fields%kind, ',')
+    case ('doc');  text = join(fields%doc, new_line('a'))//new_line('a')
+    case default;  text = join(fields%name, ',')
+    end select
+  end function layout_text
 
   !> The defaults of a settings layout (the option types' defaults, as the namelist reader
   !> starts from them); found = .false. for a layout without defaults.

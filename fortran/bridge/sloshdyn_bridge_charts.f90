@@ -8,16 +8,16 @@ module sloshdyn_bridge_charts
 contains
 
   !> A stability chart of the model's slow flow (sloshdyn_stability_chart) as its four tables,
-  !> each with room for max_* columns; sizes = the columns used [curve points, codimension-2
-  !> points, curves, cells] (if a table is too small: status SD_CAPACITY, sizes = those
-  !> needed). complete = 0 if a curve stopped early; notes = a line per such curve.
+  !> each with room for max_* columns; sizes = the columns used, in the 'chart_sizes' layout
+  !> (curve points, codimension-2 points, curves, cells; if a table is too small: status
+  !> SD_CAPACITY, sizes = those needed). complete = 0 if a curve stopped early; notes = a line per such curve.
   subroutine stability_chart(rpar, ipar, settings, chart_range, max_points, max_codim2, &
                              max_curves, n_cells, &
                              curves, codim2, ends, grid, sizes, complete, notes, status, message)
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_tables, only: CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, &
                                CHART_GRID_ROWS
-    use sloshdyn_layouts, only: CHART_SIZE, CHART_RANGE_SIZE, to_chart
+    use sloshdyn_layouts, only: CHART_SIZE, CHART_RANGE_SIZE, CHART_SIZES_SIZE, to_chart
     use sloshdyn_status, only: SD_CAPACITY
     use sloshdyn_text, only: num2str
     use sloshdyn_stability_chart, only: chart_result, core => stability_chart, chart_tables, &
@@ -28,7 +28,7 @@ contains
     real(c_double), intent(out) :: curves(CHART_CURVE_ROWS, max_points), &
                                    codim2(CHART_CODIM2_ROWS, max_codim2), &
                                    ends(CHART_END_ROWS, max_curves), grid(CHART_GRID_ROWS, n_cells)
-    integer(c_int), intent(out) :: sizes(4), complete, status
+    integer(c_int), intent(out) :: sizes(CHART_SIZES_SIZE), complete, status
     character(len=4096), intent(out) :: notes
     character(len=256), intent(out) :: message
     type(model_t) :: model

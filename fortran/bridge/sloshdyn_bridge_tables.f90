@@ -24,7 +24,7 @@ contains
     use sloshdyn_integrator, only: method_names
     use sloshdyn_excitation, only: PARAMETER_RHO
     use sloshdyn_ground, only: GROUND_HARMONIC
-    use sloshdyn_layouts, only: layout_names, layout_fields, layout_kinds, layout_docs, join, &
+    use sloshdyn_layouts, only: layout_names, layout_text, join, &
                                 excitation_parameters, ground_kinds, resonances, chart_axes, &
                                 CHART_RHO
     character(len=*), intent(in) :: list
@@ -45,12 +45,11 @@ contains
     else if (index(list, 'formats:') == 1) then
       joined = table_formats(list(9:))
     else if (index(list, 'layout:') == 1) then
-      joined = layout_fields(list(8:))
+      joined = layout_text(list(8:), 'name')
     else if (index(list, 'kinds:') == 1) then
-      joined = layout_kinds(list(7:))
+      joined = layout_text(list(7:), 'kind')
     else if (index(list, 'docs:') == 1) then
-      joined = layout_docs(list(6:))
-      if (len_trim(joined) == 0 .and. len(layout_fields(list(6:))) > 0) joined = new_line('a')
+      joined = layout_text(list(6:), 'doc')
     else
       select case (list)
       case ('layouts');       joined = layout_names

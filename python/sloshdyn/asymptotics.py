@@ -80,8 +80,7 @@ def modal_coefficients(params: Parameters) -> ModalCoefficients:
     (scalars, c, exponents, g, g_forcing, h, h_forcing, status,
      message) = _bridge.modal_expansion(*params.array())
     check_status(status, message)
-    result = {"omega1": scalars[0], "omega2": scalars[1], "gamma11": scalars[2],
-              "gamma22": scalars[3], "F11": scalars[4]}
+    result = _tables.unpack("modal_scalars", scalars)
     for r in (1, 2):
         for j in (1, 2, 3):
             result[f"c{r}{j}"] = float(c[r - 1, j - 1])

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _checks, _core, _tables
-from ._errors import check_status
+from ._errors import CapacityError, check_status
 from ._settings import settings
 from .parameters import Parameters
 
@@ -126,12 +126,14 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
      message) = _bridge.stability_chart(*params.array(), chart.array(), chart_range,
                                         max(capacity, 1),
                                         10 * max(max_curves, 1), max(max_curves, 1), n_cells)
-    if status == 9:   # SD_CAPACITY: name the Python argument that sets the room
-        message = (_tables._text(message) + f"; give capacity >= {int(sizes[0])} (now "
-                   f"{int(capacity)})")
+    used = _tables.unpack("chart_sizes", sizes)
+    if status == CapacityError.status:   # name the Python argument that sets the room
+        message = (_tables._text(message) + f"; give capacity >= {int(used['curve_points'])} "
+                   f"(now {int(capacity)})")
     check_status(status, message)
-    chart = _chart(x, y, model, curves[:, :sizes[0]], codim2[:, :sizes[1]], ends[:, :sizes[2]],
-                   grid[:, :sizes[3]], bool(complete), _tables._text(notes), params)
+    chart = _chart(x, y, model, curves[:, :used["curve_points"]],
+                   codim2[:, :used["codim2_points"]], ends[:, :used["curves"]],
+                   grid[:, :used["cells"]], bool(complete), _tables._text(notes), params)
     if not chart.complete:
         warnings.warn("stability chart: not every curve could be continued to its ends:\n"
                       + _tables._text(notes), stacklevel=2)
@@ -193,4 +195,5 @@ def chart_from_files(directory, x="rho", y="A", model="slow_flow_3:1", params=No
                       in zip(table["curve"], table["last_end"], table["complete"]) if not done)
     return _chart(x, y, model, read("chart_curves.csv", "chart_curves"),
                   read("chart_codim2.csv", "chart_codim2"), ends,
-                  read("chart_grid.csv", "chart_grid"), bool(np.all(ends[3] > 0)), notes, params)
+                  read("chart_grid.csv", "chart_grid"), bool(np.all(table["complete"] > 0)), notes,
+                  params)

@@ -148,7 +148,8 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
                             integration=integration).y0
     settings = continuation_array(c, 1.0 if from_end == "low" else -1.0)
     points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
-        *first.array(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
+        *first.array(), _tables.code("excitation_parameters", parameter),
+        _checks.reals("y0", y0, (4,)),
         periods, lo, hi, settings, integration.array(), max_points, 100)
     rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
     lam = rows["lambda"]

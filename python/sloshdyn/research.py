@@ -162,7 +162,8 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
         settings = continuation_array(continuation, direction)
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
          message) = cancellable(_bridge.slow_flow_cycle_branch, *start.array(),
-                                1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,
+                                _tables.code("excitation_parameters", parameter), cycle.x,
+                                cycle.period, a_end,
                                 b_end, settings, integration.array(),
                                 _checks.integer("max_points", continuation.max_points, 2), 50)
         if status and n == 0:
@@ -172,13 +173,14 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
         halves.append((points[:, :n], multipliers[:, :n], amplitudes[:, :n],
                        special[:, :n_special], int(stop), text if status else ""))
     (p_lo, m_lo, a_lo, s_lo, stop_lo, why_lo), (p_hi, m_hi, a_hi, s_hi, stop_hi, why_hi) = halves
-    points = np.concatenate([p_lo[:, ::-1], p_hi[:, 1:]], axis=1)
-    multipliers = np.concatenate([m_lo[:, ::-1], m_hi[:, 1:]], axis=1)
-    amplitudes = np.concatenate([a_lo[:, ::-1], a_hi[:, 1:]], axis=1)
-    lam = points[0]
+    rows = dict(zip(_tables.columns("cycle_branch"),
+                    np.concatenate([np.vstack([p_lo, m_lo, a_lo])[:, ::-1],
+                                    np.vstack([p_hi, m_hi, a_hi])[:, 1:]], axis=1)))
+    x_names = ("re_B1", "im_B1", "re_B2", "im_B2")
+    lam = rows["lambda"]
     rho = lam if parameter == "rho" else np.full(lam.shape, params.rho)
     A = lam if parameter == "A" else np.full(lam.shape, params.A)
-    period = points[5]
+    period = rows["period"]
 
     def special_point(kind, value, beat, x):
         r = value if parameter == "rho" else params.rho
@@ -190,7 +192,7 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
         r = value if parameter == "rho" else params.rho
         steady = response.table
         k = int(np.argmin(np.abs(steady[parameter] - value) + np.abs(steady["branch"] - h.branch)))
-        x = [steady[c][k] for c in ("re_B1", "im_B1", "re_B2", "im_B2")]
+        x = [steady[c][k] for c in x_names]
         return special_point("hopf", value, r / h.frequency, x)
 
     def end(stop, bound, hopf, why):
@@ -201,16 +203,22 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
 
     ends = (end(stop_lo, "lambda_min", low, why_lo), end(stop_hi, "lambda_max", high, why_hi))
     specials = [hopf_point(low)] if ends[0] == "hopf" else []
-    found = sorted((s for s in np.concatenate([s_lo, s_hi], axis=1).T), key=lambda s: s[1])
+    found = sorted((dict(zip(_tables.columns("cycle_special_points"), s))
+                    for s in np.concatenate([s_lo, s_hi], axis=1).T), key=lambda s: s["lambda"])
     for s in found:
-        r = s[1] if parameter == "rho" else params.rho
-        specials.append(special_point(KINDS[int(s[0])], s[1], s[6] * r / (2 * np.pi), s[2:6]))
+        r = s["lambda"] if parameter == "rho" else params.rho
+        specials.append(special_point(KINDS[int(s["kind"])], s["lambda"],
+                                      s["period"] * r / (2 * np.pi), [s[c] for c in x_names]))
     if ends[1] == "hopf":
         specials.append(hopf_point(high))
     return SlowFlowCycles(parameter, rho, A, period, period * rho / (2 * np.pi),
-                          points[1:5].T.copy(), (multipliers[:4] + 1j * multipliers[4:]).T,
-                          points[6] > 0.5, amplitudes.T.copy(), specials, ends,
-                          integration.method_used)
+                          np.column_stack([rows[c] for c in x_names]),
+                          np.column_stack([rows[f"re_mu{i}"] + 1j * rows[f"im_mu{i}"]
+                                           for i in range(1, 5)]),
+                          rows["stable"] > 0.5,
+                          np.column_stack([rows[c] for c in ("min_B1", "max_B1", "min_B2",
+                                                             "max_B2")]),
+                          specials, ends, integration.method_used)
 
 
 def plot_beats(response, cycles: SlowFlowCycles):

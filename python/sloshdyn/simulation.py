@@ -192,7 +192,7 @@ def sweep_values(start, stop, n, direction="up") -> np.ndarray:
     """Sweep values from start to stop ('up'), back ('down'), or up then down ('both')."""
     start, stop = _checks.real("start", start), _checks.real("stop", stop)
     n = _checks.output_size("n", _checks.integer("n", n, 1))
-    _checks.choice("direction", direction, ("up", "down", "both"))
+    _checks.choice("direction", direction, _tables.names("directions")[0])
     values = np.linspace(min(start, stop), max(start, stop), n)
     if direction == "up":
         return values

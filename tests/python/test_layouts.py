@@ -72,8 +72,10 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     arrays.update(pendulum=pendulum, groups=groups, routh=routh)
     for name, array in arrays.items():
         assert len(array) == len(_tables.layout(name)), name
-    assert set(_tables.layouts()) - set(arrays) <= {"physical", "continuation",
-                                                    "cycle_continuation", "orbit_info"}
+    # (the others: test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables;
+    # physical is dimensionless_groups' input, refused at another size below)
+    assert set(_tables.layouts()) - set(arrays) <= {"physical", "continuation", "orbit_info",
+                                                    "modal_scalars", "chart_sizes"}
 
 
 def test_a_layout_without_defaults_or_of_another_size_is_refused():
@@ -345,3 +347,152 @@ def test_seismic_results_are_named_by_the_cores_tables():
     assert codes.sources == list(_tables.names("source")[0])
     assert codes.columns == [c.split(" [")[0] for c in _tables.columns("design_codes")[1:]]
     assert codes.table.shape == (len(codes.columns), len(codes.sources))
+
+
+def test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables():
+    """The bridge arrays that Python now reads by name (they were read by position): the
+    studies' orbit rows, the modal scalars, the chart's table sizes, a branch of slow-flow
+    cycles and its special points have exactly as many rows as the core's names."""
+    params = Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.7853981633974483,
+                        gamma=0.001, A=0.00075, rho=0.51)
+    _, _, orbit, _, _, status, _ = _core.sloshdyn_bridge_studies.steady_path(
+        *params.array(), np.array([0.51]), np.array([0.00075]), np.zeros((4, 1), order="F"), 0,
+        Integration().array(), Steady(transient_periods=20, settle_tol=0,
+                                      window_periods=16).array())
+    assert status == 0 and orbit.shape == (len(_tables.columns("study_orbit")), 1)
+    scalars, *_, status, _ = _core.sloshdyn_bridge_asymptotics.modal_expansion(*params.array())
+    assert status == 0 and len(scalars) == len(_tables.layout("modal_scalars"))
+    modes = sloshdyn.linear_modes(params)
+    assert _tables.unpack("modal_scalars", scalars)["omega1"] == pytest.approx(modes.omega1)
+    chart = Chart(n_x=3, n_y=2)
+    *_, sizes, _, _, status, _ = _core.sloshdyn_bridge_charts.stability_chart(
+        *params.array(), chart.array(), _tables.pack("chart_range", {
+            "model": 1, "x": _tables.code("chart_axes", "rho"),
+            "y": _tables.code("chart_axes", "A"), "x_min": 0.49, "x_max": 0.53, "y_min": 0.0,
+            "y_max": 0.002, "threads": 1}), 20000, 100, 50, 6)
+    assert status == 0 and len(sizes) == len(_tables.layout("chart_sizes"))
+    assert _tables.unpack("chart_sizes", sizes)["cells"] == 6          # n_x n_y
+    points, multipliers, amplitudes, *_, special, _, _, _, _ = (
+        _core.sloshdyn_bridge_research.slow_flow_cycle_branch(
+            *params.array(), 1, np.zeros(4), 1.0, 0.5, 0.52,
+            np.zeros(len(_tables.layout("continuation"))), Integration().array(), 2, 3))
+    assert (len(points) + len(multipliers) + len(amplitudes)
+            == len(_tables.columns("cycle_branch")))
+    assert len(special) == len(_tables.columns("cycle_special_points"))
+
+
+def test_a_new_field_of_a_layout_reaches_its_settings_class(monkeypatch):
+    """A settings class follows its layout with no Python edit: a layout with one field more
+    (as the core would give it) makes a class with that field, its kind, default and doc."""
+    from sloshdyn._settings import settings
+    fields = _tables.layout("shooting") + ("damping",)
+    core = {"layout:shooting": ",".join(fields), "kinds:shooting": "real,integer,real",
+            "docs:shooting": "tolerance\niterations\nNewton's damping factor"}
+    real = _tables._names_text
+    monkeypatch.setattr(_tables, "_names_text",
+                        lambda name: (core[name], 1) if name in core else real(name))
+    monkeypatch.setattr(_tables, "defaults", lambda name: dict(zip(fields, (1e-10, 30, 0.5))))
+
+    @settings("shooting")
+    class Scratch:
+        """A scratch copy of Shooting."""
+    assert [f.name for f in dataclasses.fields(Scratch)] == list(fields)
+    assert Scratch().damping == 0.5 and "Newton's damping factor" in Scratch.__doc__
+    assert Scratch(damping=0.25).array().tolist() == [1e-10, 30, 0.25]
+
+
+#: every code list the core names, by its names (the test below looks for copies of these)
+CODE_NAMES = {name: set(_tables.names(name)[0]) for name in _tables.code_lists()}
+
+
+def _hand_lists(path):
+    """(line, code list) of every literal list of strings in `path` that is used as the allowed
+    values of an option (_checks.choice(name, value, <list>), value in / not in <list>) and is
+    a copy of a core code list (its names, or all but one of them)."""
+    import ast
+    found = []
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        choices = []
+        if isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "choice":
+            choices = node.args[2:3]
+        elif isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.In, ast.NotIn)):
+            choices = node.comparators[:1]
+        for literal in choices:
+            if isinstance(literal, (ast.Tuple, ast.List, ast.Set)) and all(
+                    isinstance(e, ast.Constant) and isinstance(e.value, str)
+                    for e in literal.elts):
+                values = {e.value for e in literal.elts}
+                found += [(node.lineno, name) for name, names in CODE_NAMES.items()
+                          if len(values) >= 2 and values <= names
+                          and len(values) >= len(names) - 1]
+    return found
+
+
+def test_python_keeps_no_copy_of_a_code_list():
+    """An option whose values are the names of a core code list takes them from the core
+    (the issue-21 defect: a hand copy of the chart axes without kappa)."""
+    import pathlib
+    root = pathlib.Path(sloshdyn.__file__).parent
+    copies = {f"{path.relative_to(root)}:{line} ({name})": None
+              for path in sorted(root.rglob("*.py")) for line, name in _hand_lists(path)}
+    assert list(copies) == []
+
+
+def test_the_hand_list_finder_finds_a_copy(tmp_path):
+    source = tmp_path / "copy.py"
+    source.write_text('_checks.choice("continuation", c, ("none", "up", "down", "both"))\n'
+                      'if kind not in ("processes", "threads"):\n    pass\n'
+                      'if (x, y) != ("rho", "A"):\n    pass\n')
+    assert _hand_lists(source) == [(1, "continuations"), (2, "worker_kinds")]
+
+
+def test_enumerated_options_name_the_value_and_the_cores_codes(tmp_path):
+    """Stringly options are checked against the core's code lists, naming the value and every
+    allowed code."""
+    params = Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.7853981633974483,
+                        A=0.00075)
+    allowed = ", ".join(repr(c) for c in _tables.names("continuations")[0])
+    with pytest.raises(sloshdyn.InputError, match=f"continuation = 'sideways' is not valid: it "
+                       f"must be one of {allowed}"):
+        sloshdyn.response_map(params, [0.5], [0.001], tmp_path / "y.zarr",
+                              continuation="sideways")
+    with pytest.raises(sloshdyn.InputError, match="resonance = '1:3' is not valid: it must be "
+                       "one of 'none', '3:1'"):
+        sloshdyn.frequency_response(params, (0.49, 0.53), resonance="1:3")
+    with pytest.raises(sloshdyn.InputError, match="direction = 'sideways' is not valid: it must "
+                       "be one of 'up', 'down', 'both'"):
+        sloshdyn.sweep_values(0.5, 0.52, 3, "sideways")
+    with pytest.raises(sloshdyn.InputError, match="worker_kind = 'fibres' is not valid: it "
+                       "must be one of 'processes', 'threads'"):
+        sloshdyn.response_map(params, [0.5], [0.001], tmp_path / "z.zarr", worker_kind="fibres")
+
+
+def test_every_continuation_takes_the_same_settings_object():
+    """Every continuation call takes its steps, limits and Newton's tolerances from one
+    keyword-only Continuation (the core's 'response' layout), whose continuation fields are
+    the core's 'continuation' layout's (no loose x_tol, f_tol, max_iter)."""
+    import inspect
+    for function in (sloshdyn.frequency_response, sloshdyn.periodic_response,
+                     sloshdyn.slow_flow_cycles):
+        parameters = inspect.signature(function).parameters
+        assert parameters["continuation"].kind is inspect.Parameter.KEYWORD_ONLY
+        assert isinstance(parameters["continuation"].default, Continuation), function
+        assert not {"ds", "x_tol", "f_tol", "max_iter", "max_points"} & set(parameters)
+    assert set(_tables.layout("continuation")) - {"direction"} <= set(_tables.layout("response"))
+    cycles = inspect.signature(sloshdyn.slow_flow_cycles).parameters["continuation"].default
+    assert (cycles.x_tol, cycles.f_tol, cycles.max_iter) == (1e-10, 1e-9, 20)
+
+
+def test_response_reads_newtons_settings(tmp_path):
+    """&response's x_tol, f_tol, max_iter (the example of a new namelist variable: layout,
+    reader, documentation only) reach Continuation by name, and their rules are the core's
+    (checked when the continuation runs, as ds and the other steps are)."""
+    inp = _read(tmp_path, MODEL + "&response start = 0.49, stop = 0.53, x_tol = 1e-9, "
+                "f_tol = 2e-10, max_iter = 7 /\n")
+    assert (inp.response.x_tol, inp.response.f_tol, inp.response.max_iter) == (1e-9, 2e-10, 7)
+    assert inp.response == Continuation(x_tol=1e-9, f_tol=2e-10, max_iter=7)
+    with pytest.raises(sloshdyn.InputError, match="max_iter = 0 is out of range: it must be "
+                       ">= 1"):
+        sloshdyn.frequency_response(inp.params, (0.49, 0.53),
+                                    continuation=Continuation(max_iter=0))
