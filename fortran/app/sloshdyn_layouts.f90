@@ -244,7 +244,8 @@ contains
     type(field_t), allocatable :: fields(:)
     integer :: k
     select case (name)
-    case ('model');          fields = [(field_t(real_param_names(k)), k = 1, size(real_param_names))]
+    case ('model')
+      fields = [(field_t(real_param_names(k)), k = 1, size(real_param_names))]
     case ('model_integers'); fields = [field_t('n', 'integer'), field_t('p', 'integer')]
     case ('integration');    fields = integration_fields
     case ('steady');         fields = steady_fields
@@ -471,11 +472,13 @@ contains
     a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt]
   end function from_ground
 
-  !> The &chart settings from chart(CHART_SIZE) (the grid and the curves) and
-  !> chart_range(CHART_RANGE_SIZE) (the model and the axes as codes, the box, threads).
-  pure function to_chart(a, r) result(settings)
-    real(wp), intent(in) :: a(CHART_SIZE), r(CHART_RANGE_SIZE)
+  !> The &chart settings from chart(CHART_SIZE) (the grid and the curves),
+  !> chart_range(CHART_RANGE_SIZE) (the model and the axes as codes, the box, threads) and the
+  !> one-parameter runs' response(RESPONSE_SIZE) (&response's numbers; n_scan is chart's).
+  pure function to_chart(a, r, response) result(settings)
+    real(wp), intent(in) :: a(CHART_SIZE), r(CHART_RANGE_SIZE), response(RESPONSE_SIZE)
     type(chart_settings) :: settings
+    settings%response = to_response(response)
     settings%n_columns = to_int(a(1))
     settings%n_levels = to_int(a(2))
     settings%response%n_scan = to_int(a(3))

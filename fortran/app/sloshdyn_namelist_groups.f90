@@ -25,7 +25,7 @@ module sloshdyn_namelist_groups
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_AUTO, method_names
   use sloshdyn_simulation, only: steady_options, max_simulation_outputs
-  use sloshdyn_response, only: check_response_options
+  use sloshdyn_response, only: response_options, check_response_options
   use sloshdyn_periodic_response, only: lyapunov_options
   implicit none
   private
@@ -696,10 +696,12 @@ contains
   !> &chart: a stability chart of the slow flow (sloshdyn_stability_chart): the model, the
   !> parameters on the axes and their box, the grid, the settings of the runs and curves.
   !> The box must lie where the model's rules allow its parameters (check_chart_box).
-  subroutine read_chart(file, needed, system, settings, status, message)
+  subroutine read_chart(file, needed, system, runs, settings, status, message)
     type(input_file), intent(inout) :: file
     logical, intent(in) :: needed
     type(model_t), intent(in) :: system   !< the model of &model or &tank
+    !> the settings of the one-parameter runs: &response's numbers (n_scan is &chart's)
+    type(response_options), intent(in) :: runs
     type(chart_settings), intent(out) :: settings
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
@@ -746,6 +748,7 @@ contains
     settings%p_max = [x_max, y_max]
     settings%n_columns = n_x
     settings%n_levels = n_y
+    settings%response = runs
     settings%response%n_scan = n_scan
     settings%max_points = max_points
     settings%max_curves = max_curves

@@ -22,8 +22,8 @@ contains
     use sloshdyn_layouts, only: MODAL_SCALARS_SIZE
     real(c_double), intent(in) :: rpar(n_real_params)
     integer(c_int), intent(in) :: ipar(n_int_params)
-    real(c_double), intent(out) :: scalars(MODAL_SCALARS_SIZE), c(2, 3), g(2, 34), g_forcing(2, 0:34), h(2, 34), &
-                                   h_forcing(2, 0:34)
+    real(c_double), intent(out) :: scalars(MODAL_SCALARS_SIZE), c(2, 3), g(2, 34), &
+                                   g_forcing(2, 0:34), h(2, 34), h_forcing(2, 0:34)
     integer(c_int), intent(out) :: exponents(4, 34), status
     character(len=256), intent(out) :: message
     type(model_t) :: model

@@ -16,6 +16,7 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._errors import CapacityError, check_status
 from ._settings import settings
+from .asymptotics import Continuation
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_charts
@@ -96,7 +97,8 @@ class Chart:
 
 
 def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
-                    model="slow_flow_3:1", chart: Chart = Chart(), threads=1,
+                    model="slow_flow_3:1", chart: Chart = Chart(),
+                    continuation: Continuation = Continuation(), threads=1,
                     capacity=200_000) -> StabilityChart:
     """The stability chart of the slow flow of `params` (model 'slow_flow_3:1' or
     'slow_flow_nonresonant') for x in x_range and y in y_range: x is rho or A (it is varied by
@@ -104,9 +106,11 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
     rho, A, gamma, kappa; the values of the others come from params. A curve that stops early
     is kept up to where it stopped (complete False, with its note) and a warning is issued.
     threads share out the runs and cells (same result on any number); capacity: room for the
-    curves' points."""
+    curves' points. The one-parameter runs search and continue steady states with the settings
+    of `continuation` (as frequency_response; its n_scan is chart.n_scan)."""
     _checks.instance("params", params, Parameters)
     _checks.instance("chart", chart, Chart)
+    _checks.instance("continuation", continuation, Continuation)
     _checks.choice("model", model, MODELS)
     _checks.choice("x", x, AXES)
     _checks.choice("y", y, AXES)
@@ -124,7 +128,7 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
     n_cells = max(n_x, 1) * max(n_y, 1)
     (curves, codim2, ends, grid, sizes, complete, notes, status,
      message) = _bridge.stability_chart(*params.array(), chart.array(), chart_range,
-                                        max(capacity, 1),
+                                        continuation.array(), max(capacity, 1),
                                         10 * max(max_curves, 1), max(max_curves, 1), n_cells)
     used = _tables.unpack("chart_sizes", sizes)
     if status == CapacityError.status:   # name the Python argument that sets the room

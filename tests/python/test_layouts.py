@@ -369,7 +369,7 @@ def test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables():
         *params.array(), chart.array(), _tables.pack("chart_range", {
             "model": 1, "x": _tables.code("chart_axes", "rho"),
             "y": _tables.code("chart_axes", "A"), "x_min": 0.49, "x_max": 0.53, "y_min": 0.0,
-            "y_max": 0.002, "threads": 1}), 20000, 100, 50, 6)
+            "y_max": 0.002, "threads": 1}), Continuation().array(), 20000, 100, 50, 6)
     assert status == 0 and len(sizes) == len(_tables.layout("chart_sizes"))
     assert _tables.unpack("chart_sizes", sizes)["cells"] == 6          # n_x n_y
     points, multipliers, amplitudes, *_, special, _, _, _, _ = (
@@ -474,7 +474,7 @@ def test_every_continuation_takes_the_same_settings_object():
     the core's 'continuation' layout's (no loose x_tol, f_tol, max_iter)."""
     import inspect
     for function in (sloshdyn.frequency_response, sloshdyn.periodic_response,
-                     sloshdyn.slow_flow_cycles):
+                     sloshdyn.slow_flow_cycles, sloshdyn.stability_chart):
         parameters = inspect.signature(function).parameters
         assert parameters["continuation"].kind is inspect.Parameter.KEYWORD_ONLY
         assert isinstance(parameters["continuation"].default, Continuation), function
