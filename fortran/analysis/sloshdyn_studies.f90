@@ -5,7 +5,7 @@
 !> told apart by their orbits. Every point is computed exactly as steady_state computes it
 !> alone, so a study equals a serial loop of steady states, bit for bit. No global state.
 !>
-!> Layout of orbit(ORBIT_ROWS, n), per point:
+!> Layout of orbit(ORBIT_ROWS, n), per point (the table 'study_orbit' of sloshdyn_tables):
 !>   [found (1/0), periods k, attempts, y1..y4 (the orbit's state at forcing phase 0),
 !>    re_mu1..re_mu4, im_mu1..im_mu4 (Floquet multipliers), max|mu|]
 !> found = 1 when the steady state jumped to the orbit by shooting, 2 when it was reached by

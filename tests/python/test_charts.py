@@ -144,7 +144,26 @@ def test_both_front_doors_give_the_same_chart(exe, tmp_path, fig12_chart):
     assert [r["n_stable"] for r in grid] == list(fig12_chart.grid["n_stable"])
     again = sloshdyn.charts.chart_from_files(tmp_path / "out")
     assert [q.kind for q in again.codim2_points] == [q.kind for q in fig12_chart.codim2_points]
-    assert sloshdyn.read_namelist(tmp_path / "input.nml").chart["x_range"] == RHO
+    assert sloshdyn.read_namelist(tmp_path / "input.nml").chart_range["x_range"] == RHO
+
+
+def test_the_runs_take_the_continuation_settings_by_both_front_doors(exe, tmp_path,
+                                                                   fig12_chart):
+    """The chart's one-parameter runs take &response's numbers (Python: continuation=), n_scan
+    from &chart: the executable with a &response of its own and Python with that Continuation
+    give the same chart, and it is not the chart of the default settings (the settings reach
+    the runs)."""
+    write(tmp_path, CHART_NML + "&response n_amplitudes = 4, ds = 0.001, ds_max = 0.004 /\n")
+    result = run(exe, "input.nml", tmp_path)
+    assert result.returncode == 0, result.stderr
+    inp = sloshdyn.read_namelist(tmp_path / "input.nml")
+    assert inp.response == sloshdyn.Continuation(n_amplitudes=4, ds=0.001, ds_max=0.004)
+    chart = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=inp.chart,
+                                     continuation=inp.response)
+    curves = read_csv(tmp_path / "out" / "chart_curves.csv")
+    rho = np.array([r["rho"] for r in curves])
+    assert np.array_equal(rho, np.concatenate([c.rho for c in chart.curves]))
+    assert not np.array_equal(rho, np.concatenate([c.rho for c in fig12_chart.curves]))
 
 
 @pytest.mark.parametrize("change,words", [
