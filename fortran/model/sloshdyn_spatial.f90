@@ -23,21 +23,30 @@
 !>
 !> No allocation and no I/O: the right-hand side is called in every integrator step.
 module sloshdyn_spatial
-  use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_kinds, only: wp, pi, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
-  use sloshdyn_excitation, only: excitation_t, base_acceleration
+  use sloshdyn_excitation, only: excitation_t, base_acceleration, acceleration_sensitivity, &
+                                 EXCITATION_HARMONIC, EXCITATION_RECORD, PARAMETER_RHO, &
+                                 PARAMETER_A
   implicit none
   private
   public :: spatial_model_t, spatial_model, spatial_equations, spatial_jacobian, &
             spatial_invariants, spatial_accelerations, spatial_mass_matrix, &
-            spatial_excitation_direction
+            spatial_excitation_direction, ground_acceleration, ground_sensitivity
 
-  !> The planar model (its groups and the x component of the ground motion) and the y component.
+  !> The planar model (its groups and its excitation) and the second horizontal component.
+  !> The ground acceleration (X'', Y'') is R(azimuth) (g1, g2): for harmonic excitation
+  !> g1 = -A rho^2 sin(rho tau), g2 = -ellipticity A rho^2 cos(rho tau) (an ellipse with axes A
+  !> along the azimuth and ellipticity A across it); for a record g1 is the planar record and g2
+  !> record_y (two records, rotated by the azimuth). azimuth = ellipticity = 0 and no record_y:
+  !> the planar excitation, exactly.
   type :: spatial_model_t
     type(model_t) :: planar
-    type(excitation_t) :: excitation_y   !< Y(tau) = v/L; A = 0 (the default): no y motion
+    real(wp) :: azimuth = 0       !< direction of g1 from the x axis [rad]
+    real(wp) :: ellipticity = 0   !< harmonic: minor over major axis, in [0, 1]
+    type(excitation_t) :: record_y   !< record: the second component (A = 0, none, by default)
   end type spatial_model_t
 
   !> A tilt (a, b) and the derivatives of its unit vector u up to the third order:
@@ -60,17 +69,33 @@ module sloshdyn_spatial
 
 contains
 
-  !> The spatial model from a validated planar model and the y component of the ground motion.
+  !> The spatial model from a validated planar model and the second component (azimuth in
+  !> [-2 pi, 2 pi], ellipticity in [0, 1]; record_y, if given, a record with the planar one).
   !> The dissipation eq (5) on the pendulum's tilt needs p >= 1: for p = 0 the radial direction,
   !> and so the force, is undefined at the vertical.
-  pure subroutine spatial_model(planar, excitation_y, model, status, message)
+  pure subroutine spatial_model(planar, azimuth, ellipticity, model, status, message, record_y)
     type(model_t), intent(in) :: planar
-    type(excitation_t), intent(in) :: excitation_y
+    real(wp), intent(in) :: azimuth, ellipticity
     type(spatial_model_t), intent(out) :: model
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    type(excitation_t), intent(in), optional :: record_y
     status = SD_OK
     message = ''
+    call check_real('azimuth', azimuth, -2*pi, 2*pi, .false., .false., &
+                    'azimuth must lie in [-2 pi, 2 pi] rad', status, message)
+    call check_real('ellipticity', ellipticity, 0.0_wp, 1.0_wp, .false., .false., &
+                    'ellipticity (minor over major axis) must lie in [0, 1]', status, message)
+    if (status /= SD_OK) return
+    if (present(record_y)) then
+      if (record_y%kind /= EXCITATION_RECORD .or. &
+          planar%excitation%kind /= EXCITATION_RECORD) then
+        status = SD_BAD_INPUT
+        message = 'record_y needs a record in both components'
+        return
+      end if
+      model%record_y = record_y
+    end if
     if (planar%p < 1) then
       status = SD_BAD_INPUT
       message = 'p = '//num2str(planar%p)//' is out of range for the spatial model: the '// &
@@ -79,8 +104,52 @@ contains
       return
     end if
     model%planar = planar
-    model%excitation_y = excitation_y
+    model%azimuth = azimuth
+    model%ellipticity = ellipticity
   end subroutine spatial_model
+
+  !> The ground acceleration (X'', Y'') at tau (see spatial_model_t).
+  pure function ground_acceleration(model, tau) result(g)
+    type(spatial_model_t), intent(in) :: model
+    real(wp), intent(in) :: tau
+    real(wp) :: g(2)
+    real(wp) :: major, minor
+    associate (ex => model%planar%excitation)
+      major = base_acceleration(ex, tau)
+      if (ex%kind == EXCITATION_RECORD) then
+        minor = 0
+        if (allocated(model%record_y%samples)) minor = base_acceleration(model%record_y, tau)
+      else
+        minor = -model%ellipticity*ex%A*ex%rho**2*cos(ex%rho*tau)
+      end if
+    end associate
+    g = [cos(model%azimuth)*major - sin(model%azimuth)*minor, &
+         sin(model%azimuth)*major + cos(model%azimuth)*minor]
+  end function ground_acceleration
+
+  !> d(X'', Y'')/dlambda at fixed tau, lambda = rho (PARAMETER_RHO) or A (PARAMETER_A) of the
+  !> harmonic excitation (0 for a record).
+  pure function ground_sensitivity(model, varied, tau) result(dg)
+    type(spatial_model_t), intent(in) :: model
+    integer, intent(in) :: varied
+    real(wp), intent(in) :: tau
+    real(wp) :: dg(2)
+    real(wp) :: major, minor
+    associate (ex => model%planar%excitation)
+      major = acceleration_sensitivity(ex, varied, tau)
+      minor = 0
+      if (ex%kind == EXCITATION_HARMONIC) then
+        if (varied == PARAMETER_A) then
+          minor = -model%ellipticity*ex%rho**2*cos(ex%rho*tau)
+        else if (varied == PARAMETER_RHO) then
+          minor = -model%ellipticity*ex%A*(2*ex%rho*cos(ex%rho*tau) &
+                                           - ex%rho**2*tau*sin(ex%rho*tau))
+        end if
+      end if
+    end associate
+    dg = [cos(model%azimuth)*major - sin(model%azimuth)*minor, &
+          sin(model%azimuth)*major + cos(model%azimuth)*minor]
+  end function ground_sensitivity
 
   !> First-order form: dydt = (x1', x1'', x2', x2'', y1', y1'', y2', y2'').
   pure subroutine spatial_equations(model, tau, y, dydt)
@@ -213,7 +282,7 @@ contains
       wwt = t0*y(rt + 1)
       mn = tilt_motion(n, wwn, qdd([1, 3]))
       mt = tilt_motion(t, wwt, qdd([2, 4]))
-      g = [base_acceleration(p%excitation, tau), base_acceleration(model%excitation_y, tau), p%s1]
+      g = [ground_acceleration(model, tau), p%s1]
 
       wn = (mt%acc + g)/p%s1 + mn%acc + 2*p%zeta*mn%vel
       wt = mt%acc + g + p%mu1*p%s1*mn%acc + p%gamma*mt%vel

@@ -1,14 +1,12 @@
 !> The spatial equations of motion (sloshdyn_spatial) as a system for the numerics layer, as
 !> sloshdyn_system is for the planar ones: an ode_system for the integrators and a
 !> periodic_problem for shooting and Floquet multipliers, T = the forcing period of the x
-!> component and lambda = rho (of both components, PARAMETER_RHO) or the x component's amplitude
-!> A (PARAMETER_A).
+!> excitation and lambda = rho or A of the harmonic excitation (PARAMETER_RHO, PARAMETER_A).
 module sloshdyn_spatial_system
   use sloshdyn_kinds, only: wp, pi
   use sloshdyn_spatial, only: spatial_model_t, spatial_equations, spatial_jacobian, &
-                              spatial_excitation_direction
-  use sloshdyn_excitation, only: forcing_period, acceleration_sensitivity, PARAMETER_RHO, &
-                                 PARAMETER_A
+                              spatial_excitation_direction, ground_sensitivity
+  use sloshdyn_excitation, only: forcing_period, PARAMETER_RHO, PARAMETER_A
   use sloshdyn_shooting, only: periodic_problem
   implicit none
   private
@@ -57,22 +55,17 @@ contains
     real(wp), intent(out) :: df(:)
     real(wp) :: e(8, 2)
     call spatial_excitation_direction(self%model, y, e)
-    df = e(:, 1)*acceleration_sensitivity(self%model%planar%excitation, self%varied, t)
-    if (self%varied == PARAMETER_RHO) &
-      df = df + e(:, 2)*acceleration_sensitivity(self%model%excitation_y, self%varied, t)
+    df = matmul(e, ground_sensitivity(self%model, self%varied, t))
   end subroutine spatial_parameter_derivative
 
   subroutine spatial_set_parameter(self, lambda)
     class(spatial_tank_system), intent(inout) :: self
     real(wp), intent(in) :: lambda
-    associate (ex => self%model%planar%excitation, ey => self%model%excitation_y)
-      if (self%varied == PARAMETER_A) then
-        ex%A = lambda
-      else
-        ex%rho = lambda
-        ey%rho = lambda
-      end if
-    end associate
+    if (self%varied == PARAMETER_A) then
+      self%model%planar%excitation%A = lambda
+    else
+      self%model%planar%excitation%rho = lambda
+    end if
   end subroutine spatial_set_parameter
 
   function spatial_parameter(self) result(v)

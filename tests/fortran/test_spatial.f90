@@ -10,18 +10,17 @@ program test_spatial
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_model, only: model_t, model_from_arrays
   use sloshdyn_motion, only: equations_of_motion, motion_jacobian, inertia_matrix
-  use sloshdyn_excitation, only: excitation_t, base_acceleration
   use sloshdyn_spatial, only: spatial_model_t, spatial_model, spatial_equations, &
                               spatial_jacobian, spatial_invariants, spatial_mass_matrix, &
-                              spatial_excitation_direction
+                              spatial_excitation_direction, ground_acceleration, ground_sensitivity
   use sloshdyn_spatial_system, only: spatial_tank_system
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_integrator, only: integrate, METHOD_DOP853
+  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
   use checks, only: check_close, check_true, finish
   implicit none
   type(model_t) :: planar
   type(spatial_model_t) :: model
-  type(excitation_t) :: no_motion
   integer :: status, trial, i, j
   character(len=message_len) :: message
   real(wp) :: y(8), dydt(8), jac(8, 8), fd(8, 8), yp(8), ym(8), fp(8), fm(8), step, worst, tau, &
@@ -31,7 +30,7 @@ program test_spatial
   call model_from_arrays([1.5_wp, 0.5_wp, 1.8_wp, pi/4, 0.7_wp, 0.01_wp, 0.05_wp, 0.3_wp, &
                           0.51_wp, 0.02_wp], [6, 2], planar, status, message)
   call check_true('planar model valid', status == 0)
-  call spatial_model(planar, no_motion, model, status, message)
+  call spatial_model(planar, 0.0_wp, 0.0_wp, model, status, message)
   call check_true('spatial model valid', status == 0)
   tau = 2.3_wp
 
@@ -60,8 +59,8 @@ program test_spatial
 
   ! random spatial states, some near the vertical (where tilt/sin(tilt) is switched to its
   ! series): the analytic Jacobian against central differences
-  model%excitation_y%A = 0.2_wp
-  model%excitation_y%rho = 0.51_wp
+  model%azimuth = 0.3_wp
+  model%ellipticity = 0.4_wp
   do trial = 1, 30
     call random_number(y)
     y = 2*y - 1
@@ -91,15 +90,65 @@ program test_spatial
     real(wp) :: e(8, 2), f0(8)
     still = model
     still%planar%excitation%A = 0
-    still%excitation_y%A = 0
+
     call random_number(y)
     call spatial_equations(model, tau, y, dydt)
     call spatial_equations(still, tau, y, f0)
     call spatial_excitation_direction(model, y, e)
     call check_close('excitation directions: affine in X'''' and Y''''', maxval(abs(dydt - f0 &
-                     - base_acceleration(model%planar%excitation, tau)*e(:, 1) &
-                     - base_acceleration(model%excitation_y, tau)*e(:, 2))), 0.0_wp, 0.0_wp, &
+                     - matmul(e, ground_acceleration(model, tau)))), 0.0_wp, 0.0_wp, &
                      1.0e-14_wp)
+  end block
+
+  ! the sensitivities of (X'', Y'') in rho and A against central differences (elliptical motion)
+  block
+    type(spatial_model_t) :: plus, minus
+    real(wp) :: h
+    h = 1.0e-6_wp
+    plus = model; minus = model
+    plus%planar%excitation%rho = model%planar%excitation%rho + h
+    minus%planar%excitation%rho = model%planar%excitation%rho - h
+    call check_close('d(X'''', Y'''')/drho', maxval(abs(ground_sensitivity(model, PARAMETER_RHO, tau) &
+                     - (ground_acceleration(plus, tau) - ground_acceleration(minus, tau))/(2*h))), &
+                     0.0_wp, 0.0_wp, 1.0e-8_wp)
+    plus = model; minus = model
+    plus%planar%excitation%A = model%planar%excitation%A + h
+    minus%planar%excitation%A = model%planar%excitation%A - h
+    call check_close('d(X'''', Y'''')/dA', maxval(abs(ground_sensitivity(model, PARAMETER_A, tau) &
+                     - (ground_acceleration(plus, tau) - ground_acceleration(minus, tau))/(2*h))), &
+                     0.0_wp, 0.0_wp, 1.0e-8_wp)
+  end block
+
+  ! isotropy: an elliptical ground motion turned by an azimuth turns the motion of the sloshing
+  ! mass from rest by the same angle (the equations are written in non-rotating angles, so this
+  ! checks them against a symmetry they do not show term by term)
+  block
+    type(spatial_tank_system) :: sys
+    type(ode_options) :: options
+    type(ode_stats) :: stats
+    real(wp) :: t_out(40), y0(8), y_a(8, 40), y_b(8, 40), alpha, p_a(2), p_b(2), worst_p
+    integer :: k
+    alpha = 1.1_wp
+    sys%model = model
+    sys%model%azimuth = 0
+    sys%model%ellipticity = 0.5_wp
+    y0 = 0
+    t_out = [(0.5_wp*k, k = 1, 40)]
+    options%rtol = 1.0e-11_wp
+    options%atol = 1.0e-11_wp
+    call integrate(METHOD_DOP853, sys, 0.0_wp, y0, t_out, y_a, options, stats, status, message)
+    sys%model%azimuth = alpha
+    call integrate(METHOD_DOP853, sys, 0.0_wp, y0, t_out, y_b, options, stats, status, message)
+    worst_p = 0
+    do k = 1, 40
+      p_a = mass_position(sys%model%planar, y_a(:, k))
+      p_b = mass_position(sys%model%planar, y_b(:, k))
+      worst_p = max(worst_p, maxval(abs(p_b - [cos(alpha)*p_a(1) - sin(alpha)*p_a(2), &
+                                               sin(alpha)*p_a(1) + cos(alpha)*p_a(2)])))
+    end do
+    call check_true('the elliptical run moves in both directions', &
+                    maxval(abs(y_a(5, :))) > 0.1_wp*maxval(abs(y_a(1, :))))
+    call check_close('azimuth turns the sloshing mass''s path', worst_p, 0.0_wp, 0.0_wp, 1.0e-8_wp)
   end block
 
   ! p = 0 is refused, naming p
@@ -108,7 +157,7 @@ program test_spatial
     type(spatial_model_t) :: refused
     linear = planar
     linear%p = 0
-    call spatial_model(linear, no_motion, refused, status, message)
+    call spatial_model(linear, 0.0_wp, 0.0_wp, refused, status, message)
     call check_true('p = 0 is refused naming p', status /= 0 .and. index(message, 'p = 0') > 0)
   end block
 
@@ -121,7 +170,6 @@ program test_spatial
     integer :: k
     sys%model = model
     sys%model%planar%excitation%A = 0
-    sys%model%excitation_y%A = 0
     sys%model%planar%gamma = 0
     sys%model%planar%delta = 0
     sys%model%planar%zeta = 0
@@ -147,4 +195,17 @@ program test_spatial
                      1.0e-9_wp*abs(l0))
   end block
   call finish()
+
+contains
+
+  !> Horizontal position of the sloshing mass relative to the base, t + s1 n (unit L).
+  pure function mass_position(p, y) result(r)
+    type(model_t), intent(in) :: p
+    real(wp), intent(in) :: y(8)
+    real(wp) :: r(2)
+    associate (t0 => p%theta0)
+      r = [sin(t0*y(3))*cos(t0*y(7)), sin(t0*y(7))] &
+          + p%s1*[sin(t0*y(1))*cos(t0*y(5)), sin(t0*y(5))]
+    end associate
+  end function mass_position
 end program test_spatial
