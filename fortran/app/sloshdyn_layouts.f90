@@ -27,7 +27,7 @@ module sloshdyn_layouts
             CHART_SETTINGS_SIZE, STUDY_SIZE, SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, &
             SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
-            PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
+            PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, SPATIAL_SIZE
   public :: chart_axes, CHART_RHO
   public :: layout_fields, layout_size, join, excitation_parameters, ground_kinds, resonances
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
@@ -111,6 +111,9 @@ module sloshdyn_layouts
     'c1', 'c2', 'c3', 'c4', 'delta2', 'delta3', 'routh_stable']
   character(len=*), parameter :: orbit_info_fields(*) = [character(len=field_len) :: &
     'iterations', 'max_x1']
+  !> The second horizontal component of the spatial model (sloshdyn_spatial's spatial_model_t)
+  character(len=*), parameter :: spatial_fields(*) = [character(len=field_len) :: &
+    'azimuth', 'ellipticity']
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
   !> GROUND_HARMONIC), the resonance of a frequency response (from 0).
@@ -137,7 +140,8 @@ module sloshdyn_layouts
                         PENDULUM_SIZE = size(pendulum_fields), &
                         PHYSICAL_SIZE = size(physical_fields), GROUPS_SIZE = size(groups_fields), &
                         ROUTH_TRIVIAL_SIZE = size(routh_fields), &
-                        ORBIT_INFO_SIZE = size(orbit_info_fields)
+                        ORBIT_INFO_SIZE = size(orbit_info_fields), &
+                        SPATIAL_SIZE = size(spatial_fields)
 
 contains
 
@@ -170,6 +174,7 @@ contains
     case ('groups');         fields = join(groups_fields, ',')
     case ('routh');          fields = join(routh_fields, ',')
     case ('orbit_info');     fields = join(orbit_info_fields, ',')
+    case ('spatial');        fields = join(spatial_fields, ',')
     case default;            fields = ''
     end select
   end function layout_fields

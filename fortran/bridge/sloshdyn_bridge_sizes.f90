@@ -16,7 +16,8 @@ program sloshdyn_bridge_sizes
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
                               ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
-                              PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
+                              PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
+                              SPATIAL_SIZE
   implicit none
   call define('n_real_params', n_real_params)
   call define('n_int_params', n_int_params)
@@ -61,6 +62,7 @@ program sloshdyn_bridge_sizes
   call define('groups_size', GROUPS_SIZE)
   call define('routh_trivial_size', ROUTH_TRIVIAL_SIZE)
   call define('orbit_info_size', ORBIT_INFO_SIZE)
+  call define('spatial_size', SPATIAL_SIZE)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

@@ -51,7 +51,7 @@ CODE_LISTS = ("analyses", "methods", "chart_models", "chart_axes", "excitation_p
 LAYOUTS = ("model", "model_integers", "integration", "steady", "response", "response_range",
            "lyapunov", "tank", "ground", "chart", "study", "sweep", "simulation", "seismic",
            "analysis", "continuation", "cycle_continuation", "shooting", "pendulum", "physical",
-           "groups", "routh", "orbit_info")
+           "groups", "routh", "orbit_info", "spatial")
 
 
 def layout(name):

@@ -71,7 +71,7 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     for name, array in arrays.items():
         assert len(array) == len(_tables.layout(name)), name
     assert set(_tables.LAYOUTS) - set(arrays) <= {"physical", "continuation", "cycle_continuation",
-                                                  "orbit_info"}
+                                                  "orbit_info", "spatial"}
 
 
 def test_an_input_array_of_another_size_is_refused():
