@@ -21,6 +21,7 @@ module sloshdyn_tables
             POINT_DELTA3, POINT_X
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
+  public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
@@ -103,6 +104,10 @@ module sloshdyn_tables
   integer, parameter :: PERIODIC_POINT_ROWS = 7, PERIODIC_MULTIPLIER_ROWS = 8, &
                         PERIODIC_SPECIAL_ROWS = 7, PERIODIC_SPECIAL_KIND = 1, &
                         PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
+  !> Swirl (sloshdyn_swirl): a planar branch's points with their out-of-plane Floquet
+  !> multipliers nu ('swirl_branch'), and the edges of the swirl band, where max|nu| = 1
+  !> ('swirl_edges'; refined 1: located by Brent's method, 0: interpolated between points).
+  integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 7
 
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
   !> output time, then x1 and x2; the peaks of the loads (value, time), then the roof contact of
@@ -192,6 +197,11 @@ contains
                'im_mu1,im_mu2,im_mu3,im_mu4'
     case ('periodic_special_points')
       header = 'kind,lambda,y1,y2,y3,y4,max_x1'
+    case ('swirl_branch')
+      header = 'lambda,y1,y2,y3,y4,max_x1,planar_stable,max_abs_nu,re_nu1,re_nu2,re_nu3,'// &
+               're_nu4,im_nu1,im_nu2,im_nu3,im_nu4'
+    case ('swirl_edges')
+      header = 'lambda,y1,y2,y3,y4,max_x1,refined'
     case ('lyapunov')
       header = 'periods,estimate'
     case ('lyapunov_spectrum')

@@ -45,4 +45,66 @@ contains
       mass = 0; dydt = 0; jacobian = 0; invariants = 0
     end if
   end subroutine spatial_equations
+
+  !> The out-of-plane Floquet multipliers nu(2, 4) = (Re, Im) of the planar orbit of period k T
+  !> through y_orbit (sloshdyn_swirl).
+  subroutine out_of_plane_multipliers(rpar, ipar, y_orbit, k, integration, nu, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_swirl, only: core => out_of_plane_multipliers
+    real(c_double), intent(in) :: rpar(n_real_params), y_orbit(4), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), k
+    real(c_double), intent(out) :: nu(2, 4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    real(c_double) :: re(4), im(4)
+    integer :: code
+    nu = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, y_orbit, int(k), to_ode_options(integration), &
+                             to_method(integration), re, im, code, message)
+    if (code == 0) nu = transpose(reshape([re, im], [4, 2]))
+    status = code
+  end subroutine out_of_plane_multipliers
+
+  !> The swirl band along the branch of planar orbits (period k T) through y0, continued in rho
+  !> (which = 1) or A (which = 2) over [lambda_min, lambda_max] with settings = [ds, ds_min,
+  !> ds_max, x_scale, direction] (sloshdyn_swirl's swirl_branch): points(SWIRL_BRANCH_ROWS, :)
+  !> and edges(SWIRL_EDGE_ROWS, :) in the tables 'swirl_branch' and 'swirl_edges'; complete = 0
+  !> if the branch stopped early.
+  subroutine swirl_branch(rpar, ipar, which, y0, k, lambda_min, lambda_max, settings, &
+                          integration, max_points, max_edges, points, n_points, edges, n_edges, &
+                          complete, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, CONTINUATION_SIZE, to_ode_options, to_method, &
+                                to_continuation
+    use sloshdyn_continuation, only: continuation_options
+    use sloshdyn_swirl, only: core => swirl_branch
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4), lambda_min, lambda_max, &
+                                  settings(CONTINUATION_SIZE), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, k, max_points, max_edges
+    real(c_double), intent(out) :: points(SWIRL_BRANCH_ROWS, max_points), &
+                                   edges(SWIRL_EDGE_ROWS, max_edges)
+    integer(c_int), intent(out) :: n_points, n_edges, complete, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(continuation_options) :: options
+    integer :: code, found, found_edges
+    logical :: done
+    points = 0; edges = 0; found = 0; found_edges = 0; done = .false.
+    options = to_continuation(settings)
+    options%max_points = max_points
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, int(which), y0, int(k), lambda_min, lambda_max, options, &
+                             to_ode_options(integration), to_method(integration), points, found, &
+                             edges, found_edges, done, code, message)
+    n_points = found
+    n_edges = found_edges
+    complete = merge(1, 0, done)
+    status = code
+  end subroutine swirl_branch
 end module sloshdyn_bridge_spatial

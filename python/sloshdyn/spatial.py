@@ -16,8 +16,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _checks, _core, _tables
+from ._cancel import cancellable
 from ._errors import check_status
+from .asymptotics import Continuation
 from .parameters import Parameters
+from .periodic import PERIODIC_CONTINUATION, branch_start, message_text, with_partial
+from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_spatial
 
@@ -48,3 +52,72 @@ def equations_of_motion(params: Parameters, tau, y, *, azimuth=0.0,
         *params.array(), _spatial_array(azimuth, ellipticity), tau, y)
     check_status(status, message)
     return SpatialMotion(mass, dydt, jac, float(invariants[0]), float(invariants[1]))
+
+
+def out_of_plane_multipliers(params: Parameters, y_orbit, *, periods=1,
+                             integration: Integration = Integration()) -> np.ndarray:
+    """The four out-of-plane Floquet multipliers nu (complex) of the planar periodic orbit of
+    period `periods` T through y_orbit (x1, x1', x2, x2' at tau = 0, e.g.
+    ``periodic_orbit(params).y0``): max|nu| > 1 means the planar response is unstable to swirl."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    nu, status, message = cancellable(_bridge.out_of_plane_multipliers, *params.array(),
+                                      _checks.reals("y_orbit", y_orbit, (4,)),
+                                      _checks.integer("periods", periods, 1), integration.array())
+    check_status(status, message, "out-of-plane multipliers")
+    return nu[0] + 1j * nu[1]
+
+
+@dataclass(frozen=True)
+class SwirlBand:
+    """A branch of planar periodic responses with their out-of-plane Floquet multipliers nu, and
+    the edges of the swirl band (max|nu| = 1) on it."""
+
+    parameter: str               #: 'rho' or 'A'
+    table: dict                  #: lambda, rho, A, y1..y4, max_x1, planar_stable (in-plane
+                                 #: Floquet stability), max_abs_nu, nu1..nu4 (complex), swirl
+                                 #: (max|nu| > 1)
+    edges: dict                  #: lambda, rho, A, y1..y4, max_x1, refined (1: located by
+                                 #: Brent's method; 0: interpolated across a fold)
+    complete: bool
+    message: str                 #: why an incomplete branch stopped ('' if complete)
+    method: str                  #: the integration method used ('auto' resolved)
+
+
+def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
+               start="simulation", from_end="low", max_edges=100,
+               continuation: Continuation = PERIODIC_CONTINUATION,
+               integration: Integration = Integration()) -> SwirlBand:
+    """Follow the planar periodic response in rho over rho_range (or in A over A_range) as
+    ``periodic_response`` does, with the out-of-plane multipliers at every point and the edges
+    of the band of swirl (planar response unstable out of its plane). Raises ConvergenceError
+    (with ``partial``) if the branch stops before the end of the range."""
+    b = branch_start(params, rho_range, A_range, y0, periods, start, from_end, continuation,
+                     integration, "swirl_branch")
+    parameter = b.parameter
+    max_edges = _checks.output_size("max_edges", _checks.integer("max_edges", max_edges, 1),
+                                    len(_tables.columns("swirl_edges")))
+    points, n, edges, n_edges, complete, status, message = cancellable(
+        _bridge.swirl_branch, *b.first.array(), 1 if parameter == "rho" else 2, b.y0, b.periods,
+        b.low, b.high, b.settings, integration.array(), b.max_points, max_edges)
+    rows = dict(zip(_tables.columns("swirl_branch"), points[:, :n]))
+    edge_rows = dict(zip(_tables.columns("swirl_edges"), edges[:, :n_edges]))
+
+    def with_parameters(source, count):
+        lam = source["lambda"]
+        return {"lambda": lam,
+                "rho": lam if parameter == "rho" else np.full(count, params.rho),
+                "A": lam if parameter == "A" else np.full(count, params.A)}
+
+    table = with_parameters(rows, n)
+    for name in ("y1", "y2", "y3", "y4", "max_x1", "planar_stable", "max_abs_nu"):
+        table[name] = rows[name]
+    for i in range(1, 5):
+        table[f"nu{i}"] = rows[f"re_nu{i}"] + 1j * rows[f"im_nu{i}"]
+    table["swirl"] = rows["max_abs_nu"] > 1
+    edge_table = with_parameters(edge_rows, n_edges)
+    for name in ("y1", "y2", "y3", "y4", "max_x1", "refined"):
+        edge_table[name] = edge_rows[name]
+    band = SwirlBand(parameter, table, edge_table, bool(complete), message_text(message),
+                     integration.method_used)
+    return with_partial(band, status, message, "swirl band")

@@ -5,7 +5,8 @@
 !> - the analytic Jacobian against central differences, at states near and far from the vertical;
 !> - without forcing and damping: energy and angular momentum about the vertical conserved to
 !>   the integrator's tolerance along a swirling, impacting orbit (independent invariants);
-!> - rotating the forcing's azimuth rotates the motion (the model is isotropic).
+!> - rotating the forcing's azimuth rotates the motion (the model is isotropic);
+!> - at rest the out-of-plane Floquet multipliers (sloshdyn_swirl) are the in-plane ones.
 program test_spatial
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_model, only: model_t, model_from_arrays
@@ -17,6 +18,11 @@ program test_spatial
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_integrator, only: integrate, METHOD_DOP853
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
+  use sloshdyn_system, only: tank_system
+  use sloshdyn_shooting, only: monodromy_matrix
+  use sloshdyn_lapack, only: eigenvalues
+  use sloshdyn_swirl, only: out_of_plane_multipliers
+  use sloshdyn_tables, only: table_size, SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
   use checks, only: check_close, check_true, finish
   implicit none
   type(model_t) :: planar
@@ -149,6 +155,32 @@ program test_spatial
     call check_true('the elliptical run moves in both directions', &
                     maxval(abs(y_a(5, :))) > 0.1_wp*maxval(abs(y_a(1, :))))
     call check_close('azimuth turns the sloshing mass''s path', worst_p, 0.0_wp, 0.0_wp, 1.0e-8_wp)
+  end block
+
+  ! out-of-plane multipliers at rest (no forcing) are the planar ones: the linearisation at
+  ! rest is the same in every vertical plane (isotropy); the planar monodromy comes from the
+  ! planar equations alone (sloshdyn_system)
+  block
+    type(tank_system) :: still
+    type(ode_options) :: options
+    real(wp) :: y_end(4), monodromy(4, 4), re(4), im(4), re_p(4), im_p(4)
+    still%model = planar
+    still%model%excitation%A = 0
+    options%rtol = 1.0e-11_wp
+    options%atol = 1.0e-12_wp
+    call out_of_plane_multipliers(still%model, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, options, &
+                                  METHOD_DOP853, re, im, status, message)
+    call check_true('out-of-plane multipliers computed', status == 0)
+    call monodromy_matrix(still, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 1, options, METHOD_DOP853, &
+                          y_end, monodromy, status, message)
+    call eigenvalues(monodromy, re_p, im_p, status, message)
+    call check_close('out-of-plane = in-plane multipliers at rest: sum of moduli', &
+                     sum(hypot(re, im)), sum(hypot(re_p, im_p)), 1.0e-9_wp)
+    call check_close('out-of-plane = in-plane multipliers at rest: sum of real parts', &
+                     sum(re), sum(re_p), 1.0e-9_wp, 1.0e-9_wp)
+    call check_true('swirl tables have their documented sizes', &
+                    table_size('swirl_branch') == SWIRL_BRANCH_ROWS .and. &
+                    table_size('swirl_edges') == SWIRL_EDGE_ROWS)
   end block
 
   ! p = 0 is refused, naming p
