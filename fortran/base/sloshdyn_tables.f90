@@ -21,7 +21,7 @@ module sloshdyn_tables
             POINT_DELTA3, POINT_X
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
-  public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
+  public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
@@ -108,6 +108,10 @@ module sloshdyn_tables
   !> multipliers nu ('swirl_branch'), and the edges of the swirl band, where max|nu| = 1
   !> ('swirl_edges'; refined 1: located by Brent's method, 0: interpolated between points).
   integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 7
+  !> A tank under ground motion in two horizontal components (sloshdyn_seismic_spatial): at each
+  !> output time ('seismic_spatial'), and the peaks over the output times beside the codes'
+  !> combinations of the two planar runs ('seismic_spatial_peaks').
+  integer, parameter :: SEISMIC_SPATIAL_ROWS = 17, SEISMIC_SPATIAL_PEAKS = 19
 
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
   !> output time, then x1 and x2; the peaks of the loads (value, time), then the roof contact of
@@ -202,6 +206,19 @@ contains
                're_nu4,im_nu1,im_nu2,im_nu3,im_nu4'
     case ('swirl_edges')
       header = 'lambda,y1,y2,y3,y4,max_x1,refined'
+    case ('seismic_spatial')
+      header = 't [s],ground_acceleration_x [m/s^2],ground_acceleration_y [m/s^2],'// &
+               'wave_height_x [m],wave_height_y [m],wave_height [m],wave_azimuth [rad],'// &
+               'base_shear_x [N],base_shear_y [N],base_shear [N],overturning_moment_x [N m],'// &
+               'overturning_moment_y [N m],overturning_moment [N m],x1,x2,y1,y2'
+    case ('seismic_spatial_peaks')
+      header = 'wave_height [m],wave_azimuth [rad],wave_time [s],base_shear [N],'// &
+               'base_shear_time [s],overturning_moment [N m],overturning_moment_time [s],'// &
+               'wave_height_run_1 [m],wave_height_run_2 [m],wave_height_srss [m],'// &
+               'wave_height_100_30 [m],base_shear_run_1 [N],base_shear_run_2 [N],'// &
+               'base_shear_srss [N],base_shear_100_30 [N],overturning_moment_run_1 [N m],'// &
+               'overturning_moment_run_2 [N m],overturning_moment_srss [N m],'// &
+               'overturning_moment_100_30 [N m]'
     case ('lyapunov')
       header = 'periods,estimate'
     case ('lyapunov_spectrum')

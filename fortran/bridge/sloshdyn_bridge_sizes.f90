@@ -11,7 +11,8 @@ program sloshdyn_bridge_sizes
                              PERIODIC_SPECIAL_ROWS, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, &
                              CHART_END_ROWS, CHART_GRID_ROWS, TANK_SI_SIZE, CODES_COLUMNS, &
                              CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS, &
-                             SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
+                             SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, &
+                             SEISMIC_SPATIAL_PEAKS
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
@@ -66,6 +67,8 @@ program sloshdyn_bridge_sizes
   call define('spatial_size', SPATIAL_SIZE)
   call define('swirl_branch_rows', SWIRL_BRANCH_ROWS)
   call define('swirl_edge_rows', SWIRL_EDGE_ROWS)
+  call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
+  call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

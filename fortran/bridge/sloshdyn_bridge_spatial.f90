@@ -107,4 +107,31 @@ contains
     complete = merge(1, 0, done)
     status = code
   end subroutine swirl_branch
+
+  !> The tank at rest under ground motion in two components (sloshdyn_seismic_spatial):
+  !> ground/samples the first component (along spatial's azimuth), ground_2/samples_2 the second
+  !> (a record with the same dt, or ignored for harmonic motion, whose second component is
+  !> spatial's ellipticity); table(SEISMIC_SPATIAL_ROWS, n_out), peaks(SEISMIC_SPATIAL_PEAKS).
+  subroutine seismic_response_spatial(tank, ground, n, samples, ground_2, n_2, samples_2, &
+                                      spatial, t_end, n_out, integration, table, peaks, status, &
+                                      message)
+    !f2py threadsafe
+    use sloshdyn_tables, only: SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE, SPATIAL_SIZE, to_tank, &
+                                to_ground, to_ode_options, to_method
+    use sloshdyn_seismic_spatial, only: core => seismic_response_spatial
+    integer(c_int), intent(in) :: n, n_2, n_out
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), &
+                                  ground_2(GROUND_SIZE), samples_2(n_2), spatial(SPATIAL_SIZE), &
+                                  t_end, integration(INTEGRATION_SIZE)
+    real(c_double), intent(out) :: table(SEISMIC_SPATIAL_ROWS, n_out), &
+                                   peaks(SEISMIC_SPATIAL_PEAKS)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_tank(tank), to_ground(ground, samples), to_ground(ground_2, samples_2), &
+              spatial(1), spatial(2), t_end, int(n_out), to_ode_options(integration), &
+              to_method(integration), table, peaks, info, message)
+    status = info
+  end subroutine seismic_response_spatial
 end module sloshdyn_bridge_spatial

@@ -34,7 +34,8 @@ module sloshdyn_spatial
   private
   public :: spatial_model_t, spatial_model, spatial_equations, spatial_jacobian, &
             spatial_invariants, spatial_accelerations, spatial_mass_matrix, &
-            spatial_excitation_direction, ground_acceleration, ground_sensitivity
+            spatial_excitation_direction, ground_acceleration, ground_sensitivity, &
+            spatial_kinematics
 
   !> The planar model (its groups and its excitation) and the second horizontal component.
   !> The ground acceleration (X'', Y'') is R(azimuth) (g1, g2): for harmonic excitation
@@ -227,6 +228,29 @@ contains
       e(2:8:2, :) = rhs/t0
     end associate
   end subroutine spatial_excitation_direction
+
+  !> The horizontal direction of the pendulum n_h = sin(Theta) (cos, sin of its azimuth), and
+  !> the horizontal accelerations of the rod tops (tank) and of the sloshing mass, ground
+  !> included (unit L omega^2): a_tank = G + (J_t phi'' + H_t), a_mass = a_tank + s1 (J_n
+  !> theta'' + H_n), horizontal parts.
+  pure subroutine spatial_kinematics(model, tau, y, n_h, a_tank, a_mass)
+    type(spatial_model_t), intent(in) :: model
+    real(wp), intent(in) :: tau, y(8)
+    real(wp), intent(out) :: n_h(2), a_tank(2), a_mass(2)
+    type(tilt_t) :: n, t
+    type(tilt_motion_t) :: mn, mt
+    real(wp) :: xdd(4)
+    call spatial_accelerations(model, tau, y, xdd)
+    associate (t0 => model%planar%theta0)
+      n = tilt(t0*y(pendulum_index(1)), t0*y(pendulum_index(2)), -1.0_wp)
+      t = tilt(t0*y(rods_index(1)), t0*y(rods_index(2)), 1.0_wp)
+      mn = tilt_motion(n, t0*y(pendulum_index + 1), t0*xdd([1, 3]))
+      mt = tilt_motion(t, t0*y(rods_index + 1), t0*xdd([2, 4]))
+    end associate
+    n_h = n%du(1:2, 0, 0)
+    a_tank = ground_acceleration(model, tau) + mt%acc(1:2)
+    a_mass = a_tank + model%planar%s1*mn%acc(1:2)
+  end subroutine spatial_kinematics
 
   !> Energy T + V (eq S2-S3, unit M L^2 omega^2) and angular momentum about the vertical
   !> (unit M L^2 omega), relative to the ground: both constant without forcing and damping.

@@ -121,3 +121,56 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
     band = SwirlBand(parameter, table, edge_table, bool(complete), message_text(message),
                      integration.method_used)
     return with_partial(band, status, message, "swirl band")
+
+
+@dataclass(frozen=True)
+class SeismicResponse2D:
+    """A tank at rest under ground motion in two horizontal components, SI units
+    (docs/model.md, "Spatial model and swirl"). ``table``: one array per column of the core's
+    'seismic_spatial' table (names without units): t [s], ground_acceleration_x and _y
+    [m/s^2], wave_height_x and _y [m] (the wall's wave height is
+    wave_height_x cos(psi) + wave_height_y sin(psi) at azimuth psi), wave_height [m] (its
+    maximum over the wall) and wave_azimuth [rad] (where), base_shear_x, _y and the resultant
+    base_shear [N], overturning_moment_x, _y (of the forces along x and y) and the resultant
+    [N m], x1, x2, y1, y2. ``peaks``: the 'seismic_spatial_peaks' (the spatial peaks over the
+    output times with their azimuth and times; for two records also the peaks of the two
+    planar runs, one per component, and the codes' SRSS and 100/30 combinations of them)."""
+
+    table: dict
+    peaks: dict
+    method: str                  #: the integration method used ('auto' resolved)
+
+    def wave_height_at(self, azimuth):
+        """The wave height at the wall at azimuth [rad] (from the x axis) over time [m]."""
+        a = _checks.real("azimuth", azimuth)
+        return self.table["wave_height_x"] * np.cos(a) + self.table["wave_height_y"] * np.sin(a)
+
+
+def seismic_response_2d(tank, ground_motion, ground_motion_2=None, t_end=None, n_out=None, *,
+                        azimuth=0.0, ellipticity=0.0,
+                        integration: Integration = Integration()) -> SeismicResponse2D:
+    """The tank (sloshdyn.Tank) at rest at t = 0 under ground_motion along ``azimuth`` [rad,
+    from the x axis] and ground_motion_2 across it: two records with one dt (scale both by one
+    factor, as FEMA P695 does, before passing them), or (ground_motion harmonic,
+    ground_motion_2 None) harmonic motion with ``ellipticity`` (the minor axis of the ellipse
+    over the major). t_end and n_out default as for ``seismic_response`` of ground_motion."""
+    from .seismic import GroundMotion, Tank, seismic_defaults
+    _checks.instance("tank", tank, Tank)
+    _checks.instance("ground_motion", ground_motion, GroundMotion)
+    _checks.instance("integration", integration, Integration)
+    if ground_motion_2 is not None:
+        _checks.instance("ground_motion_2", ground_motion_2, GroundMotion)
+    times = seismic_defaults(tank, ground_motion, t_end, n_out)
+    _checks.output_size("n_out", times.n_out, len(_tables.columns("seismic_spatial")))
+    ground, samples = ground_motion._arrays()
+    ground_2, samples_2 = (ground_motion_2._arrays() if ground_motion_2 is not None
+                           else (np.zeros_like(ground), np.zeros(0)))
+    table, peaks, status, message = cancellable(
+        _bridge.seismic_response_spatial, tank.array(), ground, samples, ground_2, samples_2,
+        _spatial_array(azimuth, ellipticity), times.t_end, times.n_out, integration.array())
+    check_status(status, message)
+    name = lambda column: column.split(" [")[0]   # noqa: E731
+    return SeismicResponse2D(
+        {name(c): row.copy() for c, row in zip(_tables.columns("seismic_spatial"), table)},
+        {name(c): float(v) for c, v in zip(_tables.columns("seismic_spatial_peaks"), peaks)},
+        integration.method_used)
