@@ -19,8 +19,8 @@
 !>
 !> Beside the spatial peaks, the codes' combinations of two planar runs (run 1: component 1
 !> alone; run 2: component 2 alone, for records): the SRSS, sqrt(P1^2 + P2^2), and the 100/30
-!> rule, max(P1 + 0.3 P2, 0.3 P1 + P2) (ASCE 7-16 12.5.3.1, Eurocode 8-1 4.3.3.5.2), with the
-!> peaks P of each run over the same output times.
+!> rule, max(P1 + 0.3 P2, 0.3 P1 + P2) (ASCE 7-16 12.5.3.1(a); EN 1998-1 4.3.3.5.1, SRSS and
+!> eq 4.18-4.20), with the peaks P of each run over the same output times.
 !>
 !> Layouts (sloshdyn_tables): table(:, i) = 'seismic_spatial', peaks = 'seismic_spatial_peaks'.
 module sloshdyn_seismic_spatial

@@ -438,7 +438,8 @@ contains
     end if
   end function ratio_slope
 
-  !> The rods' spring: d(Phi^2/2)/dq = -r c_q and its Hessian -r c_qq + s c_q c_q^T, r = Phi/sin Phi,
+  !> The rods' spring: d(Phi^2/2)/dq = -r c_q and its Hessian -r c_qq + s c_q c_q^T,
+  !> r = Phi/sin Phi,
   !> s = ratio_slope (eq S4).
   pure subroutine rods_spring(t, spring, dspring)
     type(tilt_t), intent(in) :: t
@@ -456,7 +457,8 @@ contains
   !> The impact force of eq (4) and the dissipation of eq (5) on the pendulum's tilt Theta,
   !> divided by mu1 s1^2 (eq S5): with r = Theta/sin Theta, Theta_q = -r c_q/Theta,
   !>   dU/dq = beta (Theta/theta0)^(2n-1) Theta_q = -beta/theta0 (Theta/theta0)^(2n-2) r c_q,
-  !>   D_q   = delta (Theta/theta0)^(2p) Theta' Theta_q = delta/theta0^2 (Theta/theta0)^(2p-2) r^2 (c_q.w) c_q,
+  !>   D_q   = delta (Theta/theta0)^(2p) Theta' Theta_q
+  !>         = delta/theta0^2 (Theta/theta0)^(2p-2) r^2 (c_q.w) c_q,
   !> and their derivatives in q and in the rates w (dr/dc = -s, dTheta^m/dc = -m Theta^(m-2) r).
   pure subroutine impact_and_dissipation(p, n, w, force, dforce_dq, dforce_dw)
     type(model_t), intent(in) :: p

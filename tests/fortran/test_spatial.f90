@@ -114,7 +114,8 @@ program test_spatial
     plus = model; minus = model
     plus%planar%excitation%rho = model%planar%excitation%rho + h
     minus%planar%excitation%rho = model%planar%excitation%rho - h
-    call check_close('d(X'''', Y'''')/drho', maxval(abs(ground_sensitivity(model, PARAMETER_RHO, tau) &
+    call check_close('d(X'''', Y'''')/drho', &
+                     maxval(abs(ground_sensitivity(model, PARAMETER_RHO, tau) &
                      - (ground_acceleration(plus, tau) - ground_acceleration(minus, tau))/(2*h))), &
                      0.0_wp, 0.0_wp, 1.0e-8_wp)
     plus = model; minus = model
