@@ -33,7 +33,7 @@ module sloshdyn_layouts
             RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
             PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
-            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE
+            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE
   public :: chart_axes, CHART_RHO
   public :: layout_names, layout_text, layout_defaults, join, &
             excitation_parameters, ground_kinds, resonances
@@ -198,12 +198,17 @@ module sloshdyn_layouts
   type(field_t), parameter :: chart_sizes_fields(*) = [ &
     field_t('curve_points', 'integer'), field_t('codim2_points', 'integer'), &
     field_t('curves', 'integer'), field_t('cells', 'integer')]
+  !> The second horizontal component of the spatial model (sloshdyn_spatial's spatial_model_t)
+  type(field_t), parameter :: spatial_fields(*) = [ &
+    field_t('azimuth', doc='direction of the ground motion [rad from x]'), &
+    field_t('ellipticity', doc='the ground moves by ellipticity A cos(rho tau) across '// &
+            'azimuth as well as A sin(rho tau) along it')]
   !> Every named layout (names('layouts')); 'model' and 'model_integers' are sloshdyn_model's
   !> rpar and ipar.
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
     'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
-    'routh,orbit_info,modal_scalars,chart_sizes'
+    'routh,orbit_info,modal_scalars,chart_sizes,spatial'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
@@ -233,7 +238,8 @@ module sloshdyn_layouts
                         ROUTH_TRIVIAL_SIZE = size(routh_fields), &
                         ORBIT_INFO_SIZE = size(orbit_info_fields), &
                         MODAL_SCALARS_SIZE = size(modal_scalars_fields), &
-                        CHART_SIZES_SIZE = size(chart_sizes_fields)
+                        CHART_SIZES_SIZE = size(chart_sizes_fields), &
+                        SPATIAL_SIZE = size(spatial_fields)
 
 contains
 
@@ -270,6 +276,7 @@ contains
     case ('orbit_info');     fields = orbit_info_fields
     case ('modal_scalars');  fields = modal_scalars_fields
     case ('chart_sizes');    fields = chart_sizes_fields
+    case ('spatial');        fields = spatial_fields
     case default;            allocate (fields(0))
     end select
   end function layout_of

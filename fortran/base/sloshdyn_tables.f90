@@ -21,6 +21,7 @@ module sloshdyn_tables
             POINT_DELTA3, POINT_X
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
+  public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
@@ -104,6 +105,14 @@ module sloshdyn_tables
   integer, parameter :: PERIODIC_POINT_ROWS = 7, PERIODIC_MULTIPLIER_ROWS = 8, &
                         PERIODIC_SPECIAL_ROWS = 7, PERIODIC_SPECIAL_KIND = 1, &
                         PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
+  !> Swirl (sloshdyn_swirl): a planar branch's points with their out-of-plane Floquet
+  !> multipliers nu ('swirl_branch'), and the edges of the swirl band, where max|nu| = 1
+  !> ('swirl_edges'; refined 1: located by Brent's method, 0: interpolated between points).
+  integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 7
+  !> A tank under ground motion in two horizontal components (sloshdyn_seismic_spatial): at each
+  !> output time ('seismic_spatial'), and the peaks over the output times beside the codes'
+  !> combinations of the two planar runs ('seismic_spatial_peaks').
+  integer, parameter :: SEISMIC_SPATIAL_ROWS = 17, SEISMIC_SPATIAL_PEAKS = 19
 
   !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
   !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
@@ -208,6 +217,24 @@ contains
                'im_mu1,im_mu2,im_mu3,im_mu4,min_B1,max_B1,min_B2,max_B2'
     case ('cycle_special_points')
       header = 'kind,lambda,re_B1,im_B1,re_B2,im_B2,period'
+    case ('swirl_branch')
+      header = 'lambda,y1,y2,y3,y4,max_x1,planar_stable,max_abs_nu,re_nu1,re_nu2,re_nu3,'// &
+               're_nu4,im_nu1,im_nu2,im_nu3,im_nu4'
+    case ('swirl_edges')
+      header = 'lambda,y1,y2,y3,y4,max_x1,refined'
+    case ('seismic_spatial')
+      header = 't [s],ground_acceleration_x [m/s^2],ground_acceleration_y [m/s^2],'// &
+               'wave_height_x [m],wave_height_y [m],wave_height [m],wave_azimuth [rad],'// &
+               'base_shear_x [N],base_shear_y [N],base_shear [N],overturning_moment_x [N m],'// &
+               'overturning_moment_y [N m],overturning_moment [N m],x1,x2,y1,y2'
+    case ('seismic_spatial_peaks')
+      header = 'wave_height [m],wave_azimuth [rad],wave_time [s],base_shear [N],'// &
+               'base_shear_time [s],overturning_moment [N m],overturning_moment_time [s],'// &
+               'wave_height_run_1 [m],wave_height_run_2 [m],wave_height_srss [m],'// &
+               'wave_height_100_30 [m],base_shear_run_1 [N],base_shear_run_2 [N],'// &
+               'base_shear_srss [N],base_shear_100_30 [N],overturning_moment_run_1 [N m],'// &
+               'overturning_moment_run_2 [N m],overturning_moment_srss [N m],'// &
+               'overturning_moment_100_30 [N m]'
     case ('lyapunov')
       header = 'periods,estimate'
     case ('lyapunov_spectrum')

@@ -12,14 +12,16 @@ program sloshdyn_bridge_sizes
                              CHART_END_ROWS, CHART_GRID_ROWS, TANK_SI_SIZE, CODES_COLUMNS, &
                              CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS, &
                              CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, &
-                             CYCLE_SPECIAL_ROWS
+                             CYCLE_SPECIAL_ROWS, &
+                             SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, &
+                             SEISMIC_SPATIAL_PEAKS
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
                               ANALYSIS_SIZE, CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
                               PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
-                              MODAL_SCALARS_SIZE, CHART_SIZES_SIZE
+                              MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE
   implicit none
   call define('n_real_params', n_real_params)
   call define('n_int_params', n_int_params)
@@ -70,6 +72,11 @@ program sloshdyn_bridge_sizes
   call define('orbit_info_size', ORBIT_INFO_SIZE)
   call define('modal_scalars_size', MODAL_SCALARS_SIZE)
   call define('chart_sizes_size', CHART_SIZES_SIZE)
+  call define('spatial_size', SPATIAL_SIZE)
+  call define('swirl_branch_rows', SWIRL_BRANCH_ROWS)
+  call define('swirl_edge_rows', SWIRL_EDGE_ROWS)
+  call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
+  call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

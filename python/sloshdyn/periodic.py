@@ -6,6 +6,7 @@ Lyapunov exponent. Computed by the Fortran core (sloshdyn_periodic)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -133,24 +134,12 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     used). Raises ConvergenceError
     (with ``partial``) if the branch stops before the end of the range or a special point on
     it could not be located."""
-    _checks.instance("params", params, Parameters)
-    _checks.instance("continuation", continuation, Continuation)
-    _checks.instance("integration", integration, Integration)
-    parameter, (lo, hi) = continuation_range(rho_range, A_range)
-    _checks.choice("from_end", from_end, ("low", "high"))
-    c = continuation
-    periods = _checks.integer("periods", periods)
-    max_points = _checks.output_size("max_points", _checks.integer("max_points", c.max_points, 1),
-                                     len(_tables.columns("periodic_branch")))
-    first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
-    if y0 is None:
-        y0 = periodic_orbit(first, start_state(first, start), periods=periods,
-                            integration=integration).y0
-    settings = continuation_array(c, 1.0 if from_end == "low" else -1.0)
-    points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
-        *first.array(), _tables.code("excitation_parameters", parameter),
-        _checks.reals("y0", y0, (4,)),
-        periods, lo, hi, settings, integration.array(), max_points, 100)
+    b = branch_start(params, rho_range, A_range, y0, periods, start, from_end, continuation,
+                     integration, "periodic_branch")
+    parameter = b.parameter
+    points, multipliers, n, special, n_special, complete, status, message = cancellable(
+        _bridge.periodic_branch, *b.first.array(), _tables.code("excitation_parameters", parameter), b.y0,
+        b.periods, b.low, b.high, b.settings, integration.array(), b.max_points, 100)
     rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
     lam = rows["lambda"]
     table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
@@ -167,16 +156,60 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
             KINDS[int(point["kind"])], float(point["lambda"]) if parameter == "rho" else params.rho,
             float(point["lambda"]) if parameter == "A" else params.A, float(point["max_x1"]),
             np.array([point[f"y{i}"] for i in range(1, 5)])))
-    text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
-    branch = PeriodicBranch(parameter, table, specials, bool(complete), text,
+    branch = PeriodicBranch(parameter, table, specials, bool(complete), message_text(message),
                             integration.method_used)
+    return with_partial(branch, status, message, "periodic branch")
+
+
+class BranchStart(NamedTuple):
+    """What a continuation of periodic orbits starts from (branch_start)."""
+
+    parameter: str           #: 'rho' or 'A'
+    low: float
+    high: float
+    first: Parameters        #: params at the starting end
+    y0: np.ndarray           #: the orbit's state there
+    periods: int
+    settings: np.ndarray     #: layout 'continuation'
+    max_points: int
+
+
+def branch_start(params, rho_range, A_range, y0, periods, start, from_end, continuation,
+                 integration, table) -> BranchStart:
+    """Check the arguments of a continuation of periodic orbits in rho or A whose points fill
+    the result table `table`, and find its first orbit (from `start` if y0 is None)."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("continuation", continuation, Continuation)
+    _checks.instance("integration", integration, Integration)
+    parameter, (lo, hi) = continuation_range(rho_range, A_range)
+    _checks.choice("from_end", from_end, ("low", "high"))
+    c = continuation
+    periods = _checks.integer("periods", periods)
+    max_points = _checks.output_size("max_points", _checks.integer("max_points", c.max_points, 1),
+                                     len(_tables.columns(table)))
+    first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
+    if y0 is None:
+        y0 = periodic_orbit(first, start_state(first, start), periods=periods,
+                            integration=integration).y0
+    settings = continuation_array(c, 1.0 if from_end == "low" else -1.0)
+    return BranchStart(parameter, lo, hi, first, _checks.reals("y0", y0, (4,)), periods,
+                       settings, max_points)
+
+
+def message_text(message):
+    """The bridge's message as text."""
+    return message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
+
+
+def with_partial(result, status, message, what):
+    """result, or (status nonzero) the status's exception with result as its ``partial``."""
     if status:
         try:
-            check_status(status, message, "periodic branch")
+            check_status(status, message, what)
         except Exception as exc:
-            exc.partial = branch
+            exc.partial = result
             raise
-    return branch
+    return result
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,200 @@
+!> Swirl: the stability of planar periodic responses to motion out of their plane (issue 26).
+!>
+!> The plane of the ground motion is invariant for the spatial model (sloshdyn_spatial): along a
+!> planar orbit the spatial Jacobian is block diagonal, in-plane (x1, x2) and out-of-plane
+!> (y1, y2), so the spatial monodromy matrix is too, and its out-of-plane block (rows and
+!> columns 5-8) carries the four out-of-plane Floquet multipliers nu. A planar response with
+!> max|nu| > 1 is unstable to swirl: an out-of-plane perturbation grows and the liquid leaves the
+!> plane (rotary sloshing; Miles 1962, 1984). The swirl band is where this holds along a branch
+!> of planar responses; its edges are where max|nu| = 1.
+!>
+!> Layouts (sloshdyn_tables): 'swirl_branch' points(:, j) = [lambda, y0(1:4), max|x1|,
+!> planar_stable (1/0), max|nu|, Re nu(1:4), Im nu(1:4)]; 'swirl_edges' edges(:, j) = [lambda,
+!> y0(1:4), max|x1|, refined (1/0)].
+module sloshdyn_swirl
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_text, only: num2str
+  use sloshdyn_lapack, only: eigenvalues
+  use sloshdyn_ode, only: ode_options
+  use sloshdyn_roots, only: bracketed_function, brent_zero
+  use sloshdyn_continuation, only: continuation_options
+  use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, periodic_branch
+  use sloshdyn_tables, only: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, PERIODIC_POINT_ROWS, &
+                             PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS
+  use sloshdyn_model, only: model_t
+  use sloshdyn_system, only: tank_system
+  use sloshdyn_spatial, only: spatial_model
+  use sloshdyn_spatial_system, only: spatial_tank_system
+  implicit none
+  private
+  public :: out_of_plane_multipliers, swirl_branch
+
+  !> Newton shooting of the planar orbit at an edge candidate
+  real(wp), parameter :: newton_tol = 1.0e-10_wp
+  integer, parameter :: newton_iterations = 20
+
+  !> max|nu| - 1 at lambda, the planar orbit found by shooting from a guess interpolated
+  !> linearly in lambda between two branch points (sloshdyn_roots' brent_zero).
+  type, extends(bracketed_function) :: swirl_margin
+    type(tank_system) :: planar
+    real(wp) :: lambda(2) = 0, y0(4, 2) = 0
+    integer :: k = 1, method = 0
+    type(ode_options) :: options
+    real(wp) :: y_orbit(4) = 0, max_x1 = 0
+  contains
+    procedure :: value => swirl_margin_value
+  end type swirl_margin
+
+contains
+
+  !> The out-of-plane Floquet multipliers nu (re, im) of the planar orbit of period k T through
+  !> y_orbit (at tau = 0) of the planar model: the eigenvalues of the out-of-plane block of the
+  !> spatial monodromy matrix from (y_orbit, 0, 0, 0, 0).
+  subroutine out_of_plane_multipliers(model, y_orbit, k, options, method, re, im, status, &
+                                      message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y_orbit(4)
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: re(4), im(4)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(spatial_tank_system) :: system
+    real(wp) :: y_end(8), monodromy(8, 8)
+    re = ieee_value(1.0_wp, ieee_quiet_nan)
+    im = re
+    call spatial_model(model, 0.0_wp, 0.0_wp, system%model, status, message)
+    if (status /= SD_OK) return
+    call monodromy_matrix(system, [y_orbit, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], k, options, method, &
+                          y_end, monodromy, status, message)
+    if (status /= SD_OK) then
+      message = 'out-of-plane multipliers: '//trim(message)
+      return
+    end if
+    call eigenvalues(monodromy(5:8, 5:8), re, im, status, message)
+    if (status /= SD_OK) message = 'out-of-plane multipliers: '//trim(message)
+  end subroutine out_of_plane_multipliers
+
+  !> The branch of planar orbits of period k T through y0 (at the model's excitation), continued
+  !> in rho or A (parameter = PARAMETER_RHO, PARAMETER_A) over [lambda_min, lambda_max]
+  !> (sloshdyn_shooting's periodic_branch), the out-of-plane multipliers at each of its points,
+  !> and the edges of the swirl band between consecutive points where max|nu| - 1 changes sign,
+  !> located by Brent's method on the planar orbit found by shooting (refined = 1), or, where
+  !> that shooting fails (a fold of the branch between the points), interpolated linearly
+  !> (refined = 0). points(SWIRL_BRANCH_ROWS, >= continuation%max_points),
+  !> edges(SWIRL_EDGE_ROWS, any): layouts in the module header. complete: the planar branch
+  !> reached lambda_min or lambda_max (or closed) and every edge found was stored.
+  subroutine swirl_branch(model, parameter, y0, k, lambda_min, lambda_max, continuation, &
+                          options, method, points, n_points, edges, n_edges, complete, status, &
+                          message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: parameter, k, method
+    real(wp), intent(in) :: y0(4), lambda_min, lambda_max
+    type(continuation_options), intent(in) :: continuation
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: points(:, :), edges(:, :)
+    integer, intent(out) :: n_points, n_edges, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: planar
+    type(swirl_margin) :: margin
+    real(wp), allocatable :: branch(:, :), multipliers(:, :), special(:, :)
+    real(wp) :: re(4), im(4), lambda, g, s
+    integer :: j, n_special, st
+    character(len=message_len) :: msg
+
+    points = ieee_value(1.0_wp, ieee_quiet_nan)
+    edges = points(1, 1)
+    n_points = 0
+    n_edges = 0
+    complete = .false.
+    if (size(points, 1) /= SWIRL_BRANCH_ROWS .or. size(edges, 1) /= SWIRL_EDGE_ROWS .or. &
+        size(points, 2) < continuation%max_points) then
+      status = SD_BAD_INPUT
+      message = 'points must be '//num2str(SWIRL_BRANCH_ROWS)//' x max_points and edges '// &
+                num2str(SWIRL_EDGE_ROWS)//' x any'
+      return
+    end if
+    planar%model = model
+    planar%varied = parameter
+    allocate (branch(PERIODIC_POINT_ROWS, max(continuation%max_points, 1)), &
+              multipliers(PERIODIC_MULTIPLIER_ROWS, max(continuation%max_points, 1)), &
+              special(PERIODIC_SPECIAL_ROWS, 4*max(continuation%max_points, 1)))
+    call periodic_branch(planar, y0, lambda_min, lambda_max, continuation, options, method, &
+                         branch, multipliers, n_points, special, n_special, complete, status, &
+                         message, k)
+    if (n_points == 0) return
+    st = status
+    msg = message
+    do j = 1, n_points
+      call planar%set_parameter(branch(1, j))
+      call out_of_plane_multipliers(planar%model, branch(2:5, j), k, options, method, re, im, &
+                                    status, message)
+      if (status /= SD_OK) then
+        n_points = j - 1
+        message = 'at lambda = '//num2str(branch(1, j))//': '//trim(message)
+        complete = .false.
+        return
+      end if
+      points(1:7, j) = branch(1:7, j)
+      points(8, j) = maxval(hypot(re, im))
+      points(9:12, j) = re
+      points(13:16, j) = im
+    end do
+
+    margin%planar = planar
+    margin%k = k
+    margin%method = method
+    margin%options = options
+    do j = 1, n_points - 1
+      if ((points(8, j) - 1)*(points(8, j + 1) - 1) > 0 .or. points(8, j) == points(8, j + 1)) &
+        cycle
+      if (n_edges == size(edges, 2)) then
+        complete = .false.
+        msg = 'more swirl edges than the '//num2str(size(edges, 2))//' columns of edges'
+        exit
+      end if
+      n_edges = n_edges + 1
+      ! interpolated edge, kept if shooting between the points fails
+      s = (1 - points(8, j))/(points(8, j + 1) - points(8, j))
+      edges(1:6, n_edges) = (1 - s)*points(1:6, j) + s*points(1:6, j + 1)
+      edges(7, n_edges) = 0
+      if (points(1, j) == points(1, j + 1)) cycle
+      margin%lambda = points(1, [j, j + 1])
+      margin%y0 = points(2:5, [j, j + 1])
+      call brent_zero(margin, points(1, j), points(1, j + 1), points(8, j) - 1, &
+                      points(8, j + 1) - 1, 1.0e-10_wp*max(1.0_wp, abs(points(1, j))), &
+                      1.0e-12_wp, lambda, g, status, message)
+      if (status == SD_OK) then
+        ! the orbit of the last evaluation is at the returned lambda only if it was the last
+        call margin%value(lambda, g, status, message)
+        if (status == SD_OK) edges(:, n_edges) = [lambda, margin%y_orbit, margin%max_x1, 1.0_wp]
+      end if
+    end do
+    status = st
+    message = msg
+  end subroutine swirl_branch
+
+  subroutine swirl_margin_value(self, x, fx, status, message)
+    class(swirl_margin), intent(inout) :: self
+    real(wp), intent(in) :: x
+    real(wp), intent(out) :: fx
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: s, guess(4), monodromy(4, 4), re(4), im(4)
+    integer :: iterations
+    s = (x - self%lambda(1))/(self%lambda(2) - self%lambda(1))
+    guess = (1 - s)*self%y0(:, 1) + s*self%y0(:, 2)
+    call self%planar%set_parameter(x)
+    call shooting_newton(self%planar, guess, self%k, self%options, self%method, newton_tol, &
+                         newton_iterations, self%y_orbit, monodromy, re, im, iterations, status, &
+                         message, self%max_x1)
+    fx = ieee_value(1.0_wp, ieee_quiet_nan)
+    if (status /= SD_OK) return
+    call out_of_plane_multipliers(self%planar%model, self%y_orbit, self%k, self%options, &
+                                  self%method, re, im, status, message)
+    if (status == SD_OK) fx = maxval(hypot(re, im)) - 1
+  end subroutine swirl_margin_value
+end module sloshdyn_swirl

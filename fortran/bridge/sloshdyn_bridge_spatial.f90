@@ -1,0 +1,137 @@
+!> The f2py bridge of spatial.py: the spatial model of issue 26 (sloshdyn_spatial) and its swirl
+!> analysis. The model crosses as the planar rpar, ipar (sloshdyn_model) plus spatial(2) =
+!> [azimuth, ellipticity] (layout 'spatial' of sloshdyn_layouts). See sloshdyn_bridge_model for
+!> the bridge's conventions.
+module sloshdyn_bridge_spatial
+  use, intrinsic :: iso_c_binding, only: c_double, c_int
+  implicit none
+
+contains
+
+  !> The spatial equations at one state y = (x1, x1', x2, x2', y1, y1', y2, y2'): the inertia
+  !> matrix (eq S7), y', the analytic Jacobian dy'/dy, and [energy, angular momentum about the
+  !> vertical] (eq S2-S3).
+  subroutine spatial_equations(rpar, ipar, spatial, tau, y, mass, dydt, jacobian, invariants, &
+                               status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: SPATIAL_SIZE
+    use sloshdyn_status, only: SD_NON_FINITE
+    use sloshdyn_spatial, only: spatial_model_t, spatial_model, spatial_mass_matrix, &
+                                core_equations => spatial_equations, spatial_jacobian, &
+                                spatial_invariants
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    real(c_double), intent(in) :: rpar(n_real_params), spatial(SPATIAL_SIZE), tau, y(8)
+    integer(c_int), intent(in) :: ipar(n_int_params)
+    real(c_double), intent(out) :: mass(4, 4), dydt(8), jacobian(8, 8), invariants(2)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: planar
+    type(spatial_model_t) :: model
+    integer :: info
+    mass = 0; dydt = 0; jacobian = 0; invariants = 0
+    call model_from_arrays(rpar, int(ipar), planar, info, message)
+    if (info == 0) call spatial_model(planar, spatial(1), spatial(2), model, info, message)
+    status = info
+    if (info /= 0) return
+    call spatial_mass_matrix(model, y, mass)
+    call core_equations(model, tau, y, dydt)
+    call spatial_jacobian(model, tau, y, jacobian)
+    call spatial_invariants(model, y, invariants(1), invariants(2))
+    if (.not. (all(ieee_is_finite(mass)) .and. all(ieee_is_finite(dydt)) .and. &
+               all(ieee_is_finite(jacobian)) .and. all(ieee_is_finite(invariants)))) then
+      status = SD_NON_FINITE
+      message = 'the spatial equations of motion overflow at this state'
+      mass = 0; dydt = 0; jacobian = 0; invariants = 0
+    end if
+  end subroutine spatial_equations
+
+  !> The out-of-plane Floquet multipliers nu(2, 4) = (Re, Im) of the planar orbit of period k T
+  !> through y_orbit (sloshdyn_swirl).
+  subroutine out_of_plane_multipliers(rpar, ipar, y_orbit, k, integration, nu, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_swirl, only: core => out_of_plane_multipliers
+    real(c_double), intent(in) :: rpar(n_real_params), y_orbit(4), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), k
+    real(c_double), intent(out) :: nu(2, 4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    real(c_double) :: re(4), im(4)
+    integer :: code
+    nu = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, y_orbit, int(k), to_ode_options(integration), &
+                             to_method(integration), re, im, code, message)
+    if (code == 0) nu = transpose(reshape([re, im], [4, 2]))
+    status = code
+  end subroutine out_of_plane_multipliers
+
+  !> The swirl band along the branch of planar orbits (period k T) through y0, continued in rho
+  !> (which = 1) or A (which = 2) over [lambda_min, lambda_max] with settings = [ds, ds_min,
+  !> ds_max, x_scale, direction] (sloshdyn_swirl's swirl_branch): points(SWIRL_BRANCH_ROWS, :)
+  !> and edges(SWIRL_EDGE_ROWS, :) in the tables 'swirl_branch' and 'swirl_edges'; complete = 0
+  !> if the branch stopped early.
+  subroutine swirl_branch(rpar, ipar, which, y0, k, lambda_min, lambda_max, settings, &
+                          integration, max_points, max_edges, points, n_points, edges, n_edges, &
+                          complete, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, CONTINUATION_SIZE, to_ode_options, to_method, &
+                                to_continuation
+    use sloshdyn_continuation, only: continuation_options
+    use sloshdyn_swirl, only: core => swirl_branch
+    real(c_double), intent(in) :: rpar(n_real_params), y0(4), lambda_min, lambda_max, &
+                                  settings(CONTINUATION_SIZE), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, k, max_points, max_edges
+    real(c_double), intent(out) :: points(SWIRL_BRANCH_ROWS, max_points), &
+                                   edges(SWIRL_EDGE_ROWS, max_edges)
+    integer(c_int), intent(out) :: n_points, n_edges, complete, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(continuation_options) :: options
+    integer :: code, found, found_edges
+    logical :: done
+    points = 0; edges = 0; found = 0; found_edges = 0; done = .false.
+    options = to_continuation(settings)
+    options%max_points = max_points
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, int(which), y0, int(k), lambda_min, lambda_max, options, &
+                             to_ode_options(integration), to_method(integration), points, found, &
+                             edges, found_edges, done, code, message)
+    n_points = found
+    n_edges = found_edges
+    complete = merge(1, 0, done)
+    status = code
+  end subroutine swirl_branch
+
+  !> The tank at rest under ground motion in two components (sloshdyn_seismic_spatial):
+  !> ground/samples the first component (along spatial's azimuth), ground_2/samples_2 the second
+  !> (a record with the same dt, or ignored for harmonic motion, whose second component is
+  !> spatial's ellipticity); table(SEISMIC_SPATIAL_ROWS, n_out), peaks(SEISMIC_SPATIAL_PEAKS).
+  subroutine seismic_response_spatial(tank, ground, n, samples, ground_2, n_2, samples_2, &
+                                      spatial, t_end, n_out, integration, table, peaks, status, &
+                                      message)
+    !f2py threadsafe
+    use sloshdyn_tables, only: SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE, SPATIAL_SIZE, to_tank, &
+                                to_ground, to_ode_options, to_method
+    use sloshdyn_seismic_spatial, only: core => seismic_response_spatial
+    integer(c_int), intent(in) :: n, n_2, n_out
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), &
+                                  ground_2(GROUND_SIZE), samples_2(n_2), spatial(SPATIAL_SIZE), &
+                                  t_end, integration(INTEGRATION_SIZE)
+    real(c_double), intent(out) :: table(SEISMIC_SPATIAL_ROWS, n_out), &
+                                   peaks(SEISMIC_SPATIAL_PEAKS)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_tank(tank), to_ground(ground, samples), to_ground(ground_2, samples_2), &
+              spatial(1), spatial(2), t_end, int(n_out), to_ode_options(integration), &
+              to_method(integration), table, peaks, info, message)
+    status = info
+  end subroutine seismic_response_spatial
+end module sloshdyn_bridge_spatial

@@ -1,0 +1,176 @@
+"""The spatial model (issue 26): the tank on rods that tilt in x and y, the sloshing mass as a
+spherical pendulum, ground motion in two horizontal components, and swirl. Computed by the
+Fortran core (sloshdyn_spatial); docs/model.md, "Spatial model and swirl", derives it.
+
+The state is y = (x1, x1', x2, x2', y1, y1', y2, y2'): x1 = theta_x/theta0 and x2 = phi_x/theta0
+in the xz plane as in the planar model, y1 = theta_y/theta0 and y2 = phi_y/theta0 out of it.
+The second component of harmonic ground motion is set by keywords: ``azimuth`` (rad, the
+direction of the motion A sin(rho tau) from the x axis) and ``ellipticity`` (the ellipse's
+minor over major axis; the minor axis moves as ellipticity A cos(rho tau)).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _checks, _core, _tables
+from ._cancel import cancellable
+from ._errors import check_status
+from .asymptotics import Continuation
+from .parameters import Parameters
+from .periodic import PERIODIC_CONTINUATION, branch_start, message_text, with_partial
+from .simulation import Integration
+
+_bridge = _core.sloshdyn_bridge_spatial
+
+
+def _spatial_array(azimuth, ellipticity):
+    return _tables.pack("spatial", {"azimuth": _checks.real("azimuth", azimuth),
+                                    "ellipticity": _checks.real("ellipticity", ellipticity)})
+
+
+@dataclass(frozen=True)
+class SpatialMotion:
+    """The spatial equations at one state (docs/model.md, eq S7)."""
+
+    mass: np.ndarray              #: inertia matrix M (4x4; unknowns x1'', x2'', y1'', y2'')
+    dydt: np.ndarray              #: (x1', x1'', x2', x2'', y1', y1'', y2', y2'')
+    jacobian: np.ndarray          #: analytic d(dydt)/dy, 8x8
+    energy: float                 #: T + V relative to the ground [M L^2 omega^2]
+    angular_momentum: float       #: about the vertical, relative to the ground [M L^2 omega]
+
+
+def equations_of_motion(params: Parameters, tau, y, *, azimuth=0.0,
+                        ellipticity=0.0) -> SpatialMotion:
+    """Evaluate the spatial equations (eq S7) with the ground motion of params (A, rho) along
+    ``azimuth`` and ``ellipticity`` times it across, at state y (8 entries)."""
+    _checks.instance("params", params, Parameters)
+    y, tau = _checks.reals("y", y, (8,)), _checks.real("tau", tau)
+    mass, dydt, jac, invariants, status, message = _bridge.spatial_equations(
+        *params.array(), _spatial_array(azimuth, ellipticity), tau, y)
+    check_status(status, message)
+    return SpatialMotion(mass, dydt, jac, float(invariants[0]), float(invariants[1]))
+
+
+def out_of_plane_multipliers(params: Parameters, y_orbit, *, periods=1,
+                             integration: Integration = Integration()) -> np.ndarray:
+    """The four out-of-plane Floquet multipliers nu (complex) of the planar periodic orbit of
+    period `periods` T through y_orbit (x1, x1', x2, x2' at tau = 0, e.g.
+    ``periodic_orbit(params).y0``): max|nu| > 1 means the planar response is unstable to swirl."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    nu, status, message = cancellable(_bridge.out_of_plane_multipliers, *params.array(),
+                                      _checks.reals("y_orbit", y_orbit, (4,)),
+                                      _checks.integer("periods", periods, 1), integration.array())
+    check_status(status, message, "out-of-plane multipliers")
+    return nu[0] + 1j * nu[1]
+
+
+@dataclass(frozen=True)
+class SwirlBand:
+    """A branch of planar periodic responses with their out-of-plane Floquet multipliers nu, and
+    the edges of the swirl band (max|nu| = 1) on it."""
+
+    parameter: str               #: 'rho' or 'A'
+    table: dict                  #: lambda, rho, A, y1..y4, max_x1, planar_stable (in-plane
+                                 #: Floquet stability), max_abs_nu, nu1..nu4 (complex), swirl
+                                 #: (max|nu| > 1)
+    edges: dict                  #: lambda, rho, A, y1..y4, max_x1, refined (1: located by
+                                 #: Brent's method; 0: interpolated across a fold)
+    complete: bool
+    message: str                 #: why an incomplete branch stopped ('' if complete)
+    method: str                  #: the integration method used ('auto' resolved)
+
+
+def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
+               start="simulation", from_end="low", max_edges=100,
+               continuation: Continuation = PERIODIC_CONTINUATION,
+               integration: Integration = Integration()) -> SwirlBand:
+    """Follow the planar periodic response in rho over rho_range (or in A over A_range) as
+    ``periodic_response`` does, with the out-of-plane multipliers at every point and the edges
+    of the band of swirl (planar response unstable out of its plane). Raises ConvergenceError
+    (with ``partial``) if the branch stops before the end of the range."""
+    b = branch_start(params, rho_range, A_range, y0, periods, start, from_end, continuation,
+                     integration, "swirl_branch")
+    parameter = b.parameter
+    max_edges = _checks.output_size("max_edges", _checks.integer("max_edges", max_edges, 1),
+                                    len(_tables.columns("swirl_edges")))
+    points, n, edges, n_edges, complete, status, message = cancellable(
+        _bridge.swirl_branch, *b.first.array(), _tables.code("excitation_parameters", parameter),
+        b.y0, b.periods, b.low, b.high, b.settings, integration.array(), b.max_points, max_edges)
+    rows = dict(zip(_tables.columns("swirl_branch"), points[:, :n]))
+    edge_rows = dict(zip(_tables.columns("swirl_edges"), edges[:, :n_edges]))
+
+    def with_parameters(source, count):
+        lam = source["lambda"]
+        return {"lambda": lam,
+                "rho": lam if parameter == "rho" else np.full(count, params.rho),
+                "A": lam if parameter == "A" else np.full(count, params.A)}
+
+    table = with_parameters(rows, n)
+    for name in ("y1", "y2", "y3", "y4", "max_x1", "planar_stable", "max_abs_nu"):
+        table[name] = rows[name]
+    for i in range(1, 5):
+        table[f"nu{i}"] = rows[f"re_nu{i}"] + 1j * rows[f"im_nu{i}"]
+    table["swirl"] = rows["max_abs_nu"] > 1
+    edge_table = with_parameters(edge_rows, n_edges)
+    for name in ("y1", "y2", "y3", "y4", "max_x1", "refined"):
+        edge_table[name] = edge_rows[name]
+    band = SwirlBand(parameter, table, edge_table, bool(complete), message_text(message),
+                     integration.method_used)
+    return with_partial(band, status, message, "swirl band")
+
+
+@dataclass(frozen=True)
+class SeismicResponse2D:
+    """A tank at rest under ground motion in two horizontal components, SI units
+    (docs/model.md, "Spatial model and swirl"). ``table``: one array per column of the core's
+    'seismic_spatial' table (names without units): t [s], ground_acceleration_x and _y
+    [m/s^2], wave_height_x and _y [m] (the wall's wave height is
+    wave_height_x cos(psi) + wave_height_y sin(psi) at azimuth psi), wave_height [m] (its
+    maximum over the wall) and wave_azimuth [rad] (where), base_shear_x, _y and the resultant
+    base_shear [N], overturning_moment_x, _y (of the forces along x and y) and the resultant
+    [N m], x1, x2, y1, y2. ``peaks``: the 'seismic_spatial_peaks' (the spatial peaks over the
+    output times with their azimuth and times; for two records also the peaks of the two
+    planar runs, one per component, and the codes' SRSS and 100/30 combinations of them)."""
+
+    table: dict
+    peaks: dict
+    method: str                  #: the integration method used ('auto' resolved)
+
+    def wave_height_at(self, azimuth):
+        """The wave height at the wall at azimuth [rad] (from the x axis) over time [m]."""
+        a = _checks.real("azimuth", azimuth)
+        return self.table["wave_height_x"] * np.cos(a) + self.table["wave_height_y"] * np.sin(a)
+
+
+def seismic_response_2d(tank, ground_motion, ground_motion_2=None, t_end=None, n_out=None, *,
+                        azimuth=0.0, ellipticity=0.0,
+                        integration: Integration = Integration()) -> SeismicResponse2D:
+    """The tank (sloshdyn.Tank) at rest at t = 0 under ground_motion along ``azimuth`` [rad,
+    from the x axis] and ground_motion_2 across it: two records with one dt (scale both by one
+    factor, as FEMA P695 does, before passing them), or (ground_motion harmonic,
+    ground_motion_2 None) harmonic motion with ``ellipticity`` (the minor axis of the ellipse
+    over the major). t_end and n_out default as for ``seismic_response`` of ground_motion."""
+    from .seismic import GroundMotion, Tank, seismic_defaults
+    _checks.instance("tank", tank, Tank)
+    _checks.instance("ground_motion", ground_motion, GroundMotion)
+    _checks.instance("integration", integration, Integration)
+    if ground_motion_2 is not None:
+        _checks.instance("ground_motion_2", ground_motion_2, GroundMotion)
+    times = seismic_defaults(tank, ground_motion, t_end, n_out)
+    _checks.output_size("n_out", times.n_out, len(_tables.columns("seismic_spatial")))
+    ground, samples = ground_motion._arrays()
+    ground_2, samples_2 = (ground_motion_2._arrays() if ground_motion_2 is not None
+                           else (np.zeros_like(ground), np.zeros(0)))
+    table, peaks, status, message = cancellable(
+        _bridge.seismic_response_spatial, tank.array(), ground, samples, ground_2, samples_2,
+        _spatial_array(azimuth, ellipticity), times.t_end, times.n_out, integration.array())
+    check_status(status, message)
+    name = lambda column: column.split(" [")[0]   # noqa: E731
+    return SeismicResponse2D(
+        {name(c): row.copy() for c, row in zip(_tables.columns("seismic_spatial"), table)},
+        {name(c): float(v) for c, v in zip(_tables.columns("seismic_spatial_peaks"), peaks)},
+        integration.method_used)
