@@ -33,7 +33,7 @@ module sloshdyn_layouts
             RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
             PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
-            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE
+            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, NATURAL_FREQUENCIES_SIZE
   public :: chart_axes, CHART_RHO
   public :: layout_names, layout_text, layout_defaults, join, &
             excitation_parameters, ground_kinds, resonances
@@ -195,6 +195,11 @@ module sloshdyn_layouts
   !> chart's four tables (sloshdyn_stability_chart's chart_table_sizes).
   type(field_t), parameter :: modal_scalars_fields(*) = [ &
     field_t('omega1'), field_t('omega2'), field_t('gamma11'), field_t('gamma22'), field_t('F11')]
+  !> The natural frequencies of the linearised model about the trivial equilibrium: eq (28) and,
+  !> independently, the eigenvalues of the undamped linearised equations (dgeev).
+  type(field_t), parameter :: natural_frequencies_fields(*) = [ &
+    field_t('omega1', doc='eq (28)'), field_t('omega2', doc='eq (28)'), &
+    field_t('omega1_dgeev', doc='from dgeev'), field_t('omega2_dgeev', doc='from dgeev')]
   type(field_t), parameter :: chart_sizes_fields(*) = [ &
     field_t('curve_points', 'integer'), field_t('codim2_points', 'integer'), &
     field_t('curves', 'integer'), field_t('cells', 'integer')]
@@ -203,7 +208,7 @@ module sloshdyn_layouts
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
     'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
-    'routh,orbit_info,modal_scalars,chart_sizes'
+    'routh,orbit_info,modal_scalars,chart_sizes,natural_frequencies'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
@@ -233,7 +238,8 @@ module sloshdyn_layouts
                         ROUTH_TRIVIAL_SIZE = size(routh_fields), &
                         ORBIT_INFO_SIZE = size(orbit_info_fields), &
                         MODAL_SCALARS_SIZE = size(modal_scalars_fields), &
-                        CHART_SIZES_SIZE = size(chart_sizes_fields)
+                        CHART_SIZES_SIZE = size(chart_sizes_fields), &
+                        NATURAL_FREQUENCIES_SIZE = size(natural_frequencies_fields)
 
 contains
 
@@ -270,6 +276,7 @@ contains
     case ('orbit_info');     fields = orbit_info_fields
     case ('modal_scalars');  fields = modal_scalars_fields
     case ('chart_sizes');    fields = chart_sizes_fields
+    case ('natural_frequencies'); fields = natural_frequencies_fields
     case default;            allocate (fields(0))
     end select
   end function layout_of

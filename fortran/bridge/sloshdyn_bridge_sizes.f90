@@ -19,7 +19,8 @@ program sloshdyn_bridge_sizes
                               ANALYSIS_SIZE, CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
                               PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
-                              MODAL_SCALARS_SIZE, CHART_SIZES_SIZE
+                              MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, &
+                              NATURAL_FREQUENCIES_SIZE
   implicit none
   call define('n_real_params', n_real_params)
   call define('n_int_params', n_int_params)
@@ -70,6 +71,7 @@ program sloshdyn_bridge_sizes
   call define('orbit_info_size', ORBIT_INFO_SIZE)
   call define('modal_scalars_size', MODAL_SCALARS_SIZE)
   call define('chart_sizes_size', CHART_SIZES_SIZE)
+  call define('natural_frequencies_size', NATURAL_FREQUENCIES_SIZE)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name
