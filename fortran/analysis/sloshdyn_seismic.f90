@@ -154,7 +154,8 @@ contains
                       status, message)
     ! the roof loads of the free wave (sloshdyn_roof), beside the model's impact force
     if (status == SD_OK) &
-      call roof_loads(tank%radius, tank%freeboard, peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
+      call roof_loads(tank%radius, tank%freeboard, tank%roof_slope, tank%roof_radius, &
+                      peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
                       (pi*tank%radius**2*tank%liquid_depth), tank%gravity, props%sloshing_mass, &
                       peaks(PEAKS_ROOF_HEAD), peaks(PEAKS_ROOF_UPLIFT), &
                       peaks(PEAKS_CONFINED_MASS), status, message)

@@ -58,7 +58,7 @@ module sloshdyn_layouts
     'radius', 'liquid_depth', 'freeboard', 'liquid_density', 'liquid_mass', 'tank_mass', &
     'support_frequency', 'support_damping', 'support_stiffness', 'support_damping_coefficient', &
     'support_height', 'sloshing_damping', 'impact_stiffness', 'impact_damping', 'n', 'p', &
-    'gravity']
+    'gravity', 'roof_slope', 'roof_radius']
   !> A ground motion (sloshdyn_ground): kind (ground_kinds), peak_acceleration [m/s^2],
   !> frequency [Hz], dt [s]; a record's samples [m/s^2] travel in their own array.
   character(len=*), parameter :: ground_fields(*) = [character(len=field_len) :: &
@@ -300,7 +300,7 @@ contains
     real(wp), intent(in) :: a(TANK_SIZE)
     type(tank_t) :: tank
     tank = tank_t(a(1), a(2), a(3), a(4), a(5), a(6), a(7), a(8), a(9), a(10), a(11), a(12), &
-                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17))
+                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17), a(18), a(19))
   end function to_tank
 
   pure function from_tank(tank) result(a)
@@ -310,7 +310,7 @@ contains
          tank%tank_mass, tank%support_frequency, tank%support_damping, tank%support_stiffness, &
          tank%support_damping_coefficient, tank%support_height, tank%sloshing_damping, &
          tank%impact_stiffness, tank%impact_damping, real(tank%n, wp), real(tank%p, wp), &
-         tank%gravity]
+         tank%gravity, tank%roof_slope, tank%roof_radius]
   end function from_tank
 
   !> ground(GROUND_SIZE) = [kind (GROUND_HARMONIC, GROUND_RECORD), peak_acceleration [m/s^2],

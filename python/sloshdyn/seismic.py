@@ -69,6 +69,10 @@ class Tank:
     n: int = int(_TANK_DEFAULTS["n"])                      #: exponent of eq (4)
     p: int = int(_TANK_DEFAULTS["p"])                      #: exponent of eq (5)
     gravity: float = float(_TANK_DEFAULTS["gravity"])            #: [m/s^2]
+    #: a cone roof's slope [degrees] (0: not a cone; at most one of roof_slope, roof_radius)
+    roof_slope: float = float(_TANK_DEFAULTS["roof_slope"])
+    #: a dome roof's radius [m] (0: not a dome; neither: a flat roof)
+    roof_radius: float = float(_TANK_DEFAULTS["roof_radius"])
 
     def __post_init__(self):
         convert_fields(self)
