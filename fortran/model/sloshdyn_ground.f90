@@ -212,6 +212,14 @@ contains
     call check_real('target_sa', sa, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'the target spectral acceleration must be >= 0 [m/s^2]', status, message)
     if (status /= SD_OK) return
+    if (ground%kind == GROUND_RECORD .and. ground_duration(ground) < period) then
+      ! the peak would come from the free-vibration tail alone: an extrapolation of the record
+      status = SD_BAD_INPUT
+      message = 'target_period = '//num2str(period)//' s is longer than the record ('// &
+                num2str(ground_duration(ground))//' s): scaling to target_sa needs a record '// &
+                'at least one target period long (or scale by target_pga or scale_factor)'
+      return
+    end if
     ! with the free-vibration tail of GroundMotion.response_spectrum's default (5 periods)
     call ground_spectrum(ground, [period], damping, 5*period, 20*period, sd, sv, psa, status, &
                          message)
