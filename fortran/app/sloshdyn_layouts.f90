@@ -62,7 +62,7 @@ module sloshdyn_layouts
   !> A ground motion (sloshdyn_ground): kind (ground_kinds), peak_acceleration [m/s^2],
   !> frequency [Hz], dt [s]; a record's samples [m/s^2] travel in their own array.
   character(len=*), parameter :: ground_fields(*) = [character(len=field_len) :: &
-    'kind', 'peak_acceleration', 'frequency', 'dt']
+    'kind', 'peak_acceleration', 'frequency', 'dt', 'scale_factor']
   !> &chart (sloshdyn_stability_chart's chart_settings; model a code of 'chart_models', x and y
   !> of 'chart_axes')
   character(len=*), parameter :: chart_fields(*) = [character(len=field_len) :: &
@@ -314,7 +314,8 @@ contains
   end function from_tank
 
   !> ground(GROUND_SIZE) = [kind (GROUND_HARMONIC, GROUND_RECORD), peak_acceleration [m/s^2],
-  !> frequency [Hz], dt [s]] and, for a record, its samples [m/s^2].
+  !> frequency [Hz], dt [s], scale_factor (what it was scaled by)] and, for a record, its
+  !> samples [m/s^2].
   pure function to_ground(a, samples) result(ground)
     real(wp), intent(in) :: a(GROUND_SIZE), samples(:)
     type(ground_motion_t) :: ground
@@ -323,12 +324,14 @@ contains
     else
       ground = harmonic_ground(a(2), a(3))
     end if
+    ground%scale_factor = a(5)
   end function to_ground
 
   pure function from_ground(ground) result(a)
     type(ground_motion_t), intent(in) :: ground
     real(wp) :: a(GROUND_SIZE)
-    a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt]
+    a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt, &
+         ground%scale_factor]
   end function from_ground
 
   !> chart(CHART_SETTINGS_SIZE) = [model, x, y, x_min, x_max, y_min, y_max, n_x, n_y, n_scan,

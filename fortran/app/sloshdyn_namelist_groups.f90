@@ -231,6 +231,7 @@ contains
       if (target_period <= 0) target_period = props%sloshing_period
       call scale_ground(ground, scale_factor, target_pga*to_si, target_sa*to_si, target_period, &
                         target_damping, status, message)
+      ground%name = record(index(record, '/', back=.true.) + 1:)
     end if
     if (status /= SD_OK .and. index(message, '&ground_motion') /= 1) &
       message = '&ground_motion: '//trim(message)
