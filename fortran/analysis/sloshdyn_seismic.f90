@@ -344,7 +344,7 @@ contains
     character(len=message_len), intent(out) :: message
     type(model_t) :: model
     type(tank_properties) :: props
-    real(wp) :: rho(size(frequencies))
+    real(wp) :: rho(size(frequencies)), free_max_x1(size(frequencies))
     integer :: i
 
     summaries = 0
@@ -368,25 +368,62 @@ contains
       call independent_sweep(model, PARAMETER_FREQUENCY, rho, y0, options, method, steady, &
                              threads, summaries, n_done, status, message)
     end if
+    ! the free wave's verdict for the points done (NaN where the sweep failed before it)
+    free_max_x1 = ieee_value(1.0_wp, ieee_quiet_nan)
+    if (status == SD_OK .and. n_done > 0) then
+      call free_steady_waves(model, rho(1:n_done), options, method, steady, threads, &
+                             free_max_x1(1:n_done), status, message)
+      if (status /= SD_OK) n_done = 0
+    end if
     do i = 1, n_done
-      table(:, i) = harmonic_sweep_row(props, model%theta0, frequencies(i), summaries(:, i))
+      table(:, i) = harmonic_sweep_row(props, model%theta0, frequencies(i), summaries(:, i), &
+                                       free_max_x1(i))
     end do
   end subroutine harmonic_sweep
 
+  !> The roof verdict of a sweep on the free wave, as seismic_response's roof_contact: max|x1|
+  !> of the steady state of the tank without a roof (beta = delta = 0, the same supports and
+  !> damping) at each rho, each from rest, so that the verdict does not depend on the contact
+  !> model.
+  subroutine free_steady_waves(model, rho, options, method, steady, threads, free_max_x1, &
+                               status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: rho(:)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method, threads
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(out) :: free_max_x1(size(rho))
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: free
+    real(wp) :: summaries(SUMMARY_SIZE, size(rho))
+    integer :: n_done
+    free = model
+    free%beta = 0
+    free%delta = 0
+    call set_coefficients(free)
+    call independent_sweep(free, PARAMETER_FREQUENCY, rho, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
+                           options, method, steady, threads, summaries, n_done, status, message)
+    if (status /= SD_OK) message = 'the free wave (no roof, for the roof verdict): '// &
+                                   trim(message)
+    free_max_x1 = summaries(SUMMARY_MAX_X1, :)
+  end subroutine free_steady_waves
+
   !> A steady-state summary in SI ('harmonic_sweep' layout): the largest wave height, sloshing
   !> displacement and pendulum angle from max|x1|, the tank drift from max|x2|, whether the wave
-  !> reaches the roof (max|x1| >= 1), the kind of motion and its period.
-  pure function harmonic_sweep_row(props, theta0, frequency, summary) result(row)
+  !> reaches the roof (the free wave's max|x1| >= 1, free_steady_waves), the kind of motion, its
+  !> period and the free wave's largest height at the wall.
+  pure function harmonic_sweep_row(props, theta0, frequency, summary, free_max_x1) result(row)
     type(tank_properties), intent(in) :: props
-    real(wp), intent(in) :: theta0, frequency, summary(SUMMARY_SIZE)
+    real(wp), intent(in) :: theta0, frequency, summary(SUMMARY_SIZE), free_max_x1
     real(wp) :: row(HARMONIC_SWEEP_ROWS)
     real(wp) :: theta
     theta = theta0*summary(SUMMARY_MAX_X1)
     row = [frequency, summary(SUMMARY_A)*summary(SUMMARY_RHO)**2*props%rod_length*props%omega**2, &
            props%wave_factor*sin(theta), props%pendulum_length*sin(theta), theta, &
            props%rod_length*sin(theta0*summary(SUMMARY_MAX_X2)), &
-           merge(1.0_wp, 0.0_wp, summary(SUMMARY_MAX_X1) >= 1), summary(SUMMARY_MOTION), &
-           summary(SUMMARY_PERIOD)]
+           merge(1.0_wp, 0.0_wp, free_max_x1 >= 1), summary(SUMMARY_MOTION), &
+           summary(SUMMARY_PERIOD), props%wave_factor*sin(min(theta0*free_max_x1, pi/2))]
   end function harmonic_sweep_row
 
   !> The tank's properties as one row of the 'tank_si' table.

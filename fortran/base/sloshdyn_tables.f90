@@ -147,8 +147,9 @@ module sloshdyn_tables
                         CHART_GRID_BRUTE_FORCE_STABLE = 8
   character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
     'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
-    'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
-  integer, parameter :: HARMONIC_SWEEP_ROWS = 9, HARMONIC_SWEEP_WAVE_HEIGHT = 3
+    'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods],'// &
+    'free_wave_height [m]'
+  integer, parameter :: HARMONIC_SWEEP_ROWS = 10, HARMONIC_SWEEP_WAVE_HEIGHT = 3
   character(len=*), parameter :: codes_columns_names = 'source,convective_period [s],'// &
     'convective_mass [kg],impulsive_mass [kg],convective_height [m],impulsive_height [m],'// &
     'wave_height [m]'
@@ -258,7 +259,7 @@ contains
     case ('design_codes')
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')
-      formats = 'rrrrrriir'
+      formats = 'rrrrrriirr'
     case ('chart_curves')
       formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')

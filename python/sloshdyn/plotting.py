@@ -293,7 +293,8 @@ def response_map(ds, variable="max_x1"):
 
 def harmonic_sweep(sweep):
     """A HarmonicSweep: the largest wave height at the wall [m] against the frequency [Hz],
-    the roof at the freeboard; up and down halves drawn apart so jumps show."""
+    the roof at the freeboard and the free wave (no roof) that the roof verdict judges; up and
+    down halves drawn apart so jumps show."""
     f = sweep.frequency
     turn = int(np.argmax(f))
     fig, ax = plt.subplots(figsize=(7, 3.4))
@@ -302,6 +303,8 @@ def harmonic_sweep(sweep):
     if turn < len(f) - 1:
         ax.plot(f[turn:], sweep.wave_height[turn:], "s--", ms=3, mfc="none", color="b",
                 label="frequency down")
+    ax.plot(f[:turn + 1], sweep.free_wave_height[:turn + 1], "-", lw=0.8, color="tab:orange",
+            label="free wave (no roof): the roof verdict")
     ax.axhline(sweep.tank.freeboard, ls="--", color="r", lw=0.8, label="roof (freeboard)")
     ax.axvline(1 / sweep.tank.sloshing_period, ls=":", color="0.5", lw=0.8,
                label="linear sloshing frequency")

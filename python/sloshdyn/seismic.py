@@ -523,7 +523,9 @@ class HarmonicSweep:
     per column of harmonic_sweep.csv (`table` holds them in order): frequency [Hz],
     peak_ground_acceleration [m/s^2], wave_height [m], sloshing_displacement [m],
     pendulum_angle [rad], tank_drift [m] (their largest values over the measuring window),
-    roof_reached (1/0), motion (code), period [forcing periods]; y_final, the final state
+    roof_reached (1/0: the free wave's, as seismic_response judges it), motion (code), period
+    [forcing periods], free_wave_height [m] (the largest wave at the wall of the steady state of
+    the tank without a roof, from rest, independent of beta and delta); y_final, the final state
     (None for independent points); `method`, the integration method used ('auto' resolved)."""
 
     tank: Tank
@@ -537,6 +539,7 @@ class HarmonicSweep:
     roof_reached: np.ndarray
     motion: np.ndarray
     period: np.ndarray
+    free_wave_height: np.ndarray
     table: np.ndarray = dataclasses.field(repr=False)
     y_final: np.ndarray
     method: str
