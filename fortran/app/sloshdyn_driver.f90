@@ -50,7 +50,7 @@ module sloshdyn_driver
   use sloshdyn_slowflow_chart, only: chart_parameter_name
   use sloshdyn_seismic, only: seismic_response, seismic_defaults, design_code_checks, &
                               tank_summary, harmonic_sweep
-  use sloshdyn_ground, only: ground_duration, GROUND_RECORD
+  use sloshdyn_ground, only: ground_duration, GROUND_RECORD, ground_motion_t
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_layouts, only: counts_array
   implicit none
@@ -596,7 +596,7 @@ contains
                  num2str(peaks(PEAKS_IMPACT_FORCE)/ &
                          (config%tank_props%sloshing_mass*config%tank%gravity), &
                          significant=3)//' times the sloshing weight m g'
-    print '(a)', '  ground motion '''//trim(config%ground%name)//''': scale factor '// &
+    print '(a)', '  ground motion '//ground_name(config%ground)//': scale factor '// &
                  num2str(peaks(PEAKS_SCALE_FACTOR), significant=5)//', PGA '// &
                  num2str(peaks(1)/config%tank%gravity, significant=5)//' g, Sa('// &
                  num2str(config%tank_props%sloshing_period, significant=4)//' s, 0.5 %) '// &
@@ -635,6 +635,17 @@ contains
     end do
     field = field//'"'
   end function csv_text
+
+  !> A ground motion's name in a summary: the record file's, quoted, or 'harmonic'.
+  pure function ground_name(ground) result(name)
+    type(ground_motion_t), intent(in) :: ground
+    character(len=:), allocatable :: name
+    if (ground%kind == GROUND_RECORD) then
+      name = ''''//trim(ground%name)//''''
+    else
+      name = 'harmonic'
+    end if
+  end function ground_name
 
   !> The tank's roof in words (sloshdyn_roof's shapes).
   pure function roof_name(tank) result(name)
