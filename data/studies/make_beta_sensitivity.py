@@ -14,23 +14,12 @@ import time
 import numpy as np
 
 import sloshdyn
-from make_beta_study import TANK, records
+from make_beta_study import TANK, records, scaled
 
 HERE = pathlib.Path(__file__).parent
 RATIOS = [0.3, 0.45, 0.55, 0.65, 1.0, 1.5]
 CONTACTS = [(1.0, 0.1), (10.0, 0.1), (100.0, 0.1), (10.0, 1.0)]
 OUT = HERE / "beta_sensitivity.csv"
-
-
-def scaled(acceleration, ratio):
-    """The record scaled so that the free wave's height is ratio x the freeboard."""
-    scale = 1.0
-    for _ in range(2):
-        ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
-                                       units="m/s^2")
-        run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
-        scale *= ratio * TANK["freeboard"] / run.peak_table["free_wave_height"]
-    return sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale, units="m/s^2")
 
 
 def spread(values):
@@ -42,7 +31,7 @@ def main():
     start = time.time()
     for name, acceleration in records().items():
         for ratio in RATIOS:
-            ground = scaled(acceleration, ratio)
+            ground, _ = scaled(acceleration, ratio)
             runs = {}
             for beta, delta in CONTACTS:
                 tank = sloshdyn.Tank(**TANK, impact_stiffness=beta, impact_damping=delta)

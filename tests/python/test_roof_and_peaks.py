@@ -99,20 +99,21 @@ def test_steady_max_x1_equals_brute_force_on_the_orbit():
         assert getattr(steady, name) == pytest.approx(parabola_vertex(u[row], j, 0), rel=1e-9)
 
 
+def scaled_to(acceleration, ratio):
+    """The record scaled so that the free wave's height is `ratio` x the freeboard (the free
+    wave is nearly linear in the scale; one correction step)."""
+    scale = 1.0
+    for _ in range(2):
+        ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale, units="m/s^2")
+        run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
+        scale *= ratio * TANK["freeboard"] / run.peak_table["free_wave_height"]
+    return sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale, units="m/s^2")
+
+
 def scaled_records(ratio):
-    """The four records scaled so that the free wave's height is `ratio` x the freeboard (the
-    free wave is nearly linear in the scale; one correction step)."""
-    records = {}
-    for name, acceleration in synthetic_records().items():
-        scale = 1.0
-        for _ in range(2):
-            ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
-                                           units="m/s^2")
-            run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
-            scale *= ratio * TANK["freeboard"] / run.peak_table["free_wave_height"]
-        records[name] = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
-                                              units="m/s^2")
-    return records
+    """The four records scaled so that the free wave's height is `ratio` x the freeboard."""
+    return {name: scaled_to(acceleration, ratio)
+            for name, acceleration in synthetic_records().items()}
 
 
 @pytest.mark.parametrize("ratio", [1.5, 0.6])
@@ -161,13 +162,7 @@ def test_first_contact_is_where_the_free_tank_first_reaches_the_freeboard():
 
 def burst_record(ratio):
     """The burst record scaled so that the free wave's height is `ratio` x the freeboard."""
-    acceleration = synthetic_records()["burst"]
-    scale = 1.0
-    for _ in range(2):
-        ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale, units="m/s^2")
-        run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
-        scale *= ratio * TANK["freeboard"] / run.peak_table["free_wave_height"]
-    return sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale, units="m/s^2")
+    return scaled_to(synthetic_records()["burst"], ratio)
 
 
 #: the roofs: flat, a cone of 10 degrees, a dome of radius D (API 650's range: up to 37 degrees,
