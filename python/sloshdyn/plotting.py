@@ -208,6 +208,9 @@ def _ground_title(response):
             f"{p['peak_ground_acceleration'] / _G:.4g} g, Sa({response.tank.sloshing_period:.3g} s, "
             f"0.5 %) {p['sa_sloshing_period'] / _G:.4g} g\nroof "
             f"{'reached' if response.roof_reached else 'not reached'} (free wave)")
+    if response.roof_reached:
+        text += (f": uplift {p['roof_uplift_force'] / 1e3:.4g} kN, confined convective mass "
+                 f"{p['confined_convective_mass'] / 1e3:.4g} t")
     if response.beta_sensitive:
         text += "; the model's loads are sensitive to beta and delta"
     return text

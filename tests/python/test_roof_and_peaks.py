@@ -221,6 +221,10 @@ def test_roof_loads_are_the_hand_calculation_of_the_free_wave(roof):
     assert run.peak_table["roof_uplift_force"] == pytest.approx(rho * 9.80665 * uplift, rel=1e-6)
     assert run.peak_table["confined_convective_mass"] == pytest.approx(
         tank.convective_mass * cut / crest, rel=1e-6)
+    # the figure shows the roof loads beside the model's response
+    from sloshdyn import plotting
+    title = plotting.seismic(run).axes[0].get_title()
+    assert "roof reached (free wave): uplift" in title and "confined convective mass" in title
 
 
 def test_a_run_records_its_ground_motion_in_both_doors_and_the_figure(exe, tmp_path):
