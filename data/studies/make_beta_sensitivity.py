@@ -11,8 +11,6 @@ import csv
 import pathlib
 import time
 
-import numpy as np
-
 import sloshdyn
 from make_beta_study import TANK, records, scaled
 

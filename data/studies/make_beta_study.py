@@ -25,8 +25,9 @@ OUT = HERE / "beta_study.csv"
 
 
 def records():
-    """Four records (dt = 0.01 s): the example noise record, a burst at the sloshing
-    frequency, a chirp through it, a decaying pulse train (as tests/python/test_roof_and_peaks)."""
+    """Four records (dt = 0.01 s, m/s^2): the example noise record, a burst at the sloshing
+    frequency, a chirp through it, a decaying pulse train (tests/python/test_roof_and_peaks
+    uses them too)."""
     f = 1 / sloshdyn.Tank(**TANK).sloshing_period
     t = np.arange(0, 25, 0.01)
     kt = sloshdyn.GroundMotion.from_file(HERE.parent / "examples" / "records" / "synthetic_kt.AT2")
@@ -38,8 +39,8 @@ def records():
 
 
 def scaled(acceleration, ratio=RATIO):
-    """(the record scaled so that the free wave's height is ratio x the freeboard, the scale;
-    the free wave is nearly linear in the scale: one correction step)."""
+    """The record scaled so that the free wave's height is `ratio` x the freeboard (the free
+    wave is nearly linear in the scale; one correction step), and the scale."""
     scale = 1.0
     for _ in range(2):
         ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
