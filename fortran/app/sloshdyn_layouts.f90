@@ -116,12 +116,17 @@ module sloshdyn_layouts
     field_t('support_frequency'), field_t('support_damping'), field_t('support_stiffness'), &
     field_t('support_damping_coefficient'), field_t('support_height'), &
     field_t('sloshing_damping'), field_t('impact_stiffness'), field_t('impact_damping'), &
-    field_t('n', 'integer'), field_t('p', 'integer'), field_t('gravity')]
+    field_t('n', 'integer'), field_t('p', 'integer'), field_t('gravity'), &
+    field_t('roof_slope', doc='a cone roof''s slope [degrees] (0: not a cone; at most one of '// &
+            'roof_slope, roof_radius)'), &
+    field_t('roof_radius', doc='a dome roof''s radius [m] (0: not a dome; neither: a flat '// &
+            'roof)')]
   !> A ground motion (sloshdyn_ground): kind (ground_kinds), peak_acceleration [m/s^2],
-  !> frequency [Hz], dt [s]; a record's samples [m/s^2] travel in their own array.
+  !> frequency [Hz], dt [s], scale_factor (what it was scaled by); a record's samples [m/s^2]
+  !> travel in their own array.
   type(field_t), parameter :: ground_fields(*) = [ &
     field_t('kind', 'code:ground_kinds'), field_t('peak_acceleration'), field_t('frequency'), &
-    field_t('dt')]
+    field_t('dt'), field_t('scale_factor')]
   !> &chart's grid and curves (sloshdyn_stability_chart's chart_settings)
   type(field_t), parameter :: chart_fields(*) = [ &
     field_t('n_x', 'integer', 'grid columns (cells in x; their midpoints)'), &
@@ -448,7 +453,7 @@ contains
     real(wp), intent(in) :: a(TANK_SIZE)
     type(tank_t) :: tank
     tank = tank_t(a(1), a(2), a(3), a(4), a(5), a(6), a(7), a(8), a(9), a(10), a(11), a(12), &
-                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17))
+                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17), a(18), a(19))
   end function to_tank
 
   pure function from_tank(tank) result(a)
@@ -458,11 +463,12 @@ contains
          tank%tank_mass, tank%support_frequency, tank%support_damping, tank%support_stiffness, &
          tank%support_damping_coefficient, tank%support_height, tank%sloshing_damping, &
          tank%impact_stiffness, tank%impact_damping, real(tank%n, wp), real(tank%p, wp), &
-         tank%gravity]
+         tank%gravity, tank%roof_slope, tank%roof_radius]
   end function from_tank
 
   !> ground(GROUND_SIZE) = [kind (GROUND_HARMONIC, GROUND_RECORD), peak_acceleration [m/s^2],
-  !> frequency [Hz], dt [s]] and, for a record, its samples [m/s^2].
+  !> frequency [Hz], dt [s], scale_factor (what it was scaled by)] and, for a record, its
+  !> samples [m/s^2].
   pure function to_ground(a, samples) result(ground)
     real(wp), intent(in) :: a(GROUND_SIZE), samples(:)
     type(ground_motion_t) :: ground
@@ -471,12 +477,14 @@ contains
     else
       ground = harmonic_ground(a(2), a(3))
     end if
+    ground%scale_factor = a(5)
   end function to_ground
 
   pure function from_ground(ground) result(a)
     type(ground_motion_t), intent(in) :: ground
     real(wp) :: a(GROUND_SIZE)
-    a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt]
+    a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt, &
+         ground%scale_factor]
   end function from_ground
 
   !> The &chart settings from chart(CHART_SIZE) (the grid and the curves),
