@@ -16,9 +16,11 @@ module sloshdyn_seismic
   use sloshdyn_model, only: model_t, set_coefficients
   use sloshdyn_motion, only: equations_of_motion
   use sloshdyn_excitation, only: base_acceleration
-  use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS
+  use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS, &
+                            convective_damping
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, ground_duration, ground_spectrum, &
-                             GROUND_RECORD, GROUND_HARMONIC, harmonic_periods
+                             GROUND_RECORD, GROUND_HARMONIC, harmonic_periods, &
+                             spectral_acceleration
   use sloshdyn_excitation, only: PARAMETER_FREQUENCY
   use sloshdyn_design_codes, only: aci350_parameters, api650_parameters, ec8_parameters, &
                                    aci350_circular, aci350_wave_height, api650_circular, &
@@ -29,7 +31,8 @@ module sloshdyn_seismic
   use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
   use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_ROOF_REACHED, &
                              PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, &
-                             PEAKS_CONFINED_MASS, CODES_COLUMNS, CODES_ROWS, &
+                             PEAKS_CONFINED_MASS, PEAKS_IMPACT_FORCE, PEAKS_SCALE_FACTOR, &
+                             PEAKS_SA, PEAKS_BETA_SENSITIVE, CODES_COLUMNS, CODES_ROWS, &
                              HARMONIC_SWEEP_ROWS, SUMMARY_SIZE, SUMMARY_RHO, SUMMARY_A, &
                              SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
   implicit none
@@ -46,6 +49,10 @@ module sloshdyn_seismic
                         max_seismic_outputs = 10000000
   !> Outputs between two polls of the cancellation flag (sloshdyn_cancel) in the loads loop.
   integer, parameter :: outputs_per_poll = 4096
+  !> The model's loads are sensitive to beta and delta when its wall force (impact force) peaks
+  !> at this share of the sloshing weight m g or more (docs/model.md, "Choice of beta and delta":
+  !> data/studies/beta_sensitivity.csv)
+  real(wp), parameter :: beta_sensitive_force = 1.0e-3_wp
 
   !> The loads of sloshdyn_vessel (rows 2..LOAD_ROWS: ground acceleration to overturning moment)
   !> as quantities observed along the integration, for their peaks between the steps.
@@ -150,15 +157,35 @@ contains
     do i = 1, LOAD_ROWS - 1
       peaks(2*i - 1:2*i) = [tracker%peak(i), tracker%time(i)/props%omega]
     end do
-    call roof_contact(model, props, tau(n_out), options, method, peaks(PEAKS_ROOF_REACHED:), &
-                      status, message)
+    call roof_contact(model, props, tau, options, method, peaks(PEAKS_ROOF_REACHED:), &
+                      table(SEISMIC_ROWS, :), status, message)
     ! the roof loads of the free wave (sloshdyn_roof), beside the model's impact force
     if (status == SD_OK) &
-      call roof_loads(tank%radius, tank%freeboard, peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
+      call roof_loads(tank%radius, tank%freeboard, tank%roof_slope, tank%roof_radius, &
+                      peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
                       (pi*tank%radius**2*tank%liquid_depth), tank%gravity, props%sloshing_mass, &
                       peaks(PEAKS_ROOF_HEAD), peaks(PEAKS_ROOF_UPLIFT), &
                       peaks(PEAKS_CONFINED_MASS), status, message)
+    if (status == SD_OK) call run_traceability(tank, ground, props, peaks, status, message)
   end subroutine seismic_response
+
+  !> What a run's numbers rest on: the ground motion's scale factor, its pseudo-spectral
+  !> acceleration at the tank's sloshing period for the convective damping (what target_sa
+  !> scales to), and whether the model's loads are sensitive to beta and delta (its wall
+  !> force reaches beta_sensitive_force m g).
+  subroutine run_traceability(tank, ground, props, peaks, status, message)
+    type(tank_t), intent(in) :: tank
+    type(ground_motion_t), intent(in) :: ground
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(inout) :: peaks(PEAKS_SIZE)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    peaks(PEAKS_SCALE_FACTOR) = ground%scale_factor
+    call spectral_acceleration(ground, props%sloshing_period, convective_damping, &
+                               peaks(PEAKS_SA), status, message)
+    peaks(PEAKS_BETA_SENSITIVE) = merge(1.0_wp, 0.0_wp, abs(peaks(PEAKS_IMPACT_FORCE)) >= &
+                                        beta_sensitive_force*props%sloshing_mass*tank%gravity)
+  end subroutine run_traceability
 
   !> The loads (rows 2..LOAD_ROWS of tank_loads) of the state y at tau.
   pure subroutine load_values(self, t, y, g)
@@ -183,34 +210,37 @@ contains
   !> contact is that of the tank without a roof, and contact begins when that free wave's
   !> height at the wall, 2 R/(xi^2 - 1) sin(theta), reaches the freeboard, i.e. |x1| = 1. The
   !> free motion (beta = delta = 0, the same supports and damping) is integrated from rest over
-  !> [0, tau_end] and the entries of |x1| into [1, inf) are located on its dense output
+  !> the output times tau (free_wave: its wave height at the wall there [m]) and the entries of
+  !> |x1| into [1, inf) are located on its dense output
   !> (peak_tracker). The smooth wall of eq (4) pushes back before |x1| = 1 (at x1 = 0.9 with
   !> n = 6 already 0.31 beta m g), so the model's own x1 would depend on beta. After the first
   !> contact the free wave is what the design codes and Malhotra compare with the freeboard:
   !> its entries above the freeboard are counted and its largest height is reported.
   !> roof(1:5) = [reached (1/0), first contact [s] (NaN: none), entries, largest free wave
   !> height [m], its excess over the freeboard [m] (negative: the margin left)].
-  subroutine roof_contact(model, props, tau_end, options, method, roof, status, message)
+  subroutine roof_contact(model, props, tau, options, method, roof, free_wave, status, message)
     type(model_t), intent(in) :: model
     type(tank_properties), intent(in) :: props
-    real(wp), intent(in) :: tau_end
+    real(wp), intent(in) :: tau(:)
     type(ode_options), intent(in) :: options
     integer, intent(in) :: method
-    real(wp), intent(out) :: roof(:)
+    real(wp), intent(out) :: roof(:), free_wave(:)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(model_t) :: free
     type(linear_observation) :: x1
     type(peak_tracker) :: tracker
     type(ode_stats) :: stats
-    real(wp) :: history(HISTORY_ROWS, 1), freeboard
+    real(wp), allocatable :: history(:, :)
+    real(wp) :: freeboard
     free = model
     free%beta = 0
     free%delta = 0
     call set_coefficients(free)
     x1 = linear_observation(reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [1, 4]))
     tracker%level = [1.0_wp]
-    call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [tau_end], options, &
+    allocate (history(HISTORY_ROWS, size(tau)))
+    call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tau, options, &
                       method, history, stats, status, message, x1, tracker)
     if (status /= SD_OK) then
       message = 'the free wave (no roof, for the roof contact): '//trim(message)
@@ -222,6 +252,8 @@ contains
                  props%wave_factor*sin(min(model%theta0*tracker%peak(1), pi/2)), &
                  0.0_wp]
     roof(5) = roof(4) - freeboard
+    ! eta = wave_factor sin(theta) at the outputs (sloshdyn_vessel's wave height)
+    free_wave = props%wave_factor*sin(model%theta0*history(1, :))
   end subroutine roof_contact
 
   !> The tank's sloshing parameters by sloshdyn's model and by the design codes, one row per
@@ -312,7 +344,7 @@ contains
     character(len=message_len), intent(out) :: message
     type(model_t) :: model
     type(tank_properties) :: props
-    real(wp) :: rho(size(frequencies))
+    real(wp) :: rho(size(frequencies)), free_max_x1(size(frequencies))
     integer :: i
 
     summaries = 0
@@ -336,25 +368,62 @@ contains
       call independent_sweep(model, PARAMETER_FREQUENCY, rho, y0, options, method, steady, &
                              threads, summaries, n_done, status, message)
     end if
+    ! the free wave's verdict for the points done (NaN where the sweep failed before it)
+    free_max_x1 = ieee_value(1.0_wp, ieee_quiet_nan)
+    if (status == SD_OK .and. n_done > 0) then
+      call free_steady_waves(model, rho(1:n_done), options, method, steady, threads, &
+                             free_max_x1(1:n_done), status, message)
+      if (status /= SD_OK) n_done = 0
+    end if
     do i = 1, n_done
-      table(:, i) = harmonic_sweep_row(props, model%theta0, frequencies(i), summaries(:, i))
+      table(:, i) = harmonic_sweep_row(props, model%theta0, frequencies(i), summaries(:, i), &
+                                       free_max_x1(i))
     end do
   end subroutine harmonic_sweep
 
+  !> The roof verdict of a sweep on the free wave, as seismic_response's roof_contact: max|x1|
+  !> of the steady state of the tank without a roof (beta = delta = 0, the same supports and
+  !> damping) at each rho, each from rest, so that the verdict does not depend on the contact
+  !> model.
+  subroutine free_steady_waves(model, rho, options, method, steady, threads, free_max_x1, &
+                               status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: rho(:)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method, threads
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(out) :: free_max_x1(size(rho))
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: free
+    real(wp) :: summaries(SUMMARY_SIZE, size(rho))
+    integer :: n_done
+    free = model
+    free%beta = 0
+    free%delta = 0
+    call set_coefficients(free)
+    call independent_sweep(free, PARAMETER_FREQUENCY, rho, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
+                           options, method, steady, threads, summaries, n_done, status, message)
+    if (status /= SD_OK) message = 'the free wave (no roof, for the roof verdict): '// &
+                                   trim(message)
+    free_max_x1 = summaries(SUMMARY_MAX_X1, :)
+  end subroutine free_steady_waves
+
   !> A steady-state summary in SI ('harmonic_sweep' layout): the largest wave height, sloshing
   !> displacement and pendulum angle from max|x1|, the tank drift from max|x2|, whether the wave
-  !> reaches the roof (max|x1| >= 1), the kind of motion and its period.
-  pure function harmonic_sweep_row(props, theta0, frequency, summary) result(row)
+  !> reaches the roof (the free wave's max|x1| >= 1, free_steady_waves), the kind of motion, its
+  !> period and the free wave's largest height at the wall.
+  pure function harmonic_sweep_row(props, theta0, frequency, summary, free_max_x1) result(row)
     type(tank_properties), intent(in) :: props
-    real(wp), intent(in) :: theta0, frequency, summary(SUMMARY_SIZE)
+    real(wp), intent(in) :: theta0, frequency, summary(SUMMARY_SIZE), free_max_x1
     real(wp) :: row(HARMONIC_SWEEP_ROWS)
     real(wp) :: theta
     theta = theta0*summary(SUMMARY_MAX_X1)
     row = [frequency, summary(SUMMARY_A)*summary(SUMMARY_RHO)**2*props%rod_length*props%omega**2, &
            props%wave_factor*sin(theta), props%pendulum_length*sin(theta), theta, &
            props%rod_length*sin(theta0*summary(SUMMARY_MAX_X2)), &
-           merge(1.0_wp, 0.0_wp, summary(SUMMARY_MAX_X1) >= 1), summary(SUMMARY_MOTION), &
-           summary(SUMMARY_PERIOD)]
+           merge(1.0_wp, 0.0_wp, free_max_x1 >= 1), summary(SUMMARY_MOTION), &
+           summary(SUMMARY_PERIOD), props%wave_factor*sin(min(theta0*free_max_x1, pi/2))]
   end function harmonic_sweep_row
 
   !> The tank's properties as one row of the 'tank_si' table.

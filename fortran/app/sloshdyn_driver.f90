@@ -19,7 +19,8 @@ module sloshdyn_driver
                              SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, &
                              PEAKS_IMPACT_FORCE, PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, &
                              PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, &
-                             PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
+                             PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, PEAKS_SCALE_FACTOR, &
+                             PEAKS_SA, PEAKS_BETA_SENSITIVE, table_header, &
                              CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
                              HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
                              CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name, &
@@ -49,7 +50,8 @@ module sloshdyn_driver
   use sloshdyn_slowflow_chart, only: chart_parameter_name
   use sloshdyn_seismic, only: seismic_response, seismic_defaults, design_code_checks, &
                               tank_summary, harmonic_sweep
-  use sloshdyn_ground, only: ground_duration, GROUND_RECORD
+  use sloshdyn_ground, only: ground_duration, GROUND_RECORD, ground_motion_t
+  use sloshdyn_vessel, only: tank_t
   use sloshdyn_layouts, only: counts_array
   implicit none
   private
@@ -547,6 +549,7 @@ contains
     real(wp), allocatable :: table(:, :)
     real(wp) :: peaks(PEAKS_SIZE), t_end
     integer :: n_out, i
+    character(len=2*message_len) :: info(2)
     character(len=*), parameter :: loads(SEISMIC_LOADS - 1) = [character(len=22) :: &
       'ground acceleration', 'sloshing displacement', 'wave height', 'pendulum angle', &
       'tank drift', 'impact force', 'base shear', 'overturning moment']
@@ -577,7 +580,7 @@ contains
                      num2str(peaks(PEAKS_FIRST_ROOF_TIME), significant=5)//' s, '// &
                      num2str(nint(peaks(PEAKS_ROOF_IMPACTS)))//' time(s); the free wave '// &
                      'rises to '//num2str(free_wave, significant=5)//' m at the wall'
-        print '(a)', '  flat roof, restricted sloshing: head '// &
+        print '(a)', '  '//roof_name(config%tank)//', restricted sloshing: head '// &
                      num2str(peaks(PEAKS_ROOF_HEAD), significant=5)//' m, uplift '// &
                      num2str(peaks(PEAKS_ROOF_UPLIFT)/1.0e6_wp, significant=5)// &
                      ' MN, confined convective mass '// &
@@ -593,11 +596,69 @@ contains
                  num2str(peaks(PEAKS_IMPACT_FORCE)/ &
                          (config%tank_props%sloshing_mass*config%tank%gravity), &
                          significant=3)//' times the sloshing weight m g'
+    print '(a)', '  ground motion '//ground_name(config%ground)//': scale factor '// &
+                 num2str(peaks(PEAKS_SCALE_FACTOR), significant=5)//', PGA '// &
+                 num2str(peaks(1)/config%tank%gravity, significant=5)//' g, Sa('// &
+                 num2str(config%tank_props%sloshing_period, significant=4)//' s, 0.5 %) '// &
+                 num2str(peaks(PEAKS_SA)/config%tank%gravity, significant=5)//' g'
+    if (peaks(PEAKS_BETA_SENSITIVE) > 0) &
+      print '(a)', '  warning: the model''s impact force, base shear and overturning moment '// &
+                   'are sensitive to impact_stiffness (beta) and impact_damping (delta): its '// &
+                   'wall acts (impact force >= 0.001 m g; docs/model.md, "Choice of beta and '// &
+                   'delta"); the roof verdict and roof loads are not'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
     if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks', &
                                                 reshape(peaks, [PEAKS_SIZE, 1]), status, message)
+    ! what the run rests on, beside its numbers (the same row as Python's SeismicResponse)
+    info(1) = table_header('seismic_run')
+    info(2) = csv_text(config%ground%name)
+    info(2) = trim(info(2))//','//csv_text(config%ground%scaling)
+    info(2) = trim(info(2))//','//num2str(peaks(PEAKS_SCALE_FACTOR))//','// &
+              num2str(peaks(1))//','//num2str(peaks(PEAKS_SA))//','// &
+              num2str(config%tank_props%sloshing_period)//','// &
+              num2str(config%tank%impact_stiffness)//','// &
+              num2str(config%tank%impact_damping)//','// &
+              num2str(nint(peaks(PEAKS_BETA_SENSITIVE)))
+    if (status == SD_OK) call files%write_text('run_info.csv', info, status, message)
   end subroutine run_seismic
+
+  !> A text field of a CSV row: in double quotes, its quotes doubled (RFC 4180).
+  pure function csv_text(text) result(field)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: field
+    integer :: i
+    field = '"'
+    do i = 1, len_trim(text)
+      field = field//text(i:i)
+      if (text(i:i) == '"') field = field//'"'
+    end do
+    field = field//'"'
+  end function csv_text
+
+  !> A ground motion's name in a summary: the record file's, quoted, or 'harmonic'.
+  pure function ground_name(ground) result(name)
+    type(ground_motion_t), intent(in) :: ground
+    character(len=:), allocatable :: name
+    if (ground%kind == GROUND_RECORD) then
+      name = ''''//trim(ground%name)//''''
+    else
+      name = 'harmonic'
+    end if
+  end function ground_name
+
+  !> The tank's roof in words (sloshdyn_roof's shapes).
+  pure function roof_name(tank) result(name)
+    type(tank_t), intent(in) :: tank
+    character(len=:), allocatable :: name
+    if (tank%roof_slope > 0) then
+      name = 'cone roof ('//num2str(tank%roof_slope)//' degrees)'
+    else if (tank%roof_radius > 0) then
+      name = 'dome roof (radius '//num2str(tank%roof_radius)//' m)'
+    else
+      name = 'flat roof'
+    end if
+  end function roof_name
 
   !> Largest Lyapunov exponent from y0 with its running estimates.
   subroutine run_lyapunov(config, files, status, message)
@@ -746,7 +807,8 @@ contains
     if (config%has_ground) then
       associate (g => config%ground)
         if (g%kind == GROUND_RECORD) then
-          print '(a)', 'Ground motion: a record of '//num2str(size(g%acceleration))// &
+          print '(a)', 'Ground motion: the record '''//trim(g%name)//''' of '// &
+                       num2str(size(g%acceleration))// &
                        ' samples every '//num2str(g%dt)//' s ('//num2str(ground_duration(g))// &
                        ' s), peak '//num2str(maxval(abs(g%acceleration)))//' m/s^2 = '// &
                        num2str(maxval(abs(g%acceleration))/config%tank%gravity)//' g'

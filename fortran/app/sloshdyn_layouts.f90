@@ -33,7 +33,8 @@ module sloshdyn_layouts
             RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
             PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
-            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE
+            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
+            NATURAL_FREQUENCIES_SIZE
   public :: chart_axes, CHART_RHO
   public :: layout_names, layout_text, layout_defaults, join, &
             excitation_parameters, ground_kinds, resonances
@@ -116,12 +117,17 @@ module sloshdyn_layouts
     field_t('support_frequency'), field_t('support_damping'), field_t('support_stiffness'), &
     field_t('support_damping_coefficient'), field_t('support_height'), &
     field_t('sloshing_damping'), field_t('impact_stiffness'), field_t('impact_damping'), &
-    field_t('n', 'integer'), field_t('p', 'integer'), field_t('gravity')]
+    field_t('n', 'integer'), field_t('p', 'integer'), field_t('gravity'), &
+    field_t('roof_slope', doc='a cone roof''s slope [degrees] (0: not a cone; at most one of '// &
+            'roof_slope, roof_radius)'), &
+    field_t('roof_radius', doc='a dome roof''s radius [m] (0: not a dome; neither: a flat '// &
+            'roof)')]
   !> A ground motion (sloshdyn_ground): kind (ground_kinds), peak_acceleration [m/s^2],
-  !> frequency [Hz], dt [s]; a record's samples [m/s^2] travel in their own array.
+  !> frequency [Hz], dt [s], scale_factor (what it was scaled by); a record's samples [m/s^2]
+  !> travel in their own array.
   type(field_t), parameter :: ground_fields(*) = [ &
     field_t('kind', 'code:ground_kinds'), field_t('peak_acceleration'), field_t('frequency'), &
-    field_t('dt')]
+    field_t('dt'), field_t('scale_factor')]
   !> &chart's grid and curves (sloshdyn_stability_chart's chart_settings)
   type(field_t), parameter :: chart_fields(*) = [ &
     field_t('n_x', 'integer', 'grid columns (cells in x; their midpoints)'), &
@@ -195,6 +201,11 @@ module sloshdyn_layouts
   !> chart's four tables (sloshdyn_stability_chart's chart_table_sizes).
   type(field_t), parameter :: modal_scalars_fields(*) = [ &
     field_t('omega1'), field_t('omega2'), field_t('gamma11'), field_t('gamma22'), field_t('F11')]
+  !> The natural frequencies of the linearised model about the trivial equilibrium: eq (28) and,
+  !> independently, the eigenvalues of the undamped linearised equations (dgeev).
+  type(field_t), parameter :: natural_frequencies_fields(*) = [ &
+    field_t('omega1', doc='eq (28)'), field_t('omega2', doc='eq (28)'), &
+    field_t('omega1_dgeev', doc='from dgeev'), field_t('omega2_dgeev', doc='from dgeev')]
   type(field_t), parameter :: chart_sizes_fields(*) = [ &
     field_t('curve_points', 'integer'), field_t('codim2_points', 'integer'), &
     field_t('curves', 'integer'), field_t('cells', 'integer')]
@@ -208,7 +219,7 @@ module sloshdyn_layouts
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
     'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
-    'routh,orbit_info,modal_scalars,chart_sizes,spatial'
+    'routh,orbit_info,modal_scalars,chart_sizes,spatial,natural_frequencies'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
@@ -239,7 +250,8 @@ module sloshdyn_layouts
                         ORBIT_INFO_SIZE = size(orbit_info_fields), &
                         MODAL_SCALARS_SIZE = size(modal_scalars_fields), &
                         CHART_SIZES_SIZE = size(chart_sizes_fields), &
-                        SPATIAL_SIZE = size(spatial_fields)
+                        SPATIAL_SIZE = size(spatial_fields), &
+                        NATURAL_FREQUENCIES_SIZE = size(natural_frequencies_fields)
 
 contains
 
@@ -277,6 +289,7 @@ contains
     case ('modal_scalars');  fields = modal_scalars_fields
     case ('chart_sizes');    fields = chart_sizes_fields
     case ('spatial');        fields = spatial_fields
+    case ('natural_frequencies'); fields = natural_frequencies_fields
     case default;            allocate (fields(0))
     end select
   end function layout_of
@@ -448,7 +461,7 @@ contains
     real(wp), intent(in) :: a(TANK_SIZE)
     type(tank_t) :: tank
     tank = tank_t(a(1), a(2), a(3), a(4), a(5), a(6), a(7), a(8), a(9), a(10), a(11), a(12), &
-                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17))
+                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17), a(18), a(19))
   end function to_tank
 
   pure function from_tank(tank) result(a)
@@ -458,11 +471,12 @@ contains
          tank%tank_mass, tank%support_frequency, tank%support_damping, tank%support_stiffness, &
          tank%support_damping_coefficient, tank%support_height, tank%sloshing_damping, &
          tank%impact_stiffness, tank%impact_damping, real(tank%n, wp), real(tank%p, wp), &
-         tank%gravity]
+         tank%gravity, tank%roof_slope, tank%roof_radius]
   end function from_tank
 
   !> ground(GROUND_SIZE) = [kind (GROUND_HARMONIC, GROUND_RECORD), peak_acceleration [m/s^2],
-  !> frequency [Hz], dt [s]] and, for a record, its samples [m/s^2].
+  !> frequency [Hz], dt [s], scale_factor (what it was scaled by)] and, for a record, its
+  !> samples [m/s^2].
   pure function to_ground(a, samples) result(ground)
     real(wp), intent(in) :: a(GROUND_SIZE), samples(:)
     type(ground_motion_t) :: ground
@@ -471,12 +485,14 @@ contains
     else
       ground = harmonic_ground(a(2), a(3))
     end if
+    ground%scale_factor = a(5)
   end function to_ground
 
   pure function from_ground(ground) result(a)
     type(ground_motion_t), intent(in) :: ground
     real(wp) :: a(GROUND_SIZE)
-    a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt]
+    a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt, &
+         ground%scale_factor]
   end function from_ground
 
   !> The &chart settings from chart(CHART_SIZE) (the grid and the curves),

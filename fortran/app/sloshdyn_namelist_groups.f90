@@ -114,13 +114,13 @@ contains
     real(wp) :: radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
                 support_frequency, support_damping, support_stiffness, &
                 support_damping_coefficient, support_height, sloshing_damping, &
-                impact_stiffness, impact_damping, gravity
+                impact_stiffness, impact_damping, gravity, roof_slope, roof_radius
     integer :: n, p
     type(namelist_reader) :: reader
     namelist /tank/ radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
                     support_frequency, support_damping, support_stiffness, &
                     support_damping_coefficient, support_height, sloshing_damping, &
-                    impact_stiffness, impact_damping, n, p, gravity
+                    impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius
 
     radius = vessel%radius; liquid_depth = vessel%liquid_depth; freeboard = vessel%freeboard
     liquid_density = vessel%liquid_density; liquid_mass = vessel%liquid_mass
@@ -130,6 +130,7 @@ contains
     support_height = vessel%support_height; sloshing_damping = vessel%sloshing_damping
     impact_stiffness = vessel%impact_stiffness; impact_damping = vessel%impact_damping
     n = vessel%n; p = vessel%p; gravity = vessel%gravity
+    roof_slope = vessel%roof_slope; roof_radius = vessel%roof_radius
     status = SD_OK
     message = ''
     call reader%start(file, G_TANK, status)
@@ -148,7 +149,7 @@ contains
     vessel = tank_t(radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
                     support_frequency, support_damping, support_stiffness, &
                     support_damping_coefficient, support_height, sloshing_damping, &
-                    impact_stiffness, impact_damping, n, p, gravity)
+                    impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius)
   end subroutine read_tank
 
   !> &ground_motion: a record file (PEER NGA .AT2, or two columns time, acceleration) or harmonic
@@ -230,6 +231,7 @@ contains
       if (target_period <= 0) target_period = props%sloshing_period
       call scale_ground(ground, scale_factor, target_pga*to_si, target_sa*to_si, target_period, &
                         target_damping, status, message)
+      ground%name = record(index(record, '/', back=.true.) + 1:)
     end if
     if (status /= SD_OK .and. index(message, '&ground_motion') /= 1) &
       message = '&ground_motion: '//trim(message)
@@ -905,7 +907,8 @@ contains
           'radius', 'liquid_depth', 'freeboard', 'liquid_density', 'liquid_mass', 'tank_mass', &
           'support_frequency', 'support_damping', 'support_stiffness', &
           'support_damping_coefficient', 'support_height', 'sloshing_damping', &
-          'impact_stiffness', 'impact_damping', 'gravity', 'peak_acceleration', 'frequency', &
+          'impact_stiffness', 'impact_damping', 'gravity', 'roof_slope', 'roof_radius', &
+          'peak_acceleration', 'frequency', &
           'scale_factor', 'target_pga', 'target_sa', 'target_period', 'target_damping', &
           'transient_periods', &
           'max_transient_periods', 'periodic_tol', 'start', 'stop', 'amplitude_min', &

@@ -37,6 +37,9 @@ module sloshdyn_results
   contains
     procedure :: create => create_directory
     procedure :: write_table
+    procedure :: write_text
+    procedure, private :: open_pending
+    procedure, private :: close_pending
     procedure :: begin_rows
     procedure :: append_rows
     procedure :: partial_path
@@ -73,13 +76,51 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     character(len=message_len) :: iomsg
-    type(pending_file) :: file
     integer :: unit, ios
     integer(int64) :: bytes, rows_bytes
 
+    call self%open_pending(name, unit, ios, iomsg, status, message)
+    if (status /= SD_OK) return
+    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
+    bytes = len(table_header(table)) + 1
+    rows_bytes = 0
+    if (ios == 0) call write_rows(unit, table, data, rows_bytes, ios, iomsg)
+    call self%close_pending(unit, bytes + rows_bytes, ios, iomsg, status, message)
+  end subroutine write_table
+
+  !> Write lines of text (a header and rows made by the caller) into file `name` under its
+  !> temporary name, committed with the tables.
+  subroutine write_text(self, name, lines, status, message)
+    class(result_files), intent(inout) :: self
+    character(len=*), intent(in) :: name, lines(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=message_len) :: iomsg
+    integer :: unit, ios, i
+    integer(int64) :: bytes
+
+    call self%open_pending(name, unit, ios, iomsg, status, message)
+    if (status /= SD_OK) return
+    bytes = 0
+    do i = 1, size(lines)
+      if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) trim(lines(i))
+      bytes = bytes + len_trim(lines(i)) + 1
+    end do
+    call self%close_pending(unit, bytes, ios, iomsg, status, message)
+  end subroutine write_text
+
+  !> Open a new temporary file for file `name` (registered for commit), on unit.
+  subroutine open_pending(self, name, unit, ios, iomsg, status, message)
+    class(result_files), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    integer, intent(out) :: unit, ios, status
+    character(len=message_len), intent(out) :: iomsg, message
+    type(pending_file) :: file
     status = SD_OK
     message = ''
     iomsg = ''
+    ios = 0
+    unit = -1
     file%final = self%directory//'/'//name
     call unique_file(self%directory//'/.'//name//'.', file%temporary)
     if (len(file%temporary) == 0) then
@@ -91,15 +132,27 @@ contains
     self%files = [self%files, file]
     open (newunit=unit, file=file%temporary, status='old', action='write', iostat=ios, &
           iomsg=iomsg)
-    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
-    bytes = len(table_header(table)) + 1
-    if (ios == 0) call write_rows(unit, table, data, rows_bytes, ios, iomsg)
-    call close_checked(unit, file%temporary, bytes + rows_bytes, ios, iomsg)
-    if (ios /= 0) then
-      status = SD_IO_ERROR
-      message = 'cannot write '//file%final//': '//trim(iomsg)
-    end if
-  end subroutine write_table
+  end subroutine open_pending
+
+  !> Close the last pending file's unit, checking that bytes reached the disk.
+  subroutine close_pending(self, unit, bytes, ios, iomsg, status, message)
+    class(result_files), intent(inout) :: self
+    integer, intent(in) :: unit
+    integer(int64), intent(in) :: bytes
+    integer, intent(inout) :: ios
+    character(len=message_len), intent(inout) :: iomsg
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    associate (file => self%files(size(self%files)))
+      call close_checked(unit, file%temporary, bytes, ios, iomsg)
+      status = SD_OK
+      message = ''
+      if (ios /= 0) then
+        status = SD_IO_ERROR
+        message = 'cannot write '//file%final//': '//trim(iomsg)
+      end if
+    end associate
+  end subroutine close_pending
 
   !> Close unit (if ios = 0 so far) and check that file `path` holds `bytes` bytes: a write that
   !> failed for want of space shows as a shorter file.

@@ -30,7 +30,8 @@ module sloshdyn_tables
             CHART_GRID_NEAR_CURVE, CHART_GRID_BRUTE_FORCE_STABLE
   public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
             PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, &
-            PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
+            PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, PEAKS_SCALE_FACTOR, &
+            PEAKS_SA, PEAKS_BETA_SENSITIVE, &
             CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
@@ -122,15 +123,19 @@ module sloshdyn_tables
                         CYCLE_AMPLITUDE_ROWS = 4, CYCLE_SPECIAL_ROWS = 7
 
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
-  !> output time, then x1 and x2; the peaks of the loads (value, time), then the roof contact of
+  !> output time, then x1 and x2 and the free wave's height at the wall (no roof: beta = delta =
+  !> 0, what the roof verdict judges); the peaks of the loads (value, time), then the roof contact of
   !> the free wave (no roof): reached, first contact, entries above the freeboard, the free
   !> wave's largest height at the wall and its excess over the freeboard, and the roof loads of
-  !> that wave (sloshdyn_roof: head d - f, uplift on a flat roof, confined convective mass);
+  !> that wave (sloshdyn_roof: head d - f, uplift on the roof, confined convective mass); the
+  !> traceability of the run: the ground motion's scale factor, its pseudo-spectral acceleration
+  !> at the tank's sloshing period (0.5 %) and whether the model's loads are sensitive to beta
+  !> and delta (1/0);
   !> the design-code cross-check (one row per source); the tank's properties.
   character(len=*), parameter :: seismic_columns = 't [s],ground_acceleration [m/s^2],'// &
     'sloshing_displacement [m],wave_height [m],pendulum_angle [rad],tank_drift [m],'// &
-    'impact_force [N],base_shear [N],overturning_moment [N m],x1,x2'
-  integer, parameter :: SEISMIC_LOADS = 9, SEISMIC_ROWS = 11
+    'impact_force [N],base_shear [N],overturning_moment [N m],x1,x2,free_wave_height [m]'
+  integer, parameter :: SEISMIC_LOADS = 9, SEISMIC_ROWS = 12
   character(len=*), parameter :: peaks_columns = 'peak_ground_acceleration [m/s^2],'// &
     'time_ground_acceleration [s],peak_sloshing_displacement [m],time_sloshing_displacement [s],'// &
     'peak_wave_height [m],time_wave_height [s],peak_pendulum_angle [rad],'// &
@@ -138,11 +143,13 @@ module sloshdyn_tables
     'time_impact_force [s],peak_base_shear [N],time_base_shear [s],'// &
     'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
     'first_roof_time [s],roof_impacts,free_wave_height [m],roof_excess [m],roof_head [m],'// &
-    'roof_uplift_force [N],confined_convective_mass [kg]'
-  integer, parameter :: PEAKS_SIZE = 24, PEAKS_WAVE_HEIGHT = 5, PEAKS_IMPACT_FORCE = 11, &
+    'roof_uplift_force [N],confined_convective_mass [kg],scale_factor,'// &
+    'sa_sloshing_period [m/s^2],beta_sensitive'
+  integer, parameter :: PEAKS_SIZE = 27, PEAKS_WAVE_HEIGHT = 5, PEAKS_IMPACT_FORCE = 11, &
                         PEAKS_ROOF_REACHED = 17, PEAKS_FIRST_ROOF_TIME = 18, &
                         PEAKS_ROOF_IMPACTS = 19, PEAKS_FREE_WAVE = 20, PEAKS_ROOF_HEAD = 22, &
-                        PEAKS_ROOF_UPLIFT = 23, PEAKS_CONFINED_MASS = 24
+                        PEAKS_ROOF_UPLIFT = 23, PEAKS_CONFINED_MASS = 24, &
+                        PEAKS_SCALE_FACTOR = 25, PEAKS_SA = 26, PEAKS_BETA_SENSITIVE = 27
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
   character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
@@ -157,8 +164,9 @@ module sloshdyn_tables
                         CHART_GRID_BRUTE_FORCE_STABLE = 8
   character(len=*), parameter :: harmonic_sweep_columns = 'frequency [Hz],'// &
     'peak_ground_acceleration [m/s^2],wave_height [m],sloshing_displacement [m],'// &
-    'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods]'
-  integer, parameter :: HARMONIC_SWEEP_ROWS = 9, HARMONIC_SWEEP_WAVE_HEIGHT = 3
+    'pendulum_angle [rad],tank_drift [m],roof_reached,motion,period [forcing periods],'// &
+    'free_wave_height [m]'
+  integer, parameter :: HARMONIC_SWEEP_ROWS = 10, HARMONIC_SWEEP_WAVE_HEIGHT = 3
   character(len=*), parameter :: codes_columns_names = 'source,convective_period [s],'// &
     'convective_mass [kg],impulsive_mass [kg],convective_height [m],impulsive_height [m],'// &
     'wave_height [m]'
@@ -243,6 +251,10 @@ contains
       header = seismic_columns
     case ('seismic_peaks')
       header = peaks_columns
+    case ('seismic_run')
+      header = 'record,scaling,scale_factor,peak_ground_acceleration [m/s^2],'// &
+               'sa_sloshing_period [m/s^2],sloshing_period [s],impact_stiffness,'// &
+               'impact_damping,beta_sensitive'
     case ('design_codes')
       header = codes_columns_names
     case ('harmonic_sweep')
@@ -286,11 +298,11 @@ contains
     case ('lyapunov_spectrum')
       formats = 'irrrr'
     case ('seismic_peaks')
-      formats = repeat('r', 16)//'irirrrrr'
+      formats = repeat('r', 16)//'irirrrrrrri'
     case ('design_codes')
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')
-      formats = 'rrrrrriir'
+      formats = 'rrrrrriirr'
     case ('chart_curves')
       formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')

@@ -110,17 +110,18 @@ contains
     end if
   end subroutine equations_of_motion
 
-  !> Natural frequencies: omegas = [omega1, omega2 (eq 28), omega1, omega2 (dgeev)];
+  !> Natural frequencies: omegas in the 'natural_frequencies' layout (eq 28, then dgeev);
   !> stiffness K (eq 26), modal matrix P and its inverse (eq 34).
   subroutine natural_frequencies(rpar, ipar, omegas, stiffness, modal, modal_inverse, status, &
                                  message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: NATURAL_FREQUENCIES_SIZE
     use sloshdyn_linear, only: stiffness_matrix, core => natural_frequencies, &
                                natural_frequencies_eig, modal_matrix
     real(c_double), intent(in) :: rpar(n_real_params)
     integer(c_int), intent(in) :: ipar(n_int_params)
-    real(c_double), intent(out) :: omegas(4), stiffness(2, 2), modal(2, 2), modal_inverse(2, 2)
+    real(c_double), intent(out) :: omegas(NATURAL_FREQUENCIES_SIZE), stiffness(2, 2), modal(2, 2), modal_inverse(2, 2)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(model_t) :: model

@@ -21,7 +21,8 @@ program sloshdyn_bridge_sizes
                               ANALYSIS_SIZE, CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
                               PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
-                              MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE
+                              MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
+                              NATURAL_FREQUENCIES_SIZE
   implicit none
   call define('n_real_params', n_real_params)
   call define('n_int_params', n_int_params)
@@ -77,6 +78,7 @@ program sloshdyn_bridge_sizes
   call define('swirl_edge_rows', SWIRL_EDGE_ROWS)
   call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
   call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
+  call define('natural_frequencies_size', NATURAL_FREQUENCIES_SIZE)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

@@ -15,6 +15,7 @@ module sloshdyn_ground
   private
   public :: ground_motion_t, harmonic_ground, record_ground, check_ground, ground_excitation, &
             ground_acceleration, ground_duration, ground_spectrum, scale_to_pga, scale_to_sa, scale_ground
+  public :: spectral_acceleration
   public :: GROUND_HARMONIC, GROUND_RECORD, harmonic_periods
 
   integer, parameter :: GROUND_HARMONIC = 1, GROUND_RECORD = 2
@@ -37,6 +38,7 @@ module sloshdyn_ground
     real(wp), allocatable :: acceleration(:)   !< record: u'' [m/s^2] at t = (i - 1) dt
     real(wp) :: scale_factor = 1           !< the factor scale_ground applied
     character(len=96) :: scaling = ''      !< what it scaled to, with the damping and units
+    character(len=96) :: name = ''         !< the record file's name (the namelist reader's)
   end type ground_motion_t
 
 contains
@@ -208,27 +210,48 @@ contains
     real(wp), intent(in) :: sa, period, damping
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: sd(1), sv(1), psa(1), factor
+    real(wp) :: psa, factor
     call check_real('target_sa', sa, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'the target spectral acceleration must be >= 0 [m/s^2]', status, message)
     if (status /= SD_OK) return
-    ! with the free-vibration tail of GroundMotion.response_spectrum's default (5 periods)
-    call ground_spectrum(ground, [period], damping, 5*period, 20*period, sd, sv, psa, status, &
-                         message)
+    if (ground%kind == GROUND_RECORD .and. ground_duration(ground) < period) then
+      ! the peak would come from the free-vibration tail alone: an extrapolation of the record
+      status = SD_BAD_INPUT
+      message = 'target_period = '//num2str(period)//' s is longer than the record ('// &
+                num2str(ground_duration(ground))//' s): scaling to target_sa needs a record '// &
+                'at least one target period long (or scale by target_pga or scale_factor)'
+      return
+    end if
+    call spectral_acceleration(ground, period, damping, psa, status, message)
     if (status /= SD_OK) return
-    if (psa(1) == 0) then
+    if (psa == 0) then
       status = SD_BAD_INPUT
       message = 'the record has no spectral acceleration at period = '//num2str(period)// &
                 ' s: it cannot be scaled to target_sa = '//num2str(sa)
       return
     end if
-    factor = sa/psa(1)
+    factor = sa/psa
     if (ground%kind == GROUND_HARMONIC) then
       ground%peak_acceleration = ground%peak_acceleration*factor
     else
       ground%acceleration = ground%acceleration*factor
     end if
   end subroutine scale_to_sa
+
+  !> The pseudo-spectral acceleration psa [m/s^2] of the ground motion at period [s] for the
+  !> damping ratio, with the free-vibration tail of GroundMotion.response_spectrum's default (5
+  !> periods): what target_sa scales to, and what a seismic run reports as achieved.
+  subroutine spectral_acceleration(ground, period, damping, psa, status, message)
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: period, damping
+    real(wp), intent(out) :: psa
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: sd(1), sv(1), sa(1)
+    call ground_spectrum(ground, [period], damping, 5*period, 20*period, sd, sv, sa, status, &
+                         message)
+    psa = sa(1)
+  end subroutine spectral_acceleration
 
   !> Scale by at most one of: a factor (1 = unscaled), a peak ground acceleration target_pga
   !> [m/s^2] (0 = none), or a pseudo-spectral acceleration target_sa [m/s^2] (0 = none) at

@@ -1,24 +1,35 @@
-!> Loads of a sloshing wave on a flat roof when the freeboard is insufficient (the free wave's
-!> height d at the wall exceeds the freeboard f), from the free (unconstrained) wave:
+!> Loads of a sloshing wave on the roof of a cylindrical tank whose freeboard is insufficient
+!> (the free, unconstrained wave's height d at the wall exceeds the freeboard f at the wall), for
+!> flat, cone and dome roofs. Malhotra (Earthquake Spectra 21(4), 2005; Structural Engineering
+!> International 16(3), 2006, for cone and dome roofs) names the two effects, an upward load on
+!> the roof and an increase of the impulsive mass by the roof's constraint; his formulas were not
+!> available to this project, so both are derived here from the free first-mode wave
+!> eta(r, a) = d J1(xi r/R)/J1(xi) cos(a) (docs/model.md, "Roof loads"):
 !>
-!> - the equivalent hydrostatic head at the wall, d - f, which the code provision for
-!>   restricted sloshing asks the roof to be designed for (ASCE 7-10 15.7.6.1.2 c, to which
-!>   API 650 E.7.2 and ACI 350.3 defer; this program's reading, see docs/model.md);
-!> - the upward force on a flat roof: the hydrostatic pressure rho g (eta - f) of the part of
-!>   the free first-mode wave eta(r, theta) = d J1(xi r/R)/J1(xi) cos(theta) that would rise
-!>   above the roof, integrated over the roof (in theta in closed form, in r by Gauss-Legendre);
-!> - the confined part of the convective mass, m_c (1 - f/d): the roof caps the wave, hence the
-!>   sloshing displacement, at f/d of the free one; the rest of the convective mass moves with
-!>   the tank and is added to the impulsive mass (the same provision).
+!> - roof_head = d - f: the equivalent hydrostatic head at the wall;
+!> - the uplift: the hydrostatic pressure rho g (eta - z_roof(r)) of the part of the free wave
+!>   that would rise above the roof, integrated over the roof's horizontal projection (the
+!>   vertical component of a pressure on any roof surface): in a in closed form, in r by
+!>   Gauss-Legendre;
+!> - the confined convective mass, phi m_c: the horizontal sloshing displacement of the liquid
+!>   is the first moment of the surface elevation (integral of x eta dA; the pendulum's
+!>   m l sin(theta), docs/model.md), so the roof, which cuts the wave at z_roof, takes away the
+!>   share phi = integral of x (eta - z_roof)+ dA over the crest's integral of x eta dA
+!>   = pi d R^3/(2 xi^2) of the convective mass's momentum relative to the tank: that share
+!>   moves with the tank, i.e. is impulsive (the code provision restricted sloshing asks for:
+!>   the constrained convective mass as additional impulsive mass).
 !>
-!> Not implemented: Malhotra's method (Earthquake Spectra 21(4), 2005, and the companion paper
-!> for cone and dome roofs); only flat roofs.
+!> The roof at s = r/R above the still liquid, z_roof: flat f; cone f + R (1 - s) tan(alpha),
+!> alpha the roof slope; dome (sphere of radius R_d) f + sqrt(R_d^2 - s^2 R^2) - sqrt(R_d^2 - R^2).
+!> Geometries accepted (check_roof): the self-supporting roofs of API 650, cone slope up to 37
+!> degrees (5.10.5), dome radius 0.8 D to 1.2 D (5.10.6).
 module sloshdyn_roof
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_text, only: num2str
   implicit none
   private
-  public :: roof_loads
+  public :: roof_loads, check_roof
 
   !> the first root of J1' (the wave's shape; the paper's 1.84 rounds it)
   real(wp), parameter :: xi_exact = 1.8411837813406593_wp
@@ -28,20 +39,51 @@ module sloshdyn_roof
   real(wp), parameter :: gauss_w(4) = [0.3626837833783620_wp, 0.3137066458778873_wp, &
                                        0.2223810344533745_wp, 0.1012285362903763_wp]
   integer, parameter :: panels = 64
+  !> API 650's self-supporting roofs: cone slope <= 37 degrees (5.10.5), dome radius in
+  !> [0.8 D, 1.2 D] (5.10.6)
+  real(wp), parameter :: max_cone_slope = 37, min_dome_radius = 0.8_wp, &
+                         max_dome_radius = 1.2_wp
 
 contains
 
+  !> The roof's geometry: roof_slope [degrees] of a cone (0: not a cone) and roof_radius [m] of a
+  !> dome (0: not a dome), at most one given; neither: a flat roof.
+  pure subroutine check_roof(radius, roof_slope, roof_radius, status, message)
+    real(wp), intent(in) :: radius, roof_slope, roof_radius
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    call check_real('roof_slope', roof_slope, 0.0_wp, max_cone_slope, .false., .false., &
+                    'a cone roof''s slope must lie in (0, 37] degrees (API 650 5.10.5; 0: no '// &
+                    'cone)', status, message)
+    if (roof_radius /= 0) &
+      call check_real('roof_radius', roof_radius, min_dome_radius*2*radius, &
+                      max_dome_radius*2*radius, .false., .false., &
+                      'a dome roof''s radius must lie in [0.8 D, 1.2 D] = ['// &
+                      num2str(min_dome_radius*2*radius)//', '// &
+                      num2str(max_dome_radius*2*radius)//'] m (API 650 5.10.6; 0: no dome)', &
+                      status, message)
+    if (status == SD_OK .and. roof_slope > 0 .and. roof_radius > 0) then
+      status = SD_BAD_INPUT
+      message = 'roof_slope = '//num2str(roof_slope)//' and roof_radius = '// &
+                num2str(roof_radius)//': give at most one (a cone roof by its slope [degrees] '// &
+                'or a dome roof by its radius [m]; neither: a flat roof)'
+    end if
+  end subroutine check_roof
+
   !> head = max(d - f, 0) [m], uplift [N] and the confined convective mass [kg] (0 when d <= f)
-  !> of a flat roof of radius R at the freeboard f above the still liquid (density rho,
-  !> gravity g, convective mass m_c) under a free wave of height d at the wall.
-  pure subroutine roof_loads(radius, freeboard, wave_height, density, gravity, &
-                             convective_mass, head, uplift, confined_mass, status, message)
-    real(wp), intent(in) :: radius, freeboard, wave_height, density, gravity, convective_mass
+  !> of the roof (check_roof's roof_slope, roof_radius) of a tank of radius R whose roof meets
+  !> the wall at the freeboard f above the still liquid (density rho, gravity g, convective
+  !> mass m_c) under a free wave of height d at the wall.
+  pure subroutine roof_loads(radius, freeboard, roof_slope, roof_radius, wave_height, density, &
+                             gravity, convective_mass, head, uplift, confined_mass, status, &
+                             message)
+    real(wp), intent(in) :: radius, freeboard, roof_slope, roof_radius, wave_height, density, &
+                            gravity, convective_mass
     real(wp), intent(out) :: head, uplift, confined_mass
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), parameter :: big = huge(1.0_wp)
-    real(wp) :: s0, width, centre, s, total
+    real(wp) :: s0, width, centre, s, weight, force, moment, ring_force, ring_moment
     integer :: panel, k, side
 
     status = SD_OK
@@ -55,54 +97,85 @@ contains
                     'the roof method needs a freeboard > 0 [m]', status, message)
     call check_real('wave_height', wave_height, 0.0_wp, big, .false., .true., &
                     'the free wave height must be finite and >= 0 [m]', status, message)
+    call check_roof(radius, roof_slope, roof_radius, status, message)
     if (status /= SD_OK .or. wave_height <= freeboard) return
     head = wave_height - freeboard
-    confined_mass = convective_mass*(1 - freeboard/wave_height)
-    ! eta > f where J1(xi s) > (f/d) J1(xi), s = r/R: J1 rises on [0, xi], so for s in (s0, 1]
-    s0 = inverse_shape(freeboard/wave_height)
+    ! eta > z_roof for s in (s0, 1]: the wave's amplitude rises and the roof falls toward the wall
+    s0 = wave_meets_roof()
     width = (1 - s0)/panels
-    total = 0
+    force = 0
+    moment = 0
     do panel = 1, panels
       centre = s0 + (panel - 0.5_wp)*width
       do k = 1, size(gauss_x)
         do side = -1, 1, 2
           s = centre + side*gauss_x(k)*width/2
-          total = total + gauss_w(k)*width/2*ring(s)
+          weight = gauss_w(k)*width/2
+          call ring(s, ring_force, ring_moment)
+          force = force + weight*ring_force
+          moment = moment + weight*ring_moment
         end do
       end do
     end do
-    uplift = density*gravity*radius**2*total
+    uplift = density*gravity*radius**2*force
+    ! the crest's first moment, integral of x eta over eta > 0: pi d R^3/(2 xi^2) (J2(xi) = J1(xi)/xi)
+    confined_mass = convective_mass*moment/(pi*wave_height/(2*xi_exact**2))
 
   contains
 
-    !> The integral over theta of (eta - f)+ at s = r/R, times s: with a = eta's amplitude there,
-    !> 2 (a sin(alpha) - f alpha), alpha = acos(f/a), for a > f.
-    pure real(wp) function ring(s_point)
+    !> The wave's amplitude at s = r/R.
+    pure real(wp) function amplitude(s_point)
       real(wp), intent(in) :: s_point
-      real(wp) :: a, alpha
-      a = wave_height*bessel_j1(xi_exact*s_point)/bessel_j1(xi_exact)
-      ring = 0
-      if (a <= freeboard) return
-      alpha = acos(freeboard/a)
-      ring = 2*(a*sin(alpha) - freeboard*alpha)*s_point
-    end function ring
-  end subroutine roof_loads
+      amplitude = wave_height*bessel_j1(xi_exact*s_point)/bessel_j1(xi_exact)
+    end function amplitude
 
-  !> The s in [0, 1] with J1(xi s)/J1(xi) = q (0 <= q <= 1), by bisection (J1 rises there).
-  pure real(wp) function inverse_shape(q) result(s)
-    real(wp), intent(in) :: q
-    real(wp) :: lo, hi
-    integer :: i
-    lo = 0
-    hi = 1
-    do i = 1, 60
-      s = (lo + hi)/2
-      if (bessel_j1(xi_exact*s) < q*bessel_j1(xi_exact)) then
-        lo = s
+    !> The roof's height above the still liquid at s = r/R.
+    pure real(wp) function roof_height(s_point)
+      real(wp), intent(in) :: s_point
+      if (roof_slope > 0) then
+        roof_height = freeboard + radius*(1 - s_point)*tan(roof_slope*pi/180)
+      else if (roof_radius > 0) then
+        roof_height = freeboard + sqrt(roof_radius**2 - (s_point*radius)**2) - &
+                      sqrt(roof_radius**2 - radius**2)
       else
-        hi = s
+        roof_height = freeboard
       end if
-    end do
-    s = (lo + hi)/2
-  end function inverse_shape
+    end function roof_height
+
+    !> At s, with A = eta's amplitude there, z the roof's height and alpha = acos(z/A) (A > z):
+    !> the integral over a of (eta - z)+, times s, 2 (A sin(alpha) - z alpha) (the uplift), and
+    !> of cos(a) (eta - z)+, times s^2, A (alpha + sin(alpha) cos(alpha)) - 2 z sin(alpha) (the
+    !> first moment in x = r cos(a), over R^3); both 0 where A <= z.
+    pure subroutine ring(s_point, ring_force, ring_moment)
+      real(wp), intent(in) :: s_point
+      real(wp), intent(out) :: ring_force, ring_moment
+      real(wp) :: a, z, alpha
+      a = amplitude(s_point)
+      z = roof_height(s_point)
+      ring_force = 0
+      ring_moment = 0
+      if (a <= z) return
+      alpha = acos(z/a)
+      ring_force = 2*(a*sin(alpha) - z*alpha)*s_point
+      ring_moment = (a*(alpha + sin(alpha)*cos(alpha)) - 2*z*sin(alpha))*s_point**2
+    end subroutine ring
+
+    !> The s in [0, 1] where the amplitude meets the roof, by bisection (amplitude - roof rises
+    !> from -z(0) < 0 to d - f > 0).
+    pure real(wp) function wave_meets_roof() result(s_meet)
+      real(wp) :: lo, hi
+      integer :: i
+      lo = 0
+      hi = 1
+      do i = 1, 60
+        s_meet = (lo + hi)/2
+        if (amplitude(s_meet) < roof_height(s_meet)) then
+          lo = s_meet
+        else
+          hi = s_meet
+        end if
+      end do
+      s_meet = (lo + hi)/2
+    end function wave_meets_roof
+  end subroutine roof_loads
 end module sloshdyn_roof

@@ -21,6 +21,7 @@ module sloshdyn_vessel
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, model_from_arrays, n_real_params
   use sloshdyn_tank, only: tank_pendulum
+  use sloshdyn_roof, only: check_roof
   use sloshdyn_tables, only: SEISMIC_LOADS
   implicit none
   private
@@ -56,6 +57,8 @@ module sloshdyn_vessel
     real(wp) :: impact_damping = 0.1_wp     !< delta: dissipation at the wall (eq 5)
     integer :: n = 6, p = 2                 !< exponents of eq (4)-(5)
     real(wp) :: gravity = standard_gravity  !< [m/s^2]
+    real(wp) :: roof_slope = 0              !< a cone roof's slope [degrees]; 0: not a cone
+    real(wp) :: roof_radius = 0             !< a dome roof's radius [m]; 0: not a dome
   end type tank_t
 
   !> What a tank is in the model's terms, and what the loads need.
@@ -124,6 +127,7 @@ contains
                     'the tank mass (shell and roof) must be >= 0 [kg]', status, message)
     call check_real('gravity', tank%gravity, 0.0_wp, big, .true., .true., &
                     'gravity must be > 0 [m/s^2]', status, message)
+    call check_roof(tank%radius, tank%roof_slope, tank%roof_radius, status, message)
     call check_real('sloshing_damping', tank%sloshing_damping, 0.0_wp, 1.0_wp, .false., .true., &
                     'the sloshing damping ratio must lie in [0, 1)', status, message)
     call check_real('support_height', tank%support_height, 0.0_wp, big, .false., .true., &

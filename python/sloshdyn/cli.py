@@ -263,6 +263,8 @@ def _figure(inp, out):
     if inp.analysis == "seismic":
         from .seismic import SeismicResponse
         t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
+        with open(out / "run_info.csv", newline="", encoding="utf-8") as info:
+            inp.ground_motion.name = next(csv.DictReader(info))["record"]
         response = SeismicResponse._from_tables(
             inp.tank, inp.ground_motion, np.array(list(t.values())),
             np.array([column[0] for column in peaks.values()]), method)

@@ -42,7 +42,7 @@ class LinearModes:
     omega1: float               #: eq (28)
     omega2: float               #: eq (28)
     omega1_dgeev: float         #: from the eigenvalues of the undamped linearised equations
-    omega2_dgeev: float
+    omega2_dgeev: float         #: (these four: the core's 'natural_frequencies' layout)
     stiffness: np.ndarray       #: K of eq (26)
     modal: np.ndarray           #: P of eq (34), x = P u
     modal_inverse: np.ndarray   #: P^-1
@@ -57,7 +57,8 @@ def linear_modes(params: Parameters) -> LinearModes:
     _checks.instance("params", params, Parameters)
     omegas, k, p, p_inv, status, message = _bridge.natural_frequencies(*params.array())
     check_status(status, message)
-    return LinearModes(*(float(w) for w in omegas), k, p, p_inv)
+    omega = {name: float(w) for name, w in _tables.unpack("natural_frequencies", omegas).items()}
+    return LinearModes(**omega, stiffness=k, modal=p, modal_inverse=p_inv)
 
 
 def frequency_ratio(sigma_tilde, mu_tilde) -> np.ndarray:

@@ -176,22 +176,44 @@ def seismic(response, loads=("wave_height", "base_shear", "overturning_moment"))
     axes[0].set_ylabel("ground\nacceleration [g]")
     for ax, load in zip(axes[1:], loads):
         label, factor = units[load]
-        ax.plot(t, getattr(response, load) * factor, lw=0.7, color="k")
+        ax.plot(t, getattr(response, load) * factor, lw=0.7, color="k",
+                label="model" if load == "wave_height" else None)
         peak, when = response.peaks[load]
         k = int(np.argmin(np.abs(t - when)))
         unit = label[label.index("[") + 1:-1]
         ax.plot(when, getattr(response, load)[k] * factor, "o", mfc="none", color="r", ms=6,
                 label=f"peak {peak * factor:.4g} {unit} at {when:.3g} s")
         if load == "wave_height":
+            # the free wave (no roof) is what the roof verdict and the roof loads judge
+            ax.plot(t, response.free_wave_height, lw=0.7, color="tab:orange", alpha=0.8,
+                    label=f"free wave (no roof), peak "
+                          f"{response.peak_table['free_wave_height']:.4g} m")
             for sign in (1, -1):
                 ax.axhline(sign * response.tank.freeboard, ls="--", color="b", lw=0.8,
                            label="roof (freeboard)" if sign > 0 else None)
         ax.set_ylabel(label.replace(" [", "\n["))
         ax.legend(loc="upper right", fontsize=8)
     axes[-1].set_xlabel("time t [s]")
-    axes[0].set_title(_tank_title(response.tank), fontsize=10)
+    axes[0].set_title(_tank_title(response.tank) + "\n" + _ground_title(response), fontsize=9)
     fig.tight_layout()
     return fig
+
+
+def _ground_title(response):
+    """The run's traceability: the record, its scale factor, PGA and Sa at the sloshing
+    period (0.5 %) as run, and the beta-sensitivity warning."""
+    p = response.peak_table
+    name = response.ground_motion.name or response.ground_motion.kind
+    text = (f"{name}: scale factor {p['scale_factor']:.4g}, PGA "
+            f"{p['peak_ground_acceleration'] / _G:.4g} g, Sa({response.tank.sloshing_period:.3g} s, "
+            f"0.5 %) {p['sa_sloshing_period'] / _G:.4g} g\nroof "
+            f"{'reached' if response.roof_reached else 'not reached'} (free wave)")
+    if response.roof_reached:
+        text += (f": uplift {p['roof_uplift_force'] / 1e3:.4g} kN, confined convective mass "
+                 f"{p['confined_convective_mass'] / 1e3:.4g} t")
+    if response.beta_sensitive:
+        text += "; the model's loads are sensitive to beta and delta"
+    return text
 
 
 def response_spectrum(spectrum, marks=()):
@@ -274,7 +296,8 @@ def response_map(ds, variable="max_x1"):
 
 def harmonic_sweep(sweep):
     """A HarmonicSweep: the largest wave height at the wall [m] against the frequency [Hz],
-    the roof at the freeboard; up and down halves drawn apart so jumps show."""
+    the roof at the freeboard and the free wave (no roof) that the roof verdict judges; up and
+    down halves drawn apart so jumps show."""
     f = sweep.frequency
     turn = int(np.argmax(f))
     fig, ax = plt.subplots(figsize=(7, 3.4))
@@ -283,6 +306,8 @@ def harmonic_sweep(sweep):
     if turn < len(f) - 1:
         ax.plot(f[turn:], sweep.wave_height[turn:], "s--", ms=3, mfc="none", color="b",
                 label="frequency down")
+    ax.plot(f[:turn + 1], sweep.free_wave_height[:turn + 1], "-", lw=0.8, color="tab:orange",
+            label="free wave (no roof): the roof verdict")
     ax.axhline(sweep.tank.freeboard, ls="--", color="r", lw=0.8, label="roof (freeboard)")
     ax.axvline(1 / sweep.tank.sloshing_period, ls=":", color="0.5", lw=0.8,
                label="linear sloshing frequency")

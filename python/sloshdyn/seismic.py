@@ -70,6 +70,10 @@ class Tank:
     n: int = int(_TANK_DEFAULTS["n"])                      #: exponent of eq (4)
     p: int = int(_TANK_DEFAULTS["p"])                      #: exponent of eq (5)
     gravity: float = float(_TANK_DEFAULTS["gravity"])            #: [m/s^2]
+    #: a cone roof's slope [degrees] (0: not a cone; at most one of roof_slope, roof_radius)
+    roof_slope: float = float(_TANK_DEFAULTS["roof_slope"])
+    #: a dome roof's radius [m] (0: not a dome; neither: a flat roof)
+    roof_radius: float = float(_TANK_DEFAULTS["roof_radius"])
 
     def __post_init__(self):
         convert_fields(self)
@@ -233,7 +237,9 @@ class GroundMotion:
             dt, samples, n, status, message = _bridge.read_record(
                 os.fsencode(path), format, units, _fields_in(path))
             check_status(status, message)
-            return cls(dt=float(dt), acceleration=samples[:n].copy(), units="m/s^2")
+            ground = cls(dt=float(dt), acceleration=samples[:n].copy(), units="m/s^2")
+            ground.name = os.path.basename(os.fsdecode(path))
+            return ground
         except SloshdynError as exc:
             exc.reading = True
             raise
@@ -242,7 +248,8 @@ class GroundMotion:
         """The flat arrays of the bridge: the core's layout 'ground' and the samples [m/s^2]."""
         ground = _tables.pack("ground", {"kind": _tables.code("ground_kinds", self.kind),
                                          "peak_acceleration": self.peak_acceleration,
-                                         "frequency": self.frequency, "dt": self.dt})
+                                         "frequency": self.frequency, "dt": self.dt,
+                                         "scale_factor": self.scale_factor})
         return ground, np.asarray(self.acceleration, dtype=np.float64)
 
     @classmethod
@@ -250,9 +257,12 @@ class GroundMotion:
         """The ground motion of the bridge's arrays (SI units)."""
         values = _tables.unpack("ground", ground)
         if _tables.codes("ground_kinds")[int(values["kind"])] == "record":
-            return cls(dt=float(values["dt"]), acceleration=samples, units="m/s^2")
-        return cls(peak_acceleration=float(values["peak_acceleration"]),
-                   frequency=float(values["frequency"]), units="m/s^2")
+            ground = cls(dt=float(values["dt"]), acceleration=samples, units="m/s^2")
+        else:
+            ground = cls(peak_acceleration=float(values["peak_acceleration"]),
+                         frequency=float(values["frequency"]), units="m/s^2")
+        ground.scale_factor = float(values["scale_factor"])
+        return ground
 
     @property
     def duration(self):
@@ -291,6 +301,7 @@ class GroundMotion:
             0.0 if period is None else _real("period", period), damping)
         check_status(status, message)
         copy = GroundMotion._from_arrays(scaled, scaled_samples.copy())
+        copy.name = self.name
         copy.scale_factor = copy.pga / self.pga if (pga or sa) and self.pga > 0 else factor
         if pga is not None:
             copy.scaling = f"PGA = {pga:g} {units}"
@@ -322,6 +333,8 @@ class GroundMotion:
 
     #: the factor `scaled` applied (1 unscaled) and to what, with the damping and units
     scale_factor, scaling = 1.0, ""
+    #: the record's file name (from_file; a scaled copy keeps it), '' when not from a file
+    name = ""
 
     def __repr__(self):
         scaled = (f", scaled by {self.scale_factor:.6g} ({self.scaling})" if self.scaling
@@ -378,7 +391,7 @@ class Spectrum:
 
 def _ground_arrays(ground_motion):
     if ground_motion is None:
-        return np.zeros(4), np.zeros(0)
+        return np.zeros(len(_tables.layout("ground"))), np.zeros(0)
     if not isinstance(ground_motion, GroundMotion):
         _checks.instance("ground_motion", ground_motion, GroundMotion)
     return ground_motion._arrays()
@@ -390,12 +403,15 @@ class SeismicResponse:
     over the output times `t` [s]: ground_acceleration [m/s^2], sloshing_displacement [m] (of
     the sloshing mass relative to the tank), wave_height [m] (at the wall), pendulum_angle
     [rad], tank_drift [m] (relative to the ground), impact_force [N] (roof/walls on the
-    liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2 (the
-    columns of seismic.csv, `table` holds them in order); `peak_table` (the columns of
-    seismic_peaks.csv: also free_wave_height, roof_excess and the roof loads roof_head,
-    roof_uplift_force, confined_convective_mass), `peaks` {quantity: (largest |value|, its time
-    [s])}, roof_reached, first_roof_time [s], roof_impacts (of the free wave, without a roof:
-    independent of beta and delta); `method`, the integration method used ('auto' resolved)."""
+    liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2,
+    free_wave_height [m] (the wave at the wall of the tank without a roof, what the roof verdict
+    judges) (the columns of seismic.csv, `table` holds them in order); `peak_table` (the columns
+    of seismic_peaks.csv: also the free wave's peak free_wave_height, roof_excess, the roof loads
+    roof_head, roof_uplift_force, confined_convective_mass, and the run's scale_factor,
+    sa_sloshing_period [m/s^2] and beta_sensitive), `peaks` {quantity: (largest |value|, its
+    time [s])}, roof_reached, first_roof_time [s], roof_impacts (of the free wave, without a
+    roof: independent of beta and delta), beta_sensitive (the model's loads depend on beta and
+    delta; `warnings` says so); `method`, the integration method used ('auto' resolved)."""
 
     tank: Tank
     ground_motion: GroundMotion
@@ -410,12 +426,14 @@ class SeismicResponse:
     overturning_moment: np.ndarray
     x1: np.ndarray
     x2: np.ndarray
+    free_wave_height: np.ndarray
     table: np.ndarray = dataclasses.field(repr=False)
     peak_table: dict = dataclasses.field(repr=False)
     peaks: dict = dataclasses.field(repr=False)
     roof_reached: bool
     first_roof_time: float
     roof_impacts: int
+    beta_sensitive: bool
     method: str
 
     @classmethod
@@ -431,17 +449,30 @@ class SeismicResponse:
                           for name, value in peak_table.items() if name.startswith("peak_")},
                    roof_reached=bool(peak_table["roof_reached"]),
                    first_roof_time=peak_table["first_roof_time"],
-                   roof_impacts=int(peak_table["roof_impacts"]), method=method)
+                   roof_impacts=int(peak_table["roof_impacts"]),
+                   beta_sensitive=bool(peak_table["beta_sensitive"]), method=method)
 
     @property
     def columns(self):
         return [_name(c) for c in _tables.columns("seismic")]
 
+    @property
+    def warnings(self):
+        """What the numbers should be read with: ['...'] when the model's loads are sensitive
+        to beta and delta (its wall force reaches 0.001 m g; docs/model.md, "Choice of beta
+        and delta"), else []."""
+        if not self.beta_sensitive:
+            return []
+        return ["the model's impact force, base shear and overturning moment are sensitive to "
+                "impact_stiffness (beta) and impact_damping (delta): its wall acts (impact force "
+                ">= 0.001 m g); the roof verdict and roof loads are not"]
+
     def __repr__(self):
         wave = self.peaks["wave_height"]
         return (f"SeismicResponse({len(self.t)} outputs to t = {self.t[-1]:.4g} s; peak wave "
                 f"height {wave[0]:.4g} m at {wave[1]:.4g} s, freeboard {self.tank.freeboard} m, "
-                f"roof {'reached' if self.roof_reached else 'not reached'})")
+                f"roof {'reached' if self.roof_reached else 'not reached'}"
+                f"{'; sensitive to beta and delta' if self.beta_sensitive else ''})")
 
 
 @dataclass(frozen=True)
@@ -493,7 +524,9 @@ class HarmonicSweep:
     per column of harmonic_sweep.csv (`table` holds them in order): frequency [Hz],
     peak_ground_acceleration [m/s^2], wave_height [m], sloshing_displacement [m],
     pendulum_angle [rad], tank_drift [m] (their largest values over the measuring window),
-    roof_reached (1/0), motion (code), period [forcing periods]; y_final, the final state
+    roof_reached (1/0: the free wave's, as seismic_response judges it), motion (code), period
+    [forcing periods], free_wave_height [m] (the largest wave at the wall of the steady state of
+    the tank without a roof, from rest, independent of beta and delta); y_final, the final state
     (None for independent points); `method`, the integration method used ('auto' resolved)."""
 
     tank: Tank
@@ -507,6 +540,7 @@ class HarmonicSweep:
     roof_reached: np.ndarray
     motion: np.ndarray
     period: np.ndarray
+    free_wave_height: np.ndarray
     table: np.ndarray = dataclasses.field(repr=False)
     y_final: np.ndarray
     method: str

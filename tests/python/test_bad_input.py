@@ -62,6 +62,13 @@ CASES = {
     "freeboard beyond the wave": (tank_with(freeboard=10) + OUTPUT,
                                   ["freeboard = 10", "4.19", "smaller freeboard"]),
     "tank_mass < 0": (tank_with(tank_mass=-1) + OUTPUT, ["tank_mass = -1", ">= 0"]),
+    # the roof methods' range (sloshdyn_roof check_roof; API 650 5.10.5 and 5.10.6)
+    "cone roof too steep": (tank_with(roof_slope=40) + OUTPUT,
+                            ["roof_slope = 40", "(0, 37] degrees"]),
+    "dome roof too small": (tank_with(roof_radius=5) + OUTPUT,
+                            ["roof_radius = 5", "[0.8 D, 1.2 D] = [8, 12] m"]),
+    "cone and dome roof": (tank_with(roof_slope=10, roof_radius=10) + OUTPUT,
+                           ["roof_slope = 10", "roof_radius = 10", "at most one"]),
     "support_damping = 1": (tank_with(support_damping=1.0) + OUTPUT,
                             ["support_damping = 1", "[0, 1)"]),
     "sloshing_damping < 0": (tank_with(sloshing_damping=-0.01) + OUTPUT,

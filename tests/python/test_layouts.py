@@ -75,7 +75,7 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     # (the others: test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables;
     # physical is dimensionless_groups' input, refused at another size below)
     assert set(_tables.layouts()) - set(arrays) <= {"physical", "continuation", "orbit_info",
-                                                    "modal_scalars", "chart_sizes", "spatial"}
+                                                    "modal_scalars", "chart_sizes", "spatial", "natural_frequencies"}
 
 
 def test_a_layout_without_defaults_or_of_another_size_is_refused():
@@ -364,6 +364,11 @@ def test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables():
     assert status == 0 and len(scalars) == len(_tables.layout("modal_scalars"))
     modes = sloshdyn.linear_modes(params)
     assert _tables.unpack("modal_scalars", scalars)["omega1"] == pytest.approx(modes.omega1)
+    omegas, *_, status, _ = _model.natural_frequencies(*params.array())
+    assert status == 0 and len(omegas) == len(_tables.layout("natural_frequencies"))
+    # LinearModes takes the layout's fields by name, in the layout's order
+    assert [f.name for f in dataclasses.fields(sloshdyn.LinearModes)][:len(omegas)] == \
+        list(_tables.layout("natural_frequencies"))
     chart = Chart(n_x=3, n_y=2)
     *_, sizes, _, _, status, _ = _core.sloshdyn_bridge_charts.stability_chart(
         *params.array(), chart.array(), _tables.pack("chart_range", {

@@ -87,6 +87,25 @@ def test_a_record_step_out_of_range_is_named(dt, named):
         sloshdyn.GroundMotion(dt=dt, acceleration=[0.0, 1.0, 0.0])
 
 
+def test_a_record_shorter_than_the_target_period_is_not_scaled_to_sa(exe, tmp_path):
+    """Sa(T) of a record shorter than T would come from the free-vibration tail alone (an
+    extrapolation): both doors refuse target_sa at the tank's sloshing period (3.35 s, the
+    default target_period) for a 2 s record, naming target_period and the record's length;
+    the same record scaled by its PGA runs; Python's scaled() names the same rule."""
+    (tmp_path / "short.csv").write_text("".join(f"{0.01 * k!r}, {0.1 * np.sin(3.0 * k / 100)}\n"
+                                                for k in range(201)))
+    for run in both_doors(exe, tmp_path, seismic_nml("record = 'short.csv', target_sa = 0.1")):
+        assert run.returncode == 3, run.stderr
+        assert "target_period = 3.3" in run.stderr and "longer than the record (2 s)" in \
+            run.stderr, run.stderr
+    for run in both_doors(exe, tmp_path, seismic_nml("record = 'short.csv', target_pga = 0.1")):
+        assert run.returncode == 0, run.stderr
+    ground = sloshdyn.GroundMotion(dt=0.01, acceleration=np.sin(np.arange(201) * 0.03))
+    with pytest.raises(sloshdyn.InputError, match="longer than the record"):
+        ground.scaled(sa=0.1, period=2.5)
+    assert ground.scaled(sa=0.1, period=1.5).scale_factor > 0
+
+
 def test_a_record_file_with_a_too_fine_step_is_named_by_both_doors(exe, tmp_path):
     (tmp_path / "fine.csv").write_text("".join(f"{k * 1e-12!r}, {0.1 * (k % 2)}\n"
                                                for k in range(5)))

@@ -929,6 +929,34 @@ def test_harmonic_sweep_at_small_amplitude_is_the_damped_sdof(start_from, thread
     assert list(h.motion) == [1] * 4 and not any(h.roof_reached)
 
 
+def test_harmonic_sweep_judges_the_roof_on_the_free_wave():
+    """The sweep's roof verdict is the free wave's (the tank without a roof, beta = delta = 0),
+    as seismic_response's: 0.05 g at 1/3, 1 and 3 times the sloshing frequency, 5 % sloshing
+    damping, on 50 Hz supports. Off resonance the free wave is the damped SDOF's (as above,
+    1e-3); at resonance it is about twice the 1 m freeboard, so the roof is reached for beta =
+    10 and 1000 alike, while at beta = 1000 the model's own wave, pushed back by the smooth wall,
+    stays below the freeboard (the old verdict, |x1| >= 1, said 'not reached')."""
+    steady = sloshdyn.Steady(transient_periods=100, settle_tol=1e-9, window_periods=20,
+                             samples_per_period=512)
+    verdicts = []
+    for beta in (10.0, 1000.0):
+        tank = stiff_tank(sloshing_damping=0.05, impact_stiffness=beta)
+        p = tank.properties
+        omega, length = p["omega"], p["pendulum_length"]
+        frequencies = omega / (2 * np.pi) * np.array([1 / 3, 1, 3])
+        h = sloshdyn.harmonic_sweep(tank, 0.05, frequencies, units="g", steady=steady,
+                                    start_from="y0", integration=TIGHT)
+        a, forcing = 0.05 * G, 2 * np.pi * frequencies[[0, 2]]
+        theta = a / np.hypot(omega**2 - forcing**2, 2 * 0.05 * omega * forcing) / length
+        assert h.free_wave_height[[0, 2]] == pytest.approx(
+            2 * TANK["radius"] / (1.84**2 - 1) * np.sin(theta), rel=1e-3)
+        assert h.free_wave_height[1] > 1.5 * TANK["freeboard"]
+        verdicts.append(list(h.roof_reached))
+        if beta == 1000.0:
+            assert h.wave_height[1] < TANK["freeboard"]
+    assert verdicts == [[0, 1, 0]] * 2
+
+
 def test_frequency_sweep_example_reduced_through_both_doors(exe, tmp_path):
     """A reduced copy of tank_frequency_sweep.nml (3 frequencies up and down, short transients):
     the executable's harmonic_sweep.csv keeps the peak ground acceleration at 0.05 g on every
