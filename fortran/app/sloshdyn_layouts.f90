@@ -53,12 +53,13 @@ module sloshdyn_layouts
   !> &lyapunov (sloshdyn_periodic_response's lyapunov_options)
   character(len=*), parameter :: lyapunov_fields(*) = [character(len=field_len) :: &
     'transient_periods', 'n_periods', 'renormalise_every', 'spectrum']
-  !> &tank: tank_t's components in order (sloshdyn_vessel; n and p as reals)
+  !> &tank: tank_t's components in order (sloshdyn_vessel; n, p, shape and modes as reals,
+  !> shape a code of 'tank_shapes')
   character(len=*), parameter :: tank_fields(*) = [character(len=field_len) :: &
     'radius', 'liquid_depth', 'freeboard', 'liquid_density', 'liquid_mass', 'tank_mass', &
     'support_frequency', 'support_damping', 'support_stiffness', 'support_damping_coefficient', &
     'support_height', 'sloshing_damping', 'impact_stiffness', 'impact_damping', 'n', 'p', &
-    'gravity']
+    'gravity', 'shape', 'length', 'width', 'modes']
   !> A ground motion (sloshdyn_ground): kind (ground_kinds), peak_acceleration [m/s^2],
   !> frequency [Hz], dt [s]; a record's samples [m/s^2] travel in their own array.
   character(len=*), parameter :: ground_fields(*) = [character(len=field_len) :: &
@@ -300,7 +301,8 @@ contains
     real(wp), intent(in) :: a(TANK_SIZE)
     type(tank_t) :: tank
     tank = tank_t(a(1), a(2), a(3), a(4), a(5), a(6), a(7), a(8), a(9), a(10), a(11), a(12), &
-                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17))
+                  a(13), a(14), to_int(a(15)), to_int(a(16)), a(17), to_int(a(18)), a(19), &
+                  a(20), to_int(a(21)))
   end function to_tank
 
   pure function from_tank(tank) result(a)
@@ -310,7 +312,7 @@ contains
          tank%tank_mass, tank%support_frequency, tank%support_damping, tank%support_stiffness, &
          tank%support_damping_coefficient, tank%support_height, tank%sloshing_damping, &
          tank%impact_stiffness, tank%impact_damping, real(tank%n, wp), real(tank%p, wp), &
-         tank%gravity]
+         tank%gravity, real(tank%shape, wp), tank%length, tank%width, real(tank%modes, wp)]
   end function from_tank
 
   !> ground(GROUND_SIZE) = [kind (GROUND_HARMONIC, GROUND_RECORD), peak_acceleration [m/s^2],

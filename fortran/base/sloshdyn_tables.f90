@@ -30,7 +30,7 @@ module sloshdyn_tables
             PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, &
             PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
             CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
-            HARMONIC_SWEEP_ROWS
+            HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
             CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
@@ -154,6 +154,10 @@ module sloshdyn_tables
     'support_damping_coefficient [N m s/rad],theta0 [rad],wave_factor [m],'// &
     'impact_coefficient [N m],s1,mu1,kappa,beta,gamma,delta,zeta'
   integer, parameter :: TANK_SI_SIZE = 28
+  !> The sloshing modes of a tank, one column per mode (sloshdyn_seismic's tank_modes).
+  character(len=*), parameter :: tank_modes_columns = 'mode,period [s],convective_mass [kg],'// &
+    'convective_height [m],pendulum_length [m],wave_factor [m]'
+  integer, parameter :: TANK_MODES_ROWS = 6
 
 contains
 
@@ -214,6 +218,8 @@ contains
       header = chart_grid_columns
     case ('tank_si')
       header = tank_si_columns
+    case ('tank_modes')
+      header = tank_modes_columns
     case default
       header = ''
     end select
@@ -248,6 +254,8 @@ contains
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')
       formats = 'rrrrrriir'
+    case ('tank_modes')
+      formats = 'irrrrr'
     case ('chart_curves')
       formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')

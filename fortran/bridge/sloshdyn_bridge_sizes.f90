@@ -10,7 +10,9 @@ program sloshdyn_bridge_sizes
                              PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
                              PERIODIC_SPECIAL_ROWS, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, &
                              CHART_END_ROWS, CHART_GRID_ROWS, TANK_SI_SIZE, CODES_COLUMNS, &
-                             CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS
+                             CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS, &
+                             TANK_MODES_ROWS
+  use sloshdyn_tank, only: max_modes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
@@ -35,6 +37,8 @@ program sloshdyn_bridge_sizes
   call define('chart_end_rows', CHART_END_ROWS)
   call define('chart_grid_rows', CHART_GRID_ROWS)
   call define('tank_si_size', TANK_SI_SIZE)
+  call define('tank_modes_rows', TANK_MODES_ROWS)
+  call define('max_tank_modes', max_modes)
   call define('codes_columns', CODES_COLUMNS)
   call define('codes_rows', CODES_ROWS)
   call define('seismic_rows', SEISMIC_ROWS)

@@ -22,6 +22,7 @@ contains
     use sloshdyn_integrator, only: method_names
     use sloshdyn_excitation, only: PARAMETER_RHO
     use sloshdyn_ground, only: GROUND_HARMONIC
+    use sloshdyn_tank, only: shape_names, SHAPE_CIRCULAR
     use sloshdyn_layouts, only: layout_fields, join, excitation_parameters, ground_kinds, &
                                 resonances, chart_axes, CHART_RHO
     character(len=*), intent(in) :: list
@@ -64,6 +65,9 @@ contains
       case ('resonances')
         joined = join(resonances, ',')
         code = 0
+      case ('tank_shapes')
+        joined = join(shape_names, ',')
+        code = SHAPE_CIRCULAR
       case default
         call kind_names(list, joined, code)
       end select

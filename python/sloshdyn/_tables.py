@@ -44,7 +44,7 @@ def columns(table):
 #: The enumerated options whose codes the core names (the bridge's names routine).
 CODE_LISTS = ("analyses", "methods", "chart_models", "chart_axes", "excitation_parameters",
               "directions", "study_kinds", "worker_kinds", "continuations", "ground_kinds",
-              "resonances", "special", "motion", "verdict", "source", "curve", "codim2",
+              "resonances", "tank_shapes", "special", "motion", "verdict", "source", "curve", "codim2",
               "curve_end")
 #: The flat arrays with a named layout (sloshdyn_layouts; 'model' and 'model_integers' are the
 #: model's rpar and ipar).
