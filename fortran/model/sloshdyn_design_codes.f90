@@ -75,31 +75,9 @@ contains
     type(aci350_parameters), intent(out) :: aci
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: diameter, ratio, x, y
-
     call check_tank(radius, depth, gravity, status, message)
     if (status /= SD_OK) return
-    diameter = 2*radius
-    ratio = diameter/depth                            ! D/H_L
-    x = 3.68_wp*depth/diameter
-    y = 0.866_wp*ratio
-    aci%lambda = sqrt(3.68_wp*gravity*tanh(x))        ! eq 9-29
-    aci%convective_frequency = aci%lambda/sqrt(diameter)   ! eq 9-30
-    aci%convective_period = 2*pi/aci%convective_frequency  ! eq 9-31
-    aci%impulsive_ratio = tanh(y)/y                   ! eq 9-15
-    aci%convective_ratio = 0.230_wp*ratio*tanh(x)     ! eq 9-16
-    if (ratio < squat_from) then
-      aci%impulsive_height = (0.5_wp - 0.09375_wp*ratio)*depth      ! eq 9-17
-    else
-      aci%impulsive_height = 0.375_wp*depth                        ! eq 9-18
-    end if
-    aci%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))      ! eq 9-19
-    if (ratio < aci_tall_ibp_below) then
-      aci%impulsive_height_ibp = 0.45_wp*depth                     ! eq 9-20
-    else
-      aci%impulsive_height_ibp = (y/(2*tanh(y)) - 0.125_wp)*depth  ! eq 9-21
-    end if
-    aci%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.01_wp)) ! eq 9-22
+    call aci350_housner(2*radius, depth, gravity, 3.68_wp, 0.230_wp, aci)
   end subroutine aci350_circular
 
   !> ACI 350.3-06 sec 9.2.1 and 9.2.3 (Housner's model) for a rectangular tank of inside length
@@ -111,31 +89,40 @@ contains
     type(aci350_parameters), intent(out) :: aci
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: ratio, x, y
 
     call check_tank(length/2, depth, gravity, status, message)
     if (status /= SD_OK) return
-    ratio = length/depth                              ! L/H_L
-    x = 3.16_wp*depth/length
-    y = 0.866_wp*ratio
-    aci%impulsive_ratio = tanh(y)/y                   ! eq 9-1
-    aci%convective_ratio = 0.264_wp*ratio*tanh(x)     ! eq 9-2
-    if (ratio < squat_from) then
-      aci%impulsive_height = (0.5_wp - 0.09375_wp*ratio)*depth      ! eq 9-3
-    else
-      aci%impulsive_height = 0.375_wp*depth                        ! eq 9-4
-    end if
-    aci%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))      ! eq 9-5
-    if (ratio < aci_tall_ibp_below) then
-      aci%impulsive_height_ibp = 0.45_wp*depth                     ! eq 9-6
-    else
-      aci%impulsive_height_ibp = (y/(2*tanh(y)) - 0.125_wp)*depth  ! eq 9-7
-    end if
-    aci%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.01_wp)) ! eq 9-8
-    aci%lambda = sqrt(3.16_wp*gravity*tanh(x))        ! eq 9-9
-    aci%convective_frequency = aci%lambda/sqrt(length)     ! eq 9-10
-    aci%convective_period = 2*pi/aci%convective_frequency  ! eq 9-11
+    call aci350_housner(length, depth, gravity, 3.16_wp, 0.264_wp, aci)
   end subroutine aci350_rectangular
+
+  !> ACI 350.3-06's equations, which have one form for both shapes: plan size s = D (circular,
+  !> eq 9-15 to 9-31) or L (rectangular, eq 9-1 to 9-11), wave constant c = 3.68 or 3.16 and
+  !> convective mass constant c_m = 0.230 or 0.264. Equation numbers: circular / rectangular.
+  pure subroutine aci350_housner(plan_size, depth, gravity, c, c_m, aci)
+    real(wp), intent(in) :: plan_size, depth, gravity, c, c_m
+    type(aci350_parameters), intent(out) :: aci
+    real(wp) :: ratio, x, y
+    ratio = plan_size/depth                           ! D/H_L or L/H_L
+    x = c*depth/plan_size
+    y = 0.866_wp*ratio
+    aci%lambda = sqrt(c*gravity*tanh(x))              ! eq 9-29 / 9-9
+    aci%convective_frequency = aci%lambda/sqrt(plan_size)  ! eq 9-30 / 9-10
+    aci%convective_period = 2*pi/aci%convective_frequency  ! eq 9-31 / 9-11
+    aci%impulsive_ratio = tanh(y)/y                   ! eq 9-15 / 9-1
+    aci%convective_ratio = c_m*ratio*tanh(x)          ! eq 9-16 / 9-2
+    if (ratio < squat_from) then
+      aci%impulsive_height = (0.5_wp - 0.09375_wp*ratio)*depth      ! eq 9-17 / 9-3
+    else
+      aci%impulsive_height = 0.375_wp*depth                        ! eq 9-18 / 9-4
+    end if
+    aci%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))      ! eq 9-19 / 9-5
+    if (ratio < aci_tall_ibp_below) then
+      aci%impulsive_height_ibp = 0.45_wp*depth                     ! eq 9-20 / 9-6
+    else
+      aci%impulsive_height_ibp = (y/(2*tanh(y)) - 0.125_wp)*depth  ! eq 9-21 / 9-7
+    end if
+    aci%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.01_wp)) ! eq 9-22 / 9-8
+  end subroutine aci350_housner
 
   !> ACI 350.3-06 sec 7.1, eq 7-1 (rectangular) and 7-2 (circular): maximum vertical
   !> displacement of the sloshing wave, d_max = (L/2) C_c I or (D/2) C_c I, with the convective
