@@ -6,7 +6,8 @@
 !> parameters against the design codes (API 650 Annex E, Eurocode 8-4 Annex A, ACI 350.3).
 !>
 !> Table layouts (sloshdyn_tables): 'seismic' (one column per output time), 'seismic_peaks' (one
-!> row) and 'design_codes' (one row per source: sloshdyn, API 650, EC8-4, ACI 350.3).
+!> row) and 'design_codes' (one row per source: sloshdyn, API 650, EC8-4, ACI 350.3; with
+!> modes > 1 also sloshdyn's modal sums, SRSS and ABS).
 module sloshdyn_seismic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, pi, message_len
@@ -18,7 +19,7 @@ module sloshdyn_seismic
   use sloshdyn_excitation, only: base_acceleration
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS, &
                             tank_acceleration
-  use sloshdyn_tank, only: SHAPE_CIRCULAR
+  use sloshdyn_tank, only: SHAPE_CIRCULAR, max_modes
   use sloshdyn_sdof, only: sdof_response
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, ground_duration, ground_spectrum, &
                              GROUND_RECORD, GROUND_HARMONIC, harmonic_periods
@@ -33,7 +34,7 @@ module sloshdyn_seismic
   use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
   use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_ROOF_REACHED, &
                              PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, &
-                             PEAKS_CONFINED_MASS, CODES_COLUMNS, CODES_ROWS, &
+                             PEAKS_CONFINED_MASS, CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, &
                              HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS, SUMMARY_SIZE, SUMMARY_RHO, SUMMARY_A, &
                              SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
   implicit none
@@ -297,8 +298,7 @@ contains
     type(api650_parameters) :: api
     type(ec8_parameters) :: ec8
     type(aci350_parameters) :: aci
-    real(wp) :: periods(CODES_ROWS), sd(CODES_ROWS), sv(CODES_ROWS), psa(CODES_ROWS), &
-                wave(CODES_ROWS), nan
+    real(wp) :: periods(CODES_SOURCES), wave(CODES_SOURCES), modal_waves(max_modes), nan
 
     nan = ieee_value(1.0_wp, ieee_quiet_nan)
     codes = nan
@@ -320,8 +320,11 @@ contains
     periods = [props%sloshing_period, api%convective_period, ec8%convective_period, &
                aci%convective_period]
     wave = nan
+    modal_waves = nan
     if (has_ground) call code_wave_heights()
     if (status /= SD_OK) return
+    if (props%modes > 1) codes(:, CODES_SOURCES + 1:) = modal_sums(props, &
+                                                                   modal_waves(1:props%modes))
     associate (mf => props%liquid_mass)
       codes(:, 1) = [periods(1), props%sloshing_mass, props%rigid_mass, &
                      props%convective_height, props%impulsive_height, wave(1)]
@@ -337,17 +340,24 @@ contains
 
     !> Each source's wave height from the pseudo-spectral acceleration at its period.
     subroutine code_wave_heights()
-      real(wp) :: spectrum_periods(CODES_ROWS)
-      ! a source without a period (API 650 for a rectangular tank) asks for sloshdyn's
-      spectrum_periods = merge(periods, periods(1), periods == periods)
-      call ground_spectrum(ground, spectrum_periods, tank%sloshing_damping, &
-                           free_periods*maxval(spectrum_periods), 0.0_wp, sd, sv, psa, status, &
-                           message)
+      real(wp), dimension(CODES_SOURCES + max_modes - 1) :: spectrum_periods, sd, sv, psa
+      integer :: n
+      ! a source without a period (API 650 for a rectangular tank) asks for sloshdyn's; then
+      ! the periods of modes 2..N
+      n = CODES_SOURCES + props%modes - 1
+      spectrum_periods(1:CODES_SOURCES) = merge(periods, periods(1), periods == periods)
+      spectrum_periods(CODES_SOURCES + 1:n) = props%modal_period(2:props%modes)
+      call ground_spectrum(ground, spectrum_periods(1:n), tank%sloshing_damping, &
+                           free_periods*maxval(spectrum_periods(1:CODES_SOURCES)), 0.0_wp, &
+                           sd(1:n), sv(1:n), psa(1:n), status, message)
       if (status /= SD_OK) then
         message = 'the spectrum for the design codes: '//trim(message)
         return
       end if
       wave(1) = props%wave_factor*psa(1)/tank%gravity
+      modal_waves(1) = wave(1)
+      modal_waves(2:props%modes) = props%modal_wave(2:props%modes)*psa(CODES_SOURCES + 1:n)/ &
+                                   tank%gravity
       if (tank%shape == SHAPE_CIRCULAR) then
         call api650_wave_height(tank%radius, psa(2)/tank%gravity, wave(2), status, message)
         if (status == SD_OK) call ec8_wave_height(tank%radius, psa(3), tank%gravity, wave(3), &
@@ -361,6 +371,27 @@ contains
       end if
     end subroutine code_wave_heights
   end subroutine design_code_checks
+
+  !> sloshdyn's sums over the sloshing modes 1..N, the rows 'modes SRSS' and 'modes ABS' of
+  !> 'design_codes': no one period (NaN); the convective mass sum(m_n) at its resultant height
+  !> sum(m_n h_n)/sum(m_n); the rigid mass m0 and its height h0 (the tank's, m_F minus the N
+  !> modal masses); the wave height at the wall, waves(n) = w_n Sa(T_n)/g of each mode (NaN
+  !> without ground motion), combined by the square root of the sum of squares (the usual
+  !> combination of modal peaks of well separated modes) and by the sum of absolute values (an
+  !> upper bound).
+  pure function modal_sums(props, waves) result(rows)
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(in) :: waves(:)
+    real(wp) :: rows(CODES_COLUMNS, 2)
+    real(wp) :: mass, height
+    associate (n => props%modes)
+      mass = sum(props%modal_mass(1:n))
+      height = dot_product(props%modal_mass(1:n), props%modal_height(1:n))/mass
+    end associate
+    rows(:, 1) = [ieee_value(1.0_wp, ieee_quiet_nan), mass, props%rigid_mass, height, &
+                  props%impulsive_height, sqrt(sum(waves**2))]
+    rows(:, 2) = [rows(1:5, 1), sum(abs(waves))]
+  end function modal_sums
 
   !> Steady states of the tank under harmonic ground motion at each of the frequencies [Hz], at
   !> the ground motion's peak acceleration (a sweep in rho at constant A rho^2 through

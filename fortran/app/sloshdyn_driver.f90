@@ -20,7 +20,8 @@ module sloshdyn_driver
                              PEAKS_IMPACT_FORCE, PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, &
                              PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, &
                              PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
-                             CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, TANK_MODES_ROWS, &
+                             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
+                             TANK_MODES_ROWS, &
                              HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
                              CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name, &
                              CHART_GRID_N_STABLE, CHART_GRID_NEAR_CURVE, &
@@ -675,7 +676,7 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp) :: row(TANK_SI_SIZE), codes(CODES_COLUMNS, CODES_ROWS), &
                 modes(TANK_MODES_ROWS, max_modes)
-    integer :: i
+    integer :: i, n_codes
     call files%create(config%directory, status, message)
     if (status /= SD_OK) return
     associate (m => config%model)
@@ -695,10 +696,12 @@ contains
     end if
     if (status == SD_OK) call design_code_checks(config%tank, config%ground, config%has_ground, &
                                                  codes, status, message)
+    ! the modal sums only with modes > 1
+    n_codes = merge(CODES_ROWS, CODES_SOURCES, config%tank_props%modes > 1)
     if (status == SD_OK) call files%write_table('design_codes.csv', 'design_codes', &
                                                 reshape([(real(i, wp), codes(:, i), &
-                                                i = 1, CODES_ROWS)], &
-                                                [CODES_COLUMNS + 1, CODES_ROWS]), status, message)
+                                                i = 1, n_codes)], &
+                                                [CODES_COLUMNS + 1, n_codes]), status, message)
   end subroutine begin_files
 
   subroutine print_model(config)
@@ -798,7 +801,8 @@ contains
 
   !> The design-code cross-check as the executable prints it (and Python's str(DesignCodes)):
   !> a header, then a line per quantity: sloshdyn's value and each code's, with its difference
-  !> from sloshdyn in %; lines end with new_line('a'), the last one not.
+  !> from sloshdyn in %, then the modal sums if any is given (a tank with modes > 1); lines end
+  !> with new_line('a'), the last one not.
   pure function design_codes_table(codes) result(text)
     real(wp), intent(in) :: codes(CODES_COLUMNS, CODES_ROWS)
     character(len=:), allocatable :: text
@@ -806,12 +810,15 @@ contains
       'convective period [s]', 'convective mass [kg]', 'impulsive mass [kg]', &
       'convective height [m]', 'impulsive height [m]', 'wave height [m]']
     character(len=:), allocatable :: line
-    integer :: i, j
+    integer :: i, j, n
+    n = merge(CODES_ROWS, CODES_SOURCES, any(codes(:, CODES_SOURCES + 1:) == &
+                                            codes(:, CODES_SOURCES + 1:)))
     text = '  '//pad('', 24)//pad('sloshdyn', 14)//pad('API 650', 22)//pad('EC8-4', 22)// &
            'ACI 350.3'
+    if (n > CODES_SOURCES) text = text//repeat(' ', 13)//pad('modes SRSS', 22)//'modes ABS'
     do i = 1, CODES_COLUMNS
       line = '  '//pad(trim(quantities(i)), 24)//pad(value_text(codes(i, 1)), 14)
-      do j = 2, CODES_ROWS
+      do j = 2, n
         line = line//pad(value_text(codes(i, j))//difference(codes(i, j), codes(i, 1)), 22)
       end do
       text = text//new_line('a')//trim(line)

@@ -29,7 +29,7 @@ module sloshdyn_tables
   public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
             PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, &
             PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
-            CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+            CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
@@ -145,8 +145,11 @@ module sloshdyn_tables
   character(len=*), parameter :: codes_columns_names = 'source,convective_period [s],'// &
     'convective_mass [kg],impulsive_mass [kg],convective_height [m],impulsive_height [m],'// &
     'wave_height [m]'
-  integer, parameter :: CODES_COLUMNS = 6, CODES_ROWS = 4
-  character(len=*), parameter :: code_sources = 'sloshdyn,API 650,EC8-4,ACI 350.3'
+  !> One row per source of the first mode (CODES_SOURCES), then sloshdyn's sums over the
+  !> sloshing modes 1..N (SRSS, absolute), present when the tank has N > 1 modes.
+  integer, parameter :: CODES_COLUMNS = 6, CODES_SOURCES = 4, CODES_ROWS = CODES_SOURCES + 2
+  character(len=*), parameter :: code_sources = 'sloshdyn,API 650,EC8-4,ACI 350.3,'// &
+                                                'modes SRSS,modes ABS'
   character(len=*), parameter :: tank_si_columns = 'radius [m],liquid_depth [m],freeboard [m],'// &
     'liquid_mass [kg],tank_mass [kg],total_mass [kg],pendulum_length [m],sloshing_mass [kg],'// &
     'd1 [m],rigid_mass [kg],d0 [m],convective_height [m],impulsive_height [m],'// &

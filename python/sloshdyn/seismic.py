@@ -178,20 +178,22 @@ class Tank:
         codes, status, message = _bridge.design_codes(self.array(), int(ground_motion is not None),
                                                       ground, samples)
         check_status(status, message)
-        return DesignCodes(codes.copy())
+        # the modal sums (the last two sources) only for a tank with modes > 1
+        return DesignCodes(codes[:, :None if self.modes > 1 else -2].copy())
 
 
 @dataclass(frozen=True)
 class DesignCodes:
-    """Rows: sloshdyn, API 650, EC8-4, ACI 350.3; columns: convective_period [s],
+    """Rows: sloshdyn, API 650, EC8-4, ACI 350.3 (and for a tank with modes > 1 sloshdyn's
+    sums over the modes, 'modes SRSS' and 'modes ABS'); columns: convective_period [s],
     convective_mass [kg], impulsive_mass [kg], convective_height [m], impulsive_height [m],
     wave_height [m] (NaN where a source gives none)."""
 
-    table: np.ndarray   #: (6, 4), the core's 'design_codes' layout
+    table: np.ndarray   #: (6, 4) or (6, 6), the core's 'design_codes' layout
 
     @property
     def sources(self):
-        return list(_tables.names("source")[0])
+        return list(_tables.names("source")[0])[:self.table.shape[1]]
 
     @property
     def columns(self):
@@ -208,7 +210,9 @@ class DesignCodes:
     def __str__(self):
         """The table the executable prints (the core writes it): values, and each code's
         difference from sloshdyn in %."""
-        text = _bridge.design_codes_text(self.table)
+        full = np.full((self.table.shape[0], len(_tables.names("source")[0])), np.nan)
+        full[:, :self.table.shape[1]] = self.table
+        text = _bridge.design_codes_text(full)
         return (text.decode() if isinstance(text, bytes) else str(text)).rstrip()
 
 

@@ -299,6 +299,6 @@ def test_seismic_results_are_named_by_the_cores_tables():
     assert set(response.peaks) == {p[len("peak_"):] for p in peaks if p.startswith("peak_")}
     assert list(tank.properties) == [c.split(" [")[0] for c in _tables.columns("tank_si")]
     codes = tank.design_codes(ground)
-    assert codes.sources == list(_tables.names("source")[0])
+    assert codes.sources == list(_tables.names("source")[0])[:4]   # modal sums: modes > 1
     assert codes.columns == [c.split(" [")[0] for c in _tables.columns("design_codes")[1:]]
     assert codes.table.shape == (len(codes.columns), len(codes.sources))

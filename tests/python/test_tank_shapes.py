@@ -165,6 +165,39 @@ def test_aci350_rectangular_rows_are_the_codes_equations(h_over_l):
     assert "ACI 350.3" in text and f"{tc:.6g}" in text
 
 
+def test_the_code_table_sums_the_modal_waves_by_srss_and_absolute_values():
+    """With modes = 3 the design-code table gains sloshdyn's modal sums: the wave heights
+    w_n Sa(T_n)/g of the three modes (periods and w_n from the J1' roots of scipy, Sa from the
+    ground motion's spectrum, the tail 5 times the longest period of the sources) combined by
+    SRSS and by absolute values; with one mode the table has the four sources only."""
+    ground = sloshdyn.GroundMotion.from_file(EXAMPLES / "records" / "synthetic_kt.AT2")
+    one = circular().design_codes(ground)
+    assert one.sources == ["sloshdyn", "API 650", "EC8-4", "ACI 350.3"]
+    assert "SRSS" not in str(one)
+    codes = circular(modes=3).design_codes(ground)
+    assert codes.sources[4:] == ["modes SRSS", "modes ABS"]
+    np.testing.assert_array_equal(codes.table[:, 1:4], one.table[:, 1:])
+    # sloshdyn's first mode is the same, its rigid mass that of three modes
+    np.testing.assert_array_equal(codes.table[[0, 1, 3, 5], 0], one.table[[0, 1, 3, 5], 0])
+    roots = special.jnp_zeros(1, 3)
+    roots[0] = 1.84                                  # mode 1: the paper's eq (2)
+    periods = [2 * math.pi / math.sqrt(G * xi / 5.0 * math.tanh(xi * 6.0 / 5.0))
+               for xi in roots]
+    tail = 5 * np.nanmax(one.table[0])
+    sa = ground.response_spectrum(periods, damping=0.005, tail_duration=tail).psa
+    waves = np.array([2 * 5.0 / (xi**2 - 1) * a / G for xi, a in zip(roots, sa)])
+    assert codes.value("modes SRSS", "wave_height") == pytest.approx(
+        math.sqrt((waves**2).sum()), rel=1e-6)
+    assert codes.value("modes ABS", "wave_height") == pytest.approx(waves.sum(), rel=1e-6)
+    assert waves[0] == pytest.approx(codes.value("sloshdyn", "wave_height"), rel=1e-6)
+    tank = circular(modes=3)
+    for source in ("modes SRSS", "modes ABS"):
+        assert codes.value(source, "convective_mass") == pytest.approx(
+            tank.convective_masses.sum(), rel=1e-12)
+        assert codes.value(source, "impulsive_mass") == tank.impulsive_mass
+    assert "modes SRSS" in str(codes)
+
+
 def test_three_linear_modes_are_the_superposition_of_exact_sdof_responses():
     """A stiff tank, a weak record and a high roof: every mode is linear, and the wave height at
     the wall is the sum over the modes of wave_n x_n/l_n, x_n the exact response of an SDOF
