@@ -151,7 +151,9 @@ _G = 9.80665   # m/s^2 per g, for axes in g
 
 
 def _tank_title(tank):
-    return (f"tank R = {tank.radius:g} m, liquid depth {tank.liquid_depth:g} m, freeboard "
+    plan = (f"tank R = {tank.radius:g} m" if tank.shape == "circular" else
+            f"rectangular tank L = {tank.length:g} m, W = {tank.width:g} m")
+    return (f"{plan}, liquid depth {tank.liquid_depth:g} m, freeboard "
             f"{tank.freeboard:g} m; sloshing period {tank.sloshing_period:.3g} s")
 
 
