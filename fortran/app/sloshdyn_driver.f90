@@ -746,7 +746,9 @@ contains
       end if
       print '(a)', '  liquid '//num2str(p%liquid_mass)//' kg, tank (shell, roof) '// &
                    num2str(t%tank_mass)//' kg, total M = '//num2str(p%total_mass)//' kg'
-      print '(a)', '  sloshing (eq 2-3): pendulum l = '//num2str(p%pendulum_length)// &
+      print '(a)', '  sloshing ('//trim(merge('eq 2-3                ', &
+                   'potential flow, mode 1', t%shape == SHAPE_CIRCULAR))// &
+                   '): pendulum l = '//num2str(p%pendulum_length)// &
                    ' m, convective mass m = '//num2str(p%sloshing_mass)//' kg at '// &
                    num2str(p%convective_height)//' m, impulsive m0 = '// &
                    num2str(p%rigid_mass)//' kg at '//num2str(p%impulsive_height)// &

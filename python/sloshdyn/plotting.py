@@ -293,6 +293,10 @@ def harmonic_sweep(sweep):
     ax.set_title(f"{_tank_title(sweep.tank)}\nharmonic ground motion, peak "
                  f"{sweep.peak_ground_acceleration[0] / _G:.3g} g", fontsize=10)
     ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
 def basins(ds):
     """Basins of attraction (sloshdyn.basins): the attractor reached from each initial state,
     with the attractors' orbit states (phase 0) marked and listed with kind, period,

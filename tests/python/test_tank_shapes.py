@@ -284,3 +284,22 @@ def test_both_front_doors_write_identical_files_for_the_rectangular_example(exe,
     assert {"seismic.csv", "tank.csv", "tank_modes.csv", "design_codes.csv"} <= set(
         outputs["exe"])
     assert outputs["exe"] == outputs["py"]
+
+
+def test_a_rectangular_tanks_frequency_sweep_runs_and_draws(tmp_path):
+    """`sloshdyn-py run` of a frequency sweep of a rectangular tank with two modes writes the
+    executable's files and its figure (plotting.harmonic_sweep returned no figure before: the
+    run failed with an internal error, for a circular tank too)."""
+    text = (EXAMPLES / "tank_frequency_sweep.nml").read_text().replace(
+        "radius = 5.0", "shape = 'rectangular', length = 10.0, width = 5.0, modes = 2").replace(
+        "n_points = 26", "n_points = 4").replace(
+        "directory = 'sloshdyn_output/tank_frequency_sweep'", "directory = 'out'")
+    (tmp_path / "input.nml").write_text(text)
+    done = subprocess.run([sys.executable, "-m", "sloshdyn", "run", "input.nml"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    out = tmp_path / "out"
+    assert (out / "harmonic_sweep.png").stat().st_size > 1000
+    assert {"harmonic_sweep.csv", "tank_modes.csv", "design_codes.csv"} <= {
+        p.name for p in out.iterdir()}
+    assert "rectangular, length L = 10 m" in done.stdout
