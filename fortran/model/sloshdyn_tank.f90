@@ -100,10 +100,10 @@ contains
 
   !> The sloshing modes n = 1..size(lengths) of a rigid tank (shape, plan_size R or L, liquid
   !> depth h, liquid mass m_F) by linear potential flow, each as an equivalent pendulum, with
-  !> x = k_n h (Abramson SP-106 sec 6.2-6.3; Housner 1957; EN 1998-4 A.2.1.3):
+  !> x = k_n h (Abramson SP-106 ch 2 and 6; Housner 1957; EN 1998-4 Annex A.2.1):
   !>   omega_n^2 = g k_n tanh(x), so the pendulum length l_n = g/omega_n^2 = 1/(k_n tanh x);
   !>   m_n/m_F = 2 tanh(x)/(x (xi_n^2 - 1))              (circular)
-  !>   m_n/m_F = 8 tanh(x)/((2n - 1)^2 pi^2 x)            (rectangular, = 8 tanh/((2n-1)^3 pi^3 h/L));
+  !>   m_n/m_F = 8 tanh(x)/((2n - 1)^2 pi^2 x)            (rectangular)
   !>   h_n = h - tanh(x/2)/k_n, the height above the bottom of the resultant of the mode's wall
   !>   pressure (~ cosh(k_n z)), the bottom's excluded;
   !>   eta_n = wave_n sin(theta_n), the wave at the wall when the pendulum swings by theta_n
