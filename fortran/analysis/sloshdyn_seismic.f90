@@ -6,7 +6,8 @@
 !> parameters against the design codes (API 650 Annex E, Eurocode 8-4 Annex A, ACI 350.3).
 !>
 !> Table layouts (sloshdyn_tables): 'seismic' (one column per output time), 'seismic_peaks' (one
-!> row) and 'design_codes' (one row per source: sloshdyn, API 650, EC8-4, ACI 350.3).
+!> row) and 'design_codes' (one row per source: sloshdyn, API 650, EC8-4, ACI 350.3; with
+!> modes > 1 also sloshdyn's modal sums, SRSS and ABS).
 module sloshdyn_seismic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, pi, message_len
@@ -17,13 +18,16 @@ module sloshdyn_seismic
   use sloshdyn_motion, only: equations_of_motion
   use sloshdyn_excitation, only: base_acceleration
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS, &
-                            convective_damping
+                            convective_damping, tank_acceleration
+  use sloshdyn_tank, only: SHAPE_CIRCULAR, max_modes
+  use sloshdyn_sdof, only: sdof_response
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, ground_duration, ground_spectrum, &
                              GROUND_RECORD, GROUND_HARMONIC, harmonic_periods, &
                              spectral_acceleration
   use sloshdyn_excitation, only: PARAMETER_FREQUENCY
   use sloshdyn_design_codes, only: aci350_parameters, api650_parameters, ec8_parameters, &
-                                   aci350_circular, aci350_wave_height, api650_circular, &
+                                   aci350_circular, aci350_rectangular, aci350_wave_height, &
+                                   api650_circular, &
                                    api650_wave_height, ec8_circular, ec8_wave_height
   use sloshdyn_roof, only: roof_loads
   use sloshdyn_ode, only: ode_options, ode_stats, observed_quantities, linear_observation, &
@@ -33,12 +37,13 @@ module sloshdyn_seismic
                              PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, &
                              PEAKS_CONFINED_MASS, PEAKS_IMPACT_FORCE, PEAKS_SCALE_FACTOR, &
                              PEAKS_SA, PEAKS_BETA_SENSITIVE, CODES_COLUMNS, CODES_ROWS, &
-                             HARMONIC_SWEEP_ROWS, SUMMARY_SIZE, SUMMARY_RHO, SUMMARY_A, &
+                             CODES_SOURCES, HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS, SUMMARY_SIZE, &
+                             SUMMARY_RHO, SUMMARY_A, &
                              SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
   implicit none
   private
   public :: seismic_response, seismic_defaults, design_code_checks, tank_summary
-  public :: harmonic_sweep, harmonic_sweep_row, free_periods, max_seismic_outputs
+  public :: harmonic_sweep, harmonic_sweep_row, free_periods, max_seismic_outputs, tank_modes
 
   !> After a record ends the liquid goes on sloshing: t_end defaults to the record plus this
   !> many sloshing periods; harmonic motion runs this many forcing periods.
@@ -157,10 +162,13 @@ contains
     do i = 1, LOAD_ROWS - 1
       peaks(2*i - 1:2*i) = [tracker%peak(i), tracker%time(i)/props%omega]
     end do
+    if (props%modes > 1) call add_higher_modes(props, model, tank%sloshing_damping, &
+                                               history(1:4, :), table, peaks, status, message)
+    if (status /= SD_OK) return
     call roof_contact(model, props, tau, options, method, peaks(PEAKS_ROOF_REACHED:), &
                       table(SEISMIC_ROWS, :), status, message)
     ! the roof loads of the free wave (sloshdyn_roof), beside the model's impact force
-    if (status == SD_OK) &
+    if (status == SD_OK .and. tank%shape == SHAPE_CIRCULAR) &
       call roof_loads(tank%radius, tank%freeboard, tank%roof_slope, tank%roof_radius, &
                       peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
                       (pi*tank%radius**2*tank%liquid_depth), tank%gravity, props%sloshing_mass, &
@@ -186,6 +194,49 @@ contains
     peaks(PEAKS_BETA_SENSITIVE) = merge(1.0_wp, 0.0_wp, abs(peaks(PEAKS_IMPACT_FORCE)) >= &
                                         beta_sensitive_force*props%sloshing_mass*tank%gravity)
   end subroutine run_traceability
+
+  !> Modes 2..N of the tank (props%modes = N > 1) in the time histories: each a linear oscillator
+  !> x_n'' + 2 zeta omega_n x_n' + omega_n^2 x_n = -a_t(t) on the tank's acceleration a_t (from
+  !> the state of the model, which counts m_2..m_N as rigid: their reaction on the tank is left
+  !> out), a_t linear between the output times and each x_n exact for that (Nigam & Jennings,
+  !> sloshdyn_sdof). Added to the wave height at the wall (wave_n x_n/l_n, the linear wave of
+  !> sloshdyn_tank), the base shear (m_n x_n'') and the overturning moment (m_n h_n (a_t + x_n''),
+  !> the model's rigid mass at its height having left them out); the peaks of those three are
+  !> then the largest at the output times.
+  subroutine add_higher_modes(props, model, damping, states, table, peaks, status, message)
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: damping, states(:, :)
+    real(wp), intent(inout) :: table(:, :), peaks(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer, parameter :: wave_row = 4, shear_row = 8, moment_row = 9, &
+                          summed(3) = [wave_row, shear_row, moment_row]
+    real(wp) :: dydt(4), accel(size(states, 2)), x(size(states, 2)), v(size(states, 2)), &
+                a_abs(size(states, 2))
+    integer :: i, n, row
+    status = SD_OK
+    message = ''
+    if (size(accel) < 2) return
+    do i = 1, size(accel)
+      call equations_of_motion(model, props%omega*table(1, i), states(:, i), dydt)
+      accel(i) = tank_acceleration(props, model, states(:, i), dydt, table(2, i))
+    end do
+    do n = 2, props%modes
+      call sdof_response(table(1, 2) - table(1, 1), accel, 2*pi/props%modal_period(n), damping, &
+                         0.0_wp, 0.0_wp, x, v, a_abs, status, message)
+      if (status /= SD_OK) return
+      table(wave_row, :) = table(wave_row, :) + props%modal_wave(n)*x/props%modal_length(n)
+      table(shear_row, :) = table(shear_row, :) + props%modal_mass(n)*(a_abs - accel)
+      table(moment_row, :) = table(moment_row, :) + props%modal_mass(n)*props%modal_height(n)* &
+                             a_abs
+    end do
+    do n = 1, size(summed)
+      row = summed(n)
+      i = maxloc(abs(table(row, :)), dim=1)
+      peaks(2*row - 3:2*row - 2) = [abs(table(row, i)), table(1, i)]
+    end do
+  end subroutine add_higher_modes
 
   !> The loads (rows 2..LOAD_ROWS of tank_loads) of the state y at tau.
   pure subroutine load_values(self, t, y, g)
@@ -262,7 +313,11 @@ contains
   !> (EBP) [m], and the wave height [m] from the ground motion's pseudo-spectral acceleration at
   !> each source's convective period, at the tank's sloshing damping ratio (NaN where a code
   !> gives no value: EC8-4's impulsive mass needs a series this program does not evaluate).
-  !> sloshdyn's wave height is the linear one of its model: 2 R/(xi^2 - 1) Sa/g.
+  !> sloshdyn's wave height is the linear one of its model: 2 R/(xi^2 - 1) Sa/g (4 L/pi^2 Sa/g
+  !> for a rectangular tank). A rectangular tank: API 650 (cylinders only) gives NaN; ACI 350.3
+  !> its rectangular equations (9-1 to 9-11, 7-1); for EN 1998-4 the rectangular clause's
+  !> formulas were not at hand, so its row is the first mode of linear potential flow
+  !> (sloshdyn_tank's sloshing_modes: the same as sloshdyn's row; no IBP height), not the code.
   subroutine design_code_checks(tank, ground, has_ground, codes, status, message)
     type(tank_t), intent(in) :: tank
     type(ground_motion_t), intent(in) :: ground
@@ -275,23 +330,33 @@ contains
     type(api650_parameters) :: api
     type(ec8_parameters) :: ec8
     type(aci350_parameters) :: aci
-    real(wp) :: periods(CODES_ROWS), sd(CODES_ROWS), sv(CODES_ROWS), psa(CODES_ROWS), &
-                wave(CODES_ROWS), nan
+    real(wp) :: periods(CODES_SOURCES), wave(CODES_SOURCES), modal_waves(max_modes), nan
 
     nan = ieee_value(1.0_wp, ieee_quiet_nan)
     codes = nan
     call tank_model(tank, model, props, status, message)
-    if (status == SD_OK) call api650_circular(tank%radius, tank%liquid_depth, api, status, message)
-    if (status == SD_OK) call ec8_circular(tank%radius, tank%liquid_depth, tank%gravity, ec8, &
-                                           status, message)
-    if (status == SD_OK) call aci350_circular(tank%radius, tank%liquid_depth, tank%gravity, aci, &
-                                              status, message)
+    if (status /= SD_OK) return
+    if (tank%shape == SHAPE_CIRCULAR) then
+      call api650_circular(tank%radius, tank%liquid_depth, api, status, message)
+      if (status == SD_OK) call ec8_circular(tank%radius, tank%liquid_depth, tank%gravity, ec8, &
+                                             status, message)
+      if (status == SD_OK) call aci350_circular(tank%radius, tank%liquid_depth, tank%gravity, &
+                                                aci, status, message)
+    else
+      api = api650_parameters(nan, nan, nan, nan, nan, nan, nan, nan)
+      ec8 = ec8_parameters(props%omega, props%sloshing_period, &
+                           props%sloshing_mass/props%liquid_mass, props%convective_height, nan)
+      call aci350_rectangular(tank%length, tank%liquid_depth, tank%gravity, aci, status, message)
+    end if
     if (status /= SD_OK) return
     periods = [props%sloshing_period, api%convective_period, ec8%convective_period, &
                aci%convective_period]
     wave = nan
+    modal_waves = nan
     if (has_ground) call code_wave_heights()
     if (status /= SD_OK) return
+    if (props%modes > 1) codes(:, CODES_SOURCES + 1:) = modal_sums(props, &
+                                                                   modal_waves(1:props%modes))
     associate (mf => props%liquid_mass)
       codes(:, 1) = [periods(1), props%sloshing_mass, props%rigid_mass, &
                      props%convective_height, props%impulsive_height, wave(1)]
@@ -307,20 +372,58 @@ contains
 
     !> Each source's wave height from the pseudo-spectral acceleration at its period.
     subroutine code_wave_heights()
-      call ground_spectrum(ground, periods, tank%sloshing_damping, free_periods*maxval(periods), &
-                           0.0_wp, sd, sv, psa, status, message)
+      real(wp), dimension(CODES_SOURCES + max_modes - 1) :: spectrum_periods, sd, sv, psa
+      integer :: n
+      ! a source without a period (API 650 for a rectangular tank) asks for sloshdyn's; then
+      ! the periods of modes 2..N
+      n = CODES_SOURCES + props%modes - 1
+      spectrum_periods(1:CODES_SOURCES) = merge(periods, periods(1), periods == periods)
+      spectrum_periods(CODES_SOURCES + 1:n) = props%modal_period(2:props%modes)
+      call ground_spectrum(ground, spectrum_periods(1:n), tank%sloshing_damping, &
+                           free_periods*maxval(spectrum_periods(1:CODES_SOURCES)), 0.0_wp, &
+                           sd(1:n), sv(1:n), psa(1:n), status, message)
       if (status /= SD_OK) then
         message = 'the spectrum for the design codes: '//trim(message)
         return
       end if
       wave(1) = props%wave_factor*psa(1)/tank%gravity
-      call api650_wave_height(tank%radius, psa(2)/tank%gravity, wave(2), status, message)
-      if (status == SD_OK) call ec8_wave_height(tank%radius, psa(3), tank%gravity, wave(3), &
-                                                status, message)
-      if (status == SD_OK) call aci350_wave_height(tank%radius, psa(4), tank%gravity, 1.0_wp, &
-                                                   wave(4), status, message)
+      modal_waves(1) = wave(1)
+      modal_waves(2:props%modes) = props%modal_wave(2:props%modes)*psa(CODES_SOURCES + 1:n)/ &
+                                   tank%gravity
+      if (tank%shape == SHAPE_CIRCULAR) then
+        call api650_wave_height(tank%radius, psa(2)/tank%gravity, wave(2), status, message)
+        if (status == SD_OK) call ec8_wave_height(tank%radius, psa(3), tank%gravity, wave(3), &
+                                                  status, message)
+        if (status == SD_OK) call aci350_wave_height(tank%radius, psa(4), tank%gravity, 1.0_wp, &
+                                                     wave(4), status, message)
+      else
+        wave(3) = props%wave_factor*psa(3)/tank%gravity
+        call aci350_wave_height(tank%length/2, psa(4), tank%gravity, 1.0_wp, wave(4), status, &
+                                message)
+      end if
     end subroutine code_wave_heights
   end subroutine design_code_checks
+
+  !> sloshdyn's sums over the sloshing modes 1..N, the rows 'modes SRSS' and 'modes ABS' of
+  !> 'design_codes': no one period (NaN); the convective mass sum(m_n) at its resultant height
+  !> sum(m_n h_n)/sum(m_n); the rigid mass m0 and its height h0 (the tank's, m_F minus the N
+  !> modal masses); the wave height at the wall, waves(n) = w_n Sa(T_n)/g of each mode (NaN
+  !> without ground motion), combined by the square root of the sum of squares (the usual
+  !> combination of modal peaks of well separated modes) and by the sum of absolute values (an
+  !> upper bound).
+  pure function modal_sums(props, waves) result(rows)
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(in) :: waves(:)
+    real(wp) :: rows(CODES_COLUMNS, 2)
+    real(wp) :: mass, height
+    associate (n => props%modes)
+      mass = sum(props%modal_mass(1:n))
+      height = dot_product(props%modal_mass(1:n), props%modal_height(1:n))/mass
+    end associate
+    rows(:, 1) = [ieee_value(1.0_wp, ieee_quiet_nan), mass, props%rigid_mass, height, &
+                  props%impulsive_height, sqrt(sum(waves**2))]
+    rows(:, 2) = [rows(1:5, 1), sum(abs(waves))]
+  end function modal_sums
 
   !> Steady states of the tank under harmonic ground motion at each of the frequencies [Hz], at
   !> the ground motion's peak acceleration (a sweep in rho at constant A rho^2 through
@@ -425,6 +528,17 @@ contains
            merge(1.0_wp, 0.0_wp, free_max_x1 >= 1), summary(SUMMARY_MOTION), &
            summary(SUMMARY_PERIOD), props%wave_factor*sin(min(theta0*free_max_x1, pi/2))]
   end function harmonic_sweep_row
+
+  !> The tank's sloshing modes 1..props%modes, one column each of the 'tank_modes' table.
+  pure subroutine tank_modes(props, table)
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(out) :: table(:, :)
+    integer :: n
+    do n = 1, props%modes
+      table(:, n) = [real(n, wp), props%modal_period(n), props%modal_mass(n), &
+                     props%modal_height(n), props%modal_length(n), props%modal_wave(n)]
+    end do
+  end subroutine tank_modes
 
   !> The tank's properties as one row of the 'tank_si' table.
   pure subroutine tank_summary(tank, props, model, row)

@@ -21,7 +21,8 @@ module sloshdyn_driver
                              PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, &
                              PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, PEAKS_SCALE_FACTOR, &
                              PEAKS_SA, PEAKS_BETA_SENSITIVE, table_header, &
-                             CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
+                             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
+                             TANK_MODES_ROWS, &
                              HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
                              CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name, &
                              CHART_GRID_N_STABLE, CHART_GRID_NEAR_CURVE, &
@@ -49,10 +50,11 @@ module sloshdyn_driver
                                       chart_table_sizes, chart_kind, chart_codim2_kind
   use sloshdyn_slowflow_chart, only: chart_parameter_name
   use sloshdyn_seismic, only: seismic_response, seismic_defaults, design_code_checks, &
-                              tank_summary, harmonic_sweep
+                              tank_summary, harmonic_sweep, tank_modes
   use sloshdyn_ground, only: ground_duration, GROUND_RECORD, ground_motion_t
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_layouts, only: counts_array
+  use sloshdyn_tank, only: SHAPE_CIRCULAR, max_modes
   implicit none
   private
   public :: run_analysis, print_model, sweep_points, design_codes_table
@@ -733,8 +735,9 @@ contains
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: row(TANK_SI_SIZE), codes(CODES_COLUMNS, CODES_ROWS)
-    integer :: i
+    real(wp) :: row(TANK_SI_SIZE), codes(CODES_COLUMNS, CODES_ROWS), &
+                modes(TANK_MODES_ROWS, max_modes)
+    integer :: i, n_codes
     call files%create(config%directory, status, message)
     if (status /= SD_OK) return
     associate (m => config%model)
@@ -747,12 +750,19 @@ contains
     call tank_summary(config%tank, config%tank_props, config%model, row)
     call files%write_table('tank.csv', 'tank_si', reshape(row, [TANK_SI_SIZE, 1]), status, &
                            message)
+    if (status == SD_OK .and. config%tank_props%modes > 1) then
+      call tank_modes(config%tank_props, modes(:, 1:config%tank_props%modes))
+      call files%write_table('tank_modes.csv', 'tank_modes', &
+                             modes(:, 1:config%tank_props%modes), status, message)
+    end if
     if (status == SD_OK) call design_code_checks(config%tank, config%ground, config%has_ground, &
                                                  codes, status, message)
+    ! the modal sums only with modes > 1
+    n_codes = merge(CODES_ROWS, CODES_SOURCES, config%tank_props%modes > 1)
     if (status == SD_OK) call files%write_table('design_codes.csv', 'design_codes', &
                                                 reshape([(real(i, wp), codes(:, i), &
-                                                i = 1, CODES_ROWS)], &
-                                                [CODES_COLUMNS + 1, CODES_ROWS]), status, message)
+                                                i = 1, n_codes)], &
+                                                [CODES_COLUMNS + 1, n_codes]), status, message)
   end subroutine begin_files
 
   subroutine print_model(config)
@@ -783,15 +793,23 @@ contains
   subroutine print_tank(config)
     type(run_config), intent(in) :: config
     real(wp) :: codes(CODES_COLUMNS, CODES_ROWS)
-    integer :: status
+    integer :: status, i
     character(len=message_len) :: message
 
     associate (t => config%tank, p => config%tank_props)
-      print '(/a)', 'Tank (SI): radius R = '//num2str(t%radius)//' m, liquid depth h = '// &
-                    num2str(t%liquid_depth)//' m, freeboard = '//num2str(t%freeboard)//' m'
+      if (t%shape == SHAPE_CIRCULAR) then
+        print '(/a)', 'Tank (SI): radius R = '//num2str(t%radius)//' m, liquid depth h = '// &
+                      num2str(t%liquid_depth)//' m, freeboard = '//num2str(t%freeboard)//' m'
+      else
+        print '(/a)', 'Tank (SI): rectangular, length L = '//num2str(t%length)// &
+                      ' m (along the motion), width '//num2str(t%width)//' m, liquid depth h = '// &
+                      num2str(t%liquid_depth)//' m, freeboard = '//num2str(t%freeboard)//' m'
+      end if
       print '(a)', '  liquid '//num2str(p%liquid_mass)//' kg, tank (shell, roof) '// &
                    num2str(t%tank_mass)//' kg, total M = '//num2str(p%total_mass)//' kg'
-      print '(a)', '  sloshing (eq 2-3): pendulum l = '//num2str(p%pendulum_length)// &
+      print '(a)', '  sloshing ('//trim(merge('eq 2-3                ', &
+                   'potential flow, mode 1', t%shape == SHAPE_CIRCULAR))// &
+                   '): pendulum l = '//num2str(p%pendulum_length)// &
                    ' m, convective mass m = '//num2str(p%sloshing_mass)//' kg at '// &
                    num2str(p%convective_height)//' m, impulsive m0 = '// &
                    num2str(p%rigid_mass)//' kg at '//num2str(p%impulsive_height)// &
@@ -800,9 +818,16 @@ contains
                    num2str(p%stiffness)//' N m/rad, c = '//num2str(p%damping)// &
                    ' N m s/rad; sloshing damping '//num2str(100*t%sloshing_damping)// &
                    ' % of critical'
-      print '(a)', '  roof: the wave at the wall, 2 R sin(theta)/(xi^2 - 1) = '// &
+      print '(a)', '  roof: the wave at the wall, '//trim(merge('2 R sin(theta)/(xi^2 - 1)', &
+                   '4 L sin(theta)/pi^2      ', t%shape == SHAPE_CIRCULAR))//' = '// &
                    num2str(p%wave_factor)//' m sin(theta), reaches the freeboard at theta0 = '// &
                    num2str(p%theta0)//' rad'
+      do i = 2, p%modes
+        print '(a)', '  sloshing mode '//num2str(i)//' (linear): period '// &
+                     num2str(p%modal_period(i))//' s, mass '//num2str(p%modal_mass(i))// &
+                     ' kg at '//num2str(p%modal_height(i))//' m, wave at the wall '// &
+                     num2str(p%modal_wave(i))//' m sin(theta_'//num2str(i)//')'
+      end do
     end associate
     if (config%has_ground) then
       associate (g => config%ground)
@@ -840,7 +865,8 @@ contains
 
   !> The design-code cross-check as the executable prints it (and Python's str(DesignCodes)):
   !> a header, then a line per quantity: sloshdyn's value and each code's, with its difference
-  !> from sloshdyn in %; lines end with new_line('a'), the last one not.
+  !> from sloshdyn in %, then the modal sums if any is given (a tank with modes > 1); lines end
+  !> with new_line('a'), the last one not.
   pure function design_codes_table(codes) result(text)
     real(wp), intent(in) :: codes(CODES_COLUMNS, CODES_ROWS)
     character(len=:), allocatable :: text
@@ -848,12 +874,15 @@ contains
       'convective period [s]', 'convective mass [kg]', 'impulsive mass [kg]', &
       'convective height [m]', 'impulsive height [m]', 'wave height [m]']
     character(len=:), allocatable :: line
-    integer :: i, j
+    integer :: i, j, n
+    n = merge(CODES_ROWS, CODES_SOURCES, any(codes(:, CODES_SOURCES + 1:) == &
+                                            codes(:, CODES_SOURCES + 1:)))
     text = '  '//pad('', 24)//pad('sloshdyn', 14)//pad('API 650', 22)//pad('EC8-4', 22)// &
            'ACI 350.3'
+    if (n > CODES_SOURCES) text = text//repeat(' ', 13)//pad('modes SRSS', 22)//'modes ABS'
     do i = 1, CODES_COLUMNS
       line = '  '//pad(trim(quantities(i)), 24)//pad(value_text(codes(i, 1)), 14)
-      do j = 2, CODES_ROWS
+      do j = 2, n
         line = line//pad(value_text(codes(i, j))//difference(codes(i, j), codes(i, 1)), 22)
       end do
       text = text//new_line('a')//trim(line)

@@ -16,6 +16,7 @@ module sloshdyn_namelist_groups
                             n_int_params
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A, PARAMETER_FREQUENCY
   use sloshdyn_vessel, only: tank_t, tank_properties, convective_damping
+  use sloshdyn_tank, only: shape_names, SHAPE_RECTANGULAR
   use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, scale_ground
   use sloshdyn_records, only: load_record, units_code, units_factor
   use sloshdyn_seismic, only: max_seismic_outputs
@@ -105,7 +106,8 @@ contains
     exponents = [n, p]
   end subroutine read_model
 
-  !> &tank: a cylindrical tank on supports in SI units (sloshdyn_vessel), defaults from tank_t.
+  !> &tank: a cylindrical or rectangular tank on supports in SI units (sloshdyn_vessel), defaults
+  !> from tank_t; radius for shape = 'circular', length and width for 'rectangular'.
   subroutine read_tank(file, vessel, status, message)
     type(input_file), intent(inout) :: file
     type(tank_t), intent(out) :: vessel
@@ -114,13 +116,15 @@ contains
     real(wp) :: radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
                 support_frequency, support_damping, support_stiffness, &
                 support_damping_coefficient, support_height, sloshing_damping, &
-                impact_stiffness, impact_damping, gravity, roof_slope, roof_radius
-    integer :: n, p
+                impact_stiffness, impact_damping, gravity, roof_slope, roof_radius, length, width
+    integer :: n, p, modes, code
+    character(len=word_len) :: shape
     type(namelist_reader) :: reader
     namelist /tank/ radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
                     support_frequency, support_damping, support_stiffness, &
                     support_damping_coefficient, support_height, sloshing_damping, &
-                    impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius
+                    impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius, &
+                    shape, length, width, modes
 
     radius = vessel%radius; liquid_depth = vessel%liquid_depth; freeboard = vessel%freeboard
     liquid_density = vessel%liquid_density; liquid_mass = vessel%liquid_mass
@@ -131,6 +135,8 @@ contains
     impact_stiffness = vessel%impact_stiffness; impact_damping = vessel%impact_damping
     n = vessel%n; p = vessel%p; gravity = vessel%gravity
     roof_slope = vessel%roof_slope; roof_radius = vessel%roof_radius
+    shape = shape_names(vessel%shape); length = vessel%length; width = vessel%width
+    modes = vessel%modes
     status = SD_OK
     message = ''
     call reader%start(file, G_TANK, status)
@@ -142,14 +148,23 @@ contains
       end if
       call reader%check(file, status, message)
     end do
-    call require(file, G_TANK, 'radius', status, message)
+    code = findloc(shape_names, lower(trim(adjustl(shape))), dim=1)
+    if (code == 0) call fail(status, message, "&tank: shape = '"//trim(adjustl(shape))// &
+                             "' is not known; allowed: "//join(shape_names, ', '))
+    if (code == SHAPE_RECTANGULAR) then
+      call require(file, G_TANK, 'length', status, message)
+      call require(file, G_TANK, 'width', status, message)
+    else
+      call require(file, G_TANK, 'radius', status, message)
+    end if
     call require(file, G_TANK, 'liquid_depth', status, message)
     call require(file, G_TANK, 'freeboard', status, message)
     call require(file, G_TANK, 'tank_mass', status, message)
     vessel = tank_t(radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
                     support_frequency, support_damping, support_stiffness, &
                     support_damping_coefficient, support_height, sloshing_damping, &
-                    impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius)
+                    impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius, &
+                    max(code, 1), length, width, modes)
   end subroutine read_tank
 
   !> &ground_motion: a record file (PEER NGA .AT2, or two columns time, acceleration) or harmonic
@@ -891,11 +906,11 @@ contains
     case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
           'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points', &
           'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid', 'n_intensities', &
-          'max_iter')
+          'max_iter', 'modes')
       text = name//' must be an integer'
     case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from', &
           'record', 'format', 'units', 'store', 'figure', 'scheduler', 'worker_kind', &
-          'continuation', 'records')
+          'continuation', 'records', 'shape')
       text = name//' must be a quoted string'
     case ('shooting', 'spectrum')
       text = name//' must be .true. or .false.'
@@ -908,6 +923,7 @@ contains
           'support_frequency', 'support_damping', 'support_stiffness', &
           'support_damping_coefficient', 'support_height', 'sloshing_damping', &
           'impact_stiffness', 'impact_damping', 'gravity', 'roof_slope', 'roof_radius', &
+          'length', 'width', &
           'peak_acceleration', 'frequency', &
           'scale_factor', 'target_pga', 'target_sa', 'target_period', 'target_damping', &
           'transient_periods', &

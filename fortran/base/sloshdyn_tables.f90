@@ -32,8 +32,8 @@ module sloshdyn_tables
             PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, &
             PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, PEAKS_SCALE_FACTOR, &
             PEAKS_SA, PEAKS_BETA_SENSITIVE, &
-            CODES_COLUMNS, CODES_ROWS, TANK_SI_SIZE, &
-            HARMONIC_SWEEP_ROWS
+            CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
+            HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
             CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
@@ -170,8 +170,11 @@ module sloshdyn_tables
   character(len=*), parameter :: codes_columns_names = 'source,convective_period [s],'// &
     'convective_mass [kg],impulsive_mass [kg],convective_height [m],impulsive_height [m],'// &
     'wave_height [m]'
-  integer, parameter :: CODES_COLUMNS = 6, CODES_ROWS = 4
-  character(len=*), parameter :: code_sources = 'sloshdyn,API 650,EC8-4,ACI 350.3'
+  !> One row per source of the first mode (CODES_SOURCES), then sloshdyn's sums over the
+  !> sloshing modes 1..N (SRSS, absolute), present when the tank has N > 1 modes.
+  integer, parameter :: CODES_COLUMNS = 6, CODES_SOURCES = 4, CODES_ROWS = CODES_SOURCES + 2
+  character(len=*), parameter :: code_sources = 'sloshdyn,API 650,EC8-4,ACI 350.3,'// &
+                                                'modes SRSS,modes ABS'
   character(len=*), parameter :: tank_si_columns = 'radius [m],liquid_depth [m],freeboard [m],'// &
     'liquid_mass [kg],tank_mass [kg],total_mass [kg],pendulum_length [m],sloshing_mass [kg],'// &
     'd1 [m],rigid_mass [kg],d0 [m],convective_height [m],impulsive_height [m],'// &
@@ -179,6 +182,10 @@ module sloshdyn_tables
     'support_damping_coefficient [N m s/rad],theta0 [rad],wave_factor [m],'// &
     'impact_coefficient [N m],s1,mu1,kappa,beta,gamma,delta,zeta'
   integer, parameter :: TANK_SI_SIZE = 28
+  !> The sloshing modes of a tank, one column per mode (sloshdyn_seismic's tank_modes).
+  character(len=*), parameter :: tank_modes_columns = 'mode,period [s],convective_mass [kg],'// &
+    'convective_height [m],pendulum_length [m],wave_factor [m]'
+  integer, parameter :: TANK_MODES_ROWS = 6
 
 contains
 
@@ -269,6 +276,8 @@ contains
       header = chart_grid_columns
     case ('tank_si')
       header = tank_si_columns
+    case ('tank_modes')
+      header = tank_modes_columns
     case default
       header = ''
     end select
@@ -303,6 +312,8 @@ contains
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')
       formats = 'rrrrrriirr'
+    case ('tank_modes')
+      formats = 'irrrrr'
     case ('chart_curves')
       formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')

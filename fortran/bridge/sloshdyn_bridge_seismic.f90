@@ -9,25 +9,29 @@ module sloshdyn_bridge_seismic
 
 contains
 
-  !> The tank's properties (the 'tank_si' table's row) and its dimensionless model.
-  subroutine tank_properties(tank, row, rpar, ipar, status, message)
+  !> The tank's properties (the 'tank_si' table's row), its sloshing modes (the 'tank_modes'
+  !> table, columns 1..the tank's modes; the rest 0) and its dimensionless model.
+  subroutine tank_properties(tank, row, modes, rpar, ipar, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_to_arrays
-    use sloshdyn_tables, only: TANK_SI_SIZE
+    use sloshdyn_tables, only: TANK_SI_SIZE, TANK_MODES_ROWS
+    use sloshdyn_tank, only: MAX_TANK_MODES => max_modes
     use sloshdyn_layouts, only: TANK_SIZE, to_tank
     use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
-    use sloshdyn_seismic, only: tank_summary
+    use sloshdyn_seismic, only: tank_summary, tank_modes
     real(c_double), intent(in) :: tank(TANK_SIZE)
-    real(c_double), intent(out) :: row(TANK_SI_SIZE), rpar(n_real_params)
+    real(c_double), intent(out) :: row(TANK_SI_SIZE), modes(TANK_MODES_ROWS, MAX_TANK_MODES), &
+                                   rpar(n_real_params)
     integer(c_int), intent(out) :: ipar(n_int_params), status
     character(len=256), intent(out) :: message
     type(model_t) :: model
     type(tank_properties_t) :: props
     integer :: info, ints(n_int_params)
-    row = 0; rpar = 0; ipar = 0
+    row = 0; modes = 0; rpar = 0; ipar = 0
     call tank_model(to_tank(tank), model, props, info, message)
     if (info == 0) then
       call tank_summary(to_tank(tank), props, model, row)
+      call tank_modes(props, modes(:, 1:props%modes))
       call model_to_arrays(model, rpar, ints)
       ipar = ints
     end if

@@ -12,9 +12,10 @@ program sloshdyn_bridge_sizes
                              CHART_END_ROWS, CHART_GRID_ROWS, TANK_SI_SIZE, CODES_COLUMNS, &
                              CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS, &
                              CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, &
-                             CYCLE_SPECIAL_ROWS, &
+                             CYCLE_SPECIAL_ROWS, TANK_MODES_ROWS, &
                              SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, &
                              SEISMIC_SPATIAL_PEAKS
+  use sloshdyn_tank, only: max_modes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
@@ -41,6 +42,8 @@ program sloshdyn_bridge_sizes
   call define('chart_end_rows', CHART_END_ROWS)
   call define('chart_grid_rows', CHART_GRID_ROWS)
   call define('tank_si_size', TANK_SI_SIZE)
+  call define('tank_modes_rows', TANK_MODES_ROWS)
+  call define('max_tank_modes', max_modes)
   call define('codes_columns', CODES_COLUMNS)
   call define('codes_rows', CODES_ROWS)
   call define('seismic_rows', SEISMIC_ROWS)

@@ -1,5 +1,6 @@
 !> Convective (sloshing) and impulsive parameters of a rigid vertical cylindrical tank of radius R
-!> and liquid depth H by three design codes, so that the program can print them beside its own
+!> and liquid depth H (and of a rigid rectangular tank of length L by ACI 350.3) by three design
+!> codes, so that the program can print them beside its own
 !> model: ACI 350.3-06 (Housner's model), API 650 Annex E, and Eurocode 8 Part 4 (EN 1998-4:2006)
 !> Annex A. Each formula carries the clause of its code; the constants are the codes' own
 !> (3.68 or 3.67 for 2 x 1.841, 0.230, 0.866, 2.01 or 1.937 for 2, ...), so the results differ
@@ -21,10 +22,11 @@ module sloshdyn_design_codes
   implicit none
   private
   public :: aci350_parameters, api650_parameters, ec8_parameters
-  public :: aci350_circular, aci350_wave_height, api650_circular, api650_wave_height, &
+  public :: aci350_circular, aci350_rectangular, aci350_wave_height, api650_circular, api650_wave_height, &
             ec8_circular, ec8_wave_height
 
-  !> ACI 350.3-06, sec 9.2.2 and 9.2.4 (circular tanks), with H = H_L.
+  !> ACI 350.3-06, sec 9.2.2 and 9.2.4 (circular tanks), with H = H_L; the same fields for
+  !> rectangular tanks, sec 9.2.1 and 9.2.3 (eq 9-1 to 9-11, L in place of D).
   type :: aci350_parameters
     real(wp) :: lambda = 0                 !< eq 9-29: sqrt(3.68 g tanh(3.68 H/D)) [m^0.5/s]
     real(wp) :: convective_frequency = 0   !< omega_c, eq 9-30: lambda/sqrt(D) [rad/s]
@@ -73,59 +75,74 @@ contains
     type(aci350_parameters), intent(out) :: aci
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: diameter, ratio, x, y
-
-    call check_tank(radius, depth, status, message)
-    call check_gravity(gravity, status, message)
+    call check_tank(radius, depth, gravity, status, message)
     if (status /= SD_OK) return
-    diameter = 2*radius
-    ratio = diameter/depth                            ! D/H_L
-    x = 3.68_wp*depth/diameter
-    y = 0.866_wp*ratio
-    aci%lambda = sqrt(3.68_wp*gravity*tanh(x))        ! eq 9-29
-    aci%convective_frequency = aci%lambda/sqrt(diameter)   ! eq 9-30
-    aci%convective_period = 2*pi/aci%convective_frequency  ! eq 9-31
-    aci%impulsive_ratio = tanh(y)/y                   ! eq 9-15
-    aci%convective_ratio = 0.230_wp*ratio*tanh(x)     ! eq 9-16
-    if (ratio < squat_from) then
-      aci%impulsive_height = (0.5_wp - 0.09375_wp*ratio)*depth      ! eq 9-17
-    else
-      aci%impulsive_height = 0.375_wp*depth                        ! eq 9-18
-    end if
-    aci%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))      ! eq 9-19
-    if (ratio < aci_tall_ibp_below) then
-      aci%impulsive_height_ibp = 0.45_wp*depth                     ! eq 9-20
-    else
-      aci%impulsive_height_ibp = (y/(2*tanh(y)) - 0.125_wp)*depth  ! eq 9-21
-    end if
-    aci%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.01_wp)) ! eq 9-22
+    call aci350_housner(2*radius, depth, gravity, 3.68_wp, 0.230_wp, aci)
   end subroutine aci350_circular
 
-  !> ACI 350.3-06 sec 7.1, eq 7-2: maximum vertical displacement of the sloshing wave in a
-  !> circular tank, d_max = (D/2) C_c I, with the convective seismic coefficient C_c taken as the
-  !> spectral acceleration of the 0.5 %-damped spectrum at T_c in units of g:
-  !>     d_max = (D/2) I Sa(T_c)/g = R I Sa(T_c)/g.
+  !> ACI 350.3-06 sec 9.2.1 and 9.2.3 (Housner's model) for a rectangular tank of inside length
+  !> L [m] in the direction of the motion, liquid depth H_L [m], gravity g [m/s^2]. The
+  !> equations as cited in design guides (the paid text was not at hand): 3.16 is sqrt(10),
+  !> Housner's rounding of pi.
+  pure subroutine aci350_rectangular(length, depth, gravity, aci, status, message)
+    real(wp), intent(in) :: length, depth, gravity
+    type(aci350_parameters), intent(out) :: aci
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+
+    call check_tank(length/2, depth, gravity, status, message)
+    if (status /= SD_OK) return
+    call aci350_housner(length, depth, gravity, 3.16_wp, 0.264_wp, aci)
+  end subroutine aci350_rectangular
+
+  !> ACI 350.3-06's equations, which have one form for both shapes: plan size s = D (circular,
+  !> eq 9-15 to 9-31) or L (rectangular, eq 9-1 to 9-11), wave constant c = 3.68 or 3.16 and
+  !> convective mass constant c_m = 0.230 or 0.264. Equation numbers: circular / rectangular.
+  pure subroutine aci350_housner(plan_size, depth, gravity, c, c_m, aci)
+    real(wp), intent(in) :: plan_size, depth, gravity, c, c_m
+    type(aci350_parameters), intent(out) :: aci
+    real(wp) :: ratio, x, y
+    ratio = plan_size/depth                           ! D/H_L or L/H_L
+    x = c*depth/plan_size
+    y = 0.866_wp*ratio
+    aci%lambda = sqrt(c*gravity*tanh(x))              ! eq 9-29 / 9-9
+    aci%convective_frequency = aci%lambda/sqrt(plan_size)  ! eq 9-30 / 9-10
+    aci%convective_period = 2*pi/aci%convective_frequency  ! eq 9-31 / 9-11
+    aci%impulsive_ratio = tanh(y)/y                   ! eq 9-15 / 9-1
+    aci%convective_ratio = c_m*ratio*tanh(x)          ! eq 9-16 / 9-2
+    if (ratio < squat_from) then
+      aci%impulsive_height = (0.5_wp - 0.09375_wp*ratio)*depth      ! eq 9-17 / 9-3
+    else
+      aci%impulsive_height = 0.375_wp*depth                        ! eq 9-18 / 9-4
+    end if
+    aci%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))      ! eq 9-19 / 9-5
+    if (ratio < aci_tall_ibp_below) then
+      aci%impulsive_height_ibp = 0.45_wp*depth                     ! eq 9-20 / 9-6
+    else
+      aci%impulsive_height_ibp = (y/(2*tanh(y)) - 0.125_wp)*depth  ! eq 9-21 / 9-7
+    end if
+    aci%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.01_wp)) ! eq 9-22 / 9-8
+  end subroutine aci350_housner
+
+  !> ACI 350.3-06 sec 7.1, eq 7-1 (rectangular) and 7-2 (circular): maximum vertical
+  !> displacement of the sloshing wave, d_max = (L/2) C_c I or (D/2) C_c I, with the convective
+  !> seismic coefficient C_c taken as the spectral acceleration of the 0.5 %-damped spectrum at
+  !> T_c in units of g:
+  !>     d_max = half_size I Sa(T_c)/g,   half_size = R = D/2 or L/2.
   !> sa_convective = Sa(T_c) [m/s^2] (for the code's own spectrum, sec 9.4.2, Sa = C_c g with
   !> C_c = 1.5 S_D1/T_c <= 1.5 S_DS or 2.4 S_DS/T_c^2), importance = I, gravity = g [m/s^2].
-  pure subroutine aci350_wave_height(radius, sa_convective, gravity, importance, d_max, status, &
-                                     message)
-    real(wp), intent(in) :: radius, sa_convective, gravity, importance
+  pure subroutine aci350_wave_height(half_size, sa_convective, gravity, importance, d_max, &
+                                     status, message)
+    real(wp), intent(in) :: half_size, sa_convective, gravity, importance
     real(wp), intent(out) :: d_max
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
 
-    d_max = 0
-    status = SD_OK
-    message = ''
-    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    'the tank radius must be > 0 [m]', status, message)
-    call check_real('Sa', sa_convective, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'the convective spectral acceleration must be >= 0 [m/s^2]', status, message)
-    call check_gravity(gravity, status, message)
+    call check_wave(half_size, sa_convective, 'Sa', '[m/s^2]', gravity, d_max, status, message)
     call check_real('I', importance, 0.0_wp, huge(1.0_wp), .true., .true., &
                     'the importance factor must be > 0', status, message)
     if (status /= SD_OK) return
-    d_max = radius*importance*sa_convective/gravity   ! eq 7-2, D/2 = R
+    d_max = half_size*importance*sa_convective/gravity   ! eq 7-1, 7-2
   end subroutine aci350_wave_height
 
   !> API 650 Annex E for a tank of radius R [m] and design liquid level H [m] (SI forms: the
@@ -137,7 +154,7 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp) :: diameter, ratio, x, y
 
-    call check_tank(radius, depth, status, message)
+    call check_tank(radius, depth, 1.0_wp, status, message)
     if (status /= SD_OK) return
     diameter = 2*radius
     ratio = diameter/depth                                        ! D/H
@@ -168,13 +185,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
 
-    delta_s = 0
-    status = SD_OK
-    message = ''
-    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    'the tank radius must be > 0 [m]', status, message)
-    call check_real('Af', af, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'the sloshing acceleration coefficient must be >= 0 [g]', status, message)
+    call check_wave(radius, af, 'Af', '[g]', 1.0_wp, delta_s, status, message)
     if (status /= SD_OK) return
     delta_s = 0.42_wp*(2*radius)*af                   ! eq E.7.2-1
   end subroutine api650_wave_height
@@ -192,8 +203,7 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp) :: gamma, x
 
-    call check_tank(radius, depth, status, message)
-    call check_gravity(gravity, status, message)
+    call check_tank(radius, depth, gravity, status, message)
     if (status /= SD_OK) return
     gamma = depth/radius
     x = ec8_lambda_1*gamma
@@ -214,14 +224,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
 
-    d_max = 0
-    status = SD_OK
-    message = ''
-    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    'the tank radius must be > 0 [m]', status, message)
-    call check_real('Se', se_convective, 0.0_wp, huge(1.0_wp), .false., .true., &
-                    'the convective spectral acceleration must be >= 0 [m/s^2]', status, message)
-    call check_gravity(gravity, status, message)
+    call check_wave(radius, se_convective, 'Se', '[m/s^2]', gravity, d_max, status, message)
     if (status /= SD_OK) return
     d_max = 0.84_wp*radius*se_convective/gravity
   end subroutine ec8_wave_height
@@ -241,23 +244,33 @@ contains
     ratio = tanh(x/2)/x + (1 - c)*csch/x
   end function cosh_ratio
 
-  pure subroutine check_tank(radius, depth, status, message)
-    real(wp), intent(in) :: radius, depth
+  !> R (or L/2) > 0, H > 0 and g > 0 (API 650's formulas have g built in: 1 passes).
+  pure subroutine check_tank(half_size, depth, gravity, status, message)
+    real(wp), intent(in) :: half_size, depth, gravity
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     status = SD_OK
     message = ''
-    call check_real('R', radius, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    'the tank radius must be > 0 [m]', status, message)
+    call check_real('R', half_size, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the tank radius (or half length) must be > 0 [m]', status, message)
     call check_real('H', depth, 0.0_wp, huge(1.0_wp), .true., .true., &
                     'the liquid depth must be > 0 [m]', status, message)
-  end subroutine check_tank
-
-  pure subroutine check_gravity(gravity, status, message)
-    real(wp), intent(in) :: gravity
-    integer, intent(inout) :: status
-    character(len=message_len), intent(inout) :: message
     call check_real('g', gravity, 0.0_wp, huge(1.0_wp), .true., .true., &
                     'the gravitational acceleration must be > 0 [m/s^2]', status, message)
-  end subroutine check_gravity
+  end subroutine check_tank
+
+  !> The inputs of a wave height: R (or L/2) > 0, the spectral acceleration `name` >= 0 in
+  !> `units`, g > 0; the height set to 0 until computed.
+  pure subroutine check_wave(half_size, acceleration, name, units, gravity, height, status, &
+                             message)
+    real(wp), intent(in) :: half_size, acceleration, gravity
+    character(len=*), intent(in) :: name, units
+    real(wp), intent(out) :: height
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    height = 0
+    call check_tank(half_size, 1.0_wp, gravity, status, message)
+    call check_real(name, acceleration, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the convective spectral acceleration must be >= 0 '//units, status, message)
+  end subroutine check_wave
 end module sloshdyn_design_codes

@@ -14,25 +14,33 @@
 !> rho pi R^2 (A J1(xi)) tanh(xi h/R)/xi, with that of the pendulum, m l cos(theta) theta', and
 !> using eq (2) for m and l. The wave reaches the roof when eta = freeboard, which sets
 !> sin(theta0) = freeboard (xi^2 - 1)/(2 R). (Eurocode 8-4 A.2.1.4 writes the same relation as
-!> d_max = 0.84 R Se/g, with theta = Se/g.)
+!> d_max = 0.84 R Se/g, with theta = Se/g.) A rectangular tank of length L (along the motion)
+!> has the same relation with wave_factor = 4 L/pi^2 (sloshdyn_tank's sloshing_modes).
+!>
+!> Higher modes (modes = N > 1): modes 2..N are linear oscillators of sloshdyn_tank's
+!> sloshing_modes, driven by the tank's acceleration; the rigid (impulsive) mass is m_F minus
+!> the N modal masses. The paper's pendulum (mode 1) and its model are the same for every N.
 module sloshdyn_vessel
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, model_from_arrays, n_real_params
-  use sloshdyn_tank, only: tank_pendulum
   use sloshdyn_roof, only: check_roof
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
+  use sloshdyn_tank, only: tank_pendulum, sloshing_modes, max_modes, shape_names, &
+                           SHAPE_CIRCULAR, SHAPE_RECTANGULAR, min_tank_size, max_tank_size, &
+                           max_liquid_density
   use sloshdyn_tables, only: SEISMIC_LOADS
   implicit none
   private
   public :: tank_t, tank_properties, tank_model, tank_loads, wave_height_factor
-  public :: standard_gravity, LOAD_ROWS
+  public :: standard_gravity, LOAD_ROWS, tank_acceleration
 
   real(wp), parameter :: standard_gravity = 9.80665_wp   !< m/s^2
   !> xi = 1.84 of eq (2): the first root of J1', as the paper rounds it
   real(wp), parameter :: xi = 1.84_wp
 
-  !> A cylindrical tank on supports, SI units. Zero (or negative) means "not given" where an
+  !> A cylindrical or rectangular tank on supports, SI units. Zero (or negative) means "not given" where an
   !> alternative exists: the liquid by its density or its mass; the supports by their natural
   !> frequency and damping ratio or by stiffness and damping coefficient.
   !> The convective (sloshing) damping ratio of the design codes, 0.5 %: the default of a
@@ -59,6 +67,10 @@ module sloshdyn_vessel
     real(wp) :: gravity = standard_gravity  !< [m/s^2]
     real(wp) :: roof_slope = 0              !< a cone roof's slope [degrees]; 0: not a cone
     real(wp) :: roof_radius = 0             !< a dome roof's radius [m]; 0: not a dome
+    integer :: shape = SHAPE_CIRCULAR       !< SHAPE_CIRCULAR (radius) or SHAPE_RECTANGULAR
+    real(wp) :: length = 0                  !< rectangular: L along the motion [m]
+    real(wp) :: width = 0                   !< rectangular: W across it [m]
+    integer :: modes = 1                    !< sloshing modes 1..N (N <= max_modes)
   end type tank_t
 
   !> What a tank is in the model's terms, and what the loads need.
@@ -76,6 +88,11 @@ module sloshdyn_vessel
     real(wp) :: shell_height = 0                          !< of the tank mass, (h + freeboard)/2
     real(wp) :: wave_factor = 0                           !< eta = wave_factor sin(theta) [m]
     real(wp) :: impact_coefficient = 0                    !< b = beta m g l [N m]
+    !> the sloshing modes 1..modes (mode 1: the pendulum above): period [s], mass [kg], height
+    !> of its wall pressure [m], pendulum length [m], wave at the wall per sin(theta_n) [m]
+    integer :: modes = 1
+    real(wp), dimension(max_modes) :: modal_period = 0, modal_mass = 0, modal_height = 0, &
+                                      modal_length = 0, modal_wave = 0
   end type tank_properties
 
   !> Rows of tank_loads: t [s], ground acceleration [m/s^2], sloshing displacement l sin(theta)
@@ -107,8 +124,11 @@ contains
 
     status = SD_OK
     message = ''
-    call check_real('radius', tank%radius, 0.0_wp, big, .true., .true., &
-                    'the tank radius must be > 0 [m]', status, message)
+    call check_shape(tank, status, message)
+    if (status /= SD_OK) return
+    if (tank%shape == SHAPE_CIRCULAR) &
+      call check_real('radius', tank%radius, 0.0_wp, big, .true., .true., &
+                      'the tank radius must be > 0 [m]', status, message)
     call check_real('liquid_depth', tank%liquid_depth, 0.0_wp, big, .true., .true., &
                     'the liquid depth must be > 0 [m]', status, message)
     if (status == SD_OK .and. (tank%liquid_density > 0 .eqv. tank%liquid_mass > 0)) then
@@ -127,7 +147,15 @@ contains
                     'the tank mass (shell and roof) must be >= 0 [kg]', status, message)
     call check_real('gravity', tank%gravity, 0.0_wp, big, .true., .true., &
                     'gravity must be > 0 [m/s^2]', status, message)
-    call check_roof(tank%radius, tank%roof_slope, tank%roof_radius, status, message)
+    if (status == SD_OK .and. tank%shape /= SHAPE_CIRCULAR .and. &
+        (tank%roof_slope /= 0 .or. tank%roof_radius /= 0)) then
+      status = SD_BAD_INPUT
+      message = 'roof_slope = '//num2str(tank%roof_slope)//' and roof_radius = '// &
+                num2str(tank%roof_radius)//': cone and dome roofs are for circular tanks; '// &
+                'a rectangular tank''s roof is flat (both 0)'
+    end if
+    if (tank%shape == SHAPE_CIRCULAR) &
+      call check_roof(tank%radius, tank%roof_slope, tank%roof_radius, status, message)
     call check_real('sloshing_damping', tank%sloshing_damping, 0.0_wp, 1.0_wp, .false., .true., &
                     'the sloshing damping ratio must lie in [0, 1)', status, message)
     call check_real('support_height', tank%support_height, 0.0_wp, big, .false., .true., &
@@ -153,16 +181,22 @@ contains
                       '[N m s/rad]', status, message)
     end if
     if (status /= SD_OK) return
-    call tank_pendulum(tank%radius, tank%liquid_depth, tank%liquid_density, tank%liquid_mass, &
-                       props%pendulum_length, props%sloshing_mass, props%d1, props%rigid_mass, &
-                       props%d0, props%liquid_mass, status, message)
-    if (status /= SD_OK) return
-    props%wave_factor = wave_height_factor(tank%radius)
+    if (tank%shape == SHAPE_CIRCULAR) then
+      call tank_pendulum(tank%radius, tank%liquid_depth, tank%liquid_density, tank%liquid_mass, &
+                         props%pendulum_length, props%sloshing_mass, props%d1, props%rigid_mass, &
+                         props%d0, props%liquid_mass, status, message)
+      if (status /= SD_OK) return
+      props%wave_factor = wave_height_factor(tank%radius)
+    else
+      call rectangular_pendulum(tank, props, status, message)
+      if (status /= SD_OK) return
+    end if
     sin_theta0 = tank%freeboard/props%wave_factor
     if (sin_theta0 >= sin(0.4999_wp*pi)) then
       status = SD_BAD_INPUT
       message = 'freeboard = '//num2str(tank%freeboard)//' is out of range: the linear sloshing '// &
-                'wave reaches at most 2 R/(xi^2 - 1) = '//num2str(props%wave_factor)//' m at '// &
+                'wave reaches at most '//trim(merge('2 R/(xi^2 - 1)', '4 L/pi^2      ', &
+                tank%shape == SHAPE_CIRCULAR))//' = '//num2str(props%wave_factor)//' m at '// &
                 'the wall; the roof impact model needs a smaller freeboard'
       return
     end if
@@ -186,10 +220,12 @@ contains
     ! potential flow, h [1 - (cosh x - 1)/(x sinh x)] = h - (R/xi) tanh(x/2) with x = xi h/R;
     ! m0's such that slow (quasi-static) motion gives the liquid's exact moment m_F h/2
     ! (docs/model.md, "Loads")
-    props%convective_height = tank%liquid_depth - tank%radius/xi* &
-                              tanh(xi*tank%liquid_depth/(2*tank%radius))
-    props%impulsive_height = (props%liquid_mass*tank%liquid_depth/2 - props%sloshing_mass* &
-                              props%convective_height)/props%rigid_mass
+    if (tank%shape == SHAPE_CIRCULAR) props%convective_height = tank%liquid_depth - &
+      tank%radius/xi*tanh(xi*tank%liquid_depth/(2*tank%radius))
+    call higher_modes(tank, props)
+    props%impulsive_height = (props%liquid_mass*tank%liquid_depth/2 - dot_product( &
+                              props%modal_mass(1:props%modes), &
+                              props%modal_height(1:props%modes)))/props%rigid_mass
     props%shell_height = (tank%liquid_depth + tank%freeboard)/2
     props%impact_coefficient = tank%impact_stiffness*props%sloshing_mass*tank%gravity* &
                                props%pendulum_length
@@ -206,6 +242,60 @@ contains
 
   contains
 
+    !> The first mode of a rectangular tank (sloshdyn_tank's sloshing_modes) as the pendulum;
+    !> the paper's d1 and d0 (eq 2-3) are for a cylinder: NaN.
+    pure subroutine rectangular_pendulum(tank, props, status, message)
+      type(tank_t), intent(in) :: tank
+      type(tank_properties), intent(inout) :: props
+      integer, intent(inout) :: status
+      character(len=message_len), intent(inout) :: message
+      real(wp) :: l(1), m(1), h(1), wave(1)
+      call check_real('liquid_density', tank%liquid_density, 0.0_wp, max_liquid_density, &
+                      .false., .false., 'the liquid density [kg/m^3] must lie in [0, 1e5]: '// &
+                      'every liquid is lighter', status, message)
+      if (status /= SD_OK) return
+      props%liquid_mass = merge(tank%liquid_density*tank%length*tank%width* &
+                                tank%liquid_depth, tank%liquid_mass, tank%liquid_density > 0)
+      if (.not. ieee_is_finite(props%liquid_mass)) then
+        status = SD_NON_FINITE
+        message = 'the liquid mass of this rectangular tank is not finite: overflow'
+        return
+      end if
+      call sloshing_modes(SHAPE_RECTANGULAR, tank%length, tank%liquid_depth, props%liquid_mass, &
+                          l, m, h, wave)
+      props%pendulum_length = l(1)
+      props%sloshing_mass = m(1)
+      props%convective_height = h(1)
+      props%wave_factor = wave(1)
+      props%rigid_mass = props%liquid_mass - m(1)
+      props%d1 = ieee_value(1.0_wp, ieee_quiet_nan)
+      props%d0 = props%d1
+    end subroutine rectangular_pendulum
+
+    !> Modes 1..tank%modes in props (mode 1: the pendulum's), and the rigid mass m_F minus
+    !> their masses (for one mode eq (3)'s m0 = m_F - m as it stands).
+    pure subroutine higher_modes(tank, props)
+      type(tank_t), intent(in) :: tank
+      type(tank_properties), intent(inout) :: props
+      real(wp) :: plan_size
+      integer :: n
+      n = tank%modes
+      props%modes = n
+      plan_size = merge(tank%radius, tank%length, tank%shape == SHAPE_CIRCULAR)
+      if (n > 1) then
+        call sloshing_modes(tank%shape, plan_size, tank%liquid_depth, props%liquid_mass, &
+                            props%modal_length(1:n), props%modal_mass(1:n), &
+                            props%modal_height(1:n), props%modal_wave(1:n))
+        props%modal_period(2:n) = 2*pi*sqrt(props%modal_length(2:n)/tank%gravity)
+        props%rigid_mass = props%liquid_mass - props%sloshing_mass - sum(props%modal_mass(2:n))
+      end if
+      props%modal_period(1) = props%sloshing_period
+      props%modal_mass(1) = props%sloshing_mass
+      props%modal_height(1) = props%convective_height
+      props%modal_length(1) = props%pendulum_length
+      props%modal_wave(1) = props%wave_factor
+    end subroutine higher_modes
+
     !> The model's names in a message are the tank's: tell which tank inputs made them.
     pure subroutine rename(text)
       character(len=message_len), intent(inout) :: text
@@ -219,6 +309,60 @@ contains
     end subroutine rename
   end subroutine tank_model
 
+  !> The tank's shape and modes: a known shape with its own plan dimensions only (radius for a
+  !> cylinder; length and width, from a millimetre to a kilometre as for a cylinder, for a
+  !> rectangular tank), and 1 <= modes <= max_modes.
+  pure subroutine check_shape(tank, status, message)
+    type(tank_t), intent(in) :: tank
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=*), parameter :: size_rule = ' [m] must lie in [1e-3, 1e3]: the potential '// &
+                                               'flow of the sloshing modes holds for tanks '// &
+                                               'from a millimetre to a kilometre'
+    if (tank%shape /= SHAPE_CIRCULAR .and. tank%shape /= SHAPE_RECTANGULAR) then
+      status = SD_BAD_INPUT
+      message = 'shape = '//num2str(tank%shape)//' is not known; allowed: '// &
+                trim(shape_names(1))//' (1), '//trim(shape_names(2))//' (2)'
+    else if (tank%modes < 1 .or. tank%modes > max_modes) then
+      status = SD_BAD_INPUT
+      message = 'modes = '//num2str(tank%modes)//' is out of range: the sloshing modes '// &
+                'taken must lie in [1, '//num2str(max_modes)//']'
+    else if (tank%shape == SHAPE_CIRCULAR .and. (tank%length /= 0 .or. tank%width /= 0)) then
+      status = SD_BAD_INPUT
+      message = 'length = '//num2str(tank%length)//' and width = '//num2str(tank%width)// &
+                ': length and width are for shape = ''rectangular''; a circular tank takes radius'
+    else if (tank%shape == SHAPE_RECTANGULAR) then
+      if (tank%radius /= 0) then
+        status = SD_BAD_INPUT
+        message = 'radius = '//num2str(tank%radius)//': a rectangular tank takes length (along '// &
+                  'the motion) and width, not radius'
+        return
+      end if
+      call check_real('length', tank%length, min_tank_size, max_tank_size, .false., .false., &
+                      'the tank length L (along the motion)'//size_rule, status, message)
+      call check_real('width', tank%width, min_tank_size, max_tank_size, .false., .false., &
+                      'the tank width W (across the motion)'//size_rule, status, message)
+      call check_real('liquid_depth', tank%liquid_depth, min_tank_size, max_tank_size, .false., &
+                      .false., 'the liquid depth h'//size_rule, status, message)
+    end if
+  end subroutine check_shape
+
+  !> The horizontal acceleration of the tank [m/s^2], u'' + L (cos(phi) phi'' - sin(phi) phi'^2),
+  !> of the state y with rates dydt; ground_acceleration = u'' [m/s^2].
+  pure real(wp) function tank_acceleration(props, model, y, dydt, ground_acceleration)
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4), dydt(4), ground_acceleration
+    real(wp) :: phi, phi_d, phi_dd
+    associate (w => props%omega, t0 => model%theta0)
+      phi = t0*y(3)
+      phi_d = w*t0*y(4)
+      phi_dd = w**2*t0*dydt(4)
+      tank_acceleration = ground_acceleration + props%rod_length*(cos(phi)*phi_dd - &
+                                                                  sin(phi)*phi_d**2)
+    end associate
+  end function tank_acceleration
+
   !> The loads of the state y with rates dydt = (x1', x1'', x2', x2'') at tau, in SI (the rows
   !> of LOAD_ROWS); ground_acceleration = u'' [m/s^2] at that time.
   pure function tank_loads(tank, props, model, tau, y, dydt, ground_acceleration) result(row)
@@ -227,17 +371,15 @@ contains
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: tau, y(4), dydt(4), ground_acceleration
     real(wp) :: row(LOAD_ROWS)
-    real(wp) :: theta, theta_d, theta_dd, phi, phi_d, phi_dd, tank_accel, mass_accel
+    real(wp) :: theta, theta_d, theta_dd, phi, tank_accel, mass_accel
     associate (w => props%omega, t0 => model%theta0, pendulum => props%pendulum_length, &
                rod => props%rod_length, m => props%sloshing_mass)
       theta = t0*y(1)
       theta_d = w*t0*y(2)
       theta_dd = w**2*t0*dydt(2)
       phi = t0*y(3)
-      phi_d = w*t0*y(4)
-      phi_dd = w**2*t0*dydt(4)
       ! horizontal accelerations of the tank and of the sloshing mass
-      tank_accel = ground_acceleration + rod*(cos(phi)*phi_dd - sin(phi)*phi_d**2)
+      tank_accel = tank_acceleration(props, model, y, dydt, ground_acceleration)
       mass_accel = tank_accel + pendulum*(cos(theta)*theta_dd - sin(theta)*theta_d**2)
       row(1) = tau/w
       row(2) = ground_acceleration

@@ -151,7 +151,9 @@ _G = 9.80665   # m/s^2 per g, for axes in g
 
 
 def _tank_title(tank):
-    return (f"tank R = {tank.radius:g} m, liquid depth {tank.liquid_depth:g} m, freeboard "
+    plan = (f"tank R = {tank.radius:g} m" if tank.shape == "circular" else
+            f"rectangular tank L = {tank.length:g} m, W = {tank.width:g} m")
+    return (f"{plan}, liquid depth {tank.liquid_depth:g} m, freeboard "
             f"{tank.freeboard:g} m; sloshing period {tank.sloshing_period:.3g} s")
 
 
@@ -316,6 +318,10 @@ def harmonic_sweep(sweep):
     ax.set_title(f"{_tank_title(sweep.tank)}\nharmonic ground motion, peak "
                  f"{sweep.peak_ground_acceleration[0] / _G:.3g} g", fontsize=10)
     ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
 def basins(ds):
     """Basins of attraction (sloshdyn.basins): the attractor reached from each initial state,
     with the attractors' orbit states (phase 0) marked and listed with kind, period,

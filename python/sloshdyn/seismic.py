@@ -43,12 +43,15 @@ _real = _checks.real
 
 @dataclass(frozen=True, kw_only=True)
 class Tank:
-    """A cylindrical tank on supports, SI units (the namelist group &tank, the same variables
-    and defaults). Give the liquid by liquid_density or liquid_mass, and the supports by
-    support_frequency [Hz] with support_damping (ratio), or by support_stiffness [N m/rad] with
-    support_damping_coefficient [N m s/rad]. The fields are in the order of the core's layout."""
+    """A cylindrical or rectangular tank on supports, SI units (the namelist group &tank, the
+    same variables and defaults). A cylinder by its radius; shape="rectangular" by its length
+    (along the motion) and width. Give the liquid by liquid_density or liquid_mass, and the
+    supports by support_frequency [Hz] with support_damping (ratio), or by support_stiffness
+    [N m/rad] with support_damping_coefficient [N m s/rad]. modes = N takes the sloshing modes
+    1..N (N <= 10; modes 2..N linear, docs/model.md "Rectangular tanks and higher modes"). The
+    fields are in the order of the core's layout."""
 
-    radius: float                       #: R [m]
+    radius: float = float(_TANK_DEFAULTS["radius"])    #: R [m] (circular)
     liquid_depth: float                 #: h [m]
     freeboard: float                    #: liquid surface to the roof [m]
     liquid_density: float = float(_TANK_DEFAULTS["liquid_density"])      #: [kg/m^3]
@@ -74,24 +77,37 @@ class Tank:
     roof_slope: float = float(_TANK_DEFAULTS["roof_slope"])
     #: a dome roof's radius [m] (0: not a dome; neither: a flat roof)
     roof_radius: float = float(_TANK_DEFAULTS["roof_radius"])
+    #: "circular" or "rectangular" (the core's list 'tank_shapes')
+    shape: str = _tables.codes("tank_shapes")[int(_TANK_DEFAULTS["shape"])]
+    length: float = float(_TANK_DEFAULTS["length"])   #: L along the motion [m] (rectangular)
+    width: float = float(_TANK_DEFAULTS["width"])     #: W across the motion [m] (rectangular)
+    modes: int = int(_TANK_DEFAULTS["modes"])         #: sloshing modes 1..N taken, N <= 10
 
     def __post_init__(self):
         convert_fields(self)
-        row, rpar, ipar, status, message = _bridge.tank_properties(self.array())
+        if self.shape not in _tables.codes("tank_shapes").values():
+            raise InputError(f"shape = {self.shape!r} is not known; allowed: "
+                             + ", ".join(_tables.codes("tank_shapes").values()))
+        row, modes, rpar, ipar, status, message = _bridge.tank_properties(self.array())
         check_status(status, message)
         object.__setattr__(self, "_row", row.copy())
+        object.__setattr__(self, "_modes", modes[:, :self.modes].copy())
         object.__setattr__(self, "_model", (rpar.copy(), ipar.copy()))
 
     def array(self):
-        """The flat array of the core's layout 'tank'."""
-        return _tables.pack("tank", {name: getattr(self, name) for name in _tables.layout("tank")})
+        """The flat array of the core's layout 'tank' (shape as its code)."""
+        values = {name: getattr(self, name) for name in _tables.layout("tank")}
+        values["shape"] = _tables.code("tank_shapes", self.shape)
+        return _tables.pack("tank", values)
 
     @classmethod
     def from_array(cls, array):
         """The tank of a flat array in the core's layout 'tank'."""
         kinds = {f.name: f.type for f in dataclasses.fields(cls)}
-        return cls(**{name: (int(x) if kinds[name] == "int" else float(x))
-                      for name, x in _tables.unpack("tank", array).items()})
+        values = {name: (int(x) if kinds[name] == "int" else float(x))
+                  for name, x in _tables.unpack("tank", array).items()}
+        values["shape"] = _tables.codes("tank_shapes")[int(values["shape"])]
+        return cls(**values)
 
     @property
     def properties(self):
@@ -111,7 +127,8 @@ class Tank:
 
     @property
     def impulsive_mass(self):
-        """The rigid liquid mass m0 = m_F - m of eq (3) [kg]."""
+        """The rigid liquid mass m0 = m_F - m of eq (3) [kg] (with modes = N: m_F minus the N
+        modal masses)."""
         return self.properties["rigid_mass"]
 
     @property
@@ -123,6 +140,24 @@ class Tank:
     def impulsive_height(self):
         """Height of the impulsive wall-pressure resultant above the bottom [m]."""
         return self.properties["impulsive_height"]
+
+    def _modal(self, column):
+        return self._modes[_tables.columns("tank_modes").index(column)].copy()
+
+    @property
+    def sloshing_periods(self):
+        """Periods of the sloshing modes 1..modes in a rigid tank [s] (mode 1: sloshing_period)."""
+        return self._modal("period [s]")
+
+    @property
+    def convective_masses(self):
+        """The modal (convective) masses of modes 1..modes [kg] (mode 1: convective_mass)."""
+        return self._modal("convective_mass [kg]")
+
+    @property
+    def convective_heights(self):
+        """Heights above the bottom of the modes' wall-pressure resultants [m]."""
+        return self._modal("convective_height [m]")
 
     @property
     def theta0(self):
@@ -148,20 +183,22 @@ class Tank:
         codes, status, message = _bridge.design_codes(self.array(), int(ground_motion is not None),
                                                       ground, samples)
         check_status(status, message)
-        return DesignCodes(codes.copy())
+        # the modal sums (the last two sources) only for a tank with modes > 1
+        return DesignCodes(codes[:, :None if self.modes > 1 else -2].copy())
 
 
 @dataclass(frozen=True)
 class DesignCodes:
-    """Rows: sloshdyn, API 650, EC8-4, ACI 350.3; columns: convective_period [s],
+    """Rows: sloshdyn, API 650, EC8-4, ACI 350.3 (and for a tank with modes > 1 sloshdyn's
+    sums over the modes, 'modes SRSS' and 'modes ABS'); columns: convective_period [s],
     convective_mass [kg], impulsive_mass [kg], convective_height [m], impulsive_height [m],
     wave_height [m] (NaN where a source gives none)."""
 
-    table: np.ndarray   #: (6, 4), the core's 'design_codes' layout
+    table: np.ndarray   #: (6, 4) or (6, 6), the core's 'design_codes' layout
 
     @property
     def sources(self):
-        return list(_tables.names("source")[0])
+        return list(_tables.names("source")[0])[:self.table.shape[1]]
 
     @property
     def columns(self):
@@ -178,7 +215,9 @@ class DesignCodes:
     def __str__(self):
         """The table the executable prints (the core writes it): values, and each code's
         difference from sloshdyn in %."""
-        text = _bridge.design_codes_text(self.table)
+        full = np.full((self.table.shape[0], len(_tables.names("source")[0])), np.nan)
+        full[:, :self.table.shape[1]] = self.table
+        text = _bridge.design_codes_text(full)
         return (text.decode() if isinstance(text, bytes) else str(text)).rstrip()
 
 

@@ -141,7 +141,8 @@ def test_tank_has_the_cores_defaults():
     tank = _tables.defaults("tank")
     for f in dataclasses.fields(Tank):
         if f.default is not dataclasses.MISSING:
-            assert f.default == tank[f.name], f.name
+            default = _tables.code("tank_shapes", f.default) if f.name == "shape" else f.default
+            assert default == tank[f.name], f.name
     model = Parameters(s1=1.5, mu1=0.5, kappa=2.0, theta0=0.5)
     defaults = {**_tables.defaults("model"), **_tables.defaults("model_integers")}
     for name in ("beta", "gamma", "delta", "zeta", "n", "p"):
@@ -344,7 +345,7 @@ def test_seismic_results_are_named_by_the_cores_tables():
     assert set(response.peaks) == {p[len("peak_"):] for p in peaks if p.startswith("peak_")}
     assert list(tank.properties) == [c.split(" [")[0] for c in _tables.columns("tank_si")]
     codes = tank.design_codes(ground)
-    assert codes.sources == list(_tables.names("source")[0])
+    assert codes.sources == list(_tables.names("source")[0])[:4]   # modal sums: modes > 1
     assert codes.columns == [c.split(" [")[0] for c in _tables.columns("design_codes")[1:]]
     assert codes.table.shape == (len(codes.columns), len(codes.sources))
 

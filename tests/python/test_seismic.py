@@ -339,7 +339,8 @@ def namelist(tank, ground_lines, analysis_lines):
     """A namelist for the tank (every field, full precision) with the given other groups."""
     fields = ", ".join(f"{name} = {value!r}" for name, value in
                        zip(tank.__dataclass_fields__, tank.array().tolist())
-                       if name not in ("n", "p")) + f", n = {tank.n}, p = {tank.p}"
+                       if name not in ("n", "p", "shape", "modes")) + \
+        f", n = {tank.n}, p = {tank.p}, shape = '{tank.shape}', modes = {tank.modes}"
     return (f"&tank {fields} /\n&ground_motion {ground_lines} /\n{analysis_lines}"
             "&integration rtol = 1e-11, atol = 1e-14 /\n&output directory = 'out' /\n")
 
