@@ -360,7 +360,9 @@ contains
           non_finite_trial = .false.
           cycle
         end if
-        fac = fac11/self%fac_old**self%opt%beta
+        fac = fac11
+        ! err_old**0 = 1: DOP853's default beta = 0 needs no pow call (a call per step)
+        if (self%opt%beta /= 0) fac = fac/self%fac_old**self%opt%beta
         fac = max(1/self%opt%fac2, min(1/self%opt%fac1, fac/self%opt%safety))
         h_new = h/fac
       end if
@@ -382,7 +384,7 @@ contains
       end if
 
       call self%store_dense(h)
-      self%y = self%y_new
+      self%y(:) = self%y_new
       self%t_old = self%t
       self%t = t_new
       self%h_done = h
