@@ -242,9 +242,7 @@ contains
                                  self%opt%rtol)
   end subroutine dop853_trial
 
-  !> The arithmetic of dop853_trial on explicit-shape arrays: contiguous and free of aliasing
-  !> by the rules of dummy arguments, so the n-element stage sums compile to plain loops (the
-  !> allocatable components of the integrator cost 2-3 times the instructions, callgrind).
+  !> The stages of dop853_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
   subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, slope, e3, e5, finite)
     class(ode_system), intent(in) :: sys
     integer, intent(in) :: n

@@ -322,9 +322,7 @@ contains
     if (finite) err = rms_error_norm(self%y_err, self%y, self%y_new, self%atol, self%opt%rtol)
   end subroutine vern9_trial
 
-  !> The arithmetic of vern9_trial on explicit-shape arrays: contiguous and free of aliasing
-  !> by the rules of dummy arguments, so the n-element stage sums compile to plain loops (the
-  !> allocatable components of the integrator cost 2-3 times the instructions, callgrind).
+  !> The stages of vern9_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
   subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, y_err, finite)
     class(ode_system), intent(in) :: sys
     integer, intent(in) :: n
