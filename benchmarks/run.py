@@ -695,11 +695,12 @@ class Bench:
         p = peers.fig14_parameters(A=0.00075)
         one = lambda: sloshdyn.stability_chart(p, (0.49, 0.53), (0.0, 0.002))  # noqa: E731
         two = lambda: sloshdyn.stability_chart(p, (0.49, 0.53), (0.0, 0.002), threads=2)  # noqa: E731
-        chart = one()
-        two()
-        reps = max(self.repeats, MIN_REPEATS_FAST)
+        if not self.quick:   # --quick: the first runs are timed (the smoke test stays short)
+            one()
+            two()
+        reps = self.repeats if self.quick else max(self.repeats, MIN_REPEATS_FAST)
         got = timed_interleaved({"1": one, "2": two}, reps)
-        (t1, _, ts1), (t2, _, ts2) = got["1"], got["2"]
+        (t1, chart, ts1), (t2, _, ts2) = got["1"], got["2"]
         r.table(["run", f"time (median of {reps})", "fastest / slowest", "speed-up"], [
             ["threads=1", fmt_t(t1), f"{fmt_t(min(ts1))} / {fmt_t(max(ts1))}", "1x"],
             ["threads=2", fmt_t(t2), f"{fmt_t(min(ts2))} / {fmt_t(max(ts2))}", fmt_x(t1 / t2)],
