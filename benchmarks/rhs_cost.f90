@@ -1,7 +1,8 @@
 !> Times the core's right-hand side alone (benchmarks/run.py compiles this against the meson
 !> build directory). Reads rpar, ipar (the bridge layout, sloshdyn_model) and the number of
 !> calls from stdin; prints the seconds per call of sloshdyn_motion's equations_of_motion
-!> (eq 15) and a checksum. The state drifts by 1e-9 dy/dtau per call so no evaluation can be reused.
+!> (eq 15) and a checksum. The state drifts by 1e-9 dy/dtau per call so no evaluation can be
+!> reused.
 program rhs_cost
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_model, only: model_t, model_from_arrays, n_real_params, n_int_params
