@@ -693,8 +693,10 @@ class Bench:
         r = self.report
         r.heading("Stability chart: stability_chart(p_fig12, (0.49, 0.53), (0.0, 0.002))")
         p = peers.fig14_parameters(A=0.00075)
-        one = lambda: sloshdyn.stability_chart(p, (0.49, 0.53), (0.0, 0.002))  # noqa: E731
-        two = lambda: sloshdyn.stability_chart(p, (0.49, 0.53), (0.0, 0.002), threads=2)  # noqa: E731
+        def on(threads):
+            return lambda: sloshdyn.stability_chart(p, (0.49, 0.53), (0.0, 0.002), threads=threads)
+
+        one, two = on(1), on(2)
         if not self.quick:   # --quick: the first runs are timed (the smoke test stays short)
             one()
             two()
