@@ -1,14 +1,15 @@
 !> Times the core's right-hand side alone (benchmarks/run.py compiles this against the meson
-!> build directory). Reads rpar(9), ipar(2) (the bridge layout) and the number of calls from
-!> stdin; prints the seconds per call of sloshdyn_motion's equations_of_motion (eq 15) and a
-!> checksum. The state drifts by 1e-9 dy/dtau per call so no evaluation can be reused.
+!> build directory). Reads rpar, ipar (the bridge layout, sloshdyn_model) and the number of
+!> calls from stdin; prints the seconds per call of sloshdyn_motion's equations_of_motion
+!> (eq 15) and a checksum. The state drifts by 1e-9 dy/dtau per call so no evaluation can be
+!> reused.
 program rhs_cost
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_model, only: model_t, model_from_arrays
+  use sloshdyn_model, only: model_t, model_from_arrays, n_real_params, n_int_params
   use sloshdyn_motion, only: equations_of_motion
   implicit none
-  real(wp) :: rpar(9), y(4), dydt(4), tau, acc
-  integer :: ipar(2), status, i, n
+  real(wp) :: rpar(n_real_params), y(4), dydt(4), tau, acc
+  integer :: ipar(n_int_params), status, i, n
   integer(8) :: c0, c1, rate
   character(len=message_len) :: message
   type(model_t) :: model

@@ -54,6 +54,7 @@ SLOSHDYN_METHODS = ("rk45", "dop853", "vern9", "auto")
 #: targets of the default path (issue 16), at equal accuracy (equal tolerance when saturated)
 DEFAULT_TARGETS = {"solve_ivp DOP853": 50.0, "numbalsoda dop853": 1.2}
 FIG12_TARGET = 0.030      # seconds
+CHART_TARGET = 0.5        # seconds, the default stability chart (issue 28)
 
 
 # --------------------------------------------------------------------------- output
@@ -65,8 +66,9 @@ def log(msg):
 class Report:
     """Headings, paragraphs and tables, printed as text as they come and kept for Markdown."""
 
-    def __init__(self):
+    def __init__(self, cpu):
         self.blocks = []
+        self.cpu = cpu   # the processor model, printed under every table with the load
 
     def heading(self, text):
         self.blocks.append(("h", text))
@@ -87,6 +89,7 @@ class Report:
         for r in rows:
             print("  ".join(c.rjust(w) if _numeric(c) else c.ljust(w) for c, w in zip(r, widths)))
         print(flush=True)
+        self.para(f"Machine: {self.cpu}; load average {os.getloadavg()[0]:.2f} after this table.")
 
     def markdown(self):
         out = []
@@ -210,18 +213,21 @@ def time_at_error(points, target):
 
 # --------------------------------------------------------------------------- sections
 
-def machine_info():
-    model = "?"
+def cpu_model():
+    """The processor model of /proc/cpuinfo ('?' where there is none)."""
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
             if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
+                return line.split(":", 1)[1].strip()
     except OSError:
         pass
+    return "?"
+
+
+def machine_info():
     import scipy
     return {
-        "cpu": model, "nproc": os.cpu_count(),
+        "cpu": cpu_model(), "nproc": os.cpu_count(),
         "date": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
         "python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
         "sloshdyn": getattr(sloshdyn, "__version__", "?"),
@@ -234,7 +240,7 @@ class Bench:
     def __init__(self, args):
         self.args = args
         self.quick = args.quick
-        self.report = Report()
+        self.report = Report(f"{cpu_model()}, {os.cpu_count()} cores")
         self.repeats = 1 if args.quick and args.repeats is None else (args.repeats or 3)
         if self.quick:
             self.tolerances = [1e-6, 1e-9]
@@ -680,6 +686,33 @@ class Bench:
         self.verdicts.append((f"Fig 12 branch <= {FIG12_TARGET * 1e3:.0f} ms", fmt_t(t),
                               t <= FIG12_TARGET, f"{t / FIG12_TARGET:.2f} of the budget"))
 
+    # ------------------------------------------------------------------ stability chart
+    def chart(self):
+        """The default stability chart of issue 28: stability_chart(FIG12, (0.49, 0.53),
+        (0.0, 0.002)) with threads = 1 and 2, interleaved."""
+        r = self.report
+        r.heading("Stability chart: stability_chart(p_fig12, (0.49, 0.53), (0.0, 0.002))")
+        p = peers.fig14_parameters(A=0.00075)
+        def on(threads):
+            return lambda: sloshdyn.stability_chart(p, (0.49, 0.53), (0.0, 0.002), threads=threads)
+
+        one, two = on(1), on(2)
+        if not self.quick:   # --quick: the first runs are timed (the smoke test stays short)
+            one()
+            two()
+        reps = self.repeats if self.quick else max(self.repeats, MIN_REPEATS_FAST)
+        got = timed_interleaved({"1": one, "2": two}, reps)
+        (t1, chart, ts1), (t2, _, ts2) = got["1"], got["2"]
+        r.table(["run", f"time (median of {reps})", "fastest / slowest", "speed-up"], [
+            ["threads=1", fmt_t(t1), f"{fmt_t(min(ts1))} / {fmt_t(max(ts1))}", "1x"],
+            ["threads=2", fmt_t(t2), f"{fmt_t(min(ts2))} / {fmt_t(max(ts2))}", fmt_x(t1 / t2)],
+        ])
+        r.para(f"{len(chart.curves)} curves, {len(chart.grid['rho'])} grid cells; target < "
+               f"{CHART_TARGET:g} s.")
+        t = min(t1, t2)
+        self.verdicts.append((f"default stability chart < {CHART_TARGET:g} s", fmt_t(t),
+                              t < CHART_TARGET, f"{t / CHART_TARGET:.2f} of the budget"))
+
     # ------------------------------------------------------------------ call overhead
     def call_overhead(self):
         r = self.report
@@ -822,6 +855,7 @@ def main(argv=None):
     b.rhs_cost()
     b.sweep()
     b.fig12()
+    b.chart()
     b.call_overhead()
     b.targets()
     total = time.perf_counter() - start

@@ -233,51 +233,59 @@ contains
     real(wp), intent(in) :: h, t_new
     real(wp), intent(out) :: err
     logical, intent(out) :: finite
-    real(wp) :: t
 
-    t = self%t
-    associate (y => self%y, k => self%k, ys => self%y_stage, yn => self%y_new, &
-               slope => self%slope)
-      ys = y + h*a21*k(:, 1)
-      call sys%rhs(t + c2*h, ys, k(:, 2))
-      ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
-      call sys%rhs(t + c3*h, ys, k(:, 3))
-      ys = y + h*(a41*k(:, 1) + a43*k(:, 3))
-      call sys%rhs(t + c4*h, ys, k(:, 4))
-      ys = y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4))
-      call sys%rhs(t + c5*h, ys, k(:, 5))
-      ys = y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5))
-      call sys%rhs(t + c6*h, ys, k(:, 6))
-      ys = y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
-      call sys%rhs(t + c7*h, ys, k(:, 7))
-      ys = y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) + a86*k(:, 6) + a87*k(:, 7))
-      call sys%rhs(t + c8*h, ys, k(:, 8))
-      ys = y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) + a96*k(:, 6) + a97*k(:, 7) + &
-                  a98*k(:, 8))
-      call sys%rhs(t + c9*h, ys, k(:, 9))
-      ys = y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) + a106*k(:, 6) + a107*k(:, 7) + &
-                  a108*k(:, 8) + a109*k(:, 9))
-      call sys%rhs(t + c10*h, ys, k(:, 10))
-      ys = y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) + a116*k(:, 6) + a117*k(:, 7) + &
-                  a118*k(:, 8) + a119*k(:, 9) + a1110*k(:, 10))
-      call sys%rhs(t + c11*h, ys, k(:, 11))
-      ys = y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) + a126*k(:, 6) + a127*k(:, 7) + &
-                  a128*k(:, 8) + a129*k(:, 9) + a1210*k(:, 10) + a1211*k(:, 11))
-      call sys%rhs(t_new, ys, k(:, 12))
-      slope = b1*k(:, 1) + b6*k(:, 6) + b7*k(:, 7) + b8*k(:, 8) + b9*k(:, 9) + &
-              b10*k(:, 10) + b11*k(:, 11) + b12*k(:, 12)
-      yn = y + h*slope
-      self%e3 = slope - bhh1*k(:, 1) - bhh2*k(:, 9) - bhh3*k(:, 12)
-      self%e5 = er1*k(:, 1) + er6*k(:, 6) + er7*k(:, 7) + er8*k(:, 8) + er9*k(:, 9) + &
-                 er10*k(:, 10) + er11*k(:, 11) + er12*k(:, 12)
-      finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(self%e3)) .and. &
-               all(ieee_is_finite(self%e5))
-    end associate
+    call trial_stages(sys, size(self%y), self%t, h, t_new, self%y, self%k, self%y_stage, &
+                      self%y_new, self%slope, self%e3, self%e5, finite)
     self%n_rhs = self%n_rhs + 11
     err = 0
     if (finite) err = error_norm(self%e5, self%e3, h, self%y, self%y_new, self%atol, &
                                  self%opt%rtol)
   end subroutine dop853_trial
+
+  !> The stages of dop853_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
+  subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, slope, e3, e5, finite)
+    class(ode_system), intent(in) :: sys
+    integer, intent(in) :: n
+    real(wp), intent(in) :: t, h, t_new, y(n)
+    real(wp), intent(inout) :: k(n, 12)
+    real(wp), intent(out) :: ys(n), yn(n), slope(n), e3(n), e5(n)
+    logical, intent(out) :: finite
+
+    ys = y + h*a21*k(:, 1)
+    call sys%rhs(t + c2*h, ys, k(:, 2))
+    ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
+    call sys%rhs(t + c3*h, ys, k(:, 3))
+    ys = y + h*(a41*k(:, 1) + a43*k(:, 3))
+    call sys%rhs(t + c4*h, ys, k(:, 4))
+    ys = y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4))
+    call sys%rhs(t + c5*h, ys, k(:, 5))
+    ys = y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5))
+    call sys%rhs(t + c6*h, ys, k(:, 6))
+    ys = y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
+    call sys%rhs(t + c7*h, ys, k(:, 7))
+    ys = y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) + a86*k(:, 6) + a87*k(:, 7))
+    call sys%rhs(t + c8*h, ys, k(:, 8))
+    ys = y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) + a96*k(:, 6) + a97*k(:, 7) + &
+                a98*k(:, 8))
+    call sys%rhs(t + c9*h, ys, k(:, 9))
+    ys = y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) + a106*k(:, 6) + a107*k(:, 7) + &
+                a108*k(:, 8) + a109*k(:, 9))
+    call sys%rhs(t + c10*h, ys, k(:, 10))
+    ys = y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) + a116*k(:, 6) + a117*k(:, 7) + &
+                a118*k(:, 8) + a119*k(:, 9) + a1110*k(:, 10))
+    call sys%rhs(t + c11*h, ys, k(:, 11))
+    ys = y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) + a126*k(:, 6) + a127*k(:, 7) + &
+                a128*k(:, 8) + a129*k(:, 9) + a1210*k(:, 10) + a1211*k(:, 11))
+    call sys%rhs(t_new, ys, k(:, 12))
+    slope = b1*k(:, 1) + b6*k(:, 6) + b7*k(:, 7) + b8*k(:, 8) + b9*k(:, 9) + &
+            b10*k(:, 10) + b11*k(:, 11) + b12*k(:, 12)
+    yn = y + h*slope
+    e3 = slope - bhh1*k(:, 1) - bhh2*k(:, 9) - bhh3*k(:, 12)
+    e5 = er1*k(:, 1) + er6*k(:, 6) + er7*k(:, 7) + er8*k(:, 8) + er9*k(:, 9) + &
+         er10*k(:, 10) + er11*k(:, 11) + er12*k(:, 12)
+    finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(e3)) .and. &
+             all(ieee_is_finite(e5))
+  end subroutine trial_stages
 
   !> For a trial step that passed: k13 = f(t_new, y_new) (the next step's k1), then, with dense
   !> output, the 3 extra stages k14..k16 (DP86CO's loops 51-53). finite = .false. when any of

@@ -70,31 +70,40 @@ contains
     real(wp), intent(in) :: h, t_new
     real(wp), intent(out) :: err
     logical, intent(out) :: finite
-    real(wp) :: t
 
-    t = self%t
-    associate (y => self%y, k => self%k, ys => self%y_stage, yn => self%y_new)
-      ys = y + h*a21*k(:, 1)
-      call sys%rhs(t + c2*h, ys, k(:, 2))
-      ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
-      call sys%rhs(t + c3*h, ys, k(:, 3))
-      ys = y + h*(a41*k(:, 1) + a42*k(:, 2) + a43*k(:, 3))
-      call sys%rhs(t + c4*h, ys, k(:, 4))
-      ys = y + h*(a51*k(:, 1) + a52*k(:, 2) + a53*k(:, 3) + a54*k(:, 4))
-      call sys%rhs(t + c5*h, ys, k(:, 5))
-      ys = y + h*(a61*k(:, 1) + a62*k(:, 2) + a63*k(:, 3) + a64*k(:, 4) + a65*k(:, 5))
-      call sys%rhs(t_new, ys, k(:, 6))
-      yn = y + h*(a71*k(:, 1) + a73*k(:, 3) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
-      call sys%rhs(t_new, yn, k(:, 7))
-      self%y_err = h*(e1*k(:, 1) + e3*k(:, 3) + e4*k(:, 4) + e5*k(:, 5) + e6*k(:, 6) + &
-                      e7*k(:, 7))
-      finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(k(:, 7))) .and. &
-               all(ieee_is_finite(self%y_err))
-    end associate
+    call trial_stages(sys, size(self%y), self%t, h, t_new, self%y, self%k, self%y_stage, &
+                      self%y_new, self%y_err, finite)
     self%n_rhs = self%n_rhs + 6
     err = 0
     if (finite) err = rms_error_norm(self%y_err, self%y, self%y_new, self%atol, self%opt%rtol)
   end subroutine dopri5_trial
+
+  !> The stages of dopri5_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
+  subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, y_err, finite)
+    class(ode_system), intent(in) :: sys
+    integer, intent(in) :: n
+    real(wp), intent(in) :: t, h, t_new, y(n)
+    real(wp), intent(inout) :: k(n, 7)
+    real(wp), intent(out) :: ys(n), yn(n), y_err(n)
+    logical, intent(out) :: finite
+
+    ys = y + h*a21*k(:, 1)
+    call sys%rhs(t + c2*h, ys, k(:, 2))
+    ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
+    call sys%rhs(t + c3*h, ys, k(:, 3))
+    ys = y + h*(a41*k(:, 1) + a42*k(:, 2) + a43*k(:, 3))
+    call sys%rhs(t + c4*h, ys, k(:, 4))
+    ys = y + h*(a51*k(:, 1) + a52*k(:, 2) + a53*k(:, 3) + a54*k(:, 4))
+    call sys%rhs(t + c5*h, ys, k(:, 5))
+    ys = y + h*(a61*k(:, 1) + a62*k(:, 2) + a63*k(:, 3) + a64*k(:, 4) + a65*k(:, 5))
+    call sys%rhs(t_new, ys, k(:, 6))
+    yn = y + h*(a71*k(:, 1) + a73*k(:, 3) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
+    call sys%rhs(t_new, yn, k(:, 7))
+    y_err = h*(e1*k(:, 1) + e3*k(:, 3) + e4*k(:, 4) + e5*k(:, 5) + e6*k(:, 6) + &
+               e7*k(:, 7))
+    finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(k(:, 7))) .and. &
+             all(ieee_is_finite(y_err))
+  end subroutine trial_stages
 
   !> Nothing more to evaluate: k7 is part of the trial step.
   subroutine dopri5_finish(self, sys, h, t_new, finite)

@@ -314,61 +314,70 @@ contains
     real(wp), intent(in) :: h, t_new
     real(wp), intent(out) :: err
     logical, intent(out) :: finite
-    real(wp) :: t
 
-    t = self%t
-    associate (y => self%y, k => self%k, ys => self%y_stage, yn => self%y_new)
-      ys = y + h*(a2_1*k(:, 1))
-      call sys%rhs(t + c2*h, ys, k(:, 2))
-      ys = y + h*(a3_1*k(:, 1) + a3_2*k(:, 2))
-      call sys%rhs(t + c3*h, ys, k(:, 3))
-      ys = y + h*(a4_1*k(:, 1) + a4_3*k(:, 3))
-      call sys%rhs(t + c4*h, ys, k(:, 4))
-      ys = y + h*(a5_1*k(:, 1) + a5_3*k(:, 3) + a5_4*k(:, 4))
-      call sys%rhs(t + c5*h, ys, k(:, 5))
-      ys = y + h*(a6_1*k(:, 1) + a6_4*k(:, 4) + a6_5*k(:, 5))
-      call sys%rhs(t + c6*h, ys, k(:, 6))
-      ys = y + h*(a7_1*k(:, 1) + a7_4*k(:, 4) + a7_5*k(:, 5) + a7_6*k(:, 6))
-      call sys%rhs(t + c7*h, ys, k(:, 7))
-      ys = y + h*(a8_1*k(:, 1) + a8_6*k(:, 6) + a8_7*k(:, 7))
-      call sys%rhs(t + c8*h, ys, k(:, 8))
-      ys = y + h*(a9_1*k(:, 1) + a9_6*k(:, 6) + a9_7*k(:, 7) + a9_8*k(:, 8))
-      call sys%rhs(t + c9*h, ys, k(:, 9))
-      ys = y + h*(a10_1*k(:, 1) + a10_6*k(:, 6) + a10_7*k(:, 7) + a10_8*k(:, 8) + &
-                  a10_9*k(:, 9))
-      call sys%rhs(t + c10*h, ys, k(:, 10))
-      ys = y + h*(a11_1*k(:, 1) + a11_6*k(:, 6) + a11_7*k(:, 7) + a11_8*k(:, 8) + &
-                  a11_9*k(:, 9) + a11_10*k(:, 10))
-      call sys%rhs(t + c11*h, ys, k(:, 11))
-      ys = y + h*(a12_1*k(:, 1) + a12_6*k(:, 6) + a12_7*k(:, 7) + a12_8*k(:, 8) + &
-                  a12_9*k(:, 9) + a12_10*k(:, 10) + a12_11*k(:, 11))
-      call sys%rhs(t + c12*h, ys, k(:, 12))
-      ys = y + h*(a13_1*k(:, 1) + a13_6*k(:, 6) + a13_7*k(:, 7) + a13_8*k(:, 8) + &
-                  a13_9*k(:, 9) + a13_10*k(:, 10) + a13_11*k(:, 11) + a13_12*k(:, 12))
-      call sys%rhs(t + c13*h, ys, k(:, 13))
-      ys = y + h*(a14_1*k(:, 1) + a14_6*k(:, 6) + a14_7*k(:, 7) + a14_8*k(:, 8) + &
-                  a14_9*k(:, 9) + a14_10*k(:, 10) + a14_11*k(:, 11) + a14_12*k(:, 12) + &
-                  a14_13*k(:, 13))
-      call sys%rhs(t + c14*h, ys, k(:, 14))
-      ys = y + h*(a15_1*k(:, 1) + a15_6*k(:, 6) + a15_7*k(:, 7) + a15_8*k(:, 8) + &
-                  a15_9*k(:, 9) + a15_10*k(:, 10) + a15_11*k(:, 11) + a15_12*k(:, 12) + &
-                  a15_13*k(:, 13) + a15_14*k(:, 14))
-      call sys%rhs(t_new, ys, k(:, 15))
-      ys = y + h*(a16_1*k(:, 1) + a16_6*k(:, 6) + a16_7*k(:, 7) + a16_8*k(:, 8) + &
-                  a16_9*k(:, 9) + a16_10*k(:, 10) + a16_11*k(:, 11) + a16_12*k(:, 12) + &
-                  a16_13*k(:, 13))
-      call sys%rhs(t_new, ys, k(:, 16))
-      yn = y + h*(b1*k(:, 1) + b8*k(:, 8) + b9*k(:, 9) + b10*k(:, 10) + b11*k(:, 11) + &
-                  b12*k(:, 12) + b13*k(:, 13) + b14*k(:, 14) + b15*k(:, 15))
-      self%y_err = h*(d1*k(:, 1) + d8*k(:, 8) + d9*k(:, 9) + d10*k(:, 10) + d11*k(:, 11) + &
-                  d12*k(:, 12) + d13*k(:, 13) + d14*k(:, 14) + d15*k(:, 15) + &
-                  d16*k(:, 16))
-      finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(self%y_err))
-    end associate
+    call trial_stages(sys, size(self%y), self%t, h, t_new, self%y, self%k, self%y_stage, &
+                      self%y_new, self%y_err, finite)
     self%n_rhs = self%n_rhs + 15
     err = 0
     if (finite) err = rms_error_norm(self%y_err, self%y, self%y_new, self%atol, self%opt%rtol)
   end subroutine vern9_trial
+
+  !> The stages of vern9_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
+  subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, y_err, finite)
+    class(ode_system), intent(in) :: sys
+    integer, intent(in) :: n
+    real(wp), intent(in) :: t, h, t_new, y(n)
+    real(wp), intent(inout) :: k(n, 16)
+    real(wp), intent(out) :: ys(n), yn(n), y_err(n)
+    logical, intent(out) :: finite
+
+    ys = y + h*(a2_1*k(:, 1))
+    call sys%rhs(t + c2*h, ys, k(:, 2))
+    ys = y + h*(a3_1*k(:, 1) + a3_2*k(:, 2))
+    call sys%rhs(t + c3*h, ys, k(:, 3))
+    ys = y + h*(a4_1*k(:, 1) + a4_3*k(:, 3))
+    call sys%rhs(t + c4*h, ys, k(:, 4))
+    ys = y + h*(a5_1*k(:, 1) + a5_3*k(:, 3) + a5_4*k(:, 4))
+    call sys%rhs(t + c5*h, ys, k(:, 5))
+    ys = y + h*(a6_1*k(:, 1) + a6_4*k(:, 4) + a6_5*k(:, 5))
+    call sys%rhs(t + c6*h, ys, k(:, 6))
+    ys = y + h*(a7_1*k(:, 1) + a7_4*k(:, 4) + a7_5*k(:, 5) + a7_6*k(:, 6))
+    call sys%rhs(t + c7*h, ys, k(:, 7))
+    ys = y + h*(a8_1*k(:, 1) + a8_6*k(:, 6) + a8_7*k(:, 7))
+    call sys%rhs(t + c8*h, ys, k(:, 8))
+    ys = y + h*(a9_1*k(:, 1) + a9_6*k(:, 6) + a9_7*k(:, 7) + a9_8*k(:, 8))
+    call sys%rhs(t + c9*h, ys, k(:, 9))
+    ys = y + h*(a10_1*k(:, 1) + a10_6*k(:, 6) + a10_7*k(:, 7) + a10_8*k(:, 8) + &
+                a10_9*k(:, 9))
+    call sys%rhs(t + c10*h, ys, k(:, 10))
+    ys = y + h*(a11_1*k(:, 1) + a11_6*k(:, 6) + a11_7*k(:, 7) + a11_8*k(:, 8) + &
+                a11_9*k(:, 9) + a11_10*k(:, 10))
+    call sys%rhs(t + c11*h, ys, k(:, 11))
+    ys = y + h*(a12_1*k(:, 1) + a12_6*k(:, 6) + a12_7*k(:, 7) + a12_8*k(:, 8) + &
+                a12_9*k(:, 9) + a12_10*k(:, 10) + a12_11*k(:, 11))
+    call sys%rhs(t + c12*h, ys, k(:, 12))
+    ys = y + h*(a13_1*k(:, 1) + a13_6*k(:, 6) + a13_7*k(:, 7) + a13_8*k(:, 8) + &
+                a13_9*k(:, 9) + a13_10*k(:, 10) + a13_11*k(:, 11) + a13_12*k(:, 12))
+    call sys%rhs(t + c13*h, ys, k(:, 13))
+    ys = y + h*(a14_1*k(:, 1) + a14_6*k(:, 6) + a14_7*k(:, 7) + a14_8*k(:, 8) + &
+                a14_9*k(:, 9) + a14_10*k(:, 10) + a14_11*k(:, 11) + a14_12*k(:, 12) + &
+                a14_13*k(:, 13))
+    call sys%rhs(t + c14*h, ys, k(:, 14))
+    ys = y + h*(a15_1*k(:, 1) + a15_6*k(:, 6) + a15_7*k(:, 7) + a15_8*k(:, 8) + &
+                a15_9*k(:, 9) + a15_10*k(:, 10) + a15_11*k(:, 11) + a15_12*k(:, 12) + &
+                a15_13*k(:, 13) + a15_14*k(:, 14))
+    call sys%rhs(t_new, ys, k(:, 15))
+    ys = y + h*(a16_1*k(:, 1) + a16_6*k(:, 6) + a16_7*k(:, 7) + a16_8*k(:, 8) + &
+                a16_9*k(:, 9) + a16_10*k(:, 10) + a16_11*k(:, 11) + a16_12*k(:, 12) + &
+                a16_13*k(:, 13))
+    call sys%rhs(t_new, ys, k(:, 16))
+    yn = y + h*(b1*k(:, 1) + b8*k(:, 8) + b9*k(:, 9) + b10*k(:, 10) + b11*k(:, 11) + &
+                b12*k(:, 12) + b13*k(:, 13) + b14*k(:, 14) + b15*k(:, 15))
+    y_err = h*(d1*k(:, 1) + d8*k(:, 8) + d9*k(:, 9) + d10*k(:, 10) + d11*k(:, 11) + &
+               d12*k(:, 12) + d13*k(:, 13) + d14*k(:, 14) + d15*k(:, 15) + &
+               d16*k(:, 16))
+    finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(y_err))
+  end subroutine trial_stages
 
   !> For a trial step that passed: k17 = f(t_new, y_new) (the next step's k1), then, with dense
   !> output, the 4 extra stages k18..k21 of the interpolant.

@@ -40,6 +40,23 @@ def test_equations_of_motion_match_eq10(fig12, y):
     assert np.allclose(motion.jacobian, fd, rtol=1e-7, atol=1e-7)
 
 
+@pytest.mark.parametrize("n, p_exp", [(1, 0), (2, 1), (6, 2), (13, 5), (50, 50)])
+def test_equations_of_motion_match_eq10_at_random_states(fig12, n, p_exp):
+    """The core's right-hand side (angle addition for theta0 (x1 + x2), integer powers by
+    binary powering, the 2x2 inertia system in closed form) against eq (10) written out and
+    solved with numpy, to 1e-14 of the largest component, at random states up to and beyond
+    the wall |x1| = 1, where the impact term x1^(2n-1) dominates."""
+    rng = np.random.default_rng(28)
+    p = fig12.replace(n=n, p=p_exp, A=0.02, gamma=0.01, zeta=0.0)
+    for _ in range(40):
+        x1 = rng.choice([-1, 1]) * rng.uniform(0.9, 1.08) if rng.random() < 0.5 else rng.uniform(-1, 1)
+        y = (x1, rng.uniform(-2, 2), rng.uniform(-1.5, 1.5), rng.uniform(-2, 2))
+        tau = rng.uniform(0, 1000)
+        ref = eq10_numpy(p, tau, y)
+        dydt = sloshdyn.equations_of_motion(p, tau, y).dydt
+        assert np.allclose(dydt, ref, rtol=1e-14, atol=1e-14 * np.max(np.abs(ref))), (y, dydt, ref)
+
+
 def omegas_eq28(s1, mu1, kappa):
     """Eq (28) as printed."""
     alpha = (1 - s1 + kappa) / (2 * (1 - mu1))
