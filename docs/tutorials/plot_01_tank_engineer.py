@@ -55,7 +55,7 @@ quake = quake.scaled(sa=0.2, period=tank.sloshing_period, damping=0.005, units="
 print(quake)
 periods = np.geomspace(0.05, 8.0, 60)
 spectrum = quake.response_spectrum(periods, damping=0.005)
-fig = sloshdyn.plotting.response_spectrum(spectrum, marks=[tank.sloshing_period])
+sloshdyn.plotting.response_spectrum(spectrum, marks=[tank.sloshing_period])
 
 # %%
 # The response to the record
