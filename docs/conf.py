@@ -8,7 +8,13 @@ gallery) and docs/tutorials/ (the two tutorials) are run by sphinx-gallery at bu
 shown with their figures.
 """
 
+import os
+import re
 from pathlib import Path
+
+from docutils import nodes
+from sphinx import addnodes
+from sphinx.transforms import SphinxTransform
 
 import sloshdyn
 
@@ -64,3 +70,59 @@ sphinx_gallery_conf = {
 html_theme = "furo"
 html_title = f"sloshdyn {version}"
 html_static_path = []
+
+
+# ---- two adaptations of plain-text sources to reStructuredText and the site ------------------
+
+_ABSOLUTE_VALUE = re.compile(r"(?<![\w\\|`])\|([^\s|`][^|`\n]*?)\|(?![\w|`])")
+
+
+def absolute_values(app, what, name, obj, options, lines):
+    """The docstrings write absolute values as |u1|, which reStructuredText reads as a
+    substitution reference: escape the bars (outside ``literals``), so they print as written."""
+    for k, line in enumerate(lines):
+        parts = line.split("``")
+        parts[::2] = [_ABSOLUTE_VALUE.sub(r"\\|\1\\|", part) for part in parts[::2]]
+        lines[k] = "``".join(parts)
+
+
+class RepositoryLinks(SphinxTransform):
+    """The Markdown pages link to the repository's folders and files outside docs/
+    (../fortran/bridge, ../benchmarks/README.md), which are no pages of the site: a file becomes
+    a download of that file, a folder its path in the repository as literal text."""
+
+    default_priority = 5
+
+    def apply(self, **kwargs):
+        docs = Path(self.env.srcdir).resolve()
+        here = (docs / self.env.docname).parent
+        for node in list(self.document.findall(addnodes.pending_xref)):
+            if node.get("reftype") != "myst":
+                continue
+            target = node["reftarget"].split("#")[0]
+            if not target:
+                continue
+            if node.get("refdomain") == "doc":      # a .md outside docs/: named as a document
+                if target in self.env.found_docs:
+                    continue
+                found = [p for p in (docs / (target + s) for s in source_suffix) if p.is_file()]
+                path = found[0].resolve() if found else docs / target
+            else:
+                path = (here / target).resolve()
+            if path.is_relative_to(docs) or not path.is_relative_to(ROOT):
+                continue
+            if path.is_file():
+                new = addnodes.download_reference(refdoc=node["refdoc"], reftype="myst",
+                                                  refexplicit=True,
+                                                  reftarget=os.path.relpath(path, here))
+                new += node.children
+            elif path.is_dir():
+                new = nodes.literal(text=f"{path.relative_to(ROOT)}/")
+            else:
+                continue
+            node.replace_self(new)
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", absolute_values)
+    app.add_transform(RepositoryLinks)

@@ -10,17 +10,17 @@ computed by the core (the exact piecewise-linear recurrence of an oscillator und
 record).
 """
 
-# sphinx_gallery_start_ignore
-import os
-
-os.chdir("../..")   # the site build runs each script in its folder; these run from the top
-# sphinx_gallery_end_ignore
+import sys
+from pathlib import Path
 
 import numpy as np
 
 import sloshdyn
 
-quake = sloshdyn.GroundMotion.from_file("data/examples/records/synthetic_kt.AT2")   # in g
+# the repository's example inputs, found from this script's place (docs/...)
+DATA = Path(sys.argv[0]).resolve().parents[2] / "data" / "examples"
+
+quake = sloshdyn.GroundMotion.from_file(DATA / "records" / "synthetic_kt.AT2")   # in g
 periods = np.geomspace(0.05, 10.0, 80)                                             # [s]
 tanks = [sloshdyn.Tank(radius=R, liquid_depth=6.0, freeboard=1.0, liquid_density=1000,
                        tank_mass=5e4, support_frequency=2.0, support_damping=0.02)

@@ -9,15 +9,15 @@ data/examples/tank_seismic.nml``. Drawn: the ground acceleration, the wave heigh
 with the roof, the base shear and the overturning moment, in SI units.
 """
 
-# sphinx_gallery_start_ignore
-import os
-
-os.chdir("../..")   # the site build runs each script in its folder; these run from the top
-# sphinx_gallery_end_ignore
+import sys
+from pathlib import Path
 
 import sloshdyn
 
-inp = sloshdyn.read_namelist("data/examples/tank_seismic.nml")
+# the repository's example inputs, found from this script's place (docs/...)
+DATA = Path(sys.argv[0]).resolve().parents[2] / "data" / "examples"
+
+inp = sloshdyn.read_namelist(DATA / "tank_seismic.nml")
 print(inp.tank)
 print(inp.ground_motion)
 r = sloshdyn.seismic_response(inp.tank, inp.ground_motion)

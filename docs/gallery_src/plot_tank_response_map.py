@@ -5,7 +5,7 @@ A tank's response map under harmonic shaking
 The steady wave of a tank under harmonic ground motion on a grid of frequency [Hz] and peak
 ground acceleration [g]: each point the steady state from rest of
 ``tank.parameters(GroundMotion.harmonic(a, f))``, computed on Dask (two threads here) and
-returned as an xarray Dataset with units in its attributes. Where max |x1| reaches 1 the
+returned as an xarray Dataset with units in its attributes. Where ``max |x1|`` reaches 1 the
 pendulum reaches θ0: the liquid hits the roof.
 """
 

@@ -9,15 +9,9 @@ codes give, and how likely is a roof impact as the shaking grows. Everything is 
 the relations (tank to pendulum, loads back to SI) are in :doc:`../model`, the same objects as
 namelist groups (``&tank``, ``&ground_motion``, ``kind = 'seismic'``) in :doc:`../namelist`.
 
-The script runs from the repository's top folder (``python docs/tutorials/plot_01_tank_engineer.py``)
-and needs the ``plot`` and ``studies`` extras.
+The script runs as it is (``python docs/tutorials/plot_01_tank_engineer.py``) and needs the
+``plot`` and ``studies`` extras.
 """
-
-# sphinx_gallery_start_ignore
-import os
-
-os.chdir("../..")   # the site build runs each script in its folder; these run from the top
-# sphinx_gallery_end_ignore
 
 # %%
 # The tank
@@ -28,9 +22,15 @@ os.chdir("../..")   # the site build runs each script in its folder; these run f
 # of the first sloshing mode (Abramson's parameters, eq (2)-(3) of the paper) and the
 # convective and impulsive masses the codes use.
 
+import sys
+from pathlib import Path
+
 import numpy as np
 
 import sloshdyn
+
+# the repository's example inputs, found from this script's place (docs/...)
+DATA = Path(sys.argv[0]).resolve().parents[2] / "data" / "examples"
 
 tank = sloshdyn.Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000,
                      tank_mass=5e4, support_frequency=2.0, support_damping=0.02)
@@ -50,7 +50,7 @@ print(f"wall angle theta0 {tank.theta0:.3f} rad (where the pendulum meets the ro
 # so that is where the spectrum matters; here the record is scaled so that its
 # pseudo-spectral acceleration at the sloshing period is 0.2 g.
 
-quake = sloshdyn.GroundMotion.from_file("data/examples/records/synthetic_kt.AT2")
+quake = sloshdyn.GroundMotion.from_file(DATA / "records" / "synthetic_kt.AT2")
 quake = quake.scaled(sa=0.2, period=tank.sloshing_period, damping=0.005, units="g")
 print(quake)
 periods = np.geomspace(0.05, 8.0, 60)

@@ -10,8 +10,8 @@ are the paper's dimensionless ones: time τ = ωt, forcing frequency ρ = Ω/ω,
 coordinates x1 = θ/θ0 (the pendulum, 1 at the wall) and x2 (the tank), modal coordinates u1,
 u2 (:doc:`../model` has every definition and equation).
 
-The script runs from the repository's top folder (``python docs/tutorials/plot_02_researcher.py``)
-and needs the ``plot`` and ``studies`` extras.
+The script runs as it is (``python docs/tutorials/plot_02_researcher.py``) and needs the
+``plot`` and ``studies`` extras.
 """
 
 # %%
@@ -69,7 +69,7 @@ fig = sloshdyn.plotting.stability_chart(chart)
 # Between the two Hopf points the slow flow has no stable steady state: it settles on a limit
 # cycle, a periodic modulation of the sloshing amplitude (the beats of Fig 14). The cycle is
 # found by shooting on the slow flow and continued in ρ from one Hopf point to the other; the
-# bands show min..max of |B1| and |B2| over each cycle, the lowest panel its period in forcing
+# bands show min..max of ``|B1|`` and ``|B2|`` over each cycle, the lowest panel its period in forcing
 # periods.
 
 cycles = sloshdyn.slow_flow_cycles(p.replace(rho=0.509615), (0.49, 0.53))
