@@ -20,6 +20,9 @@ import sloshdyn
 
 ROOT = Path(__file__).resolve().parent.parent   # the repository
 
+# the studies of the gallery run Dask in this process: its scheduler's INFO lines are no output
+os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "warning")
+
 project = "sloshdyn"
 author = "the sloshdyn developers"
 copyright = "the sloshdyn developers, MIT licence"
