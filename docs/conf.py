@@ -89,7 +89,7 @@ def absolute_values(app, what, name, obj, options, lines):
 
 
 class RepositoryLinks(SphinxTransform):
-    """The Markdown pages link to the repository's folders and files outside docs/
+    """The Markdown pages link to the repository's folders and to files outside docs/
     (../fortran/bridge, ../benchmarks/README.md), which are no pages of the site: a file becomes
     a download of that file, a folder its path in the repository as literal text."""
 
@@ -111,7 +111,7 @@ class RepositoryLinks(SphinxTransform):
                 path = found[0].resolve() if found else docs / target
             else:
                 path = (here / target).resolve()
-            if path.is_relative_to(docs) or not path.is_relative_to(ROOT):
+            if not path.is_relative_to(ROOT) or (path.is_relative_to(docs) and not path.is_dir()):
                 continue
             if path.is_file():
                 new = addnodes.download_reference(refdoc=node["refdoc"], reftype="myst",
