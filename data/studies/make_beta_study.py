@@ -25,8 +25,9 @@ OUT = HERE / "beta_study.csv"
 
 
 def records():
-    """Four records (dt = 0.01 s): the example noise record, a burst at the sloshing
-    frequency, a chirp through it, a decaying pulse train (as tests/python/test_roof_and_peaks)."""
+    """Four records (dt = 0.01 s, m/s^2): the example noise record, a burst at the sloshing
+    frequency, a chirp through it, a decaying pulse train (tests/python/test_roof_and_peaks
+    uses them too)."""
     f = 1 / sloshdyn.Tank(**TANK).sloshing_period
     t = np.arange(0, 25, 0.01)
     kt = sloshdyn.GroundMotion.from_file(HERE.parent / "examples" / "records" / "synthetic_kt.AT2")
@@ -37,13 +38,15 @@ def records():
             "pulses": np.sin(2 * np.pi * 2.5 * f * t) * np.exp(-t / 5)}
 
 
-def scaled(acceleration):
+def scaled(acceleration, ratio=RATIO):
+    """The record scaled so that the free wave's height is `ratio` x the freeboard (the free
+    wave is nearly linear in the scale; one correction step), and the scale."""
     scale = 1.0
     for _ in range(2):
         ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
                                        units="m/s^2")
         run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
-        scale *= RATIO * TANK["freeboard"] / run.peak_table["free_wave_height"]
+        scale *= ratio * TANK["freeboard"] / run.peak_table["free_wave_height"]
     return sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
                                  units="m/s^2"), scale
 

@@ -5,7 +5,7 @@
 !> told apart by their orbits. Every point is computed exactly as steady_state computes it
 !> alone, so a study equals a serial loop of steady states, bit for bit. No global state.
 !>
-!> Layout of orbit(ORBIT_ROWS, n), per point:
+!> Layout of orbit(ORBIT_ROWS, n), per point (the table 'study_orbit' of sloshdyn_tables):
 !>   [found (1/0), periods k, attempts, y1..y4 (the orbit's state at forcing phase 0),
 !>    re_mu1..re_mu4, im_mu1..im_mu4 (Floquet multipliers), max|mu|]
 !> found = 1 when the steady state jumped to the orbit by shooting, 2 when it was reached by
@@ -102,14 +102,9 @@ contains
                           y_end(:, i), stats, info, text, found)
       end if
       if (info /= SD_OK) then
-        summaries(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
-        y_end(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
-        point_status(i) = info
-        if (status == SD_OK) then
-          status = info
-          message = 'point '//num2str(i)//' (rho = '//num2str(rho(i))//', A = '// &
-                    num2str(A(i))//'): '//trim(text)
-        end if
+        call point_failed(i, info, 'point '//num2str(i)//' (rho = '//num2str(rho(i))// &
+                          ', A = '//num2str(A(i))//'): '//trim(text), summaries, y_end, &
+                          point_status, status, message)
         if (carry) then
           point_status(i:) = info
           return
@@ -120,6 +115,23 @@ contains
       if (carry) start = y_end(:, i)
     end do
   end subroutine steady_path
+
+  !> Point i failed with status info: its summaries and final state are NaN, and the first
+  !> failure gives the status and the message (what: the point and the reason).
+  pure subroutine point_failed(i, info, what, summaries, y_end, point_status, status, message)
+    integer, intent(in) :: i, info
+    character(len=*), intent(in) :: what
+    real(wp), intent(inout) :: summaries(:, :), y_end(:, :)
+    integer, intent(inout) :: point_status(:), status
+    character(len=message_len), intent(inout) :: message
+    summaries(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
+    y_end(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
+    point_status(i) = info
+    if (status == SD_OK) then
+      status = info
+      message = what
+    end if
+  end subroutine point_failed
 
   !> The orbit layout of a steady_orbit (found = 1), or NaN with found = 0; kind overrides the
   !> found code when > 0.
@@ -190,13 +202,8 @@ contains
       call steady_state(point, y0(:, i), options, method, steady, summaries(:, i), poincare, &
                         y_end(:, i), stats, info, text, found)
       if (info /= SD_OK) then
-        summaries(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
-        y_end(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
-        point_status(i) = info
-        if (status == SD_OK) then
-          status = info
-          message = 'initial state '//num2str(i)//': '//trim(text)
-        end if
+        call point_failed(i, info, 'initial state '//num2str(i)//': '//trim(text), summaries, &
+                          y_end, point_status, status, message)
         cycle
       end if
       orbit(:, i) = orbit_row(found, 0)

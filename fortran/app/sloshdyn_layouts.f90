@@ -1,116 +1,210 @@
 !> The named layouts of the flat arrays that cross the f2py bridge, both ways: each layout is a
-!> list of field names (layout_fields, here) in the order of the array, and its size is the
-!> list's length; result tables have theirs in sloshdyn_tables, the model's rpar, ipar in
+!> list of fields (name, kind, what it is) in the order of the array, and its size is the list's
+!> length; result tables have theirs in sloshdyn_tables, the model's rpar, ipar in
 !> sloshdyn_model (real_param_names; 'model_integers' = [n, p]). Python asks the bridge for the
-!> names (names('layout:NAME')) and builds and decodes every array by name, so a new field is a
-!> change here (its name, its place in the to_*/from_* conversion) and in the Python class that
-!> carries it. The to_*/from_* functions below list the fields in the same order.
+!> names, kinds, docs and defaults (names('layout:NAME'), 'kinds:NAME', 'docs:NAME',
+!> layout_defaults) and makes its settings classes from them and builds and decodes every array
+!> by name, so a new field of a settings group is a change here (its entry, its place in the
+!> to_*/from_* conversion), in its option type and in the group's reader; Python follows.
+!> The to_*/from_* functions below list the fields in the same order.
 !> Integer entries are converted by to_int, which keeps out-of-range and NaN values out of range
 !> (so the core's range checks report them) instead of letting them wrap or become 0.
 module sloshdyn_layouts
   use sloshdyn_kinds, only: wp
   use sloshdyn_namelist_scanner, only: join
-  use sloshdyn_model, only: real_param_names
-  use sloshdyn_tables, only: count_items
+  use sloshdyn_model, only: real_param_names, model_t, model_to_arrays, n_real_params, &
+                            n_int_params
   use sloshdyn_ode, only: ode_options, ode_stats
-  use sloshdyn_continuation, only: continuation_options
+  use sloshdyn_continuation, only: continuation_options, newton_options
   use sloshdyn_simulation, only: steady_options
   use sloshdyn_response, only: response_options
-  use sloshdyn_periodic_response, only: lyapunov_options
+  use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
+  use sloshdyn_integrator, only: METHOD_AUTO
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, GROUND_RECORD
   use sloshdyn_stability_chart, only: chart_settings
   use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_KAPPA
+  use sloshdyn_run_config, only: run_config, simulation_settings, sweep_settings, &
+                                 response_settings, seismic_settings, study_settings
   implicit none
   private
   public :: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, TANK_SIZE, GROUND_SIZE, &
-            CHART_SETTINGS_SIZE, STUDY_SIZE, SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, &
-            SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
+            CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, SWEEP_SIZE, SIMULATION_SIZE, &
+            RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
-            PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
+            PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
+            MODAL_SCALARS_SIZE, CHART_SIZES_SIZE
   public :: chart_axes, CHART_RHO
-  public :: layout_fields, layout_size, join, excitation_parameters, ground_kinds, resonances
+  public :: layout_names, layout_text, layout_defaults, join, &
+            excitation_parameters, ground_kinds, resonances
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
   public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
-  public :: to_continuation, to_cycle_continuation
-  public :: to_tank, from_tank, to_ground, from_ground, to_chart, from_chart
+  public :: to_continuation
+  public :: to_tank, from_tank, to_ground, from_ground, to_chart, from_chart, from_chart_range
+  public :: from_analysis, from_simulation, from_sweep, from_response_range, from_seismic, &
+            from_study
 
-  integer, parameter :: field_len = 32
+  !> One field of a layout: its name; its kind ('real', 'integer', 'flag' (1/0), or 'code:LIST',
+  !> a code of the enumerated option LIST that names() answers); what it is, with its unit (the
+  !> Python settings classes are made from the layouts and take their help from doc).
+  type :: field_t
+    character(len=32) :: name = ''
+    character(len=32) :: kind = 'real'
+    character(len=160) :: doc = ''
+  end type field_t
+  !> Newton's settings of a continuation (sloshdyn_continuation's newton_options): the start,
+  !> the corrector and the special points
+  type(field_t), parameter :: newton_fields(*) = [ &
+    field_t('x_tol', doc='Newton converges at a step <= x_tol (1 + max|x|) ...'), &
+    field_t('f_tol', doc='... and a residual max|F| <= f_tol'), &
+    field_t('max_iter', 'integer', 'Newton iterations at most')]
   !> &integration (sloshdyn_ode's ode_options and the method code of sloshdyn_integrator)
-  character(len=*), parameter :: integration_fields(*) = [character(len=field_len) :: &
-    'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 'max_steps', 'method']
-  !> &steady (sloshdyn_simulation's steady_options; shooting 1/0)
-  character(len=*), parameter :: steady_fields(*) = [character(len=field_len) :: &
-    'transient_periods', 'settle_tol', 'max_transient_periods', 'window_periods', &
-    'samples_per_period', 'periodic_tol', 'shooting']
+  type(field_t), parameter :: integration_fields(*) = [ &
+    field_t('rtol', doc='relative tolerance of the step-size control'), &
+    field_t('atol', doc='absolute tolerance of every component'), &
+    field_t('h_initial', doc='first step in tau; 0: automatic (HINIT of Hairer''s codes)'), &
+    field_t('h_max', doc='largest step in tau; 0: no limit'), &
+    field_t('h_min', doc='smallest step error control may ask for; 0: 1e-14 max(1, |tau|)'), &
+    field_t('max_steps', 'integer', 'attempted (accepted + rejected) steps at most'), &
+    field_t('method', 'code:methods', '''auto'' (by rtol, see method_used), ''rk45'' '// &
+            '(Dormand-Prince 5(4)), ''dop853'' (8(5,3)) or ''vern9'' (Verner 9(8))')]
+  !> &steady (sloshdyn_simulation's steady_options)
+  type(field_t), parameter :: steady_fields(*) = [ &
+    field_t('transient_periods', doc='transient integrated before measuring, in forcing '// &
+            'periods T = 2 pi/rho (the minimum when settle_tol > 0)'), &
+    field_t('settle_tol', doc='> 0: extend the transient until successive Poincare points '// &
+            'differ by less (relative); 0: a fixed transient'), &
+    field_t('max_transient_periods', doc='the longest transient with settle_tol > 0 [periods]'), &
+    field_t('window_periods', 'integer', 'periods over which the amplitudes are measured'), &
+    field_t('samples_per_period', 'integer', 'dense-output probes per period at least of '// &
+            'the scan that brackets the maxima'), &
+    field_t('periodic_tol', doc='Poincare points this close (relative) coincide'), &
+    field_t('shooting', 'flag', 'with settle_tol > 0: once the Poincare map contracts, jump '// &
+            'to the periodic orbit by Newton shooting (kept only if stable and the attractor '// &
+            'being approached); False: integration only')]
   !> &response's numbers (sloshdyn_response's response_options with its continuation)
-  character(len=*), parameter :: response_fields(*) = [character(len=field_len) :: &
-    'n_scan', 'n_amplitudes', 'n_phases', 'amplitude_min', 'amplitude_max', 'ds', 'ds_min', &
-    'ds_max', 'x_scale', 'max_points']
+  type(field_t), parameter :: response_fields(*) = [ &
+    field_t('n_scan', 'integer', 'parameter values where steady states are searched'), &
+    field_t('n_amplitudes', 'integer', 'Newton starts per mode: log-spaced |B| ...'), &
+    field_t('n_phases', 'integer', '... times equally spaced phases'), &
+    field_t('amplitude_min', doc='the smallest start |B|'), &
+    field_t('amplitude_max', doc='the largest start |B|'), &
+    field_t('ds', doc='first pseudo-arclength step'), &
+    field_t('ds_min', doc='smallest step; failing at it ends the branch'), &
+    field_t('ds_max', doc='largest step'), &
+    field_t('x_scale', doc='weight of the amplitudes in the arclength norm'), &
+    field_t('max_points', 'integer', 'points per branch and direction at most'), &
+    newton_fields]
   !> &response's choices: resonance (code of resonances), parameter (of excitation_parameters)
-  character(len=*), parameter :: response_range_fields(*) = [character(len=field_len) :: &
-    'resonance', 'parameter', 'start', 'stop']
+  type(field_t), parameter :: response_range_fields(*) = [ &
+    field_t('resonance', 'code:resonances'), field_t('parameter', 'code:excitation_parameters'), &
+    field_t('start'), field_t('stop')]
   !> &lyapunov (sloshdyn_periodic_response's lyapunov_options)
-  character(len=*), parameter :: lyapunov_fields(*) = [character(len=field_len) :: &
-    'transient_periods', 'n_periods', 'renormalise_every', 'spectrum']
+  type(field_t), parameter :: lyapunov_fields(*) = [ &
+    field_t('transient_periods', 'integer', 'forcing periods integrated before measuring'), &
+    field_t('n_periods', 'integer', 'forcing periods measured; a multiple of '// &
+            'renormalise_every'), &
+    field_t('renormalise_every', 'integer', 'periods between renormalisations of the '// &
+            'tangent vectors'), &
+    field_t('spectrum', 'flag', 'the executable''s lyapunov analysis: all four exponents '// &
+            '(QR method), not the largest only; from Python the call decides '// &
+            '(lyapunov_exponent or lyapunov_spectrum)')]
   !> &tank: tank_t's components in order (sloshdyn_vessel; n and p as reals)
-  character(len=*), parameter :: tank_fields(*) = [character(len=field_len) :: &
-    'radius', 'liquid_depth', 'freeboard', 'liquid_density', 'liquid_mass', 'tank_mass', &
-    'support_frequency', 'support_damping', 'support_stiffness', 'support_damping_coefficient', &
-    'support_height', 'sloshing_damping', 'impact_stiffness', 'impact_damping', 'n', 'p', &
-    'gravity']
+  type(field_t), parameter :: tank_fields(*) = [ &
+    field_t('radius'), field_t('liquid_depth'), field_t('freeboard'), &
+    field_t('liquid_density'), field_t('liquid_mass'), field_t('tank_mass'), &
+    field_t('support_frequency'), field_t('support_damping'), field_t('support_stiffness'), &
+    field_t('support_damping_coefficient'), field_t('support_height'), &
+    field_t('sloshing_damping'), field_t('impact_stiffness'), field_t('impact_damping'), &
+    field_t('n', 'integer'), field_t('p', 'integer'), field_t('gravity')]
   !> A ground motion (sloshdyn_ground): kind (ground_kinds), peak_acceleration [m/s^2],
   !> frequency [Hz], dt [s]; a record's samples [m/s^2] travel in their own array.
-  character(len=*), parameter :: ground_fields(*) = [character(len=field_len) :: &
-    'kind', 'peak_acceleration', 'frequency', 'dt']
-  !> &chart (sloshdyn_stability_chart's chart_settings; model a code of 'chart_models', x and y
-  !> of 'chart_axes')
-  character(len=*), parameter :: chart_fields(*) = [character(len=field_len) :: &
-    'model', 'x', 'y', 'x_min', 'x_max', 'y_min', 'y_max', 'n_x', 'n_y', 'n_scan', &
-    'max_points', 'max_curves', 'brute_force_starts', 'threads']
+  type(field_t), parameter :: ground_fields(*) = [ &
+    field_t('kind', 'code:ground_kinds'), field_t('peak_acceleration'), field_t('frequency'), &
+    field_t('dt')]
+  !> &chart's grid and curves (sloshdyn_stability_chart's chart_settings)
+  type(field_t), parameter :: chart_fields(*) = [ &
+    field_t('n_x', 'integer', 'grid columns (cells in x; their midpoints)'), &
+    field_t('n_y', 'integer', 'grid rows: the values of y where the one-parameter runs in x '// &
+            'seed the curves'), &
+    field_t('n_scan', 'integer', 'parameter values of each one-parameter run where steady '// &
+            'states are searched'), &
+    field_t('max_points', 'integer', 'points of one curve at most'), &
+    field_t('max_curves', 'integer', 'curves at most'), &
+    field_t('brute_force_starts', 'integer', '> 0: integrate the slow flow from that many '// &
+            'starts in every cell and count the stable steady states reached (a small basin '// &
+            'may be missed; never more than there are); 0: none')]
+  !> &chart's choices: model (code of 'chart_models'), x and y (of 'chart_axes'), the box, threads
+  type(field_t), parameter :: chart_range_fields(*) = [ &
+    field_t('model', 'code:chart_models'), field_t('x', 'code:chart_axes'), &
+    field_t('y', 'code:chart_axes'), field_t('x_min'), field_t('x_max'), field_t('y_min'), &
+    field_t('y_max'), field_t('threads', 'integer')]
   !> &study (given 1/0; kind, worker_kind and continuation codes of 'study_kinds',
   !> 'worker_kinds' and 'continuations'); its strings travel as text
-  character(len=*), parameter :: study_fields(*) = [character(len=field_len) :: &
-    'given', 'kind', 'workers', 'worker_kind', 'points_per_task', 'frequency_start', &
-    'frequency_stop', 'n_frequencies', 'amplitude_start', 'amplitude_stop', 'n_amplitudes', &
-    'continuation', 'x1_start', 'x1_stop', 'dx1_start', 'dx1_stop', 'n_grid', 'tol', &
-    'intensity_start', 'intensity_stop', 'n_intensities', 'spectral_damping']
+  type(field_t), parameter :: study_fields(*) = [ &
+    field_t('given', 'flag'), field_t('kind', 'code:study_kinds'), field_t('workers', 'integer'), &
+    field_t('worker_kind', 'code:worker_kinds'), field_t('points_per_task', 'integer'), &
+    field_t('frequency_start'), field_t('frequency_stop'), field_t('n_frequencies', 'integer'), &
+    field_t('amplitude_start'), field_t('amplitude_stop'), field_t('n_amplitudes', 'integer'), &
+    field_t('continuation', 'code:continuations'), field_t('x1_start'), field_t('x1_stop'), &
+    field_t('dx1_start'), field_t('dx1_stop'), field_t('n_grid', 'integer'), field_t('tol'), &
+    field_t('intensity_start'), field_t('intensity_stop'), field_t('n_intensities', 'integer'), &
+    field_t('spectral_damping')]
   !> &sweep (parameter of excitation_parameters, direction of 'directions', carry_state 1/0)
-  character(len=*), parameter :: sweep_fields(*) = [character(len=field_len) :: &
-    'parameter', 'start', 'stop', 'n_points', 'direction', 'carry_state', 'threads']
+  type(field_t), parameter :: sweep_fields(*) = [ &
+    field_t('parameter', 'code:excitation_parameters'), field_t('start'), field_t('stop'), &
+    field_t('n_points', 'integer'), field_t('direction', 'code:directions'), &
+    field_t('carry_state', 'flag'), field_t('threads', 'integer')]
   !> &simulation: t_end, n_out and the initial state y0 = (x1, x1', x2, x2')
-  character(len=*), parameter :: simulation_fields(*) = [character(len=field_len) :: &
-    't_end', 'n_out', 'y0_1', 'y0_2', 'y0_3', 'y0_4']
+  type(field_t), parameter :: simulation_fields(*) = [ &
+    field_t('t_end'), field_t('n_out', 'integer'), field_t('y0_1'), field_t('y0_2'), &
+    field_t('y0_3'), field_t('y0_4')]
   !> &seismic
-  character(len=*), parameter :: seismic_fields(*) = [character(len=field_len) :: &
-    't_end', 'n_out']
+  type(field_t), parameter :: seismic_fields(*) = [field_t('t_end'), field_t('n_out', 'integer')]
   !> &analysis's numbers (the 3:1 tuning search)
-  character(len=*), parameter :: analysis_fields(*) = [character(len=field_len) :: &
-    'sigma1', 'kappa_min', 'kappa_max']
-  !> The continuation of periodic orbits (direction +1 from the low end, -1 from the high end)
-  character(len=*), parameter :: continuation_fields(*) = [character(len=field_len) :: &
-    'ds', 'ds_min', 'ds_max', 'x_scale', 'direction']
-  !> The continuation of limit cycles of the slow flow (sloshdyn_slowflow_cycles): the
-  !> continuation's steps and direction and Newton's tolerances (sloshdyn_continuation's
-  !> newton_options)
-  character(len=*), parameter :: cycle_continuation_fields(*) = [character(len=field_len) :: &
-    continuation_fields, 'x_tol', 'f_tol', 'max_iter']
+  type(field_t), parameter :: analysis_fields(*) = [ &
+    field_t('sigma1'), field_t('kappa_min'), field_t('kappa_max')]
+  !> A continuation of periodic orbits or of the slow flow's limit cycles: the steps, the
+  !> direction (+1 from the low end, -1 from the high end) and Newton's settings (its
+  !> max_points set apart)
+  type(field_t), parameter :: continuation_fields(*) = [ &
+    field_t('ds'), field_t('ds_min'), field_t('ds_max'), field_t('x_scale'), &
+    field_t('direction', 'integer'), newton_fields]
   !> Newton shooting of periodic orbits
-  character(len=*), parameter :: shooting_fields(*) = [character(len=field_len) :: &
-    'newton_tol', 'max_iter']
+  type(field_t), parameter :: shooting_fields(*) = [ &
+    field_t('newton_tol', doc='Newton''s tolerance on the orbit''s state, relative'), &
+    field_t('max_iter', 'integer', 'Newton iterations at most')]
   !> Small results: the equivalent pendulum of a tank (eq 2-3) [m, kg, m, kg, m, kg]; the SI
   !> values of eq (9) and their dimensionless groups; Routh-Hurwitz of eq (20) at the trivial
   !> equilibrium (routh_stable 1/0); a periodic orbit's Newton iterations and max|x1|.
-  character(len=*), parameter :: pendulum_fields(*) = [character(len=field_len) :: &
-    'pendulum_length', 'sloshing_mass', 'd1', 'rigid_mass', 'd0', 'liquid_mass']
-  character(len=*), parameter :: physical_fields(*) = [character(len=field_len) :: &
-    'M', 'L', 'k', 'c', 'b', 'd', 'g', 'theta0', 'l', 'm']
-  character(len=*), parameter :: groups_fields(*) = [character(len=field_len) :: &
-    's1', 'mu1', 'kappa', 'beta', 'gamma', 'delta']
-  character(len=*), parameter :: routh_fields(*) = [character(len=field_len) :: &
-    'c1', 'c2', 'c3', 'c4', 'delta2', 'delta3', 'routh_stable']
-  character(len=*), parameter :: orbit_info_fields(*) = [character(len=field_len) :: &
-    'iterations', 'max_x1']
+  type(field_t), parameter :: pendulum_fields(*) = [ &
+    field_t('pendulum_length'), field_t('sloshing_mass'), field_t('d1'), field_t('rigid_mass'), &
+    field_t('d0'), field_t('liquid_mass')]
+  type(field_t), parameter :: physical_fields(*) = [ &
+    field_t('M'), field_t('L'), field_t('k'), field_t('c'), field_t('b'), field_t('d'), &
+    field_t('g'), field_t('theta0'), field_t('l'), field_t('m')]
+  type(field_t), parameter :: groups_fields(*) = [ &
+    field_t('s1'), field_t('mu1'), field_t('kappa'), field_t('beta'), field_t('gamma'), &
+    field_t('delta')]
+  type(field_t), parameter :: routh_fields(*) = [ &
+    field_t('c1'), field_t('c2'), field_t('c3'), field_t('c4'), field_t('delta2'), &
+    field_t('delta3'), field_t('routh_stable', 'flag')]
+  type(field_t), parameter :: orbit_info_fields(*) = [ &
+    field_t('iterations', 'integer'), field_t('max_x1')]
+  !> The scalars of the modal expansion (sloshdyn_modal: eq 34-36) and the sizes of a stability
+  !> chart's four tables (sloshdyn_stability_chart's chart_table_sizes).
+  type(field_t), parameter :: modal_scalars_fields(*) = [ &
+    field_t('omega1'), field_t('omega2'), field_t('gamma11'), field_t('gamma22'), field_t('F11')]
+  type(field_t), parameter :: chart_sizes_fields(*) = [ &
+    field_t('curve_points', 'integer'), field_t('codim2_points', 'integer'), &
+    field_t('curves', 'integer'), field_t('cells', 'integer')]
+  !> Every named layout (names('layouts')); 'model' and 'model_integers' are sloshdyn_model's
+  !> rpar and ipar.
+  character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
+    'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
+    'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
+    'routh,orbit_info,modal_scalars,chart_sizes'
+  integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
   !> GROUND_HARMONIC), the resonance of a frequency response (from 0).
@@ -124,7 +218,8 @@ module sloshdyn_layouts
                         STEADY_SIZE = size(steady_fields), RESPONSE_SIZE = size(response_fields), &
                         LYAPUNOV_SIZE = size(lyapunov_fields), TANK_SIZE = size(tank_fields), &
                         GROUND_SIZE = size(ground_fields), &
-                        CHART_SETTINGS_SIZE = size(chart_fields), &
+                        CHART_SIZE = size(chart_fields), &
+                        CHART_RANGE_SIZE = size(chart_range_fields), &
                         STUDY_SIZE = size(study_fields), &
                         SWEEP_SIZE = size(sweep_fields), &
                         SIMULATION_SIZE = size(simulation_fields), &
@@ -132,53 +227,96 @@ module sloshdyn_layouts
                         SEISMIC_SIZE = size(seismic_fields), &
                         ANALYSIS_SIZE = size(analysis_fields), &
                         CONTINUATION_SIZE = size(continuation_fields), &
-                        CYCLE_CONTINUATION_SIZE = size(cycle_continuation_fields), &
                         SHOOTING_SIZE = size(shooting_fields), &
                         PENDULUM_SIZE = size(pendulum_fields), &
                         PHYSICAL_SIZE = size(physical_fields), GROUPS_SIZE = size(groups_fields), &
                         ROUTH_TRIVIAL_SIZE = size(routh_fields), &
-                        ORBIT_INFO_SIZE = size(orbit_info_fields)
+                        ORBIT_INFO_SIZE = size(orbit_info_fields), &
+                        MODAL_SCALARS_SIZE = size(modal_scalars_fields), &
+                        CHART_SIZES_SIZE = size(chart_sizes_fields)
 
 contains
 
-  !> The comma-separated field names of a named layout (a settings or model array), '' for an
-  !> unknown name.
-  pure function layout_fields(name) result(fields)
+  !> The fields of a named layout (a settings, model or small-result array); none for an unknown
+  !> name.
+  pure function layout_of(name) result(fields)
     character(len=*), intent(in) :: name
-    character(len=:), allocatable :: fields
+    type(field_t), allocatable :: fields(:)
+    integer :: k
     select case (name)
-    case ('model');          fields = join(real_param_names, ',')
-    case ('model_integers'); fields = 'n,p'
-    case ('integration');    fields = join(integration_fields, ',')
-    case ('steady');         fields = join(steady_fields, ',')
-    case ('response');       fields = join(response_fields, ',')
-    case ('response_range'); fields = join(response_range_fields, ',')
-    case ('lyapunov');       fields = join(lyapunov_fields, ',')
-    case ('tank');           fields = join(tank_fields, ',')
-    case ('ground');         fields = join(ground_fields, ',')
-    case ('chart');          fields = join(chart_fields, ',')
-    case ('study');          fields = join(study_fields, ',')
-    case ('sweep');          fields = join(sweep_fields, ',')
-    case ('simulation');     fields = join(simulation_fields, ',')
-    case ('seismic');        fields = join(seismic_fields, ',')
-    case ('analysis');       fields = join(analysis_fields, ',')
-    case ('continuation');   fields = join(continuation_fields, ',')
-    case ('cycle_continuation'); fields = join(cycle_continuation_fields, ',')
-    case ('shooting');       fields = join(shooting_fields, ',')
-    case ('pendulum');       fields = join(pendulum_fields, ',')
-    case ('physical');       fields = join(physical_fields, ',')
-    case ('groups');         fields = join(groups_fields, ',')
-    case ('routh');          fields = join(routh_fields, ',')
-    case ('orbit_info');     fields = join(orbit_info_fields, ',')
-    case default;            fields = ''
+    case ('model')
+      fields = [(field_t(real_param_names(k)), k = 1, size(real_param_names))]
+    case ('model_integers'); fields = [field_t('n', 'integer'), field_t('p', 'integer')]
+    case ('integration');    fields = integration_fields
+    case ('steady');         fields = steady_fields
+    case ('response');       fields = response_fields
+    case ('response_range'); fields = response_range_fields
+    case ('lyapunov');       fields = lyapunov_fields
+    case ('tank');           fields = tank_fields
+    case ('ground');         fields = ground_fields
+    case ('chart');          fields = chart_fields
+    case ('chart_range');    fields = chart_range_fields
+    case ('study');          fields = study_fields
+    case ('sweep');          fields = sweep_fields
+    case ('simulation');     fields = simulation_fields
+    case ('seismic');        fields = seismic_fields
+    case ('analysis');       fields = analysis_fields
+    case ('continuation');   fields = continuation_fields
+    case ('shooting');       fields = shooting_fields
+    case ('pendulum');       fields = pendulum_fields
+    case ('physical');       fields = physical_fields
+    case ('groups');         fields = groups_fields
+    case ('routh');          fields = routh_fields
+    case ('orbit_info');     fields = orbit_info_fields
+    case ('modal_scalars');  fields = modal_scalars_fields
+    case ('chart_sizes');    fields = chart_sizes_fields
+    case default;            allocate (fields(0))
     end select
-  end function layout_fields
+  end function layout_of
 
-  !> The number of fields of a named layout (0 for an unknown name).
-  pure integer function layout_size(name) result(n)
+  !> One column of a named layout's fields, joined: what = 'name' (comma-separated), 'kind'
+  !> (comma-separated: real, integer, flag or code:LIST) or 'doc' (one line per field, a
+  !> newline for a layout without docs); '' for an unknown layout.
+  pure function layout_text(name, what) result(text)
+    character(len=*), intent(in) :: name, what
+    character(len=:), allocatable :: text
+    type(field_t), allocatable :: fields(:)
+    fields = layout_of(name)
+    text = ''
+    if (size(fields) == 0) return
+    select case (what)
+    case ('kind'); text = join(fields%kind, ',')
+    case ('doc');  text = join(fields%doc, new_line('a'))//new_line('a')
+    case default;  text = join(fields%name, ',')
+    end select
+  end function layout_text
+
+  !> The defaults of a settings layout (the option types' defaults, as the namelist reader
+  !> starts from them); found = .false. for a layout without defaults.
+  pure subroutine layout_defaults(name, values, found)
     character(len=*), intent(in) :: name
-    n = count_items(layout_fields(name))
-  end function layout_size
+    real(wp), allocatable, intent(out) :: values(:)
+    logical, intent(out) :: found
+    type(model_t) :: model
+    integer :: ints(n_int_params)
+    real(wp) :: rpar(n_real_params)
+    found = .true.
+    call model_to_arrays(model, rpar, ints)
+    select case (name)
+    case ('model');       values = rpar
+    case ('model_integers'); values = real(ints, wp)
+    case ('integration'); values = from_ode_options(ode_options(), METHOD_AUTO)
+    case ('steady');      values = from_steady(steady_options())
+    case ('response');    values = from_response(response_options())
+    case ('lyapunov');    values = from_lyapunov(lyapunov_options())
+    case ('shooting');    values = [newton_tol_default, real(max_iter_default, wp)]
+    case ('tank');        values = from_tank(tank_t())
+    case ('chart');       values = from_chart(chart_settings())
+    case default
+      found = .false.
+      allocate (values(0))
+    end select
+  end subroutine layout_defaults
 
   !> The parameters of a stability chart (its axes), comma-separated in code order from
   !> CHART_RHO.
@@ -252,6 +390,7 @@ contains
     options%continuation%ds_max = a(8)
     options%continuation%x_scale = a(9)
     options%continuation%max_points = to_int(a(10))
+    options%continuation%newton = to_newton(a(11:13))
   end function to_response
 
   pure function from_response(options) result(a)
@@ -260,7 +399,7 @@ contains
     associate (c => options%continuation)
       a = [real(options%n_scan, wp), real(options%n_amplitudes, wp), &
            real(options%n_phases, wp), options%amplitude_min, options%amplitude_max, c%ds, &
-           c%ds_min, c%ds_max, c%x_scale, real(c%max_points, wp)]
+           c%ds_min, c%ds_max, c%x_scale, real(c%max_points, wp), from_newton(c%newton)]
     end associate
   end function from_response
 
@@ -277,23 +416,25 @@ contains
               merge(1, 0, options%spectrum)], wp)
   end function from_lyapunov
 
-  !> The continuation of periodic orbits (its max_points set apart).
+  !> A continuation of periodic orbits or slow-flow cycles (its max_points set apart).
   pure function to_continuation(a) result(options)
     real(wp), intent(in) :: a(CONTINUATION_SIZE)
     type(continuation_options) :: options
     options = continuation_options(ds=a(1), ds_min=a(2), ds_max=a(3), x_scale=a(4), &
-                                   direction=to_int(a(5)))
+                                   direction=to_int(a(5)), newton=to_newton(a(6:8)))
   end function to_continuation
 
-  !> The continuation of slow-flow cycles with Newton's tolerances (its max_points set apart).
-  pure function to_cycle_continuation(a) result(options)
-    real(wp), intent(in) :: a(CYCLE_CONTINUATION_SIZE)
-    type(continuation_options) :: options
-    options = to_continuation(a(:CONTINUATION_SIZE))
-    options%newton%x_tol = a(CONTINUATION_SIZE + 1)
-    options%newton%f_tol = a(CONTINUATION_SIZE + 2)
-    options%newton%max_iter = to_int(a(CONTINUATION_SIZE + 3))
-  end function to_cycle_continuation
+  pure function to_newton(a) result(options)
+    real(wp), intent(in) :: a(size(newton_fields))
+    type(newton_options) :: options
+    options = newton_options(x_tol=a(1), f_tol=a(2), max_iter=to_int(a(3)))
+  end function to_newton
+
+  pure function from_newton(options) result(a)
+    type(newton_options), intent(in) :: options
+    real(wp) :: a(size(newton_fields))
+    a = [options%x_tol, options%f_tol, real(options%max_iter, wp)]
+  end function from_newton
 
   !> tank(TANK_SIZE) in the order of tank_t's components (n and p as reals).
   pure function to_tank(a) result(tank)
@@ -331,34 +472,85 @@ contains
     a = [real(ground%kind, wp), ground%peak_acceleration, ground%frequency, ground%dt]
   end function from_ground
 
-  !> chart(CHART_SETTINGS_SIZE) = [model, x, y, x_min, x_max, y_min, y_max, n_x, n_y, n_scan,
-  !> max_points, max_curves, brute_force_starts, threads] (the &chart variables; x, y and model
-  !> as codes).
-  pure function to_chart(a) result(settings)
-    real(wp), intent(in) :: a(CHART_SETTINGS_SIZE)
+  !> The &chart settings from chart(CHART_SIZE) (the grid and the curves),
+  !> chart_range(CHART_RANGE_SIZE) (the model and the axes as codes, the box, threads) and the
+  !> one-parameter runs' response(RESPONSE_SIZE) (&response's numbers; n_scan is chart's).
+  pure function to_chart(a, r, response) result(settings)
+    real(wp), intent(in) :: a(CHART_SIZE), r(CHART_RANGE_SIZE), response(RESPONSE_SIZE)
     type(chart_settings) :: settings
-    settings%model = to_int(a(1))
-    settings%parameters = to_int(a(2:3))
-    settings%p_min = a([4, 6])
-    settings%p_max = a([5, 7])
-    settings%n_columns = to_int(a(8))
-    settings%n_levels = to_int(a(9))
-    settings%response%n_scan = to_int(a(10))
-    settings%max_points = to_int(a(11))
-    settings%max_curves = to_int(a(12))
-    settings%brute_force_starts = to_int(a(13))
-    settings%threads = to_int(a(14))
+    settings%response = to_response(response)
+    settings%n_columns = to_int(a(1))
+    settings%n_levels = to_int(a(2))
+    settings%response%n_scan = to_int(a(3))
+    settings%max_points = to_int(a(4))
+    settings%max_curves = to_int(a(5))
+    settings%brute_force_starts = to_int(a(6))
+    settings%model = to_int(r(1))
+    settings%parameters = to_int(r(2:3))
+    settings%p_min = r([4, 6])
+    settings%p_max = r([5, 7])
+    settings%threads = to_int(r(8))
   end function to_chart
 
   pure function from_chart(settings) result(a)
     type(chart_settings), intent(in) :: settings
-    real(wp) :: a(CHART_SETTINGS_SIZE)
-    a = [real(settings%model, wp), real(settings%parameters, wp), settings%p_min(1), &
-         settings%p_max(1), settings%p_min(2), settings%p_max(2), &
-         real([settings%n_columns, settings%n_levels, settings%response%n_scan, &
-               settings%max_points, settings%max_curves, settings%brute_force_starts, &
-               settings%threads], wp)]
+    real(wp) :: a(CHART_SIZE)
+    a = real([settings%n_columns, settings%n_levels, settings%response%n_scan, &
+              settings%max_points, settings%max_curves, settings%brute_force_starts], wp)
   end function from_chart
+
+  pure function from_chart_range(settings) result(r)
+    type(chart_settings), intent(in) :: settings
+    real(wp) :: r(CHART_RANGE_SIZE)
+    r = [real(settings%model, wp), real(settings%parameters, wp), settings%p_min(1), &
+         settings%p_max(1), settings%p_min(2), settings%p_max(2), real(settings%threads, wp)]
+  end function from_chart_range
+
+  !> The groups of a run_config that only the namelist reader returns (bridge read_input).
+  pure function from_analysis(config) result(a)
+    type(run_config), intent(in) :: config
+    real(wp) :: a(ANALYSIS_SIZE)
+    a = [config%sigma1, config%kappa_min, config%kappa_max]
+  end function from_analysis
+
+  pure function from_simulation(settings) result(a)
+    type(simulation_settings), intent(in) :: settings
+    real(wp) :: a(SIMULATION_SIZE)
+    a = [settings%t_end, real(settings%n_out, wp), settings%y0]
+  end function from_simulation
+
+  pure function from_sweep(settings) result(a)
+    type(sweep_settings), intent(in) :: settings
+    real(wp) :: a(SWEEP_SIZE)
+    a = [real(settings%parameter, wp), settings%start, settings%stop, &
+         real(settings%n_points, wp), real(settings%direction, wp), &
+         merge(1.0_wp, 0.0_wp, settings%carry_state), real(settings%threads, wp)]
+  end function from_sweep
+
+  pure function from_response_range(settings) result(a)
+    type(response_settings), intent(in) :: settings
+    real(wp) :: a(RESPONSE_RANGE_SIZE)
+    a = [merge(1.0_wp, 0.0_wp, settings%internal_resonance), real(settings%parameter, wp), &
+         settings%start, settings%stop]
+  end function from_response_range
+
+  pure function from_seismic(settings) result(a)
+    type(seismic_settings), intent(in) :: settings
+    real(wp) :: a(SEISMIC_SIZE)
+    a = [settings%t_end, real(settings%n_out, wp)]
+  end function from_seismic
+
+  !> &study's numbers (its strings travel as text).
+  pure function from_study(st) result(a)
+    type(study_settings), intent(in) :: st
+    real(wp) :: a(STUDY_SIZE)
+    a = [merge(1.0_wp, 0.0_wp, st%given), real(st%kind, wp), real(st%workers, wp), &
+         real(st%worker_kind, wp), real(st%points_per_task, wp), st%frequency_start, &
+         st%frequency_stop, real(st%n_frequencies, wp), st%amplitude_start, st%amplitude_stop, &
+         real(st%n_amplitudes, wp), real(st%continuation, wp), st%x1_start, st%x1_stop, &
+         st%dx1_start, st%dx1_stop, real(st%n_grid, wp), st%tol, st%intensity_start, &
+         st%intensity_stop, real(st%n_intensities, wp), st%spectral_damping]
+  end function from_study
 
   !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
   pure function counts_array(stats) result(counts)

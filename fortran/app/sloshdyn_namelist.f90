@@ -136,7 +136,8 @@ contains
     if (status == SD_OK) call read_lyapunov(file, config%lyapunov, status, message)
     if (status == SD_OK) call read_seismic(file, config%seismic, status, message)
     if (status == SD_OK) call read_chart(file, config%analysis == ANALYSIS_STABILITY_CHART, &
-                                         config%model, config%chart, status, message)
+                                         config%model, config%response%options, config%chart, &
+                                         status, message)
     if (status == SD_OK) call read_study(file, config, status, message)
     ! a study file describes no analysis of the executable: the default one is not checked
     if (status == SD_OK .and. .not. (config%study%given .and. .not. file%groups(G_ANALYSIS)%given)) &
@@ -181,7 +182,7 @@ contains
     call read_response(file, .false., response, status, message)
     call read_lyapunov(file, lyapunov, status, message)
     call read_seismic(file, seismic, status, message)
-    call read_chart(file, .false., config%model, chart, status, message)
+    call read_chart(file, .false., config%model, response%options, chart, status, message)
     call read_study(file, study_config, status, message)
     text = file%description
   end subroutine namelist_defaults

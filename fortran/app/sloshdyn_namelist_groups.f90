@@ -25,7 +25,7 @@ module sloshdyn_namelist_groups
   use sloshdyn_ode, only: ode_options, check_options
   use sloshdyn_integrator, only: METHOD_AUTO, method_names
   use sloshdyn_simulation, only: steady_options, max_simulation_outputs
-  use sloshdyn_response, only: check_response_options
+  use sloshdyn_response, only: response_options, check_response_options
   use sloshdyn_periodic_response, only: lyapunov_options
   implicit none
   private
@@ -599,11 +599,13 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     character(len=word_len) :: resonance, parameter
-    real(wp) :: start, stop, amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale
-    integer :: n_scan, n_amplitudes, n_phases, max_points
+    real(wp) :: start, stop, amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, x_tol, &
+                f_tol
+    integer :: n_scan, n_amplitudes, n_phases, max_points, max_iter
     type(namelist_reader) :: reader
     namelist /response/ resonance, parameter, start, stop, n_scan, n_amplitudes, n_phases, &
-                        amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, max_points
+                        amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, max_points, &
+                        x_tol, f_tol, max_iter
 
     resonance = '3:1'; parameter = 'rho'; start = 0; stop = 0
     associate (o => settings%options, c => settings%options%continuation)
@@ -611,6 +613,7 @@ contains
       amplitude_min = o%amplitude_min; amplitude_max = o%amplitude_max
       ds = c%ds; ds_min = c%ds_min; ds_max = c%ds_max; x_scale = c%x_scale
       max_points = c%max_points
+      x_tol = c%newton%x_tol; f_tol = c%newton%f_tol; max_iter = c%newton%max_iter
     end associate
     status = SD_OK
     message = ''
@@ -640,6 +643,7 @@ contains
       o%amplitude_min = amplitude_min; o%amplitude_max = amplitude_max
       c%ds = ds; c%ds_min = ds_min; c%ds_max = ds_max; c%x_scale = x_scale
       c%max_points = max_points
+      c%newton%x_tol = x_tol; c%newton%f_tol = f_tol; c%newton%max_iter = max_iter
     end associate
     if (.not. needed) return
     call require(file, G_RESPONSE, 'start', status, message)
@@ -692,10 +696,12 @@ contains
   !> &chart: a stability chart of the slow flow (sloshdyn_stability_chart): the model, the
   !> parameters on the axes and their box, the grid, the settings of the runs and curves.
   !> The box must lie where the model's rules allow its parameters (check_chart_box).
-  subroutine read_chart(file, needed, system, settings, status, message)
+  subroutine read_chart(file, needed, system, runs, settings, status, message)
     type(input_file), intent(inout) :: file
     logical, intent(in) :: needed
     type(model_t), intent(in) :: system   !< the model of &model or &tank
+    !> the settings of the one-parameter runs: &response's numbers (n_scan is &chart's)
+    type(response_options), intent(in) :: runs
     type(chart_settings), intent(out) :: settings
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
@@ -742,6 +748,7 @@ contains
     settings%p_max = [x_max, y_max]
     settings%n_columns = n_x
     settings%n_levels = n_y
+    settings%response = runs
     settings%response%n_scan = n_scan
     settings%max_points = max_points
     settings%max_curves = max_curves
@@ -881,7 +888,8 @@ contains
     select case (name)
     case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
           'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points', &
-          'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid', 'n_intensities')
+          'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid', 'n_intensities', &
+          'max_iter')
       text = name//' must be an integer'
     case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from', &
           'record', 'format', 'units', 'store', 'figure', 'scheduler', 'worker_kind', &
@@ -901,7 +909,8 @@ contains
           'scale_factor', 'target_pga', 'target_sa', 'target_period', 'target_damping', &
           'transient_periods', &
           'max_transient_periods', 'periodic_tol', 'start', 'stop', 'amplitude_min', &
-          'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale', 'frequency_start', &
+          'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale', 'x_tol', 'f_tol', &
+          'frequency_start', &
           'frequency_stop', 'amplitude_start', 'amplitude_stop', 'x1_start', 'x1_stop', &
           'dx1_start', 'dx1_stop', 'tol', 'intensity_start', 'intensity_stop', &
           'spectral_damping')

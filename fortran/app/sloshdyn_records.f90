@@ -225,7 +225,7 @@ contains
     real(wp), intent(out) :: dt
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    character(len=:), allocatable :: upper, npts_text, dt_text
+    character(len=:), allocatable :: low, npts_text, dt_text
     character(len=*), parameter :: expected = ' (expected e.g. "NPTS=  5590, DT=   .0050 SEC"'// &
                                               ' or "5590  .0050  NPTS, DT")'
     integer :: ios, after_npts, after_dt
@@ -234,14 +234,14 @@ contains
     message = ''
     npts = -1
     dt = 0
-    upper = upper_case(line)
-    if (value_after(upper, 'NPTS') /= '' .or. value_after(upper, 'DT') /= '') then
-      npts_text = value_after(upper, 'NPTS')
-      dt_text = value_after(upper, 'DT')
+    low = lower(line)     ! the keys in any case; number_characters has both exponent cases
+    if (value_after(low, 'npts') /= '' .or. value_after(low, 'dt') /= '') then
+      npts_text = value_after(low, 'npts')
+      dt_text = value_after(low, 'dt')
     else
       ! older form: "5590   0.0050   NPTS, DT"
-      call next_token(upper, 1, npts_text, after_npts)
-      call next_token(upper, after_npts, dt_text, after_dt)
+      call next_token(low, 1, npts_text, after_npts)
+      call next_token(low, after_npts, dt_text, after_dt)
     end if
     ios = 1
     if (len(npts_text) > 0 .and. verify(npts_text, '0123456789') == 0) &
@@ -337,13 +337,9 @@ contains
     position = start
     line_number = first_line - 1
     do
-      call next_line(text, position, first, last, found)
+      call next_counted_line(text, position, first, last, line_number, found, status, message)
+      if (status /= SD_OK) return
       if (.not. found) exit
-      line_number = line_number + 1
-      if (mod(line_number, lines_per_poll) == 0) then   ! a long file: Ctrl-C and SIGTERM
-        call check_cancel(status, message)
-        if (status /= SD_OK) return
-      end if
       from = first
       do
         call next_token(text(1:last), from, token, after)
@@ -381,13 +377,9 @@ contains
     first_step = 0
     first_line = .true.
     do
-      call next_line(text, position, first, last, found)
+      call next_counted_line(text, position, first, last, line_number, found, status, message)
+      if (status /= SD_OK) return
       if (.not. found) exit
-      line_number = line_number + 1
-      if (mod(line_number, lines_per_poll) == 0) then   ! a long file: Ctrl-C and SIGTERM
-        call check_cancel(status, message)
-        if (status /= SD_OK) return
-      end if
       lead = verify(text(first:last), separators(1:1)//char(9))
       if (lead == 0) cycle                                   ! blank line
       if (text(first + lead - 1:first + lead - 1) == '#') cycle   ! comment line
@@ -564,6 +556,23 @@ contains
     end if
   end subroutine next_line
 
+  !> next_line, counting the lines in line_number; every lines_per_poll lines it polls the
+  !> cancellation flag (a long file: Ctrl-C and SIGTERM), status SD_CANCELLED.
+  subroutine next_counted_line(text, position, first, last, line_number, found, status, message)
+    character(len=*), intent(in) :: text
+    integer, intent(inout) :: position, line_number
+    integer, intent(out) :: first, last
+    logical, intent(out) :: found
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    call next_line(text, position, first, last, found)
+    if (.not. found) return
+    line_number = line_number + 1
+    if (mod(line_number, lines_per_poll) == 0) call check_cancel(status, message)
+  end subroutine next_counted_line
+
   pure subroutine fail(code, path, line_number, what, status, message)
     integer, intent(in) :: code, line_number
     character(len=*), intent(in) :: path, what
@@ -605,14 +614,4 @@ contains
     quoted = quoted//''''
     if (i <= len(text)) quoted = quoted//'...'
   end function excerpt
-
-  pure function upper_case(text) result(up)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: up
-    integer :: i
-    up = text
-    do i = 1, len(text)
-      if (text(i:i) >= 'a' .and. text(i:i) <= 'z') up(i:i) = achar(iachar(text(i:i)) - 32)
-    end do
-  end function upper_case
 end module sloshdyn_records

@@ -16,6 +16,7 @@ module sloshdyn_lapack
   implicit none
   private
   public :: eigenvalues, solve_linear
+  public :: dgeev, dgesv   ! LAPACK's own interfaces, for tests that call LAPACK directly
 
   !> Systems up to this size are solved without dgesv (see solve_linear).
   integer, parameter :: small_system = 8

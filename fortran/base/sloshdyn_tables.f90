@@ -24,6 +24,7 @@ module sloshdyn_tables
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
+  public :: CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, CYCLE_SPECIAL_ROWS
   public :: HISTORY_X1, HISTORY_X2, HARMONIC_SWEEP_WAVE_HEIGHT, CHART_GRID_N_STABLE, &
             CHART_GRID_NEAR_CURVE, CHART_GRID_BRUTE_FORCE_STABLE
   public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
@@ -104,6 +105,13 @@ module sloshdyn_tables
                         PERIODIC_SPECIAL_ROWS = 7, PERIODIC_SPECIAL_KIND = 1, &
                         PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
 
+  !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
+  !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
+  !> the period in tau, stable 1/0), their Floquet multipliers (the next 8) and the cycles'
+  !> amplitude ranges (the last 4), and its special points ('cycle_special_points').
+  integer, parameter :: CYCLE_POINT_ROWS = 7, CYCLE_MULTIPLIER_ROWS = 8, &
+                        CYCLE_AMPLITUDE_ROWS = 4, CYCLE_SPECIAL_ROWS = 7
+
   !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
   !> output time, then x1 and x2; the peaks of the loads (value, time), then the roof contact of
   !> the free wave (no roof): reached, first contact, entries above the freeboard, the free
@@ -183,6 +191,9 @@ contains
       header = summary_columns
     case ('poincare')
       header = 'tau,x1,dx1,x2,dx2'
+    case ('study_orbit')
+      header = 'found,periods,attempts,y1,y2,y3,y4,re_mu1,re_mu2,re_mu3,re_mu4,im_mu1,im_mu2,'// &
+               'im_mu3,im_mu4,max_mu'
     case ('response')
       header = point_columns
     case ('special_points')
@@ -192,6 +203,11 @@ contains
                'im_mu1,im_mu2,im_mu3,im_mu4'
     case ('periodic_special_points')
       header = 'kind,lambda,y1,y2,y3,y4,max_x1'
+    case ('cycle_branch')
+      header = 'lambda,re_B1,im_B1,re_B2,im_B2,period,stable,re_mu1,re_mu2,re_mu3,re_mu4,'// &
+               'im_mu1,im_mu2,im_mu3,im_mu4,min_B1,max_B1,min_B2,max_B2'
+    case ('cycle_special_points')
+      header = 'kind,lambda,re_B1,im_B1,re_B2,im_B2,period'
     case ('lyapunov')
       header = 'periods,estimate'
     case ('lyapunov_spectrum')
@@ -234,7 +250,7 @@ contains
       formats = 'rrrrrriv'
     case ('special_points')
       formats = 'srrrrrrr'
-    case ('periodic_special_points')
+    case ('periodic_special_points', 'cycle_special_points')
       formats = 'srrrrrr'
     case ('simulation')
       formats = 'iiir'

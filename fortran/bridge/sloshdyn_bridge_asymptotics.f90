@@ -12,17 +12,18 @@ contains
   !> coefficients on the 34 monomials of degree 1..3 whose exponents are exponents(:, k), in the
   !> variables (x1, x2, x1', x2') for g and (u1, u2, u1', u2') for h; the forcing polynomials
   !> (factor of rho^2 A sin(rho tau)) add a constant term: *_forcing(:, 0).
-  !> scalars = [omega1, omega2, gamma11, gamma22, F11]; c = c11..c23.
+  !> scalars in the 'modal_scalars' layout (omega1, omega2, gamma11, gamma22, F11); c = c11..c23.
   subroutine modal_expansion(rpar, ipar, scalars, c, exponents, g, g_forcing, h, h_forcing, &
                              status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_modal, only: modal_coefficients, expand_model
     use sloshdyn_polynomial, only: monomial_exponents, poly
+    use sloshdyn_layouts, only: MODAL_SCALARS_SIZE
     real(c_double), intent(in) :: rpar(n_real_params)
     integer(c_int), intent(in) :: ipar(n_int_params)
-    real(c_double), intent(out) :: scalars(5), c(2, 3), g(2, 34), g_forcing(2, 0:34), h(2, 34), &
-                                   h_forcing(2, 0:34)
+    real(c_double), intent(out) :: scalars(MODAL_SCALARS_SIZE), c(2, 3), g(2, 34), &
+                                   g_forcing(2, 0:34), h(2, 34), h_forcing(2, 0:34)
     integer(c_int), intent(out) :: exponents(4, 34), status
     character(len=256), intent(out) :: message
     type(model_t) :: model

@@ -7,35 +7,31 @@ module sloshdyn_bridge_charts
 
 contains
 
-  !> The &chart defaults (layouts' chart array).
-  subroutine chart_defaults(chart)
-    use sloshdyn_layouts, only: CHART_SETTINGS_SIZE, from_chart
-    use sloshdyn_stability_chart, only: chart_settings
-    real(c_double), intent(out) :: chart(CHART_SETTINGS_SIZE)
-    type(chart_settings) :: defaults
-    chart = from_chart(defaults)
-  end subroutine chart_defaults
-
   !> A stability chart of the model's slow flow (sloshdyn_stability_chart) as its four tables,
-  !> each with room for max_* columns; sizes = the columns used [curve points, codimension-2
-  !> points, curves, cells] (if a table is too small: status SD_CAPACITY, sizes = those
-  !> needed). complete = 0 if a curve stopped early; notes = a line per such curve.
-  subroutine stability_chart(rpar, ipar, settings, max_points, max_codim2, max_curves, n_cells, &
-                             curves, codim2, ends, grid, sizes, complete, notes, status, message)
+  !> each with room for max_* columns; the one-parameter runs with the settings of response
+  !> (the 'response' layout) and the n_scan of settings; sizes = the columns used, in the
+  !> 'chart_sizes' layout (curve points, codimension-2 points, curves, cells; if a table is too
+  !> small: status SD_CAPACITY, sizes = those needed). complete = 0 if a curve stopped early;
+  !> notes = a line per such curve.
+  subroutine stability_chart(rpar, ipar, settings, chart_range, response, max_points, &
+                             max_codim2, max_curves, n_cells, curves, codim2, ends, grid, &
+                             sizes, complete, notes, status, message)
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_tables, only: CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, &
                                CHART_GRID_ROWS
-    use sloshdyn_layouts, only: CHART_SETTINGS_SIZE, to_chart
+    use sloshdyn_layouts, only: CHART_SIZE, CHART_RANGE_SIZE, CHART_SIZES_SIZE, RESPONSE_SIZE, &
+                                to_chart
     use sloshdyn_status, only: SD_CAPACITY
     use sloshdyn_text, only: num2str
     use sloshdyn_stability_chart, only: chart_result, core => stability_chart, chart_tables, &
                                         chart_table_sizes
-    real(c_double), intent(in) :: rpar(n_real_params), settings(CHART_SETTINGS_SIZE)
+    real(c_double), intent(in) :: rpar(n_real_params), settings(CHART_SIZE), &
+                                  chart_range(CHART_RANGE_SIZE), response(RESPONSE_SIZE)
     integer(c_int), intent(in) :: ipar(n_int_params), max_points, max_codim2, max_curves, n_cells
     real(c_double), intent(out) :: curves(CHART_CURVE_ROWS, max_points), &
                                    codim2(CHART_CODIM2_ROWS, max_codim2), &
                                    ends(CHART_END_ROWS, max_curves), grid(CHART_GRID_ROWS, n_cells)
-    integer(c_int), intent(out) :: sizes(4), complete, status
+    integer(c_int), intent(out) :: sizes(CHART_SIZES_SIZE), complete, status
     character(len=4096), intent(out) :: notes
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -44,7 +40,7 @@ contains
     curves = 0; codim2 = 0; ends = 0; grid = 0; sizes = 0; complete = 0
     notes = ''
     call model_from_arrays(rpar, int(ipar), model, info, message)
-    if (info == 0) call core(model, to_chart(settings), chart, info, message)
+    if (info == 0) call core(model, to_chart(settings, chart_range, response), chart, info, message)
     if (info == 0) then
       call chart_table_sizes(chart, used(1), used(2), used(3), used(4))
       sizes = used

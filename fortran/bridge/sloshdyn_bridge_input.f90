@@ -13,29 +13,33 @@ contains
   !> code (1-based index into the 'analyses' names) with analysis_values ('analysis'); the
   !> output directory; tank and ground with has_tank, has_ground (1/0) and n_samples (the
   !> record's length, for input_record); seismic, integration, steady, response, lyapunov,
-  !> simulation, sweep, response_range, chart and study; study_store, study_figure,
+  !> simulation, sweep, response_range, chart, chart_range and study; study_store, study_figure,
   !> study_scheduler, study_records the &study strings. It releases the GIL (Python calls it one
   !> at a time, _cancel.app_call), so that Ctrl-C and SIGTERM cancel a long scaling.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
                         has_ground, ground, n_samples, seismic, integration, steady, response, &
-                        lyapunov, simulation, sweep, response_range, chart, study, study_store, &
-                        study_figure, study_scheduler, study_records, status, message)
+                        lyapunov, simulation, sweep, response_range, chart, chart_range, study, &
+                        study_store, study_figure, study_scheduler, study_records, status, &
+                        message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_to_arrays
     use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
-                                TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
+                                TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
                                 SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
                                 ANALYSIS_SIZE, from_ode_options, from_steady, from_response, &
-                                from_lyapunov, from_tank, from_ground, from_chart
+                                from_lyapunov, from_tank, from_ground, from_chart, &
+                                from_chart_range, from_analysis, from_simulation, from_sweep, &
+                                from_response_range, from_seismic, from_study
     use sloshdyn_namelist, only: run_config, core => read_input
     character(len=*), intent(in) :: path
     real(c_double), intent(out) :: rpar(n_real_params), analysis_values(ANALYSIS_SIZE), &
                                    tank(TANK_SIZE), ground(GROUND_SIZE), &
                                    seismic(SEISMIC_SIZE), integration(INTEGRATION_SIZE), &
-                                     steady(STEADY_SIZE), response(RESPONSE_SIZE), &
+                                   steady(STEADY_SIZE), response(RESPONSE_SIZE), &
                                    lyapunov(LYAPUNOV_SIZE), simulation(SIMULATION_SIZE), &
-                                     sweep(SWEEP_SIZE), response_range(RESPONSE_RANGE_SIZE), &
-                                   chart(CHART_SETTINGS_SIZE), study(STUDY_SIZE)
+                                   sweep(SWEEP_SIZE), response_range(RESPONSE_RANGE_SIZE), &
+                                   chart(CHART_SIZE), chart_range(CHART_RANGE_SIZE), &
+                                   study(STUDY_SIZE)
     integer(c_int), intent(out) :: ipar(n_int_params), analysis, has_tank, has_ground, &
                                    n_samples, status
     character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler, &
@@ -46,6 +50,7 @@ contains
     rpar = 0; ipar = 0; analysis = 0; analysis_values = 0; tank = 0; integration = 0
     steady = 0; response = 0; lyapunov = 0; simulation = 0; sweep = 0; response_range = 0
     has_tank = 0; has_ground = 0; ground = 0; n_samples = 0; seismic = 0; chart = 0
+    chart_range = 0
     directory = ''; study = 0; study_store = ''; study_figure = ''; study_scheduler = ''
     study_records = ''
     call core(path, config, info, message)
@@ -54,7 +59,7 @@ contains
     call model_to_arrays(config%model, rpar, ints)
     ipar = ints
     analysis = config%analysis
-    analysis_values = [config%sigma1, config%kappa_min, config%kappa_max]
+    analysis_values = from_analysis(config)
     directory = config%directory
     has_tank = merge(1, 0, config%dimensional)
     if (config%dimensional) tank = from_tank(config%tank)
@@ -63,35 +68,21 @@ contains
       ground = from_ground(config%ground)
       if (allocated(config%ground%acceleration)) n_samples = size(config%ground%acceleration)
     end if
-    seismic = [config%seismic%t_end, real(config%seismic%n_out, c_double)]
+    seismic = from_seismic(config%seismic)
     chart = from_chart(config%chart)
+    chart_range = from_chart_range(config%chart)
     integration = from_ode_options(config%integration, config%method)
     steady = from_steady(config%steady)
     response = from_response(config%response%options)
     lyapunov = from_lyapunov(config%lyapunov)
-    simulation = [config%simulation%t_end, real(config%simulation%n_out, c_double), &
-                  config%simulation%y0]
-    sweep = [real(config%sweep%parameter, c_double), config%sweep%start, config%sweep%stop, &
-             real(config%sweep%n_points, c_double), real(config%sweep%direction, c_double), &
-             merge(1.0_c_double, 0.0_c_double, config%sweep%carry_state), &
-             real(config%sweep%threads, c_double)]
-    response_range = [merge(1.0_c_double, 0.0_c_double, config%response%internal_resonance), &
-                      real(config%response%parameter, c_double), config%response%start, &
-                      config%response%stop]
-    associate (st => config%study)
-      study = [merge(1.0_c_double, 0.0_c_double, st%given), real(st%kind, c_double), &
-               real(st%workers, c_double), real(st%worker_kind, c_double), &
-               real(st%points_per_task, c_double), st%frequency_start, st%frequency_stop, &
-               real(st%n_frequencies, c_double), st%amplitude_start, st%amplitude_stop, &
-               real(st%n_amplitudes, c_double), real(st%continuation, c_double), st%x1_start, &
-               st%x1_stop, st%dx1_start, st%dx1_stop, real(st%n_grid, c_double), st%tol, &
-               st%intensity_start, st%intensity_stop, real(st%n_intensities, c_double), &
-               st%spectral_damping]
-      study_store = st%store
-      study_records = st%records
-      study_figure = st%figure
-      study_scheduler = st%scheduler
-    end associate
+    simulation = from_simulation(config%simulation)
+    sweep = from_sweep(config%sweep)
+    response_range = from_response_range(config%response)
+    study = from_study(config%study)
+    study_store = config%study%store
+    study_records = config%study%records
+    study_figure = config%study%figure
+    study_scheduler = config%study%scheduler
   end subroutine read_input
 
   !> The samples of the ground-motion record of a namelist file (as read_input reads it, scaled).

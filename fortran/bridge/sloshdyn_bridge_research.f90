@@ -37,9 +37,9 @@ contains
 
   !> The branch of slow-flow limit cycles (the beats) through the cycle (x_cycle, period [tau])
   !> at the model's rho and A, in rho (which = 1) or A (2) over [lambda_min, lambda_max];
-  !> settings in the cycle_continuation layout. points(7, :) = [lambda, x(4), T, stable],
-  !> multipliers(8, :) = [re(4), im(4)], amplitudes(4, :) = [min|B1|, max|B1|, min|B2|,
-  !> max|B2|], special(7, :) = [kind, lambda, x(4), T]; stop_reason: sloshdyn_continuation's.
+  !> settings in the continuation layout. points, multipliers and amplitudes: the columns of the
+  !> table 'cycle_branch' in that order; special: 'cycle_special_points'; stop_reason:
+  !> sloshdyn_continuation's.
   subroutine slow_flow_cycle_branch(rpar, ipar, which, x_cycle, period, lambda_min, lambda_max, &
                                     settings, integration, max_points, max_special, points, &
                                     multipliers, amplitudes, n_points, special, n_special, &
@@ -48,14 +48,18 @@ contains
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_continuation, only: continuation_options
     use sloshdyn_slowflow_cycles, only: core => slow_flow_cycle_branch
-    use sloshdyn_layouts, only: INTEGRATION_SIZE, CYCLE_CONTINUATION_SIZE, to_ode_options, &
-                                to_method, to_cycle_continuation
+    use sloshdyn_tables, only: CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, &
+                               CYCLE_SPECIAL_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, CONTINUATION_SIZE, to_ode_options, &
+                                to_method, to_continuation
     real(c_double), intent(in) :: rpar(n_real_params), x_cycle(4), period, lambda_min, &
-                                  lambda_max, settings(CYCLE_CONTINUATION_SIZE), &
+                                  lambda_max, settings(CONTINUATION_SIZE), &
                                   integration(INTEGRATION_SIZE)
     integer(c_int), intent(in) :: ipar(n_int_params), which, max_points, max_special
-    real(c_double), intent(out) :: points(7, max_points), multipliers(8, max_points), &
-                                   amplitudes(4, max_points), special(7, max_special)
+    real(c_double), intent(out) :: points(CYCLE_POINT_ROWS, max_points), &
+                                   multipliers(CYCLE_MULTIPLIER_ROWS, max_points), &
+                                   amplitudes(CYCLE_AMPLITUDE_ROWS, max_points), &
+                                   special(CYCLE_SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, stop_reason, status
     character(len=256), intent(out) :: message
     type(model_t) :: model
@@ -63,7 +67,7 @@ contains
     integer :: code, found, found_special, reason
     points = 0; multipliers = 0; amplitudes = 0; special = 0
     found = 0; found_special = 0; reason = 0
-    options = to_cycle_continuation(settings)
+    options = to_continuation(settings)
     options%max_points = max_points
     call model_from_arrays(rpar, int(ipar), model, code, message)
     if (code == 0) call core(model, int(which), x_cycle, period, lambda_min, lambda_max, &

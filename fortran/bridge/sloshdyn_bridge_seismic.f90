@@ -9,15 +9,6 @@ module sloshdyn_bridge_seismic
 
 contains
 
-  !> The tank's defaults (tank_t).
-  subroutine tank_defaults(tank)
-    use sloshdyn_layouts, only: TANK_SIZE, from_tank
-    use sloshdyn_vessel, only: tank_t
-    real(c_double), intent(out) :: tank(TANK_SIZE)
-    type(tank_t) :: defaults
-    tank = from_tank(defaults)
-  end subroutine tank_defaults
-
   !> The tank's properties (the 'tank_si' table's row) and its dimensionless model.
   subroutine tank_properties(tank, row, rpar, ipar, status, message)
     !f2py threadsafe
@@ -242,8 +233,7 @@ contains
     !f2py threadsafe
     use sloshdyn_tables, only: SUMMARY_SIZE, HARMONIC_SWEEP_ROWS
     use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, TANK_SIZE, GROUND_SIZE, to_tank, &
-                                to_ode_options, to_method, to_steady
-    use sloshdyn_ground, only: harmonic_ground
+                                to_ode_options, to_method, to_steady, to_ground
     use sloshdyn_seismic, only: core => harmonic_sweep
     integer(c_int), intent(in) :: n, carry, threads
     real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), frequencies(n), y0(4), &
@@ -253,8 +243,9 @@ contains
                                    y_final(4)
     integer(c_int), intent(out) :: n_done, status
     character(len=256), intent(out) :: message
+    real(c_double) :: no_samples(0)
     integer :: info, done
-    call core(to_tank(tank), harmonic_ground(ground(2), ground(3)), frequencies, y0, &
+    call core(to_tank(tank), to_ground(ground, no_samples), frequencies, y0, &
               to_ode_options(integration), to_method(integration), to_steady(steady), carry /= 0, &
               int(threads), summaries, table, y_final, done, info, message)
     n_done = done

@@ -10,13 +10,16 @@ program sloshdyn_bridge_sizes
                              PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
                              PERIODIC_SPECIAL_ROWS, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, &
                              CHART_END_ROWS, CHART_GRID_ROWS, TANK_SI_SIZE, CODES_COLUMNS, &
-                             CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS
+                             CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS, &
+                             CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, &
+                             CYCLE_SPECIAL_ROWS
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
-                              TANK_SIZE, GROUND_SIZE, CHART_SETTINGS_SIZE, STUDY_SIZE, &
+                              TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
                               SWEEP_SIZE, SIMULATION_SIZE, RESPONSE_RANGE_SIZE, SEISMIC_SIZE, &
-                              ANALYSIS_SIZE, CONTINUATION_SIZE, CYCLE_CONTINUATION_SIZE, &
+                              ANALYSIS_SIZE, CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
-                              PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE
+                              PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
+                              MODAL_SCALARS_SIZE, CHART_SIZES_SIZE
   implicit none
   call define('n_real_params', n_real_params)
   call define('n_int_params', n_int_params)
@@ -40,13 +43,18 @@ program sloshdyn_bridge_sizes
   call define('seismic_rows', SEISMIC_ROWS)
   call define('peaks_size', PEAKS_SIZE)
   call define('harmonic_sweep_rows', HARMONIC_SWEEP_ROWS)
+  call define('cycle_point_rows', CYCLE_POINT_ROWS)
+  call define('cycle_multiplier_rows', CYCLE_MULTIPLIER_ROWS)
+  call define('cycle_amplitude_rows', CYCLE_AMPLITUDE_ROWS)
+  call define('cycle_special_rows', CYCLE_SPECIAL_ROWS)
   call define('integration_size', INTEGRATION_SIZE)
   call define('steady_size', STEADY_SIZE)
   call define('response_size', RESPONSE_SIZE)
   call define('lyapunov_size', LYAPUNOV_SIZE)
   call define('tank_size', TANK_SIZE)
   call define('ground_size', GROUND_SIZE)
-  call define('chart_settings_size', CHART_SETTINGS_SIZE)
+  call define('chart_size', CHART_SIZE)
+  call define('chart_range_size', CHART_RANGE_SIZE)
   call define('study_size', STUDY_SIZE)
   call define('sweep_size', SWEEP_SIZE)
   call define('simulation_size', SIMULATION_SIZE)
@@ -54,13 +62,14 @@ program sloshdyn_bridge_sizes
   call define('seismic_size', SEISMIC_SIZE)
   call define('analysis_size', ANALYSIS_SIZE)
   call define('continuation_size', CONTINUATION_SIZE)
-  call define('cycle_continuation_size', CYCLE_CONTINUATION_SIZE)
   call define('shooting_size', SHOOTING_SIZE)
   call define('pendulum_size', PENDULUM_SIZE)
   call define('physical_size', PHYSICAL_SIZE)
   call define('groups_size', GROUPS_SIZE)
   call define('routh_trivial_size', ROUTH_TRIVIAL_SIZE)
   call define('orbit_info_size', ORBIT_INFO_SIZE)
+  call define('modal_scalars_size', MODAL_SCALARS_SIZE)
+  call define('chart_sizes_size', CHART_SIZES_SIZE)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

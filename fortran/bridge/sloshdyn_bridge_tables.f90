@@ -9,8 +9,10 @@ module sloshdyn_bridge_tables
 contains
 
   !> Names: a result table's comma-separated column names (list = 'table:NAME') or their format
-  !> letters ('formats:NAME'), a settings or model array's field names ('layout:NAME',
-  !> sloshdyn_layouts), or the names of the codes of an enumerated option: 'analyses',
+  !> letters ('formats:NAME'); a settings or model array's field names ('layout:NAME',
+  !> sloshdyn_layouts), their kinds ('kinds:NAME': real, integer, flag or code:LIST) and what
+  !> they are ('docs:NAME', one line per field); every layout ('layouts'); every enumerated
+  !> option ('code_lists'); or the names of the codes of an enumerated option: 'analyses',
   !> 'methods', 'chart_models', 'chart_axes', 'excitation_parameters', 'directions',
   !> 'study_kinds', 'worker_kinds', 'continuations', 'ground_kinds', 'resonances' and the kind
   !> lists of sloshdyn_tables ('special', 'motion', 'verdict', ...); first = the code of the
@@ -22,12 +24,17 @@ contains
     use sloshdyn_integrator, only: method_names
     use sloshdyn_excitation, only: PARAMETER_RHO
     use sloshdyn_ground, only: GROUND_HARMONIC
-    use sloshdyn_layouts, only: layout_fields, join, excitation_parameters, ground_kinds, &
-                                resonances, chart_axes, CHART_RHO
+    use sloshdyn_layouts, only: layout_names, layout_text, join, &
+                                excitation_parameters, ground_kinds, resonances, chart_axes, &
+                                CHART_RHO
     character(len=*), intent(in) :: list
-    character(len=1024), intent(out) :: text
+    character(len=8192), intent(out) :: text
     integer(c_int), intent(out) :: first, status
     character(len=256), intent(out) :: message
+    !> The enumerated options (the cases below, then the kind lists of sloshdyn_tables).
+    character(len=*), parameter :: code_lists = 'analyses,methods,chart_models,chart_axes,'// &
+      'excitation_parameters,directions,study_kinds,worker_kinds,continuations,ground_kinds,'// &
+      'resonances,special,motion,verdict,source,curve,codim2,curve_end'
     character(len=:), allocatable :: joined
     integer :: code
     status = 0
@@ -38,9 +45,15 @@ contains
     else if (index(list, 'formats:') == 1) then
       joined = table_formats(list(9:))
     else if (index(list, 'layout:') == 1) then
-      joined = layout_fields(list(8:))
+      joined = layout_text(list(8:), 'name')
+    else if (index(list, 'kinds:') == 1) then
+      joined = layout_text(list(7:), 'kind')
+    else if (index(list, 'docs:') == 1) then
+      joined = layout_text(list(6:), 'doc')
     else
       select case (list)
+      case ('layouts');       joined = layout_names
+      case ('code_lists');    joined = code_lists
       case ('analyses');      joined = join(known_analyses, ',')
       case ('methods')
         joined = join(method_names, ',')
@@ -73,35 +86,39 @@ contains
     if (len(joined) == 0) then
       status = 1
       message = "no names for '"//list//"'"
+    else if (len(joined) > len(text)) then
+      status = 1
+      message = "the names of '"//list//"' are longer than the bridge's text"
     end if
   end subroutine names
 
-  !> The defaults of the option types, each in its layout: the model (rpar, ipar of
-  !> sloshdyn_model; its excitation and groups 0), integration, steady, response, lyapunov and
-  !> shooting.
-  subroutine defaults(model, model_integers, integration, steady, response, lyapunov, shooting)
+  !> The defaults of a settings layout (sloshdyn_layouts' layout_defaults: the option types'
+  !> defaults, the model's (its excitation and groups 0)), n = the layout's size.
+  subroutine layout_defaults(name, n, values, status, message)
     !f2py threadsafe
-    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_to_arrays
-    use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
-                                SHOOTING_SIZE, from_ode_options, from_steady, from_response, &
-                                from_lyapunov
-    use sloshdyn_ode, only: ode_options
-    use sloshdyn_simulation, only: steady_options
-    use sloshdyn_response, only: response_options
-    use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
-    use sloshdyn_integrator, only: METHOD_AUTO
-    real(c_double), intent(out) :: model(n_real_params), integration(INTEGRATION_SIZE), &
-                                   steady(STEADY_SIZE), response(RESPONSE_SIZE), &
-                                   lyapunov(LYAPUNOV_SIZE), shooting(SHOOTING_SIZE)
-    integer(c_int), intent(out) :: model_integers(n_int_params)
-    type(model_t) :: m
-    integer :: ints(n_int_params)
-    call model_to_arrays(m, model, ints)
-    model_integers = ints
-    integration = from_ode_options(ode_options(), METHOD_AUTO)
-    steady = from_steady(steady_options())
-    response = from_response(response_options())
-    lyapunov = from_lyapunov(lyapunov_options())
-    shooting = [newton_tol_default, real(max_iter_default, c_double)]
-  end subroutine defaults
+    use sloshdyn_kinds, only: wp
+    use sloshdyn_text, only: num2str
+    use sloshdyn_layouts, only: core => layout_defaults
+    character(len=*), intent(in) :: name
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(out) :: values(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    real(wp), allocatable :: defaults(:)
+    logical :: found
+    values = 0
+    status = 0
+    message = ''
+    call core(name, defaults, found)
+    if (.not. found) then
+      status = 1
+      message = "no defaults for '"//name//"'"
+    else if (size(defaults) /= n) then
+      status = 1
+      message = "the layout '"//name//"' has "//num2str(size(defaults))//' fields, not '// &
+                num2str(int(n))
+    else
+      values = defaults
+    end if
+  end subroutine layout_defaults
 end module sloshdyn_bridge_tables

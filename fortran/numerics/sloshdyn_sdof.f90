@@ -103,7 +103,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), intent(in), optional :: tail_duration
-    real(wp) :: coefficients(2, 4), omega, u, v, u_next, v_next, peak, tail
+    real(wp) :: coefficients(2, 4), omega, u, v, u_next, v_next, peak, tail, load(2)
     integer :: j, i, tail_steps
 
     sd = 0; sv = 0; psa = 0
@@ -127,16 +127,10 @@ contains
       u = 0
       v = 0
       peak = 0
-      do i = 1, size(accel) - 1
-        call advance(coefficients, -accel(i), -accel(i + 1), u, v, u_next, v_next)
-        u = u_next
-        v = v_next
-        peak = max(peak, abs(u))
-        if (mod(i, steps_per_poll) == 0) call check_cancel(status, message)
-        if (status /= SD_OK) return
-      end do
-      do i = 1, tail_steps
-        call advance(coefficients, 0.0_wp, 0.0_wp, u, v, u_next, v_next)
+      do i = 1, size(accel) - 1 + tail_steps   ! the record, then the free-vibration tail
+        load = 0
+        if (i < size(accel)) load = -accel(i:i + 1)
+        call advance(coefficients, load(1), load(2), u, v, u_next, v_next)
         u = u_next
         v = v_next
         peak = max(peak, abs(u))

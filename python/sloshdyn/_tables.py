@@ -21,13 +21,20 @@ def _text(raw):
 
 
 @lru_cache(maxsize=None)
-def names(list_name):
-    """The names of a list and the code of the first one: the codes of an enumerated option
-    (CODE_LISTS), 'table:NAME' for a result table's columns, 'formats:NAME' for their format
-    letters, 'layout:NAME' for the fields of a flat array (LAYOUTS)."""
+def _names_text(list_name):
     text, first, status, message = _bridge.names(list_name)
     check_status(status, message)
-    return tuple(_text(text).split(",")), int(first)
+    raw = text.decode() if isinstance(text, bytes) else str(text)
+    return raw.rstrip(), int(first)
+
+
+def names(list_name):
+    """The names of a list and the code of the first one: the codes of an enumerated option
+    (code_lists()), 'table:NAME' for a result table's columns, 'formats:NAME' for their format
+    letters, 'layout:NAME' for the fields of a flat array (layouts()), 'kinds:NAME' for their
+    kinds ('real', 'integer', 'flag', 'code:LIST')."""
+    text, first = _names_text(list_name)
+    return tuple(item.strip() for item in text.split(",")), first
 
 
 def codes(list_name):
@@ -41,22 +48,32 @@ def columns(table):
     return list(names(f"table:{table}")[0])
 
 
-#: The enumerated options whose codes the core names (the bridge's names routine).
-CODE_LISTS = ("analyses", "methods", "chart_models", "chart_axes", "excitation_parameters",
-              "directions", "study_kinds", "worker_kinds", "continuations", "ground_kinds",
-              "resonances", "special", "motion", "verdict", "source", "curve", "codim2",
-              "curve_end")
-#: The flat arrays with a named layout (sloshdyn_layouts; 'model' and 'model_integers' are the
-#: model's rpar and ipar).
-LAYOUTS = ("model", "model_integers", "integration", "steady", "response", "response_range",
-           "lyapunov", "tank", "ground", "chart", "study", "sweep", "simulation", "seismic",
-           "analysis", "continuation", "cycle_continuation", "shooting", "pendulum", "physical",
-           "groups", "routh", "orbit_info")
+def code_lists():
+    """The enumerated options whose codes the core names (the bridge's names routine)."""
+    return names("code_lists")[0]
+
+
+def layouts():
+    """The flat arrays with a named layout (sloshdyn_layouts; 'model' and 'model_integers' are
+    the model's rpar and ipar)."""
+    return names("layouts")[0]
 
 
 def layout(name):
     """The field names of a flat array, in the order of the core's array."""
     return names(f"layout:{name}")[0]
+
+
+def kinds(name):
+    """{field: kind} of a layout: 'real', 'integer', 'flag' (1/0) or 'code:LIST' (a code of the
+    enumerated option LIST)."""
+    return dict(zip(layout(name), names(f"kinds:{name}")[0]))
+
+
+def docs(name):
+    """{field: what it is} of a layout, as the core documents it ('' where it does not)."""
+    lines = _names_text(f"docs:{name}")[0].split("\n")
+    return dict(zip(layout(name), [line.strip() for line in lines] + [""] * len(layout(name))))
 
 
 def pack(name, values, dtype=np.float64):
@@ -81,12 +98,9 @@ def code(list_name, name):
 
 
 @lru_cache(maxsize=None)
-def defaults():
-    """The core's defaults {layout: {field: value}}: the model ('model' and 'model_integers'
-    merged), integration, steady, response, lyapunov and shooting."""
-    model, model_integers, *arrays = _bridge.defaults()
-    result = {"model": {**unpack("model", model.copy()),
-                        **unpack("model_integers", model_integers.copy())}}
-    for key, array in zip(("integration", "steady", "response", "lyapunov", "shooting"), arrays):
-        result[key] = unpack(key, array.copy())
-    return result
+def defaults(name):
+    """The core's defaults {field: value} of a settings layout (the option types' defaults, as
+    the namelist reader starts from them; 'model' and 'model_integers': model_t's)."""
+    values, status, message = _bridge.layout_defaults(name, len(layout(name)))
+    check_status(status, message)
+    return unpack(name, values.copy())

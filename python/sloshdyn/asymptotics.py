@@ -3,7 +3,6 @@ modal form and the coefficients of the solvability conditions, computed by the F
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -11,7 +10,8 @@ import numpy as np
 from ._cancel import cancellable
 from . import _checks, _core, _tables
 from ._errors import InputError, check_status
-from .parameters import Parameters, convert_fields
+from ._settings import settings
+from .parameters import Parameters
 from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_asymptotics
@@ -80,8 +80,7 @@ def modal_coefficients(params: Parameters) -> ModalCoefficients:
     (scalars, c, exponents, g, g_forcing, h, h_forcing, status,
      message) = _bridge.modal_expansion(*params.array())
     check_status(status, message)
-    result = {"omega1": scalars[0], "omega2": scalars[1], "gamma11": scalars[2],
-              "gamma22": scalars[3], "F11": scalars[4]}
+    result = _tables.unpack("modal_scalars", scalars)
     for r in (1, 2):
         for j in (1, 2, 3):
             result[f"c{r}{j}"] = float(c[r - 1, j - 1])
@@ -105,7 +104,6 @@ def modal_coefficients(params: Parameters) -> ModalCoefficients:
 _COLUMNS = _tables.columns("response")
 SPECIAL_KINDS = _tables.codes("special")
 _SPECIAL_COLUMNS = _tables.columns("special_points") + ["column"]
-_RESPONSE = _tables.defaults()["response"]
 #: room for the points of all branches and their special points (both front doors)
 MAX_TABLE_POINTS, MAX_SPECIAL_POINTS = 20000, 200
 
@@ -153,37 +151,10 @@ class FrequencyResponse:
                 + 1j * np.array([self.table[f"im{i}"] for i in range(1, 5)])).T
 
 
-@dataclass(frozen=True)
+@settings("response")
 class Continuation:
-    """Settings of the branch search and continuation (&response): the fields of the core's
-    layout, in order, with its defaults."""
-
-    #: parameter values where steady states are searched
-    n_scan: int = int(_RESPONSE["n_scan"])
-    #: Newton starts per mode: log-spaced |B| ...
-    n_amplitudes: int = int(_RESPONSE["n_amplitudes"])
-    n_phases: int = int(_RESPONSE["n_phases"])          #: ... times equally spaced phases
-    amplitude_min: float = float(_RESPONSE["amplitude_min"])
-    amplitude_max: float = float(_RESPONSE["amplitude_max"])
-    ds: float = float(_RESPONSE["ds"])            #: first pseudo-arclength step
-    ds_min: float = float(_RESPONSE["ds_min"])
-    ds_max: float = float(_RESPONSE["ds_max"])
-    #: weight of the amplitudes in the arclength norm
-    x_scale: float = float(_RESPONSE["x_scale"])
-    max_points: int = int(_RESPONSE["max_points"])        #: points per branch and direction at most
-
-    def __post_init__(self):
-        convert_fields(self)
-
-    @classmethod
-    def from_namelist(cls, response: dict):
-        """The settings of a &response group (as read_namelist gives it)."""
-        return cls(**{f.name: response[f.name] for f in dataclasses.fields(cls)})
-
-    def array(self):
-        """The flat array of the core's layout 'response'."""
-        return _tables.pack("response", {name: getattr(self, name) for name in
-                                         _tables.layout("response")})
+    """Settings of the branch search and continuation of the slow flow's steady states
+    (&response's numbers)."""
 
 
 def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A_range=None,
@@ -196,11 +167,11 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
     if a branch could not be finished."""
     _checks.instance("params", params, Parameters)
     _checks.instance("continuation", continuation, Continuation)
-    _checks.choice("resonance", resonance, ("3:1", "none"))
+    _checks.choice("resonance", resonance, _tables.names("resonances")[0])
     parameter, (lo, hi) = continuation_range(rho_range, A_range)
     (table, n_points, special, n_special, complete, status,
-     message) = cancellable(_bridge.frequency_response, *params.array(), 1 if resonance == "3:1" else 0,
-                                           1 if parameter == "rho" else 2, float(lo), float(hi),
+     message) = cancellable(_bridge.frequency_response, *params.array(), _tables.code("resonances", resonance),
+                                           _tables.code("excitation_parameters", parameter), float(lo), float(hi),
                                            continuation.array(), MAX_TABLE_POINTS, MAX_SPECIAL_POINTS)
     columns = {name: table[i, :n_points].copy() for i, name in enumerate(_COLUMNS)}
     points = []
@@ -217,6 +188,14 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
             exc.partial = result
             raise
     return result
+
+
+def continuation_array(continuation: Continuation, direction):
+    """The core's 'continuation' layout (periodic orbits, slow-flow cycles) from the fields of
+    a Continuation of the same names and the first step's direction (+1 up, -1 down)."""
+    return _tables.pack("continuation", {
+        name: direction if name == "direction" else getattr(continuation, name)
+        for name in _tables.layout("continuation")})
 
 
 def continuation_range(rho_range, A_range):

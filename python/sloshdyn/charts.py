@@ -14,11 +14,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _checks, _core, _tables
-from ._errors import check_status
-from .parameters import Parameters, convert_fields
+from ._errors import CapacityError, check_status
+from ._settings import settings
+from .asymptotics import Continuation
+from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_charts
-_DEFAULTS = _tables.unpack("chart", _bridge.chart_defaults())
 AXES = _tables.names("chart_axes")[0]             #: the chart parameters: rho, A, gamma, kappa
 MODELS = _tables.names("chart_models")[0]         #: 'slow_flow_3:1', 'slow_flow_nonresonant'
 CURVE_KINDS = _tables.codes("curve")              #: {1: 'fold', 2: 'hopf', ...}
@@ -89,28 +90,15 @@ class StabilityChart:
         return rho * p["omega"] / (2 * math.pi), acceleration / scale
 
 
-@dataclass(frozen=True)
+@settings("chart")
 class Chart:
-    """Settings of a stability chart's grid and curves (&chart), with the core's defaults. The
-    grid has n_x by n_y cells (their midpoints); the one-parameter runs in x at n_y values of
-    y, with n_scan parameter values searched and at most max_points points each, seed at most
-    max_curves curves. brute_force_starts > 0 integrates the slow flow from that many starts
-    in every cell and counts the stable steady states reached (a small basin may be missed; it
-    never finds more than there are)."""
-
-    n_x: int = int(_DEFAULTS["n_x"])
-    n_y: int = int(_DEFAULTS["n_y"])
-    n_scan: int = int(_DEFAULTS["n_scan"])
-    max_points: int = int(_DEFAULTS["max_points"])
-    max_curves: int = int(_DEFAULTS["max_curves"])
-    brute_force_starts: int = 0
-
-    def __post_init__(self):
-        convert_fields(self)
+    """Settings of a stability chart's grid and curves (&chart): the grid has n_x by n_y cells
+    (their midpoints); the one-parameter runs in x at n_y values of y seed the curves."""
 
 
 def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
-                    model="slow_flow_3:1", chart: Chart = Chart(), threads=1,
+                    model="slow_flow_3:1", chart: Chart = Chart(),
+                    continuation: Continuation = Continuation(), threads=1,
                     capacity=200_000) -> StabilityChart:
     """The stability chart of the slow flow of `params` (model 'slow_flow_3:1' or
     'slow_flow_nonresonant') for x in x_range and y in y_range: x is rho or A (it is varied by
@@ -118,36 +106,38 @@ def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",
     rho, A, gamma, kappa; the values of the others come from params. A curve that stops early
     is kept up to where it stopped (complete False, with its note) and a warning is issued.
     threads share out the runs and cells (same result on any number); capacity: room for the
-    curves' points."""
+    curves' points. The one-parameter runs search and continue steady states with the settings
+    of `continuation` (as frequency_response; its n_scan is chart.n_scan)."""
     _checks.instance("params", params, Parameters)
     _checks.instance("chart", chart, Chart)
+    _checks.instance("continuation", continuation, Continuation)
     _checks.choice("model", model, MODELS)
     _checks.choice("x", x, AXES)
     _checks.choice("y", y, AXES)
     (x_min, x_max), (y_min, y_max) = (_checks.interval("x_range", x_range),
                                       _checks.interval("y_range", y_range))
     threads, capacity = _checks.integer("threads", threads), _checks.integer("capacity", capacity)
-    n_x, n_y, n_scan, max_points, max_curves, brute_force_starts = (
-        chart.n_x, chart.n_y, chart.n_scan, chart.max_points, chart.max_curves,
-        chart.brute_force_starts)
+    n_x, n_y, max_curves = chart.n_x, chart.n_y, chart.max_curves
     _checks.output_size("capacity", max(capacity, 1), len(_tables.columns("chart_curves")))
     _checks.output_size("max_curves", 10 * max(max_curves, 1), len(_tables.columns("chart_codim2")))
     _checks.output_size("n_x * n_y", max(n_x, 1) * max(n_y, 1), len(_tables.columns("chart_grid")))
-    settings = _tables.pack("chart", {
+    chart_range = _tables.pack("chart_range", {
         "model": _tables.code("chart_models", model), "x": _tables.code("chart_axes", x),
         "y": _tables.code("chart_axes", y), "x_min": x_min, "x_max": x_max, "y_min": y_min,
-        "y_max": y_max, "n_x": n_x, "n_y": n_y, "n_scan": n_scan, "max_points": max_points,
-        "max_curves": max_curves, "brute_force_starts": brute_force_starts, "threads": threads})
+        "y_max": y_max, "threads": threads})
     n_cells = max(n_x, 1) * max(n_y, 1)
     (curves, codim2, ends, grid, sizes, complete, notes, status,
-     message) = _bridge.stability_chart(*params.array(), settings, max(capacity, 1),
+     message) = _bridge.stability_chart(*params.array(), chart.array(), chart_range,
+                                        continuation.array(), max(capacity, 1),
                                         10 * max(max_curves, 1), max(max_curves, 1), n_cells)
-    if status == 9:   # SD_CAPACITY: name the Python argument that sets the room
-        message = (_tables._text(message) + f"; give capacity >= {int(sizes[0])} (now "
-                   f"{int(capacity)})")
+    used = _tables.unpack("chart_sizes", sizes)
+    if status == CapacityError.status:   # name the Python argument that sets the room
+        message = (_tables._text(message) + f"; give capacity >= {int(used['curve_points'])} "
+                   f"(now {int(capacity)})")
     check_status(status, message)
-    chart = _chart(x, y, model, curves[:, :sizes[0]], codim2[:, :sizes[1]], ends[:, :sizes[2]],
-                   grid[:, :sizes[3]], bool(complete), _tables._text(notes), params)
+    chart = _chart(x, y, model, curves[:, :used["curve_points"]],
+                   codim2[:, :used["codim2_points"]], ends[:, :used["curves"]],
+                   grid[:, :used["cells"]], bool(complete), _tables._text(notes), params)
     if not chart.complete:
         warnings.warn("stability chart: not every curve could be continued to its ends:\n"
                       + _tables._text(notes), stacklevel=2)
@@ -209,4 +199,5 @@ def chart_from_files(directory, x="rho", y="A", model="slow_flow_3:1", params=No
                       in zip(table["curve"], table["last_end"], table["complete"]) if not done)
     return _chart(x, y, model, read("chart_curves.csv", "chart_curves"),
                   read("chart_codim2.csv", "chart_codim2"), ends,
-                  read("chart_grid.csv", "chart_grid"), bool(np.all(ends[3] > 0)), notes, params)
+                  read("chart_grid.csv", "chart_grid"), bool(np.all(table["complete"] > 0)), notes,
+                  params)

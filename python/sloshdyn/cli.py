@@ -20,7 +20,7 @@ from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError
 from ._files import run_directory, save_figure, write_text
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
-from .simulation import Integration, Simulation, Sweep, _summary
+from .simulation import Simulation, Sweep, _summary
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="sloshdyn-py", description=(
@@ -161,7 +161,6 @@ def run_study(path, scheduler=None, workers=None, progress=True):
     """Run the &study of a namelist file (read by the same reader as every input), print a
     summary and draw its figure (&study figure, default: beside the store)."""
     from . import plotting, studies
-    from .simulation import Integration, Steady
     try:
         inp = read_namelist(path)
     except SloshdynError as exc:
@@ -175,7 +174,7 @@ def run_study(path, scheduler=None, workers=None, progress=True):
     common = dict(client=None, scheduler=scheduler or st["scheduler"] or None,
                   workers=workers if workers is not None else (st["workers"] or None),
                   worker_kind=st["worker_kind"], points_per_task=st["points_per_task"] or None,
-                  steady=Steady(**inp.steady), integration=Integration(**inp.integration),
+                  steady=inp.steady, integration=inp.integration,
                   progress=progress)
     if st["kind"] == "response_map":
         f = np.linspace(st["frequency_start"], st["frequency_stop"], st["n_frequencies"])
@@ -254,7 +253,7 @@ def _table(path):
 
 def _figure(inp, out):
     """(file name, Figure) for the analyses that have one, from their result files."""
-    method = Integration(**inp.integration).method_used
+    method = inp.integration.method_used
     if inp.analysis == "simulate":
         t = _table(out / "history.csv")
         sim = Simulation(t["tau"], np.array([t[k] for k in ("x1", "dx1", "x2", "dx2")]),
@@ -270,10 +269,11 @@ def _figure(inp, out):
         return "seismic.png", plotting.seismic(response)
     if inp.analysis == "stability_chart":
         from .charts import chart_from_files
-        chart = chart_from_files(out, inp.chart["x"], inp.chart["y"], inp.chart["model"])
+        axes = inp.chart_range
+        chart = chart_from_files(out, axes["x"], axes["y"], axes["model"])
         return "stability_chart.png", plotting.stability_chart(
-            chart, tank=inp.tank if inp.tank is not None and inp.chart["x"] == "rho"
-            and inp.chart["y"] == "A" else None)
+            chart, tank=inp.tank if inp.tank is not None and axes["x"] == "rho"
+            and axes["y"] == "A" else None)
     if inp.analysis == "sweep" and inp.sweep["parameter"] == "frequency":
         from .seismic import HarmonicSweep
         t = _table(out / "harmonic_sweep.csv")
@@ -290,7 +290,8 @@ def _figure(inp, out):
         special = [SpecialPoint(kind, int(b), rho, A, a1, a2, f) for kind, b, rho, A, a1, a2, f
                    in zip(s["kind"], s["branch"], s["rho"], s["A"], s["a1"], s["a2"],
                           s["frequency"])]
-        response = FrequencyResponse(inp.response["parameter"], inp.response["resonance"], t,
+        response = FrequencyResponse(inp.response_range["parameter"],
+                                     inp.response_range["resonance"], t,
                                      special, True, "")
         return "response.png", plotting.frequency_response(response)
     return None

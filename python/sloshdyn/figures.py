@@ -79,22 +79,35 @@ def _with_beta_hat(beta_hat, n=2):
                       beta=beta_hat * THETA0 ** (2 * n - 1))
 
 
+def _equilibria_plot(x, name, symbol, family, ylim):
+    """sin x (solid blue) beside a family of curves (solid black, dashed red, dotted magenta),
+    with circles at the roots sloshdyn finds for each (eq 17): the equilibria of `name`
+    ("theta" or "phi", written `symbol` in TeX). `family` holds per curve (column, values,
+    label, parameters, key of the number of roots). Returns the figure, its columns and the
+    numbers of roots."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(x, np.sin(x), "-", color="b", label=rf"$\sin{symbol}$")
+    columns = {name: x, f"sin_{name}": np.sin(x)}
+    values = {}
+    styles = (("-", "k"), ("--", "r"), (":", "m"))
+    for (column, curve, label, params, key), (ls, color) in zip(family, styles):
+        columns[column] = curve
+        ax.plot(x, curve, ls, color=color, label=label)
+        roots = equilibrium_angles(params, name).angles
+        ax.plot(roots, np.sin(roots), "o", color=color, mfc="none")
+        values[key] = len(roots)
+    ax.set_ylim(*ylim)
+    ax.set_xlabel(rf"${symbol}$ [rad]")
+    ax.legend(fontsize=8)
+    return fig, columns, values
+
+
 def fig04(out, quick=False):
     theta = np.linspace(-6, 6, 1201)
-    fig, ax = plt.subplots(figsize=(6, 4))
-    ax.plot(theta, np.sin(theta), "-", color="b", label=r"$\sin\theta$")
-    columns = {"theta": theta, "sin_theta": np.sin(theta)}
-    values = {}
-    for beta_hat, ls, color in ((0.005, "-", "k"), (0.012, "--", "r"), (0.08, ":", "m")):
-        curve = -beta_hat * theta**3
-        columns[f"minus_beta_hat_theta3_{beta_hat}"] = curve
-        ax.plot(theta, curve, ls, color=color, label=rf"$-\hat\beta\theta^3$, $\hat\beta$ = {beta_hat}")
-        roots = equilibrium_angles(_with_beta_hat(beta_hat), "theta").angles
-        ax.plot(roots, np.sin(roots), "o", color=color, mfc="none")
-        values[f"fig4_equilibria_beta_hat_{beta_hat}"] = len(roots)
-    ax.set_ylim(-2, 2)
-    ax.set_xlabel(r"$\theta$ [rad]")
-    ax.legend(fontsize=8)
+    fig, columns, values = _equilibria_plot(theta, "theta", r"\theta", [
+        (f"minus_beta_hat_theta3_{beta_hat}", -beta_hat * theta**3,
+         rf"$-\hat\beta\theta^3$, $\hat\beta$ = {beta_hat}", _with_beta_hat(beta_hat),
+         f"fig4_equilibria_beta_hat_{beta_hat}") for beta_hat in (0.005, 0.012, 0.08)], (-2, 2))
     values["fig4_beta_hat_b"] = _beta_hat_bifurcation()
     return Figure("4", "Equilibrium points of θ represented by intersection between sin θ (solid "
                   "blue) and -β̂θ^(2n-1) for n=2, β̂=0.005 (solid black), β̂=0.012 (dashed red) "
@@ -109,19 +122,10 @@ def _with_kappa_hat(kappa_hat, gamma=0.01):
 
 def fig05(out, quick=False):
     phi = np.linspace(-3.5, 3.5, 701)
-    fig, ax = plt.subplots(figsize=(6, 4))
-    ax.plot(phi, np.sin(phi), "-", color="b", label=r"$\sin\varphi$")
-    columns = {"phi": phi, "sin_phi": np.sin(phi)}
-    values = {}
-    for kappa_hat, ls, color in ((1.3, "-", "k"), (1.0, "--", "r"), (0.9, ":", "m")):
-        columns[f"kappa_hat_phi_{kappa_hat}"] = kappa_hat * phi
-        ax.plot(phi, kappa_hat * phi, ls, color=color, label=rf"$\hat\kappa\varphi$, $\hat\kappa$ = {kappa_hat}")
-        roots = equilibrium_angles(_with_kappa_hat(kappa_hat), "phi").angles
-        ax.plot(roots, np.sin(roots), "o", color=color, mfc="none")
-        values[f"fig5_equilibria_kappa_hat_{kappa_hat}"] = len(roots)
-    ax.set_ylim(-1.5, 1.5)
-    ax.set_xlabel(r"$\varphi$ [rad]")
-    ax.legend(fontsize=8)
+    fig, columns, values = _equilibria_plot(phi, "phi", r"\varphi", [
+        (f"kappa_hat_phi_{kappa_hat}", kappa_hat * phi,
+         rf"$\hat\kappa\varphi$, $\hat\kappa$ = {kappa_hat}", _with_kappa_hat(kappa_hat),
+         f"fig5_equilibria_kappa_hat_{kappa_hat}") for kappa_hat in (1.3, 1.0, 0.9)], (-1.5, 1.5))
     return Figure("5", "Equilibrium points for variable φ represented by intersection between "
                   "sin φ (solid blue) and κ̂φ for κ̂=1.3 (solid black), κ̂=1 (dashed red) and "
                   "κ̂=0.9 (dotted magenta).", _save(fig, out, "fig05", columns), values)

@@ -17,19 +17,10 @@ from . import _checks, _core, _tables
 from ._cancel import app_call
 from ._errors import InputError, check_status
 from ._files import atomic_path
+from ._settings import convert_fields, decode_all
 
-_MODEL_DEFAULTS = _tables.defaults()["model"]   # the core's model_t defaults, by name
-
-
-def convert_fields(settings):
-    """Check and convert every field of a settings dataclass by its annotation (int: a C int,
-    float: a finite real, bool: True or False, str: text), in place (frozen or not)."""
-    kinds = {"int": _checks.integer, "float": _checks.real, "bool": _checks.flag,
-             "str": _checks.text}
-    for f in dataclasses.fields(settings):
-        check = kinds.get(f.type)
-        if check is not None:
-            object.__setattr__(settings, f.name, check(f.name, getattr(settings, f.name)))
+#: the core's model_t defaults, by name
+_MODEL_DEFAULTS = {**_tables.defaults("model"), **_tables.defaults("model_integers")}
 
 
 @dataclass(frozen=True)
@@ -169,7 +160,8 @@ def tank_pendulum(radius, liquid_depth, *, liquid_density=None,
 
 @dataclass(frozen=True)
 class Input:
-    """A validated namelist input file."""
+    """A validated namelist input file: every settings group as its settings object (defaults
+    where the file has no such group), the other groups as dicts of their variables."""
 
     params: Parameters
     analysis: str = "linear"
@@ -180,25 +172,34 @@ class Input:
     tank: object = None            #: seismic.Tank (from &tank), or None (&model)
     ground_motion: object = None   #: seismic.GroundMotion (from &ground_motion, scaled), or None
     seismic: dict = field(default_factory=dict)       #: &seismic: t_end [s], n_out (0: default)
-    chart: dict = field(default_factory=dict)         #: &chart, as stability_chart's arguments
-    integration: dict = field(default_factory=dict)   #: &integration, for simulation.Integration
+    chart: object = None          #: &chart's settings: charts.Chart
+    chart_range: dict = field(default_factory=dict)   #: &chart's model, x, y, x_range,
+                                                      #: y_range and threads (stability_chart's
+                                                      #: arguments)
+    integration: object = None    #: &integration: simulation.Integration
     simulation: dict = field(default_factory=dict)    #: &simulation: t_end, n_out, y0
-    steady: dict = field(default_factory=dict)        #: &steady, for simulation.Steady
+    steady: object = None         #: &steady: simulation.Steady
     sweep: dict = field(default_factory=dict)         #: &sweep: parameter, start, stop, ...
-    response: dict = field(default_factory=dict)      #: &response: resonance, parameter, ...
-    lyapunov: dict = field(default_factory=dict)      #: &lyapunov
+    response: object = None       #: &response's settings: asymptotics.Continuation
+    response_range: dict = field(default_factory=dict)   #: &response's resonance, parameter,
+                                                         #: start, stop
+    lyapunov: object = None       #: &lyapunov: periodic.Lyapunov
     study: dict = field(default_factory=dict)         #: &study (empty if none): kind, store, ...
 
 
 def read_namelist(path) -> Input:
     """Read and validate a namelist input file with the executable's reader (same rules, defaults
     and messages)."""
+    from .asymptotics import Continuation
+    from .charts import Chart
+    from .periodic import Lyapunov
     from .seismic import GroundMotion, Tank
+    from .simulation import Integration, Steady
 
     path = _checks.path("path", path)
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
-     study, store, figure, scheduler, study_records, status,
+     chart_range, study, store, figure, scheduler, study_records, status,
      message) = app_call(_core.sloshdyn_bridge_input.read_input, os.fsencode(path))
     check_status(status, message)
     tank = ground_motion = None
@@ -211,95 +212,47 @@ def read_namelist(path) -> Input:
                                                 os.fsencode(path), n_samples)
             check_status(status, message)
         ground_motion = GroundMotion._from_arrays(ground, samples.copy())
-    excitation_parameters = _tables.codes("excitation_parameters")
-    sweep = _tables.unpack("sweep", sweep)
-    response_range = _tables.unpack("response_range", response_range)
-    simulation = _tables.unpack("simulation", simulation)
+    sweep = decode_all("sweep", sweep)
+    simulation = decode_all("simulation", simulation)
+    chart_range = decode_all("chart_range", chart_range)
     return Input(
         params=Parameters.from_array(rpar, ipar),
         analysis=_tables.codes("analyses")[int(analysis)],
-        **{name: float(x) for name, x in _tables.unpack("analysis", values).items()},
+        **decode_all("analysis", values),
         directory=_tables._text(directory), tank=tank, ground_motion=ground_motion,
-        seismic=_typed(_tables.unpack("seismic", seismic), integers=("n_out",)),
-        chart=_chart_settings(chart),
-        integration=_integration_settings(integration),
-        simulation={"t_end": float(simulation["t_end"]), "n_out": int(simulation["n_out"]),
-                    "y0": [float(simulation[f"y0_{i}"]) for i in range(1, 5)]},
-        steady=_steady_settings(steady),
-        sweep={"parameter": excitation_parameters[int(sweep["parameter"])],
-               "start": float(sweep["start"]), "stop": float(sweep["stop"]),
-               "n_points": int(sweep["n_points"]),
-               "direction": _tables.codes("directions")[int(sweep["direction"])],
-               "start_from": "previous" if sweep["carry_state"] else "y0",
-               "threads": int(sweep["threads"])},
-        response={"resonance": _tables.codes("resonances")[int(response_range["resonance"])],
-                  "parameter": excitation_parameters[int(response_range["parameter"])],
-                  "start": float(response_range["start"]), "stop": float(response_range["stop"]),
-                  **_response_settings(response)},
-        lyapunov=_typed(_tables.unpack("lyapunov", lyapunov),
-                        integers=("transient_periods", "n_periods", "renormalise_every"),
-                        flags=("spectrum",)),
+        seismic=decode_all("seismic", seismic),
+        chart=Chart.from_array(chart),
+        chart_range={"model": chart_range["model"], "x": chart_range["x"], "y": chart_range["y"],
+                     "x_range": (chart_range["x_min"], chart_range["x_max"]),
+                     "y_range": (chart_range["y_min"], chart_range["y_max"]),
+                     "threads": chart_range["threads"]},
+        integration=Integration.from_array(integration),
+        simulation={"t_end": simulation["t_end"], "n_out": simulation["n_out"],
+                    "y0": [simulation[f"y0_{i}"] for i in range(1, 5)]},
+        steady=Steady.from_array(steady),
+        sweep={"start_from": "previous" if sweep.pop("carry_state") else "y0", **sweep},
+        response=Continuation.from_array(response),
+        response_range=decode_all("response_range", response_range),
+        lyapunov=Lyapunov.from_array(lyapunov),
         study=_study(study, store, figure, scheduler, study_records))
-
-
-def _typed(values, integers=(), flags=()):
-    """{field: value} with Python floats, ints for the fields in integers, bools for flags."""
-    return {name: (int(x) if name in integers else bool(x) if name in flags else float(x))
-            for name, x in values.items()}
-
-
-def _integration_settings(array):
-    """The integration layout as simulation.Integration's fields (the method by name)."""
-    values = _typed(_tables.unpack("integration", array), integers=("max_steps", "method"))
-    values["method"] = _tables.codes("methods")[values["method"]]
-    return values
-
-
-def _steady_settings(array):
-    """The steady layout as simulation.Steady's fields."""
-    return _typed(_tables.unpack("steady", array),
-                  integers=("window_periods", "samples_per_period"), flags=("shooting",))
-
-
-def _response_settings(array):
-    """The response layout (the numbers of &response)."""
-    return _typed(_tables.unpack("response", array),
-                  integers=("n_scan", "n_amplitudes", "n_phases", "max_points"))
 
 
 def _study(values, store, figure, scheduler, records):
     """&study as a dict (empty when the file has none)."""
-    values = _tables.unpack("study", values)
+    values = decode_all("study", values)
     if not values["given"]:
         return {}
-    kind = _tables.codes("study_kinds")[int(values["kind"])]
+    kind = values["kind"]
     study = {"kind": kind, "store": _tables._text(store), "figure": _tables._text(figure),
-             "scheduler": _tables._text(scheduler), "workers": int(values["workers"]),
-             "worker_kind": _tables.codes("worker_kinds")[int(values["worker_kind"])],
-             "points_per_task": int(values["points_per_task"])}
-    integers = ("n_frequencies", "n_amplitudes", "n_grid", "n_intensities")
+             "scheduler": _tables._text(scheduler),
+             **{name: values[name] for name in ("workers", "worker_kind", "points_per_task")}}
     fields = {"response_map": ("frequency_start", "frequency_stop", "n_frequencies",
-                               "amplitude_start", "amplitude_stop", "n_amplitudes"),
+                               "amplitude_start", "amplitude_stop", "n_amplitudes",
+                               "continuation"),
               "basins": ("x1_start", "x1_stop", "dx1_start", "dx1_stop", "n_grid", "tol"),
               "fragility": ("intensity_start", "intensity_stop", "n_intensities",
                             "spectral_damping")}[kind]
-    study.update(_typed({name: values[name] for name in fields}, integers=integers))
-    if kind == "response_map":
-        study["continuation"] = _tables.codes("continuations")[int(values["continuation"])]
-    elif kind == "fragility":
+    study.update({name: values[name] for name in fields})
+    if kind == "fragility":
         study["records"] = _tables._text(records)
     return study
-
-
-def _chart_settings(chart):
-    """&chart as the arguments of sloshdyn.stability_chart (the core's layout 'chart', the model
-    and axes by their codes)."""
-    values = _tables.unpack("chart", chart)
-    axes = _tables.codes("chart_axes")
-    return {"model": _tables.codes("chart_models")[int(values["model"])],
-            "x": axes[int(values["x"])], "y": axes[int(values["y"])],
-            "x_range": (float(values["x_min"]), float(values["x_max"])),
-            "y_range": (float(values["y_min"]), float(values["y_max"])),
-            **{name: int(values[name]) for name in ("n_x", "n_y", "n_scan", "max_points",
-                                                    "max_curves", "brute_force_starts",
-                                                    "threads")}}

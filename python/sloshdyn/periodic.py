@@ -5,7 +5,6 @@ Lyapunov exponent. Computed by the Fortran core (sloshdyn_periodic)."""
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,44 +12,25 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import check_status
-from .asymptotics import Continuation, continuation_range, frequency_response
+from .asymptotics import (Continuation, continuation_array, continuation_range,
+                          frequency_response)
 from .model import linear_modes
-from .parameters import Parameters, convert_fields
+from ._settings import settings
+from .parameters import Parameters
 from .simulation import Integration, Steady, steady_state
 
 _bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
-_SHOOTING = _tables.defaults()["shooting"]
-_LYAPUNOV = _tables.defaults()["lyapunov"]
 
 
-@dataclass(frozen=True)
+@settings("shooting")
 class Shooting:
-    """Settings of the Newton shooting for a periodic orbit, with the core's defaults."""
-
-    newton_tol: float = float(_SHOOTING["newton_tol"])   #: on the orbit's state, relative
-    max_iter: int = int(_SHOOTING["max_iter"])           #: Newton iterations at most
-
-    def __post_init__(self):
-        convert_fields(self)
+    """Settings of the Newton shooting for a periodic orbit."""
 
 
-@dataclass(frozen=True)
+@settings("lyapunov")
 class Lyapunov:
-    """Settings of the largest Lyapunov exponent (&lyapunov), in forcing periods: the fields of
-    the core's layout, in order, with its defaults."""
-
-    transient_periods: int = int(_LYAPUNOV["transient_periods"])   #: integrated before measuring
-    n_periods: int = int(_LYAPUNOV["n_periods"])   #: measured; a multiple of renormalise_every
-    renormalise_every: int = int(_LYAPUNOV["renormalise_every"])   #: periods between
-    #: renormalisations of the tangent vectors
-
-    def __post_init__(self):
-        convert_fields(self)
-
-    def array(self, spectrum=False):
-        """The core's lyapunov layout (spectrum: the four exponents, not the largest only)."""
-        return _tables.pack("lyapunov", {**dataclasses.asdict(self), "spectrum": int(spectrum)})
+    """Settings of the Lyapunov exponents (&lyapunov), in forcing periods."""
 
 
 @dataclass(frozen=True)
@@ -148,8 +128,9 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
                       integration: Integration = Integration()) -> PeriodicBranch:
     """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
     in A over A_range, starting at the low end (from_end='low') going up, or at the high end
-    going down, with the arclength steps ds, ds_min, ds_max, x_scale and at most max_points
-    points of `continuation` (its branch-search fields are not used). Raises ConvergenceError
+    going down, with the arclength steps ds, ds_min, ds_max, x_scale, Newton's x_tol, f_tol,
+    max_iter and at most max_points points of `continuation` (its branch-search fields are not
+    used). Raises ConvergenceError
     (with ``partial``) if the branch stops before the end of the range or a special point on
     it could not be located."""
     _checks.instance("params", params, Parameters)
@@ -165,11 +146,10 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
     if y0 is None:
         y0 = periodic_orbit(first, start_state(first, start), periods=periods,
                             integration=integration).y0
-    settings = _tables.pack("continuation", {"ds": c.ds, "ds_min": c.ds_min, "ds_max": c.ds_max,
-                                             "x_scale": c.x_scale,
-                                             "direction": 1.0 if from_end == "low" else -1.0})
+    settings = continuation_array(c, 1.0 if from_end == "low" else -1.0)
     points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
-        *first.array(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
+        *first.array(), _tables.code("excitation_parameters", parameter),
+        _checks.reals("y0", y0, (4,)),
         periods, lo, hi, settings, integration.array(), max_points, 100)
     rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
     lam = rows["lambda"]

@@ -14,7 +14,8 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import ConvergenceError, InputError, SloshdynError, check_status
-from .asymptotics import Continuation, continuation_range, frequency_response, slow_flow_cycle
+from .asymptotics import (Continuation, continuation_array, continuation_range, frequency_response,
+                          slow_flow_cycle)
 from .parameters import Parameters
 from .periodic import Lyapunov
 from .simulation import Integration
@@ -53,7 +54,7 @@ def lyapunov_spectrum(params: Parameters, y0=None, *, lyapunov: Lyapunov = Lyapu
     y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
     blocks = max(lyapunov.n_periods // max(lyapunov.renormalise_every, 1), 1)
     exponents, history, dimension, status, message = cancellable(
-        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(spectrum=True), integration.array(),
+        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(), integration.array(),
         blocks)
     check_status(status, message, "Lyapunov spectrum")
     periods = lyapunov.renormalise_every * np.arange(1, blocks + 1, dtype=float)
@@ -98,8 +99,9 @@ class SlowFlowCycles:
 
 def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
                      continuation: Continuation = Continuation(ds=0.01, ds_max=0.05,
-                                                               max_points=500),
-                     hopf_gap=1e-3, x_tol=1e-10, f_tol=1e-9, max_iter=20,
+                                                               max_points=500, x_tol=1e-10,
+                                                               f_tol=1e-9),
+                     hopf_gap=1e-3,
                      integration: Integration = Integration(rtol=1e-10, atol=1e-13)
                      ) -> SlowFlowCycles:
     """The beats continued: the limit cycles of the 3:1 slow flow between two consecutive Hopf
@@ -110,12 +112,12 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     condition d(Re B1)/dtau = 0) with its Floquet multipliers, folds of cycles, period
     doublings and Neimark-Sacker points, up to hopf_gap times the Hopf interval before each
     Hopf point (at the Hopf point the cycle has shrunk to the steady state). continuation:
-    ds, ds_min, ds_max, x_scale and max_points (per direction) are used; the arclength norm
-    has the four amplitudes and the period relative to the start's. Newton (start, corrector,
-    special points) stops at a step <= x_tol (1 + max|x|) and a residual max|y(T) - y0| <=
-    f_tol, within max_iter iterations: f_tol must lie above the integration's error over a
-    period (a shot of ~5000 tau at rtol 1e-10 leaves ~1e-11, so the continuation's default
-    1e-11 would make Newton miss by noise and the steps shrink).
+    ds, ds_min, ds_max, x_scale, max_points (per direction), x_tol, f_tol and max_iter are used;
+    the arclength norm has the four amplitudes and the period relative to the start's. Newton
+    (start, corrector, special points) stops at a step <= x_tol (1 + max|x|) and a residual
+    max|y(T) - y0| <= f_tol, within max_iter iterations: f_tol must lie above the integration's
+    error over a period (a shot of ~5000 tau at rtol 1e-10 leaves ~1e-11, so the
+    continuation's default 1e-11 would make Newton miss by noise and the steps shrink).
 
     Raises ConvergenceError saying "no cycle" when the steady states have no Hopf point in the
     range (the slow flow settles to an equilibrium there) or no cycle is found between them."""
@@ -124,8 +126,6 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     _checks.instance("integration", integration, Integration)
     parameter, (lo, hi) = continuation_range(rho_range, A_range)
     hopf_gap = _checks.real("hopf_gap", hopf_gap)
-    x_tol, f_tol = _checks.real("x_tol", x_tol), _checks.real("f_tol", f_tol)
-    max_iter = _checks.integer("max_iter", max_iter)
     if not 0 < hopf_gap < 0.5:
         raise InputError(f"hopf_gap = {hopf_gap} is out of range: it must lie in (0, 0.5)")
     response = frequency_response(params, **{f"{parameter}_range": (lo, hi)})
@@ -159,13 +159,11 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
     a_end, b_end = a + (gap if low is not None else 0), b - (gap if high is not None else 0)
     halves = []
     for direction in (-1.0, 1.0):
-        settings = _tables.pack("cycle_continuation", {
-            "ds": continuation.ds, "ds_min": continuation.ds_min, "ds_max": continuation.ds_max,
-            "x_scale": continuation.x_scale, "direction": direction, "x_tol": x_tol,
-            "f_tol": f_tol, "max_iter": max_iter})
+        settings = continuation_array(continuation, direction)
         (points, multipliers, amplitudes, n, special, n_special, stop, status,
          message) = cancellable(_bridge.slow_flow_cycle_branch, *start.array(),
-                                1 if parameter == "rho" else 2, cycle.x, cycle.period, a_end,
+                                _tables.code("excitation_parameters", parameter), cycle.x,
+                                cycle.period, a_end,
                                 b_end, settings, integration.array(),
                                 _checks.integer("max_points", continuation.max_points, 2), 50)
         if status and n == 0:
@@ -175,13 +173,14 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
         halves.append((points[:, :n], multipliers[:, :n], amplitudes[:, :n],
                        special[:, :n_special], int(stop), text if status else ""))
     (p_lo, m_lo, a_lo, s_lo, stop_lo, why_lo), (p_hi, m_hi, a_hi, s_hi, stop_hi, why_hi) = halves
-    points = np.concatenate([p_lo[:, ::-1], p_hi[:, 1:]], axis=1)
-    multipliers = np.concatenate([m_lo[:, ::-1], m_hi[:, 1:]], axis=1)
-    amplitudes = np.concatenate([a_lo[:, ::-1], a_hi[:, 1:]], axis=1)
-    lam = points[0]
+    rows = dict(zip(_tables.columns("cycle_branch"),
+                    np.concatenate([np.vstack([p_lo, m_lo, a_lo])[:, ::-1],
+                                    np.vstack([p_hi, m_hi, a_hi])[:, 1:]], axis=1)))
+    x_names = ("re_B1", "im_B1", "re_B2", "im_B2")
+    lam = rows["lambda"]
     rho = lam if parameter == "rho" else np.full(lam.shape, params.rho)
     A = lam if parameter == "A" else np.full(lam.shape, params.A)
-    period = points[5]
+    period = rows["period"]
 
     def special_point(kind, value, beat, x):
         r = value if parameter == "rho" else params.rho
@@ -193,7 +192,7 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
         r = value if parameter == "rho" else params.rho
         steady = response.table
         k = int(np.argmin(np.abs(steady[parameter] - value) + np.abs(steady["branch"] - h.branch)))
-        x = [steady[c][k] for c in ("re_B1", "im_B1", "re_B2", "im_B2")]
+        x = [steady[c][k] for c in x_names]
         return special_point("hopf", value, r / h.frequency, x)
 
     def end(stop, bound, hopf, why):
@@ -204,16 +203,22 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
 
     ends = (end(stop_lo, "lambda_min", low, why_lo), end(stop_hi, "lambda_max", high, why_hi))
     specials = [hopf_point(low)] if ends[0] == "hopf" else []
-    found = sorted((s for s in np.concatenate([s_lo, s_hi], axis=1).T), key=lambda s: s[1])
+    found = sorted((dict(zip(_tables.columns("cycle_special_points"), s))
+                    for s in np.concatenate([s_lo, s_hi], axis=1).T), key=lambda s: s["lambda"])
     for s in found:
-        r = s[1] if parameter == "rho" else params.rho
-        specials.append(special_point(KINDS[int(s[0])], s[1], s[6] * r / (2 * np.pi), s[2:6]))
+        r = s["lambda"] if parameter == "rho" else params.rho
+        specials.append(special_point(KINDS[int(s["kind"])], s["lambda"],
+                                      s["period"] * r / (2 * np.pi), [s[c] for c in x_names]))
     if ends[1] == "hopf":
         specials.append(hopf_point(high))
     return SlowFlowCycles(parameter, rho, A, period, period * rho / (2 * np.pi),
-                          points[1:5].T.copy(), (multipliers[:4] + 1j * multipliers[4:]).T,
-                          points[6] > 0.5, amplitudes.T.copy(), specials, ends,
-                          integration.method_used)
+                          np.column_stack([rows[c] for c in x_names]),
+                          np.column_stack([rows[f"re_mu{i}"] + 1j * rows[f"im_mu{i}"]
+                                           for i in range(1, 5)]),
+                          rows["stable"] > 0.5,
+                          np.column_stack([rows[c] for c in ("min_B1", "max_B1", "min_B2",
+                                                             "max_B2")]),
+                          specials, ends, integration.method_used)
 
 
 def plot_beats(response, cycles: SlowFlowCycles):

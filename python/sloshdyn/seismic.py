@@ -19,11 +19,12 @@ import numpy as np
 from ._cancel import cancellable
 from . import _checks, _core, _tables
 from ._errors import InputError, SloshdynError, check_status
-from .parameters import Parameters, convert_fields
+from ._settings import convert_fields
+from .parameters import Parameters
 from .simulation import Integration, Steady
 
 _bridge = _core.sloshdyn_bridge_seismic
-_TANK_DEFAULTS = _tables.unpack("tank", _bridge.tank_defaults())
+_TANK_DEFAULTS = _tables.defaults("tank")
 #: the damping ratio of a spectral acceleration when none is given: the convective 0.5 % of
 #: the design codes, the core's one default (sloshdyn_vessel convective_damping, a tank's
 #: sloshing_damping; &ground_motion target_damping, &study spectral_damping)

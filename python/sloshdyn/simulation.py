@@ -11,29 +11,18 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import InputError, IntegrationError, check_status
-from .parameters import Parameters, convert_fields
+from ._settings import settings
+from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_simulation
 MOTIONS = _tables.codes("motion")
 METHODS = {name: code for code, name in _tables.codes("methods").items()}
 SUMMARY_COLUMNS = _tables.columns("summary")
-_INTEGRATION = _tables.defaults()["integration"]
-_STEADY = _tables.defaults()["steady"]
 
 
-@dataclass(frozen=True)
+@settings("integration")
 class Integration:
-    """Settings of the integrators (&integration): the fields of the core's layout, in order,
-    with the core's defaults."""
-
-    rtol: float = float(_INTEGRATION["rtol"])
-    atol: float = float(_INTEGRATION["atol"])
-    h_initial: float = float(_INTEGRATION["h_initial"])    #: 0 = automatic
-    h_max: float = float(_INTEGRATION["h_max"])        #: 0 = no limit
-    h_min: float = float(_INTEGRATION["h_min"])        #: 0 = 1e-14 max(1, |tau|)
-    max_steps: int = int(_INTEGRATION["max_steps"])
-    method: str = _tables.codes("methods")[int(_INTEGRATION["method"])]   #: 'auto' (by rtol, see
-    #: method_used), 'rk45' (Dormand-Prince 5(4)), 'dop853' (8(5,3)) or 'vern9' (Verner 9(8))
+    """Settings of the integrators (&integration)."""
 
     @property
     def method_used(self):
@@ -41,43 +30,11 @@ class Integration:
         (rk45 at loose, dop853 at medium, vern9 at tight tolerances; benchmarks/README.md)."""
         return _tables.codes("methods")[int(_bridge.method_used(self.array()))]
 
-    def __post_init__(self):
-        convert_fields(self)
-        _checks.choice("method", self.method, tuple(METHODS))
 
-    def array(self):
-        """The flat array of the core's layout 'integration' (the method by its code)."""
-        return _tables.pack("integration", {**{name: getattr(self, name) for name in
-                                               _tables.layout("integration")},
-                                            "method": METHODS[self.method]})
-
-
-@dataclass(frozen=True)
+@settings("steady")
 class Steady:
     """How a steady state is reached and measured (&steady); times in forcing periods
-    T = 2 pi/rho. Fields in the core's layout, with its defaults."""
-
-    transient_periods: float = float(_STEADY["transient_periods"])      #: minimum transient
-    settle_tol: float = float(_STEADY["settle_tol"])             #: > 0: extend the transient until
-                                                      #: successive Poincare points differ by
-                                                      #: less (relative); 0: fixed transient
-    max_transient_periods: float = float(_STEADY["max_transient_periods"])
-    window_periods: int = int(_STEADY["window_periods"])             #: measuring window
-    #: dense-output samples per period
-    samples_per_period: int = int(_STEADY["samples_per_period"])
-    #: Poincare points this close coincide
-    periodic_tol: float = float(_STEADY["periodic_tol"])
-    shooting: bool = bool(_STEADY["shooting"])                 #: with settle_tol > 0: once the
-    #: Poincare map contracts, jump to the periodic orbit by Newton shooting (kept only if
-    #: stable and the attractor being approached); False: integration only
-
-    def __post_init__(self):
-        convert_fields(self)
-
-    def array(self):
-        """The flat array of the core's layout 'steady'."""
-        return _tables.pack("steady", {name: float(getattr(self, name)) for name in
-                                       _tables.layout("steady")})
+    T = 2 pi/rho."""
 
 
 @dataclass(frozen=True)
@@ -235,7 +192,7 @@ def sweep_values(start, stop, n, direction="up") -> np.ndarray:
     """Sweep values from start to stop ('up'), back ('down'), or up then down ('both')."""
     start, stop = _checks.real("start", start), _checks.real("stop", stop)
     n = _checks.output_size("n", _checks.integer("n", n, 1))
-    _checks.choice("direction", direction, ("up", "down", "both"))
+    _checks.choice("direction", direction, _tables.names("directions")[0])
     values = np.linspace(min(start, stop), max(start, stop), n)
     if direction == "up":
         return values

@@ -369,8 +369,11 @@ program test_bifurcation
                                   CODIM2_ZH, CODIM2_GH, END_BOX, END_BT, END_MAX_POINTS, &
                                   END_CLOSED, END_START, END_X_MAX, END_FAILED
   use bifurcation_test_fields
+  use curve_checks, only: box, report, find_codim2
   use checks, only: check_close, check_true, finish
   implicit none
+  !> the continuation steps of the curves traced in a box
+  real(wp), parameter :: ds = 0.02_wp, ds_max = 0.05_wp
 
   call test_hopf_normal_form()
   call test_centre_manifold()
@@ -387,43 +390,6 @@ program test_bifurcation
   call finish()
 
 contains
-
-  function box(p1_min, p1_max, p2_min, p2_max) result(opt)
-    real(wp), intent(in) :: p1_min, p1_max, p2_min, p2_max
-    type(curve_options) :: opt
-    opt%p_min = [p1_min, p2_min]
-    opt%p_max = [p1_max, p2_max]
-    opt%continuation%ds = 0.02_wp
-    opt%continuation%ds_max = 0.05_wp
-  end function box
-
-  !> The curve's codimension-2 points of a kind: how many, and the first one's column.
-  integer function find_codim2(curve, kind, column) result(found)
-    type(bifurcation_curve), intent(in) :: curve
-    integer, intent(in) :: kind
-    integer, intent(out) :: column
-    integer :: i
-    found = 0
-    column = 0
-    do i = 1, curve%n_codim2
-      if (curve%codim2(i)%kind /= kind) cycle
-      found = found + 1
-      if (column == 0) column = curve%codim2(i)%index
-    end do
-  end function find_codim2
-
-  subroutine report(label, curve)
-    character(len=*), intent(in) :: label
-    type(bifurcation_curve), intent(in) :: curve
-    integer :: i
-    print '(a, i0, a, a, a, a, a, l1)', '  '//label//': ', curve%n_points, ' points, ends: ', &
-      curve_end_name(curve%end_reason(1)), ' / ', curve_end_name(curve%end_reason(2)), &
-      ', complete ', curve%complete
-    do i = 1, curve%n_codim2
-      print '(a, a, a, 2es23.15)', '    ', codim2_name(curve%codim2(i)%kind), ' at p =', &
-        curve%codim2(i)%p
-    end do
-  end subroutine report
 
   !> l1 of z' = (b + i omega) z + l z|z|^2 at b = 0: 2 l/omega (unit eigenvector).
   subroutine test_hopf_normal_form()
@@ -507,7 +473,7 @@ contains
 
     write (tag, '(a, f4.1, a)') '(s=', s, ')'
     field%s = s
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     call fold_curve(field, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, fold, status, message)
     call report('BT fold curve '//tag, fold)
     call check_true('BT fold curve '//tag//': complete ('//trim(message)//')', &
@@ -582,7 +548,7 @@ contains
     character(len=message_len) :: message
     real(wp) :: worst, worst_eq, x0
 
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     x0 = sqrt(0.8_wp/3)
     call fold_curve(field, [x0], [-2*x0**3, 0.8_wp], opt, fold, status, message)
     call report('cusp fold curve', fold)
@@ -623,7 +589,7 @@ contains
     character(len=message_len) :: message
     real(wp) :: worst, worst_l1
 
-    opt = box(-1.0_wp, 1.0_wp, -0.9_wp, 0.9_wp)
+    opt = box(-1.0_wp, 1.0_wp, -0.9_wp, 0.9_wp, ds, ds_max)
     call hopf_curve(field, [0.0_wp, 0.0_wp], [0.25_wp, -0.5_wp], opt, hopf, status, message)
     call report('Bautin Hopf curve', hopf)
     call check_true('Bautin Hopf curve: complete ('//trim(message)//')', &
@@ -660,7 +626,7 @@ contains
     character(len=message_len) :: message
     real(wp) :: worst, u
 
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     call fold_curve(field, [0.0_wp, 0.0_wp, 0.0_wp], [0.0_wp, 0.6_wp], opt, fold, status, message)
     call report('fold-Hopf fold curve', fold)
     call check_true('fold-Hopf fold curve: complete ('//trim(message)//')', &
@@ -716,7 +682,7 @@ contains
     type(curve_options) :: opt
     integer :: status
     character(len=message_len) :: message
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     opt%max_points = 12
     call fold_curve(bt, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
     call check_true('max_points: status SD_CAPACITY ('//trim(message)//')', status == SD_CAPACITY)
@@ -738,7 +704,7 @@ contains
     character(len=message_len) :: message
     real(wp) :: worst, x0
 
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     opt%direction = 1
     call fold_curve(bt, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
     call check_true('direction = +1: one way, p2 increasing, to the box', status == SD_OK .and. &
@@ -752,7 +718,7 @@ contains
                     status == SD_OK .and. curve%complete .and. curve%p(2, 2) < curve%p(2, 1) .and. &
                     abs(curve%p(2, curve%n_points) + 1) < 1.0e-12_wp .and. curve%n_codim2 == 1)
 
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     opt%neutral_saddles = .true.
     call hopf_curve(bt, [0.0_wp, 0.0_wp], [0.0_wp, -0.5_wp], opt, curve, status, message)
     call report('BT Hopf curve with neutral saddles', curve)
@@ -769,7 +735,7 @@ contains
     call check_true('neutral_saddles: b1 = 0, x = 0, kappa = sign(omega) omega^2 = -b2 (1e-10)', &
                     worst < 1.0e-10_wp)
 
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     opt%x_max = 0.3_wp
     x0 = sqrt(0.08_wp/3)
     call fold_curve(cusp, [x0], [-2*x0**3, 0.08_wp], opt, curve, status, message)
@@ -779,7 +745,7 @@ contains
                     abs(curve%x(1, curve%n_points)) > 0.3_wp .and. &
                     maxval(abs(curve%x(1, 2:curve%n_points - 1))) <= 0.3_wp)
 
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     call fold_curve(walled, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
     print '(a)', '    walled field: '//trim(message)
     call check_true('a failing field: not complete, a status and a message, the points kept', &
@@ -825,12 +791,12 @@ contains
     type(curve_options) :: opt
     integer :: status
     character(len=message_len) :: message
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     opt%p_scale(2) = 0
     call fold_curve(field, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
     call check_true('bad p2_scale: SD_BAD_INPUT naming p2_scale ('//trim(message)//')', &
                     status == SD_BAD_INPUT .and. index(message, 'p2_scale') > 0)
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     call fold_curve(field, [-0.25_wp, 0.0_wp], [0.0625_wp, 1.5_wp], opt, curve, status, message)
     call check_true('start outside the box: SD_BAD_INPUT naming p0(2) ('//trim(message)//')', &
                     status == SD_BAD_INPUT .and. index(message, 'p0(2)') > 0)
@@ -838,7 +804,7 @@ contains
     call fold_curve(field, [-0.25_wp, 0.0_wp], [0.0625_wp, 0.5_wp], opt, curve, status, message)
     call check_true('max_points = 2: SD_BAD_INPUT naming max_points', &
                     status == SD_BAD_INPUT .and. index(message, 'max_points') > 0)
-    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp)
+    opt = box(-1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, ds, ds_max)
     call hopf_curve(field, [0.0_wp, 0.0_wp], [0.0_wp, 0.5_wp], opt, curve, status, message)
     call check_true('Hopf start at a saddle: refused, no complex pair ('//trim(message)//')', &
                     status == SD_BAD_INPUT .and. index(message, 'complex') > 0 .and. &

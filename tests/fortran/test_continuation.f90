@@ -237,7 +237,7 @@ program test_continuation
                                    continue_branch, correct_at, branch_tangent, locate_fold, &
                                    locate_zero_on_branch, stop_reason_name, STOP_NONE, &
                                    STOP_LAMBDA_MIN, STOP_LAMBDA_MAX, STOP_MAX_POINTS, &
-                                   STOP_CLOSED, STOP_X_MAX, STOP_FAILED
+                                   STOP_CLOSED, STOP_X_MAX, STOP_FAILED, separable_system
   use continuation_test_systems, only: circle_and_line, circle, averaged_duffing, walled_line, &
                                        sine_graph, pitchfork, &
                                        amplitude_level, amplitude_error, s_upper, &
@@ -255,6 +255,42 @@ program test_continuation
   call finish()
 
 contains
+
+  !> The folds of a branch (points, tangents): where lambda's component of the tangent (the
+  !> last) changes sign, located by locate_fold. Each must be located and there must be two,
+  !> returned in the order the branch meets them.
+  subroutine two_folds(label, sys, points, tangents, folds)
+    character(len=*), intent(in) :: label
+    class(separable_system), intent(in) :: sys
+    real(wp), intent(in) :: points(:, :), tangents(:, :)
+    real(wp), intent(out) :: folds(:, :)
+    real(wp) :: z(size(points, 1))
+    integer :: k, n_folds, status
+    character(len=message_len) :: message
+
+    n_folds = 0
+    do k = 1, size(points, 2) - 1
+      if (first_fold(tangents(:, k:k + 1)) /= 1) cycle
+      n_folds = n_folds + 1
+      call locate_fold(sys, points(:, k), tangents(:, k), points(:, k + 1), tangents(:, k + 1), &
+                       z, status, message)
+      call check_true(label//': fold '//num2str(n_folds)//' located: '//trim(message), &
+                      status == SD_OK)
+      if (n_folds <= 2) folds(:, n_folds) = z
+    end do
+    call check_true(label//': two folds ('//num2str(n_folds)//')', n_folds == 2)
+  end subroutine two_folds
+
+  !> The first k where lambda's component of the tangent (the last) changes sign between
+  !> tangents k and k + 1 (size(tangents, 2) if none).
+  pure integer function first_fold(tangents) result(k)
+    real(wp), intent(in) :: tangents(:, :)
+    integer :: m
+    m = size(tangents, 1)
+    do k = 1, size(tangents, 2) - 1
+      if (tangents(m, k)*tangents(m, k + 1) < 0) exit
+    end do
+  end function first_fold
 
   !> Newton on x1^2 + x2^2 = 4, x1 = x2 from (1, 0.5): the root (sqrt 2, sqrt 2), errors that
   !> square from one iteration to the next (quadratic convergence), and the failures.
@@ -333,7 +369,7 @@ contains
     type(continuation_options) :: opt
     real(wp), allocatable :: points(:, :), tangents(:, :), arclength(:)
     real(wp) :: z_fold(2), z(2), t(2), folds(2, 2), worst
-    integer :: n_points, stop_reason, status, k, n_folds
+    integer :: n_points, stop_reason, status, k
     character(len=message_len) :: message
 
     allocate (points(2, capacity), tangents(2, capacity), arclength(capacity))
@@ -363,17 +399,7 @@ contains
                     minval(points(1, :n_points)) < -0.99_wp .and. &
                     minval(points(2, :n_points)) < -0.99_wp)
 
-    n_folds = 0
-    do k = 1, n_points - 1
-      if (tangents(2, k)*tangents(2, k + 1) >= 0) cycle
-      n_folds = n_folds + 1
-      call locate_fold(sys, points(:, k), tangents(:, k), points(:, k + 1), tangents(:, k + 1), &
-                       z_fold, status, message)
-      call check_true('circle: fold '//num2str(n_folds)//' located: '//trim(message), &
-                      status == SD_OK)
-      if (n_folds <= 2) folds(:, n_folds) = z_fold
-    end do
-    call check_true('circle: two folds ('//num2str(n_folds)//')', n_folds == 2)
+    call two_folds('circle', sys, points(:, :n_points), tangents(:, :n_points), folds)
     call check_close('circle: first fold at lambda = 1', folds(2, 1), 1.0_wp, 0.0_wp, 1.0e-10_wp)
     call check_close('circle: first fold at x = 0', folds(1, 1), 0.0_wp, 0.0_wp, 1.0e-10_wp)
     call check_close('circle: second fold at lambda = -1', folds(2, 2), -1.0_wp, 0.0_wp, &
@@ -404,9 +430,7 @@ contains
                     stop_reason == STOP_CLOSED)
     call check_close('circle, direction -1: first tangent goes down', tangents(2, 1), -1.0_wp, &
                      0.0_wp, 1.0e-14_wp)
-    do k = 1, n_points - 1
-      if (tangents(2, k)*tangents(2, k + 1) < 0) exit
-    end do
+    k = first_fold(tangents(:, :n_points))
     call locate_fold(sys, points(:, k), tangents(:, k), points(:, k + 1), tangents(:, k + 1), &
                      z_fold, status, message)
     call check_close('circle, direction -1: first fold at lambda = -1', z_fold(2), -1.0_wp, &
@@ -425,9 +449,7 @@ contains
     call check_close('circle, x_scale = 10: points on the circle', &
                      maxval(abs(points(1, :n_points)**2 + points(2, :n_points)**2 - 1)), &
                      0.0_wp, 0.0_wp, 1.0e-12_wp)
-    do k = 1, n_points - 1
-      if (tangents(2, k)*tangents(2, k + 1) < 0) exit
-    end do
+    k = first_fold(tangents(:, :n_points))
     call locate_fold(sys, points(:, k), tangents(:, k), points(:, k + 1), tangents(:, k + 1), &
                      z_fold, status, message, opt)
     call check_true('circle, x_scale = 10: fold located with the same options: '// &
@@ -484,17 +506,7 @@ contains
     print '(a, 4es24.16)', '  closed-form folds (u, s): ', u_lower, s_upper(sys, u_lower), &
       u_upper, s_upper(sys, u_upper)
 
-    n_folds = 0
-    do k = 1, n_points - 1
-      if (tangents(3, k)*tangents(3, k + 1) >= 0) cycle
-      n_folds = n_folds + 1
-      call locate_fold(sys, points(:, k), tangents(:, k), points(:, k + 1), tangents(:, k + 1), &
-                       z, status, message)
-      call check_true('Duffing: fold '//num2str(n_folds)//' located: '//trim(message), &
-                      status == SD_OK)
-      if (n_folds <= 2) folds(:, n_folds) = z
-    end do
-    call check_true('Duffing: two folds ('//num2str(n_folds)//')', n_folds == 2)
+    call two_folds('Duffing', sys, points(:, :n_points), tangents(:, :n_points), folds)
     ! the branch meets the upper fold (jump down) first, then the lower one (jump up)
     print '(a, 4es24.16)', '  located folds (u, s):     ', sum(folds(1:2, 2)**2), folds(3, 2), &
       sum(folds(1:2, 1)**2), folds(3, 1)

@@ -1,108 +1,18 @@
-!> Test systems for DOP853 and Verner's 9(8) (the higher-order pairs), with closed-form solutions (the independent source of the expected
-!> values below) except Van der Pol, which is checked against sloshdyn_rk45.
-module dop853_test_systems
-  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-  use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system
-  implicit none
-  private
-  public :: riccati, oscillator, van_der_pol, nan_beyond
-
-  !> y' = -2 t y**2, y(0) = 1: y = 1/(1 + t**2) (nonautonomous, nonlinear)
-  type, extends(ode_system) :: riccati
-  contains
-    procedure :: rhs => riccati_rhs
-    procedure, nopass :: exact => riccati_exact
-  end type riccati
-
-  !> Forced linear oscillator y1' = y2, y2' = -omega**2 y1 + force cos(drive t), y(0) = (1, 0):
-  !> y1 = cos(omega t) + force/(omega**2 - drive**2) (cos(drive t) - cos(omega t)), y2 = y1'
-  type, extends(ode_system) :: oscillator
-    real(wp) :: omega = 1, force = 0.5_wp, drive = 2
-  contains
-    procedure :: rhs => oscillator_rhs
-    procedure :: exact => oscillator_exact
-  end type oscillator
-
-  !> Van der Pol y1' = y2, y2' = mu (1 - y1**2) y2 - y1 (no closed form)
-  type, extends(ode_system) :: van_der_pol
-    real(wp) :: mu = 2
-  contains
-    procedure :: rhs => van_der_pol_rhs
-  end type van_der_pol
-
-  !> y' = -y up to t = t_edge, NaN beyond: a right-hand side that leaves its domain
-  type, extends(ode_system) :: nan_beyond
-    real(wp) :: t_edge = 1
-  contains
-    procedure :: rhs => nan_beyond_rhs
-  end type nan_beyond
-
-contains
-
-  subroutine riccati_rhs(self, t, y, dydt)
-    class(riccati), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    dydt(1) = -2*t*y(1)**2
-  end subroutine riccati_rhs
-
-  pure real(wp) function riccati_exact(t) result(y)
-    real(wp), intent(in) :: t
-    y = 1/(1 + t**2)
-  end function riccati_exact
-
-  subroutine oscillator_rhs(self, t, y, dydt)
-    class(oscillator), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    dydt(1) = y(2)
-    dydt(2) = -self%omega**2*y(1) + self%force*cos(self%drive*t)
-  end subroutine oscillator_rhs
-
-  pure function oscillator_exact(self, t) result(y)
-    class(oscillator), intent(in) :: self
-    real(wp), intent(in) :: t
-    real(wp) :: y(2)
-    real(wp) :: c
-    c = self%force/(self%omega**2 - self%drive**2)
-    y(1) = cos(self%omega*t) + c*(cos(self%drive*t) - cos(self%omega*t))
-    y(2) = -self%omega*sin(self%omega*t) + c*(-self%drive*sin(self%drive*t) + &
-                                              self%omega*sin(self%omega*t))
-  end function oscillator_exact
-
-  subroutine van_der_pol_rhs(self, t, y, dydt)
-    class(van_der_pol), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    dydt(1) = y(2)
-    dydt(2) = self%mu*(1 - y(1)**2)*y(2) - y(1)
-  end subroutine van_der_pol_rhs
-
-  subroutine nan_beyond_rhs(self, t, y, dydt)
-    class(nan_beyond), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
-    real(wp), intent(out) :: dydt(:)
-    if (t <= self%t_edge) then
-      dydt = -y
-    else
-      dydt = ieee_value(1.0_wp, ieee_quiet_nan)
-    end if
-  end subroutine nan_beyond_rhs
-end module dop853_test_systems
-
+!> DOP853 and Verner's 9(8) (the higher-order pairs) on the test systems of rk_checks, with
+!> closed-form solutions (the independent source of the expected values below) except Van der
+!> Pol, which is checked against DOPRI5.
 program test_dop853
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
-                             SD_NON_FINITE
+  use sloshdyn_status, only: SD_OK
   use sloshdyn_text, only: num2str
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_dop853, only: dop853_integrator
   use sloshdyn_vern9, only: vern9_integrator
   use sloshdyn_integrator, only: integrate, chosen_method, METHOD_DOPRI5, METHOD_DOP853, &
                                  METHOD_VERN9, METHOD_AUTO
-  use dop853_test_systems, only: riccati, oscillator, van_der_pol, nan_beyond
+  use rk_checks, only: riccati, oscillator, van_der_pol, check_orders, fixed_step_errors, &
+                       dense_output_errors, check_stepwise_api, check_failures, check_bad_input
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -110,10 +20,10 @@ program test_dop853
   call test_dense_output_order()
   call test_adaptive_tolerances()
   call test_van_der_pol_against_rk45()
-  call test_stepwise_api()
-  call test_failures()
-  call test_bad_input()
-  call test_vern9_fixed_step_order()
+  call check_stepwise_api(METHOD_DOP853)
+  call test_without_dense_output()
+  call check_failures(METHOD_DOP853)
+  call check_bad_input(METHOD_DOP853)
   call test_vern9_dense_output_order()
   call test_vern9_adaptive()
   call test_auto_choice()
@@ -121,69 +31,29 @@ program test_dop853
 
 contains
 
-  !> Observed orders log2(e(h)/e(h/2)) of errors at h, h/2, h/4, ... must all be expected +- tol.
-  subroutine check_orders(label, errors, expected, tol)
-    character(len=*), intent(in) :: label
-    real(wp), intent(in) :: errors(:), expected, tol
-    real(wp) :: orders(size(errors) - 1)
-    integer :: i
-
-    orders = log(errors(:size(errors) - 1)/errors(2:))/log(2.0_wp)
-    print '(2a, *(es10.2))', label, ': errors', errors
-    print '(2a, *(f7.3))', label, ': orders', orders
-    do i = 1, size(orders)
-      call check_close(label//', halving '//num2str(i), orders(i), expected, 0.0_wp, tol)
-    end do
-  end subroutine check_orders
-
-  !> Fixed steps: the global error of the 8th-order solution falls like h**8. An error that
-  !> falls by 256 per halving leaves room for only two or three halvings between the
+  !> DOP853, fixed steps: the global error of the 8th-order solution falls like h**8. An error
+  !> that falls by 256 per halving leaves room for only two or three halvings between the
   !> pre-asymptotic range and rounding (~1e-15), so: the riccati problem at t = 1 with 4, 8, 16
   !> steps (errors 2e-10 ... 3e-15; with 2 steps the ratio is still 8.5), and the forced
   !> oscillator at t = 10 with 20, 40, 80 steps (8e-9 ... 1e-13).
+  !> Verner's 9(8), fixed steps: the global error of the 9th-order solution falls like h**9
+  !> (512 per halving), on the forced oscillator at t = 10 with 10, 20, 40 steps (2e-7 ... 3e-13;
+  !> the next halving reaches rounding). The observed orders approach 9 from above (9.8, 9.7:
+  !> the h**10 term still shows), so they must lie in [9, 10]; an 8th-order method (a wrong
+  !> coefficient in a 9th-order condition) would show 8. The riccati problem (2, 4, 8 steps) has
+  !> a larger pre-asymptotic excess (10.8, 10.6) and only has to show at least order 9. 16
+  !> evaluations per step without dense output.
   subroutine test_fixed_step_order()
     real(wp) :: err_ric(0:2), err_osc(0:2)
 
     call fixed_step_errors(METHOD_DOP853, 'dop853', 4, 20, 12, err_ric, err_osc)
     call check_orders('order of y, riccati', err_ric, 8.0_wp, 0.5_wp)
     call check_orders('order of y, oscillator', err_osc, 8.0_wp, 0.5_wp)
+
+    call fixed_step_errors(METHOD_VERN9, 'vern9', 2, 10, 16, err_ric, err_osc)
+    call check_orders('vern9, order of y, riccati', err_ric, 10.0_wp, 1.0_wp)
+    call check_orders('vern9, order of y, oscillator', err_osc, 9.5_wp, 0.5_wp)
   end subroutine test_fixed_step_order
-
-  !> Errors at the end of fixed-step runs of n, 2n, 4n steps (n = ric_steps, osc_steps): the
-  !> riccati problem to t = 1 and the forced oscillator to t = 10. One output at the end only,
-  !> so no dense stages: stages evaluations per step + f(t0), and no step rejected.
-  subroutine fixed_step_errors(method, name, ric_steps, osc_steps, stages, err_ric, err_osc)
-    integer, intent(in) :: method, ric_steps, osc_steps, stages
-    character(len=*), intent(in) :: name
-    real(wp), intent(out) :: err_ric(0:2), err_osc(0:2)
-    type(riccati) :: ric
-    type(oscillator) :: osc
-    type(ode_options) :: opt
-    type(ode_stats) :: stats
-    real(wp) :: y1(1, 1), y2(2, 1)
-    integer :: i, status, n_steps
-    character(len=message_len) :: message
-
-    do i = 0, 2
-      n_steps = ric_steps*2**i
-      opt%fixed_step = 1.0_wp/n_steps
-      call integrate(method, ric, 0.0_wp, [1.0_wp], [1.0_wp], y1, opt, stats, status, message)
-      call check_true(name//', fixed steps on riccati: '//num2str(n_steps)//' steps, none '// &
-                      'rejected', status == SD_OK .and. stats%n_accepted == n_steps .and. &
-                      stats%n_rejected == 0)
-      err_ric(i) = abs(y1(1, 1) - ric%exact(1.0_wp))
-
-      n_steps = osc_steps*2**i
-      opt%fixed_step = 10.0_wp/n_steps
-      call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [10.0_wp], y2, opt, stats, &
-                     status, message)
-      call check_true(name//', fixed steps on the oscillator: '//num2str(n_steps)//' steps', &
-                      status == SD_OK .and. stats%n_accepted == n_steps)
-      call check_true(name//' without dense output: n_rhs = '//num2str(stages)// &
-                      ' per step + 1', stats%n_rhs == stages*n_steps + 1)
-      err_osc(i) = maxval(abs(y2(:, 1) - osc%exact(10.0_wp)))
-    end do
-  end subroutine fixed_step_errors
 
   !> The continuous extension (CONTD8) has order 7: one step of size h from the exact y(t0)
   !> leaves an error C(theta) h**8 inside the step (exponent 8 = order + 1; the end point, of
@@ -194,42 +64,9 @@ contains
   !> 8th-order method loses nothing globally). Measured at mid-step, h = 0.4 ... 0.05 (the
   !> interpolation error at h = 0.05 is ~1e-14, still 100 rounding units).
   subroutine test_dense_output_order()
-    type(riccati) :: ric
-    type(dop853_integrator) :: integ
-    type(ode_options) :: opt
-    real(wp) :: h, t_mid, err_local(0:3), err_global(0:3), y(1)
-    integer :: i, status
-    character(len=message_len) :: message
+    real(wp) :: err_local(0:3), err_global(0:3)
 
-    do i = 0, 3
-      h = 0.4_wp/2**i
-      opt%fixed_step = h
-      call integ%init(ric, 0.0_wp, [1.0_wp], h, opt, status, message)
-      call integ%step(ric, status, message)
-      call check_true('one fixed step, h = '//num2str(h), status == SD_OK .and. integ%t == h)
-      call integ%dense(h/2, y)
-      err_local(i) = abs(y(1) - ric%exact(h/2))
-      ! the interpolant passes through both ends of the step
-      call integ%dense(0.0_wp, y)
-      call check_close('dense output at the step start, h = '//num2str(h), y(1), 1.0_wp, &
-                       0.0_wp, 1.0e-15_wp)
-      call integ%dense(h, y)
-      call check_close('dense output at the step end, h = '//num2str(h), y(1), integ%y(1), &
-                       0.0_wp, 1.0e-15_wp)
-
-      call integ%init(ric, 0.0_wp, [1.0_wp], 4.0_wp, opt, status, message)
-      err_global(i) = 0
-      do while (status == SD_OK .and. integ%t < integ%t_bound)
-        call integ%step(ric, status, message)
-        t_mid = (integ%t_old + integ%t)/2
-        call integ%dense(t_mid, y)
-        err_global(i) = max(err_global(i), abs(y(1) - ric%exact(t_mid)))
-      end do
-      call check_true('fixed steps over [0, 4] with dense output, h = '//num2str(h), &
-                      status == SD_OK)
-      call check_true('15 new evaluations per step with dense output, h = '//num2str(h), &
-                      integ%n_rhs == 15*integ%n_accepted + 1)
-    end do
+    call dense_output_errors(METHOD_DOP853, 0.0_wp, 0.4_wp, 4.0_wp, 15, err_local, err_global)
     call check_orders('dense output at mid-step, local error exponent (order 7 + 1)', &
                       err_local, 8.0_wp, 0.5_wp)
     call check_orders('dense output at mid-steps, global error exponent', err_global, &
@@ -342,207 +179,26 @@ contains
                      0.0_wp, 0.0_wp, 1.0e-9_wp)
   end subroutine test_van_der_pol_against_rk45
 
-  !> Driving the integrator step by step, reading dense output and replacing the state.
-  subroutine test_stepwise_api()
+  !> Without dense output only the step end is available: y there, NaN inside the step.
+  subroutine test_without_dense_output()
     type(oscillator) :: osc
     type(dop853_integrator) :: integ
     type(ode_options) :: opt
-    type(ode_stats) :: stats
-    real(wp) :: y(2), t_mid, y_out(2, 4)
+    real(wp) :: y(2)
     integer :: status
-    logical :: scaled
     character(len=message_len) :: message
 
     opt%rtol = 1.0e-10_wp
     opt%atol = 1.0e-12_wp
-    ! unforced, so after doubling the state the exact solution is twice the old one
     osc%force = 0
-    call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message)
-    call check_true('dop853_init succeeds', status == SD_OK)
-    call integ%dense(0.5_wp, y)
-    call check_close('dense output before any step returns y0', maxval(abs(y - [1, 0])), &
-                     0.0_wp, 0.0_wp, 0.0_wp)
-    scaled = .false.
-    do while (status == SD_OK .and. integ%t < integ%t_bound)
-      call integ%step(osc, status, message)
-      if (.not. scaled .and. integ%t > 1) then
-        t_mid = (integ%t_old + integ%t)/2
-        call integ%dense(t_mid, y)
-        call check_close('dense output inside a step', maxval(abs(y - osc%exact(t_mid))), &
-                         0.0_wp, 0.0_wp, 1.0e-9_wp)
-        call integ%set_state(osc, 2*integ%y, status, message)
-        scaled = .true.
-      end if
-    end do
-    call check_true('stepping reaches t_bound exactly', status == SD_OK .and. integ%t == 3.0_wp)
-    call check_close('dop853_set_state: the state follows the doubled solution', &
-                     maxval(abs(integ%y - 2*osc%exact(3.0_wp))), 0.0_wp, 0.0_wp, 1.0e-8_wp)
-    stats = integ%statistics()
-    call check_true('dop853_statistics copies the counters', stats%n_rhs == integ%n_rhs .and. &
-                    stats%n_accepted == integ%n_accepted .and. &
-                    stats%n_rejected == integ%n_rejected .and. stats%t_reached == 3.0_wp)
-    call integ%step(osc, status, message)
-    call check_true('a step past t_bound is refused: '//trim(message), status == SD_BAD_INPUT)
-    call integ%set_state(osc, [1.0_wp], status, message)
-    call check_true('dop853_set_state with the wrong size is refused: '//trim(message), &
-                    status == SD_BAD_INPUT)
-
-    ! without dense output only the step end is available
     call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message, &
-                     dense_output=.false.)
+                    dense_output=.false.)
     call integ%step(osc, status, message)
     call integ%dense(integ%t, y)
     call check_true('dense_output = .false.: y at the step end', all(y == integ%y))
     call integ%dense((integ%t_old + integ%t)/2, y)
     call check_true('dense_output = .false.: NaN inside the step', all(ieee_is_nan(y)))
-
-    call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), [0.0_wp, 0.5_wp, 0.5_wp, 2.0_wp], &
-                          y_out, opt, stats, status, message)
-    call check_true('dop853_integrate with outputs at t0 and a repeated time', status == SD_OK)
-    call check_close('output at t0 is y0', maxval(abs(y_out(:, 1) - osc%exact(0.0_wp))), &
-                     0.0_wp, 0.0_wp, 0.0_wp)
-    call check_close('a repeated output time gives the same y', &
-                     maxval(abs(y_out(:, 2) - y_out(:, 3))), 0.0_wp, 0.0_wp, 0.0_wp)
-    call check_close('output at 0.5', maxval(abs(y_out(:, 3) - osc%exact(0.5_wp))), &
-                     0.0_wp, 0.0_wp, 1.0e-9_wp)
-    call check_close('output at 2', maxval(abs(y_out(:, 4) - osc%exact(2.0_wp))), &
-                     0.0_wp, 0.0_wp, 1.0e-9_wp)
-  end subroutine test_stepwise_api
-
-  !> Failures during the integration: partial output, NaN after, the time reached.
-  subroutine test_failures()
-    type(oscillator) :: osc
-    type(nan_beyond) :: nb
-    type(riccati) :: ric
-    type(ode_options) :: opt
-    type(ode_stats) :: stats
-    real(wp) :: t_out(1000), y_out(2, 1000), y_nb(1, 2)
-    integer :: j, status
-    logical :: partition_ok
-    character(len=message_len) :: message
-
-    ! outputs every 0.1 up to 100: ten steps end after a few of them
-    t_out = [(0.1_wp*j, j = 1, size(t_out))]
-    opt%max_steps = 10
-    call integrate(METHOD_DOP853, osc, 0.0_wp, osc%exact(0.0_wp), t_out, y_out, opt, stats, status, &
-                          message)
-    print '(a)', '    message: '//trim(message)
-    call check_true('max_steps = 10 gives SD_TOO_MANY_STEPS', status == SD_TOO_MANY_STEPS)
-    call check_true('message names max_steps and tau', &
-                    index(message, 'max_steps') > 0 .and. index(message, 'tau') > 0)
-    call check_true('10 steps attempted', stats%n_accepted + stats%n_rejected == 10)
-    call check_true('time reached '//num2str(stats%t_reached)//' lies past the first output', &
-                    stats%t_reached > t_out(1) .and. stats%t_reached < t_out(size(t_out)))
-    call check_close('first output before the failure', &
-                     maxval(abs(y_out(:, 1) - osc%exact(t_out(1)))), 0.0_wp, 0.0_wp, 1.0e-8_wp)
-    partition_ok = .true.
-    do j = 1, size(t_out)
-      if (t_out(j) <= stats%t_reached) then
-        partition_ok = partition_ok .and. .not. any(ieee_is_nan(y_out(:, j)))
-      else
-        partition_ok = partition_ok .and. all(ieee_is_nan(y_out(:, j)))
-      end if
-    end do
-    call check_true('outputs filled up to t_reached, NaN after', partition_ok)
-
-    opt = ode_options()
-    call integrate(METHOD_DOP853, nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, &
-                          message)
-    print '(a)', '    message: '//trim(message)
-    call check_true('NaN right-hand side gives SD_NON_FINITE', status == SD_NON_FINITE)
-    call check_true('message names tau', index(message, 'tau') > 0)
-    call check_close('output before the NaN region', y_nb(1, 1), exp(-0.5_wp), 1.0e-7_wp)
-    call check_true('output in the NaN region is NaN', ieee_is_nan(y_nb(1, 2)))
-    call check_close('integration stops at the edge t = 1', stats%t_reached, 1.0_wp, 0.0_wp, &
-                     1.0e-6_wp)
-
-    opt%fixed_step = 0.3_wp
-    call integrate(METHOD_DOP853, nb, 0.0_wp, [1.0_wp], [0.5_wp, 2.0_wp], y_nb, opt, stats, status, &
-                          message)
-    call check_true('NaN in fixed-step mode gives SD_NON_FINITE', status == SD_NON_FINITE)
-    call check_close('fixed steps stop at the last step before the edge', stats%t_reached, &
-                     0.9_wp, 1.0e-14_wp)
-
-    opt = ode_options(rtol=1.0e-10_wp, h_min=0.5_wp)
-    call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], [10.0_wp], y_nb(:, 1:1), opt, stats, status, &
-                          message)
-    print '(a)', '    message: '//trim(message)
-    call check_true('h_min = 0.5 gives SD_STEP_TOO_SMALL', status == SD_STEP_TOO_SMALL)
-    call check_true('message names h_min and tau', &
-                    index(message, 'h_min') > 0 .and. index(message, 'tau') > 0)
-  end subroutine test_failures
-
-  !> Each rule on the inputs is reported with the name of the offending input.
-  subroutine test_bad_input()
-    type(ode_options) :: opt
-    type(dop853_integrator) :: integ
-    type(riccati) :: ric
-    integer :: status
-    character(len=message_len) :: message
-
-    opt%rtol = -1
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'rtol')
-    opt = ode_options(rtol=1.0e-17_wp)
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'rtol')
-    opt = ode_options(atol=-1.0e-3_wp)
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'atol')
-    opt = ode_options(atol_vector=[1.0e-8_wp, 1.0e-8_wp])
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'atol_vector')
-    opt = ode_options(fac1=-0.1_wp)
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'fac1')
-    opt = ode_options(beta=0.5_wp)
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'beta')
-    opt = ode_options(max_steps=0)
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'max_steps')
-    opt = ode_options(fixed_step=-0.1_wp)
-    call expect_bad(opt, [0.5_wp, 1.0_wp], 'fixed_step')
-    opt = ode_options()
-    call expect_bad(opt, [1.0_wp, 0.5_wp], 't_out(2)')
-    call expect_bad(opt, [-1.0_wp, 0.5_wp], 't_out(1)')
-
-    call integ%init(ric, 1.0_wp, [1.0_wp], 1.0_wp, opt, status, message)
-    call check_true('t_bound = t0 gives SD_BAD_INPUT: '//trim(message), &
-                    status == SD_BAD_INPUT .and. index(message, 't_bound') == 1)
-    call integ%step(ric, status, message)
-    call check_true('dop853_step after a failed dop853_init is refused: '//trim(message), &
-                    status == SD_BAD_INPUT)
-    opt%atol = 0
-    call integ%init(ric, 0.0_wp, [0.0_wp], 1.0_wp, opt, status, message)
-    call check_true('atol = 0 with a zero component of y0 gives SD_BAD_INPUT: '//trim(message), &
-                    status == SD_BAD_INPUT .and. index(message, 'atol') == 1)
-  end subroutine test_bad_input
-
-  !> dop853_integrate on the riccati problem must return SD_BAD_INPUT with a message that
-  !> starts with the name of the input, and only NaN outputs.
-  subroutine expect_bad(opt, t_out, name)
-    type(ode_options), intent(in) :: opt
-    real(wp), intent(in) :: t_out(:)
-    character(len=*), intent(in) :: name
-    type(riccati) :: ric
-    type(ode_stats) :: stats
-    real(wp) :: y_out(1, size(t_out))
-    integer :: status
-    character(len=message_len) :: message
-
-    call integrate(METHOD_DOP853, ric, 0.0_wp, [1.0_wp], t_out, y_out, opt, stats, status, message)
-    call check_true('bad '//name//' gives SD_BAD_INPUT: '//trim(message), &
-                    status == SD_BAD_INPUT .and. index(message, name) == 1)
-    call check_true('bad '//name//': all outputs NaN', all(ieee_is_nan(y_out)))
-  end subroutine expect_bad
-  !> Verner's 9(8), fixed steps: the global error of the 9th-order solution falls like h**9
-  !> (512 per halving), on the forced oscillator at t = 10 with 10, 20, 40 steps (2e-7 ... 3e-13;
-  !> the next halving reaches rounding). The observed orders approach 9 from above (9.8, 9.7:
-  !> the h**10 term still shows), so they must lie in [9, 10]; an 8th-order method (a wrong
-  !> coefficient in a 9th-order condition) would show 8. The riccati problem (2, 4, 8 steps) has
-  !> a larger pre-asymptotic excess (10.8, 10.6) and only has to show at least order 9. 16
-  !> evaluations per step without dense output.
-  subroutine test_vern9_fixed_step_order()
-    real(wp) :: err_ric(0:2), err_osc(0:2)
-
-    call fixed_step_errors(METHOD_VERN9, 'vern9', 2, 10, 16, err_ric, err_osc)
-    call check_orders('vern9, order of y, riccati', err_ric, 10.0_wp, 1.0_wp)
-    call check_orders('vern9, order of y, oscillator', err_osc, 9.5_wp, 0.5_wp)
-  end subroutine test_vern9_fixed_step_order
+  end subroutine test_without_dense_output
 
   !> Verner's 8th-order interpolant: one step from the exact y(t0) leaves an error C(theta) h**9
   !> inside the step (exponent = order + 1), measured at mid-step for h = 0.8 ... 0.2 on the

@@ -5,26 +5,9 @@ program test_lapack
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_NON_FINITE
-  use sloshdyn_lapack, only: eigenvalues, solve_linear
+  use sloshdyn_lapack, only: eigenvalues, solve_linear, dgeev, dgesv
   use checks, only: check_true, check_close, finish
   implicit none
-
-  interface
-    subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
-      import :: wp
-      character, intent(in) :: jobvl, jobvr
-      integer, intent(in) :: n, lda, ldvl, ldvr, lwork
-      real(wp), intent(inout) :: a(lda, *)
-      real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
-      integer, intent(out) :: info
-    end subroutine dgeev
-    subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
-      import :: wp
-      integer, intent(in) :: n, nrhs, lda, ldb
-      real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-      integer, intent(out) :: ipiv(*), info
-    end subroutine dgesv
-  end interface
 
   real(wp) :: a(2, 2), wr(2), wi(2), b(2), work(16), no(1, 1)
   integer :: status, info

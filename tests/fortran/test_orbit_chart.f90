@@ -235,8 +235,11 @@ program test_orbit_chart
   use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_NEIMARK_SACKER, SPECIAL_BRANCH_POINT
   use sloshdyn_orbit_chart, only: tank_orbit_map, orbit_chart_options, make_orbit_map, &
                                   orbit_curve_from_special, orbit_neimark_sacker_curve
+  use curve_checks, only: box, report, find_codim2
   use checks, only: check_close, check_true, finish
   implicit none
+  !> the continuation steps of the curves traced in a box
+  real(wp), parameter :: ds = 0.05_wp, ds_max = 0.1_wp
 
   integer :: clock_start, clock_rate
   real(wp) :: clock_last = 0
@@ -263,44 +266,6 @@ program test_orbit_chart
 
 contains
 
-  function box(p1_min, p1_max, p2_min, p2_max) result(opt)
-    real(wp), intent(in) :: p1_min, p1_max, p2_min, p2_max
-    type(curve_options) :: opt
-    opt%p_min = [p1_min, p2_min]
-    opt%p_max = [p1_max, p2_max]
-    opt%continuation%ds = 0.05_wp
-    opt%continuation%ds_max = 0.1_wp
-  end function box
-
-  subroutine report(label, curve)
-    character(len=*), intent(in) :: label
-    type(bifurcation_curve), intent(in) :: curve
-    integer :: i
-    print '(a, i0, a, a, a, a, a, l1, a, a)', '  '//label//': ', curve%n_points, &
-      ' points, ends ', curve_end_name(curve%end_reason(1)), ' / ', &
-      curve_end_name(curve%end_reason(2)), ', complete ', curve%complete, ' ', &
-      trim(curve%message)
-    do i = 1, curve%n_codim2
-      print '(a, a, a, 2es23.15, a, f10.6)', '    ', codim2_name(curve%codim2(i)%kind), &
-        ' at p =', curve%codim2(i)%p, ', theta =', curve%codim2(i)%omega
-    end do
-  end subroutine report
-
-  !> The column of the first codimension-2 point of the kind (0 if none); count = how many.
-  integer function find_codim2(curve, kind, count) result(column)
-    type(bifurcation_curve), intent(in) :: curve
-    integer, intent(in) :: kind
-    integer, intent(out) :: count
-    integer :: i
-    column = 0
-    count = 0
-    do i = 1, curve%n_codim2
-      if (curve%codim2(i)%kind /= kind) cycle
-      count = count + 1
-      if (column == 0) column = i
-    end do
-  end function find_codim2
-
   !> Check that the curve has exactly one codimension-2 point of the kind, at p_exact (tol)
   !> with the angle theta_exact (tol).
   subroutine check_codim2(label, curve, kind, p_exact, theta_exact, tol)
@@ -309,7 +274,7 @@ contains
     integer, intent(in) :: kind
     real(wp), intent(in) :: p_exact(2), theta_exact, tol
     integer :: i, count
-    i = find_codim2(curve, kind, count)
+    count = find_codim2(curve, kind, first=i)
     call check_true(label//': one '//codim2_name(kind)//' point', count == 1)
     if (i == 0) return
     print '(a, 2es10.2, a, es10.2)', '    '//label//': '//codim2_name(kind)// &
@@ -331,7 +296,7 @@ contains
     character(len=message_len) :: message
     x0 = (sqrt(1.5_wp) - 1)/0.5_wp
     call neimark_sacker_curve(map, [x0, -x0], [0.5_wp, -1.0_wp], box(-2.0_wp, 4.0_wp, -2.0_wp, &
-                              0.0_wp), curve, status, message)
+                              0.0_wp, ds, ds_max), curve, status, message)
     call report('Henon NS', curve)
     call check_true('Henon NS: complete, status 0 ('//trim(message)//')', status == SD_OK .and. &
                     curve%complete .and. curve%kind == CURVE_NEIMARK_SACKER)
@@ -371,7 +336,7 @@ contains
     integer :: status, j
     character(len=message_len) :: message
     x0 = (sqrt(1.5_wp) - 1)/0.5_wp
-    opt = box(-2.0_wp, 4.0_wp, -2.0_wp, 0.0_wp)
+    opt = box(-2.0_wp, 4.0_wp, -2.0_wp, 0.0_wp, ds, ds_max)
     opt%neutral_saddles = .true.
     ! beyond the 1:1 resonance the curve follows the other fixed point, x ~ -2/a -> infinity
     opt%x_max = 10
@@ -405,8 +370,8 @@ contains
     b = -0.5_wp
     a = -(1 - b)**2/4
     x = 2/(1 - b)
-    call map_fold_curve(map, [x, b*x], [a, b], box(-3.0_wp, 5.0_wp, -2.0_wp, 0.5_wp), curve, &
-                        status, message)
+    call map_fold_curve(map, [x, b*x], [a, b], box(-3.0_wp, 5.0_wp, -2.0_wp, 0.5_wp, ds, ds_max), &
+                        curve, status, message)
     call report('Henon fold', curve)
     call check_true('Henon fold: complete to the box ('//trim(message)//')', &
                     status == SD_OK .and. curve%complete .and. all(curve%end_reason == END_BOX))
@@ -426,7 +391,8 @@ contains
 
     a = 3*(1 - b)**2/4
     x = (1 - b)/(2*a)
-    call period_doubling_curve(map, [x, b*x], [a, b], box(-3.0_wp, 8.0_wp, -2.0_wp, 0.5_wp), &
+    call period_doubling_curve(map, [x, b*x], [a, b], &
+                               box(-3.0_wp, 8.0_wp, -2.0_wp, 0.5_wp, ds, ds_max), &
                                curve, status, message)
     call report('Henon period doubling', curve)
     call check_true('Henon PD: complete to the box ('//trim(message)//')', &
@@ -457,7 +423,7 @@ contains
     c = map%c
     z = 0.3_wp
     call map_fold_curve(map, [z, 0.0_wp], [-2*z**3, 3*z**2], box(-1.0_wp, 1.0_wp, -0.5_wp, &
-                        1.5_wp), curve, status, message)
+                        1.5_wp, ds, ds_max), curve, status, message)
     call report('cusp-flip fold', curve)
     call check_true('cusp-flip fold: complete ('//trim(message)//')', status == SD_OK .and. &
                     curve%complete)
@@ -472,7 +438,7 @@ contains
                       1.0e-8_wp)
 
     call period_doubling_curve(map, [c, 0.0_wp], [c**3 - 0.5_wp*c, 0.5_wp], box(-1.0_wp, &
-                               1.0_wp, -0.5_wp, 1.5_wp), curve, status, message)
+                               1.0_wp, -0.5_wp, 1.5_wp, ds, ds_max), curve, status, message)
     call report('cusp-flip period doubling', curve)
     worst = 0
     do j = 1, curve%n_points
@@ -529,7 +495,7 @@ contains
     map%method = METHOD_DOP853
     map%x_step = 1.0e-4_wp
     map%p_step = 1.0e-4_wp
-    opt = box(-0.3_wp, 0.3_wp, -0.1_wp, 0.5_wp)
+    opt = box(-0.3_wp, 0.3_wp, -0.1_wp, 0.5_wp, ds, ds_max)
     opt%continuation%newton%f_tol = 1.0e-10_wp
     z = 0.3_wp
     call map_fold_curve(map, [z, 0.0_wp], [-2*z**3, 3*z**2], opt, curve, status, message)
@@ -581,7 +547,7 @@ contains
     map%method = METHOD_DOP853
     map%x_step = 1.0e-4_wp
     map%p_step = 1.0e-4_wp
-    opt = box(0.3_wp, 2.0_wp, -2.0_wp, 0.0_wp)
+    opt = box(0.3_wp, 2.0_wp, -2.0_wp, 0.0_wp, ds, ds_max)
     opt%continuation%newton%f_tol = 1.0e-10_wp
     call neimark_sacker_curve(map, [0.0_wp, 0.0_wp], [0.6_wp, -0.6_wp], opt, curve, status, &
                               message)
@@ -610,7 +576,7 @@ contains
     call check_codim2('frame linear NS', curve, CODIM2_R4, [sqrt(3.0_wp)/2, -sqrt(3.0_wp)/2], &
                       pi/2, 1.0e-8_wp)
 
-    opt = box(0.3_wp, 2.0_wp, -3.0_wp, 0.0_wp)
+    opt = box(0.3_wp, 2.0_wp, -3.0_wp, 0.0_wp, ds, ds_max)
     opt%continuation%newton%f_tol = 1.0e-10_wp
     call period_doubling_curve(map, [0.0_wp, 0.0_wp], [2.0_wp, -0.5_wp], opt, curve, status, &
                                message)
@@ -640,7 +606,7 @@ contains
     character(len=message_len) :: message
     x0 = (sqrt(1.5_wp) - 1)/0.5_wp
     call neimark_sacker_curve(map, [x0, -x0], [0.5_wp, -1.0_wp], box(-2.0_wp, 4.0_wp, -2.0_wp, &
-                              0.0_wp), curve, status, message)
+                              0.0_wp, ds, ds_max), curve, status, message)
     call report('walled Henon NS', curve)
     call check_true('failing map: incomplete, status, message, reason END_FAILED', &
                     status /= SD_OK .and. .not. curve%complete .and. curve%status == status .and. &
@@ -660,25 +626,27 @@ contains
     integer :: status
     character(len=message_len) :: message
     call hopf_curve(map, [0.5_wp, -0.5_wp], [0.0_wp, -1.0_wp], box(-2.0_wp, 4.0_wp, -2.0_wp, &
-                    0.0_wp), curve, status, message)
+                    0.0_wp, ds, ds_max), curve, status, message)
     print '(a)', '    '//trim(message)
     call check_true('a Hopf curve of a map is refused: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'Neimark-Sacker') > 0)
     b = -0.5_wp
     a = 3*(1 - b)**2/4
     x0 = (1 - b)/(2*a)
-    call neimark_sacker_curve(map, [x0, b*x0], [a, b], box(-2.0_wp, 8.0_wp, -2.0_wp, 0.5_wp), &
+    call neimark_sacker_curve(map, [x0, b*x0], [a, b], &
+                              box(-2.0_wp, 8.0_wp, -2.0_wp, 0.5_wp, ds, ds_max), &
                               curve, status, message)
     print '(a)', '    '//trim(message)
     call check_true('a Neimark-Sacker start with real multipliers is refused', &
                     status == SD_BAD_INPUT .and. index(message, 'complex multiplier pair') > 0)
     call correct_to_curve(map, 7, [0.5_wp, -0.5_wp], [0.0_wp, -1.0_wp], 2, box(-2.0_wp, 4.0_wp, &
-                          -2.0_wp, 0.0_wp), x, p, theta, status, message)
+                          -2.0_wp, 0.0_wp, ds, ds_max), x, p, theta, status, message)
     call check_true('correct_to_curve: kind out of range named: '//trim(message), &
                     status == SD_BAD_INPUT .and. index(message, 'kind') > 0)
     ! correct_to_curve at fixed a = 0: the 1:4 resonance point of the Neimark-Sacker line
     call correct_to_curve(map, CURVE_NEIMARK_SACKER, [0.49_wp, -0.5_wp], [0.0_wp, -0.98_wp], 1, &
-                          box(-2.0_wp, 4.0_wp, -2.0_wp, 0.0_wp), x, p, theta, status, message)
+                          box(-2.0_wp, 4.0_wp, -2.0_wp, 0.0_wp, ds, ds_max), x, p, theta, status, &
+                          message)
     call check_true('correct_to_curve (NS) at a = 0: b = -1, theta = pi/2, x = (1/2, -1/2)', &
                     status == SD_OK .and. abs(p(2) + 1) < 1.0e-12_wp .and. &
                     abs(theta - pi/2) < 1.0e-12_wp .and. maxval(abs(x - [0.5_wp, -0.5_wp])) < &
@@ -936,7 +904,7 @@ contains
     call check_true('Fig 12 fold curve: one curve through both folds, its crossings of A = '// &
                     '7.5e-4 are the one-parameter folds (3e-5 in rho)', status == SD_OK .and. &
                     n_found == n_folds .and. distance <= 3.0e-5_wp)
-    i = find_codim2(curve, CODIM2_CUSP, count)
+    count = find_codim2(curve, CODIM2_CUSP, first=i)
     call check_true('Fig 12 fold curve: the fold pair is born at one cusp of orbits', count == 1)
     if (i > 0) then
       print '(a, f12.8, a, es14.6, a, 2es11.3)', '    cusp of orbits at rho = ', &

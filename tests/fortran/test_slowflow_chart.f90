@@ -301,6 +301,28 @@ contains
     end do
   end subroutine crossings_at
 
+  !> The crossings of the curves of one kind (named curve_name) with the level A = level must be
+  !> the points the one-parameter continuation found there (points, named points_name), as a set
+  !> to 1e-7 in rho.
+  subroutine check_crossings(label, curve_name, points_name, field, curves, kind, level, points)
+    character(len=*), intent(in) :: label, curve_name, points_name
+    type(slow_flow_field), intent(in) :: field
+    type(bifurcation_curve), intent(in) :: curves(:)
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: level, points(:)
+    real(wp) :: crossing(40), worst
+    integer :: n_cross
+
+    call crossings_at(field, curves, size(curves), kind, level, crossing, n_cross)
+    print '(a, 10f13.9)', '    '//trim(label)//': '//points_name//' (one-parameter) ', points
+    print '(a, 10f13.9)', '    '//trim(label)//': '//curve_name//' curve crossings ', &
+      crossing(1:n_cross)
+    call check_true('Fig 12 '//trim(label)//': '//curve_name//' curve crossings = '// &
+                    'one-parameter '//points_name//' (1e-7 in rho)', &
+                    same_sets(crossing(1:n_cross), points, 1.0e-7_wp, worst))
+    print '(a, es10.2)', '      max |difference| in rho: ', worst
+  end subroutine check_crossings
+
   !> Is every value of a within tol of some value of b, and the other way round?
   logical function same_sets(a, b, tol, worst)
     real(wp), intent(in) :: a(:), b(:), tol
@@ -326,7 +348,7 @@ contains
     type(slow_flow_field) :: field
     type(bifurcation_curve) :: curves(20)
     real(wp), allocatable :: table(:, :), special(:, :)
-    real(wp) :: folds(40), hopfs(40), crossing(40), worst, start_p(2), elapsed
+    real(wp) :: folds(40), hopfs(40), crossing(40), start_p(2), elapsed
     real(wp), parameter :: levels(4) = [0.00075_wp, 0.0005_wp, 0.001_wp, 0.0015_wp]
     integer :: n_folds, n_hopfs, n_special, n_curves, k, c, col, kind, status, n_cross, l, &
                clock0, clock1, rate, i, n_fig12
@@ -395,20 +417,10 @@ contains
       call special_points(kappa12, gamma12, levels(l), rho_min, rho_max, 0.01_wp, 41, folds, &
                           n_folds, hopfs, n_hopfs, table, special, n_special)
       write (label, '(a, es9.2)') 'A =', levels(l)
-      call crossings_at(field, curves, n_curves, CURVE_HOPF, levels(l), crossing, n_cross)
-      print '(a, 10f13.9)', '    '//trim(label)//': Hopf (one-parameter) ', hopfs(1:n_hopfs)
-      print '(a, 10f13.9)', '    '//trim(label)//': Hopf curve crossings ', crossing(1:n_cross)
-      call check_true('Fig 12 '//trim(label)//': Hopf curve crossings = one-parameter Hopf '// &
-                      'points (1e-7 in rho)', same_sets(crossing(1:n_cross), hopfs(1:n_hopfs), &
-                                                        1.0e-7_wp, worst))
-      print '(a, es10.2)', '      max |difference| in rho: ', worst
-      call crossings_at(field, curves, n_curves, CURVE_FOLD, levels(l), crossing, n_cross)
-      print '(a, 10f13.9)', '    '//trim(label)//': folds (one-parameter)  ', folds(1:n_folds)
-      print '(a, 10f13.9)', '    '//trim(label)//': fold curve crossings  ', crossing(1:n_cross)
-      call check_true('Fig 12 '//trim(label)//': fold curve crossings = one-parameter folds '// &
-                      '(1e-7 in rho)', same_sets(crossing(1:n_cross), folds(1:n_folds), &
-                                                 1.0e-7_wp, worst))
-      print '(a, es10.2)', '      max |difference| in rho: ', worst
+      call check_crossings(label, 'Hopf', 'Hopf points', field, curves(:n_curves), CURVE_HOPF, &
+                           levels(l), hopfs(1:n_hopfs))
+      call check_crossings(label, 'fold', 'folds', field, curves(:n_curves), CURVE_FOLD, &
+                           levels(l), folds(1:n_folds))
     end do
   end subroutine test_fig12_chart
 

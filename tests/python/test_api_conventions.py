@@ -70,9 +70,6 @@ def _studies(function):
     return function.__module__.startswith("sloshdyn.studies")
 
 
-#: loose settings not yet in a settings object, named so that no new one slips in: the Newton
-#: settings of the beat continuation (x_tol, f_tol, max_iter; research.py, issue 27)
-NOT_YET_OBJECTS = {("slow_flow_cycles", "max_iter")}
 
 
 def test_the_api_has_the_expected_kinds_of_things():
@@ -136,8 +133,7 @@ def test_settings_are_keyword_only_objects(name):
             assert p.kind is p.KEYWORD_ONLY, f"{name}: {p.name} must be keyword-only"
             assert p.name == _snake(kind.__name__), \
                 f"{name}: a {kind.__name__} is passed as {_snake(kind.__name__)}=, not {p.name}="
-        elif (name.split(".")[0] not in SETTINGS and not name.startswith("plotting.")
-              and (name, p.name) not in NOT_YET_OBJECTS):
+        elif name.split(".")[0] not in SETTINGS and not name.startswith("plotting."):
             # (plots take results: plotting's ds is a Dataset, not Continuation's step)
             assert p.name not in loose, (f"{name}({p.name}=...) is a loose setting: it belongs "
                                          f"in a sloshdyn.{loose[p.name].__name__}")

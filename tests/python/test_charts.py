@@ -30,6 +30,19 @@ def one_parameter(params, A, rho_range=RHO, n_scan=41, ds_max=None):
                                        continuation=settings)
 
 
+def rho_crossings(curves, y, level):
+    """The rho where the curves cross y = level (y: "A" or "kappa"), by linear interpolation
+    between their points."""
+    crossings = []
+    for c in curves:
+        values = getattr(c, y)
+        s = np.sign(values - level)
+        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
+            t = (level - values[j]) / (values[j + 1] - values[j])
+            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    return crossings
+
+
 def slow_flow_jacobian(params, rho, A, state):
     f, jacobian, status, message = sloshdyn._core.sloshdyn_bridge_charts.slow_flow_field(
         *params.replace(rho=rho, A=A).array(), 1, state)
@@ -42,12 +55,7 @@ def test_fig12_chart_is_complete_with_its_known_points(fig12_chart):
     assert fig12_chart.complete and kinds.count("hopf") >= 1 and kinds.count("fold") >= 2
     # one Hopf curve carries both Hopf points of Fig 12 (sec 4.2: rho = 0.50925 and 0.50998)
     hopf = [c for c in fig12_chart.curves if c.kind == "hopf"]
-    crossings = []
-    for c in hopf:
-        s = np.sign(c.A - 0.00075)
-        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
-            t = (0.00075 - c.A[j]) / (c.A[j + 1] - c.A[j])
-            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    crossings = rho_crossings(hopf, "A", 0.00075)
     hopf_points = sorted(s.rho for s in one_parameter(FIG12, 0.00075).special_points
                          if s.kind == "hopf")
     assert len(hopf_points) == 2
@@ -136,7 +144,26 @@ def test_both_front_doors_give_the_same_chart(exe, tmp_path, fig12_chart):
     assert [r["n_stable"] for r in grid] == list(fig12_chart.grid["n_stable"])
     again = sloshdyn.charts.chart_from_files(tmp_path / "out")
     assert [q.kind for q in again.codim2_points] == [q.kind for q in fig12_chart.codim2_points]
-    assert sloshdyn.read_namelist(tmp_path / "input.nml").chart["x_range"] == RHO
+    assert sloshdyn.read_namelist(tmp_path / "input.nml").chart_range["x_range"] == RHO
+
+
+def test_the_runs_take_the_continuation_settings_by_both_front_doors(exe, tmp_path,
+                                                                   fig12_chart):
+    """The chart's one-parameter runs take &response's numbers (Python: continuation=), n_scan
+    from &chart: the executable with a &response of its own and Python with that Continuation
+    give the same chart, and it is not the chart of the default settings (the settings reach
+    the runs)."""
+    write(tmp_path, CHART_NML + "&response n_amplitudes = 4, ds = 0.001, ds_max = 0.004 /\n")
+    result = run(exe, "input.nml", tmp_path)
+    assert result.returncode == 0, result.stderr
+    inp = sloshdyn.read_namelist(tmp_path / "input.nml")
+    assert inp.response == sloshdyn.Continuation(n_amplitudes=4, ds=0.001, ds_max=0.004)
+    chart = sloshdyn.stability_chart(FIG12, RHO, A_RANGE, chart=inp.chart,
+                                     continuation=inp.response)
+    curves = read_csv(tmp_path / "out" / "chart_curves.csv")
+    rho = np.array([r["rho"] for r in curves])
+    assert np.array_equal(rho, np.concatenate([c.rho for c in chart.curves]))
+    assert not np.array_equal(rho, np.concatenate([c.rho for c in fig12_chart.curves]))
 
 
 @pytest.mark.parametrize("change,words", [
@@ -166,12 +193,7 @@ def test_full_model_neimark_sacker_curve_meets_the_periodic_response():
                                      chart=sloshdyn.Chart(n_x=5, n_y=2), threads=2)
     ns = [c for c in chart.curves if c.kind == "neimark_sacker"]
     assert ns and all(c.complete for c in ns)
-    crossings = []
-    for c in ns:
-        s = np.sign(c.A - 0.00075)
-        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
-            t = (0.00075 - c.A[j]) / (c.A[j + 1] - c.A[j])
-            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    crossings = rho_crossings(ns, "A", 0.00075)
     branch = sloshdyn.periodic_response(FIG12.replace(rho=0.505), (0.505, 0.515))
     located = sorted(s.rho for s in branch.special_points if s.kind == "neimark_sacker")
     assert len(located) == 2 and len(crossings) == 2
@@ -182,12 +204,8 @@ def test_kappa_chart_crosses_the_fig12_kappa_at_its_hopf_points():
     # kappa as the second parameter: the modal coefficients are expanded again at every kappa
     chart = sloshdyn.stability_chart(FIG12, RHO, (1.79, 1.82), y="kappa",
                                      chart=sloshdyn.Chart(n_x=11, n_y=5))
-    crossings = []
-    for c in (c for c in chart.curves if c.kind == "hopf"):
-        s = np.sign(c.kappa - FIG12.kappa)
-        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
-            t = (FIG12.kappa - c.kappa[j]) / (c.kappa[j + 1] - c.kappa[j])
-            crossings.append(c.rho[j] + t * (c.rho[j + 1] - c.rho[j]))
+    crossings = rho_crossings([c for c in chart.curves if c.kind == "hopf"], "kappa",
+                              FIG12.kappa)
     hopf_points = sorted(s.rho for s in one_parameter(FIG12, 0.00075).special_points
                          if s.kind == "hopf")
     assert np.allclose(sorted(crossings), hopf_points, atol=2e-6)

@@ -99,7 +99,7 @@ def test_simulate_same_numbers(exe, tmp_path):
     rows = read_csv(tmp_path / "out" / "history.csv")
     sim = sloshdyn.simulate(inp.params, inp.simulation["t_end"], inp.simulation["y0"],
                             n_out=inp.simulation["n_out"],
-                            integration=sloshdyn.Integration(**inp.integration))
+                            integration=inp.integration)
     assert [r["x1"] for r in rows] == list(sim.x1)
     assert [r["u1"] for r in rows] == list(sim.u[0])
     assert [r["impact_force"] for r in rows] == list(sim.impact_force)
@@ -112,8 +112,8 @@ def test_steady_state_and_sweep_same_numbers(exe, tmp_path):
     inp = _analysis_case(tmp_path, "steady_state", steady)
     assert run(exe, "case.nml", tmp_path).returncode == 0
     row = read_csv(tmp_path / "out" / "steady_state.csv")[0]
-    st = sloshdyn.steady_state(inp.params, steady=sloshdyn.Steady(**inp.steady),
-                               integration=sloshdyn.Integration(**inp.integration))
+    st = sloshdyn.steady_state(inp.params, steady=inp.steady,
+                               integration=inp.integration)
     assert (row["max_x1"], row["max_u2"], row["spread"]) == (st.max_x1, st.max_u2, st.spread)
     points = read_csv(tmp_path / "out" / "poincare.csv")
     assert [p["x2"] for p in points] == list(st.poincare[2])
@@ -123,8 +123,8 @@ def test_steady_state_and_sweep_same_numbers(exe, tmp_path):
     assert run(exe, "case.nml", tmp_path).returncode == 0
     rows = read_csv(tmp_path / "out" / "sweep.csv")
     sweep = sloshdyn.amplitude_sweep(inp.params, [0.001, 0.00075, 0.0005],
-                                     steady=sloshdyn.Steady(**inp.steady),
-                                     integration=sloshdyn.Integration(**inp.integration))
+                                     steady=inp.steady,
+                                     integration=inp.integration)
     assert [r["A"] for r in rows] == [0.001, 0.00075, 0.0005]
     assert [r["max_x1"] for r in rows] == list(sweep.column("max_x1"))
 
@@ -149,10 +149,9 @@ def test_frequency_response_same_numbers(exe, tmp_path):
     result = run(exe, "fig12_response.nml", tmp_path)
     assert result.returncode == 0, result.stderr
     inp = sloshdyn.read_namelist(tmp_path / "fig12_response.nml")
-    r = inp.response
+    r = inp.response_range
     response = sloshdyn.frequency_response(inp.params, (r["start"], r["stop"]),
-                                           resonance=r["resonance"],
-                                           continuation=sloshdyn.Continuation.from_namelist(r))
+                                           resonance=r["resonance"], continuation=inp.response)
     rows = read_csv(tmp_path / inp.directory / "response.csv")
     assert [row["a1"] for row in rows] == list(response.table["a1"])
     assert [row["delta3"] for row in rows] == list(response.table["delta3"])

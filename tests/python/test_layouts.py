@@ -12,7 +12,9 @@ import pytest
 import sloshdyn
 from sloshdyn import _core, _tables, charts
 from sloshdyn.asymptotics import Continuation
+from sloshdyn.charts import Chart
 from sloshdyn.parameters import Parameters, TankPendulum
+from sloshdyn.periodic import Lyapunov, Shooting
 from sloshdyn.seismic import Tank
 from sloshdyn.simulation import METHODS, Integration, Steady
 
@@ -33,7 +35,7 @@ def _read(tmp_path, text):
 
 
 def test_every_layout_names_distinct_fields():
-    for name in _tables.LAYOUTS:
+    for name in _tables.layouts():
         fields = _tables.layout(name)
         assert fields and all(fields), name
         assert len(set(fields)) == len(fields), name
@@ -48,21 +50,21 @@ def test_an_unknown_layout_or_code_list_is_an_error():
 
 def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     """Every array the core returns has as many entries as its layout has names."""
-    model, model_integers, *settings = _core.sloshdyn_bridge_tables.defaults()
-    arrays = {"model": model, "model_integers": model_integers,
-              **dict(zip(("integration", "steady", "response", "lyapunov", "shooting"), settings)),
-              "tank": _seismic.tank_defaults(),
-              "chart": _core.sloshdyn_bridge_charts.chart_defaults()}
+    arrays = {name: _core.sloshdyn_bridge_tables.layout_defaults(name, len(_tables.layout(name)))[0]
+              for name in ("model", "model_integers", "integration", "steady", "response",
+                           "lyapunov", "shooting", "tank", "chart")}
     path = tmp_path / "input.nml"
     path.write_text(MODEL + "&analysis kind = 'stability_chart' /\n")
     (rpar, ipar, _, analysis, _, _, tank, _, ground, _, seismic, integration, steady, response,
-     lyapunov, simulation, sweep, response_range, chart, study, *_) = _input.read_input(str(path))
-    arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
-                  sweep=sweep, response_range=response_range, study=study)
+     lyapunov, simulation, sweep, response_range, chart, chart_range, study,
+     *_) = _input.read_input(str(path))
     for name, array in (("model", rpar), ("model_integers", ipar), ("tank", tank),
                         ("integration", integration), ("steady", steady),
                         ("response", response), ("lyapunov", lyapunov), ("chart", chart)):
         assert len(array) == len(arrays[name]), name
+    arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
+                  sweep=sweep, response_range=response_range, chart_range=chart_range,
+                  study=study)
     pendulum, status, _ = _model.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
     groups, status, _ = _model.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
     *_, routh, _, _ = _model.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
@@ -70,8 +72,17 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     arrays.update(pendulum=pendulum, groups=groups, routh=routh)
     for name, array in arrays.items():
         assert len(array) == len(_tables.layout(name)), name
-    assert set(_tables.LAYOUTS) - set(arrays) <= {"physical", "continuation", "cycle_continuation",
-                                                  "orbit_info"}
+    # (the others: test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables;
+    # physical is dimensionless_groups' input, refused at another size below)
+    assert set(_tables.layouts()) - set(arrays) <= {"physical", "continuation", "orbit_info",
+                                                    "modal_scalars", "chart_sizes"}
+
+
+def test_a_layout_without_defaults_or_of_another_size_is_refused():
+    with pytest.raises(sloshdyn.SloshdynError, match="no defaults for 'pendulum'"):
+        _tables.defaults("pendulum")
+    _, status, message = _core.sloshdyn_bridge_tables.layout_defaults("steady", 3)
+    assert status != 0 and "has 7 fields, not 3" in _tables._text(message)
 
 
 def test_an_input_array_of_another_size_is_refused():
@@ -81,26 +92,60 @@ def test_an_input_array_of_another_size_is_refused():
             _model.dimensionless_groups(np.ones(n))
 
 
-@pytest.mark.parametrize("cls, layout", [(Integration, "integration"), (Steady, "steady"),
-                                         (Continuation, "response"), (Tank, "tank"),
-                                         (TankPendulum, "pendulum")])
+#: every settings class and the layout it is made from
+SETTINGS = [(Integration, "integration"), (Steady, "steady"), (Continuation, "response"),
+            (Lyapunov, "lyapunov"), (Shooting, "shooting"), (Chart, "chart")]
+
+
+@pytest.mark.parametrize("cls, layout", SETTINGS + [(Tank, "tank"), (TankPendulum, "pendulum")])
 def test_settings_classes_have_the_fields_of_their_layouts(cls, layout):
     assert tuple(f.name for f in dataclasses.fields(cls)) == _tables.layout(layout)
 
 
-def test_settings_classes_have_the_cores_defaults():
-    defaults = _tables.defaults()
-    for cls, layout in ((Integration, "integration"), (Steady, "steady"),
-                        (Continuation, "response")):
-        assert dict(zip(_tables.layout(layout), cls().array())) == pytest.approx(
-            {k: float(v) for k, v in defaults[layout].items()}), layout
-    tank = _tables.unpack("tank", _seismic.tank_defaults())
+def test_every_settings_class_is_made_from_a_layout():
+    """Every public settings class (a dataclass built from its defaults alone) is one of
+    SETTINGS, so none keeps its own copy of a layout's fields."""
+    public = {c for c in vars(sloshdyn).values() if isinstance(c, type)
+              and dataclasses.is_dataclass(c) and all(
+                  f.default is not dataclasses.MISSING for f in dataclasses.fields(c))}
+    assert public == {cls for cls, _ in SETTINGS}
+    assert all(cls.layout == layout for cls, layout in SETTINGS)
+
+
+@pytest.mark.parametrize("cls, layout", SETTINGS)
+def test_settings_classes_have_the_cores_kinds_defaults_and_docs(cls, layout):
+    """The type, default and help of every field are the core's, and the array of the defaults
+    is the core's array of its option type's defaults, entry for entry."""
+    kinds, docs = _tables.kinds(layout), _tables.docs(layout)
+    types = {"real": "float", "integer": "int", "flag": "bool"}
+    for f in dataclasses.fields(cls):
+        assert f.type == types.get(kinds[f.name], "str"), f.name
+        assert f.kw_only, f.name
+        if docs[f.name]:
+            assert docs[f.name] in " ".join(cls.__doc__.split()), f.name
+    assert cls.__dataclass_params__.frozen
+    core, status, _ = _core.sloshdyn_bridge_tables.layout_defaults(layout, len(kinds))
+    assert status == 0 and cls().array().tolist() == core.tolist()
+    assert cls.from_array(core) == cls()
+
+
+def test_a_settings_field_of_a_code_list_takes_its_names_only():
+    with pytest.raises(sloshdyn.InputError, match="method = 'rk4' is not valid: it must be one "
+                       "of 'rk45', 'dop853', 'vern9', 'auto'"):
+        Integration(method="rk4")
+    with pytest.raises(TypeError):
+        Integration(1e-6)           # keyword-only
+
+
+def test_tank_has_the_cores_defaults():
+    tank = _tables.defaults("tank")
     for f in dataclasses.fields(Tank):
         if f.default is not dataclasses.MISSING:
             assert f.default == tank[f.name], f.name
     model = Parameters(s1=1.5, mu1=0.5, kappa=2.0, theta0=0.5)
+    defaults = {**_tables.defaults("model"), **_tables.defaults("model_integers")}
     for name in ("beta", "gamma", "delta", "zeta", "n", "p"):
-        assert getattr(model, name) == defaults["model"][name], name
+        assert getattr(model, name) == defaults[name], name
 
 
 def test_parameters_carry_the_model_layouts():
@@ -116,7 +161,7 @@ def test_parameters_carry_the_model_layouts():
 
 
 def test_every_code_list_of_the_core_is_named_and_used_by_python():
-    for list_name in _tables.CODE_LISTS:
+    for list_name in _tables.code_lists():
         items, _ = _tables.names(list_name)
         assert items and all(items) and len(set(items)) == len(items), list_name
     assert charts.AXES == _tables.names("chart_axes")[0]
@@ -136,7 +181,7 @@ def _chart_nml(model, x, y):
 def test_chart_kappa_reads_through_python(tmp_path):
     """The defect of issue 21: a valid file with &chart y = 'kappa' made read_namelist raise
     IndexError (Python kept its own list of axes without kappa)."""
-    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", "rho", "kappa")).chart
+    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", "rho", "kappa")).chart_range
     assert chart["x"] == "rho" and chart["y"] == "kappa"
     assert chart["y_range"] == AXIS_RANGE["kappa"]
 
@@ -147,22 +192,22 @@ def test_every_chart_axis_reads_through_python(tmp_path, x, y):
     assert set(AXIS_RANGE) == set(_tables.names("chart_axes")[0])
     if x == y:
         return
-    chart = _read(tmp_path, _chart_nml("slow_flow_3:1", x, y)).chart
+    inp = _read(tmp_path, _chart_nml("slow_flow_3:1", x, y))
+    chart = inp.chart_range
     assert (chart["x"], chart["y"]) == (x, y)
     assert (chart["x_range"], chart["y_range"]) == (AXIS_RANGE[x], AXIS_RANGE[y])
-    assert (chart["n_x"], chart["n_y"]) == (5, 6)
+    assert inp.chart == Chart(n_x=5, n_y=6)
 
 
 @pytest.mark.parametrize("model", _tables.names("chart_models")[0])
 def test_every_chart_model_reads_through_python(tmp_path, model):
-    assert _read(tmp_path, _chart_nml(model, "rho", "A")).chart["model"] == model
+    assert _read(tmp_path, _chart_nml(model, "rho", "A")).chart_range["model"] == model
 
 
 @pytest.mark.parametrize("method", _tables.names("methods")[0])
 def test_every_method_reads_through_python(tmp_path, method):
     inp = _read(tmp_path, MODEL + f"&integration method = '{method}' /\n")
-    assert inp.integration["method"] == method
-    assert Integration(**inp.integration).method == method
+    assert inp.integration == Integration(method=method)
 
 
 @pytest.mark.parametrize("direction", _tables.names("directions")[0])
@@ -190,10 +235,11 @@ def test_every_resonance_reads_through_python(tmp_path, resonance, parameter):
                 f"parameter = '{parameter}', start = 0.49, stop = 0.53, n_scan = 7, "
                 "n_amplitudes = 5, n_phases = 3, amplitude_min = 1e-4, amplitude_max = 2.0, "
                 "ds = 0.002, ds_min = 1e-9, ds_max = 0.02, x_scale = 2.0, max_points = 900 /\n")
-    assert inp.response == {"resonance": resonance, "parameter": parameter, "start": 0.49,
-                            "stop": 0.53, "n_scan": 7, "n_amplitudes": 5, "n_phases": 3,
-                            "amplitude_min": 1e-4, "amplitude_max": 2.0, "ds": 0.002,
-                            "ds_min": 1e-9, "ds_max": 0.02, "x_scale": 2.0, "max_points": 900}
+    assert inp.response_range == {"resonance": resonance, "parameter": parameter,
+                                  "start": 0.49, "stop": 0.53}
+    assert inp.response == Continuation(n_scan=7, n_amplitudes=5, n_phases=3,
+                                        amplitude_min=1e-4, amplitude_max=2.0, ds=0.002,
+                                        ds_min=1e-9, ds_max=0.02, x_scale=2.0, max_points=900)
 
 
 @pytest.mark.parametrize("continuation", _tables.names("continuations")[0])
@@ -246,15 +292,15 @@ def test_settings_groups_read_through_python_by_name(tmp_path):
         "&lyapunov transient_periods = 21, n_periods = 301, renormalise_every = 3, "
         "spectrum = .true. /\n"
         "&simulation t_end = 12.5, n_out = 77, y0 = 0.1, 0.2, 0.3, 0.4 /\n"))
-    assert inp.integration == {"rtol": 1.5e-7, "atol": 2.5e-9, "h_initial": 0.03, "h_max": 0.4,
-                               "h_min": 5e-12, "max_steps": 123456, "method": "vern9"}
-    assert inp.steady == {"transient_periods": 11.0, "settle_tol": 2e-6,
-                          "max_transient_periods": 333.0, "window_periods": 17,
-                          "samples_per_period": 41, "periodic_tol": 3e-5, "shooting": False}
-    assert inp.lyapunov == {"transient_periods": 21, "n_periods": 301, "renormalise_every": 3,
-                            "spectrum": True}
+    assert inp.integration == Integration(rtol=1.5e-7, atol=2.5e-9, h_initial=0.03, h_max=0.4,
+                                          h_min=5e-12, max_steps=123456, method="vern9")
+    assert inp.steady == Steady(transient_periods=11.0, settle_tol=2e-6,
+                                max_transient_periods=333.0, window_periods=17,
+                                samples_per_period=41, periodic_tol=3e-5, shooting=False)
+    assert inp.lyapunov == Lyapunov(transient_periods=21, n_periods=301, renormalise_every=3,
+                                    spectrum=True)
     assert inp.simulation == {"t_end": 12.5, "n_out": 77, "y0": [0.1, 0.2, 0.3, 0.4]}
-    assert Steady(**inp.steady).array().tolist() == [11, 2e-6, 333, 17, 41, 3e-5, 0]
+    assert inp.steady.array().tolist() == [11, 2e-6, 333, 17, 41, 3e-5, 0]
 
 
 def test_a_tank_and_its_ground_motion_read_through_python_by_name(tmp_path):
@@ -301,3 +347,152 @@ def test_seismic_results_are_named_by_the_cores_tables():
     assert codes.sources == list(_tables.names("source")[0])
     assert codes.columns == [c.split(" [")[0] for c in _tables.columns("design_codes")[1:]]
     assert codes.table.shape == (len(codes.columns), len(codes.sources))
+
+
+def test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables():
+    """The bridge arrays that Python now reads by name (they were read by position): the
+    studies' orbit rows, the modal scalars, the chart's table sizes, a branch of slow-flow
+    cycles and its special points have exactly as many rows as the core's names."""
+    params = Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.7853981633974483,
+                        gamma=0.001, A=0.00075, rho=0.51)
+    _, _, orbit, _, _, status, _ = _core.sloshdyn_bridge_studies.steady_path(
+        *params.array(), np.array([0.51]), np.array([0.00075]), np.zeros((4, 1), order="F"), 0,
+        Integration().array(), Steady(transient_periods=20, settle_tol=0,
+                                      window_periods=16).array())
+    assert status == 0 and orbit.shape == (len(_tables.columns("study_orbit")), 1)
+    scalars, *_, status, _ = _core.sloshdyn_bridge_asymptotics.modal_expansion(*params.array())
+    assert status == 0 and len(scalars) == len(_tables.layout("modal_scalars"))
+    modes = sloshdyn.linear_modes(params)
+    assert _tables.unpack("modal_scalars", scalars)["omega1"] == pytest.approx(modes.omega1)
+    chart = Chart(n_x=3, n_y=2)
+    *_, sizes, _, _, status, _ = _core.sloshdyn_bridge_charts.stability_chart(
+        *params.array(), chart.array(), _tables.pack("chart_range", {
+            "model": 1, "x": _tables.code("chart_axes", "rho"),
+            "y": _tables.code("chart_axes", "A"), "x_min": 0.49, "x_max": 0.53, "y_min": 0.0,
+            "y_max": 0.002, "threads": 1}), Continuation().array(), 20000, 100, 50, 6)
+    assert status == 0 and len(sizes) == len(_tables.layout("chart_sizes"))
+    assert _tables.unpack("chart_sizes", sizes)["cells"] == 6          # n_x n_y
+    points, multipliers, amplitudes, *_, special, _, _, _, _ = (
+        _core.sloshdyn_bridge_research.slow_flow_cycle_branch(
+            *params.array(), 1, np.zeros(4), 1.0, 0.5, 0.52,
+            np.zeros(len(_tables.layout("continuation"))), Integration().array(), 2, 3))
+    assert (len(points) + len(multipliers) + len(amplitudes)
+            == len(_tables.columns("cycle_branch")))
+    assert len(special) == len(_tables.columns("cycle_special_points"))
+
+
+def test_a_new_field_of_a_layout_reaches_its_settings_class(monkeypatch):
+    """A settings class follows its layout with no Python edit: a layout with one field more
+    (as the core would give it) makes a class with that field, its kind, default and doc."""
+    from sloshdyn._settings import settings
+    fields = _tables.layout("shooting") + ("damping",)
+    core = {"layout:shooting": ",".join(fields), "kinds:shooting": "real,integer,real",
+            "docs:shooting": "tolerance\niterations\nNewton's damping factor"}
+    real = _tables._names_text
+    monkeypatch.setattr(_tables, "_names_text",
+                        lambda name: (core[name], 1) if name in core else real(name))
+    monkeypatch.setattr(_tables, "defaults", lambda name: dict(zip(fields, (1e-10, 30, 0.5))))
+
+    @settings("shooting")
+    class Scratch:
+        """A scratch copy of Shooting."""
+    assert [f.name for f in dataclasses.fields(Scratch)] == list(fields)
+    assert Scratch().damping == 0.5 and "Newton's damping factor" in Scratch.__doc__
+    assert Scratch(damping=0.25).array().tolist() == [1e-10, 30, 0.25]
+
+
+#: every code list the core names, by its names (the test below looks for copies of these)
+CODE_NAMES = {name: set(_tables.names(name)[0]) for name in _tables.code_lists()}
+
+
+def _hand_lists(path):
+    """(line, code list) of every literal list of strings in `path` that is used as the allowed
+    values of an option (_checks.choice(name, value, <list>), value in / not in <list>) and is
+    a copy of a core code list (its names, or all but one of them)."""
+    import ast
+    found = []
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        choices = []
+        if isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "choice":
+            choices = node.args[2:3]
+        elif isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.In, ast.NotIn)):
+            choices = node.comparators[:1]
+        for literal in choices:
+            if isinstance(literal, (ast.Tuple, ast.List, ast.Set)) and all(
+                    isinstance(e, ast.Constant) and isinstance(e.value, str)
+                    for e in literal.elts):
+                values = {e.value for e in literal.elts}
+                found += [(node.lineno, name) for name, names in CODE_NAMES.items()
+                          if len(values) >= 2 and values <= names
+                          and len(values) >= len(names) - 1]
+    return found
+
+
+def test_python_keeps_no_copy_of_a_code_list():
+    """An option whose values are the names of a core code list takes them from the core
+    (the issue-21 defect: a hand copy of the chart axes without kappa)."""
+    import pathlib
+    root = pathlib.Path(sloshdyn.__file__).parent
+    copies = {f"{path.relative_to(root)}:{line} ({name})": None
+              for path in sorted(root.rglob("*.py")) for line, name in _hand_lists(path)}
+    assert list(copies) == []
+
+
+def test_the_hand_list_finder_finds_a_copy(tmp_path):
+    source = tmp_path / "copy.py"
+    source.write_text('_checks.choice("continuation", c, ("none", "up", "down", "both"))\n'
+                      'if kind not in ("processes", "threads"):\n    pass\n'
+                      'if (x, y) != ("rho", "A"):\n    pass\n')
+    assert _hand_lists(source) == [(1, "continuations"), (2, "worker_kinds")]
+
+
+def test_enumerated_options_name_the_value_and_the_cores_codes(tmp_path):
+    """Stringly options are checked against the core's code lists, naming the value and every
+    allowed code."""
+    params = Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.7853981633974483,
+                        A=0.00075)
+    allowed = ", ".join(repr(c) for c in _tables.names("continuations")[0])
+    with pytest.raises(sloshdyn.InputError, match=f"continuation = 'sideways' is not valid: it "
+                       f"must be one of {allowed}"):
+        sloshdyn.response_map(params, [0.5], [0.001], tmp_path / "y.zarr",
+                              continuation="sideways")
+    with pytest.raises(sloshdyn.InputError, match="resonance = '1:3' is not valid: it must be "
+                       "one of 'none', '3:1'"):
+        sloshdyn.frequency_response(params, (0.49, 0.53), resonance="1:3")
+    with pytest.raises(sloshdyn.InputError, match="direction = 'sideways' is not valid: it must "
+                       "be one of 'up', 'down', 'both'"):
+        sloshdyn.sweep_values(0.5, 0.52, 3, "sideways")
+    with pytest.raises(sloshdyn.InputError, match="worker_kind = 'fibres' is not valid: it "
+                       "must be one of 'processes', 'threads'"):
+        sloshdyn.response_map(params, [0.5], [0.001], tmp_path / "z.zarr", worker_kind="fibres")
+
+
+def test_every_continuation_takes_the_same_settings_object():
+    """Every continuation call takes its steps, limits and Newton's tolerances from one
+    keyword-only Continuation (the core's 'response' layout), whose continuation fields are
+    the core's 'continuation' layout's (no loose x_tol, f_tol, max_iter)."""
+    import inspect
+    for function in (sloshdyn.frequency_response, sloshdyn.periodic_response,
+                     sloshdyn.slow_flow_cycles, sloshdyn.stability_chart):
+        parameters = inspect.signature(function).parameters
+        assert parameters["continuation"].kind is inspect.Parameter.KEYWORD_ONLY
+        assert isinstance(parameters["continuation"].default, Continuation), function
+        assert not {"ds", "x_tol", "f_tol", "max_iter", "max_points"} & set(parameters)
+    assert set(_tables.layout("continuation")) - {"direction"} <= set(_tables.layout("response"))
+    cycles = inspect.signature(sloshdyn.slow_flow_cycles).parameters["continuation"].default
+    assert (cycles.x_tol, cycles.f_tol, cycles.max_iter) == (1e-10, 1e-9, 20)
+
+
+def test_response_reads_newtons_settings(tmp_path):
+    """&response's x_tol, f_tol, max_iter (the example of a new namelist variable: layout,
+    reader, documentation only) reach Continuation by name, and their rules are the core's
+    (checked when the continuation runs, as ds and the other steps are)."""
+    inp = _read(tmp_path, MODEL + "&response start = 0.49, stop = 0.53, x_tol = 1e-9, "
+                "f_tol = 2e-10, max_iter = 7 /\n")
+    assert (inp.response.x_tol, inp.response.f_tol, inp.response.max_iter) == (1e-9, 2e-10, 7)
+    assert inp.response == Continuation(x_tol=1e-9, f_tol=2e-10, max_iter=7)
+    with pytest.raises(sloshdyn.InputError, match="max_iter = 0 is out of range: it must be "
+                       ">= 1"):
+        sloshdyn.frequency_response(inp.params, (0.49, 0.53),
+                                    continuation=Continuation(max_iter=0))

@@ -52,7 +52,7 @@ def test_steady_and_lyapunov_keep_their_own_transient(tmp_path):
             "&lyapunov transient_periods = 20, n_periods = 40, renormalise_every = 2 /\n"
             "&output directory = 'out' /\n")
     inp = sloshdyn.read_namelist(write(tmp_path, text))
-    assert inp.steady["transient_periods"] == 300 and inp.lyapunov["transient_periods"] == 20
+    assert inp.steady.transient_periods == 300 and inp.lyapunov.transient_periods == 20
     exe_out, py_out, (exe, py) = both_front_doors(tmp_path, text)
     assert exe.returncode == 0 and py.returncode == 0, (exe.stderr, py.stderr)
     same_csv_files(exe_out, py_out)
@@ -68,7 +68,7 @@ def test_sweep_and_response_keep_their_own_range(tmp_path):
             "&response start = 0.2, stop = 0.3 /\n&output directory = 'out' /\n")
     inp = sloshdyn.read_namelist(write(tmp_path, text))
     assert (inp.sweep["start"], inp.sweep["stop"]) == (0.50, 0.51)
-    assert (inp.response["start"], inp.response["stop"]) == (0.2, 0.3)
+    assert (inp.response_range["start"], inp.response_range["stop"]) == (0.2, 0.3)
 
 
 def test_a_branch_cut_by_max_points_is_an_error_in_both(tmp_path):
@@ -84,7 +84,7 @@ def test_a_branch_cut_by_max_points_is_an_error_in_both(tmp_path):
     inp = sloshdyn.read_namelist(tmp_path / "exe" / "input.nml")
     with pytest.raises(sloshdyn.CapacityError) as info:
         sloshdyn.frequency_response(inp.params, (0.49, 0.53),
-                                    continuation=sloshdyn.Continuation.from_namelist(inp.response))
+                                    continuation=inp.response)
     assert not info.value.partial.complete and len(info.value.partial.table["a1"]) > 0
 
 
@@ -132,9 +132,9 @@ def test_one_set_of_integration_defaults():
 
 def test_namelist_defaults_are_the_python_defaults(tmp_path):
     inp = sloshdyn.read_namelist(write(tmp_path, MODEL))
-    assert sloshdyn.Integration(**inp.integration) == sloshdyn.Integration()
-    assert sloshdyn.Steady(**inp.steady) == sloshdyn.Steady()
-    assert sloshdyn.Continuation.from_namelist(inp.response) == sloshdyn.Continuation()
+    assert inp.integration == sloshdyn.Integration()
+    assert inp.steady == sloshdyn.Steady()
+    assert inp.response == sloshdyn.Continuation()
     assert inp.params == sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259,
                                              theta0=0.7853981633974483, gamma=0.001)
 

@@ -76,7 +76,7 @@ def test_both_front_doors_on_1_2_3_threads(tmp_path, direction):
     assert files[0] == files[1] == files[2]
     inp = sloshdyn.read_namelist(tmp_path / "t2.nml")
     python = sloshdyn.frequency_sweep(inp.params, sloshdyn.sweep_values(0.5095, 0.5122, 4, direction),
-                                      steady=sloshdyn.Steady(**inp.steady), start_from="y0",
+                                      steady=inp.steady, start_from="y0",
                                       threads=inp.sweep["threads"])
     rows = np.loadtxt(tmp_path / "out1" / "sweep.csv", delimiter=",", skiprows=1, ndmin=2)
     assert list(rows[:, 2]) == list(python.column("max_x1"))

@@ -10,15 +10,18 @@ impact_damping = 0) sampled finely, whose first sample with |x1| >= 1 must follo
 first contact within one output step.
 """
 
+import sys
+
 import numpy as np
 import pytest
 
 import sloshdyn
-from conftest import EXAMPLES
+from conftest import EXAMPLES, ROOT
 from sloshdyn.figures import FIG12
 
-TANK = dict(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0, tank_mass=5.0e4,
-            support_frequency=2.0)
+sys.path.insert(0, str(ROOT / "data" / "studies"))
+# the issue's tank and the beta study's four records (example noise, burst, chirp, pulses)
+from make_beta_study import TANK, records, scaled  # noqa: E402
 LOADS = ["ground_acceleration", "sloshing_displacement", "wave_height", "pendulum_angle",
          "tank_drift", "impact_force", "base_shear", "overturning_moment"]
 
@@ -28,20 +31,6 @@ def kt_record(scale=1.0):
     ground = sloshdyn.GroundMotion.from_file(EXAMPLES / "records" / "synthetic_kt.AT2")
     return sloshdyn.GroundMotion(dt=ground.dt, acceleration=ground.acceleration * scale,
                                  units="m/s^2")
-
-
-def synthetic_records():
-    """Four records of different character (dt = 0.01 s, m/s^2): the example noise record, a
-    burst at the sloshing frequency, a chirp through it and a decaying pulse train."""
-    f = 1 / sloshdyn.Tank(**TANK).sloshing_period
-    dt = 0.01
-    t = np.arange(0, 25, dt)
-    burst = np.sin(2 * np.pi * f * t) * np.exp(-((t - 8) / 4) ** 2)
-    chirp = np.sin(2 * np.pi * (0.5 * f + 0.04 * f * t) * t) * np.minimum(1, t / 3) * \
-        np.maximum(0, 1 - t / 25)
-    pulses = np.sin(2 * np.pi * 2.5 * f * t) * np.exp(-t / 5)
-    base = kt_record()
-    return {"synthetic_kt": base.acceleration, "burst": burst, "chirp": chirp, "pulses": pulses}
 
 
 def test_seismic_peaks_do_not_depend_on_n_out():
@@ -100,19 +89,9 @@ def test_steady_max_x1_equals_brute_force_on_the_orbit():
 
 
 def scaled_records(ratio):
-    """The four records scaled so that the free wave's height is `ratio` x the freeboard (the
-    free wave is nearly linear in the scale; one correction step)."""
-    records = {}
-    for name, acceleration in synthetic_records().items():
-        scale = 1.0
-        for _ in range(2):
-            ground = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
-                                           units="m/s^2")
-            run = sloshdyn.seismic_response(sloshdyn.Tank(**TANK), ground)
-            scale *= ratio * TANK["freeboard"] / run.peak_table["free_wave_height"]
-        records[name] = sloshdyn.GroundMotion(dt=0.01, acceleration=acceleration * scale,
-                                              units="m/s^2")
-    return records
+    """The four records of the beta study, scaled so that the free wave's height is `ratio` x
+    the freeboard."""
+    return {name: scaled(acceleration, ratio)[0] for name, acceleration in records().items()}
 
 
 @pytest.mark.parametrize("ratio", [1.5, 0.6])

@@ -563,7 +563,7 @@ def test_python_api_gives_the_numbers_of_the_csv_files(both_doors):
     t_end, n_out = inp.seismic["t_end"], inp.seismic["n_out"]
     r = sloshdyn.seismic_response(inp.tank, inp.ground_motion, t_end=t_end or None,
                                   n_out=n_out or None,
-                                  integration=sloshdyn.Integration(**inp.integration))
+                                  integration=inp.integration)
     table = np.loadtxt(exe_out / "seismic.csv", delimiter=",", skiprows=1)
     assert np.array_equal(table.T, r.table)
     peaks = np.loadtxt(exe_out / "seismic_peaks.csv", delimiter=",", skiprows=1)

@@ -14,8 +14,8 @@ from .._errors import InputError
 from ..parameters import Parameters
 from ..simulation import Integration, Steady
 from .engine import SECONDS, Plan, Variable, positive_int, run_plan, version
-from .points import (MAX_PERIOD, MOTIONS, ORBIT_FOUND, ORBIT_MAX_MU, ORBIT_Y, SUMMARY_COLUMNS,
-                     common_attrs, settings_arrays, summary_variables, unpack)
+from .points import (MAX_PERIOD, MOTIONS, SUMMARY_COLUMNS, common_attrs, orbit_rows,
+                     settings_arrays, summary_variables, unpack)
 
 _bridge = _core.sloshdyn_bridge_studies
 
@@ -31,9 +31,10 @@ def _basin_task(rpar, ipar, y0, integration, steady):
     impact = (summaries[SUMMARY_COLUMNS.index("max_x1")] >= 1).astype(np.int32)
     out = unpack(summaries, orbit, impact, status, shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
-    out["orbit_found"] = np.where(status == 0, orbit[ORBIT_FOUND], -1).astype(np.int8).reshape(shape)
-    out["max_multiplier"] = orbit[ORBIT_MAX_MU].reshape(shape)
-    out["orbit_state"] = orbit[ORBIT_Y].reshape((4,) + shape).transpose(1, 2, 0)
+    rows = orbit_rows(orbit)
+    out["orbit_found"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)
+    out["max_multiplier"] = rows["max_mu"].reshape(shape)
+    out["orbit_state"] = np.stack([rows[f"y{i}"].reshape(shape) for i in range(1, 5)], axis=-1)
     out["orbit_points"] = points.reshape((4, MAX_PERIOD) + shape).transpose(2, 3, 1, 0)
     out["final_state"] = y_end.reshape((4,) + shape).transpose(1, 2, 0)
     out[SECONDS] = time.perf_counter() - start

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _checks
+from .. import _checks, _tables
 from .._errors import FileError, InputError
 from .._extras import require
 
@@ -334,9 +334,7 @@ def max_workers(worker_kind):
 
 
 def _check_workers(workers, worker_kind):
-    if worker_kind not in ("processes", "threads"):
-        raise InputError(f"worker_kind = {worker_kind!r} is not valid: it must be 'processes' "
-                         "or 'threads'")
+    _checks.choice("worker_kind", worker_kind, _tables.names("worker_kinds")[0])
     if workers is None:
         return None
     n = _checks.integer("workers", workers, 1)

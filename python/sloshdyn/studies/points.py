@@ -17,8 +17,8 @@ from .engine import Variable, version
 SUMMARY_COLUMNS = _tables.columns("summary")
 MOTIONS = _tables.codes("motion")
 MOTION_CODES = {name: code for code, name in MOTIONS.items()}
-#: the orbit layout of sloshdyn_studies (bridge steady_path / attractor_points)
-ORBIT_FOUND, ORBIT_PERIODS, ORBIT_ATTEMPTS, ORBIT_Y, ORBIT_MAX_MU = 0, 1, 2, slice(3, 7), 15
+#: the orbit rows of sloshdyn_studies (bridge steady_path / attractor_points)
+ORBIT_COLUMNS = _tables.columns("study_orbit")
 MAX_PERIOD = 8
 
 MOTION_ATTRS = {
@@ -35,6 +35,11 @@ def settings_arrays(steady, integration):
     if not isinstance(integration, Integration):
         raise InputError(f"integration = {integration!r} is not valid: give a sloshdyn.Integration")
     return steady.array(), integration.array()
+
+
+def orbit_rows(orbit):
+    """{column: row} of the bridge's orbit array (the core's table 'study_orbit')."""
+    return dict(zip(ORBIT_COLUMNS, orbit))
 
 
 def common_attrs(kind, params, steady, integration, extra):

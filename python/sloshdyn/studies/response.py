@@ -9,12 +9,12 @@ import time
 
 import numpy as np
 
-from .. import _checks, _core
+from .. import _checks, _core, _tables
 from .._errors import InputError
 from ..parameters import Parameters
 from ..simulation import Integration, Steady
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
-from .points import (ORBIT_FOUND, ORBIT_MAX_MU, SUMMARY_COLUMNS, common_attrs, settings_arrays,
+from .points import (SUMMARY_COLUMNS, common_attrs, orbit_rows, settings_arrays,
                      summary_variables, unpack)
 
 _bridge = _core.sloshdyn_bridge_studies
@@ -32,8 +32,9 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
         rpar, ipar, flat_rho, flat_a, np.zeros((4, n), order="F"), 0, integration, steady)
     out = unpack(summaries, orbit, impact, status, shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
-    out["shooting"] = np.where(status == 0, orbit[ORBIT_FOUND], -1).astype(np.int8).reshape(shape)
-    out["max_multiplier"] = orbit[ORBIT_MAX_MU].reshape(shape)
+    rows = orbit_rows(orbit)
+    out["shooting"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)
+    out["max_multiplier"] = rows["max_mu"].reshape(shape)
     for direction in continuation:
         parts = []
         for j in range(shape[1]):
@@ -69,7 +70,7 @@ def _tank_grid(tank, f, a, units):
 
 def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None, scheduler=None,
                  workers=None, worker_kind=None, steady: Steady = Steady(),
-                 integration: Integration = Integration(), continuation=None,
+                 integration: Integration = Integration(), continuation="none",
                  points_per_task=None, progress=True, units="g"):
     """Steady states on a grid of forcing frequency x amplitude, as an xarray Dataset with
     dimensions (frequency, amplitude) written to the Zarr store `store` as tasks finish.
@@ -79,7 +80,8 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     ground acceleration in `units` (constant along the frequency axis: A = a/(L Omega^2)), the
     point's rho and A as variables. Every point is the steady state from rest with the given
     settings, equal bit for bit to sloshdyn.steady_state(params.replace(rho=..., A=...),
-    steady=..., integration=...). continuation = 'up', 'down' or 'both' adds, for each amplitude, the sweep
+    steady=..., integration=...). continuation (a name of the core's 'continuations': 'none',
+    'up', 'down' or 'both') adds, for each amplitude, the sweep
     along the frequency axis that carries the state from point to point (variables ``*_up``,
     ``*_down``): where they differ from the points from rest, the response is multi-valued
     (hysteresis, jumps).
@@ -106,9 +108,8 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
         raise InputError(f"params_or_tank = {type(params_or_tank).__name__} is not valid: give "
                          "sloshdyn.Parameters or sloshdyn.Tank")
     steady_array, integration_array = settings_arrays(steady, integration)
-    continuation = "none" if continuation is None else continuation
-    directions = {"none": (), "up": ("up",), "down": ("down",), "both": ("up", "down")}[
-        _checks.choice("continuation", continuation, ("none", "up", "down", "both"))]
+    _checks.choice("continuation", continuation, _tables.names("continuations")[0])
+    directions = {"none": (), "both": ("up", "down")}.get(continuation, (continuation,))
     ppt = None if points_per_task is None else positive_int("points_per_task", points_per_task)
     nf, na = len(f), len(a)
 
