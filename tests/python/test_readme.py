@@ -81,12 +81,12 @@ def test_shown_executable_output_is_what_it_prints(exe, tmp_path, page):
 
 def test_the_two_commands_are_the_readmes_and_ci_runs_the_test_one():
     """The README keeps the two commands, and .ci/run runs the README's test command (then
-    the wheel check)."""
+    the documentation site and the wheel check)."""
     commands = re.findall(r"^(bash \.ci/dev \w+)", README.read_text(), re.M)
     assert commands[:2] == ["bash .ci/dev main", "bash .ci/dev test"]
     ci = [line for line in (ROOT / ".ci" / "run").read_text().splitlines()
           if line.startswith("bash ")]
-    assert ci == ["bash .ci/dev test", "bash .ci/dev wheel"]
+    assert ci == ["bash .ci/dev test", "bash .ci/dev docs", "bash .ci/dev wheel"]
 
 
 def slug(heading):

@@ -82,8 +82,8 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     settings, equal bit for bit to sloshdyn.steady_state(params.replace(rho=..., A=...),
     steady=..., integration=...). continuation (a name of the core's 'continuations': 'none',
     'up', 'down' or 'both') adds, for each amplitude, the sweep
-    along the frequency axis that carries the state from point to point (variables *_up,
-    *_down): where they differ from the points from rest, the response is multi-valued
+    along the frequency axis that carries the state from point to point (variables ``*_up``,
+    ``*_down``): where they differ from the points from rest, the response is multi-valued
     (hysteresis, jumps).
 
     The study runs on `client` (a dask.distributed Client), on the scheduler at address
