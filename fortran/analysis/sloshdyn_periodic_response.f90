@@ -15,7 +15,8 @@ module sloshdyn_periodic_response
   use sloshdyn_tables, only: SUMMARY_SIZE
   implicit none
   private
-  public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest
+  public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest, &
+            orbit_from_rest
   public :: lyapunov_options, check_lyapunov, newton_tol_default, max_iter_default
 
   !> Shooting's Newton settings unless given: |y(kT) - y0| and the step <= tol (max|y0| + 1e-12).
@@ -87,18 +88,45 @@ contains
     logical, intent(out) :: complete
     character(len=message_len), intent(out) :: message
     type(tank_system) :: system
-    real(wp) :: summary(SUMMARY_SIZE), y_start(4), y_orbit(4), monodromy(4, 4), re(4), im(4), &
-                max_x1
-    real(wp), allocatable :: poincare(:, :)
-    type(ode_stats) :: stats
-    integer :: iterations
+    real(wp) :: y_orbit(4)
 
     n_points = 0
     n_special = 0
     complete = .false.
+    call orbit_from_rest(model, parameter, y0, lambda_min, steady, options, method, &
+                         system%model, y_orbit, status, message)
+    if (status /= SD_OK) return
+    system%varied = parameter
+    call periodic_branch(system, y_orbit, lambda_min, lambda_max, continuation, options, &
+                         method, points, multipliers, n_points, special, n_special, complete, &
+                         status, message)
+  end subroutine periodic_response_from_rest
+
+  !> The start of a branch of periodic responses from rest: the model with the varied parameter
+  !> (PARAMETER_RHO, PARAMETER_A) set to lambda (start), and on it the steady state reached
+  !> from y0 (steady settings) refined by shooting (period T) to the orbit through y_orbit.
+  subroutine orbit_from_rest(model, parameter, y0, lambda, steady, options, method, start, &
+                             y_orbit, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: parameter, method
+    real(wp), intent(in) :: y0(4), lambda
+    type(steady_options), intent(in) :: steady
+    type(ode_options), intent(in) :: options
+    type(model_t), intent(out) :: start
+    real(wp), intent(out) :: y_orbit(4)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    real(wp) :: summary(SUMMARY_SIZE), y_start(4), monodromy(4, 4), re(4), im(4), max_x1
+    real(wp), allocatable :: poincare(:, :)
+    type(ode_stats) :: stats
+    integer :: iterations
+
+    y_orbit = 0
     system%model = model
     system%varied = parameter
-    call system%set_parameter(lambda_min)
+    call system%set_parameter(lambda)
+    start = system%model
     allocate (poincare(4, steady%window_periods))
     call steady_state(system%model, y0, options, method, steady, summary, poincare, y_start, &
                       stats, status, message)
@@ -109,14 +137,8 @@ contains
     call periodic_orbit(system%model, y_start, 1, options, method, newton_tol_default, &
                         max_iter_default, y_orbit, monodromy, re, im, iterations, max_x1, &
                         status, message)
-    if (status /= SD_OK) then
-      message = 'start (shooting): '//trim(message)
-      return
-    end if
-    call periodic_branch(system, y_orbit, lambda_min, lambda_max, continuation, options, &
-                         method, points, multipliers, n_points, special, n_special, complete, &
-                         status, message)
-  end subroutine periodic_response_from_rest
+    if (status /= SD_OK) message = 'start (shooting): '//trim(message)
+  end subroutine orbit_from_rest
 
   !> The rules of the Lyapunov settings (those of largest_lyapunov, checked before allocating).
   pure subroutine check_lyapunov(options, status, message)

@@ -30,7 +30,8 @@ module sloshdyn_driver
                              HARMONIC_SWEEP_WAVE_HEIGHT, PERIODIC_POINT_ROWS, &
                              PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS, &
                              PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, PERIODIC_SPECIAL_MAX_X1, &
-                             COUNTS_SIZE, ROUTH_SIZE, table_size
+                             COUNTS_SIZE, ROUTH_SIZE, table_size, SWIRL_BRANCH_ROWS, &
+                             SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
   use sloshdyn_linear, only: stiffness_matrix, natural_frequencies, natural_frequencies_eig, &
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
@@ -38,12 +39,16 @@ module sloshdyn_driver
   use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_simulation, only: time_history, steady_state, parameter_sweep, independent_sweep
   use sloshdyn_response, only: frequency_response
-  use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent
+  use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent, &
+                                        orbit_from_rest
+  use sloshdyn_swirl, only: swirl_branch
+  use sloshdyn_seismic_spatial, only: seismic_response_spatial
   use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
   use sloshdyn_namelist, only: run_config, known_analyses, ANALYSIS_LINEAR, ANALYSIS_SIMULATE, &
                                ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, ANALYSIS_FREQUENCY_RESPONSE, &
                                ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, &
-                               ANALYSIS_STABILITY_CHART, chart_models, DIRECTION_DOWN, &
+                               ANALYSIS_STABILITY_CHART, ANALYSIS_SWIRL, chart_models, &
+                              DIRECTION_DOWN, &
                                DIRECTION_BOTH, direction_names
   use sloshdyn_results, only: result_files
   use sloshdyn_stability_chart, only: chart_result, stability_chart, chart_tables, &
@@ -62,6 +67,8 @@ module sloshdyn_driver
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
   !> Room for the slow-flow response table and its special points.
   integer, parameter :: max_response_points = 20000, max_special_points = 200
+  !> Room for the edges of a swirl band (as sloshdyn.spatial.swirl_band's max_edges).
+  integer, parameter :: max_swirl_edges = 100
 
 contains
 
@@ -95,7 +102,13 @@ contains
     case (ANALYSIS_LYAPUNOV)
       call run_lyapunov(config, files, status, message)
     case (ANALYSIS_SEISMIC)
-      call run_seismic(config, files, status, message)
+      if (config%planar) then
+        call run_seismic(config, files, status, message)
+      else
+        call run_seismic_spatial(config, files, status, message)
+      end if
+    case (ANALYSIS_SWIRL)
+      call run_swirl(config, files, status, message)
     case (ANALYSIS_STABILITY_CHART)
       call run_chart(config, files, status, message)
     end select
@@ -542,6 +555,99 @@ contains
                                                 special(:, 1:n_special), status, message)
   end subroutine run_periodic
 
+  !> The swirl band (sloshdyn_swirl): the branch of planar periodic responses (started as
+  !> run_periodic's) with the out-of-plane Floquet multipliers at each point, and the band's
+  !> edges.
+  subroutine run_swirl(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: start
+    real(wp) :: y_orbit(4)
+    real(wp), allocatable :: points(:, :), edges(:, :)
+    integer :: n_points, n_edges, i
+    logical :: complete
+    character(len=:), allocatable :: name
+
+    associate (r => config%response)
+      allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
+                edges(SWIRL_EDGE_ROWS, max_swirl_edges))
+      call orbit_from_rest(config%model, r%parameter, config%simulation%y0, r%start, &
+                           config%steady, config%integration, config%method, start, y_orbit, &
+                           status, message)
+      if (status == SD_OK) &
+        call swirl_branch(start, r%parameter, y_orbit, 1, r%start, r%stop, &
+                          r%options%continuation, config%integration, config%method, points, &
+                          n_points, edges, n_edges, complete, status, message)
+      call in_context('swirl', status, message)
+      if (status /= SD_OK) return
+      name = parameter_label(r%parameter)
+      print '(/a)', 'Swirl: out-of-plane Floquet multipliers of the planar periodic orbits '// &
+                    '(spatial model; '//used_method(config)//') for '//name//' in ['// &
+                    num2str(r%start)//', '//num2str(r%stop)//']'
+    end associate
+    print '(a)', '  '//num2str(n_points)//' orbits, '//num2str(count(points(8, 1:n_points) > 1))// &
+                 ' unstable out of their plane (max|nu| > 1); edges of the swirl band:'
+    if (n_edges == 0) print '(a)', '  none'
+    do i = 1, n_edges
+      print '(a)', '  '//name//' = '//pad(num2str(edges(1, i)), 14)//'max|x1| = '// &
+                   pad(num2str(edges(6, i)), 14)// &
+                   trim(merge('(located)     ', '(interpolated)', edges(7, i) > 0))
+    end do
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('swirl_branch.csv', 'swirl_branch', &
+                                                points(:, 1:n_points), status, message)
+    if (status == SD_OK) call files%write_table('swirl_edges.csv', 'swirl_edges', &
+                                                edges(:, 1:n_edges), status, message)
+  end subroutine run_swirl
+
+  !> A tank under ground motion in two components (sloshdyn_seismic_spatial): SI time
+  !> histories, peaks over the wall and the codes' combinations of the two planar runs.
+  subroutine run_seismic_spatial(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), allocatable :: table(:, :)
+    real(wp) :: peaks(SEISMIC_SPATIAL_PEAKS), t_end
+    integer :: n_out
+
+    t_end = config%seismic%t_end
+    n_out = config%seismic%n_out
+    call seismic_defaults(config%tank_props, config%ground, t_end, n_out)
+    allocate (table(SEISMIC_SPATIAL_ROWS, n_out))
+    call seismic_response_spatial(config%tank, config%ground, config%ground_y, config%azimuth, &
+                                  config%ellipticity, t_end, n_out, config%integration, &
+                                  config%method, table, peaks, status, message)
+    call in_context('seismic response in two components', status, message)
+    if (status /= SD_OK) return
+    print '(/a)', 'Seismic response in two components (spatial model; '//used_method(config)// &
+                  ') from rest, t = 0 to '//num2str(t_end)//' s, '//num2str(n_out)// &
+                  ' outputs; peaks:'
+    print '(a)', '  '//pad('wave height', 24)//pad(num2str(peaks(1), significant=5)//' m', 18)// &
+                 'at t = '//num2str(peaks(3), significant=5)//' s, azimuth '// &
+                 num2str(peaks(2), significant=5)//' rad'
+    print '(a)', '  '//pad('base shear', 24)// &
+                 pad(num2str(peaks(4)/1.0e6_wp, significant=5)//' MN', 18)//'at t = '// &
+                 num2str(peaks(5), significant=5)//' s'
+    print '(a)', '  '//pad('overturning moment', 24)// &
+                 pad(num2str(peaks(6)/1.0e6_wp, significant=5)//' MN m', 18)//'at t = '// &
+                 num2str(peaks(7), significant=5)//' s'
+    if (config%has_ground_y) print '(a)', '  codes'' combinations of the two planar runs '// &
+      '(SRSS, 100/30): wave height '//num2str(peaks(10), significant=5)//', '// &
+      num2str(peaks(11), significant=5)//' m; base shear '// &
+      num2str(peaks(14)/1.0e6_wp, significant=5)//', '// &
+      num2str(peaks(15)/1.0e6_wp, significant=5)//' MN'
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('seismic_spatial.csv', 'seismic_spatial', table, &
+                                                status, message)
+    if (status == SD_OK) call files%write_table('seismic_spatial_peaks.csv', &
+                                                'seismic_spatial_peaks', &
+                                                reshape(peaks, [SEISMIC_SPATIAL_PEAKS, 1]), &
+                                                status, message)
+  end subroutine run_seismic_spatial
+
   !> A tank under its ground motion (sloshdyn_seismic): SI time histories and their peaks.
   subroutine run_seismic(config, files, status, message)
     type(run_config), intent(in) :: config
@@ -845,6 +951,15 @@ contains
         if (len_trim(g%scaling) > 0) print '(a)', '  scaled ('//trim(g%scaling)// &
                                                    '): factor '//num2str(g%scale_factor)
       end associate
+      if (config%has_ground_y) then
+        print '(a)', '  along azimuth '//num2str(config%azimuth)//' rad; across it record_y, '// &
+                     num2str(size(config%ground_y%acceleration))//' samples, peak '// &
+                     num2str(maxval(abs(config%ground_y%acceleration)))// &
+                     ' m/s^2 (scaled by the same factor)'
+      else if (.not. config%planar) then
+        print '(a)', '  along azimuth '//num2str(config%azimuth)//' rad, ellipticity '// &
+                     num2str(config%ellipticity)
+      end if
     end if
     call design_code_checks(config%tank, config%ground, config%has_ground, codes, status, &
                             message)

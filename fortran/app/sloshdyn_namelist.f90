@@ -11,9 +11,11 @@
 module sloshdyn_namelist
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, check_real
+  use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, model_from_arrays, require_stable_trivial
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_FREQUENCY, set_excitation_parameter
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model
+  use sloshdyn_tank, only: SHAPE_CIRCULAR, shape_names
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, GROUND_RECORD
   use sloshdyn_stability_chart, only: chart_settings
   use sloshdyn_ode, only: ode_options
@@ -27,7 +29,8 @@ module sloshdyn_namelist
                                  DIRECTION_DOWN, DIRECTION_BOTH, ANALYSIS_LINEAR, &
                                  ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
                                  ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, &
-                                 ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART
+                                 ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART, &
+                                 ANALYSIS_SWIRL
   use sloshdyn_namelist_groups, only: open_input, describe_groups, check_threads, G_MODEL, &
                                       G_TANK, G_GROUND_MOTION, G_EXCITATION, G_ANALYSIS, &
                                       read_model, read_tank, read_ground_motion, &
@@ -44,7 +47,7 @@ module sloshdyn_namelist
             check_threads
   public :: ANALYSIS_LINEAR, ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
             ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, &
-            ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART
+            ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART, ANALYSIS_SWIRL
   public :: chart_models
   public :: DIRECTION_UP, DIRECTION_DOWN, DIRECTION_BOTH, direction_names
 
@@ -84,7 +87,7 @@ contains
     end associate
 
     if (config%dimensional) then
-      call read_tank(file, config%tank, status, message)
+      call read_tank(file, config%tank, config%planar, status, message)
       if (status /= SD_OK) return
       call tank_model(config%tank, config%model, config%tank_props, status, message)
       if (status /= SD_OK) then
@@ -92,7 +95,8 @@ contains
         return
       end if
       call read_ground_motion(file, config%tank_props, frequency_of_sweep(file), config%ground, &
-                              status, message)
+                              config%ground_y, config%has_ground_y, config%azimuth, &
+                              config%ellipticity, status, message)
       if (status /= SD_OK) return
       if (config%has_ground) then
         call ground_excitation(config%ground, config%tank_props%omega, &
@@ -106,7 +110,7 @@ contains
     else
       call read_excitation(file, A, rho, status, message)
       if (status /= SD_OK) return
-      call read_model(file, groups, exponents, status, message)
+      call read_model(file, groups, exponents, config%planar, status, message)
       if (status /= SD_OK) return
       call model_from_arrays([groups(1:7), A, rho, groups(8)], exponents, config%model, status, &
                              message)
@@ -130,8 +134,9 @@ contains
     if (status == SD_OK) call read_steady(file, config%steady, status, message)
     if (status == SD_OK) call read_sweep(file, config%analysis == ANALYSIS_SWEEP, config%sweep, &
                                          status, message)
-    if (status == SD_OK) call read_response(file, config%analysis == ANALYSIS_FREQUENCY_RESPONSE &
-                                            .or. config%analysis == ANALYSIS_PERIODIC_RESPONSE, &
+    if (status == SD_OK) call read_response(file, any(config%analysis == &
+                                            [ANALYSIS_FREQUENCY_RESPONSE, &
+                                             ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_SWIRL]), &
                                             config%response, status, message)
     if (status == SD_OK) call read_lyapunov(file, config%lyapunov, status, message)
     if (status == SD_OK) call read_seismic(file, config%seismic, status, message)
@@ -153,7 +158,7 @@ contains
     type(run_config) :: config
     type(tank_t) :: tank
     type(tank_properties) :: props
-    type(ground_motion_t) :: ground
+    type(ground_motion_t) :: ground, ground_y
     type(ode_options) :: integration
     type(simulation_settings) :: simulation
     type(steady_options) :: steady
@@ -164,14 +169,16 @@ contains
     type(chart_settings) :: chart
     character(len=path_len) :: directory
     type(run_config) :: study_config
-    real(wp) :: groups(8), A, rho
+    real(wp) :: groups(8), A, rho, azimuth, ellipticity
     integer :: exponents(2), method, status
+    logical :: planar, has_y
     character(len=message_len) :: message
 
     call describe_groups(file)
-    call read_model(file, groups, exponents, status, message)
-    call read_tank(file, tank, status, message)
-    call read_ground_motion(file, props, -1.0_wp, ground, status, message)
+    call read_model(file, groups, exponents, planar, status, message)
+    call read_tank(file, tank, planar, status, message)
+    call read_ground_motion(file, props, -1.0_wp, ground, ground_y, has_y, azimuth, ellipticity, &
+                            status, message)
     call read_excitation(file, A, rho, status, message)
     call read_analysis(file, config, status, message)
     call read_output(file, directory, status, message)
@@ -194,6 +201,8 @@ contains
     character(len=message_len), intent(inout) :: message
     type(model_t) :: first
 
+    call check_spatial(config, status, message)
+    if (status /= SD_OK) return
     if (config%analysis == ANALYSIS_SEISMIC .and. .not. (config%dimensional .and. &
                                                          config%has_ground)) then
       call fail(status, message, "&analysis: kind = 'seismic' needs a tank (&tank) and its "// &
@@ -230,7 +239,7 @@ contains
                                                 index(message, 'rho') == 1))//': '//trim(message)
     case (ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_STABILITY_CHART)
       call require_stable_trivial(config%model, status, message)
-    case (ANALYSIS_PERIODIC_RESPONSE)
+    case (ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_SWIRL)
       call require_stable_trivial(config%model, status, message)
       if (status /= SD_OK) return
       first = config%model
@@ -248,4 +257,42 @@ contains
       if (status /= SD_OK) message = '&lyapunov: '//trim(message)
     end select
   end subroutine check_analysis
+
+  !> The rules of the spatial model (issue 26): planar = .false. (&model or &tank) with p >= 1
+  !> (sloshdyn_spatial's spatial_model) for the analyses that have it, 'seismic' and 'swirl'
+  !> ('swirl' only), of a circular tank with one sloshing mode; a second component only for it.
+  subroutine check_spatial(config, status, message)
+    type(run_config), intent(in) :: config
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=:), allocatable :: group
+    group = trim(merge('&tank ', '&model', config%dimensional))
+    if (config%planar) then
+      if (config%analysis == ANALYSIS_SWIRL) then
+        call fail(status, message, "&analysis: kind = 'swirl' is the stability of planar "// &
+                  'responses out of their plane: it needs the spatial model, planar = .false. '// &
+                  'in '//group)
+      else if (config%has_ground_y .or. config%azimuth /= 0 .or. config%ellipticity /= 0) then
+        call fail(status, message, '&ground_motion: record_y, azimuth and ellipticity '// &
+                  'describe ground motion in two components: they need the spatial model, '// &
+                  'planar = .false. in &tank')
+      end if
+      return
+    end if
+    if (config%model%p < 1) then
+      call fail(status, message, group//': planar = .false. needs p >= 1, not p = '// &
+                num2str(config%model%p)//' (eq 5 acts on the radial motion of the spatial '// &
+                'model, whose direction is undefined at the vertical for p = 0)')
+    else if (config%dimensional .and. (config%tank%shape /= SHAPE_CIRCULAR .or. &
+                                       config%tank%modes /= 1)) then
+      call fail(status, message, '&tank: planar = .false. (the spherical pendulum) is for a '// &
+                "circular tank with one sloshing mode, not shape = '"// &
+                trim(shape_names(config%tank%shape))// &
+                "' with modes = "//num2str(config%tank%modes))
+    else if (.not. any(config%analysis == [ANALYSIS_SEISMIC, ANALYSIS_SWIRL])) then
+      call fail(status, message, group//": planar = .false. (the spatial model) is for kind "// &
+                "= 'seismic' or 'swirl', not kind = '"//trim(known_analyses(config%analysis))// &
+                "'")
+    end if
+  end subroutine check_spatial
 end module sloshdyn_namelist

@@ -3,7 +3,7 @@
 !> group's own rules (the rules that tie groups together are read_input's, sloshdyn_namelist).
 !> The groups and variables are documented in docs/namelist.md.
 module sloshdyn_namelist_groups
-  use sloshdyn_kinds, only: wp, message_len
+  use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real, check_output_count
   use sloshdyn_text, only: num2str
   use sloshdyn_namelist_scanner, only: input_file, group_reader, scan_file, start_description, &
@@ -72,21 +72,24 @@ contains
     call start_description(known_groups, file)
   end subroutine describe_groups
 
-  !> &model: groups = [s1, mu1, kappa, theta0, beta, gamma, delta, zeta], exponents = [n, p].
-  subroutine read_model(file, groups, exponents, status, message)
+  !> &model: groups = [s1, mu1, kappa, theta0, beta, gamma, delta, zeta], exponents = [n, p],
+  !> planar (.false.: the spatial model of issue 26, sloshdyn_spatial).
+  subroutine read_model(file, groups, exponents, planar, status, message)
     type(input_file), intent(inout) :: file
     real(wp), intent(out) :: groups(8)
     integer, intent(out) :: exponents(2), status
+    logical, intent(out) :: planar
     character(len=message_len), intent(out) :: message
     type(model_t) :: defaults
     real(wp) :: s1, mu1, kappa, theta0, beta, gamma, delta, zeta
     integer :: n, p
     type(namelist_reader) :: reader
-    namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, zeta, n, p
+    namelist /model/ s1, mu1, kappa, theta0, beta, gamma, delta, zeta, n, p, planar
 
     s1 = 0; mu1 = 0; kappa = 0; theta0 = 0
     beta = defaults%beta; gamma = defaults%gamma; delta = defaults%delta; zeta = defaults%zeta
     n = defaults%n; p = defaults%p
+    planar = .true.
     status = SD_OK
     message = ''
     call reader%start(file, G_MODEL, status)
@@ -107,10 +110,12 @@ contains
   end subroutine read_model
 
   !> &tank: a cylindrical or rectangular tank on supports in SI units (sloshdyn_vessel), defaults
-  !> from tank_t; radius for shape = 'circular', length and width for 'rectangular'.
-  subroutine read_tank(file, vessel, status, message)
+  !> from tank_t; radius for shape = 'circular', length and width for 'rectangular'; planar
+  !> (.false.: the spatial model of issue 26, sloshdyn_spatial).
+  subroutine read_tank(file, vessel, planar, status, message)
     type(input_file), intent(inout) :: file
     type(tank_t), intent(out) :: vessel
+    logical, intent(out) :: planar
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
@@ -124,7 +129,7 @@ contains
                     support_frequency, support_damping, support_stiffness, &
                     support_damping_coefficient, support_height, sloshing_damping, &
                     impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius, &
-                    shape, length, width, modes
+                    shape, length, width, modes, planar
 
     radius = vessel%radius; liquid_depth = vessel%liquid_depth; freeboard = vessel%freeboard
     liquid_density = vessel%liquid_density; liquid_mass = vessel%liquid_mass
@@ -137,6 +142,7 @@ contains
     roof_slope = vessel%roof_slope; roof_radius = vessel%roof_radius
     shape = shape_names(vessel%shape); length = vessel%length; width = vessel%width
     modes = vessel%modes
+    planar = .true.
     status = SD_OK
     message = ''
     call reader%start(file, G_TANK, status)
@@ -173,25 +179,34 @@ contains
   !> for target_damping (default: the convective 0.5 %); accelerations in `units` ('g',
   !> 'm/s^2', 'cm/s^2'). A sweep in frequency gives the frequency (sweep_frequency >= 0, its
   !> first [Hz]; < 0: no such sweep) when none is given.
-  subroutine read_ground_motion(file, props, sweep_frequency, ground, status, message)
+  !> The second horizontal component (the spatial model, issue 26; sloshdyn_seismic_spatial):
+  !> record_y, a record across the first (same format, units and dt; scaled by the first one's
+  !> factor, one factor for both as FEMA P695 scales a pair; has_y), or for harmonic motion its
+  !> azimuth [rad from x] and ellipticity (minor over major axis).
+  subroutine read_ground_motion(file, props, sweep_frequency, ground, ground_y, has_y, &
+                                azimuth, ellipticity, status, message)
     type(input_file), intent(inout) :: file
     type(tank_properties), intent(in) :: props
     real(wp), intent(in) :: sweep_frequency
-    type(ground_motion_t), intent(out) :: ground
+    type(ground_motion_t), intent(out) :: ground, ground_y
+    logical, intent(out) :: has_y
+    real(wp), intent(out) :: azimuth, ellipticity
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    character(len=path_len) :: record
+    character(len=path_len) :: record, record_y
     character(len=word_len) :: format, units
     real(wp) :: peak_acceleration, frequency, scale_factor, target_pga, target_sa, &
-                target_period, target_damping, to_si, dt
+                target_period, target_damping, to_si, dt, dt_y
     real(wp), allocatable :: acceleration(:)
     character(len=:), allocatable :: harmonic
     integer :: unit_code
     type(namelist_reader) :: reader
     namelist /ground_motion/ record, format, units, peak_acceleration, frequency, scale_factor, &
-                             target_pga, target_sa, target_period, target_damping
+                             target_pga, target_sa, target_period, target_damping, record_y, &
+                             azimuth, ellipticity
 
-    record = ''; format = 'auto'; units = 'g'
+    record = ''; record_y = ''; format = 'auto'; units = 'g'; azimuth = 0; ellipticity = 0
+    has_y = .false.
     peak_acceleration = 0; frequency = 0; scale_factor = 1; target_pga = 0; target_sa = 0
     target_period = 0; target_damping = convective_damping
     harmonic = ''
@@ -220,6 +235,17 @@ contains
     call check_real('target_sa', target_sa, 0.0_wp, huge(1.0_wp), .false., .true., &
                     'target_sa must be >= 0 ['//trim(units)//'] (0: not scaled to a spectral '// &
                     'acceleration)', status, message)
+    call check_real('azimuth', azimuth, -2*pi, 2*pi, .false., .false., &
+                    'azimuth must lie in [-2 pi, 2 pi] rad (from the x axis)', status, message)
+    call check_real('ellipticity', ellipticity, 0.0_wp, 1.0_wp, .false., .false., &
+                    'ellipticity (minor over major axis of the ground''s ellipse) must lie in '// &
+                    '[0, 1]', status, message)
+    if (len_trim(record_y) > 0 .and. len_trim(record) == 0) &
+      call fail(status, message, "&ground_motion: record_y = '"//trim(record_y)//"' is the "// &
+                'second component of a record: give the first one in record')
+    if (len_trim(record) > 0 .and. given(file, G_GROUND_MOTION, 'ellipticity')) &
+      call fail(status, message, '&ground_motion: ellipticity = '//num2str(ellipticity)// &
+                ' shapes harmonic motion; the second component of a record is record_y')
     ! a record or harmonic motion, not both (Python's GroundMotion applies the same rule)
     if (given(file, G_GROUND_MOTION, 'peak_acceleration')) harmonic = ', peak_acceleration'
     if (given(file, G_GROUND_MOTION, 'frequency')) harmonic = harmonic//', frequency'
@@ -232,6 +258,20 @@ contains
         call load_record(beside(file%path, trim(record)), format, units, dt, acceleration, &
                          status, message)
         if (status == SD_OK) ground = record_ground(dt, acceleration)
+        if (status == SD_OK .and. len_trim(record_y) > 0) then
+          call load_record(beside(file%path, trim(record_y)), format, units, dt_y, acceleration, &
+                           status, message)
+          if (status /= SD_OK) then
+            message = "record_y = '"//trim(record_y)//"': "//trim(message)
+          else if (dt_y /= dt) then
+            call fail(status, message, "&ground_motion: record_y = '"//trim(record_y)// &
+                      "' is sampled at dt = "//num2str(dt_y)//' s, record at dt = '// &
+                      num2str(dt)//' s: the two components need the same dt')
+          else
+            ground_y = record_ground(dt_y, acceleration)
+            has_y = .true.
+          end if
+        end if
       else
         call require(file, G_GROUND_MOTION, 'peak_acceleration', status, message)
         ! a sweep in frequency sets it (a start <= 0 is &sweep's error, reported there)
@@ -247,6 +287,12 @@ contains
       call scale_ground(ground, scale_factor, target_pga*to_si, target_sa*to_si, target_period, &
                         target_damping, status, message)
       ground%name = record(index(record, '/', back=.true.) + 1:)
+      ! one factor for both components, the first one's (FEMA P695 scales a pair as one)
+      if (status == SD_OK .and. has_y) then
+        ground_y%acceleration = ground%scale_factor*ground_y%acceleration
+        ground_y%scale_factor = ground%scale_factor
+        ground_y%scaling = ground%scaling
+      end if
     end if
     if (status /= SD_OK .and. index(message, '&ground_motion') /= 1) &
       message = '&ground_motion: '//trim(message)

@@ -21,7 +21,7 @@ module sloshdyn_run_config
             known_analyses, path_len, study_text_len, word_len
   public :: ANALYSIS_LINEAR, ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, ANALYSIS_SWEEP, &
             ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_LYAPUNOV, &
-            ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART
+            ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART, ANALYSIS_SWIRL
   public :: chart_models
   public :: DIRECTION_UP, DIRECTION_DOWN, DIRECTION_BOTH, direction_names
 
@@ -33,13 +33,14 @@ module sloshdyn_run_config
   character(len=*), parameter :: continuation_names(4) = &
     [character(len=4) :: 'none', 'up', 'down', 'both']
   !> The analyses, by code (index).
-  character(len=*), parameter :: known_analyses(9) = &
+  character(len=*), parameter :: known_analyses(10) = &
     [character(len=18) :: 'linear', 'simulate', 'steady_state', 'sweep', 'frequency_response', &
-     'periodic_response', 'lyapunov', 'seismic', 'stability_chart']
+     'periodic_response', 'lyapunov', 'seismic', 'stability_chart', 'swirl']
   integer, parameter :: ANALYSIS_LINEAR = 1, ANALYSIS_SIMULATE = 2, ANALYSIS_STEADY_STATE = 3, &
                         ANALYSIS_SWEEP = 4, ANALYSIS_FREQUENCY_RESPONSE = 5, &
                         ANALYSIS_PERIODIC_RESPONSE = 6, ANALYSIS_LYAPUNOV = 7, &
-                        ANALYSIS_SEISMIC = 8, ANALYSIS_STABILITY_CHART = 9
+                        ANALYSIS_SEISMIC = 8, ANALYSIS_STABILITY_CHART = 9, &
+                        ANALYSIS_SWIRL = 10
   !> &chart: the models, by CHART_SLOW_FLOW_31, CHART_SLOW_FLOW_NONRESONANT, CHART_FULL code.
   character(len=*), parameter :: chart_models(3) = [character(len=21) :: 'slow_flow_3:1', &
                                                     'slow_flow_nonresonant', 'full']
@@ -116,6 +117,13 @@ module sloshdyn_run_config
     type(tank_properties) :: tank_props
     logical :: has_ground = .false.      !< &ground_motion given (with &tank)
     type(ground_motion_t) :: ground
+    !> the spatial model (issue 26; &model or &tank planar = .false.): the second horizontal
+    !> component, a record across the first (has_ground_y) or harmonic motion along azimuth
+    !> [rad] with ellipticity (sloshdyn_seismic_spatial)
+    logical :: planar = .true.
+    logical :: has_ground_y = .false.
+    type(ground_motion_t) :: ground_y
+    real(wp) :: azimuth = 0, ellipticity = 0
     type(seismic_settings) :: seismic
     type(chart_settings) :: chart
     integer :: analysis = ANALYSIS_LINEAR

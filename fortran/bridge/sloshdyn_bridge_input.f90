@@ -14,13 +14,15 @@ contains
   !> output directory; tank and ground with has_tank, has_ground (1/0) and n_samples (the
   !> record's length, for input_record); seismic, integration, steady, response, lyapunov,
   !> simulation, sweep, response_range, chart, chart_range and study; study_store, study_figure,
-  !> study_scheduler, study_records the &study strings. It releases the GIL (Python calls it one
+  !> study_scheduler, study_records the &study strings; planar (1/0), spatial ('spatial': azimuth,
+  !> ellipticity), has_ground_y, ground_y and n_samples_y the spatial model's second component
+  !> (issue 26). It releases the GIL (Python calls it one
   !> at a time, _cancel.app_call), so that Ctrl-C and SIGTERM cancel a long scaling.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
                         has_ground, ground, n_samples, seismic, integration, steady, response, &
                         lyapunov, simulation, sweep, response_range, chart, chart_range, study, &
-                        study_store, study_figure, study_scheduler, study_records, status, &
-                        message)
+                        study_store, study_figure, study_scheduler, study_records, planar, &
+                        spatial, has_ground_y, ground_y, n_samples_y, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_to_arrays
     use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
@@ -29,7 +31,7 @@ contains
                                 ANALYSIS_SIZE, from_ode_options, from_steady, from_response, &
                                 from_lyapunov, from_tank, from_ground, from_chart, &
                                 from_chart_range, from_analysis, from_simulation, from_sweep, &
-                                from_response_range, from_seismic, from_study
+                                from_response_range, from_seismic, from_study, SPATIAL_SIZE
     use sloshdyn_namelist, only: run_config, core => read_input
     character(len=*), intent(in) :: path
     real(c_double), intent(out) :: rpar(n_real_params), analysis_values(ANALYSIS_SIZE), &
@@ -39,9 +41,10 @@ contains
                                    lyapunov(LYAPUNOV_SIZE), simulation(SIMULATION_SIZE), &
                                    sweep(SWEEP_SIZE), response_range(RESPONSE_RANGE_SIZE), &
                                    chart(CHART_SIZE), chart_range(CHART_RANGE_SIZE), &
-                                   study(STUDY_SIZE)
+                                   study(STUDY_SIZE), spatial(SPATIAL_SIZE), &
+                                   ground_y(GROUND_SIZE)
     integer(c_int), intent(out) :: ipar(n_int_params), analysis, has_tank, has_ground, &
-                                   n_samples, status
+                                   n_samples, planar, has_ground_y, n_samples_y, status
     character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler, &
                                         study_records
     character(len=256), intent(out) :: message
@@ -52,7 +55,7 @@ contains
     has_tank = 0; has_ground = 0; ground = 0; n_samples = 0; seismic = 0; chart = 0
     chart_range = 0
     directory = ''; study = 0; study_store = ''; study_figure = ''; study_scheduler = ''
-    study_records = ''
+    study_records = ''; planar = 1; spatial = 0; has_ground_y = 0; ground_y = 0; n_samples_y = 0
     call core(path, config, info, message)
     status = info
     if (info /= 0) return
@@ -83,29 +86,40 @@ contains
     study_records = config%study%records
     study_figure = config%study%figure
     study_scheduler = config%study%scheduler
+    planar = merge(1, 0, config%planar)
+    spatial = [config%azimuth, config%ellipticity]
+    has_ground_y = merge(1, 0, config%has_ground_y)
+    if (config%has_ground_y) then
+      ground_y = from_ground(config%ground_y)
+      n_samples_y = size(config%ground_y%acceleration)
+    end if
   end subroutine read_input
 
-  !> The samples of the ground-motion record of a namelist file (as read_input reads it, scaled).
-  subroutine input_record(path, n, samples, status, message)
+  !> The samples of the ground-motion record of a namelist file (as read_input reads it, scaled):
+  !> component 1 (record) or 2 (record_y).
+  subroutine input_record(path, component, n, samples, status, message)
     !f2py threadsafe
     use sloshdyn_status, only: SD_BAD_INPUT
     use sloshdyn_namelist, only: run_config, core => read_input
-    use sloshdyn_ground, only: GROUND_RECORD
+    use sloshdyn_ground, only: ground_motion_t, GROUND_RECORD
     character(len=*), intent(in) :: path
-    integer(c_int), intent(in) :: n
+    integer(c_int), intent(in) :: component, n
     real(c_double), intent(out) :: samples(n)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(run_config) :: config
+    type(ground_motion_t) :: ground
     integer :: info
     samples = 0
     call core(path, config, info, message)
-    if (info == 0 .and. config%has_ground .and. config%ground%kind == GROUND_RECORD) then
-      if (size(config%ground%acceleration) /= n) then
+    ground = config%ground
+    if (component == 2) ground = config%ground_y
+    if (info == 0 .and. config%has_ground .and. ground%kind == GROUND_RECORD) then
+      if (size(ground%acceleration) /= n) then
         info = SD_BAD_INPUT
         message = path//' changed while it was read: its record has a different length now'
       else
-        samples = config%ground%acceleration
+        samples = ground%acceleration
       end if
     end if
     status = info

@@ -260,7 +260,7 @@ def _figure(inp, out):
                          np.array([t["u1"], t["u2"]]), t["impact_force"], t["theta"], t["phi"],
                          0, 0, 0, float(t["tau"][-1]), method)
         return "history.png", plotting.time_history(sim, ("x1", "x2", "impact_force"))
-    if inp.analysis == "seismic":
+    if inp.analysis == "seismic" and inp.planar:
         from .seismic import SeismicResponse
         t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
         with open(out / "run_info.csv", newline="", encoding="utf-8") as info:

@@ -185,6 +185,10 @@ class Input:
                                                          #: start, stop
     lyapunov: object = None       #: &lyapunov: periodic.Lyapunov
     study: dict = field(default_factory=dict)         #: &study (empty if none): kind, store, ...
+    planar: bool = True           #: &model or &tank planar (False: the spatial model, issue 26)
+    spatial: dict = field(default_factory=lambda: {"azimuth": 0.0, "ellipticity": 0.0})
+    #: &ground_motion's azimuth [rad] and ellipticity (sloshdyn.spatial.seismic_response_2d)
+    ground_motion_y: object = None  #: &ground_motion's record_y (scaled by the first's factor)
 
 
 def read_namelist(path) -> Input:
@@ -199,19 +203,26 @@ def read_namelist(path) -> Input:
     path = _checks.path("path", path)
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
-     chart_range, study, store, figure, scheduler, study_records, status,
+     chart_range, study, store, figure, scheduler, study_records, planar, spatial, has_ground_y,
+     ground_y, n_samples_y, status,
      message) = app_call(_core.sloshdyn_bridge_input.read_input, os.fsencode(path))
     check_status(status, message)
-    tank = ground_motion = None
+    tank = ground_motion = ground_motion_y = None
     if has_tank:
         tank = Tank.from_array(tank_array)
-    if has_ground:
+
+    def ground_of(component, array, n):
         samples = np.zeros(0)
-        if n_samples > 0:
+        if n > 0:
             samples, status, message = app_call(_core.sloshdyn_bridge_input.input_record,
-                                                os.fsencode(path), n_samples)
+                                                os.fsencode(path), component, n)
             check_status(status, message)
-        ground_motion = GroundMotion._from_arrays(ground, samples.copy())
+        return GroundMotion._from_arrays(array, samples.copy())
+
+    if has_ground:
+        ground_motion = ground_of(1, ground, n_samples)
+    if has_ground_y:
+        ground_motion_y = ground_of(2, ground_y, n_samples_y)
     sweep = decode_all("sweep", sweep)
     simulation = decode_all("simulation", simulation)
     chart_range = decode_all("chart_range", chart_range)
@@ -234,7 +245,8 @@ def read_namelist(path) -> Input:
         response=Continuation.from_array(response),
         response_range=decode_all("response_range", response_range),
         lyapunov=Lyapunov.from_array(lyapunov),
-        study=_study(study, store, figure, scheduler, study_records))
+        study=_study(study, store, figure, scheduler, study_records), planar=bool(planar),
+        spatial=decode_all("spatial", spatial), ground_motion_y=ground_motion_y)
 
 
 def _study(values, store, figure, scheduler, records):

@@ -30,11 +30,14 @@ def test_help(command):
     ("fig12_response.nml", ["response.csv", "special_points.csv"]),
     ("fig12_periodic.nml", ["periodic_branch.csv", "periodic_special_points.csv"]),
     ("fig17_lyapunov.nml", ["lyapunov.csv"]),
+    ("tank_two_components.nml", ["seismic_spatial.csv", "seismic_spatial_peaks.csv"]),
+    ("swirl_sweep.nml", ["swirl_branch.csv", "swirl_edges.csv"]),
 ])
 def test_run_gives_the_executables_numbers(exe, tmp_path, example, files):
     for sub in ("exe", "py"):
         (tmp_path / sub).mkdir()
         shutil.copy(EXAMPLES / example, tmp_path / sub)
+        shutil.copytree(EXAMPLES / "records", tmp_path / sub / "records")
     assert run(exe, example, tmp_path / "exe").returncode == 0
     result = cli("run", example, cwd=tmp_path / "py")
     assert result.returncode == 0, result.stderr

@@ -1,4 +1,6 @@
-"""Write synthetic_kt.AT2, the example ground-motion record: NOT a recorded earthquake.
+"""Write synthetic_kt.AT2, the example ground-motion record: NOT a recorded earthquake; and
+synthetic_kt_y.AT2, its second horizontal component (the same process, another seed, peak 0.25 g;
+tank_two_components.nml).
 
 A stationary Kanai-Tajimi ground acceleration (white noise through a soil filter, ground
 frequency 2.5 Hz, damping 0.6) with a Clough-Penzien high-pass (0.25 Hz, damping 0.6) and the
@@ -15,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 DT, DURATION, PGA_G, SEED = 0.01, 30.0, 0.30, 20261123
+PGA_G_Y, SEED_Y = 0.25, 20261124
 
 
 def second_order_filter(excitation, omega, zeta, dt):
@@ -32,8 +35,8 @@ def second_order_filter(excitation, omega, zeta, dt):
     return out[:, 0], out[:, 1]
 
 
-def main():
-    rng = np.random.default_rng(SEED)
+def write_record(name, seed, pga_g):
+    rng = np.random.default_rng(seed)
     n = int(round(DURATION / DT)) + 1
     t = DT * np.arange(n)
     noise = rng.standard_normal(n) / np.sqrt(DT)
@@ -47,16 +50,21 @@ def main():
     accel = wf**2 * xf + 2 * zf * wf * vf
     envelope = np.where(t < 2, (t / 2) ** 2, np.where(t < 10, 1.0, np.exp(-0.3 * (t - 10))))
     accel *= envelope
-    accel *= PGA_G / np.max(np.abs(accel))
+    accel *= pga_g / np.max(np.abs(accel))
     lines = ["SYNTHETIC RECORD (not an earthquake): Kanai-Tajimi/Clough-Penzien noise",
-             f"written by make_synthetic_record.py, seed {SEED}; sloshdyn example data",
+             f"written by make_synthetic_record.py, seed {seed}; sloshdyn example data",
              "ACCELERATION TIME SERIES IN UNITS OF G",
              f"NPTS= {n:7d}, DT= {DT:.4f} SEC"]
     for k in range(0, n, 5):
         lines.append("".join(f"{value:15.7E}" for value in accel[k:k + 5]))
-    path = Path(__file__).with_name("synthetic_kt.AT2")
+    path = Path(__file__).with_name(name)
     path.write_text("\n".join(lines) + "\n")
-    print(f"{path}: {n} samples, dt = {DT} s, peak {PGA_G} g")
+    print(f"{path}: {n} samples, dt = {DT} s, peak {pga_g} g")
+
+
+def main():
+    write_record("synthetic_kt.AT2", SEED, PGA_G)
+    write_record("synthetic_kt_y.AT2", SEED_Y, PGA_G_Y)
 
 
 if __name__ == "__main__":
