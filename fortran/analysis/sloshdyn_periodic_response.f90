@@ -9,13 +9,14 @@ module sloshdyn_periodic_response
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_continuation, only: continuation_options
-  use sloshdyn_shooting, only: shooting_newton, periodic_branch
+  use sloshdyn_shooting, only: shooting_newton, periodic_branch, switch_branch
   use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts
   use sloshdyn_simulation, only: steady_options, steady_state
   use sloshdyn_tables, only: SUMMARY_SIZE
   implicit none
   private
-  public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest
+  public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest, &
+            periodic_switch
   public :: lyapunov_options, check_lyapunov, newton_tol_default, max_iter_default
 
   !> Shooting's Newton settings unless given: |y(kT) - y0| and the step <= tol (max|y0| + 1e-12).
@@ -70,6 +71,30 @@ contains
                          points, multipliers, n_points, special, n_special, complete, status, &
                          message, k)
   end subroutine periodic_response
+
+  !> Branch switching (sloshdyn_shooting's switch_branch) at the special point of kind
+  !> SPECIAL_BRANCH_POINT or SPECIAL_PERIOD_DOUBLING through y_special (at the excitation of
+  !> model) of a branch of period k T in rho or A: the other branch, or the doubled orbits
+  !> (period k_new T = 2 k T), continued over [lambda_min, lambda_max].
+  subroutine periodic_switch(model, parameter, kind, y_special, k, lambda_min, lambda_max, &
+                             continuation, options, method, points, multipliers, n_points, &
+                             special, n_special, complete, k_new, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: parameter, kind, k, method
+    real(wp), intent(in) :: y_special(4), lambda_min, lambda_max
+    type(continuation_options), intent(in) :: continuation
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: points(:, :), multipliers(:, :), special(:, :)
+    integer, intent(out) :: n_points, n_special, k_new, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    system%model = model
+    system%varied = parameter
+    call switch_branch(system, kind, y_special, k, lambda_min, lambda_max, continuation, &
+                       options, method, points, multipliers, n_points, special, n_special, &
+                       complete, k_new, status, message)
+  end subroutine periodic_switch
 
   !> The periodic response over [lambda_min, lambda_max] started from the steady state reached
   !> from y0 at lambda_min (steady settings), refined by shooting (period T).

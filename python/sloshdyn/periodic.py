@@ -12,7 +12,7 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import check_status
+from ._errors import InputError, check_status
 from .asymptotics import Continuation, continuation_range, frequency_response
 from .model import linear_modes
 from .parameters import Parameters, convert_fields
@@ -135,42 +135,53 @@ class PeriodicBranch:
     complete: bool
     message: str                 #: why an incomplete branch stopped ('' if complete)
     method: str                  #: the integration method used ('auto' resolved)
+    periods: int = 1             #: the orbits' period in forcing periods (k of k T)
+    params: Parameters = None    #: the parameters (the continued one at the branch's start)
+    lambda_range: tuple = ()     #: the interval of the continued parameter
+    continuation: Continuation = None   #: the arclength steps the branch was followed with
+    integration: Integration = None
+
+    def switch(self, special_point, *, continuation: Continuation = None) -> PeriodicBranch:
+        """The branch born at special_point (one of special_points): at a 'branch_point' the
+        other branch of orbits of period k T, at a 'period_doubling' the doubled orbits
+        (period 2 k T), started along the critical Floquet eigenvector (multiplier +1 or -1)
+        and continued over the same range (with this branch's steps unless continuation is
+        given), with its own special points. Raises ConvergenceError (with ``partial``) as
+        periodic_response does."""
+        _checks.instance("special_point", special_point, PeriodicSpecialPoint)
+        if special_point.kind not in ("branch_point", "period_doubling"):
+            raise InputError(f"special_point.kind = {special_point.kind!r}: branches can be "
+                             "switched at a 'branch_point' or a 'period_doubling'")
+        c = self.continuation if continuation is None else continuation
+        _checks.instance("continuation", c, Continuation)
+        at = self.params.replace(rho=special_point.rho, A=special_point.A)
+        lo, hi = self.lambda_range
+        max_points = _checks.output_size("max_points",
+                                         _checks.integer("max_points", c.max_points, 1),
+                                         len(_tables.columns("periodic_branch")))
+        (points, multipliers, n, special, n_special, complete, k_new, status,
+         message) = cancellable(_bridge.switch_branch, *at.array(),
+                                1 if self.parameter == "rho" else 2,
+                                {v: k for k, v in KINDS.items()}[special_point.kind],
+                                _checks.reals("special_point.y0", special_point.y0, (4,)),
+                                self.periods, lo, hi, _continuation_settings(c, 1.0),
+                                self.integration.array(), max_points, 100)
+        return _branch(self.parameter, at, int(k_new), (lo, hi), c, self.integration, points,
+                       multipliers, n, special, n_special, complete, status, message,
+                       "switched branch")
 
 
-#: the arclength steps of a periodic branch unless told (the executable takes &response's)
-PERIODIC_CONTINUATION = Continuation(ds=0.002, ds_min=1e-9, ds_max=0.01, x_scale=1.0,
-                                     max_points=2000)
+def _continuation_settings(c, direction):
+    """The core's continuation layout from a Continuation (its arclength steps) and a
+    direction (+1: lambda increasing at the start)."""
+    return _tables.pack("continuation", {"ds": c.ds, "ds_min": c.ds_min, "ds_max": c.ds_max,
+                                         "x_scale": c.x_scale, "direction": direction})
 
 
-def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
-                      start="simulation", from_end="low",
-                      continuation: Continuation = PERIODIC_CONTINUATION,
-                      integration: Integration = Integration()) -> PeriodicBranch:
-    """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
-    in A over A_range, starting at the low end (from_end='low') going up, or at the high end
-    going down, with the arclength steps ds, ds_min, ds_max, x_scale and at most max_points
-    points of `continuation` (its branch-search fields are not used). Raises ConvergenceError
-    (with ``partial``) if the branch stops before the end of the range or a special point on
-    it could not be located."""
-    _checks.instance("params", params, Parameters)
-    _checks.instance("continuation", continuation, Continuation)
-    _checks.instance("integration", integration, Integration)
-    parameter, (lo, hi) = continuation_range(rho_range, A_range)
-    _checks.choice("from_end", from_end, ("low", "high"))
-    c = continuation
-    periods = _checks.integer("periods", periods)
-    max_points = _checks.output_size("max_points", _checks.integer("max_points", c.max_points, 1),
-                                     len(_tables.columns("periodic_branch")))
-    first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
-    if y0 is None:
-        y0 = periodic_orbit(first, start_state(first, start), periods=periods,
-                            integration=integration).y0
-    settings = _tables.pack("continuation", {"ds": c.ds, "ds_min": c.ds_min, "ds_max": c.ds_max,
-                                             "x_scale": c.x_scale,
-                                             "direction": 1.0 if from_end == "low" else -1.0})
-    points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
-        *first.array(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
-        periods, lo, hi, settings, integration.array(), max_points, 100)
+def _branch(parameter, params, periods, lambda_range, continuation, integration, points,
+            multipliers, n, special, n_special, complete, status, message, what):
+    """The PeriodicBranch of the bridge's arrays (layouts periodic_branch and
+    periodic_special_points); raises the status's error with the branch as ``partial``."""
     rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
     lam = rows["lambda"]
     table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
@@ -189,14 +200,52 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
             np.array([point[f"y{i}"] for i in range(1, 5)])))
     text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
     branch = PeriodicBranch(parameter, table, specials, bool(complete), text,
-                            integration.method_used)
+                            integration.method_used, periods, params, tuple(lambda_range),
+                            continuation, integration)
     if status:
         try:
-            check_status(status, message, "periodic branch")
+            check_status(status, message, what)
         except Exception as exc:
             exc.partial = branch
             raise
     return branch
+
+
+#: the arclength steps of a periodic branch unless told (the executable takes &response's)
+PERIODIC_CONTINUATION = Continuation(ds=0.002, ds_min=1e-9, ds_max=0.01, x_scale=1.0,
+                                     max_points=2000)
+
+
+def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
+                      start="simulation", from_end="low",
+                      continuation: Continuation = PERIODIC_CONTINUATION,
+                      integration: Integration = Integration()) -> PeriodicBranch:
+    """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
+    in A over A_range, starting at the low end (from_end='low') going up, or at the high end
+    going down, with the arclength steps ds, ds_min, ds_max, x_scale and at most max_points
+    points of `continuation` (its branch-search fields are not used). Raises ConvergenceError
+    (with ``partial``) if the branch stops before the end of the range or a special point on
+    it could not be located. Its .switch(special_point) follows the branch born at a branch
+    point or a period doubling."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("continuation", continuation, Continuation)
+    _checks.instance("integration", integration, Integration)
+    parameter, (lo, hi) = continuation_range(rho_range, A_range)
+    _checks.choice("from_end", from_end, ("low", "high"))
+    c = continuation
+    periods = _checks.integer("periods", periods)
+    max_points = _checks.output_size("max_points", _checks.integer("max_points", c.max_points, 1),
+                                     len(_tables.columns("periodic_branch")))
+    first = params.replace(**{parameter: float(lo if from_end == "low" else hi)})
+    if y0 is None:
+        y0 = periodic_orbit(first, start_state(first, start), periods=periods,
+                            integration=integration).y0
+    settings = _continuation_settings(c, 1.0 if from_end == "low" else -1.0)
+    points, multipliers, n, special, n_special, complete, status, message = cancellable(_bridge.periodic_branch,
+        *first.array(), 1 if parameter == "rho" else 2, _checks.reals("y0", y0, (4,)),
+        periods, lo, hi, settings, integration.array(), max_points, 100)
+    return _branch(parameter, first, periods, (lo, hi), c, integration, points, multipliers, n,
+                   special, n_special, complete, status, message, "periodic branch")
 
 
 @dataclass(frozen=True)
