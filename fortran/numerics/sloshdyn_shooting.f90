@@ -55,6 +55,9 @@ module sloshdyn_shooting
   real(wp), parameter :: scale_floor = 1.0e-12_wp
   !> |mu| tolerance of the stable flag along a branch: stable = FLOQUET_STABLE at this tol.
   real(wp), parameter :: stability_tol = 1.0e-9_wp
+  !> Secant iterations at most when a branch point is located by the secant method.
+  integer, parameter :: max_secant_iterations = 20
+  real(wp), parameter :: secant_newton_tol = 1.0e-8_wp
 
   !> A T-periodic system y' = f(t, y; lambda) (rhs, from ode_system) with its analytic Jacobian
   !> and the derivatives in the parameter lambda that continuation needs.
@@ -678,18 +681,46 @@ contains
 
     !> Locate a zero of the test of kind what between points j and j + 1 and store it. At a
     !> branch point the corrector is singular, so Brent's iterates close to it may fail; then
-    !> the point is the secant estimate (det(M - I) linear in the arclength between the two
-    !> points) corrected onto the branch, within O(step^2) of the branch point.
+    !> the point is found by the secant method on det(M - I) in the arclength from point j,
+    !> each iterate corrected onto the branch with Newton tolerances of at least
+    !> secant_newton_tol (next to a branch point the corrector's matrix is nearly singular and
+    !> amplifies the integration error: the residual stalls near 1e-11; an iterate where the
+    !> corrector fails is moved half-way back to the last one, up to max_secant_iterations
+    !> times), until the step is below 1e-9 of the interval (the last converged iterate is
+    !> kept).
     subroutine locate_with(what)
       integer, intent(in) :: what
-      real(wp) :: ds
+      real(wp) :: s(2), g(2), s_new, z_new(size(z, 1))
+      integer :: iteration, halvings, st
+      character(len=message_len) :: msg
+      type(continuation_options) :: slow
+      slow = opt
+      slow%newton%x_tol = max(opt%newton%x_tol, secant_newton_tol)
+      slow%newton%f_tol = max(opt%newton%f_tol, secant_newton_tol)
       test%kind = what
       call locate_zero_on_branch(sys, z(:, j), tangents(:, j), arclength(j + 1) - arclength(j), &
                                  test, z_special, locate_status, locate_message, opt)
       if (locate_status /= SD_OK .and. what == SPECIAL_BRANCH_POINT) then
-        ds = (arclength(j + 1) - arclength(j))*det_minus(j)/(det_minus(j) - det_minus(j + 1))
-        call correct_at(sys, z(:, j), tangents(:, j), ds, z_special, locate_status, &
-                        locate_message, opt)
+        s = [0.0_wp, arclength(j + 1) - arclength(j)]
+        g = det_minus(j:j + 1)
+        halvings = 0
+        do iteration = 1, max_secant_iterations
+          s_new = s(2) - g(2)*(s(2) - s(1))/(g(2) - g(1))
+          call correct_at(sys, z(:, j), tangents(:, j), s_new, z_new, st, msg, slow)
+          ! too close to the branch point for the corrector: half-way to the last iterate
+          do while (st /= SD_OK .and. halvings < max_secant_iterations)
+            halvings = halvings + 1
+            s_new = (s_new + s(2))/2
+            call correct_at(sys, z(:, j), tangents(:, j), s_new, z_new, st, msg, slow)
+          end do
+          if (st /= SD_OK) exit
+          z_special = z_new
+          locate_status = SD_OK
+          if (abs(s_new - s(2)) <= 1.0e-9_wp*abs(arclength(j + 1) - arclength(j))) exit
+          s = [s(2), s_new]
+          g = [g(2), test%value(z_new, tangents(:, j))]
+          if (.not. ieee_is_finite(g(2)) .or. g(2) == g(1)) exit
+        end do
       end if
       call add_special(what)
     end subroutine locate_with
