@@ -73,15 +73,15 @@ contains
   end subroutine periodic_response
 
   !> Branch switching (sloshdyn_shooting's switch_branch) at the special point of kind
-  !> SPECIAL_BRANCH_POINT or SPECIAL_PERIOD_DOUBLING through y_special (at the excitation of
-  !> model) of a branch of period k T in rho or A: the other branch, or the doubled orbits
-  !> (period k_new T = 2 k T), continued over [lambda_min, lambda_max].
-  subroutine periodic_switch(model, parameter, kind, y_special, k, lambda_min, lambda_max, &
-                             continuation, options, method, points, multipliers, n_points, &
-                             special, n_special, complete, k_new, status, message)
+  !> SPECIAL_BRANCH_POINT or SPECIAL_PERIOD_DOUBLING at (y_special, lambda_special) of a branch
+  !> of period k T in rho or A (parameter): the other branch, or the doubled orbits (period
+  !> k_new T = 2 k T), continued over [lambda_min, lambda_max].
+  subroutine periodic_switch(model, parameter, kind, y_special, lambda_special, k, lambda_min, &
+                             lambda_max, continuation, options, method, points, multipliers, &
+                             n_points, special, n_special, complete, k_new, status, message)
     type(model_t), intent(in) :: model
     integer, intent(in) :: parameter, kind, k, method
-    real(wp), intent(in) :: y_special(4), lambda_min, lambda_max
+    real(wp), intent(in) :: y_special(4), lambda_special, lambda_min, lambda_max
     type(continuation_options), intent(in) :: continuation
     type(ode_options), intent(in) :: options
     real(wp), intent(out) :: points(:, :), multipliers(:, :), special(:, :)
@@ -91,6 +91,7 @@ contains
     type(tank_system) :: system
     system%model = model
     system%varied = parameter
+    call system%set_parameter(lambda_special)
     call switch_branch(system, kind, y_special, k, lambda_min, lambda_max, continuation, &
                        options, method, points, multipliers, n_points, special, n_special, &
                        complete, k_new, status, message)

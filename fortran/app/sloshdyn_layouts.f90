@@ -47,9 +47,10 @@ module sloshdyn_layouts
   character(len=*), parameter :: response_fields(*) = [character(len=field_len) :: &
     'n_scan', 'n_amplitudes', 'n_phases', 'amplitude_min', 'amplitude_max', 'ds', 'ds_min', &
     'ds_max', 'x_scale', 'max_points']
-  !> &response's choices: resonance (code of resonances), parameter (of excitation_parameters)
+  !> &response's choices: resonance (code of resonances), parameter (of excitation_parameters),
+  !> and the special point where periodic_response switches branches (0: none)
   character(len=*), parameter :: response_range_fields(*) = [character(len=field_len) :: &
-    'resonance', 'parameter', 'start', 'stop']
+    'resonance', 'parameter', 'start', 'stop', 'switch_at']
   !> &lyapunov (sloshdyn_periodic_response's lyapunov_options)
   character(len=*), parameter :: lyapunov_fields(*) = [character(len=field_len) :: &
     'transient_periods', 'n_periods', 'renormalise_every', 'spectrum']

@@ -77,7 +77,7 @@ contains
              real(config%sweep%threads, c_double)]
     response_range = [merge(1.0_c_double, 0.0_c_double, config%response%internal_resonance), &
                       real(config%response%parameter, c_double), config%response%start, &
-                      config%response%stop]
+                      config%response%stop, real(config%response%switch_at, c_double)]
     associate (st => config%study)
       study = [merge(1.0_c_double, 0.0_c_double, st%given), real(st%kind, c_double), &
                real(st%workers, c_double), real(st%worker_kind, c_double), &

@@ -80,10 +80,11 @@ contains
   end subroutine periodic_branch
 
   !> Branch switching at a special point of kind (the codes of sloshdyn_tables: branch point or
-  !> period doubling) through y_special, of a branch of period k T in rho (which = 1) or A
-  !> (which = 2), at the parameters of rpar (the special point's): the other branch, or the
+  !> period doubling) at (y_special, lambda_special) of a branch of period k T in rho
+  !> (which = 1) or A (which = 2), the other parameters from rpar: the other branch, or the
   !> doubled orbits (period k_new T = 2 k T), in the layouts of periodic_branch.
-  subroutine switch_branch(rpar, ipar, which, kind, y_special, k, lambda_min, lambda_max, &
+  subroutine switch_branch(rpar, ipar, which, kind, y_special, lambda_special, k, lambda_min, &
+                           lambda_max, &
                            settings, integration, max_points, max_special, points, multipliers, &
                            n_points, special, n_special, complete, k_new, status, message)
     !f2py threadsafe
@@ -94,7 +95,8 @@ contains
                                 to_continuation
     use sloshdyn_continuation, only: continuation_options
     use sloshdyn_periodic_response, only: periodic_switch
-    real(c_double), intent(in) :: rpar(n_real_params), y_special(4), lambda_min, lambda_max, &
+    real(c_double), intent(in) :: rpar(n_real_params), y_special(4), lambda_special, &
+                                  lambda_min, lambda_max, &
                                   settings(CONTINUATION_SIZE), &
                                   integration(INTEGRATION_SIZE)
     integer(c_int), intent(in) :: ipar(n_int_params), which, kind, k, max_points, max_special
@@ -112,7 +114,8 @@ contains
     options = to_continuation(settings)
     options%max_points = max_points
     call model_from_arrays(rpar, int(ipar), model, code, message)
-    if (code == 0) call periodic_switch(model, int(which), int(kind), y_special, int(k), &
+    if (code == 0) call periodic_switch(model, int(which), int(kind), y_special, &
+                                        lambda_special, int(k), &
                                         lambda_min, lambda_max, options, &
                                         to_ode_options(integration), to_method(integration), &
                                         points, multipliers, found, special, found_special, &

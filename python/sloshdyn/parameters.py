@@ -235,6 +235,7 @@ def read_namelist(path) -> Input:
         response={"resonance": _tables.codes("resonances")[int(response_range["resonance"])],
                   "parameter": excitation_parameters[int(response_range["parameter"])],
                   "start": float(response_range["start"]), "stop": float(response_range["stop"]),
+                  "switch_at": int(response_range["switch_at"]),
                   **_response_settings(response)},
         lyapunov=_typed(_tables.unpack("lyapunov", lyapunov),
                         integers=("transient_periods", "n_periods", "renormalise_every"),

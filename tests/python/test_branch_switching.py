@@ -113,3 +113,49 @@ def test_switch_needs_a_branch_point_or_a_period_doubling(branches):
         symmetric.switch(fold)
     with pytest.raises(InputError, match="special_point"):
         asymmetric.switch("period_doubling")
+
+
+def test_namelist_switch_at_writes_the_switched_branch(tmp_path):
+    """&response switch_at = 1: the executable follows the branch born at the first special
+    point (here the symmetry-breaking branch point of rho = 0.3, A = 1.5871), as
+    PeriodicBranch.switch does (one core: the same orbits to the start's round-off; the
+    start states come from simulations with different &steady settings)."""
+    from conftest import run, write
+    from test_one_reader import MODEL, sys_exe
+    p = P.replace(rho=0.3, A=1.55)
+    text = (MODEL + "&excitation A = 1.55, rho = 0.3 /\n&analysis kind = 'periodic_response' /\n"
+            "&response parameter = 'A', start = 1.55, stop = 1.62, switch_at = 1 /\n"
+            "&output directory = 'out' /\n")
+    write(tmp_path, text)
+    exe = run(sys_exe(), "input.nml", tmp_path)
+    assert exe.returncode == 0, exe.stderr
+    assert "The branch born at the branch_point 1 (orbits of period 1 T)" in exe.stdout
+    table = np.loadtxt(tmp_path / "out" / "periodic_switched_branch.csv", delimiter=",",
+                       skiprows=1, ndmin=2)
+    branch = sloshdyn.periodic_response(p, A_range=(1.55, 1.62))
+    assert [s.kind for s in branch.special_points] == ["branch_point"]
+    switched = branch.switch(branch.special_points[0])
+    assert table.shape[0] == len(switched.table["A"])
+    assert np.allclose(table[:, 0], switched.table["A"], rtol=0, atol=1e-7)
+    assert np.allclose(table[:, 1:5].T, [switched.table[f"y{i}"] for i in range(1, 5)],
+                       rtol=0, atol=1e-6)
+    # the switched orbits are T-periodic but not Z2-symmetric (scipy)
+    y0 = table[-1, 1:5]
+    q = p.replace(A=float(table[-1, 0]))
+    assert np.max(np.abs(flow(q, y0, 2 * math.pi / 0.3) - y0)) < 1e-8
+    assert np.max(np.abs(flow(q, y0, math.pi / 0.3) + y0)) > 1e-2
+
+
+def test_namelist_switch_at_must_name_a_branch_point_or_a_period_doubling(tmp_path):
+    from conftest import run, write
+    from test_one_reader import MODEL, sys_exe
+    for switch_at, words in ((2, "switch_at = 2 is out of range: the branch has 1 special"),
+                             (-1, "switch_at = -1 is out of range: it must be >= 0")):
+        text = (MODEL + "&excitation A = 1.55, rho = 0.3 /\n"
+                "&analysis kind = 'periodic_response' /\n"
+                f"&response parameter = 'A', start = 1.55, stop = 1.62, switch_at = {switch_at} /\n"
+                "&output directory = 'out' /\n")
+        write(tmp_path, text)
+        exe = run(sys_exe(), "input.nml", tmp_path)
+        assert exe.returncode != 0
+        assert words in exe.stdout + exe.stderr
