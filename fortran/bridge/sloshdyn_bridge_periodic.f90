@@ -79,6 +79,28 @@ contains
     status = code
   end subroutine periodic_branch
 
+  !> A start state (forcing phase 0) for shooting, by name: 'simulation' or 'slow_flow'
+  !> (sloshdyn_periodic_response's periodic_start_state).
+  subroutine start_state(rpar, ipar, start, integration, y_start, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_periodic_response, only: periodic_start_state
+    real(c_double), intent(in) :: rpar(n_real_params), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params)
+    character(len=*), intent(in) :: start
+    real(c_double), intent(out) :: y_start(4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code
+    y_start = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call periodic_start_state(model, start, to_ode_options(integration), &
+                                             to_method(integration), y_start, code, message)
+    status = code
+  end subroutine start_state
+
   !> Branch switching at a special point of kind (the codes of sloshdyn_tables: branch point or
   !> period doubling) at (y_special, lambda_special) of a branch of period k T in rho
   !> (which = 1) or A (which = 2), the other parameters from rpar: the other branch, or the

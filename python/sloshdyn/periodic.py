@@ -13,10 +13,10 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import InputError, check_status
-from .asymptotics import Continuation, continuation_range, frequency_response
+from .asymptotics import Continuation, continuation_range
 from .model import linear_modes
 from .parameters import Parameters, convert_fields
-from .simulation import Integration, Steady, steady_state
+from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
@@ -94,15 +94,17 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
 
 
 def start_state(params: Parameters, start="simulation"):
-    """A starting state at forcing phase 0 for shooting."""
-    _checks.choice("start", start, ("simulation", "slow_flow"))
-    if start == "simulation":
-        return steady_state(params, steady=Steady(max_transient_periods=5000)).y_end
-    r = frequency_response(params, (params.rho * 0.999, params.rho * 1.001))
-    t = r.table
-    k = int(np.argmin(np.abs(t["rho"] - params.rho) + 1e3 * (t["stable"] == 0)))
-    return slow_flow_state(params, t["re_B1"][k] + 1j * t["im_B1"][k],
-                           t["re_B2"][k] + 1j * t["im_B2"][k])
+    """A starting state at forcing phase 0 for shooting (the core's periodic_start_state): the
+    steady state of a simulation from rest (start='simulation', at most 5000 forcing periods)
+    or the 3:1 slow-flow steady state nearest to rho, stable ones first (start='slow_flow',
+    through eq 34 and 42)."""
+    _checks.instance("params", params, Parameters)
+    if not isinstance(start, str):
+        raise InputError(f"start = {start!r} is not valid: give 'simulation' or 'slow_flow'")
+    y, status, message = cancellable(_bridge.start_state, *params.array(), start,
+                                     Integration().array())
+    check_status(status, message, "start state")
+    return y
 
 
 def slow_flow_state(params: Parameters, b1, b2):
