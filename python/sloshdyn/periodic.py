@@ -166,7 +166,8 @@ class PeriodicBranch:
                                 1 if self.parameter == "rho" else 2,
                                 {v: k for k, v in KINDS.items()}[special_point.kind],
                                 _checks.reals("special_point.y0", special_point.y0, (4,)),
-                                getattr(special_point, self.parameter), self.periods, lo, hi, _continuation_settings(c, 1.0),
+                                getattr(special_point, self.parameter), self.periods, lo, hi,
+                                _continuation_settings(c, 1.0),
                                 self.integration.array(), max_points, 100)
         return _branch(self.parameter, at, int(k_new), (lo, hi), c, self.integration, points,
                        multipliers, n, special, n_special, complete, status, message,
