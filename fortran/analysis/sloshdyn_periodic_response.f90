@@ -3,21 +3,36 @@
 !> code of the numerics layer. Result layouts are those of sloshdyn_shooting (n = 4).
 module sloshdyn_periodic_response
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NOT_CONVERGED
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_continuation, only: continuation_options
-  use sloshdyn_shooting, only: shooting_newton, periodic_branch
+  use sloshdyn_shooting, only: shooting_newton, periodic_branch, switch_branch
   use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts
   use sloshdyn_simulation, only: steady_options, steady_state
-  use sloshdyn_tables, only: SUMMARY_SIZE
+  use sloshdyn_response, only: response_options, frequency_response
+  use sloshdyn_linear, only: modal_matrix
+  use sloshdyn_excitation, only: PARAMETER_RHO
+  use sloshdyn_tables, only: SUMMARY_SIZE, POINT_ROWS, SPECIAL_ROWS, POINT_RHO, POINT_STABLE, &
+                             POINT_X
   implicit none
   private
   public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest, &
-            orbit_from_rest
+            orbit_from_rest, periodic_switch
   public :: lyapunov_options, check_lyapunov, newton_tol_default, max_iter_default
+  public :: periodic_start_state, start_names
+
+  !> The start states of periodic orbits (periodic_start_state), by name.
+  character(len=*), parameter :: start_names(2) = [character(len=10) :: 'simulation', &
+                                                                         'slow_flow']
+  !> ... from a simulation: the steady state reached from rest within this many periods
+  integer, parameter :: start_transient_periods = 5000
+  !> ... from the slow flow: its steady states on rho (1 -+ start_band), on at most
+  !> start_points points (the Python front door's table capacity)
+  real(wp), parameter :: start_band = 1.0e-3_wp
+  integer, parameter :: start_points = 20000, start_specials = 200
 
   !> Shooting's Newton settings unless given: |y(kT) - y0| and the step <= tol (max|y0| + 1e-12).
   real(wp), parameter :: newton_tol_default = 1.0e-10_wp
@@ -71,6 +86,91 @@ contains
                          points, multipliers, n_points, special, n_special, complete, status, &
                          message, k)
   end subroutine periodic_response
+
+  !> Branch switching (sloshdyn_shooting's switch_branch) at the special point of kind
+  !> SPECIAL_BRANCH_POINT or SPECIAL_PERIOD_DOUBLING at (y_special, lambda_special) of a branch
+  !> of period k T in rho or A (parameter): the other branch, or the doubled orbits (period
+  !> k_new T = 2 k T), continued over [lambda_min, lambda_max].
+  subroutine periodic_switch(model, parameter, kind, y_special, lambda_special, k, lambda_min, &
+                             lambda_max, continuation, options, method, points, multipliers, &
+                             n_points, special, n_special, complete, k_new, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: parameter, kind, k, method
+    real(wp), intent(in) :: y_special(4), lambda_special, lambda_min, lambda_max
+    type(continuation_options), intent(in) :: continuation
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: points(:, :), multipliers(:, :), special(:, :)
+    integer, intent(out) :: n_points, n_special, k_new, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    system%model = model
+    system%varied = parameter
+    call system%set_parameter(lambda_special)
+    call switch_branch(system, kind, y_special, k, lambda_min, lambda_max, continuation, &
+                       options, method, points, multipliers, n_points, special, n_special, &
+                       complete, k_new, status, message)
+  end subroutine periodic_switch
+
+  !> A start state y_start (at forcing phase 0) for the shooting of a periodic orbit of model,
+  !> by name: 'simulation', the steady state reached from rest (steady_state with
+  !> max_transient_periods = 5000, the other &steady defaults); 'slow_flow', the 3:1 slow-flow
+  !> steady state nearest to rho on rho (1 -+ 1e-3), stable ones first (|rho_k - rho| + 1e3
+  !> for an unstable one), mapped to the full state by eq (42), (45) and x = P u (eq 34):
+  !> u1 = Re(B1 e^{i rho tau}), u2 = Re(B2 e^{3 i rho tau}) at tau = 0.
+  subroutine periodic_start_state(model, start, options, method, y_start, status, message)
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: start
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    real(wp), intent(out) :: y_start(4)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(steady_options) :: steady
+    type(ode_stats) :: stats
+    real(wp) :: summary(SUMMARY_SIZE), p(2, 2), p_inv(2, 2), rho, u(2), du(2), x(2), dx(2)
+    real(wp), allocatable :: poincare(:, :), table(:, :), special(:, :), distance(:)
+    integer :: n_points, n_special, k
+    logical :: complete
+
+    y_start = 0
+    select case (trim(start))
+    case ('simulation')
+      steady%max_transient_periods = start_transient_periods
+      allocate (poincare(4, max(steady%window_periods, 1)))
+      call steady_state(model, y_start, options, method, steady, summary, poincare, y_start, &
+                        stats, status, message)
+      if (status /= SD_OK) message = 'start (steady state): '//trim(message)
+    case ('slow_flow')
+      rho = model%excitation%rho
+      allocate (table(POINT_ROWS, start_points), special(SPECIAL_ROWS, start_specials))
+      call frequency_response(model, .true., PARAMETER_RHO, rho*(1 - start_band), &
+                              rho*(1 + start_band), response_options(), table, n_points, &
+                              special, n_special, complete, status, message)
+      if (status == SD_OK .and. n_points == 0) then
+        status = SD_NOT_CONVERGED
+        message = 'no slow-flow steady state was found near rho = '//num2str(rho)
+      end if
+      if (status /= SD_OK) then
+        message = 'start (frequency response): '//trim(message)
+        return
+      end if
+      distance = abs(table(POINT_RHO, 1:n_points) - rho) + &
+                 1.0e3_wp*merge(1.0_wp, 0.0_wp, table(POINT_STABLE, 1:n_points) == 0)
+      k = minloc(distance, 1)
+      call modal_matrix(model, p, p_inv, status, message)
+      if (status /= SD_OK) return
+      ! B1 = table(POINT_X:POINT_X + 1, k), B2 = table(POINT_X + 2:POINT_X + 3, k) (re, im)
+      u = [table(POINT_X, k), table(POINT_X + 2, k)]
+      du = [-rho*table(POINT_X + 1, k), -3*rho*table(POINT_X + 3, k)]
+      x = matmul(p, u)
+      dx = matmul(p, du)
+      y_start = [x(1), dx(1), x(2), dx(2)]
+    case default
+      status = SD_BAD_INPUT
+      message = "start = '"//trim(start)//"' is not known; allowed: simulation, slow_flow"
+    end select
+  end subroutine periodic_start_state
 
   !> The periodic response over [lambda_min, lambda_max] started from the steady state reached
   !> from y0 at lambda_min (steady settings), refined by shooting (period T).

@@ -15,6 +15,7 @@ module sloshdyn_driver
                              SUMMARY_PERIOD, SUMMARY_TRANSIENT, SUMMARY_SPREAD, SUMMARY_SETTLED, &
                              POINT_ROWS, SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_A1, &
                              SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_HOPF, POINT_BRANCH, &
+                             SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
                              MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
                              SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, &
                              PEAKS_IMPACT_FORCE, PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, &
@@ -40,7 +41,7 @@ module sloshdyn_driver
   use sloshdyn_simulation, only: time_history, steady_state, parameter_sweep, independent_sweep
   use sloshdyn_response, only: frequency_response
   use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent, &
-                                        orbit_from_rest
+                                        orbit_from_rest, periodic_switch
   use sloshdyn_swirl, only: swirl_branch
   use sloshdyn_seismic_spatial, only: seismic_response_spatial
   use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
@@ -509,14 +510,17 @@ contains
   end subroutine run_response
 
   !> Periodic orbits of the full equations (shooting, Floquet multipliers) continued in rho or
-  !> A from the steady state reached from y0 at the start of the range.
+  !> A from the steady state reached from y0 at the start of the range; with switch_at, also
+  !> the branch born at that special point (periodic_switched_branch.csv,
+  !> periodic_switched_special_points.csv).
   subroutine run_periodic(config, files, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp), allocatable :: points(:, :), multipliers(:, :), special(:, :)
-    integer :: n_points, n_special, i, capacity
+    real(wp), allocatable :: points(:, :), multipliers(:, :), special(:, :), &
+                             new_points(:, :), new_multipliers(:, :), new_special(:, :)
+    integer :: n_points, n_special, capacity, n_new, n_new_special, k_new, kind
     logical :: complete
     character(len=:), allocatable :: name
 
@@ -535,24 +539,76 @@ contains
       print '(/a)', 'Periodic orbits of the full equations (shooting, Floquet multipliers; '// &
                     used_method(config)//') for '//name//' in ['//num2str(r%start)// &
                     ', '//num2str(r%stop)//']'
+      call print_branch(n_points, special(:, 1:n_special))
+      if (r%switch_at > 0) then
+        if (r%switch_at > n_special) then
+          status = SD_BAD_INPUT
+          message = '&response: switch_at = '//num2str(r%switch_at)//' is out of range: the '// &
+                    'branch has '//num2str(n_special)//' special points'
+          return
+        end if
+        kind = nint(special(PERIODIC_SPECIAL_KIND, r%switch_at))
+        if (kind /= SPECIAL_BRANCH_POINT .and. kind /= SPECIAL_PERIOD_DOUBLING) then
+          status = SD_BAD_INPUT
+          message = '&response: switch_at = '//num2str(r%switch_at)//' is a '// &
+                    special_kind_name(kind)//': branches are switched at a branch_point '// &
+                    'or a period_doubling'
+          return
+        end if
+        allocate (new_points(PERIODIC_POINT_ROWS, capacity), &
+                  new_multipliers(PERIODIC_MULTIPLIER_ROWS, capacity), &
+                  new_special(PERIODIC_SPECIAL_ROWS, 100))
+        call periodic_switch(config%model, r%parameter, kind, &
+                             special(PERIODIC_SPECIAL_LAMBDA + 1:PERIODIC_SPECIAL_LAMBDA + 4, &
+                                     r%switch_at), &
+                             special(PERIODIC_SPECIAL_LAMBDA, r%switch_at), 1, r%start, r%stop, &
+                             r%options%continuation, config%integration, config%method, &
+                             new_points, new_multipliers, n_new, new_special, n_new_special, &
+                             complete, k_new, status, message)
+        call in_context('branch switching at special point '//num2str(r%switch_at), status, &
+                        message)
+        if (status /= SD_OK) return
+        print '(/a)', 'The branch born at the '//special_kind_name(kind)//' '// &
+                      num2str(r%switch_at)//' (orbits of period '//num2str(k_new)//' T)'
+        call print_branch(n_new, new_special(:, 1:n_new_special))
+      end if
     end associate
-    print '(a)', '  '//num2str(n_points)//' orbits; special points:'
-    do i = 1, n_special
-      print '(a)', '  '//pad(special_kind_name(nint(special(PERIODIC_SPECIAL_KIND, i))), 16)// &
-                   name//' = '// &
-                   pad(num2str(special(PERIODIC_SPECIAL_LAMBDA, i)), 14)//'max|x1| = '// &
-                   num2str(special(PERIODIC_SPECIAL_MAX_X1, i))
-    end do
     call begin_files(config, files, status, message)
-    if (status == SD_OK) call files%write_table('periodic_branch.csv', 'periodic_branch', &
-                                                reshape([(points(:, i), multipliers(:, i), &
-                                                i = 1, n_points)], &
-                                                [PERIODIC_POINT_ROWS + PERIODIC_MULTIPLIER_ROWS, &
-                                                 n_points]), status, &
-                                                message)
-    if (status == SD_OK) call files%write_table('periodic_special_points.csv', &
-                                                'periodic_special_points', &
-                                                special(:, 1:n_special), status, message)
+    call write_branch('periodic_branch.csv', 'periodic_special_points.csv', points, &
+                      multipliers, n_points, special(:, 1:n_special))
+    if (allocated(new_points)) &
+      call write_branch('periodic_switched_branch.csv', 'periodic_switched_special_points.csv', &
+                        new_points, new_multipliers, n_new, new_special(:, 1:n_new_special))
+
+  contains
+
+    subroutine print_branch(count, found)
+      integer, intent(in) :: count
+      real(wp), intent(in) :: found(:, :)
+      integer :: i
+      print '(a)', '  '//num2str(count)//' orbits; special points:'
+      do i = 1, size(found, 2)
+        print '(a)', '  '//pad(special_kind_name(nint(found(PERIODIC_SPECIAL_KIND, i))), 16)// &
+                     name//' = '// &
+                     pad(num2str(found(PERIODIC_SPECIAL_LAMBDA, i)), 14)//'max|x1| = '// &
+                     num2str(found(PERIODIC_SPECIAL_MAX_X1, i))
+      end do
+    end subroutine print_branch
+
+    subroutine write_branch(branch_file, special_file, pts, mult, count, found)
+      character(len=*), intent(in) :: branch_file, special_file
+      real(wp), intent(in) :: pts(:, :), mult(:, :), found(:, :)
+      integer, intent(in) :: count
+      integer :: i
+      if (status == SD_OK) call files%write_table(branch_file, 'periodic_branch', &
+                                                  reshape([(pts(:, i), mult(:, i), &
+                                                  i = 1, count)], &
+                                                  [PERIODIC_POINT_ROWS + &
+                                                   PERIODIC_MULTIPLIER_ROWS, count]), status, &
+                                                  message)
+      if (status == SD_OK) call files%write_table(special_file, 'periodic_special_points', &
+                                                  found, status, message)
+    end subroutine write_branch
   end subroutine run_periodic
 
   !> The swirl band (sloshdyn_swirl): the branch of planar periodic responses (started as

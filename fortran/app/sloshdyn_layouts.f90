@@ -96,10 +96,13 @@ module sloshdyn_layouts
     field_t('x_scale', doc='weight of the amplitudes in the arclength norm'), &
     field_t('max_points', 'integer', 'points per branch and direction at most'), &
     newton_fields]
-  !> &response's choices: resonance (code of resonances), parameter (of excitation_parameters)
+  !> &response's choices: resonance (code of resonances), parameter (of excitation_parameters),
+  !> and the special point where periodic_response switches branches (0: none)
   type(field_t), parameter :: response_range_fields(*) = [ &
     field_t('resonance', 'code:resonances'), field_t('parameter', 'code:excitation_parameters'), &
-    field_t('start'), field_t('stop')]
+    field_t('start'), field_t('stop'), &
+    field_t('switch_at', 'integer', 'periodic_response: the special point (1, 2, ...) where '// &
+            'the branch is switched; 0: none')]
   !> &lyapunov (sloshdyn_periodic_response's lyapunov_options)
   type(field_t), parameter :: lyapunov_fields(*) = [ &
     field_t('transient_periods', 'integer', 'forcing periods integrated before measuring'), &
@@ -559,7 +562,7 @@ contains
     type(response_settings), intent(in) :: settings
     real(wp) :: a(RESPONSE_RANGE_SIZE)
     a = [merge(1.0_wp, 0.0_wp, settings%internal_resonance), real(settings%parameter, wp), &
-         settings%start, settings%stop]
+         settings%start, settings%stop, real(settings%switch_at, wp)]
   end function from_response_range
 
   pure function from_seismic(settings) result(a)

@@ -664,13 +664,13 @@ contains
     character(len=word_len) :: resonance, parameter
     real(wp) :: start, stop, amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, x_tol, &
                 f_tol
-    integer :: n_scan, n_amplitudes, n_phases, max_points, max_iter
+    integer :: n_scan, n_amplitudes, n_phases, max_points, max_iter, switch_at
     type(namelist_reader) :: reader
     namelist /response/ resonance, parameter, start, stop, n_scan, n_amplitudes, n_phases, &
                         amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, max_points, &
-                        x_tol, f_tol, max_iter
+                        x_tol, f_tol, max_iter, switch_at
 
-    resonance = '3:1'; parameter = 'rho'; start = 0; stop = 0
+    resonance = '3:1'; parameter = 'rho'; start = 0; stop = 0; switch_at = settings%switch_at
     associate (o => settings%options, c => settings%options%continuation)
       n_scan = o%n_scan; n_amplitudes = o%n_amplitudes; n_phases = o%n_phases
       amplitude_min = o%amplitude_min; amplitude_max = o%amplitude_max
@@ -701,6 +701,12 @@ contains
     settings%internal_resonance = adjustl(resonance) == '3:1'
     settings%start = min(start, stop)
     settings%stop = max(start, stop)
+    settings%switch_at = switch_at
+    if (switch_at < 0) then
+      call fail(status, message, '&response: switch_at = '//num2str(switch_at)// &
+                ' is out of range: it must be >= 0 (0: no branch switching)')
+      return
+    end if
     associate (o => settings%options, c => settings%options%continuation)
       o%n_scan = n_scan; o%n_amplitudes = n_amplitudes; o%n_phases = n_phases
       o%amplitude_min = amplitude_min; o%amplitude_max = amplitude_max

@@ -78,6 +78,9 @@ module sloshdyn_run_config
     integer :: parameter = PARAMETER_RHO
     real(wp) :: start = 0, stop = 0   !< required; start <= stop after reading
     type(response_options) :: options
+    !> periodic_response: also follow the branch born at this special point of the branch (its
+    !> number in periodic_special_points.csv: a branch point or a period doubling); 0: none
+    integer :: switch_at = 0
   end type response_settings
 
   !> &seismic: the duration [s] and number of outputs of a seismic response (0: the defaults of

@@ -79,6 +79,76 @@ contains
     status = code
   end subroutine periodic_branch
 
+  !> A start state (forcing phase 0) for shooting, by name: 'simulation' or 'slow_flow'
+  !> (sloshdyn_periodic_response's periodic_start_state).
+  subroutine start_state(rpar, ipar, start, integration, y_start, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_periodic_response, only: periodic_start_state
+    real(c_double), intent(in) :: rpar(n_real_params), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params)
+    character(len=*), intent(in) :: start
+    real(c_double), intent(out) :: y_start(4)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code
+    y_start = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call periodic_start_state(model, start, to_ode_options(integration), &
+                                             to_method(integration), y_start, code, message)
+    status = code
+  end subroutine start_state
+
+  !> Branch switching at a special point of kind (the codes of sloshdyn_tables: branch point or
+  !> period doubling) at (y_special, lambda_special) of a branch of period k T in rho
+  !> (which = 1) or A (which = 2), the other parameters from rpar: the other branch, or the
+  !> doubled orbits (period k_new T = 2 k T), in the layouts of periodic_branch.
+  subroutine switch_branch(rpar, ipar, which, kind, y_special, lambda_special, k, lambda_min, &
+                           lambda_max, &
+                           settings, integration, max_points, max_special, points, multipliers, &
+                           n_points, special, n_special, complete, k_new, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
+                               PERIODIC_SPECIAL_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, CONTINUATION_SIZE, to_ode_options, to_method, &
+                                to_continuation
+    use sloshdyn_continuation, only: continuation_options
+    use sloshdyn_periodic_response, only: periodic_switch
+    real(c_double), intent(in) :: rpar(n_real_params), y_special(4), lambda_special, &
+                                  lambda_min, lambda_max, &
+                                  settings(CONTINUATION_SIZE), &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, kind, k, max_points, max_special
+    real(c_double), intent(out) :: points(PERIODIC_POINT_ROWS, max_points), &
+                                   multipliers(PERIODIC_MULTIPLIER_ROWS, max_points), &
+                                   special(PERIODIC_SPECIAL_ROWS, max_special)
+    integer(c_int), intent(out) :: n_points, n_special, complete, k_new, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(continuation_options) :: options
+    integer :: code, found, found_special, periods
+    logical :: done
+    points = 0; multipliers = 0; special = 0; found = 0; found_special = 0; done = .false.
+    periods = int(k)
+    options = to_continuation(settings)
+    options%max_points = max_points
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call periodic_switch(model, int(which), int(kind), y_special, &
+                                        lambda_special, int(k), &
+                                        lambda_min, lambda_max, options, &
+                                        to_ode_options(integration), to_method(integration), &
+                                        points, multipliers, found, special, found_special, &
+                                        done, periods, code, message)
+    n_points = found
+    n_special = found_special
+    complete = merge(1, 0, done)
+    k_new = periods
+    status = code
+  end subroutine switch_branch
+
   !> Largest Lyapunov exponent (per unit tau) from y0, with its running estimates history(n_hist);
   !> settings in the lyapunov layout.
   subroutine lyapunov_exponent(rpar, ipar, y0, settings, integration, n_hist, exponent, history, &

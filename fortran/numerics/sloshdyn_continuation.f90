@@ -209,14 +209,19 @@ contains
   !> points and tangents need n + 1 rows and at least max_points columns.
   !> stop_reason is one of STOP_*. If no step >= ds_min converges, status = SD_NOT_CONVERGED,
   !> stop_reason = STOP_FAILED and the points so far are kept (the branch is incomplete).
+  !> With tangent0 (a direction in z, e.g. off a branch point onto another branch), the start
+  !> is corrected on the hyperplane through (x0, lambda0) normal to tangent0 instead of at fixed
+  !> lambda, and the first tangent is oriented along tangent0 (<tangent0, t> > 0), not by
+  !> options%direction.
   subroutine continue_branch(sys, x0, lambda0, options, points, tangents, arclength, n_points, &
-                             stop_reason, status, message)
+                             stop_reason, status, message, tangent0)
     class(parametrised_system), intent(in) :: sys
     real(wp), intent(in) :: x0(:), lambda0
     type(continuation_options), intent(in) :: options
     real(wp), intent(out) :: points(:, :), tangents(:, :), arclength(:)
     integer, intent(out) :: n_points, stop_reason, status
     character(len=message_len), intent(out) :: message
+    real(wp), intent(in), optional :: tangent0(:)
     type(workspace) :: ws
     real(wp), allocatable :: w(:), c(:), z(:), t(:), z_new(:), t_new(:), z_pred(:)
     real(wp) :: ds, cos_turn, g_prev, g_new, theta, bound, step_length
@@ -255,12 +260,27 @@ contains
 
     z(1:n) = x0
     z(m) = lambda0
-    call newton_core(sys, z(1:n), lambda0, options%newton, ws, iterations, status, message)
+    if (present(tangent0)) then
+      call check_vector('tangent0', tangent0, m, status, message)
+      if (status == SD_OK .and. all(tangent0 == 0)) then
+        status = SD_BAD_INPUT
+        message = 'tangent0 is zero: it must give the start direction'
+      end if
+      if (status /= SD_OK) return
+      c = w*tangent0/wnorm(tangent0, w)
+      call bordered_newton(sys, z, c, sum(c*z), options%newton, ws, iterations, status, message)
+    else
+      call newton_core(sys, z(1:n), lambda0, options%newton, ws, iterations, status, message)
+    end if
     if (status /= SD_OK) then
       message = 'the start point is not near a solution: '//trim(message)
       return
     end if
-    call initial_tangent(sys, z, w, options%direction, ws, c, t, status, message)
+    if (present(tangent0)) then
+      call tangent_core(sys, z, c, w, ws, t, status, message)
+    else
+      call initial_tangent(sys, z, w, options%direction, ws, c, t, status, message)
+    end if
     if (status /= SD_OK) return
     n_points = 1
     points(:, 1) = z

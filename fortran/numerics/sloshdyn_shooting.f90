@@ -1,7 +1,8 @@
 !> Periodic orbits of a periodically forced system y' = f(t, y; lambda) by single shooting: orbits
 !> of period k T (T = forcing period), their Floquet multipliers and stability, and their
 !> continuation in the parameter lambda with the detection of folds, symmetry-breaking branch
-!> points, period doublings and Neimark-Sacker points. Generic: the system comes through the
+!> points, period doublings and Neimark-Sacker points, and branch switching at branch points and
+!> period doublings. Generic: the system comes through the
 !> periodic_problem interface.
 !>
 !> Floquet theory: linearised about a T-periodic orbit, perturbations obey v' = J(t) v; over one
@@ -30,8 +31,9 @@ module sloshdyn_shooting
   use sloshdyn_integrator, only: new_integrator
   use sloshdyn_continuation, only: parametrised_system, branch_test, continuation_options, &
                                    continue_branch, locate_fold, locate_zero_on_branch, &
-                                   stop_reason_name, STOP_LAMBDA_MIN, STOP_LAMBDA_MAX, &
+                                   correct_at, stop_reason_name, STOP_LAMBDA_MIN, STOP_LAMBDA_MAX, &
                                    STOP_CLOSED, STOP_MAX_POINTS, STOP_X_MAX
+  use sloshdyn_bifurcation, only: inverse_iteration
   use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
                              SPECIAL_NEIMARK_SACKER, special_kind_name
   implicit none
@@ -40,7 +42,7 @@ module sloshdyn_shooting
             periodic_set_parameter, variational_system, shooting_setup, make_setup
   public :: monodromy_matrix, shooting_newton, floquet_kind, fold_test, period_doubling_test, &
             neimark_sacker_test, complex_pair_count, periodic_branch, check_setup, kind_test, &
-            branch_point_data, branch_data, locate_special_points
+            branch_point_data, branch_data, locate_special_points, switch_branch
   public :: FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE
   public :: samples_per_period
 
@@ -53,6 +55,9 @@ module sloshdyn_shooting
   real(wp), parameter :: scale_floor = 1.0e-12_wp
   !> |mu| tolerance of the stable flag along a branch: stable = FLOQUET_STABLE at this tol.
   real(wp), parameter :: stability_tol = 1.0e-9_wp
+  !> Secant iterations at most when a branch point is located by the secant method.
+  integer, parameter :: max_secant_iterations = 20
+  real(wp), parameter :: secant_newton_tol = 1.0e-8_wp
 
   !> A T-periodic system y' = f(t, y; lambda) (rhs, from ode_system) with its analytic Jacobian
   !> and the derivatives in the parameter lambda that continuation needs.
@@ -370,7 +375,7 @@ contains
   !> special ran out), SD_OK when the branch stopped on options%x_max.
   subroutine periodic_branch(problem, y0, lambda_min, lambda_max, options, ode_settings, method, &
                              points, multipliers, n_points, special, n_special, complete, &
-                             status, message, periods)
+                             status, message, periods, tangent0)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y0(:), lambda_min, lambda_max
     type(continuation_options), intent(in) :: options
@@ -381,6 +386,7 @@ contains
     logical, intent(out) :: complete
     character(len=message_len), intent(out) :: message
     integer, intent(in), optional :: periods
+    real(wp), intent(in), optional :: tangent0(:)
     type(shooting_system) :: sys
     type(multiplier_test) :: test
     type(continuation_options) :: opt
@@ -419,7 +425,7 @@ contains
     allocate (z(m, max(options%max_points, 1)), tangents(m, max(options%max_points, 1)), &
               arclength(max(options%max_points, 1)), re(n), im(n))
     call continue_branch(sys, y0, lambda0, opt, z, tangents, arclength, n_points, stop_reason, &
-                         status, message)
+                         status, message, tangent0)
     if (status /= SD_OK) call integration_failure()
     if (status /= SD_OK .and. n_points == 0) return
 
@@ -479,6 +485,121 @@ contains
       mult(n + 1:2*n) = im
     end subroutine point_data
   end subroutine periodic_branch
+
+  !> Branch switching at a special point (y_special at the problem's current parameter
+  !> lambda_s) of a branch of orbits of period k T: at a branch point (SPECIAL_BRANCH_POINT) the
+  !> other branch of period k T, at a period doubling (SPECIAL_PERIOD_DOUBLING) the branch of
+  !> doubled orbits, of period 2 k T. The other branch leaves along (v, 0), v the critical
+  !> Floquet eigenvector (multiplier +1 or -1, by inverse iteration on M - I or M + I):
+  !> a null vector of the extended Jacobian [dF/dy0, dF/dlambda] of the orbits of period
+  !> k_new T (for the doubling F = y(2 k T) - y0, whose M^2 - I is singular), the one without a
+  !> lambda-component. It is exact for a period doubling and for the symmetry-breaking pitchfork
+  !> of a Z2-symmetric orbit, whose new branch has dlambda/ds = 0 there (Kuznetsov, Elements of
+  !> Applied Bifurcation Theory, 3rd ed., sections 4.4 and 7.4); a transcritical branch point
+  !> (not generic here) may need the other null vector. The first point of the new branch is
+  !> corrected on the hyperplane <(v, 0), z - z_s - ds (v, 0)> = 0 (options%ds, weighted norm),
+  !> checked to lie off the old branch (for the doubling: y(k T) /= y0, since the doubled orbit
+  !> satisfies y(k T) - y0 ~ -2 ds v), and continued by periodic_branch away from the special
+  !> point (tangent0 = (v, 0)), with its own special points (results as periodic_branch's,
+  !> periods = k_new).
+  subroutine switch_branch(problem, kind, y_special, k, lambda_min, lambda_max, options, &
+                           ode_settings, method, points, multipliers, n_points, special, &
+                           n_special, complete, k_new, status, message)
+    class(periodic_problem), intent(in) :: problem
+    integer, intent(in) :: kind, k, method
+    real(wp), intent(in) :: y_special(:), lambda_min, lambda_max
+    type(continuation_options), intent(in) :: options
+    type(ode_options), intent(in) :: ode_settings
+    real(wp), intent(out) :: points(:, :), multipliers(:, :), special(:, :)
+    integer, intent(out) :: n_points, n_special, k_new, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(shooting_system) :: sys
+    type(continuation_options) :: opt
+    real(wp), allocatable :: y_end(:), monodromy(:, :), v(:), t(:), z_s(:), z_1(:)
+    real(wp) :: shift
+    integer :: n, m, i
+
+    n = size(y_special)
+    m = n + 1
+    n_points = 0
+    n_special = 0
+    complete = .false.
+    k_new = k
+    points = ieee_value(1.0_wp, ieee_quiet_nan)
+    multipliers = ieee_value(1.0_wp, ieee_quiet_nan)
+    special = ieee_value(1.0_wp, ieee_quiet_nan)
+    call check_setup(problem, y_special, k, status, message)
+    if (status == SD_OK .and. kind /= SPECIAL_BRANCH_POINT .and. &
+        kind /= SPECIAL_PERIOD_DOUBLING) then
+      status = SD_BAD_INPUT
+      message = 'kind = '//num2str(kind)//': branches can be switched at a branch point ('// &
+                num2str(SPECIAL_BRANCH_POINT)//') or a period doubling ('// &
+                num2str(SPECIAL_PERIOD_DOUBLING)//')'
+    end if
+    if (status /= SD_OK) return
+    if (kind == SPECIAL_PERIOD_DOUBLING) k_new = 2*k
+    shift = merge(1.0_wp, -1.0_wp, kind == SPECIAL_PERIOD_DOUBLING)
+
+    ! the critical Floquet eigenvector v of M (period k T) at the special point
+    allocate (y_end(n), monodromy(n, n), v(n), t(m), z_s(m), z_1(m))
+    call monodromy_matrix(problem, y_special, k, ode_settings, method, y_end, monodromy, &
+                          status, message)
+    if (status == SD_OK) then
+      do i = 1, n
+        monodromy(i, i) = monodromy(i, i) + shift
+      end do
+      call inverse_iteration(monodromy, max(maxval(abs(monodromy)), tiny(1.0_wp)), v, status, &
+                             message)
+    end if
+    if (status /= SD_OK) then
+      message = 'the Floquet eigenvector of the multiplier '// &
+                trim(merge('-1', '+1', kind == SPECIAL_PERIOD_DOUBLING))//': '//trim(message)
+      return
+    end if
+
+    ! the first point of the new branch, off the special point along (v, 0)
+    opt = options
+    opt%lambda_min = lambda_min
+    opt%lambda_max = lambda_max
+    call make_setup(sys%setup, problem, n, k_new, n, .true., ode_settings, method)
+    z_s(1:n) = y_special
+    z_s(m) = problem%parameter()
+    t(1:n) = v
+    t(m) = 0
+    call correct_at(sys, z_s, t, options%ds, z_1, status, message, opt)
+    if (status == SD_OK .and. kind == SPECIAL_PERIOD_DOUBLING) then
+      call monodromy_matrix(problem_at(z_1(m)), z_1(1:n), k, ode_settings, method, y_end, &
+                            monodromy, status, message)
+      if (status == SD_OK .and. maxval(abs(y_end - z_1(1:n))) < &
+          0.1_wp*options%ds/options%x_scale) then
+        status = SD_NOT_CONVERGED
+        message = 'the corrector went back to the orbits of period '//num2str(k)// &
+                  ' T (max|y(kT) - y0| = '//num2str(maxval(abs(y_end - z_1(1:n))))// &
+                  '); try another ds'
+      end if
+    end if
+    if (status /= SD_OK) then
+      message = 'the first point of the new branch (ds = '//num2str(options%ds)//' from the '// &
+                special_kind_name(kind)//' at lambda = '//num2str(z_s(m))//'): '//trim(message)
+      return
+    end if
+    ! continued away from the special point (the start corrected across (v, 0), not at fixed
+    ! lambda: near the special point M - I is nearly singular)
+    call periodic_branch(problem_at(z_1(m)), z_1(1:n), lambda_min, lambda_max, opt, &
+                         ode_settings, method, points, multipliers, n_points, special, &
+                         n_special, complete, status, message, k_new, t)
+
+  contains
+
+    !> The problem at parameter lambda.
+    function problem_at(lambda) result(p)
+      real(wp), intent(in) :: lambda
+      class(periodic_problem), allocatable :: p
+      allocate (p, source=problem)
+      call p%set_parameter(lambda)
+    end function problem_at
+  end subroutine switch_branch
 
   !> The data of every point of a branch (point_data: its row and Floquet multipliers); a point
   !> whose data fail ends the branch before it (n_points = its index - 1), with that failure's
@@ -558,12 +679,49 @@ contains
 
   contains
 
-    !> Locate a zero of the test of kind what between points j and j + 1 and store it.
+    !> Locate a zero of the test of kind what between points j and j + 1 and store it. At a
+    !> branch point the corrector is singular, so Brent's iterates close to it may fail; then
+    !> the point is found by the secant method on det(M - I) in the arclength from point j,
+    !> each iterate corrected onto the branch with Newton tolerances of at least
+    !> secant_newton_tol (next to a branch point the corrector's matrix is nearly singular and
+    !> amplifies the integration error: the residual stalls near 1e-11; an iterate where the
+    !> corrector fails is moved half-way back to the last one, up to max_secant_iterations
+    !> times), until the step is below 1e-9 of the interval (the last converged iterate is
+    !> kept).
     subroutine locate_with(what)
       integer, intent(in) :: what
+      real(wp) :: s(2), g(2), s_new, z_new(size(z, 1))
+      integer :: iteration, halvings, st
+      character(len=message_len) :: msg
+      type(continuation_options) :: slow
+      slow = opt
+      slow%newton%x_tol = max(opt%newton%x_tol, secant_newton_tol)
+      slow%newton%f_tol = max(opt%newton%f_tol, secant_newton_tol)
       test%kind = what
       call locate_zero_on_branch(sys, z(:, j), tangents(:, j), arclength(j + 1) - arclength(j), &
                                  test, z_special, locate_status, locate_message, opt)
+      if (locate_status /= SD_OK .and. what == SPECIAL_BRANCH_POINT) then
+        s = [0.0_wp, arclength(j + 1) - arclength(j)]
+        g = det_minus(j:j + 1)
+        halvings = 0
+        do iteration = 1, max_secant_iterations
+          s_new = s(2) - g(2)*(s(2) - s(1))/(g(2) - g(1))
+          call correct_at(sys, z(:, j), tangents(:, j), s_new, z_new, st, msg, slow)
+          ! too close to the branch point for the corrector: half-way to the last iterate
+          do while (st /= SD_OK .and. halvings < max_secant_iterations)
+            halvings = halvings + 1
+            s_new = (s_new + s(2))/2
+            call correct_at(sys, z(:, j), tangents(:, j), s_new, z_new, st, msg, slow)
+          end do
+          if (st /= SD_OK) exit
+          z_special = z_new
+          locate_status = SD_OK
+          if (abs(s_new - s(2)) <= 1.0e-9_wp*abs(arclength(j + 1) - arclength(j))) exit
+          s = [s(2), s_new]
+          g = [g(2), test%value(z_new, tangents(:, j))]
+          if (.not. ieee_is_finite(g(2)) .or. g(2) == g(1)) exit
+        end do
+      end if
       call add_special(what)
     end subroutine locate_with
 

@@ -12,13 +12,12 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import check_status
-from .asymptotics import (Continuation, continuation_array, continuation_range,
-                          frequency_response)
+from ._errors import InputError, check_status
+from .asymptotics import Continuation, continuation_array, continuation_range
 from .model import linear_modes
 from ._settings import settings
 from .parameters import Parameters
-from .simulation import Integration, Steady, steady_state
+from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
@@ -75,15 +74,17 @@ def periodic_orbit(params: Parameters, y0=None, *, periods=1, start="simulation"
 
 
 def start_state(params: Parameters, start="simulation"):
-    """A starting state at forcing phase 0 for shooting."""
-    _checks.choice("start", start, ("simulation", "slow_flow"))
-    if start == "simulation":
-        return steady_state(params, steady=Steady(max_transient_periods=5000)).y_end
-    r = frequency_response(params, (params.rho * 0.999, params.rho * 1.001))
-    t = r.table
-    k = int(np.argmin(np.abs(t["rho"] - params.rho) + 1e3 * (t["stable"] == 0)))
-    return slow_flow_state(params, t["re_B1"][k] + 1j * t["im_B1"][k],
-                           t["re_B2"][k] + 1j * t["im_B2"][k])
+    """A starting state at forcing phase 0 for shooting (the core's periodic_start_state): the
+    steady state of a simulation from rest (start='simulation', at most 5000 forcing periods)
+    or the 3:1 slow-flow steady state nearest to rho, stable ones first (start='slow_flow',
+    through eq 34 and 42)."""
+    _checks.instance("params", params, Parameters)
+    if not isinstance(start, str):
+        raise InputError(f"start = {start!r} is not valid: give 'simulation' or 'slow_flow'")
+    y, status, message = cancellable(_bridge.start_state, *params.array(), start,
+                                     Integration().array())
+    check_status(status, message, "start state")
+    return y
 
 
 def slow_flow_state(params: Parameters, b1, b2):
@@ -116,30 +117,47 @@ class PeriodicBranch:
     complete: bool
     message: str                 #: why an incomplete branch stopped ('' if complete)
     method: str                  #: the integration method used ('auto' resolved)
+    periods: int = 1             #: the orbits' period in forcing periods (k of k T)
+    params: Parameters = None    #: the parameters (the continued one at the branch's start)
+    lambda_range: tuple = ()     #: the interval of the continued parameter
+    continuation: Continuation = None   #: the arclength steps the branch was followed with
+    integration: Integration = None
+
+    def switch(self, special_point, *, continuation: Continuation = None) -> PeriodicBranch:
+        """The branch born at special_point (one of special_points): at a 'branch_point' the
+        other branch of orbits of period k T, at a 'period_doubling' the doubled orbits
+        (period 2 k T), started along the critical Floquet eigenvector (multiplier +1 or -1)
+        and continued over the same range (with this branch's steps unless continuation is
+        given), with its own special points. Raises ConvergenceError (with ``partial``) as
+        periodic_response does."""
+        _checks.instance("special_point", special_point, PeriodicSpecialPoint)
+        if special_point.kind not in ("branch_point", "period_doubling"):
+            raise InputError(f"special_point.kind = {special_point.kind!r}: branches can be "
+                             "switched at a 'branch_point' or a 'period_doubling'")
+        c = self.continuation if continuation is None else continuation
+        _checks.instance("continuation", c, Continuation)
+        at = self.params.replace(rho=special_point.rho, A=special_point.A)
+        lo, hi = self.lambda_range
+        max_points = _checks.output_size("max_points",
+                                         _checks.integer("max_points", c.max_points, 1),
+                                         len(_tables.columns("periodic_branch")))
+        (points, multipliers, n, special, n_special, complete, k_new, status,
+         message) = cancellable(_bridge.switch_branch, *at.array(),
+                                _tables.code("excitation_parameters", self.parameter),
+                                _tables.code("special", special_point.kind),
+                                _checks.reals("special_point.y0", special_point.y0, (4,)),
+                                getattr(special_point, self.parameter), self.periods, lo, hi,
+                                continuation_array(c, 1.0), self.integration.array(),
+                                max_points, 100)
+        return _branch(self.parameter, at, int(k_new), (lo, hi), c, self.integration, points,
+                       multipliers, n, special, n_special, complete, status, message,
+                       "switched branch")
 
 
-#: the arclength steps of a periodic branch unless told (the executable takes &response's)
-PERIODIC_CONTINUATION = Continuation(ds=0.002, ds_min=1e-9, ds_max=0.01, x_scale=1.0,
-                                     max_points=2000)
-
-
-def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
-                      start="simulation", from_end="low",
-                      continuation: Continuation = PERIODIC_CONTINUATION,
-                      integration: Integration = Integration()) -> PeriodicBranch:
-    """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
-    in A over A_range, starting at the low end (from_end='low') going up, or at the high end
-    going down, with the arclength steps ds, ds_min, ds_max, x_scale, Newton's x_tol, f_tol,
-    max_iter and at most max_points points of `continuation` (its branch-search fields are not
-    used). Raises ConvergenceError
-    (with ``partial``) if the branch stops before the end of the range or a special point on
-    it could not be located."""
-    b = branch_start(params, rho_range, A_range, y0, periods, start, from_end, continuation,
-                     integration, "periodic_branch")
-    parameter = b.parameter
-    points, multipliers, n, special, n_special, complete, status, message = cancellable(
-        _bridge.periodic_branch, *b.first.array(), _tables.code("excitation_parameters", parameter), b.y0,
-        b.periods, b.low, b.high, b.settings, integration.array(), b.max_points, 100)
+def _branch(parameter, params, periods, lambda_range, continuation, integration, points,
+            multipliers, n, special, n_special, complete, status, message, what):
+    """The PeriodicBranch of the bridge's arrays (layouts periodic_branch and
+    periodic_special_points); raises the status's error with the branch as ``partial``."""
     rows = dict(zip(_tables.columns("periodic_branch"), np.vstack([points, multipliers])[:, :n]))
     lam = rows["lambda"]
     table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
@@ -157,8 +175,37 @@ def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=No
             float(point["lambda"]) if parameter == "A" else params.A, float(point["max_x1"]),
             np.array([point[f"y{i}"] for i in range(1, 5)])))
     branch = PeriodicBranch(parameter, table, specials, bool(complete), message_text(message),
-                            integration.method_used)
-    return with_partial(branch, status, message, "periodic branch")
+                            integration.method_used, periods, params, tuple(lambda_range),
+                            continuation, integration)
+    return with_partial(branch, status, message, what)
+
+
+#: the arclength steps of a periodic branch unless told (the executable takes &response's)
+PERIODIC_CONTINUATION = Continuation(ds=0.002, ds_min=1e-9, ds_max=0.01, x_scale=1.0,
+                                     max_points=2000)
+
+
+def periodic_response(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
+                      start="simulation", from_end="low",
+                      continuation: Continuation = PERIODIC_CONTINUATION,
+                      integration: Integration = Integration()) -> PeriodicBranch:
+    """Continue the periodic orbit through y0 (or found from `start`) in rho over rho_range, or
+    in A over A_range, starting at the low end (from_end='low') going up, or at the high end
+    going down, with the arclength steps ds, ds_min, ds_max, x_scale, Newton's x_tol, f_tol,
+    max_iter and at most max_points points of `continuation` (its branch-search fields are not
+    used). Raises ConvergenceError (with ``partial``) if the branch stops before the end of the
+    range or a special point on it could not be located. Its .switch(special_point) follows
+    the branch born at a branch point or a period doubling."""
+    b = branch_start(params, rho_range, A_range, y0, periods, start, from_end, continuation,
+                     integration, "periodic_branch")
+    parameter = b.parameter
+    points, multipliers, n, special, n_special, complete, status, message = cancellable(
+        _bridge.periodic_branch, *b.first.array(),
+        _tables.code("excitation_parameters", parameter), b.y0, b.periods, b.low, b.high,
+        b.settings, integration.array(), b.max_points, 100)
+    return _branch(parameter, b.first, b.periods, (b.low, b.high), continuation, integration,
+                   points, multipliers, n, special, n_special, complete, status, message,
+                   "periodic branch")
 
 
 class BranchStart(NamedTuple):

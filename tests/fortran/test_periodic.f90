@@ -4,7 +4,7 @@ module periodic_test_systems
   use sloshdyn_shooting, only: periodic_problem
   implicit none
   private
-  public :: linear_oscillator, rotating_frame, ROT_LINEAR, ROT_FOLD, ROT_PITCHFORK
+  public :: linear_oscillator, rotating_frame, ROT_LINEAR, ROT_FOLD, ROT_PITCHFORK, ROT_FLIP
 
   !> x'' + 2 z w x' + w^2 x = F cos(W t), lambda = W. Steady state a cos(W t - phi) with
   !> a = F/sqrt((w^2 - W^2)^2 + (2 z w W)^2), tan phi = 2 z w W/(w^2 - W^2); multipliers
@@ -30,6 +30,9 @@ module periodic_test_systems
   !>                 z1 = -+1; M = diag(exp((1 - z1^2) T), exp(-T)).
   !>  ROT_PITCHFORK: G = (lambda z1 - z1^3, -z2), turn = 2: the trivial orbit has a branch
   !>                 point at lambda = 0 (multiplier exp(lambda T) crosses +1).
+  !>  ROT_FLIP:      the same G with turn = 1: R(pi) = -I, so the trivial orbit's multiplier
+  !>                 -exp(lambda T) crosses -1 at lambda = 0, a period doubling; the doubled
+  !>                 orbits (period 2T) are y = R(omega t) z*, z* = (+-sqrt(lambda), 0).
   type, extends(periodic_problem) :: rotating_frame
     integer :: kind = 1
     real(wp) :: omega = 1, lambda = 0
@@ -44,7 +47,7 @@ module periodic_test_systems
     procedure :: period_derivative => rotating_period_derivative
   end type rotating_frame
 
-  integer, parameter :: ROT_LINEAR = 1, ROT_FOLD = 2, ROT_PITCHFORK = 3
+  integer, parameter :: ROT_LINEAR = 1, ROT_FOLD = 2, ROT_PITCHFORK = 3, ROT_FLIP = 4
 
 contains
 
@@ -146,7 +149,7 @@ contains
   function rotating_period(self) result(value)
     class(rotating_frame), intent(in) :: self
     real(wp) :: value
-    value = merge(1, 2, self%kind == ROT_LINEAR)*pi/self%omega
+    value = merge(1, 2, self%kind == ROT_LINEAR .or. self%kind == ROT_FLIP)*pi/self%omega
   end function rotating_period
 
   subroutine rotating_parameter_derivative(self, t, y, df)
@@ -195,12 +198,12 @@ program test_periodic
   use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, &
                                floquet_kind, fold_test, period_doubling_test, &
                                neimark_sacker_test, complex_pair_count, periodic_branch, &
-                               FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE
+                               switch_branch, FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE
   use sloshdyn_lyapunov, only: largest_lyapunov
   use sloshdyn_tables, only: SPECIAL_FOLD, SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
                              SPECIAL_NEIMARK_SACKER
   use periodic_test_systems, only: linear_oscillator, rotating_frame, ROT_LINEAR, ROT_FOLD, &
-                                   ROT_PITCHFORK
+                                   ROT_PITCHFORK, ROT_FLIP
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -214,6 +217,8 @@ program test_periodic
   call test_neimark_sacker()
   call test_folds()
   call test_branch_point()
+  call test_branch_switching(ROT_PITCHFORK)
+  call test_branch_switching(ROT_FLIP)
   call test_undamped_tank()
   call test_fig12_orbit()
   call test_parameter_column()
@@ -501,6 +506,54 @@ contains
     call check_true('pitchfork branch: kind', nint(special(1, 1)) == SPECIAL_BRANCH_POINT)
     call check_close('pitchfork branch: at lambda = 0', special(2, 1), 0.0_wp, 0.0_wp, 1.0e-8_wp)
   end subroutine test_branch_point
+
+  !> Switching at the branch point of ROT_PITCHFORK and the period doubling of ROT_FLIP (both at
+  !> lambda = 0 on the trivial orbit): the new branch is z* = (+-sqrt(lambda), 0), y0 = z*
+  !> (R(2 pi) = I), of period T (pitchfork) or 2T (flip), with multipliers exp(-2 lambda t_k) and
+  !> exp(-t_k) over its period t_k = 2 pi/omega (DG(z*) = diag(-2 lambda, -1)).
+  subroutine test_branch_switching(kind)
+    integer, intent(in) :: kind
+    integer, parameter :: capacity = 100
+    type(rotating_frame) :: sys
+    type(continuation_options) :: opt
+    real(wp) :: points(5, capacity), mult(4, capacity), special(5, 4), &
+                new_points(5, capacity), new_mult(4, capacity), new_special(5, 4)
+    integer :: n_points, n_special, n_new, n_new_special, k_new, status, j, expected
+    logical :: complete
+    character(len=message_len) :: message
+    character(len=:), allocatable :: name
+
+    name = merge('switching at the pitchfork: ', 'switching at the flip:      ', &
+                 kind == ROT_PITCHFORK)
+    expected = merge(SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, kind == ROT_PITCHFORK)
+    sys = rotating_frame(kind=kind, omega=1.0_wp, lambda=-0.5_wp)
+    opt%ds = 0.07_wp
+    opt%max_points = capacity
+    call periodic_branch(sys, [0.0_wp, 0.0_wp], -0.5_wp, 0.5_wp, opt, tight(), METHOD_DOPRI5, &
+                         points, mult, n_points, special, n_special, complete, status, message)
+    call check_true(name//'the special point at lambda = 0: '//trim(message), &
+                    status == SD_OK .and. n_special == 1)
+    if (n_special /= 1) return
+    call check_true(name//'its kind', nint(special(1, 1)) == expected)
+    call sys%set_parameter(special(2, 1))
+    opt%ds = 0.02_wp
+    call switch_branch(sys, nint(special(1, 1)), special(3:4, 1), 1, -0.5_wp, 0.5_wp, opt, &
+                       tight(), METHOD_DOPRI5, new_points, new_mult, n_new, new_special, &
+                       n_new_special, complete, k_new, status, message)
+    call check_true(name//'the new branch is complete: '//trim(message), &
+                    status == SD_OK .and. complete .and. n_new > 3)
+    call check_true(name//'of period '//num2str(k_new)//' T', &
+                    k_new == merge(1, 2, kind == ROT_PITCHFORK))
+    call check_true(name//'it reaches lambda = 0.5', abs(new_points(1, n_new) - 0.5_wp) < 1.0e-12_wp)
+    do j = 1, n_new
+      associate (lambda => new_points(1, j), y => new_points(2:3, j))
+        call check_close(name//'y1^2 = lambda', y(1)**2, lambda, 0.0_wp, 1.0e-8_wp)
+        call check_close(name//'y2 = 0', y(2), 0.0_wp, 0.0_wp, 1.0e-8_wp)
+        call check_close(name//'multiplier exp(-2 lambda 2 pi)', maxval(new_mult(1:2, j)), &
+                         max(exp(-4*pi*lambda), exp(-2*pi)), 1.0e-6_wp, 1.0e-9_wp)
+      end associate
+    end do
+  end subroutine test_branch_switching
 
   !> Undamped, unforced tank (gamma = delta = 0, A = 0): a conservative system, so a small
   !> linear-regime motion has multipliers on the unit circle, exp(+-i omega_j T) (eq 28), and

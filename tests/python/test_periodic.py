@@ -101,3 +101,24 @@ def test_fig17_is_chaotic_with_a_converged_exponent():
     lam, history = result.exponent, result.history
     assert lam > 0.05
     assert history[999] == pytest.approx(lam, rel=0.1)   # converged over the second half
+
+
+@pytest.mark.parametrize("rho", [0.50, 0.507, 0.52])
+def test_start_state_is_the_core_one_bit_for_bit(rho):
+    """start_state comes from the core (periodic_start_state): the same bits as the algorithm
+    Python ran before (a steady state from rest with max_transient_periods = 5000; the stable
+    slow-flow state nearest to rho mapped by eq 34 and 42), written out here with numpy."""
+    p = FIG12.replace(rho=rho)
+    steady = sloshdyn.steady_state(p, steady=sloshdyn.Steady(max_transient_periods=5000))
+    assert np.array_equal(sloshdyn.periodic.start_state(p, "simulation"), steady.y_end)
+    t = sloshdyn.frequency_response(p, (rho * 0.999, rho * 1.001)).table
+    k = int(np.argmin(np.abs(t["rho"] - rho) + 1e3 * (t["stable"] == 0)))
+    expected = slow_flow_state(p, t["re_B1"][k] + 1j * t["im_B1"][k],
+                               t["re_B2"][k] + 1j * t["im_B2"][k])
+    assert np.array_equal(sloshdyn.periodic.start_state(p, "slow_flow"), expected)
+
+
+def test_start_state_names_its_choices():
+    with pytest.raises(sloshdyn.InputError, match="start = 'rest' is not known; allowed: "
+                                                  "simulation, slow_flow"):
+        sloshdyn.periodic_orbit(FIG12, start="rest")
