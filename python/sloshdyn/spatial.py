@@ -125,6 +125,29 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
 
 
 @dataclass(frozen=True)
+class SwirlBoundary:
+    """The edges of the swirl band in (rho, A): the band along rho at each A of ``A``."""
+
+    A: np.ndarray                #: the forcing amplitudes
+    bands: tuple                 #: the SwirlBand in rho at each A
+    edges: dict                  #: one row per edge: A, rho, y1..y4, max_x1, refined
+    complete: bool               #: every band complete
+
+
+def swirl_boundary(params: Parameters, rho_range, A_values, **band_options) -> SwirlBoundary:
+    """The two-parameter boundary of the swirl band: ``swirl_band(params with A, rho_range,
+    **band_options)`` at each A of A_values (keywords as swirl_band's: y0, periods, start,
+    from_end, max_edges, continuation, integration)."""
+    _checks.instance("params", params, Parameters)
+    A_values = _checks.reals("A_values", A_values, ndim=1, min_size=1)
+    bands = tuple(swirl_band(params.replace(A=float(a)), rho_range, **band_options)
+                  for a in A_values)
+    names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined")
+    edges = {name: np.concatenate([band.edges[name] for band in bands]) for name in names}
+    return SwirlBoundary(A_values, bands, edges, all(band.complete for band in bands))
+
+
+@dataclass(frozen=True)
 class SwirlOrbit:
     """A periodic orbit of period k T (T = 2 pi/rho) of the spatial model under the ground
     motion of params along x, through y0 at forcing phase 0: a swirling orbit (liquid rotating

@@ -206,3 +206,43 @@ def test_the_swirling_orbit_is_the_averaged_equations_swirl():
     assert np.allclose(rates.real, theory.real, atol=2 * EPSILON**(4 / 3))
     assert np.allclose(rates.imag, theory.imag, rtol=0.05)     # measured 1.2% and 0.9%
     assert orbit.stable == bool(theory.real.max() < 0)        # both: a stable swirl
+
+
+def test_the_band_edge_widens_with_A_as_the_averaged_theory_says():
+    """swirl_boundary: the band's upper edge at three amplitudes A, each where max|nu| = 1, each
+    at the averaged equations' edge (rho - 1 scales as A^(2/3)) to O(A^(4/3))."""
+    A_values = [5e-4, 1e-3, 2e-3]
+    boundary = spatial.swirl_boundary(PARAMS, (0.995, 1.02), A_values, from_end="high")
+    assert boundary.complete
+    edges = boundary.edges
+    assert np.array_equal(edges["A"], A_values) and np.all(edges["refined"] == 1)
+    assert np.all(np.diff(edges["rho"]) > 0)           # wider with A
+    field, out_of_plane = _averaged_field()
+    for A, rho, y1, y2, y3, y4 in zip(*(edges[k] for k in ("A", "rho", "y1", "y2", "y3", "y4"))):
+        params = PARAMS.replace(A=A, rho=rho)
+        orbit = sloshdyn.periodic_orbit(params, [y1, y2, y3, y4])
+        nu = spatial.out_of_plane_multipliers(params, orbit.y0)
+        assert np.abs(nu).max() == pytest.approx(1, abs=1e-6)
+
+        scale = A**(2 / 3)
+
+        def margin(r, A=A, scale=scale):
+            groups = (A, r, ZETA)
+            s = fsolve(lambda u: field([u[0], u[1], 0, 0], groups)[:2], [0.0, 1.1 * scale**0.5],
+                       xtol=1e-13)   # the resonant branch: amplitude ~ 1.1 A^(1/3)
+            jac = np.array(out_of_plane([s[0], s[1], 0, 0], groups), float)
+            return np.linalg.eigvals(jac).real.max()
+
+        theory = brentq(margin, 1 + 0.3 * scale, 1 + 0.5 * scale, xtol=1e-12)
+        assert abs(rho - theory) <= A**(4 / 3)    # measured 2.9e-6, 1.1e-6, 2.4e-6
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: spatial.swirl_orbit(PARAMS, np.zeros(4)), "y0"),
+    (lambda: spatial.swirl_orbit(PARAMS, np.zeros(8), transient=-1), "transient"),
+    (lambda: spatial.swirl_orbit(PARAMS, np.zeros(8), periods=0), "periods"),
+    (lambda: spatial.swirl_boundary(PARAMS, (0.995, 1.02), []), "A_values"),
+    (lambda: spatial.swirl_boundary(PARAMS, (0.995, 1.02), [1e-3, np.nan]), "A_values")])
+def test_swirl_orbit_and_boundary_name_a_bad_input(call, name):
+    with pytest.raises(sloshdyn.InputError, match=name):
+        call()
