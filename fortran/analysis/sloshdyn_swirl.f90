@@ -17,19 +17,21 @@ module sloshdyn_swirl
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues
-  use sloshdyn_ode, only: ode_options
+  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_integrator, only: integrate
   use sloshdyn_roots, only: bracketed_function, brent_zero
   use sloshdyn_continuation, only: continuation_options
-  use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, periodic_branch
+  use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, periodic_branch, &
+                               samples_per_period
   use sloshdyn_tables, only: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, PERIODIC_POINT_ROWS, &
                              PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS
   use sloshdyn_model, only: model_t
   use sloshdyn_system, only: tank_system
-  use sloshdyn_spatial, only: spatial_model
+  use sloshdyn_spatial, only: spatial_model, spatial_invariants
   use sloshdyn_spatial_system, only: spatial_tank_system
   implicit none
   private
-  public :: out_of_plane_multipliers, swirl_branch
+  public :: out_of_plane_multipliers, swirl_branch, swirl_orbit
 
   !> Newton shooting of the planar orbit at an edge candidate
   real(wp), parameter :: newton_tol = 1.0e-10_wp
@@ -176,6 +178,77 @@ contains
     status = st
     message = msg
   end subroutine swirl_branch
+
+  !> A periodic orbit of period k T of the spatial model (at the model's excitation along x),
+  !> found by Newton shooting on the 8 states (sloshdyn_shooting's shooting_newton) from y0, or
+  !> from the state reached from y0 after `transient` k T of integration (transient >= 0): a
+  !> swirling orbit from a planar one perturbed out of its plane inside the swirl band. y_orbit
+  !> at tau = 0, its multipliers (re, im), Newton's iterations, max|x1| and the swirl amplitude
+  !> max|y1| over the orbit, and the angular momentum about the vertical averaged over the orbit
+  !> (sloshdyn_spatial's spatial_invariants; > 0: counter-clockwise seen from above), both from
+  !> samples_per_period samples per forcing period.
+  subroutine swirl_orbit(model, y0, k, transient, options, method, newton_tol, max_iter, &
+                         y_orbit, re, im, iterations, max_x1, amplitude, angular_momentum, &
+                         status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y0(8), newton_tol
+    integer, intent(in) :: k, transient, method, max_iter
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: y_orbit(8), re(8), im(8), max_x1, amplitude, angular_momentum
+    integer, intent(out) :: iterations, status
+    character(len=message_len), intent(out) :: message
+    type(spatial_tank_system) :: system
+    type(ode_stats) :: stats
+    real(wp) :: y_start(8), monodromy(8, 8), period, energy, l
+    real(wp), allocatable :: t_out(:), y_out(:, :)
+    integer :: j, n
+
+    y_orbit = ieee_value(1.0_wp, ieee_quiet_nan)
+    max_x1 = y_orbit(1); amplitude = y_orbit(1); angular_momentum = y_orbit(1)
+    iterations = 0
+    if (transient < 0) then
+      status = SD_BAD_INPUT
+      message = 'transient = '//num2str(transient)//' is out of range: it must be >= 0'
+      return
+    end if
+    call spatial_model(model, 0.0_wp, 0.0_wp, system%model, status, message)
+    if (status /= SD_OK) return
+    period = k*system%period()
+    y_start = y0
+    if (transient > 0) then
+      allocate (y_out(8, 1))
+      call integrate(method, system, 0.0_wp, y0, [transient*period], y_out, options, stats, &
+                     status, message)
+      if (status /= SD_OK) then
+        message = 'swirl orbit, transient: '//trim(message)
+        return
+      end if
+      y_start = y_out(:, 1)
+      deallocate (y_out)
+    end if
+    call shooting_newton(system, y_start, k, options, method, newton_tol, max_iter, y_orbit, &
+                         monodromy, re, im, iterations, status, message)
+    if (status /= SD_OK) then
+      message = 'swirl orbit: '//trim(message)
+      return
+    end if
+    n = k*samples_per_period
+    t_out = [(j*period/n, j = 1, n)]
+    allocate (y_out(8, n))
+    call integrate(method, system, 0.0_wp, y_orbit, t_out, y_out, options, stats, status, &
+                   message)
+    if (status /= SD_OK) then
+      message = 'swirl orbit, sampling: '//trim(message)
+      return
+    end if
+    max_x1 = maxval(abs(y_out(1, :)))
+    amplitude = maxval(abs(y_out(5, :)))
+    angular_momentum = 0
+    do j = 1, n
+      call spatial_invariants(system%model, y_out(:, j), energy, l)
+      angular_momentum = angular_momentum + l/n
+    end do
+  end subroutine swirl_orbit
 
   subroutine swirl_margin_value(self, x, fx, status, message)
     class(swirl_margin), intent(inout) :: self

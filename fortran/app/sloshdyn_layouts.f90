@@ -33,6 +33,7 @@ module sloshdyn_layouts
             RESPONSE_RANGE_SIZE, SEISMIC_SIZE, ANALYSIS_SIZE, CONTINUATION_SIZE, &
             SHOOTING_SIZE, PENDULUM_SIZE, &
             PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
+            SWIRL_ORBIT_INFO_SIZE, &
             MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
             NATURAL_FREQUENCIES_SIZE
   public :: chart_axes, CHART_RHO
@@ -203,6 +204,12 @@ module sloshdyn_layouts
     field_t('delta3'), field_t('routh_stable', 'flag')]
   type(field_t), parameter :: orbit_info_fields(*) = [ &
     field_t('iterations', 'integer'), field_t('max_x1')]
+  !> A periodic orbit of the spatial model (sloshdyn_swirl's swirl_orbit).
+  type(field_t), parameter :: swirl_orbit_info_fields(*) = [ &
+    field_t('iterations', 'integer'), field_t('max_x1'), &
+    field_t('swirl_amplitude', doc='max|y1| over the orbit'), &
+    field_t('angular_momentum', doc='about the vertical, averaged over the orbit '// &
+            '[M L^2 omega]; > 0 counter-clockwise')]
   !> The scalars of the modal expansion (sloshdyn_modal: eq 34-36) and the sizes of a stability
   !> chart's four tables (sloshdyn_stability_chart's chart_table_sizes).
   type(field_t), parameter :: modal_scalars_fields(*) = [ &
@@ -225,7 +232,7 @@ module sloshdyn_layouts
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
     'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
-    'routh,orbit_info,modal_scalars,chart_sizes,spatial,natural_frequencies'
+    'routh,orbit_info,swirl_orbit_info,modal_scalars,chart_sizes,spatial,natural_frequencies'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
@@ -254,6 +261,7 @@ module sloshdyn_layouts
                         PHYSICAL_SIZE = size(physical_fields), GROUPS_SIZE = size(groups_fields), &
                         ROUTH_TRIVIAL_SIZE = size(routh_fields), &
                         ORBIT_INFO_SIZE = size(orbit_info_fields), &
+                        SWIRL_ORBIT_INFO_SIZE = size(swirl_orbit_info_fields), &
                         MODAL_SCALARS_SIZE = size(modal_scalars_fields), &
                         CHART_SIZES_SIZE = size(chart_sizes_fields), &
                         SPATIAL_SIZE = size(spatial_fields), &
@@ -292,6 +300,7 @@ contains
     case ('groups');         fields = groups_fields
     case ('routh');          fields = routh_fields
     case ('orbit_info');     fields = orbit_info_fields
+    case ('swirl_orbit_info'); fields = swirl_orbit_info_fields
     case ('modal_scalars');  fields = modal_scalars_fields
     case ('chart_sizes');    fields = chart_sizes_fields
     case ('spatial');        fields = spatial_fields

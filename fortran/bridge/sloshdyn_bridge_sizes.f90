@@ -22,6 +22,7 @@ program sloshdyn_bridge_sizes
                               ANALYSIS_SIZE, CONTINUATION_SIZE, &
                               SHOOTING_SIZE, PENDULUM_SIZE, &
                               PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
+                              SWIRL_ORBIT_INFO_SIZE, &
                               MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
                               NATURAL_FREQUENCIES_SIZE
   implicit none
@@ -74,6 +75,7 @@ program sloshdyn_bridge_sizes
   call define('groups_size', GROUPS_SIZE)
   call define('routh_trivial_size', ROUTH_TRIVIAL_SIZE)
   call define('orbit_info_size', ORBIT_INFO_SIZE)
+  call define('swirl_orbit_info_size', SWIRL_ORBIT_INFO_SIZE)
   call define('modal_scalars_size', MODAL_SCALARS_SIZE)
   call define('chart_sizes_size', CHART_SIZES_SIZE)
   call define('spatial_size', SPATIAL_SIZE)

@@ -108,6 +108,36 @@ contains
     status = code
   end subroutine swirl_branch
 
+  !> A periodic orbit of period k T of the spatial model (excitation along x) from y0 after
+  !> `transient` k T of integration (sloshdyn_swirl's swirl_orbit): y_orbit, multipliers(2, 8) =
+  !> (Re, Im), info(SWIRL_ORBIT_INFO_SIZE) (layout 'swirl_orbit_info').
+  subroutine swirl_orbit(rpar, ipar, y0, k, transient, integration, newton_tol, max_iter, &
+                         y_orbit, multipliers, info, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, SWIRL_ORBIT_INFO_SIZE, to_ode_options, &
+                                to_method
+    use sloshdyn_swirl, only: core => swirl_orbit
+    real(c_double), intent(in) :: rpar(n_real_params), y0(8), integration(INTEGRATION_SIZE), &
+                                  newton_tol
+    integer(c_int), intent(in) :: ipar(n_int_params), k, transient, max_iter
+    real(c_double), intent(out) :: y_orbit(8), multipliers(2, 8), info(SWIRL_ORBIT_INFO_SIZE)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    real(c_double) :: re(8), im(8), peak, amplitude, angular_momentum
+    integer :: code, iterations
+    y_orbit = 0; multipliers = 0; info = 0; iterations = 0
+    peak = 0; amplitude = 0; angular_momentum = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, y0, int(k), int(transient), to_ode_options(integration), &
+                             to_method(integration), newton_tol, int(max_iter), y_orbit, re, &
+                             im, iterations, peak, amplitude, angular_momentum, code, message)
+    if (code == 0) multipliers = transpose(reshape([re, im], [8, 2]))
+    info = [real(iterations, c_double), peak, amplitude, angular_momentum]
+    status = code
+  end subroutine swirl_orbit
+
   !> The tank at rest under ground motion in two components (sloshdyn_seismic_spatial):
   !> ground/samples the first component (along spatial's azimuth), ground_2/samples_2 the second
   !> (a record with the same dt, or ignored for harmonic motion, whose second component is

@@ -20,7 +20,8 @@ from ._cancel import cancellable
 from ._errors import check_status
 from .asymptotics import Continuation
 from .parameters import Parameters
-from .periodic import PERIODIC_CONTINUATION, branch_start, message_text, with_partial
+from .periodic import (PERIODIC_CONTINUATION, Shooting, branch_start, message_text,
+                       periodic_orbit, with_partial)
 from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_spatial
@@ -121,6 +122,87 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
     band = SwirlBand(parameter, table, edge_table, bool(complete), message_text(message),
                      integration.method_used)
     return with_partial(band, status, message, "swirl band")
+
+
+@dataclass(frozen=True)
+class SwirlBoundary:
+    """The edges of the swirl band in (rho, A): the band along rho at each A of ``A``."""
+
+    A: np.ndarray                #: the forcing amplitudes
+    bands: tuple                 #: the SwirlBand in rho at each A
+    edges: dict                  #: one row per edge: A, rho, y1..y4, max_x1, refined
+    complete: bool               #: every band complete
+
+
+def swirl_boundary(params: Parameters, rho_range, A_values, **band_options) -> SwirlBoundary:
+    """The two-parameter boundary of the swirl band: ``swirl_band(params with A, rho_range,
+    **band_options)`` at each A of A_values (keywords as swirl_band's: y0, periods, start,
+    from_end, max_edges, continuation, integration)."""
+    _checks.instance("params", params, Parameters)
+    A_values = _checks.reals("A_values", A_values, ndim=1, min_size=1)
+    bands = tuple(swirl_band(params.replace(A=float(a)), rho_range, **band_options)
+                  for a in A_values)
+    names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined")
+    edges = {name: np.concatenate([band.edges[name] for band in bands]) for name in names}
+    return SwirlBoundary(A_values, bands, edges, all(band.complete for band in bands))
+
+
+@dataclass(frozen=True)
+class SwirlOrbit:
+    """A periodic orbit of period k T (T = 2 pi/rho) of the spatial model under the ground
+    motion of params along x, through y0 at forcing phase 0: a swirling orbit (liquid rotating
+    about the vertical) when it leaves the plane."""
+
+    y0: np.ndarray                #: the 8 states at tau = 0
+    multipliers: np.ndarray       #: its 8 Floquet multipliers (complex)
+    max_x1: float                 #: max|x1| over the orbit (in-plane tilt / theta0)
+    swirl_amplitude: float        #: max|y1| over the orbit (out-of-plane tilt / theta0)
+    angular_momentum: float       #: L_z about the vertical averaged over the orbit [M L^2 omega]
+    iterations: int               #: Newton iterations
+    periods: int                  #: k
+    method: str                   #: the integration method used ('auto' resolved)
+
+    @property
+    def direction(self) -> str:
+        """'counter-clockwise' (L_z > 0, seen from above), 'clockwise' (L_z < 0) or 'planar'."""
+        if self.angular_momentum > 0:
+            return "counter-clockwise"
+        return "clockwise" if self.angular_momentum < 0 else "planar"
+
+    @property
+    def stable(self) -> bool:
+        """All its Floquet multipliers inside the unit circle."""
+        return bool(np.abs(self.multipliers).max() < 1)
+
+
+def swirl_orbit(params: Parameters, y0=None, *, periods=1, transient=None, perturbation=0.05,
+                shooting: Shooting = Shooting(),
+                integration: Integration = Integration()) -> SwirlOrbit:
+    """The periodic orbit of the spatial model near y0 (8 states at tau = 0), found by Newton
+    shooting on the 8-dimensional system after ``transient`` periods k T of integration from y0
+    (default 0). With y0 None: from the planar periodic orbit (``periodic_orbit(params)``) with
+    y1 = ``perturbation`` max|x1| out of its plane, after ``transient`` = 400 periods by
+    default, so that inside the swirl band the orbit found is the (stable) swirling one."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("shooting", shooting, Shooting)
+    _checks.instance("integration", integration, Integration)
+    periods = _checks.integer("periods", periods, 1)
+    if y0 is None:
+        planar = periodic_orbit(params, periods=periods, shooting=shooting,
+                                integration=integration)
+        push = _checks.real("perturbation", perturbation) * planar.max_x1
+        y0 = np.concatenate([planar.y0, [push, 0.0, 0.0, 0.0]])
+        transient = 400 if transient is None else transient
+    y0 = _checks.reals("y0", y0, (8,))
+    transient = _checks.integer("transient", 0 if transient is None else transient, 0)
+    y, multipliers, info, status, message = cancellable(
+        _bridge.swirl_orbit, *params.array(), y0, periods, transient, integration.array(),
+        shooting.newton_tol, shooting.max_iter)
+    check_status(status, message, "swirl orbit")
+    info = _tables.unpack("swirl_orbit_info", info)
+    return SwirlOrbit(y, multipliers[0] + 1j * multipliers[1], float(info["max_x1"]),
+                      float(info["swirl_amplitude"]), float(info["angular_momentum"]),
+                      int(info["iterations"]), periods, integration.method_used)
 
 
 @dataclass(frozen=True)

@@ -75,7 +75,8 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     # (the others: test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables;
     # physical is dimensionless_groups' input, refused at another size below)
     assert set(_tables.layouts()) - set(arrays) <= {"physical", "continuation", "orbit_info",
-                                                    "modal_scalars", "chart_sizes", "spatial", "natural_frequencies"}
+                                                    "modal_scalars", "chart_sizes", "spatial", "natural_frequencies",
+                                                    "swirl_orbit_info"}
 
 
 def test_a_layout_without_defaults_or_of_another_size_is_refused():

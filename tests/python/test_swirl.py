@@ -143,3 +143,106 @@ def test_brute_force_integration_swirls_inside_the_band_only(rho, swirls):
         assert np.abs(sol.y[0][-64:]).max() < 1   # far from the wall: no impacts
     else:
         assert last / first < 1       # decays as zeta: e^(-0.0005 * 250) = 0.88
+
+
+RHO_SWIRL = 1.003       # inside the band, just below its edge 1.0037539 (test above)
+
+
+@functools.lru_cache(maxsize=1)
+def _swirl():
+    return spatial.swirl_orbit(PARAMS.replace(rho=RHO_SWIRL))
+
+
+def _period_gap(params, y0):
+    """max|y(T) - y0| by scipy's DOP853 on the spatial equations (independent of the shooting)."""
+    period = 2 * np.pi / params.rho
+    sol = solve_ivp(lambda tau, y: spatial.equations_of_motion(params, tau, y).dydt,
+                    (0, period), y0, method="DOP853", rtol=1e-12, atol=1e-14)
+    assert sol.success
+    return np.abs(sol.y[:, -1] - y0).max()
+
+
+def test_the_swirling_orbit_is_periodic_and_its_mirror_turns_the_other_way():
+    params = PARAMS.replace(rho=RHO_SWIRL)
+    orbit = _swirl()
+    assert orbit.swirl_amplitude > 0.5 * orbit.max_x1           # it left the plane
+    assert _period_gap(params, orbit.y0) < 1e-8
+    # the mirror y -> -y of a solution is a solution (the forcing is along x)
+    mirror = orbit.y0 * np.array([1, 1, 1, 1, -1, -1, -1, -1])
+    image = spatial.swirl_orbit(params, mirror)
+    assert _period_gap(params, image.y0) < 1e-8
+    assert np.abs(image.y0 - mirror).max() < 1e-8
+    assert image.angular_momentum == pytest.approx(-orbit.angular_momentum, rel=1e-6)
+    assert {orbit.direction, image.direction} == {"clockwise", "counter-clockwise"}
+    assert image.swirl_amplitude == pytest.approx(orbit.swirl_amplitude, rel=1e-6)
+
+
+def test_the_swirling_orbit_is_the_averaged_equations_swirl():
+    """The swirl fixed point (p2, q2) != 0 of the averaged equations (Miles 1962, 1984): in-plane
+    and out-of-plane amplitudes, and the angular momentum m l^2 <x y' - y x'> =
+    m rho (p1 q2 - q1 p2) in units of M L^2 omega (m/M = mu1, l = L for s1 = 1)."""
+    orbit = _swirl()
+    field, _ = _averaged_field()
+    y1 = orbit.y0[4] * PARAMS.theta0                   # the swirl of the averaged equations
+    s = fsolve(lambda u: field(u, (EPSILON, RHO_SWIRL, ZETA)), [0.0, 0.1, y1, 0.0], xtol=1e-13)
+    assert np.hypot(s[2], s[3]) > 0.1                  # a swirl, not the planar fixed point
+    # amplitudes to O(epsilon^(2/3)) relative (measured 0.4% and 0.2%)
+    assert orbit.max_x1 * PARAMS.theta0 == pytest.approx(np.hypot(s[0], s[1]), rel=0.02)
+    assert orbit.swirl_amplitude * PARAMS.theta0 == pytest.approx(np.hypot(s[2], s[3]), rel=0.02)
+    theory = PARAMS.mu1 * RHO_SWIRL * (s[0] * s[3] - s[1] * s[2])
+    assert orbit.angular_momentum == pytest.approx(theory, rel=0.05)    # measured 1%
+    # the four slow Floquet multipliers (near 1) are exp(lambda T) of the averaged equations'
+    # Jacobian at the swirl (central differences of the cubic field); the other four belong to
+    # the stiff supports
+    h, groups = 1e-7, (EPSILON, RHO_SWIRL, ZETA)
+    jac = np.column_stack([(np.array(field(s + h * e, groups)) - field(s - h * e, groups))
+                           / (2 * h) for e in np.eye(4)])
+    theory = np.linalg.eigvals(jac)
+    theory = theory[np.argsort(theory.imag)]
+    slow = orbit.multipliers[np.abs(np.angle(orbit.multipliers)) < 0.5]
+    rates = np.log(slow) * RHO_SWIRL / (2 * np.pi)
+    rates = rates[np.argsort(rates.imag)]
+    assert rates.size == 4
+    assert np.allclose(rates.real, theory.real, atol=2 * EPSILON**(4 / 3))
+    assert np.allclose(rates.imag, theory.imag, rtol=0.05)     # measured 1.2% and 0.9%
+    assert orbit.stable == bool(theory.real.max() < 0)        # both: a stable swirl
+
+
+def test_the_band_edge_widens_with_A_as_the_averaged_theory_says():
+    """swirl_boundary: the band's upper edge at three amplitudes A, each where max|nu| = 1, each
+    at the averaged equations' edge (rho - 1 scales as A^(2/3)) to O(A^(4/3))."""
+    A_values = [5e-4, 1e-3, 2e-3]
+    boundary = spatial.swirl_boundary(PARAMS, (0.995, 1.02), A_values, from_end="high")
+    assert boundary.complete
+    edges = boundary.edges
+    assert np.array_equal(edges["A"], A_values) and np.all(edges["refined"] == 1)
+    assert np.all(np.diff(edges["rho"]) > 0)           # wider with A
+    field, out_of_plane = _averaged_field()
+    for A, rho, y1, y2, y3, y4 in zip(*(edges[k] for k in ("A", "rho", "y1", "y2", "y3", "y4"))):
+        params = PARAMS.replace(A=A, rho=rho)
+        orbit = sloshdyn.periodic_orbit(params, [y1, y2, y3, y4])
+        nu = spatial.out_of_plane_multipliers(params, orbit.y0)
+        assert np.abs(nu).max() == pytest.approx(1, abs=1e-6)
+
+        scale = A**(2 / 3)
+
+        def margin(r, A=A, scale=scale):
+            groups = (A, r, ZETA)
+            s = fsolve(lambda u: field([u[0], u[1], 0, 0], groups)[:2], [0.0, 1.1 * scale**0.5],
+                       xtol=1e-13)   # the resonant branch: amplitude ~ 1.1 A^(1/3)
+            jac = np.array(out_of_plane([s[0], s[1], 0, 0], groups), float)
+            return np.linalg.eigvals(jac).real.max()
+
+        theory = brentq(margin, 1 + 0.3 * scale, 1 + 0.5 * scale, xtol=1e-12)
+        assert abs(rho - theory) <= A**(4 / 3)    # measured 2.9e-6, 1.1e-6, 2.4e-6
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: spatial.swirl_orbit(PARAMS, np.zeros(4)), "y0"),
+    (lambda: spatial.swirl_orbit(PARAMS, np.zeros(8), transient=-1), "transient"),
+    (lambda: spatial.swirl_orbit(PARAMS, np.zeros(8), periods=0), "periods"),
+    (lambda: spatial.swirl_boundary(PARAMS, (0.995, 1.02), []), "A_values"),
+    (lambda: spatial.swirl_boundary(PARAMS, (0.995, 1.02), [1e-3, np.nan]), "A_values")])
+def test_swirl_orbit_and_boundary_name_a_bad_input(call, name):
+    with pytest.raises(sloshdyn.InputError, match=name):
+        call()
