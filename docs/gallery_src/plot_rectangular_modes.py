@@ -48,7 +48,7 @@ for k, wave in enumerate(waves):
 axes[0].set_xlim(0, 35)
 axes[0].set_xlabel("time t [s]")
 axes[0].set_ylabel("modal wave height\nat the wall [m]")
-axes[0].legend(fontsize=8, loc="lower right")
+axes[0].legend(fontsize=8, loc="upper left")
 peaks = [np.abs(wave).max() for wave in waves]
 axes[1].bar(n - 0.2, peaks, width=0.4, color="0.3", label="time history, peak")
 axes[1].bar(n + 0.2, spectral, width=0.4, color="tab:blue",

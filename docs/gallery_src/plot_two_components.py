@@ -42,14 +42,15 @@ ax.plot(np.degrees(psi), rise, color="k", label="both components together (spati
 ax.axhline(peaks["wave_height_srss"], ls="--", color="tab:blue", label="SRSS of the planar runs")
 ax.axhline(peaks["wave_height_100_30"], ls="-.", color="tab:green",
            label="100/30 of the planar runs")
-ax.axhline(inp.tank.freeboard, ls=":", color="r", label="roof (freeboard)")
+ax.axhspan(inp.tank.freeboard, 10 * inp.tank.freeboard, color="r", alpha=0.12, lw=0,
+           label="above the roof (freeboard)")
 azimuth = inp.spatial["azimuth"]
 for a, name in ((azimuth, "record 1"), (azimuth + np.pi / 2, "record 2")):
     ax.axvline(np.degrees(a), color="0.6", lw=0.8)
     ax.annotate(name, (np.degrees(a), 0.02), xycoords=("data", "axes fraction"),
                 rotation=90, fontsize=8, color="0.4", ha="right")
 ax.set_xlim(0, 360)
-ax.set_ylim(0, None)
+ax.set_ylim(0, 1.3 * max(peaks["wave_height_srss"], inp.tank.freeboard))
 ax.set_xticks(range(0, 361, 45))
 ax.set_xlabel("azimuth on the wall ψ [°] (from the x axis)")
 ax.set_ylabel("peak wave height\nat the wall [m]")

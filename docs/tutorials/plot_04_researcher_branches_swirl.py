@@ -117,7 +117,7 @@ axes[1].plot(rho[swirl], nu_max[swirl], "o", color="tab:red", mfc="none", label=
 axes[1].axhline(1.0, color="0.5", lw=0.8)
 for ax in axes:
     for edge in band.edges["rho"]:
-        ax.axvline(edge, ls=":", color="tab:red", lw=1)
+        ax.axvline(edge, ls=":", color="tab:red", lw=1, label="band edge")
 axes[1].set_ylabel(r"max $|\nu|$ (out of plane)")
 axes[1].set_xlabel(r"forcing frequency $\rho = \Omega/\omega$")
 axes[1].legend(fontsize=8)
