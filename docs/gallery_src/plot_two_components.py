@@ -30,10 +30,9 @@ both = spatial.seismic_response_2d(inp.tank, inp.ground_motion, inp.ground_motio
                                    ellipticity=inp.spatial["ellipticity"],
                                    integration=inp.integration)
 peaks = both.peaks
-print(f"largest wave {peaks['wave_height']:.4f} m at azimuth"
-      f" {np.degrees(peaks['wave_azimuth']):.1f} deg, t = {peaks['wave_time']:.2f} s")
-print(f"planar runs {peaks['wave_height_run_1']:.4f} m, {peaks['wave_height_run_2']:.4f} m;"
-      f" SRSS {peaks['wave_height_srss']:.4f} m; 100/30 {peaks['wave_height_100_30']:.4f} m")
+for key in ("wave_height", "wave_height_run_1", "wave_height_run_2", "wave_height_srss",
+            "wave_height_100_30"):
+    print(f"{key:20s} {peaks[key]:.4f} m")
 
 psi = np.radians(np.arange(0.0, 360.5, 1.0))
 rise = np.array([both.wave_height_at(a).max() for a in psi])       # [m], the crest
