@@ -44,7 +44,10 @@ print("symmetric: ", [(s.kind, round(s.A, 5)) for s in symmetric.special_points]
 # eigenvector (the null vector of M − I at a branch point, of M + I at a period doubling) and
 # continues it over the same range with the same steps. At the branch point the asymmetric
 # orbits are born (period T); on them a multiplier crosses −1, and switching there gives the
-# orbits of period 2T, which double again (2T → 4T).
+# orbits of period 2T, which double again (2T → 4T), and switching once more gives the orbits
+# of period 4T. The first three special points are those of :doc:`../model`'s table, checked
+# independently with scipy in ``tests/python/test_branch_switching.py``; the doubling the 4T
+# branch reports next (4T → 8T) has no such check.
 
 asymmetric = symmetric.switch(symmetric.special_points[0])
 print("asymmetric:", asymmetric.periods, "T,",
@@ -53,6 +56,9 @@ doubling = [s for s in asymmetric.special_points if s.kind == "period_doubling"]
 doubled = asymmetric.switch(doubling)
 print("doubled:   ", doubled.periods, "T,",
       [(s.kind, round(s.A, 5)) for s in doubled.special_points])
+quadrupled = doubled.switch(doubled.special_points[0])
+print("quadrupled:", quadrupled.periods, "T,",
+      [(s.kind, round(s.A, 5)) for s in quadrupled.special_points])
 
 
 def largest_multiplier(branch):
@@ -71,10 +77,10 @@ print("largest |multiplier| on the doubled branch:",
 fig, ax = plt.subplots(figsize=(7, 3.8))
 for branch, style, label in ((symmetric, "-", "symmetric, period T"),
                              (asymmetric, "--", "asymmetric, period T"),
-                             (doubled, "-.", "period 2T")):
+                             (doubled, "-.", "period 2T"), (quadrupled, ":", "period 4T")):
     ax.plot(branch.table["A"], branch.table["max_x1"], style, label=label)
 marker = {"branch_point": "x", "period_doubling": "^"}
-for branch in (symmetric, asymmetric, doubled):
+for branch in (symmetric, asymmetric, doubled, quadrupled):
     for s in branch.special_points:
         ax.plot(s.A, s.max_x1, marker.get(s.kind, "o"), color="k", mfc="none", ms=8)
 ax.set_xlabel("forcing amplitude A")
