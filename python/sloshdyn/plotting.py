@@ -231,6 +231,10 @@ def response_spectrum(spectrum, marks=()):
             ax.axvline(period, ls=":", color="r", lw=0.8)
     axes[1].set_xlabel("period T [s]")
     axes[0].set_title(f"response spectrum, {100 * spectrum.damping:g} % damping", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
 # ---- studies -------------------------------------------------------------------------------
 
 _MOTION_COLOURS = {0: "0.85", 1: "#4c72b0", 2: "#dd8452", 3: "#c44e52", 4: "#8172b3"}

@@ -45,3 +45,16 @@ def test_response_plots_split_stable_and_unstable():
     assert np.all(np.isin(unstable, dashed))
     fig = plotting.routh_delta3(r, zoom=(0.508, 0.511))
     assert len([l for l in fig.axes[0].lines if l.get_linestyle() == ":"]) == 2   # two Hopf points
+
+
+def test_response_spectrum_returns_its_figure():
+    # the module's promise: every function returns the matplotlib Figure (this one returned None)
+    from matplotlib.figure import Figure
+    quake = sloshdyn.GroundMotion.harmonic(0.2, 0.5)
+    periods = np.array([0.5, 1.0, 2.0, 4.0])
+    fig = plotting.response_spectrum(quake.response_spectrum(periods), marks=[2.0])
+    assert isinstance(fig, Figure)
+    psa, sd = (ax.lines[0].get_ydata() for ax in fig.axes)
+    # pseudo-spectral acceleration (drawn in g) = (2 pi/T)^2 x spectral displacement
+    assert np.allclose(psa * 9.80665, (2 * np.pi / periods) ** 2 * sd, rtol=1e-12)
+    assert [line.get_xdata()[0] for ax in fig.axes for line in ax.lines[1:]] == [2.0, 2.0]
