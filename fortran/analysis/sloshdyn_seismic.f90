@@ -34,6 +34,7 @@ module sloshdyn_seismic
                           peak_tracker
   use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
   use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_ROOF_REACHED, &
+                             SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, SEISMIC_OVERTURNING_MOMENT, &
                              PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, &
                              PEAKS_CONFINED_MASS, PEAKS_IMPACT_FORCE, PEAKS_SCALE_FACTOR, &
                              PEAKS_SA, PEAKS_BETA_SENSITIVE, CODES_COLUMNS, CODES_ROWS, &
@@ -210,8 +211,8 @@ contains
     real(wp), intent(inout) :: table(:, :), peaks(:)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    integer, parameter :: wave_row = 4, shear_row = 8, moment_row = 9, &
-                          summed(3) = [wave_row, shear_row, moment_row]
+    integer, parameter :: summed(3) = [SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, &
+                                       SEISMIC_OVERTURNING_MOMENT]
     real(wp) :: dydt(4), accel(size(states, 2)), x(size(states, 2)), v(size(states, 2)), &
                 a_abs(size(states, 2))
     integer :: i, n, row
@@ -226,10 +227,12 @@ contains
       call sdof_response(table(1, 2) - table(1, 1), accel, 2*pi/props%modal_period(n), damping, &
                          0.0_wp, 0.0_wp, x, v, a_abs, status, message)
       if (status /= SD_OK) return
-      table(wave_row, :) = table(wave_row, :) + props%modal_wave(n)*x/props%modal_length(n)
-      table(shear_row, :) = table(shear_row, :) + props%modal_mass(n)*(a_abs - accel)
-      table(moment_row, :) = table(moment_row, :) + props%modal_mass(n)*props%modal_height(n)* &
-                             a_abs
+      associate (wave => table(SEISMIC_WAVE_HEIGHT, :), shear => table(SEISMIC_BASE_SHEAR, :), &
+                 moment => table(SEISMIC_OVERTURNING_MOMENT, :))
+        wave = wave + props%modal_wave(n)*x/props%modal_length(n)
+        shear = shear + props%modal_mass(n)*(a_abs - accel)
+        moment = moment + props%modal_mass(n)*props%modal_height(n)*a_abs
+      end associate
     end do
     do n = 1, size(summed)
       row = summed(n)

@@ -28,6 +28,7 @@ module sloshdyn_tables
   public :: CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, CYCLE_SPECIAL_ROWS
   public :: HISTORY_X1, HISTORY_X2, HARMONIC_SWEEP_WAVE_HEIGHT, CHART_GRID_N_STABLE, &
             CHART_GRID_NEAR_CURVE, CHART_GRID_BRUTE_FORCE_STABLE
+  public :: SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, SEISMIC_OVERTURNING_MOMENT
   public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
             PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, &
             PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, PEAKS_SCALE_FACTOR, &
@@ -136,6 +137,9 @@ module sloshdyn_tables
     'sloshing_displacement [m],wave_height [m],pendulum_angle [rad],tank_drift [m],'// &
     'impact_force [N],base_shear [N],overturning_moment [N m],x1,x2,free_wave_height [m]'
   integer, parameter :: SEISMIC_LOADS = 9, SEISMIC_ROWS = 12
+  !> The rows of 'seismic' that higher sloshing modes add to (sloshdyn_seismic)
+  integer, parameter :: SEISMIC_WAVE_HEIGHT = 4, SEISMIC_BASE_SHEAR = 8, &
+                        SEISMIC_OVERTURNING_MOMENT = 9
   character(len=*), parameter :: peaks_columns = 'peak_ground_acceleration [m/s^2],'// &
     'time_ground_acceleration [s],peak_sloshing_displacement [m],time_sloshing_displacement [s],'// &
     'peak_wave_height [m],time_wave_height [s],peak_pendulum_angle [rad],'// &

@@ -97,14 +97,30 @@ def exit_code(error, reading=False):
     return int(_core.sloshdyn_bridge_input.exit_code(int(error.status or 1), bool(reading)))
 
 
+def message_text(message):
+    """A message from the bridge (bytes of a Fortran character) as text."""
+    if isinstance(message, (bytes, bytearray)):
+        message = message.decode("utf-8", "replace")
+    return str(message).strip()
+
+
+def with_partial(result, status, message, what):
+    """result, or (status nonzero) the status's exception with result as its ``partial``."""
+    if status:
+        try:
+            check_status(status, message, what)
+        except Exception as exc:
+            exc.partial = result
+            raise
+    return result
+
+
 def check_status(status, message, context=None):
     """Raise the exception matching a nonzero Fortran status, with the Fortran message."""
     status = int(status)
     if status == 0:
         return
-    if isinstance(message, (bytes, bytearray)):
-        message = message.decode("utf-8", "replace")
-    message = str(message).strip()
+    message = message_text(message)
     if context:
         message = f"{context}: {message}"
     if status == CANCELLED:

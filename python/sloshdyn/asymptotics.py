@@ -9,7 +9,7 @@ import numpy as np
 
 from ._cancel import cancellable
 from . import _checks, _core, _tables
-from ._errors import InputError, check_status
+from ._errors import InputError, check_status, message_text, with_partial
 from ._settings import settings
 from .parameters import Parameters
 from .simulation import Integration
@@ -179,15 +179,9 @@ def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A
         row = dict(zip(_SPECIAL_COLUMNS, column))
         points.append(SpecialPoint(SPECIAL_KINDS[int(row["kind"])], int(row["branch"]),
                                    *(float(row[k]) for k in ("rho", "A", "a1", "a2", "frequency"))))
-    text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message).strip()
-    result = FrequencyResponse(parameter, resonance, columns, points, bool(complete), text)
-    if status:
-        try:
-            check_status(status, message, "frequency response")
-        except Exception as exc:
-            exc.partial = result
-            raise
-    return result
+    result = FrequencyResponse(parameter, resonance, columns, points, bool(complete),
+                               message_text(message))
+    return with_partial(result, status, message, "frequency response")
 
 
 def continuation_array(continuation: Continuation, direction):

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import InputError, check_status
+from ._errors import InputError, check_status, message_text, with_partial
 from .asymptotics import Continuation, continuation_array, continuation_range
 from .model import linear_modes
 from ._settings import settings
@@ -241,22 +241,6 @@ def branch_start(params, rho_range, A_range, y0, periods, start, from_end, conti
     settings = continuation_array(c, 1.0 if from_end == "low" else -1.0)
     return BranchStart(parameter, lo, hi, first, _checks.reals("y0", y0, (4,)), periods,
                        settings, max_points)
-
-
-def message_text(message):
-    """The bridge's message as text."""
-    return message.decode("utf-8", "replace").strip() if isinstance(message, bytes) else str(message)
-
-
-def with_partial(result, status, message, what):
-    """result, or (status nonzero) the status's exception with result as its ``partial``."""
-    if status:
-        try:
-            check_status(status, message, what)
-        except Exception as exc:
-            exc.partial = result
-            raise
-    return result
 
 
 @dataclass(frozen=True)

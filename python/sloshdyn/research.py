@@ -13,7 +13,7 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import ConvergenceError, InputError, SloshdynError, check_status
+from ._errors import ConvergenceError, InputError, SloshdynError, check_status, message_text
 from .asymptotics import (Continuation, continuation_array, continuation_range, frequency_response,
                           slow_flow_cycle)
 from .parameters import Parameters
@@ -168,8 +168,7 @@ def slow_flow_cycles(params: Parameters, rho_range=None, *, A_range=None,
                                 _checks.integer("max_points", continuation.max_points, 2), 50)
         if status and n == 0:
             check_status(status, message, "slow-flow cycle branch")
-        text = message.decode("utf-8", "replace").strip() if isinstance(message, bytes) \
-            else str(message).strip()
+        text = message_text(message)
         halves.append((points[:, :n], multipliers[:, :n], amplitudes[:, :n],
                        special[:, :n_special], int(stop), text if status else ""))
     (p_lo, m_lo, a_lo, s_lo, stop_lo, why_lo), (p_hi, m_hi, a_hi, s_hi, stop_hi, why_hi) = halves

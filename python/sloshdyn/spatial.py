@@ -17,11 +17,10 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import check_status
+from ._errors import check_status, message_text, with_partial
 from .asymptotics import Continuation
 from .parameters import Parameters
-from .periodic import (PERIODIC_CONTINUATION, Shooting, branch_start, message_text,
-                       periodic_orbit, with_partial)
+from .periodic import PERIODIC_CONTINUATION, Shooting, branch_start, periodic_orbit
 from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_spatial
