@@ -7,7 +7,8 @@
 module sloshdyn_dopri5
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, rms_error_norm
+  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, rms_error_norm, &
+                          dense_from_state
   implicit none
   private
   public :: dopri5_integrator
@@ -114,33 +115,37 @@ contains
     finite = .true.
   end subroutine dopri5_finish
 
-  !> The dense output coefficients (rcont1..rcont5 of dopri5.f); k7 becomes the next k1.
+  !> The dense output coefficients (rcont1..rcont5 of dopri5.f) of an accepted step, with dense
+  !> output (init's dense_output); k7 becomes the next k1.
   pure subroutine dopri5_store_dense(self, h)
     class(dopri5_integrator), intent(inout) :: self
     real(wp), intent(in) :: h
     associate (y => self%y, k => self%k, cont => self%cont)
-      cont(:, 1) = y
-      cont(:, 2) = self%y_new - y
-      cont(:, 3) = h*k(:, 1) - cont(:, 2)
-      cont(:, 4) = cont(:, 2) - h*k(:, 7) - cont(:, 3)
-      cont(:, 5) = h*(d1*k(:, 1) + d3*k(:, 3) + d4*k(:, 4) + d5*k(:, 5) + d6*k(:, 6) + &
-                      d7*k(:, 7))
+      if (self%dense_output) then
+        cont(:, 1) = y
+        cont(:, 2) = self%y_new - y
+        cont(:, 3) = h*k(:, 1) - cont(:, 2)
+        cont(:, 4) = cont(:, 2) - h*k(:, 7) - cont(:, 3)
+        cont(:, 5) = h*(d1*k(:, 1) + d3*k(:, 3) + d4*k(:, 4) + d5*k(:, 5) + d6*k(:, 6) + &
+                        d7*k(:, 7))
+      end if
       k(:, 1) = k(:, 7)
     end associate
   end subroutine dopri5_store_dense
 
   !> Value at t of the continuous extension over the last accepted step [t_old, t] (CONTD5 of
   !> dopri5.f, 4th order). Outside that step it extrapolates; before any step it returns y.
+  !> Without dense output (init's dense_output = .false.) it returns y at t = integ%t and NaN at
+  !> any other time, as DOP853 and Vern9.
   pure subroutine dopri5_dense(self, t, y)
     class(dopri5_integrator), intent(in) :: self
     real(wp), intent(in) :: t
     real(wp), intent(out) :: y(:)
     real(wp) :: s, s1
+    logical :: done
 
-    if (self%h_done == 0) then
-      y = self%y
-      return
-    end if
+    call dense_from_state(self, t, y, done)
+    if (done) return
     s = (t - self%t_old)/self%h_done
     s1 = 1 - s
     y = self%cont(:, 1) + s*(self%cont(:, 2) + s1*(self%cont(:, 3) + &

@@ -16,7 +16,7 @@ module rk_checks
   private
   public :: riccati, oscillator, van_der_pol, nan_beyond
   public :: check_orders, fixed_step_errors, dense_output_errors, check_stepwise_api, &
-            check_failures, check_bad_input
+            check_failures, check_bad_input, check_without_dense_output
 
   !> y' = -a t y**2, y(0) = 1: y = 1/(1 + a t**2/2) (nonautonomous, nonlinear)
   type, extends(ode_system) :: riccati
@@ -262,6 +262,32 @@ contains
     call check_close('output at 2', maxval(abs(y_out(:, 4) - osc%exact(2.0_wp))), &
                      0.0_wp, 0.0_wp, 1.0e-9_wp)
   end subroutine check_stepwise_api
+
+  !> Without dense output (init's dense_output = .false.) only the step end is available: y
+  !> there, NaN inside the step, the same for every method (sloshdyn_ode's rk_init).
+  subroutine check_without_dense_output(method)
+    integer, intent(in) :: method
+    class(rk_integrator), allocatable :: integ
+    character(len=:), allocatable :: name
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    real(wp) :: y(2)
+    integer :: status
+    character(len=message_len) :: message
+
+    name = method_name(method)
+    call new_integrator(method, 0.0_wp, integ, status, message)
+    opt%rtol = 1.0e-10_wp
+    opt%atol = 1.0e-12_wp
+    osc%force = 0
+    call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message, &
+                    dense_output=.false.)
+    call integ%step(osc, status, message)
+    call integ%dense(integ%t, y)
+    call check_true(name//', dense_output = .false.: y at the step end', all(y == integ%y))
+    call integ%dense((integ%t_old + integ%t)/2, y)
+    call check_true(name//', dense_output = .false.: NaN inside the step', all(ieee_is_nan(y)))
+  end subroutine check_without_dense_output
 
   !> Failures during the integration: partial output, NaN after, the time reached.
   subroutine check_failures(method)

@@ -2,17 +2,16 @@
 !> closed-form solutions (the independent source of the expected values below) except Van der
 !> Pol, which is checked against DOPRI5.
 program test_dop853
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK
   use sloshdyn_text, only: num2str
   use sloshdyn_ode, only: ode_options, ode_stats
-  use sloshdyn_dop853, only: dop853_integrator
   use sloshdyn_vern9, only: vern9_integrator
   use sloshdyn_integrator, only: integrate, chosen_method, METHOD_DOPRI5, METHOD_DOP853, &
                                  METHOD_VERN9, METHOD_AUTO
   use rk_checks, only: riccati, oscillator, van_der_pol, check_orders, fixed_step_errors, &
-                       dense_output_errors, check_stepwise_api, check_failures, check_bad_input
+                       dense_output_errors, check_stepwise_api, check_failures, check_bad_input, &
+                       check_without_dense_output
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -21,7 +20,8 @@ program test_dop853
   call test_adaptive_tolerances()
   call test_van_der_pol_against_rk45()
   call check_stepwise_api(METHOD_DOP853)
-  call test_without_dense_output()
+  call check_without_dense_output(METHOD_DOP853)
+  call check_without_dense_output(METHOD_VERN9)
   call check_failures(METHOD_DOP853)
   call check_bad_input(METHOD_DOP853)
   call test_vern9_dense_output_order()
@@ -178,27 +178,6 @@ contains
     call check_close('Van der Pol: dop853 agrees with rk45', maxval(abs(y_dop - y_rk45)), &
                      0.0_wp, 0.0_wp, 1.0e-9_wp)
   end subroutine test_van_der_pol_against_rk45
-
-  !> Without dense output only the step end is available: y there, NaN inside the step.
-  subroutine test_without_dense_output()
-    type(oscillator) :: osc
-    type(dop853_integrator) :: integ
-    type(ode_options) :: opt
-    real(wp) :: y(2)
-    integer :: status
-    character(len=message_len) :: message
-
-    opt%rtol = 1.0e-10_wp
-    opt%atol = 1.0e-12_wp
-    osc%force = 0
-    call integ%init(osc, 0.0_wp, osc%exact(0.0_wp), 3.0_wp, opt, status, message, &
-                    dense_output=.false.)
-    call integ%step(osc, status, message)
-    call integ%dense(integ%t, y)
-    call check_true('dense_output = .false.: y at the step end', all(y == integ%y))
-    call integ%dense((integ%t_old + integ%t)/2, y)
-    call check_true('dense_output = .false.: NaN inside the step', all(ieee_is_nan(y)))
-  end subroutine test_without_dense_output
 
   !> Verner's 8th-order interpolant: one step from the exact y(t0) leaves an error C(theta) h**9
   !> inside the step (exponent = order + 1), measured at mid-step for h = 0.8 ... 0.2 on the

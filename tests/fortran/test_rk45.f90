@@ -8,7 +8,8 @@ program test_rk45
   use sloshdyn_dopri5, only: dopri5_integrator
   use sloshdyn_integrator, only: integrate, METHOD_DOPRI5
   use rk_checks, only: riccati, oscillator, check_orders, fixed_step_errors, dense_output_errors, &
-                       check_stepwise_api, check_failures, check_bad_input
+                       check_stepwise_api, check_failures, check_bad_input, &
+                       check_without_dense_output
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -18,6 +19,7 @@ program test_rk45
   call test_dense_output_order()
   call test_adaptive_tolerances()
   call check_stepwise_api(METHOD_DOPRI5)
+  call check_without_dense_output(METHOD_DOPRI5)
   call test_peak_tracker()
   call check_failures(METHOD_DOPRI5)
   call check_bad_input(METHOD_DOPRI5)
