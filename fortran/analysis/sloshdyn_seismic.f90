@@ -166,9 +166,11 @@ contains
     if (props%modes > 1) call add_higher_modes(props, model, tank%sloshing_damping, &
                                                history(1:4, :), table, peaks, status, message)
     if (status /= SD_OK) return
-    call roof_contact(model, props, tau, options, method, peaks(PEAKS_ROOF_REACHED:), &
-                      table(SEISMIC_ROWS, :), status, message)
-    ! the roof loads of the free wave (sloshdyn_roof), beside the model's impact force
+    call roof_contact(model, props, tank%sloshing_damping, tau, table(1, :), table(2, :), &
+                      options, method, peaks(PEAKS_ROOF_REACHED:), table(SEISMIC_ROWS, :), &
+                      status, message)
+    ! the roof loads of the free wave's height at the wall, all modes summed (sloshdyn_roof),
+    ! beside the model's impact force
     if (status == SD_OK .and. tank%shape == SHAPE_CIRCULAR) &
       call roof_loads(tank%radius, tank%freeboard, tank%roof_slope, tank%roof_radius, &
                       peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
@@ -196,14 +198,9 @@ contains
                                         beta_sensitive_force*props%sloshing_mass*tank%gravity)
   end subroutine run_traceability
 
-  !> Modes 2..N of the tank (props%modes = N > 1) in the time histories: each a linear oscillator
-  !> x_n'' + 2 zeta omega_n x_n' + omega_n^2 x_n = -a_t(t) on the tank's acceleration a_t (from
-  !> the state of the model, which counts m_2..m_N as rigid: their reaction on the tank is left
-  !> out), a_t linear between the output times and each x_n exact for that (Nigam & Jennings,
-  !> sloshdyn_sdof). Added to the wave height at the wall (wave_n x_n/l_n, the linear wave of
-  !> sloshdyn_tank), the base shear (m_n x_n'') and the overturning moment (m_n h_n (a_t + x_n''),
-  !> the model's rigid mass at its height having left them out); the peaks of those three are
-  !> then the largest at the output times.
+  !> Modes 2..N of the tank (props%modes = N > 1) in the time histories: modal_responses on
+  !> the model's run, added to the wave height, base shear and overturning moment rows of the
+  !> table, whose peaks are then the largest at the output times.
   subroutine add_higher_modes(props, model, damping, states, table, peaks, status, message)
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: model
@@ -213,33 +210,53 @@ contains
     character(len=message_len), intent(out) :: message
     integer, parameter :: summed(3) = [SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, &
                                        SEISMIC_OVERTURNING_MOMENT]
-    real(wp) :: dydt(4), accel(size(states, 2)), x(size(states, 2)), v(size(states, 2)), &
-                a_abs(size(states, 2))
     integer :: i, n, row
-    status = SD_OK
-    message = ''
-    if (size(accel) < 2) return
-    do i = 1, size(accel)
-      call equations_of_motion(model, props%omega*table(1, i), states(:, i), dydt)
-      accel(i) = tank_acceleration(props, model, states(:, i), dydt, table(2, i))
-    end do
-    do n = 2, props%modes
-      call sdof_response(table(1, 2) - table(1, 1), accel, 2*pi/props%modal_period(n), damping, &
-                         0.0_wp, 0.0_wp, x, v, a_abs, status, message)
-      if (status /= SD_OK) return
-      associate (wave => table(SEISMIC_WAVE_HEIGHT, :), shear => table(SEISMIC_BASE_SHEAR, :), &
-                 moment => table(SEISMIC_OVERTURNING_MOMENT, :))
-        wave = wave + props%modal_wave(n)*x/props%modal_length(n)
-        shear = shear + props%modal_mass(n)*(a_abs - accel)
-        moment = moment + props%modal_mass(n)*props%modal_height(n)*a_abs
-      end associate
-    end do
+    call modal_responses(props, model, damping, table(1, :), table(2, :), states, &
+                         table(SEISMIC_WAVE_HEIGHT, :), status, message, &
+                         table(SEISMIC_BASE_SHEAR, :), table(SEISMIC_OVERTURNING_MOMENT, :))
+    if (status /= SD_OK) return
     do n = 1, size(summed)
       row = summed(n)
       i = maxloc(abs(table(row, :)), dim=1)
       peaks(2*row - 3:2*row - 2) = [abs(table(row, i)), table(1, i)]
     end do
   end subroutine add_higher_modes
+
+  !> Modes 2..N of the tank (props%modes = N > 1) along a run of the model (states at the times
+  !> t [s], ground acceleration ground [m/s^2] there): each a linear oscillator
+  !> x_n'' + 2 zeta omega_n x_n' + omega_n^2 x_n = -a_t(t) on the tank's acceleration a_t (from
+  !> the state of the model, which counts m_2..m_N as rigid: their reaction on the tank is left
+  !> out), a_t linear between the output times and each x_n exact for that (Nigam & Jennings,
+  !> sloshdyn_sdof). Added to the wave height at the wall (wave_n x_n/l_n, the linear wave of
+  !> sloshdyn_tank) and, when given, the base shear (m_n x_n'') and the overturning moment
+  !> (m_n h_n (a_t + x_n''), the model's rigid mass at its height having left them out).
+  subroutine modal_responses(props, model, damping, t, ground, states, wave, status, message, &
+                             shear, moment)
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: damping, t(:), ground(:), states(:, :)
+    real(wp), intent(inout) :: wave(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), intent(inout), optional :: shear(:), moment(:)
+    real(wp) :: dydt(4), accel(size(t)), x(size(t)), v(size(t)), a_abs(size(t))
+    integer :: i, n
+    status = SD_OK
+    message = ''
+    if (size(t) < 2) return
+    do i = 1, size(t)
+      call equations_of_motion(model, props%omega*t(i), states(:, i), dydt)
+      accel(i) = tank_acceleration(props, model, states(:, i), dydt, ground(i))
+    end do
+    do n = 2, props%modes
+      call sdof_response(t(2) - t(1), accel, 2*pi/props%modal_period(n), damping, &
+                         0.0_wp, 0.0_wp, x, v, a_abs, status, message)
+      if (status /= SD_OK) return
+      wave = wave + props%modal_wave(n)*x/props%modal_length(n)
+      if (present(shear)) shear = shear + props%modal_mass(n)*(a_abs - accel)
+      if (present(moment)) moment = moment + props%modal_mass(n)*props%modal_height(n)*a_abs
+    end do
+  end subroutine modal_responses
 
   !> The loads (rows 2..LOAD_ROWS of tank_loads) of the state y at tau.
   pure subroutine load_values(self, t, y, g)
@@ -262,20 +279,24 @@ contains
   !> Whether and when the wave reaches the roof, independent of the contact model (beta, delta):
   !> until the liquid touches the roof the roof exerts no force, so the motion up to the first
   !> contact is that of the tank without a roof, and contact begins when that free wave's
-  !> height at the wall, 2 R/(xi^2 - 1) sin(theta), reaches the freeboard, i.e. |x1| = 1. The
-  !> free motion (beta = delta = 0, the same supports and damping) is integrated from rest over
-  !> the output times tau (free_wave: its wave height at the wall there [m]) and the entries of
-  !> |x1| into [1, inf) are located on its dense output
-  !> (peak_tracker). The smooth wall of eq (4) pushes back before |x1| = 1 (at x1 = 0.9 with
-  !> n = 6 already 0.31 beta m g), so the model's own x1 would depend on beta. After the first
-  !> contact the free wave is what the design codes and Malhotra compare with the freeboard:
-  !> its entries above the freeboard are counted and its largest height is reported.
-  !> roof(1:5) = [reached (1/0), first contact [s] (NaN: none), entries, largest free wave
-  !> height [m], its excess over the freeboard [m] (negative: the margin left)].
-  subroutine roof_contact(model, props, tau, options, method, roof, free_wave, status, message)
+  !> height at the wall reaches the freeboard. The free motion (beta = delta = 0, the same
+  !> supports and damping) is integrated from rest over the output times tau (t [s], ground
+  !> acceleration ground [m/s^2] there; free_wave: its wave height at the wall [m]). With one
+  !> mode the free wave is mode 1's, 2 R/(xi^2 - 1) sin(theta), and the entries of |x1| into
+  !> [1, inf) are located on the dense output (peak_tracker). The smooth wall of eq (4) pushes
+  !> back before |x1| = 1 (at x1 = 0.9 with n = 6 already 0.31 beta m g), so the model's own x1
+  !> would depend on beta. With N > 1 modes the free wave at the wall is mode 1's plus the linear
+  !> waves of modes 2..N driven by the free tank's acceleration (modal_responses), known at the
+  !> output times only: the verdict is then that sum's at the output times (sampled_roof).
+  !> After the first contact the free wave is what the design codes and Malhotra compare with
+  !> the freeboard: its entries above the freeboard are counted and its largest height is
+  !> reported. roof(1:5) = [reached (1/0), first contact [s] (NaN: none), entries, largest free
+  !> wave height [m], its excess over the freeboard [m] (negative: the margin left)].
+  subroutine roof_contact(model, props, damping, tau, t, ground, options, method, roof, &
+                          free_wave, status, message)
     type(model_t), intent(in) :: model
     type(tank_properties), intent(in) :: props
-    real(wp), intent(in) :: tau(:)
+    real(wp), intent(in) :: damping, tau(:), t(:), ground(:)
     type(ode_options), intent(in) :: options
     integer, intent(in) :: method
     real(wp), intent(out) :: roof(:), free_wave(:)
@@ -301,14 +322,42 @@ contains
       return
     end if
     freeboard = props%wave_factor*sin(model%theta0)
-    roof(1:5) = [merge(1.0_wp, 0.0_wp, tracker%crossings(1) > 0), &
-                 tracker%first_crossing(1)/props%omega, real(tracker%crossings(1), wp), &
-                 props%wave_factor*sin(min(model%theta0*tracker%peak(1), pi/2)), &
-                 0.0_wp]
-    roof(5) = roof(4) - freeboard
     ! eta = wave_factor sin(theta) at the outputs (sloshdyn_vessel's wave height)
     free_wave = props%wave_factor*sin(model%theta0*history(1, :))
+    if (props%modes == 1) then
+      roof(1:4) = [merge(1.0_wp, 0.0_wp, tracker%crossings(1) > 0), &
+                   tracker%first_crossing(1)/props%omega, real(tracker%crossings(1), wp), &
+                   props%wave_factor*sin(min(model%theta0*tracker%peak(1), pi/2))]
+    else
+      call modal_responses(props, free, damping, t, ground, history(1:4, :), free_wave, &
+                           status, message)
+      if (status /= SD_OK) return
+      roof(1:4) = sampled_roof(free_wave, t, freeboard)
+    end if
+    roof(5) = roof(4) - freeboard
   end subroutine roof_contact
+
+  !> The roof verdict of a wave eta at the wall sampled at the times t [s], against the
+  !> freeboard f: [reached (1/0), the first time |eta| reaches f (linear between the samples;
+  !> NaN: never), the entries of |eta| into [f, inf) (a first sample there counts, as
+  !> peak_tracker's), the largest |eta| [m]].
+  pure function sampled_roof(eta, t, freeboard) result(roof)
+    real(wp), intent(in) :: eta(:), t(:), freeboard
+    real(wp) :: roof(4)
+    logical :: above(size(eta))
+    integer :: i
+    above = abs(eta) >= freeboard
+    i = findloc(above, .true., dim=1)
+    roof = [merge(1.0_wp, 0.0_wp, i > 0), ieee_value(1.0_wp, ieee_quiet_nan), &
+            real(count(above(2:) .and. .not. above(:size(eta) - 1)) + merge(1, 0, above(1)), wp), &
+            maxval(abs(eta))]
+    if (i == 1) then
+      roof(2) = t(1)
+    else if (i > 1) then
+      roof(2) = t(i - 1) + (t(i) - t(i - 1))*(freeboard - abs(eta(i - 1)))/ &
+                (abs(eta(i)) - abs(eta(i - 1)))
+    end if
+  end function sampled_roof
 
   !> The tank's sloshing parameters by sloshdyn's model and by the design codes, one row per
   !> source (sloshdyn, API 650, EC8-4, ACI 350.3) in the 'design_codes' layout: convective

@@ -443,8 +443,8 @@ class SeismicResponse:
     the sloshing mass relative to the tank), wave_height [m] (at the wall), pendulum_angle
     [rad], tank_drift [m] (relative to the ground), impact_force [N] (roof/walls on the
     liquid), base_shear [N] and overturning_moment [N m] (about the tank bottom), x1, x2,
-    free_wave_height [m] (the wave at the wall of the tank without a roof, what the roof verdict
-    judges) (the columns of seismic.csv, `table` holds them in order); `peak_table` (the columns
+    free_wave_height [m] (the wave at the wall of the tank without a roof, summed over the
+    modes, what the roof verdict judges) (the columns of seismic.csv, `table` holds them in order); `peak_table` (the columns
     of seismic_peaks.csv: also the free wave's peak free_wave_height, roof_excess, the roof loads
     roof_head, roof_uplift_force, confined_convective_mass, and the run's scale_factor,
     sa_sloshing_period [m/s^2] and beta_sensitive), `peaks` {quantity: (largest |value|, its
