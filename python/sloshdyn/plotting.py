@@ -160,7 +160,7 @@ def _tank_title(tank):
 def seismic(response, loads=("wave_height", "base_shear", "overturning_moment")):
     """A SeismicResponse for a report: the ground acceleration [g] on top, then each load
     against t [s] in SI units (forces in kN, moments in kN m), the roof at +-freeboard on the
-    wave height, and each peak marked."""
+    wave height, and each peak marked; the legends stand right of the panels, off the curves."""
     units = {"wave_height": ("wave height at the wall [m]", 1.0),
              "sloshing_displacement": ("sloshing displacement [m]", 1.0),
              "pendulum_angle": ("pendulum angle [rad]", 1.0),
@@ -172,7 +172,7 @@ def seismic(response, loads=("wave_height", "base_shear", "overturning_moment"))
         if load not in units:
             raise ValueError(f"load {load!r} is not known; choose from {', '.join(units)}")
     fig, axes = plt.subplots(len(loads) + 1, 1, sharex=True,
-                             figsize=(8, 1.9 * (len(loads) + 1) + 0.6))
+                             figsize=(10.5, 1.9 * (len(loads) + 1) + 0.6))
     t = response.t
     axes[0].plot(t, response.ground_acceleration / _G, lw=0.6, color="0.3")
     axes[0].set_ylabel("ground\nacceleration [g]")
@@ -194,7 +194,7 @@ def seismic(response, loads=("wave_height", "base_shear", "overturning_moment"))
                 ax.axhline(sign * response.tank.freeboard, ls="--", color="b", lw=0.8,
                            label="roof (freeboard)" if sign > 0 else None)
         ax.set_ylabel(label.replace(" [", "\n["))
-        ax.legend(loc="upper right", fontsize=8)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0, fontsize=8)
     axes[-1].set_xlabel("time t [s]")
     axes[0].set_title(_tank_title(response.tank) + "\n" + _ground_title(response), fontsize=9)
     fig.tight_layout()

@@ -265,3 +265,26 @@ def test_the_beta_sensitivity_warning_follows_the_wall_force():
         assert run.beta_sensitive is flagged is rule
         assert bool(run.warnings) is flagged
         assert ("sensitive to beta and delta" in repr(run)) is flagged
+
+
+def test_the_seismic_figures_legends_leave_the_curves_free():
+    """seismic.png: no legend covers a curve. After drawing, each panel's legend box
+    (matplotlib's get_window_extent) overlaps neither the window extent of any line the panel
+    draws (the model's and the free wave, the peak marker, the roof at +-freeboard) nor the
+    panel's data area (before, the wave panel's legend sat inside its upper right corner, on
+    the curves and the roof line)."""
+    from sloshdyn import plotting
+    inp = sloshdyn.read_namelist(EXAMPLES / "tank_rectangular_seismic.nml")
+    fig = plotting.seismic(sloshdyn.seismic_response(inp.tank, inp.ground_motion))
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    legends = [ax for ax in fig.axes if ax.get_legend() is not None]
+    assert len(legends) == 3                         # wave height, base shear, moment
+    for ax in legends:
+        box = ax.get_legend().get_window_extent(renderer)
+        assert not box.overlaps(ax.get_window_extent(renderer)), ax.get_ylabel()
+        for line in ax.get_lines():
+            assert not box.overlaps(line.get_window_extent(renderer)), (ax.get_ylabel(),
+                                                                         line.get_label())
+    import matplotlib.pyplot as plt
+    plt.close(fig)
