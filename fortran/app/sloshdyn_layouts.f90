@@ -45,6 +45,7 @@ module sloshdyn_layouts
   public :: to_tank, from_tank, to_ground, from_ground, to_chart, from_chart, from_chart_range
   public :: from_analysis, from_simulation, from_sweep, from_response_range, from_seismic, &
             from_study
+  public :: field_index
 
   !> One field of a layout: its name; its kind ('real', 'integer', 'flag' (1/0), or 'code:LIST',
   !> a code of the enumerated option LIST that names() answers); what it is, with its unit (the
@@ -599,4 +600,14 @@ contains
     counts = [real(stats%n_rhs, wp), real(stats%n_accepted, wp), real(stats%n_rejected, wp), &
               stats%t_reached]
   end function counts_array
+
+  !> The position of the field named `field` in the named layout (names are case-sensitive:
+  !> 'physical' has both M and m); 0 when there is none. The bridge fills and reads the small
+  !> results (pendulum, physical, groups, natural_frequencies) by these names, never by number.
+  pure integer function field_index(layout, field)
+    character(len=*), intent(in) :: layout, field
+    type(field_t), allocatable :: fields(:)
+    fields = layout_of(layout)
+    field_index = findloc(fields%name, field, dim=1)
+  end function field_index
 end module sloshdyn_layouts

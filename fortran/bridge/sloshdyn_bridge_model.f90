@@ -26,37 +26,56 @@ module sloshdyn_bridge_model
 
 contains
 
-  !> Equivalent pendulum of a cylindrical tank, eq (2)-(3):
-  !> pendulum = [l, m, d1, m0, d0, m_F].
+  !> Equivalent pendulum of a cylindrical tank, eq (2)-(3): pendulum in the 'pendulum' layout
+  !> (l, m, d1, m0, d0, m_F), filled by the layout's field names.
   subroutine tank_pendulum(radius, depth, density, liquid_mass, pendulum, status, message)
     !f2py threadsafe
-    use sloshdyn_layouts, only: PENDULUM_SIZE
+    use sloshdyn_layouts, only: PENDULUM_SIZE, field_index
     use sloshdyn_tank, only: core => tank_pendulum
     real(c_double), intent(in) :: radius, depth, density, liquid_mass
     real(c_double), intent(out) :: pendulum(PENDULUM_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
-    call core(radius, depth, density, liquid_mass, pendulum(1), pendulum(2), pendulum(3), &
-              pendulum(4), pendulum(5), pendulum(6), info, message)
+    call core(radius, depth, density, liquid_mass, &
+              l=pendulum(field_index('pendulum', 'pendulum_length')), &
+              m=pendulum(field_index('pendulum', 'sloshing_mass')), &
+              d1=pendulum(field_index('pendulum', 'd1')), &
+              m0=pendulum(field_index('pendulum', 'rigid_mass')), &
+              d0=pendulum(field_index('pendulum', 'd0')), &
+              mf=pendulum(field_index('pendulum', 'liquid_mass')), status=info, message=message)
     status = info
   end subroutine tank_pendulum
 
-  !> Dimensionless groups of eq (9): physical = [M, L, k, c, b, d, g, theta0, l, m],
-  !> groups = [s1, mu1, kappa, beta, gamma, delta].
+  !> Dimensionless groups of eq (9): physical in the 'physical' layout (M, L, k, c, b, d, g,
+  !> theta0, l, m), groups in the 'groups' layout (s1, mu1, kappa, beta, gamma, delta), both
+  !> read and filled by the layouts' field names.
   subroutine dimensionless_groups(physical, groups, status, message)
     !f2py threadsafe
-    use sloshdyn_layouts, only: PHYSICAL_SIZE, GROUPS_SIZE
+    use sloshdyn_layouts, only: PHYSICAL_SIZE, GROUPS_SIZE, field_index
     use sloshdyn_model, only: model_from_physical
     real(c_double), intent(in) :: physical(PHYSICAL_SIZE)
     real(c_double), intent(out) :: groups(GROUPS_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
-    call model_from_physical(physical(1), physical(2), physical(3), physical(4), physical(5), &
-                             physical(6), physical(7), physical(8), physical(9), physical(10), &
-                             groups(1), groups(2), groups(3), groups(4), groups(5), groups(6), &
-                             info, message)
+    call model_from_physical(total_mass=physical(field_index('physical', 'M')), &
+                             rod_length=physical(field_index('physical', 'L')), &
+                             stiffness=physical(field_index('physical', 'k')), &
+                             rod_damping=physical(field_index('physical', 'c')), &
+                             impact_coef=physical(field_index('physical', 'b')), &
+                             dissipation_coef=physical(field_index('physical', 'd')), &
+                             gravity=physical(field_index('physical', 'g')), &
+                             theta0=physical(field_index('physical', 'theta0')), &
+                             pendulum_length=physical(field_index('physical', 'l')), &
+                             sloshing_mass=physical(field_index('physical', 'm')), &
+                             s1=groups(field_index('groups', 's1')), &
+                             mu1=groups(field_index('groups', 'mu1')), &
+                             kappa=groups(field_index('groups', 'kappa')), &
+                             beta=groups(field_index('groups', 'beta')), &
+                             gamma=groups(field_index('groups', 'gamma')), &
+                             delta=groups(field_index('groups', 'delta')), &
+                             status=info, message=message)
     status = info
   end subroutine dimensionless_groups
 
@@ -116,7 +135,7 @@ contains
                                  message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
-    use sloshdyn_layouts, only: NATURAL_FREQUENCIES_SIZE
+    use sloshdyn_layouts, only: NATURAL_FREQUENCIES_SIZE, field_index
     use sloshdyn_linear, only: stiffness_matrix, core => natural_frequencies, &
                                natural_frequencies_eig, modal_matrix
     real(c_double), intent(in) :: rpar(n_real_params)
@@ -128,8 +147,12 @@ contains
     integer :: info
     omegas = 0; stiffness = 0; modal = 0; modal_inverse = 0
     call model_from_arrays(rpar, int(ipar), model, info, message)
-    if (info == 0) call core(model, omegas(1), omegas(2), info, message)
-    if (info == 0) call natural_frequencies_eig(model, omegas(3), omegas(4), info, message)
+    if (info == 0) call core(model, omegas(field_index('natural_frequencies', 'omega1')), &
+                             omegas(field_index('natural_frequencies', 'omega2')), info, message)
+    if (info == 0) call natural_frequencies_eig(model, &
+                          omegas(field_index('natural_frequencies', 'omega1_dgeev')), &
+                          omegas(field_index('natural_frequencies', 'omega2_dgeev')), info, &
+                          message)
     if (info == 0) call modal_matrix(model, modal, modal_inverse, info, message)
     if (info == 0) stiffness = stiffness_matrix(model)
     status = info
