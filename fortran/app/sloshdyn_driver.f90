@@ -5,7 +5,7 @@
 module sloshdyn_driver
   use, intrinsic :: iso_fortran_env, only: output_unit
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, status_name
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
   use sloshdyn_excitation, only: forcing_period, PARAMETER_RHO, PARAMETER_A, &
@@ -22,8 +22,7 @@ module sloshdyn_driver
                              PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, &
                              PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, PEAKS_SCALE_FACTOR, &
                              PEAKS_SA, PEAKS_BETA_SENSITIVE, table_header, &
-                             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
-                             TANK_MODES_ROWS, &
+                             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, &
                              HARMONIC_SWEEP_ROWS, CHART_CURVE_ROWS, &
                              CHART_CODIM2_ROWS, CHART_END_ROWS, CHART_GRID_ROWS, code_name, &
                              CHART_GRID_N_STABLE, CHART_GRID_NEAR_CURVE, &
@@ -37,7 +36,6 @@ module sloshdyn_driver
                              kappa_for_detuning
   use sloshdyn_equilibria, only: equilibria, trivial_routh_hurwitz
   use sloshdyn_ode, only: ode_stats
-  use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_simulation, only: time_history, steady_state, parameter_sweep, independent_sweep
   use sloshdyn_response, only: frequency_response
   use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent, &
@@ -56,17 +54,16 @@ module sloshdyn_driver
                                       chart_table_sizes, chart_kind, chart_codim2_kind
   use sloshdyn_slowflow_chart, only: chart_parameter_name
   use sloshdyn_seismic, only: seismic_response, seismic_defaults, design_code_checks, &
-                              tank_summary, harmonic_sweep, tank_modes
+                              harmonic_sweep
   use sloshdyn_ground, only: ground_duration, GROUND_RECORD, ground_motion_t
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_layouts, only: counts_array
-  use sloshdyn_tank, only: SHAPE_CIRCULAR, max_modes
+  use sloshdyn_driver_common, only: begin_files, in_context, used_method, value_text, &
+                                    difference, pad
+  use sloshdyn_tank, only: SHAPE_CIRCULAR
   implicit none
   private
   public :: run_analysis, print_model, sweep_points, design_codes_table
-  !> Used by the submodule sloshdyn_driver_tank too; public because gfortran does not export a
-  !> module's private procedures to its submodules' object files.
-  public :: begin_files, in_context, used_method, value_text, difference, pad
 
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
   !> Room for the slow-flow response table and its special points.
@@ -218,19 +215,6 @@ contains
     if (status == SD_OK) call files%write_table('chart_grid.csv', 'chart_grid', grid, status, &
                                                 message)
   end subroutine run_chart
-
-  !> A failed step: keep the status, put the context (and the kind of failure) in the message.
-  pure subroutine in_context(context, status, message)
-    character(len=*), intent(in) :: context
-    integer, intent(in) :: status
-    character(len=message_len), intent(inout) :: message
-    if (status == SD_OK) return
-    if (status == SD_BAD_INPUT) then
-      message = context//': '//trim(message)
-    else
-      message = context//': '//status_name(status)//': '//trim(message)
-    end if
-  end subroutine in_context
 
   !> Linear analysis (sec 3.1-3.2): coefficients, natural frequencies, equilibria with their
   !> eigenvalues and verdicts, Routh-Hurwitz at the trivial equilibrium, kappa for 3:1.
@@ -750,43 +734,6 @@ contains
     end associate
   end subroutine run_lyapunov_spectrum
 
-  !> Create the output directory (only once the analysis succeeded) and write the parameters
-  !> (and, for a tank, its properties and the design-code cross-check).
-  subroutine begin_files(config, files, status, message)
-    type(run_config), intent(in) :: config
-    type(result_files), intent(inout) :: files
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    real(wp) :: row(TANK_SI_SIZE), codes(CODES_COLUMNS, CODES_ROWS), &
-                modes(TANK_MODES_ROWS, max_modes)
-    integer :: i, n_codes
-    call files%create(config%directory, status, message)
-    if (status /= SD_OK) return
-    associate (m => config%model)
-      call files%write_table('parameters.csv', 'parameters', reshape([m%s1, m%mu1, m%kappa, &
-                             m%theta0, m%beta, m%gamma, m%delta, m%zeta, real(m%n, wp), &
-                             real(m%p, wp), m%excitation%A, m%excitation%rho, m%a_coef, &
-                             m%b_coef], [table_size('parameters'), 1]), status, message)
-    end associate
-    if (status /= SD_OK .or. .not. config%dimensional) return
-    call tank_summary(config%tank, config%tank_props, config%model, row)
-    call files%write_table('tank.csv', 'tank_si', reshape(row, [TANK_SI_SIZE, 1]), status, &
-                           message)
-    if (status == SD_OK .and. config%tank_props%modes > 1) then
-      call tank_modes(config%tank_props, modes(:, 1:config%tank_props%modes))
-      call files%write_table('tank_modes.csv', 'tank_modes', &
-                             modes(:, 1:config%tank_props%modes), status, message)
-    end if
-    if (status == SD_OK) call design_code_checks(config%tank, config%ground, config%has_ground, &
-                                                 codes, status, message)
-    ! the modal sums only with modes > 1
-    n_codes = merge(CODES_ROWS, CODES_SOURCES, config%tank_props%modes > 1)
-    if (status == SD_OK) call files%write_table('design_codes.csv', 'design_codes', &
-                                                reshape([(real(i, wp), codes(:, i), &
-                                                i = 1, n_codes)], &
-                                                [CODES_COLUMNS + 1, n_codes]), status, message)
-  end subroutine begin_files
-
   subroutine print_model(config)
     type(run_config), intent(in) :: config
     print '(a)', 'sloshdyn: '//trim(known_analyses(config%analysis))
@@ -824,32 +771,6 @@ contains
       label = 'f [Hz]'
     end select
   end function parameter_label
-
-  pure function value_text(x) result(text)
-    real(wp), intent(in) :: x
-    character(len=:), allocatable :: text
-    if (x /= x) then
-      text = '-'
-    else
-      text = num2str(x, significant=6)
-    end if
-  end function value_text
-
-  pure function difference(x, reference) result(text)
-    real(wp), intent(in) :: x, reference
-    character(len=:), allocatable :: text
-    text = ''
-    if (x == x .and. reference == reference .and. reference /= 0) &
-      text = ' ('//trim(percent(100*(x - reference)/reference))//')'
-  end function difference
-
-  pure function percent(x) result(text)
-    real(wp), intent(in) :: x
-    character(len=:), allocatable :: text
-    character(len=16) :: buffer
-    write (buffer, '(sp, f16.1)') x
-    text = trim(adjustl(buffer))//'%'
-  end function percent
 
   subroutine print_summary(summary)
     real(wp), intent(in) :: summary(SUMMARY_SIZE)
@@ -906,20 +827,4 @@ contains
       text = text//', '//num2str(values(i))
     end do
   end function list
-
-  pure function pad(text, width) result(padded)
-    character(len=*), intent(in) :: text
-    integer, intent(in) :: width
-    character(len=max(width, len(text) + 1)) :: padded
-    padded = text
-  end function pad
-
-  !> The name of the integration method that runs, as the summaries print it: the method, or
-  !> for 'auto' the one chosen for rtol, e.g. 'dop853 by auto'.
-  function used_method(config) result(name)
-    type(run_config), intent(in) :: config
-    character(len=:), allocatable :: name
-    name = method_name(chosen_method(config%method, config%integration%rtol))
-    if (config%method == METHOD_AUTO) name = name//' by auto'
-  end function used_method
 end module sloshdyn_driver
