@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _checks, _core, _tables
-from ._errors import InputError, check_status
+from ._errors import check_status
 
 _bridge = _core.sloshdyn_bridge_pressure
 #: points of the default profiles: evenly spaced heights on the wall and radii on the base
@@ -122,10 +122,6 @@ def wall_pressure(tank, impulsive_acceleration, convective_accelerations=(), *, 
     theta = _checks.real("angle", angle)
     combination = _checks.choice("combination", combination,
                                  list(_tables.codes("pressure_combinations").values()))
-    if tank.shape != "circular":
-        raise InputError(f"shape = {tank.shape!r}: the wall pressure is coded for circular "
-                         "tanks only (EN 1998-4 A.2.1); a rectangular tank's closed forms "
-                         "(Graham & Rodriguez 1952) are not")
     z = (np.linspace(0.0, tank.liquid_depth, DEFAULT_HEIGHTS) if heights is None
          else _checks.reals("heights", heights, ndim=1))
     r = (np.linspace(0.0, tank.radius, DEFAULT_RADII) if radii is None
