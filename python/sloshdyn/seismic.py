@@ -165,13 +165,12 @@ class Tank:
         return self.properties["theta0"]
 
     def wall_pressure(self, impulsive_acceleration, convective_accelerations=(), heights=None,
-                      angle=0.0, **options):
+                      angle=0.0, *, radii=None, combination="srss"):
         """The hydrodynamic pressure on the wall and base under the impulsive acceleration and
-        the convective accelerations of modes 1..N [m/s^2] (pressure.wall_pressure, whose
-        keywords `options` takes: radii, combination)."""
+        the convective accelerations of modes 1..N [m/s^2] (pressure.wall_pressure)."""
         from .pressure import wall_pressure
         return wall_pressure(self, impulsive_acceleration, convective_accelerations,
-                             heights=heights, angle=angle, **options)
+                             heights=heights, radii=radii, angle=angle, combination=combination)
 
     def parameters(self, ground_motion=None) -> Parameters:
         """The dimensionless model (Parameters) of the tank; with harmonic ground motion, its
