@@ -35,7 +35,8 @@ module sloshdyn_tables
             PEAKS_SA, PEAKS_BETA_SENSITIVE, &
             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
-  public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS
+  public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
+            PRESSURE_INSTANT_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
             CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
@@ -204,6 +205,12 @@ module sloshdyn_tables
     'height_ebp [m],height_ibp [m],base_shear [N],moment_ebp [N m],moment_ibp [N m]'
   integer, parameter :: WALL_PRESSURE_ROWS = 5, BASE_PRESSURE_ROWS = 4, &
                         PRESSURE_RESULTANT_ROWS = 7
+  !> Instants of a seismic run (sloshdyn_seismic_pressure), one column each: the output time,
+  !> the tank's acceleration, and the loads of the pressures and the shell's inertia.
+  character(len=*), parameter :: pressure_instant_columns = 't [s],'// &
+    'tank_acceleration [m/s^2],base_shear [N],overturning_moment [N m],'// &
+    'overturning_moment_ibp [N m]'
+  integer, parameter :: PRESSURE_INSTANT_ROWS = 5
 
 contains
 
@@ -302,6 +309,8 @@ contains
       header = base_pressure_columns
     case ('pressure_resultants')
       header = pressure_resultant_columns
+    case ('pressure_instants')
+      header = pressure_instant_columns
     case default
       header = ''
     end select

@@ -33,7 +33,7 @@ module sloshdyn_wall_pressure
   private
   public :: impulsive_series, new_impulsive_series, impulsive_wall, impulsive_base, &
             impulsive_resultants, convective_coefficient, convective_resultants, &
-            scaled_bessel_i, pressure_tables, check_pressure_input
+            scaled_bessel_i, pressure_tables, check_pressure_input, instant_pressure_tables
   public :: COMBINE_SRSS, COMBINE_SUM, combination_names, max_aspect_ratio, series_tolerance
 
   !> How the table combines components whose peaks need not be simultaneous: SRSS (the
@@ -343,6 +343,28 @@ contains
     end do
   end subroutine check_pressure_input
 
+  !> The tank's properties (sloshdyn_vessel's tank_model, which checks the tank), the checks of
+  !> check_pressure_input, gamma = H/R and the liquid density rho [kg/m^3].
+  pure subroutine prepare(tank, acceleration, mode_accelerations, angle, combination, heights, &
+                          radii, props, gamma, rho, status, message)
+    type(tank_t), intent(in) :: tank
+    real(wp), intent(in) :: acceleration, mode_accelerations(:), angle, heights(:), radii(:)
+    integer, intent(in) :: combination
+    type(tank_properties), intent(out) :: props
+    real(wp), intent(out) :: gamma, rho
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: model
+    gamma = 0
+    rho = 0
+    call tank_model(tank, model, props, status, message)
+    call check_pressure_input(tank, acceleration, mode_accelerations, angle, combination, &
+                              heights, radii, status, message)
+    if (status /= SD_OK) return
+    gamma = tank%liquid_depth/tank%radius
+    rho = props%liquid_mass/(pi*tank%radius**2*tank%liquid_depth)
+  end subroutine prepare
+
   !> The tables 'wall_pressure' (one column per height z: z [m], impulsive, convective and
   !> total pressure [Pa], hoop force [N/m] = total pressure x R), 'base_pressure' (one column
   !> per radius r: r [m], impulsive, convective, total [Pa]) and 'pressure_resultants' (one
@@ -366,7 +388,6 @@ contains
                              resultants(PRESSURE_RESULTANT_ROWS, size(convective_accelerations) + 1)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: model
     type(tank_properties) :: props
     type(impulsive_series) :: series
     real(wp) :: gamma, rho, modal(size(convective_accelerations)), mass, h, h_ibp
@@ -375,15 +396,12 @@ contains
     wall = 0
     base = 0
     resultants = 0
-    call tank_model(tank, model, props, status, message)
-    call check_pressure_input(tank, impulsive_acceleration, convective_accelerations, angle, &
-                              combination, heights, radii, status, message)
+    call prepare(tank, impulsive_acceleration, convective_accelerations, angle, combination, &
+                 heights, radii, props, gamma, rho, status, message)
     if (status /= SD_OK) return
     modes = size(convective_accelerations)
     associate (big_r => tank%radius, big_h => tank%liquid_depth, a_g => impulsive_acceleration, &
                a_n => convective_accelerations, cos_theta => cos(angle))
-      gamma = big_h/big_r
-      rho = props%liquid_mass/(pi*big_r**2*big_h)
       series = new_impulsive_series(gamma)
       do i = 1, size(heights)
         modal = [(convective_coefficient(n, gamma, 1.0_wp, heights(i)/big_h)*rho*big_r*a_n(n), &
@@ -435,4 +453,55 @@ contains
       end associate
     end function resultant_row
   end subroutine pressure_tables
+
+  !> The tables 'wall_pressure' and 'base_pressure' of one instant of a time history with N
+  !> sloshing modes (N = size(mode_accelerations)), from the tank's absolute acceleration a_t
+  !> and the modes' a_1..a_N [m/s^2] (docs/pressure.md, "Accelerations to use"): the liquid
+  !> moves as a rigid body with the tank but for the N modes' motion relative to it, so
+  !>   p = rho r cos(theta) a_t + sum_{n<=N} p_cn (a_n - a_t),
+  !> reported as the part moving with the tank (impulsive_pressure: rho r cos(theta) a_t minus
+  !> the N modes' pressures at a_t, that is p_i a_t plus the unmodelled modes' p_cn a_t), the
+  !> modes' part (convective_pressure: sum p_cn a_n) and their sum; at angle theta [rad].
+  pure subroutine instant_pressure_tables(tank, tank_acceleration, mode_accelerations, angle, &
+                                          heights, radii, wall, base, status, message)
+    type(tank_t), intent(in) :: tank
+    real(wp), intent(in) :: tank_acceleration, mode_accelerations(:), angle, heights(:), radii(:)
+    real(wp), intent(out) :: wall(WALL_PRESSURE_ROWS, size(heights)), &
+                             base(BASE_PRESSURE_ROWS, size(radii))
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_properties) :: props
+    real(wp) :: gamma, rho, coefficients(size(mode_accelerations))
+    integer :: i, n, modes
+
+    wall = 0
+    base = 0
+    call prepare(tank, tank_acceleration, mode_accelerations, angle, COMBINE_SUM, heights, &
+                 radii, props, gamma, rho, status, message)
+    if (status /= SD_OK) return
+    modes = size(mode_accelerations)
+    associate (big_r => tank%radius, big_h => tank%liquid_depth, cos_theta => cos(angle))
+      do i = 1, size(heights)
+        coefficients = [(convective_coefficient(n, gamma, 1.0_wp, heights(i)/big_h), n = 1, modes)]
+        wall(1:4, i) = [heights(i), instant(big_r, coefficients)*cos_theta]
+        wall(5, i) = wall(4, i)*big_r
+      end do
+      do i = 1, size(radii)
+        coefficients = [(convective_coefficient(n, gamma, radii(i)/big_r, 0.0_wp), n = 1, modes)]
+        base(:, i) = [radii(i), instant(radii(i), coefficients)*cos_theta]
+      end do
+    end associate
+
+  contains
+
+    !> The part moving with the tank, the modes' part and the total at radius r (theta = 0)
+    !> from the modes' coefficients p_cn/(rho R A_n) there.
+    pure function instant(r, coefficients) result(values)
+      real(wp), intent(in) :: r, coefficients(:)
+      real(wp) :: values(3)
+      values(1) = rho*(r - tank%radius*sum(coefficients))*tank_acceleration
+      values(2) = rho*tank%radius*sum(coefficients*mode_accelerations)
+      values(3) = values(1) + values(2)
+    end function instant
+  end subroutine instant_pressure_tables
 end module sloshdyn_wall_pressure

@@ -31,7 +31,24 @@ def _units(table):
 
 
 @dataclass(frozen=True)
-class WallPressure:
+class _Profiles:
+    """The pressure on the wall at the heights z [m] and on the base at the radii r [m], at the
+    angle [rad] (the 'wall_pressure' and 'base_pressure' tables)."""
+
+    angle: float
+    z: np.ndarray
+    impulsive_pressure: np.ndarray
+    convective_pressure: np.ndarray
+    total_pressure: np.ndarray
+    hoop_force: np.ndarray
+    r: np.ndarray
+    base_impulsive_pressure: np.ndarray
+    base_convective_pressure: np.ndarray
+    base_total_pressure: np.ndarray
+
+
+@dataclass(frozen=True)
+class WallPressure(_Profiles):
     """The hydrodynamic pressure of a rigid circular tank under the impulsive acceleration A_g
     and the convective accelerations A_1..A_N [m/s^2], at the angle `angle` [rad] around the
     axis from the direction of the inertia force (every pressure is its value at angle 0
@@ -51,17 +68,7 @@ class WallPressure:
     tank: object
     impulsive_acceleration: float
     convective_accelerations: np.ndarray
-    angle: float
     combination: str
-    z: np.ndarray
-    impulsive_pressure: np.ndarray
-    convective_pressure: np.ndarray
-    total_pressure: np.ndarray
-    hoop_force: np.ndarray
-    r: np.ndarray
-    base_impulsive_pressure: np.ndarray
-    base_convective_pressure: np.ndarray
-    base_total_pressure: np.ndarray
     impulsive_mass: float
     impulsive_height: float
     impulsive_height_ibp: float
@@ -142,3 +149,60 @@ def wall_pressure(tank, impulsive_acceleration, convective_accelerations=(), *, 
         convective_heights=parts["height_ebp"][1:].copy(),
         convective_heights_ibp=parts["height_ibp"][1:].copy(),
         wall_table=wall, base_table=base, resultant_table=resultants)
+
+
+@dataclass(frozen=True)
+class SeismicPressures(_Profiles):
+    """The hydrodynamic pressure at instants of a seismic run (`seismic_pressures`), each at the
+    run's output time `t` [s] nearest the requested `times` [s]: the tank's absolute
+    acceleration tank_acceleration [m/s^2] and the sloshing modes' mode_accelerations
+    [m/s^2] (shape (instants, modes)), the base_shear [N], overturning_moment and
+    overturning_moment_ibp [N m] (excluding and including the base pressure) that the pressures
+    and the shell's inertia give; on the wall at `z` [m] and the base at `r` [m], arrays of shape
+    (instants, points): impulsive_pressure (the part moving with the tank), convective_pressure
+    (the modes'), total_pressure [Pa], hoop_force [N/m], base_impulsive_pressure,
+    base_convective_pressure, base_total_pressure [Pa], at `angle` [rad]."""
+
+    times: np.ndarray
+    t: np.ndarray
+    tank_acceleration: np.ndarray
+    mode_accelerations: np.ndarray
+    base_shear: np.ndarray
+    overturning_moment: np.ndarray
+    overturning_moment_ibp: np.ndarray
+
+
+def seismic_pressures(response, *, integration=None, times=None, heights=None, radii=None,
+                      angle=0.0) -> SeismicPressures:
+    """The pressure on the wall and base at instants of a seismic run (a SeismicResponse of
+    seismic_response, run with `integration`, default Integration()): by default the times of
+    its base shear and overturning moment peaks. The run is integrated again on its output
+    times; each instant is the output time nearest the requested one (a peak of a run with one
+    mode lies between output times)."""
+    from .seismic import SeismicResponse, _ground_arrays
+    from .simulation import Integration
+    _checks.instance("response", response, SeismicResponse)
+    integration = Integration() if integration is None else integration
+    _checks.instance("integration", integration, Integration)
+    tank = response.tank
+    if times is None:
+        times = [response.peaks["base_shear"][1], response.peaks["overturning_moment"][1]]
+    times = _checks.reals("times", times, ndim=1)
+    z = (np.linspace(0.0, tank.liquid_depth, DEFAULT_HEIGHTS) if heights is None
+         else _checks.reals("heights", heights, ndim=1))
+    r = (np.linspace(0.0, tank.radius, DEFAULT_RADII) if radii is None
+         else _checks.reals("radii", radii, ndim=1))
+    theta = _checks.real("angle", angle)
+    ground, samples = _ground_arrays(response.ground_motion)
+    instants, modal, wall, base, status, message = _bridge.seismic_pressures(
+        tank.array(), ground, samples, float(response.t[-1]), len(response.t),
+        integration.array(), times, z, r, theta)
+    check_status(status, message)
+    columns = {_name(c): row.copy() for c, row in zip(_tables.columns("pressure_instants"),
+                                                      instants)}
+    profile = {_name(c): wall[j].T.copy()
+               for j, c in enumerate(_tables.columns("wall_pressure")) if _name(c) != "z"}
+    floor = {"base_" + _name(c): base[j].T.copy()
+             for j, c in enumerate(_tables.columns("base_pressure")) if _name(c) != "r"}
+    return SeismicPressures(times=times.copy(), mode_accelerations=modal[:tank.modes].T.copy(),
+                            angle=theta, z=z.copy(), r=r.copy(), **columns, **profile, **floor)
