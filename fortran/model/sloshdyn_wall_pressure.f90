@@ -1,7 +1,7 @@
 !> The hydrodynamic pressure on the wall and on the base of a rigid vertical circular cylindrical
 !> tank under a horizontal acceleration, by linear potential flow (Jacobsen 1949; Veletsos &
-!> Yang 1977; Habenberger's and EN 1998-4:2006 Annex A.2.1.2 (impulsive) and A.2.1.3
-!> (convective)), and the resultants of each component (mass, heights of the resultant
+!> Yang 1977; EN 1998-4:2006 Annex A.2.1.2 (impulsive) and A.2.1.3 (convective)), and the
+!> resultants of each component (mass, heights of the resultant
 !> excluding and including the base pressure). docs/pressure.md derives every formula.
 !>
 !> Coordinates: R the radius, H the liquid depth, gamma = H/R, xi = r/R, zeta = z/H (z from the
@@ -38,13 +38,13 @@ module sloshdyn_wall_pressure
 
   !> How the table combines components whose peaks need not be simultaneous: SRSS (the
   !> convective modes' pressures as the square root of the sum of their squares, then the total
-  !> as the SRSS of impulsive and convective, API 650 E.6.1.4's rule for the hoop forces), or
+  !> as the SRSS of impulsive and convective, API 650 Annex E's rule for the hoop forces), or
   !> SUM (algebraic sums: the pressures of one instant, or with positive spectral accelerations
   !> the absolute sum, the upper bound).
   integer, parameter :: COMBINE_SRSS = 1, COMBINE_SUM = 2
   character(len=*), parameter :: combination_names(2) = [character(len=4) :: 'srss', 'sum']
-  !> H/R above this needs more than ~4e4 terms of the impulsive series (they grow as
-  !> (H/R)^(2/3)); no tank is that slender.
+  !> H/R above this needs more than ~4e4 terms of the impulsive series (beyond H/R = 1 they grow
+  !> as H/R); no tank is that slender.
   real(wp), parameter :: max_aspect_ratio = 100
   !> Absolute accuracy of C_i on the wall (C_i is of order 1 for H/R <= 1 and ~ R/H beyond: the
   !> tolerance is scaled with min(1, R/H)) and of the base series' terms.
@@ -307,7 +307,7 @@ contains
     call check_real('liquid_depth/radius', tank%liquid_depth/tank%radius, 0.0_wp, &
                     max_aspect_ratio, .true., .false., 'the aspect ratio H/R of the wall '// &
                     'pressure must lie in (0, '//num2str(max_aspect_ratio)//']: the impulsive '// &
-                    'series needs ~ (H/R)^(2/3) terms', status, message)
+                    'series needs ~ 400 H/R terms', status, message)
     call check_real('impulsive_acceleration', impulsive_acceleration, -big, big, .false., &
                     .false., 'the impulsive acceleration [m/s^2] must be finite', status, message)
     call check_real('angle', angle, -big, big, .false., .false., &

@@ -14,7 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _checks, _core, _tables
+from ._cancel import cancellable
 from ._errors import check_status
+from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_pressure
 #: points of the default profiles: evenly spaced heights on the wall and radii on the base
@@ -172,17 +174,15 @@ class SeismicPressures(_Profiles):
     overturning_moment_ibp: np.ndarray
 
 
-def seismic_pressures(response, *, integration=None, times=None, heights=None, radii=None,
-                      angle=0.0) -> SeismicPressures:
+def seismic_pressures(response, *, integration: Integration = Integration(), times=None,
+                      heights=None, radii=None, angle=0.0) -> SeismicPressures:
     """The pressure on the wall and base at instants of a seismic run (a SeismicResponse of
-    seismic_response, run with `integration`, default Integration()): by default the times of
+    seismic_response, run with the same `integration`): by default the times of
     its base shear and overturning moment peaks. The run is integrated again on its output
     times; each instant is the output time nearest the requested one (a peak of a run with one
     mode lies between output times)."""
     from .seismic import SeismicResponse, _ground_arrays
-    from .simulation import Integration
     _checks.instance("response", response, SeismicResponse)
-    integration = Integration() if integration is None else integration
     _checks.instance("integration", integration, Integration)
     tank = response.tank
     if times is None:
@@ -194,8 +194,8 @@ def seismic_pressures(response, *, integration=None, times=None, heights=None, r
          else _checks.reals("radii", radii, ndim=1))
     theta = _checks.real("angle", angle)
     ground, samples = _ground_arrays(response.ground_motion)
-    instants, modal, wall, base, status, message = _bridge.seismic_pressures(
-        tank.array(), ground, samples, float(response.t[-1]), len(response.t),
+    instants, modal, wall, base, status, message = cancellable(
+        _bridge.seismic_pressures, tank.array(), ground, samples, float(response.t[-1]), len(response.t),
         integration.array(), times, z, r, theta)
     check_status(status, message)
     columns = {_name(c): row.copy() for c, row in zip(_tables.columns("pressure_instants"),
