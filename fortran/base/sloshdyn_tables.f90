@@ -35,6 +35,8 @@ module sloshdyn_tables
             PEAKS_SA, PEAKS_BETA_SENSITIVE, &
             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
+  public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
+            PRESSURE_INSTANT_ROWS
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
             CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
@@ -190,6 +192,25 @@ module sloshdyn_tables
   character(len=*), parameter :: tank_modes_columns = 'mode,period [s],convective_mass [kg],'// &
     'convective_height [m],pendulum_length [m],wave_factor [m]'
   integer, parameter :: TANK_MODES_ROWS = 6
+  !> The hydrodynamic pressure of a rigid circular tank (sloshdyn_wall_pressure): on the wall,
+  !> one column per height (pressures at the chosen angle; the hoop force per unit height is
+  !> the total pressure times R); on the base, one column per radius; and the resultants, one
+  !> column per component (0: impulsive, n: convective mode n), heights and moments excluding
+  !> (ebp) and including (ibp) the base pressure.
+  character(len=*), parameter :: wall_pressure_columns = 'z [m],impulsive_pressure [Pa],'// &
+    'convective_pressure [Pa],total_pressure [Pa],hoop_force [N/m]'
+  character(len=*), parameter :: base_pressure_columns = 'r [m],impulsive_pressure [Pa],'// &
+    'convective_pressure [Pa],total_pressure [Pa]'
+  character(len=*), parameter :: pressure_resultant_columns = 'component,mass [kg],'// &
+    'height_ebp [m],height_ibp [m],base_shear [N],moment_ebp [N m],moment_ibp [N m]'
+  integer, parameter :: WALL_PRESSURE_ROWS = 5, BASE_PRESSURE_ROWS = 4, &
+                        PRESSURE_RESULTANT_ROWS = 7
+  !> Instants of a seismic run (sloshdyn_seismic_pressure), one column each: the output time,
+  !> the tank's acceleration, and the loads of the pressures and the shell's inertia.
+  character(len=*), parameter :: pressure_instant_columns = 't [s],'// &
+    'tank_acceleration [m/s^2],base_shear [N],overturning_moment [N m],'// &
+    'overturning_moment_ibp [N m]'
+  integer, parameter :: PRESSURE_INSTANT_ROWS = 5
 
 contains
 
@@ -282,6 +303,14 @@ contains
       header = tank_si_columns
     case ('tank_modes')
       header = tank_modes_columns
+    case ('wall_pressure')
+      header = wall_pressure_columns
+    case ('base_pressure')
+      header = base_pressure_columns
+    case ('pressure_resultants')
+      header = pressure_resultant_columns
+    case ('pressure_instants')
+      header = pressure_instant_columns
     case default
       header = ''
     end select
@@ -318,6 +347,8 @@ contains
       formats = 'rrrrrriirr'
     case ('tank_modes')
       formats = 'irrrrr'
+    case ('pressure_resultants')
+      formats = 'i'//repeat('r', PRESSURE_RESULTANT_ROWS - 1)
     case ('chart_curves')
       formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')

@@ -15,6 +15,8 @@ program sloshdyn_bridge_sizes
                              CYCLE_SPECIAL_ROWS, TANK_MODES_ROWS, &
                              SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, &
                              SEISMIC_SPATIAL_PEAKS
+  use sloshdyn_tables, only: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
+                             PRESSURE_INSTANT_ROWS
   use sloshdyn_tank, only: max_modes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
@@ -84,6 +86,10 @@ program sloshdyn_bridge_sizes
   call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
   call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
   call define('natural_frequencies_size', NATURAL_FREQUENCIES_SIZE)
+  call define('wall_pressure_rows', WALL_PRESSURE_ROWS)
+  call define('base_pressure_rows', BASE_PRESSURE_ROWS)
+  call define('pressure_resultant_rows', PRESSURE_RESULTANT_ROWS)
+  call define('pressure_instant_rows', PRESSURE_INSTANT_ROWS)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

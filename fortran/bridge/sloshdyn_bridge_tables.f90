@@ -25,6 +25,7 @@ contains
     use sloshdyn_excitation, only: PARAMETER_RHO
     use sloshdyn_ground, only: GROUND_HARMONIC
     use sloshdyn_tank, only: shape_names, SHAPE_CIRCULAR
+    use sloshdyn_wall_pressure, only: combination_names, COMBINE_SRSS
     use sloshdyn_layouts, only: layout_names, layout_text, join, &
                                 excitation_parameters, ground_kinds, resonances, chart_axes, &
                                 CHART_RHO
@@ -35,7 +36,8 @@ contains
     !> The enumerated options (the cases below, then the kind lists of sloshdyn_tables).
     character(len=*), parameter :: code_lists = 'analyses,methods,chart_models,chart_axes,'// &
       'excitation_parameters,directions,study_kinds,worker_kinds,continuations,ground_kinds,'// &
-      'resonances,tank_shapes,special,motion,verdict,source,curve,codim2,curve_end'
+      'resonances,tank_shapes,pressure_combinations,special,motion,verdict,source,curve,'// &
+      'codim2,curve_end'
     character(len=:), allocatable :: joined
     integer :: code
     status = 0
@@ -81,6 +83,9 @@ contains
       case ('tank_shapes')
         joined = join(shape_names, ',')
         code = SHAPE_CIRCULAR
+      case ('pressure_combinations')
+        joined = join(combination_names, ',')
+        code = COMBINE_SRSS
       case default
         call kind_names(list, joined, code)
       end select

@@ -34,7 +34,7 @@ module sloshdyn_vessel
   implicit none
   private
   public :: tank_t, tank_properties, tank_model, tank_loads, wave_height_factor
-  public :: standard_gravity, LOAD_ROWS, tank_acceleration
+  public :: standard_gravity, LOAD_ROWS, tank_acceleration, sloshing_mass_acceleration
 
   real(wp), parameter :: standard_gravity = 9.80665_wp   !< m/s^2
   !> xi = 1.84 of eq (2): the first root of J1', as the paper rounds it
@@ -353,15 +353,34 @@ contains
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y(4), dydt(4), ground_acceleration
-    real(wp) :: phi, phi_d, phi_dd
-    associate (w => props%omega, t0 => model%theta0)
-      phi = t0*y(3)
-      phi_d = w*t0*y(4)
-      phi_dd = w**2*t0*dydt(4)
-      tank_acceleration = ground_acceleration + props%rod_length*(cos(phi)*phi_dd - &
-                                                                  sin(phi)*phi_d**2)
-    end associate
+    tank_acceleration = ground_acceleration + swing(props, model, y, dydt, 3, props%rod_length)
   end function tank_acceleration
+
+  !> The horizontal acceleration of the sloshing mass m [m/s^2], a_t + l (cos(theta) theta''
+  !> - sin(theta) theta'^2), of the state y with rates dydt; tank_accel = a_t [m/s^2].
+  pure real(wp) function sloshing_mass_acceleration(props, model, y, dydt, tank_accel)
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4), dydt(4), tank_accel
+    sloshing_mass_acceleration = tank_accel + swing(props, model, y, dydt, 1, &
+                                                    props%pendulum_length)
+  end function sloshing_mass_acceleration
+
+  !> arm (cos(a) a'' - sin(a) a'^2): the horizontal acceleration of the end of an arm swinging
+  !> by the angle a = theta0 y(k) (k = 1: theta, the pendulum; k = 3: phi, the rods).
+  pure real(wp) function swing(props, model, y, dydt, k, arm)
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4), dydt(4), arm
+    integer, intent(in) :: k
+    real(wp) :: a, a_d, a_dd
+    associate (w => props%omega, t0 => model%theta0)
+      a = t0*y(k)
+      a_d = w*t0*y(k + 1)
+      a_dd = w**2*t0*dydt(k + 1)
+      swing = arm*(cos(a)*a_dd - sin(a)*a_d**2)
+    end associate
+  end function swing
 
   !> The loads of the state y with rates dydt = (x1', x1'', x2', x2'') at tau, in SI (the rows
   !> of LOAD_ROWS); ground_acceleration = u'' [m/s^2] at that time.
@@ -371,16 +390,14 @@ contains
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: tau, y(4), dydt(4), ground_acceleration
     real(wp) :: row(LOAD_ROWS)
-    real(wp) :: theta, theta_d, theta_dd, phi, tank_accel, mass_accel
+    real(wp) :: theta, phi, tank_accel, mass_accel
     associate (w => props%omega, t0 => model%theta0, pendulum => props%pendulum_length, &
                rod => props%rod_length, m => props%sloshing_mass)
       theta = t0*y(1)
-      theta_d = w*t0*y(2)
-      theta_dd = w**2*t0*dydt(2)
       phi = t0*y(3)
       ! horizontal accelerations of the tank and of the sloshing mass
       tank_accel = tank_acceleration(props, model, y, dydt, ground_acceleration)
-      mass_accel = tank_accel + pendulum*(cos(theta)*theta_dd - sin(theta)*theta_d**2)
+      mass_accel = sloshing_mass_acceleration(props, model, y, dydt, tank_accel)
       row(1) = tau/w
       row(2) = ground_acceleration
       row(3) = pendulum*sin(theta)

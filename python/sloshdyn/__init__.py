@@ -26,6 +26,7 @@ from .studies import (FragilityFit, basins, fit_fragility, fragility_study, impa
 from .simulation import (AmplitudeSpectrum, Integration, Simulation, Steady, SteadyState, Sweep,
                          amplitude_sweep, beat_period, frequency_sweep, poincare_section, simulate, spectrum,
                          steady_state, sweep_values)
+from .pressure import SeismicPressures, WallPressure, seismic_pressures, wall_pressure
 from . import spatial  # noqa: E402  the spatial model and swirl (issue 26): sloshdyn.spatial.*
 
 from importlib.metadata import version as _installed_version  # noqa: E402
@@ -55,6 +56,7 @@ __all__ = [
     "response_map",
     "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
     "slow_flow_cycles",
+    "WallPressure", "wall_pressure", "SeismicPressures", "seismic_pressures",
 ]
 
 

@@ -164,6 +164,14 @@ class Tank:
         """The pendulum angle at which the linear wave reaches the roof [rad]."""
         return self.properties["theta0"]
 
+    def wall_pressure(self, impulsive_acceleration, convective_accelerations=(), heights=None,
+                      angle=0.0, *, radii=None, combination="srss"):
+        """The hydrodynamic pressure on the wall and base under the impulsive acceleration and
+        the convective accelerations of modes 1..N [m/s^2] (pressure.wall_pressure)."""
+        from .pressure import wall_pressure
+        return wall_pressure(self, impulsive_acceleration, convective_accelerations,
+                             heights=heights, radii=radii, angle=angle, combination=combination)
+
     def parameters(self, ground_motion=None) -> Parameters:
         """The dimensionless model (Parameters) of the tank; with harmonic ground motion, its
         excitation A, rho as well."""
