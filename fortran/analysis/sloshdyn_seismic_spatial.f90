@@ -3,8 +3,8 @@
 !> combining two planar analyses.
 !>
 !> Ground motion: component 1 along the azimuth alpha (from the x axis), component 2 across it
-!> (alpha + 90 degrees); both records (sampled at the same dt, scaled by one factor by the
-!> caller, as FEMA P695 scales a pair), or harmonic motion along alpha with the ellipticity e of
+!> (alpha + 90 degrees); both records (scaled by one factor by the caller, as FEMA P695 scales a
+!> pair; the second resampled onto the first one's time grid, sloshdyn_ground's on_time_grid), or harmonic motion along alpha with the ellipticity e of
 !> sloshdyn_spatial (component 2 is then e times component 1, a quarter period later).
 !>
 !> Loads (SI) at each output time, from the horizontal accelerations of the tank and of the
@@ -27,11 +27,10 @@ module sloshdyn_seismic_spatial
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real, check_output_count
-  use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
   use sloshdyn_excitation, only: excitation_t, breakpoint_step, record_end
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model
-  use sloshdyn_ground, only: ground_motion_t, ground_excitation, GROUND_RECORD
+  use sloshdyn_ground, only: ground_motion_t, ground_excitation, on_time_grid, GROUND_RECORD
   use sloshdyn_spatial, only: spatial_model, spatial_kinematics, ground_acceleration
   use sloshdyn_spatial_system, only: spatial_tank_system
   use sloshdyn_ode, only: ode_options, ode_stats
@@ -50,8 +49,8 @@ module sloshdyn_seismic_spatial
 contains
 
   !> The response of the tank at rest at t = 0 to the two components ground_1 (along azimuth
-  !> [rad]) and ground_2 (across it; a record with the same dt as ground_1, or, with harmonic
-  !> ground_1, ignored: ellipticity gives the second component) at n_out times evenly spaced over
+  !> [rad]) and ground_2 (across it; a record, resampled onto ground_1's time grid if its dt
+  !> differs, or, with harmonic ground_1, ignored: ellipticity gives the second component) at n_out times evenly spaced over
   !> [0, t_end] [s]: table(SEISMIC_SPATIAL_ROWS, n_out) and peaks(SEISMIC_SPATIAL_PEAKS). For
   !> harmonic motion the combination columns of the peaks are NaN.
   subroutine seismic_response_spatial(tank, ground_1, ground_2, azimuth, ellipticity, t_end, &
@@ -70,6 +69,7 @@ contains
     type(spatial_tank_system) :: system
     type(ode_options) :: settings
     type(ode_stats) :: stats
+    type(ground_motion_t) :: across
     real(wp), allocatable :: tau(:), y(:, :), run(:, :)
     real(wp) :: run_peaks(PEAKS_SIZE), p1(3), p2(3), n_h(2), a_tank(2), a_mass(2), scale, &
                 shear(2), moment(2)
@@ -83,12 +83,12 @@ contains
                                                 planar%excitation, status, message)
     records = ground_1%kind == GROUND_RECORD
     if (status == SD_OK .and. records) then
-      if (ground_2%kind /= GROUND_RECORD .or. ground_2%dt /= ground_1%dt) then
+      if (ground_2%kind /= GROUND_RECORD) then
         status = SD_BAD_INPUT
-        message = 'the second component must be a record with the first one''s dt = '// &
-                  num2str(ground_1%dt)//' s'
+        message = 'the second component must be a record, as the first one is'
       else
-        call ground_excitation(ground_2, props%omega, props%rod_length, second, status, message)
+        across = on_time_grid(ground_2, ground_1%dt)
+        call ground_excitation(across, props%omega, props%rod_length, second, status, message)
       end if
     end if
     call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
@@ -133,7 +133,7 @@ contains
     ! the two planar runs, one per component
     allocate (run(SEISMIC_ROWS, n_out))
     call planar_peaks(ground_1, '1', p1)
-    if (status == SD_OK) call planar_peaks(ground_2, '2', p2)
+    if (status == SD_OK) call planar_peaks(across, '2', p2)
     if (status /= SD_OK) return
     do k = 1, 3
       peaks(4 + 4*k:7 + 4*k) = [p1(k), p2(k), hypot(p1(k), p2(k)), &

@@ -74,8 +74,21 @@ module sloshdyn_driver
   !> Room for the edges of a swirl band (as sloshdyn.spatial.swirl_band's max_edges).
   integer, parameter :: max_swirl_edges = 100
 
-  !> The runs of a tank in SI units, in the submodule sloshdyn_driver_tank
+  !> The runs of a tank in SI units, in the submodule sloshdyn_driver_tank, and of the spatial
+  !> model, in sloshdyn_driver_spatial
   interface
+    module subroutine run_simulate_spatial(config, files, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_simulate_spatial
+    module subroutine run_swirl_orbit(config, files, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_swirl_orbit
     module subroutine run_seismic_spatial(config, files, status, message)
       type(run_config), intent(in) :: config
       type(result_files), intent(inout) :: files
@@ -117,9 +130,17 @@ contains
     case (ANALYSIS_LINEAR)
       call run_linear(config, files, status, message)
     case (ANALYSIS_SIMULATE)
-      call run_simulate(config, files, status, message)
+      if (config%planar) then
+        call run_simulate(config, files, status, message)
+      else
+        call run_simulate_spatial(config, files, status, message)
+      end if
     case (ANALYSIS_STEADY_STATE)
-      call run_steady_state(config, files, status, message)
+      if (config%planar) then
+        call run_steady_state(config, files, status, message)
+      else
+        call run_swirl_orbit(config, files, status, message)
+      end if
     case (ANALYSIS_SWEEP)
       call run_sweep(config, files, status, message)
     case (ANALYSIS_FREQUENCY_RESPONSE)
@@ -337,8 +358,8 @@ contains
       allocate (tau(sim%n_out), history(HISTORY_ROWS + 1, sim%n_out))
       tau = [(sim%t_end*(i - 1)/(sim%n_out - 1), i = 1, sim%n_out)]
       history(1, :) = tau
-      call time_history(config%model, 0.0_wp, sim%y0, tau, config%integration, config%method, &
-                        history(2:, :), stats, status, message)
+      call time_history(config%model, 0.0_wp, sim%y0(1:4), tau, config%integration, &
+                        config%method, history(2:, :), stats, status, message)
       call in_context('simulation', status, message)
       if (status /= SD_OK) return
       print '(/a)', 'Simulation ('//used_method(config)//', eq 15'// &
@@ -372,8 +393,9 @@ contains
 
     window = config%steady%window_periods
     allocate (poincare(4, window), rows(table_size('poincare'), window))
-    call steady_state(config%model, config%simulation%y0, config%integration, config%method, &
-                      config%steady, summary, poincare, y_end, stats, status, message)
+    call steady_state(config%model, config%simulation%y0(1:4), config%integration, &
+                      config%method, config%steady, summary, poincare, y_end, stats, status, &
+                      message)
     call in_context('steady state', status, message)
     if (status /= SD_OK) return
     print '(/a)', 'Steady state ('//used_method(config)//') at rho = '// &
@@ -445,7 +467,7 @@ contains
     if (in_frequency) line = line//pad('wave [m]', 14)
     print '(a)', line//'motion'
     flush (output_unit)
-    y = config%simulation%y0
+    y = config%simulation%y0(1:4)
     do first = 1, size(values), step
       last = min(first + step - 1, size(values))
       if (in_frequency) then
@@ -555,7 +577,7 @@ contains
       allocate (points(PERIODIC_POINT_ROWS, capacity), &
                 multipliers(PERIODIC_MULTIPLIER_ROWS, capacity), &
                 special(PERIODIC_SPECIAL_ROWS, 100))
-      call periodic_response_from_rest(config%model, r%parameter, config%simulation%y0, &
+      call periodic_response_from_rest(config%model, r%parameter, config%simulation%y0(1:4), &
                                        r%start, r%stop, config%steady, r%options%continuation, &
                                        config%integration, config%method, points, multipliers, &
                                        n_points, special, n_special, complete, status, message)
@@ -655,7 +677,7 @@ contains
     associate (r => config%response)
       allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
                 edges(SWIRL_EDGE_ROWS, max_swirl_edges))
-      call orbit_from_rest(config%model, r%parameter, config%simulation%y0, r%start, &
+      call orbit_from_rest(config%model, r%parameter, config%simulation%y0(1:4), r%start, &
                            config%steady, config%integration, config%method, start, y_orbit, &
                            status, message)
       if (status == SD_OK) &
@@ -700,7 +722,7 @@ contains
     end if
     associate (ly => config%lyapunov)
       allocate (history(ly%n_periods/ly%renormalise_every))
-      call lyapunov_exponent(config%model, config%simulation%y0, ly%transient_periods, &
+      call lyapunov_exponent(config%model, config%simulation%y0(1:4), ly%transient_periods, &
                              ly%n_periods, ly%renormalise_every, config%integration, &
                              config%method, exponent, history, status, message)
       call in_context('Lyapunov exponent', status, message)
@@ -732,7 +754,7 @@ contains
 
     associate (ly => config%lyapunov)
       allocate (history(4, ly%n_periods/ly%renormalise_every))
-      call tank_lyapunov_spectrum(config%model, config%simulation%y0, ly, config%integration, &
+      call tank_lyapunov_spectrum(config%model, config%simulation%y0(1:4), ly, config%integration, &
                                   config%method, exponents, history, dimension_ky, status, &
                                   message)
       call in_context('Lyapunov spectrum', status, message)

@@ -108,7 +108,7 @@ contains
         end if
       end if
     else
-      call read_excitation(file, A, rho, status, message)
+      call read_excitation(file, A, rho, config%azimuth, config%ellipticity, status, message)
       if (status /= SD_OK) return
       call read_model(file, groups, exponents, config%planar, status, message)
       if (status /= SD_OK) return
@@ -179,7 +179,7 @@ contains
     call read_tank(file, tank, planar, status, message)
     call read_ground_motion(file, props, -1.0_wp, ground, ground_y, has_y, azimuth, ellipticity, &
                             status, message)
-    call read_excitation(file, A, rho, status, message)
+    call read_excitation(file, A, rho, azimuth, ellipticity, status, message)
     call read_analysis(file, config, status, message)
     call read_output(file, directory, status, message)
     call read_integration(file, integration, method, status, message)
@@ -259,8 +259,11 @@ contains
   end subroutine check_analysis
 
   !> The rules of the spatial model (issue 26): planar = .false. (&model or &tank) with p >= 1
-  !> (sloshdyn_spatial's spatial_model) for the analyses that have it, 'seismic' and 'swirl'
-  !> ('swirl' only), of a circular tank with one sloshing mode; a second component only for it.
+  !> (sloshdyn_spatial's spatial_model) for the analyses that have it, of a circular tank with
+  !> one sloshing mode; a second component and the out-of-plane initial state only for it. The
+  !> analyses that have it: 'simulate' (its time history), 'steady_state' (a periodic orbit of
+  !> it by Newton shooting, sloshdyn_swirl's swirl_orbit), 'seismic' (two components) and
+  !> 'swirl' ('swirl' only); the others are refused, each with its reason (spatial_refusal).
   subroutine check_spatial(config, status, message)
     type(run_config), intent(in) :: config
     integer, intent(inout) :: status
@@ -272,10 +275,21 @@ contains
         call fail(status, message, "&analysis: kind = 'swirl' is the stability of planar "// &
                   'responses out of their plane: it needs the spatial model, planar = .false. '// &
                   'in '//group)
-      else if (config%has_ground_y .or. config%azimuth /= 0 .or. config%ellipticity /= 0) then
+      else if (config%dimensional .and. (config%has_ground_y .or. config%azimuth /= 0 .or. &
+                                         config%ellipticity /= 0)) then
         call fail(status, message, '&ground_motion: record_y, azimuth and ellipticity '// &
                   'describe ground motion in two components: they need the spatial model, '// &
                   'planar = .false. in &tank')
+      else if (config%azimuth /= 0 .or. config%ellipticity /= 0) then
+        call fail(status, message, '&excitation: azimuth and ellipticity describe base '// &
+                  'motion in two components: they need the spatial model, planar = .false. '// &
+                  'in &model')
+      else if (any(config%simulation%y0(5:8) /= 0)) then
+        call fail(status, message, '&simulation: y0(5:8) = '// &
+                  num2str(config%simulation%y0(5))//', '//num2str(config%simulation%y0(6))// &
+                  ', '//num2str(config%simulation%y0(7))//', '// &
+                  num2str(config%simulation%y0(8))//' are the out-of-plane states (y1, y1'''// &
+                  ', y2, y2'') of the spatial model: they need planar = .false. in '//group)
       end if
       return
     end if
@@ -289,10 +303,35 @@ contains
                 "circular tank with one sloshing mode, not shape = '"// &
                 trim(shape_names(config%tank%shape))// &
                 "' with modes = "//num2str(config%tank%modes))
-    else if (.not. any(config%analysis == [ANALYSIS_SEISMIC, ANALYSIS_SWIRL])) then
-      call fail(status, message, group//": planar = .false. (the spatial model) is for kind "// &
-                "= 'seismic' or 'swirl', not kind = '"//trim(known_analyses(config%analysis))// &
-                "'")
+    else if (.not. any(config%analysis == [ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, &
+                                           ANALYSIS_SEISMIC, ANALYSIS_SWIRL])) then
+      call fail(status, message, group//": planar = .false. (the spatial model) is not for "// &
+                "kind = '"//trim(known_analyses(config%analysis))//"': "// &
+                spatial_refusal(config%analysis))
     end if
   end subroutine check_spatial
+
+  !> Why an analysis does not take the spatial model.
+  pure function spatial_refusal(analysis) result(why)
+    integer, intent(in) :: analysis
+    character(len=:), allocatable :: why
+    select case (analysis)
+    case (ANALYSIS_LINEAR)
+      why = 'it is symmetric about the vertical, its linear modes are the planar ones in x '// &
+            'and in y; run planar = .true.'
+    case (ANALYSIS_SWEEP)
+      why = 'its steady states are orbits by shooting (kind = ''steady_state''), along rho '// &
+            'see the swirl band (kind = ''swirl'')'
+    case (ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_STABILITY_CHART)
+      why = 'the slow flow (eq 41-55) is derived for the planar model; the swirl band is '// &
+            'kind = ''swirl'''
+    case (ANALYSIS_PERIODIC_RESPONSE)
+      why = 'the continuation of swirling orbits is not built; kind = ''swirl'' (planar '// &
+            'orbits) or ''steady_state'' (one swirling orbit)'
+    case (ANALYSIS_LYAPUNOV)
+      why = 'its Lyapunov exponents (8 states) are not built, only the planar model''s 4'
+    case default
+      why = 'not built for it'
+    end select
+  end function spatial_refusal
 end module sloshdyn_namelist

@@ -15,6 +15,7 @@ program sloshdyn_bridge_sizes
                              CYCLE_SPECIAL_ROWS, TANK_MODES_ROWS, &
                              SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, &
                              SEISMIC_SPATIAL_PEAKS
+  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS
   use sloshdyn_tank, only: max_modes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
@@ -84,6 +85,7 @@ program sloshdyn_bridge_sizes
   call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
   call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
   call define('natural_frequencies_size', NATURAL_FREQUENCIES_SIZE)
+  call define('spatial_history_rows', SPATIAL_HISTORY_ROWS)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name
