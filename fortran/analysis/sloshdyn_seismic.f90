@@ -43,7 +43,7 @@ module sloshdyn_seismic
                              SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
   implicit none
   private
-  public :: seismic_response, seismic_defaults, design_code_checks, tank_summary
+  public :: seismic_response, seismic_setup, seismic_defaults, design_code_checks, tank_summary
   public :: harmonic_sweep, harmonic_sweep_row, free_periods, max_seismic_outputs, tank_modes
 
   !> After a record ends the liquid goes on sloshing: t_end defaults to the record plus this
@@ -135,15 +135,9 @@ contains
 
     table = ieee_value(1.0_wp, ieee_quiet_nan)
     peaks = ieee_value(1.0_wp, ieee_quiet_nan)
-    call tank_model(tank, model, props, status, message)
-    if (status == SD_OK) call ground_excitation(ground, props%omega, props%rod_length, &
-                                                model%excitation, status, message)
-    call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    't_end must be > 0 [s]', status, message)
-    call check_output_count('n_out', n_out, max_seismic_outputs, .false., status, message)
+    call seismic_setup(tank, ground, t_end, n_out, model, props, tau, status, message)
     if (status /= SD_OK) return
-    allocate (tau(n_out), history(HISTORY_ROWS, n_out))
-    tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]
+    allocate (history(HISTORY_ROWS, n_out))
     y0 = 0
     loads = tank_load_observation(tank, props, model)
     call time_history(model, 0.0_wp, y0, tau, options, method, history, stats, run_status, &
@@ -177,6 +171,31 @@ contains
                       peaks(PEAKS_CONFINED_MASS), status, message)
     if (status == SD_OK) call run_traceability(tank, ground, props, peaks, status, message)
   end subroutine seismic_response
+
+  !> What every seismic response sets up first (seismic_response, and sloshdyn_seismic_spatial's
+  !> seismic_response_spatial): the tank's model driven by the ground motion, t_end > 0 [s],
+  !> n_out in [2, max_seismic_outputs], and the output times tau (the model's time, tau =
+  !> omega t) evenly spaced over [0, t_end].
+  subroutine seismic_setup(tank, ground, t_end, n_out, model, props, tau, status, message)
+    type(tank_t), intent(in) :: tank
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: t_end
+    integer, intent(in) :: n_out
+    type(model_t), intent(out) :: model
+    type(tank_properties), intent(out) :: props
+    real(wp), allocatable, intent(out) :: tau(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: i
+    call tank_model(tank, model, props, status, message)
+    if (status == SD_OK) call ground_excitation(ground, props%omega, props%rod_length, &
+                                                model%excitation, status, message)
+    call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    't_end must be > 0 [s]', status, message)
+    call check_output_count('n_out', n_out, max_seismic_outputs, .false., status, message)
+    if (status /= SD_OK) return
+    tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]
+  end subroutine seismic_setup
 
   !> What a run's numbers rest on: the ground motion's scale factor, its pseudo-spectral
   !> acceleration at the tank's sloshing period for the convective damping (what target_sa

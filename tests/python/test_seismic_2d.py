@@ -124,3 +124,35 @@ def test_the_second_component_must_be_a_record_with_a_record():
     first, _ = _pair(1e-3)
     with pytest.raises(sloshdyn.InputError, match="second component"):
         spatial.seismic_response_2d(TANK, first)
+
+
+@pytest.mark.parametrize("ellipticity", [0.0, 0.6])
+def test_harmonic_motion_has_the_codes_combinations_of_its_two_axes(ellipticity):
+    """Harmonic motion along an azimuth with an ellipticity e: run 1 is the planar run under the
+    major axis, run 2 under the minor one, e a (the codes combine peaks, phases left out; none
+    for e = 0). Independent: the planar runs of sloshdyn.seismic_response, the SRSS and 100/30
+    formulas, the planar model's linearity (P2 = e P1), and in the linear range the spatial
+    response is the sum of the two axes' responses, so its peak over the wall lies between the
+    larger planar peak and their SRSS."""
+    a, f = 2e-5, 0.2                                  # [g, Hz], linear range
+    major = sloshdyn.GroundMotion.harmonic(a, f)
+    times = sloshdyn.seismic_defaults(TANK, major)
+    both = spatial.seismic_response_2d(TANK, major, None, times.t_end, times.n_out, azimuth=0.4,
+                                       ellipticity=ellipticity, integration=INTEGRATION)
+    run_1 = sloshdyn.seismic_response(TANK, major, times.t_end, times.n_out,
+                                      integration=INTEGRATION)
+    for name in ("wave_height", "base_shear", "overturning_moment"):
+        p1 = np.abs(getattr(run_1, name)).max()
+        p2 = 0.0
+        if ellipticity:
+            minor = sloshdyn.GroundMotion.harmonic(ellipticity * a, f)
+            p2 = np.abs(getattr(sloshdyn.seismic_response(TANK, minor, times.t_end, times.n_out,
+                                                          integration=INTEGRATION),
+                                name)).max()
+            assert p2 == pytest.approx(ellipticity * p1, rel=1e-6)        # linearity
+        peaks = both.peaks
+        assert peaks[f"{name}_run_1"] == p1 and peaks[f"{name}_run_2"] == p2
+        assert peaks[f"{name}_srss"] == pytest.approx(np.hypot(p1, p2), rel=1e-15)
+        assert peaks[f"{name}_100_30"] == pytest.approx(max(p1 + 0.3 * p2, 0.3 * p1 + p2),
+                                                        rel=1e-15)
+        assert (1 - 1e-6) * p1 <= peaks[name] <= (1 + 1e-6) * np.hypot(p1, p2)
