@@ -83,6 +83,12 @@ module sloshdyn_driver
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
     end subroutine run_simulate_spatial
+    module subroutine run_swirl_boundary(config, files, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_swirl_boundary
     module subroutine run_swirl_orbit(config, files, status, message)
       type(run_config), intent(in) :: config
       type(result_files), intent(inout) :: files
@@ -156,7 +162,11 @@ contains
         call run_seismic_spatial(config, files, status, message)
       end if
     case (ANALYSIS_SWIRL)
-      call run_swirl(config, files, status, message)
+      if (config%sweep%n_points > 0) then
+        call run_swirl_boundary(config, files, status, message)
+      else
+        call run_swirl(config, files, status, message)
+      end if
     case (ANALYSIS_STABILITY_CHART)
       call run_chart(config, files, status, message)
     end select
@@ -828,6 +838,9 @@ contains
         print '(a)', '  excitation X = A sin(rho tau): A = '//num2str(m%excitation%A)// &
                      ', rho = '//num2str(m%excitation%rho)
       end if
+      if (.not. (config%planar .or. config%dimensional)) &
+        print '(a)', '  spatial model (planar = .false.): the base moves along azimuth '// &
+                     num2str(config%azimuth)//' rad, ellipticity '//num2str(config%ellipticity)
       print '(a)', '  a1..a6 (eq 11) = '//list(m%a_coef)
       print '(a)', '  b1..b6 (eq 11) = '//list(m%b_coef)
     end associate

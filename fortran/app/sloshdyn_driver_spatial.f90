@@ -1,8 +1,9 @@
 !> The executable's runs of the spatial model of issue 26 with &model or &tank planar = .false.
 !> (a submodule of sloshdyn_driver, which declares their interfaces): the time history
 !> (kind = 'simulate') and one periodic orbit by Newton shooting (kind = 'steady_state', a
-!> swirling orbit when it leaves the plane). The seismic response in two components is in
-!> sloshdyn_driver_tank, the swirl band in sloshdyn_driver.
+!> swirling orbit when it leaves the plane), and the swirl band's boundary in (rho, A) (kind =
+!> 'swirl' with &sweep). The seismic response in two components is in sloshdyn_driver_tank, the
+!> swirl band in sloshdyn_driver.
 submodule (sloshdyn_driver) sloshdyn_driver_spatial
   use sloshdyn_spatial, only: spatial_model_t, spatial_model
   use sloshdyn_excitation, only: excitation_t
@@ -10,7 +11,7 @@ submodule (sloshdyn_driver) sloshdyn_driver_spatial
   use sloshdyn_simulation, only: spatial_time_history
   use sloshdyn_swirl, only: swirl_orbit
   use sloshdyn_periodic_response, only: newton_tol_default, max_iter_default
-  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS
+  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS
   implicit none
 
 contains
@@ -92,6 +93,68 @@ contains
                                                 reshape(row, [SWIRL_ORBIT_ROWS, 1]), status, &
                                                 message)
   end subroutine run_swirl_orbit
+
+  !> The boundary of the swirl band in (rho, A) (kind = 'swirl' with &sweep parameter = 'A'):
+  !> the band along rho over &response's range (as run_swirl) at each of &sweep's n_points
+  !> values of A from start to stop, its edges with their A in swirl_boundary.csv (as Python's
+  !> sloshdyn.spatial.swirl_boundary).
+  module subroutine run_swirl_boundary(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: at_A, start
+    real(wp) :: y_orbit(4), A
+    real(wp), allocatable :: points(:, :), edges(:, :), rows(:, :)
+    integer :: n_points, n_edges, i, j, n_rows
+    logical :: complete
+
+    associate (r => config%response, sw => config%sweep)
+      allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
+                edges(SWIRL_EDGE_ROWS, max_swirl_edges), &
+                rows(SWIRL_BOUNDARY_ROWS, max_swirl_edges*sw%n_points))
+      print '(/a)', 'Swirl boundary: the swirl band along rho in ['//num2str(r%start)//', '// &
+                    num2str(r%stop)//'] at '//num2str(sw%n_points)//' values of A in ['// &
+                    num2str(sw%start)//', '//num2str(sw%stop)//'] (spatial model; '// &
+                    used_method(config)//')'
+      n_rows = 0
+      do i = 1, sw%n_points
+        A = sw%start + (sw%stop - sw%start)*(i - 1)/max(sw%n_points - 1, 1)
+        at_A = config%model
+        at_A%excitation%A = A
+        call orbit_from_rest(at_A, PARAMETER_RHO, config%simulation%y0(1:4), r%start, &
+                             config%steady, config%integration, config%method, start, y_orbit, &
+                             status, message)
+        if (status == SD_OK) &
+          call swirl_branch(start, PARAMETER_RHO, y_orbit, 1, r%start, r%stop, &
+                            r%options%continuation, config%integration, config%method, points, &
+                            n_points, edges, n_edges, complete, status, message)
+        if (status /= SD_OK) message = 'at A = '//num2str(A)//': '//trim(message)
+        call in_context('swirl boundary', status, message)
+        if (status /= SD_OK) return
+        print '(a)', '  A = '//pad(num2str(A), 14)//num2str(n_edges)//' edge(s) at rho = '// &
+                     join_values(edges(1, 1:n_edges))
+        do j = 1, n_edges
+          n_rows = n_rows + 1
+          rows(:, n_rows) = [A, edges(:, j)]
+        end do
+      end do
+    end associate
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('swirl_boundary.csv', 'swirl_boundary', &
+                                                rows(:, 1:n_rows), status, message)
+  end subroutine run_swirl_boundary
+
+  !> Values separated by commas.
+  pure function join_values(values) result(text)
+    real(wp), intent(in) :: values(:)
+    character(len=:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, size(values)
+      text = text//trim(merge(', ', '  ', i > 1))//num2str(values(i))
+    end do
+  end function join_values
 
   !> The sense of rotation of an orbit with mean angular momentum l about the vertical (seen
   !> from above).

@@ -13,7 +13,8 @@ module sloshdyn_namelist
   use sloshdyn_status, only: SD_OK, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, model_from_arrays, require_stable_trivial
-  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_FREQUENCY, set_excitation_parameter
+  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A, PARAMETER_FREQUENCY, &
+                                 set_excitation_parameter
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model
   use sloshdyn_tank, only: SHAPE_CIRCULAR, shape_names
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, GROUND_RECORD
@@ -31,7 +32,8 @@ module sloshdyn_namelist
                                  ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, &
                                  ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART, &
                                  ANALYSIS_SWIRL
-  use sloshdyn_namelist_groups, only: open_input, describe_groups, check_threads, G_MODEL, &
+  use sloshdyn_namelist_groups, only: open_input, describe_groups, check_threads, G_SWEEP, &
+                                      G_MODEL, &
                                       G_TANK, G_GROUND_MOTION, G_EXCITATION, G_ANALYSIS, &
                                       read_model, read_tank, read_ground_motion, &
                                       read_excitation, read_analysis, read_output, &
@@ -132,8 +134,11 @@ contains
     if (status == SD_OK) call read_simulation(file, config%analysis == ANALYSIS_SIMULATE, &
                                               config%simulation, status, message)
     if (status == SD_OK) call read_steady(file, config%steady, status, message)
-    if (status == SD_OK) call read_sweep(file, config%analysis == ANALYSIS_SWEEP, config%sweep, &
-                                         status, message)
+    ! kind = 'swirl' with &sweep: the band at each A of the sweep (its boundary in (rho, A))
+    if (status == SD_OK) call read_sweep(file, config%analysis == ANALYSIS_SWEEP .or. &
+                                         (config%analysis == ANALYSIS_SWIRL .and. &
+                                          file%groups(G_SWEEP)%given), config%sweep, status, &
+                                         message)
     if (status == SD_OK) call read_response(file, any(config%analysis == &
                                             [ANALYSIS_FREQUENCY_RESPONSE, &
                                              ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_SWIRL]), &
@@ -242,6 +247,15 @@ contains
     case (ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_SWIRL)
       call require_stable_trivial(config%model, status, message)
       if (status /= SD_OK) return
+      if (config%analysis == ANALYSIS_SWIRL .and. config%sweep%n_points > 0) then
+        if (config%sweep%parameter /= PARAMETER_A .or. &
+            config%response%parameter /= PARAMETER_RHO) then
+          call fail(status, message, "&sweep: with kind = 'swirl' it gives the values of A at "// &
+                    'which the swirl band along rho is found (its boundary in (rho, A)): '// &
+                    "&sweep parameter = 'A' and &response parameter = 'rho'")
+          return
+        end if
+      end if
       first = config%model
       if (config%response%parameter == PARAMETER_RHO) first%excitation%rho = config%response%start
       call check_steady(first, config%steady, status, message)
@@ -303,6 +317,11 @@ contains
                 "circular tank with one sloshing mode, not shape = '"// &
                 trim(shape_names(config%tank%shape))// &
                 "' with modes = "//num2str(config%tank%modes))
+    else if (config%analysis == ANALYSIS_SWIRL .and. (config%azimuth /= 0 .or. &
+                                                      config%ellipticity /= 0)) then
+      call fail(status, message, "&excitation: kind = 'swirl' follows planar responses to "// &
+                'base motion along x: azimuth = '//num2str(config%azimuth)// &
+                ' and ellipticity = '//num2str(config%ellipticity)//' must be 0')
     else if (.not. any(config%analysis == [ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, &
                                            ANALYSIS_SEISMIC, ANALYSIS_SWIRL])) then
       call fail(status, message, group//": planar = .false. (the spatial model) is not for "// &

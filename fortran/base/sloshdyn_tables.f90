@@ -22,7 +22,7 @@ module sloshdyn_tables
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
   public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
-  public :: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS
+  public :: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
@@ -121,6 +121,9 @@ module sloshdyn_tables
   !> periodic orbit of it ('swirl_orbit': its 8 states at tau = 0, max|x1|, the swirl amplitude
   !> max|y1|, the mean angular momentum, Newton's iterations, its 8 Floquet multipliers).
   integer, parameter :: SPATIAL_HISTORY_ROWS = 10, SWIRL_ORBIT_ROWS = 28
+  !> The edges of the swirl band along rho at several A ('swirl_boundary': A, then the
+  !> 'swirl_edges' columns).
+  integer, parameter :: SWIRL_BOUNDARY_ROWS = 8
 
   !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
   !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
@@ -247,6 +250,8 @@ contains
                're_nu4,im_nu1,im_nu2,im_nu3,im_nu4'
     case ('swirl_edges')
       header = 'lambda,y1,y2,y3,y4,max_x1,refined'
+    case ('swirl_boundary')
+      header = 'A,lambda,y1,y2,y3,y4,max_x1,refined'
     case ('spatial_history')
       header = 'tau,x1,dx1,x2,dx2,y1,dy1,y2,dy2,tilt,tilt_azimuth'
     case ('swirl_orbit')
