@@ -66,13 +66,13 @@ module sloshdyn_driver
   public :: run_analysis, print_model, sweep_points, design_codes_table
   !> Used by the submodule sloshdyn_driver_tank too; public because gfortran does not export a
   !> module's private procedures to its submodules' object files.
-  public :: begin_files, in_context, used_method, value_text, difference, pad
+  public :: begin_files, in_context, used_method, value_text, difference, pad, swirl_band
 
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
   !> Room for the slow-flow response table and its special points.
   integer, parameter :: max_response_points = 20000, max_special_points = 200
   !> Room for the edges of a swirl band (as sloshdyn.spatial.swirl_band's max_edges).
-  integer, parameter :: max_swirl_edges = 100
+  integer, parameter, public :: max_swirl_edges = 100
 
   !> The runs of a tank in SI units, in the submodule sloshdyn_driver_tank, and of the spatial
   !> model, in sloshdyn_driver_spatial
@@ -677,23 +677,14 @@ contains
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: start
-    real(wp) :: y_orbit(4)
     real(wp), allocatable :: points(:, :), edges(:, :)
     integer :: n_points, n_edges, i
     logical :: complete
     character(len=:), allocatable :: name
 
     associate (r => config%response)
-      allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
-                edges(SWIRL_EDGE_ROWS, max_swirl_edges))
-      call orbit_from_rest(config%model, r%parameter, config%simulation%y0(1:4), r%start, &
-                           config%steady, config%integration, config%method, start, y_orbit, &
-                           status, message)
-      if (status == SD_OK) &
-        call swirl_branch(start, r%parameter, y_orbit, 1, r%start, r%stop, &
-                          r%options%continuation, config%integration, config%method, points, &
-                          n_points, edges, n_edges, complete, status, message)
+      call swirl_band(config, config%model, points, n_points, edges, n_edges, complete, status, &
+                      message)
       call in_context('swirl', status, message)
       if (status /= SD_OK) return
       name = parameter_label(r%parameter)
@@ -715,6 +706,35 @@ contains
     if (status == SD_OK) call files%write_table('swirl_edges.csv', 'swirl_edges', &
                                                 edges(:, 1:n_edges), status, message)
   end subroutine run_swirl
+
+  !> The swirl band of model along &response's range (sloshdyn_swirl's swirl_branch, from the
+  !> planar orbit reached from &simulation's y0 at its start): points(SWIRL_BRANCH_ROWS, :) and
+  !> edges(SWIRL_EDGE_ROWS, :), allocated here.
+  subroutine swirl_band(config, model, points, n_points, edges, n_edges, complete, status, &
+                        message)
+    type(run_config), intent(in) :: config
+    type(model_t), intent(in) :: model
+    real(wp), allocatable, intent(out) :: points(:, :), edges(:, :)
+    integer, intent(out) :: n_points, n_edges, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: start
+    real(wp) :: y_orbit(4)
+    n_points = 0
+    n_edges = 0
+    complete = .false.
+    associate (r => config%response)
+      allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
+                edges(SWIRL_EDGE_ROWS, max_swirl_edges))
+      call orbit_from_rest(model, r%parameter, config%simulation%y0(1:4), r%start, &
+                           config%steady, config%integration, config%method, start, y_orbit, &
+                           status, message)
+      if (status == SD_OK) &
+        call swirl_branch(start, r%parameter, y_orbit, 1, r%start, r%stop, &
+                          r%options%continuation, config%integration, config%method, points, &
+                          n_points, edges, n_edges, complete, status, message)
+    end associate
+  end subroutine swirl_band
 
   !> Largest Lyapunov exponent from y0 with its running estimates.
   subroutine run_lyapunov(config, files, status, message)

@@ -103,16 +103,14 @@ contains
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: at_A, start
-    real(wp) :: y_orbit(4), A
+    type(model_t) :: at_A
+    real(wp) :: A
     real(wp), allocatable :: points(:, :), edges(:, :), rows(:, :)
     integer :: n_points, n_edges, i, j, n_rows
     logical :: complete
 
     associate (r => config%response, sw => config%sweep)
-      allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
-                edges(SWIRL_EDGE_ROWS, max_swirl_edges), &
-                rows(SWIRL_BOUNDARY_ROWS, max_swirl_edges*sw%n_points))
+      allocate (rows(SWIRL_BOUNDARY_ROWS, max_swirl_edges*sw%n_points))
       print '(/a)', 'Swirl boundary: the swirl band along rho in ['//num2str(r%start)//', '// &
                     num2str(r%stop)//'] at '//num2str(sw%n_points)//' values of A in ['// &
                     num2str(sw%start)//', '//num2str(sw%stop)//'] (spatial model; '// &
@@ -122,13 +120,8 @@ contains
         A = sw%start + (sw%stop - sw%start)*(i - 1)/max(sw%n_points - 1, 1)
         at_A = config%model
         at_A%excitation%A = A
-        call orbit_from_rest(at_A, PARAMETER_RHO, config%simulation%y0(1:4), r%start, &
-                             config%steady, config%integration, config%method, start, y_orbit, &
-                             status, message)
-        if (status == SD_OK) &
-          call swirl_branch(start, PARAMETER_RHO, y_orbit, 1, r%start, r%stop, &
-                            r%options%continuation, config%integration, config%method, points, &
-                            n_points, edges, n_edges, complete, status, message)
+        call swirl_band(config, at_A, points, n_points, edges, n_edges, complete, status, &
+                        message)
         if (status /= SD_OK) message = 'at A = '//num2str(A)//': '//trim(message)
         call in_context('swirl boundary', status, message)
         if (status /= SD_OK) return
