@@ -254,3 +254,12 @@ def test_bad_swirl_input_names_the_variable(exe, tmp_path, text, words):
         sloshdyn.read_namelist(path)
     for word in words:
         assert word in result.stderr and word in str(info.value), (word, result.stderr)
+
+
+@pytest.mark.parametrize("text", [SIMULATE, ORBIT])
+def test_both_front_doors_write_the_same_files(tmp_path, text):
+    """The executable and `sloshdyn-py run` (the one reader and driver through the bridge)."""
+    from test_one_reader import both_front_doors, same_csv_files
+    exe_out, py_out, (exe, py) = both_front_doors(tmp_path, text)
+    assert exe.returncode == 0 and py.returncode == 0, (exe.stderr, py.stderr)
+    same_csv_files(exe_out, py_out)
