@@ -263,3 +263,24 @@ def test_both_front_doors_write_the_same_files(tmp_path, text):
     exe_out, py_out, (exe, py) = both_front_doors(tmp_path, text)
     assert exe.returncode == 0 and py.returncode == 0, (exe.stderr, py.stderr)
     same_csv_files(exe_out, py_out)
+
+
+def test_a_tank_under_harmonic_motion_simulates_its_spatial_model(exe, tmp_path):
+    """&tank planar = .false. with &ground_motion azimuth and ellipticity: the tank's
+    dimensionless spatial model under its harmonic ground motion, as Python's spatial.simulate
+    of the parameters the reader derives from the tank."""
+    text = ("&tank radius = 5, liquid_depth = 6, freeboard = 1, liquid_density = 1000, "
+            "tank_mass = 5e4, support_frequency = 2, support_damping = 0.02, planar = .false. /\n"
+            "&ground_motion peak_acceleration = 0.05, frequency = 0.29872, azimuth = 0.5, "
+            "ellipticity = 0.3 /\n&analysis kind = 'simulate' /\n"
+            "&simulation t_end = 30, n_out = 31 /\n&output directory = 'out' /\n")
+    path = write(tmp_path, text)
+    result = run(exe, path.name, tmp_path)
+    assert result.returncode == 0, result.stderr
+    inp = sloshdyn.read_namelist(path)
+    assert inp.spatial == {"azimuth": 0.5, "ellipticity": 0.3} and len(inp.simulation["y0"]) == 8
+    r = spatial.simulate(inp.params, 30, n_out=31, integration=inp.integration, **inp.spatial)
+    rows = read_csv(tmp_path / "out" / "spatial_history.csv")
+    assert [row["y1"] for row in rows] == list(r.y[4])
+    assert [row["tilt"] for row in rows] == list(r.tilt)
+    assert np.abs(r.y[4]).max() > 0.1          # the elliptical motion drives the y-plane
