@@ -43,9 +43,8 @@ module sloshdyn_seismic
                              SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
   implicit none
   private
-  public :: seismic_response, seismic_defaults, design_code_checks, tank_summary
+  public :: seismic_response, seismic_setup, seismic_defaults, design_code_checks, tank_summary
   public :: harmonic_sweep, harmonic_sweep_row, free_periods, max_seismic_outputs, tank_modes
-  public :: seismic_run
 
   !> After a record ends the liquid goes on sloshing: t_end defaults to the record plus this
   !> many sloshing periods; harmonic motion runs this many forcing periods.
@@ -136,7 +135,7 @@ contains
 
     table = ieee_value(1.0_wp, ieee_quiet_nan)
     peaks = ieee_value(1.0_wp, ieee_quiet_nan)
-    call seismic_run(tank, ground, t_end, n_out, model, props, tau, status, message)
+    call seismic_setup(tank, ground, t_end, n_out, model, props, tau, status, message)
     if (status /= SD_OK) return
     allocate (history(HISTORY_ROWS, n_out))
     y0 = 0
@@ -175,10 +174,11 @@ contains
     if (status == SD_OK) call run_traceability(tank, ground, props, peaks, status, message)
   end subroutine seismic_response
 
-  !> The model of a seismic run (the tank's, with the ground motion as its excitation) and its
-  !> n_out output times tau, evenly spaced over [0, t_end] [s] (in tau = omega t); checks t_end
-  !> and n_out.
-  pure subroutine seismic_run(tank, ground, t_end, n_out, model, props, tau, status, message)
+  !> What every seismic response sets up first (seismic_response, and sloshdyn_seismic_spatial's
+  !> seismic_response_spatial): the tank's model driven by the ground motion, t_end > 0 [s],
+  !> n_out in [2, max_seismic_outputs], and the output times tau (the model's time, tau =
+  !> omega t) evenly spaced over [0, t_end].
+  subroutine seismic_setup(tank, ground, t_end, n_out, model, props, tau, status, message)
     type(tank_t), intent(in) :: tank
     type(ground_motion_t), intent(in) :: ground
     real(wp), intent(in) :: t_end
@@ -197,7 +197,7 @@ contains
     call check_output_count('n_out', n_out, max_seismic_outputs, .false., status, message)
     if (status /= SD_OK) return
     tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]
-  end subroutine seismic_run
+  end subroutine seismic_setup
 
   !> What a run's numbers rest on: the ground motion's scale factor, its pseudo-spectral
   !> acceleration at the tank's sloshing period for the convective damping (what target_sa

@@ -24,7 +24,7 @@ module sloshdyn_seismic_pressure
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_simulation, only: time_history
   use sloshdyn_sdof, only: sdof_response
-  use sloshdyn_seismic, only: seismic_run
+  use sloshdyn_seismic, only: seismic_setup
   use sloshdyn_tank, only: max_modes
   use sloshdyn_wall_pressure, only: instant_pressure_tables, convective_resultants, &
                                     check_pressure_input, COMBINE_SUM
@@ -65,7 +65,7 @@ contains
     modal = 0
     wall = 0
     base = 0
-    call seismic_run(tank, ground, t_end, n_out, model, props, tau, status, message)
+    call seismic_setup(tank, ground, t_end, n_out, model, props, tau, status, message)
     do k = 1, size(times)
       call check_real('times('//num2str(k)//')', times(k), 0.0_wp, t_end, .false., .false., &
                       'the instants [s] must lie in [0, t_end = '//num2str(t_end)//']', &

@@ -3,8 +3,8 @@
 !> combining two planar analyses.
 !>
 !> Ground motion: component 1 along the azimuth alpha (from the x axis), component 2 across it
-!> (alpha + 90 degrees); both records (sampled at the same dt, scaled by one factor by the
-!> caller, as FEMA P695 scales a pair), or harmonic motion along alpha with the ellipticity e of
+!> (alpha + 90 degrees); both records (scaled by one factor by the caller, as FEMA P695 scales a
+!> pair; the second resampled onto the first one's time grid, sloshdyn_ground's on_time_grid), or harmonic motion along alpha with the ellipticity e of
 !> sloshdyn_spatial (component 2 is then e times component 1, a quarter period later).
 !>
 !> Loads (SI) at each output time, from the horizontal accelerations of the tank and of the
@@ -18,42 +18,47 @@
 !> swirl"); in the plane these are tank_loads' rows.
 !>
 !> Beside the spatial peaks, the codes' combinations of two planar runs (run 1: component 1
-!> alone; run 2: component 2 alone, for records): the SRSS, sqrt(P1^2 + P2^2), and the 100/30
-!> rule, max(P1 + 0.3 P2, 0.3 P1 + P2) (ASCE 7-16 12.5.3.1(a); EN 1998-1 4.3.3.5.1, SRSS and
-!> eq 4.18-4.20), with the peaks P of each run over the same output times.
+!> alone; run 2: component 2 alone): the SRSS, sqrt(P1^2 + P2^2), and the 100/30 rule,
+!> max(P1 + 0.3 P2, 0.3 P1 + P2) (ASCE 7-16 12.5.3.1(a); EN 1998-1 4.3.3.5.1, SRSS and eq
+!> 4.18-4.20), with the peaks P of each run over the same output times. For harmonic motion
+!> component 2 is the ellipse's minor axis, e a cos(2 pi f t); the codes combine peaks and leave
+!> the phases out, and so does run 2: the planar run under e a sin(2 pi f t) (none for e = 0:
+!> P2 = 0, and both combinations are P1).
 !>
 !> Layouts (sloshdyn_tables): table(:, i) = 'seismic_spatial', peaks = 'seismic_spatial_peaks'.
 module sloshdyn_seismic_spatial
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real, check_output_count
-  use sloshdyn_text, only: num2str
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_model, only: model_t
-  use sloshdyn_excitation, only: excitation_t, breakpoint_step, record_end
-  use sloshdyn_vessel, only: tank_t, tank_properties, tank_model
-  use sloshdyn_ground, only: ground_motion_t, ground_excitation, GROUND_RECORD
-  use sloshdyn_spatial, only: spatial_model, spatial_kinematics, ground_acceleration
-  use sloshdyn_spatial_system, only: spatial_tank_system
+  use sloshdyn_excitation, only: excitation_t
+  use sloshdyn_vessel, only: tank_t, tank_properties
+  use sloshdyn_ground, only: ground_motion_t, ground_excitation, harmonic_ground, on_time_grid, &
+                             GROUND_RECORD
+  use sloshdyn_spatial, only: spatial_model_t, spatial_model, spatial_kinematics, &
+                              ground_acceleration
   use sloshdyn_ode, only: ode_options, ode_stats
-  use sloshdyn_integrator, only: integrate
-  use sloshdyn_seismic, only: seismic_response, max_seismic_outputs
+  use sloshdyn_simulation, only: spatial_time_history
+  use sloshdyn_seismic, only: seismic_response, seismic_setup
   use sloshdyn_tables, only: SEISMIC_ROWS, PEAKS_SIZE, SEISMIC_SPATIAL_ROWS, &
-                             SEISMIC_SPATIAL_PEAKS
+                             SEISMIC_SPATIAL_PEAKS, SPATIAL_HISTORY_ROWS, SEISMIC_WAVE_HEIGHT, &
+                             SEISMIC_BASE_SHEAR, SEISMIC_OVERTURNING_MOMENT
   implicit none
   private
   public :: seismic_response_spatial
 
   !> rows of the planar 'seismic' table used for the combinations: wave height at the wall,
   !> base shear, overturning moment
-  integer, parameter :: planar_rows(3) = [4, 8, 9]
+  integer, parameter :: planar_rows(3) = [SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, &
+                                           SEISMIC_OVERTURNING_MOMENT]
 
 contains
 
   !> The response of the tank at rest at t = 0 to the two components ground_1 (along azimuth
-  !> [rad]) and ground_2 (across it; a record with the same dt as ground_1, or, with harmonic
-  !> ground_1, ignored: ellipticity gives the second component) at n_out times evenly spaced over
-  !> [0, t_end] [s]: table(SEISMIC_SPATIAL_ROWS, n_out) and peaks(SEISMIC_SPATIAL_PEAKS). For
-  !> harmonic motion the combination columns of the peaks are NaN.
+  !> [rad]) and ground_2 (across it; a record, resampled onto ground_1's time grid if its dt
+  !> differs, or, with harmonic ground_1, ignored: ellipticity gives the second component) at
+  !> n_out times evenly spaced over [0, t_end] [s]: table(SEISMIC_SPATIAL_ROWS, n_out) and
+  !> peaks(SEISMIC_SPATIAL_PEAKS).
   subroutine seismic_response_spatial(tank, ground_1, ground_2, azimuth, ellipticity, t_end, &
                                       n_out, options, method, table, peaks, status, message)
     type(tank_t), intent(in) :: tank
@@ -67,9 +72,9 @@ contains
     type(model_t) :: planar
     type(tank_properties) :: props
     type(excitation_t) :: second
-    type(spatial_tank_system) :: system
-    type(ode_options) :: settings
+    type(spatial_model_t) :: model
     type(ode_stats) :: stats
+    type(ground_motion_t) :: across
     real(wp), allocatable :: tau(:), y(:, :), run(:, :)
     real(wp) :: run_peaks(PEAKS_SIZE), p1(3), p2(3), n_h(2), a_tank(2), a_mass(2), scale, &
                 shear(2), moment(2)
@@ -78,46 +83,39 @@ contains
 
     table = ieee_value(1.0_wp, ieee_quiet_nan)
     peaks = ieee_value(1.0_wp, ieee_quiet_nan)
-    call tank_model(tank, planar, props, status, message)
-    if (status == SD_OK) call ground_excitation(ground_1, props%omega, props%rod_length, &
-                                                planar%excitation, status, message)
+    call seismic_setup(tank, ground_1, t_end, n_out, planar, props, tau, status, message)
     records = ground_1%kind == GROUND_RECORD
     if (status == SD_OK .and. records) then
-      if (ground_2%kind /= GROUND_RECORD .or. ground_2%dt /= ground_1%dt) then
+      if (ground_2%kind /= GROUND_RECORD) then
         status = SD_BAD_INPUT
-        message = 'the second component must be a record with the first one''s dt = '// &
-                  num2str(ground_1%dt)//' s'
+        message = 'the second component must be a record, as the first one is'
       else
-        call ground_excitation(ground_2, props%omega, props%rod_length, second, status, message)
+        across = on_time_grid(ground_2, ground_1%dt)
+        call ground_excitation(across, props%omega, props%rod_length, second, status, message)
       end if
     end if
-    call check_real('t_end', t_end, 0.0_wp, huge(1.0_wp), .true., .true., &
-                    't_end must be > 0 [s]', status, message)
-    call check_output_count('n_out', n_out, max_seismic_outputs, .false., status, message)
     if (status /= SD_OK) return
     if (records) then
-      call spatial_model(planar, azimuth, 0.0_wp, system%model, status, message, second)
+      call spatial_model(planar, azimuth, 0.0_wp, model, status, message, second)
     else
-      call spatial_model(planar, azimuth, ellipticity, system%model, status, message)
+      call spatial_model(planar, azimuth, ellipticity, model, status, message)
+      ! the second component of the codes' combination: harmonic motion of peak e a
+      across = harmonic_ground(ellipticity*ground_1%peak_acceleration, ground_1%frequency)
     end if
     if (status /= SD_OK) return
 
-    allocate (tau(n_out), y(8, n_out))
-    tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]
-    settings = options
-    settings%breakpoint_step = breakpoint_step(planar%excitation)
-    settings%breakpoint_end = record_end(planar%excitation)
-    call integrate(method, system, 0.0_wp, [(0.0_wp, i = 1, 8)], tau, y, settings, stats, &
-                   status, message)
+    allocate (y(SPATIAL_HISTORY_ROWS, n_out))
+    call spatial_time_history(model, 0.0_wp, [(0.0_wp, i = 1, 8)], tau, options, method, y, &
+                              stats, status, message)
     if (status /= SD_OK) return
     scale = props%rod_length*props%omega**2     ! L omega^2 [m/s^2]
     do i = 1, n_out
-      call spatial_kinematics(system%model, tau(i), y(:, i), n_h, a_tank, a_mass)
+      call spatial_kinematics(model, tau(i), y(1:8, i), n_h, a_tank, a_mass)
       shear = ((props%total_mass - props%sloshing_mass)*a_tank + props%sloshing_mass*a_mass)* &
               scale
       moment = ((props%rigid_mass*props%impulsive_height + tank%tank_mass*props%shell_height)* &
                 a_tank + props%sloshing_mass*props%convective_height*a_mass)*scale
-      table(:, i) = [tau(i)/props%omega, ground_acceleration(system%model, tau(i))*scale, &
+      table(:, i) = [tau(i)/props%omega, ground_acceleration(model, tau(i))*scale, &
                      props%wave_factor*n_h, &
                      props%wave_factor*norm2(n_h), atan2(n_h(2), n_h(1)), shear, norm2(shear), &
                      moment, norm2(moment), y(1:7:2, i)]
@@ -128,12 +126,17 @@ contains
     peaks(4:5) = [table(10, k), table(1, k)]
     k = maxloc(table(13, :), 1)
     peaks(6:7) = [table(13, k), table(1, k)]
-    if (.not. records) return
 
-    ! the two planar runs, one per component
+    ! the two planar runs, one per component (the second none for harmonic motion along azimuth)
     allocate (run(SEISMIC_ROWS, n_out))
     call planar_peaks(ground_1, '1', p1)
-    if (status == SD_OK) call planar_peaks(ground_2, '2', p2)
+    if (status == SD_OK) then
+      if (records .or. ellipticity > 0) then
+        call planar_peaks(across, '2', p2)
+      else
+        p2 = 0
+      end if
+    end if
     if (status /= SD_OK) return
     do k = 1, 3
       peaks(4 + 4*k:7 + 4*k) = [p1(k), p2(k), hypot(p1(k), p2(k)), &

@@ -7,20 +7,22 @@ module sloshdyn_simulation
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t
-  use sloshdyn_excitation, only: forcing_period, breakpoint_step, record_end, &
+  use sloshdyn_excitation, only: excitation_t, forcing_period, breakpoint_step, record_end, &
                                  set_excitation_parameter
   use sloshdyn_linear, only: modal_matrix
   use sloshdyn_system, only: tank_system
+  use sloshdyn_spatial, only: spatial_model_t, pendulum_tilt
+  use sloshdyn_spatial_system, only: spatial_tank_system
   use sloshdyn_ode, only: ode_options, ode_stats, rk_integrator, observed_quantities, &
                           linear_observation, peak_tracker
   use sloshdyn_integrator, only: new_integrator, integrate
-  use sloshdyn_tables, only: HISTORY_ROWS, SUMMARY_SIZE, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
+  use sloshdyn_tables, only: HISTORY_ROWS, SPATIAL_HISTORY_ROWS, SUMMARY_SIZE, MOTION_PERIODIC, MOTION_QUASI_PERIODIC, &
                              MOTION_IRREGULAR, MOTION_SETTLING
   use sloshdyn_sort, only: sort_index
   use sloshdyn_shooting, only: shooting_newton, floquet_kind, FLOQUET_STABLE
   implicit none
   private
-  public :: time_history, steady_options, steady_state, check_steady, parameter_sweep, &
+  public :: time_history, spatial_time_history, steady_options, steady_state, check_steady, parameter_sweep, &
             independent_sweep, steady_orbit, max_period, max_tau_span, max_state, amplitudes
 
   !> Longest span of one time history in tau = omega1 t: 1e7, about 1.6 million natural
@@ -103,11 +105,56 @@ contains
     class(observed_quantities), intent(in), optional :: observed
     type(peak_tracker), intent(inout), optional :: tracker
     type(tank_system) :: system
-    type(ode_options) :: settings
-    real(wp) :: p_inv(2, 2), span
+    real(wp) :: p_inv(2, 2)
     integer :: i
 
     history = 0
+    call check_history(tau0, y0, tau_out, status, message)
+    if (status /= SD_OK) return
+    system%model = model
+    call integrate(method, system, tau0, y0, tau_out, history(1:4, :), &
+                   with_breakpoints(options, model%excitation), stats, status, message, &
+                   observed, tracker)
+    call inverse_modal_matrix(model, p_inv)
+    do i = 1, size(tau_out)
+      history(5:9, i) = derived_quantities(model, p_inv, history(1:4, i))
+    end do
+  end subroutine time_history
+
+  !> The time history of the spatial model (sloshdyn_spatial; issue 26), as time_history's of
+  !> the planar one: the 8 states, the pendulum's tilt from the vertical over theta0 and its
+  !> azimuth [rad] (sloshdyn_spatial's pendulum_tilt) at tau_out, the rows of the
+  !> 'spatial_history' table after tau.
+  subroutine spatial_time_history(model, tau0, y0, tau_out, options, method, history, stats, &
+                                  status, message)
+    type(spatial_model_t), intent(in) :: model
+    real(wp), intent(in) :: tau0, y0(8), tau_out(:)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    real(wp), intent(out) :: history(SPATIAL_HISTORY_ROWS, size(tau_out))
+    type(ode_stats), intent(out) :: stats
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(spatial_tank_system) :: system
+    integer :: i
+
+    history = 0
+    call check_history(tau0, y0, tau_out, status, message)
+    if (status /= SD_OK) return
+    system%model = model
+    call integrate(method, system, tau0, y0, tau_out, history(1:8, :), &
+                   with_breakpoints(options, model%planar%excitation), stats, status, message)
+    do i = 1, size(tau_out)
+      history(9:10, i) = pendulum_tilt(model, history(1:8, i))
+    end do
+  end subroutine spatial_time_history
+
+  !> The inputs of a time history: y0 (check_initial_state) and the span tau_out(n) - tau0.
+  pure subroutine check_history(tau0, y0, tau_out, status, message)
+    real(wp), intent(in) :: tau0, y0(:), tau_out(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: span
     status = SD_OK
     message = ''
     call check_initial_state(y0, status, message)
@@ -121,32 +168,34 @@ contains
                   'it is &simulation t_end)'
       end if
     end if
-    if (status /= SD_OK) return
-    system%model = model
-    ! a record's samples are kinks of the right-hand side: no step crosses one
+  end subroutine check_history
+
+  !> options with a record's samples (of excitation) as breakpoints: they are kinks of the
+  !> right-hand side, and no step crosses one.
+  pure function with_breakpoints(options, excitation) result(settings)
+    type(ode_options), intent(in) :: options
+    type(excitation_t), intent(in) :: excitation
+    type(ode_options) :: settings
     settings = options
-    settings%breakpoint_step = breakpoint_step(model%excitation)
-    settings%breakpoint_end = record_end(model%excitation)
-    call integrate(method, system, tau0, y0, tau_out, history(1:4, :), settings, stats, status, &
-                   message, observed, tracker)
-    call inverse_modal_matrix(model, p_inv)
-    do i = 1, size(tau_out)
-      history(5:9, i) = derived_quantities(model, p_inv, history(1:4, i))
-    end do
-  end subroutine time_history
+    settings%breakpoint_step = breakpoint_step(excitation)
+    settings%breakpoint_end = record_end(excitation)
+  end function with_breakpoints
 
   !> Every component of y0 within +-max_state (NaN and infinity are left to the integrator's
-  !> own check, which names them the same way).
+  !> own check, which names them the same way); y0 of the planar (4) or the spatial model (8).
   pure subroutine check_initial_state(y0, status, message)
-    real(wp), intent(in) :: y0(4)
+    real(wp), intent(in) :: y0(:)
     integer, intent(inout) :: status
     character(len=message_len), intent(inout) :: message
+    character(len=*), parameter :: names(2) = [character(len=36) :: 'x1, x1'', x2, x2''', &
+                                               'x1, x1'', x2, x2'', y1, y1'', y2, y2''']
     integer :: i
     do i = 1, size(y0)
       if (abs(y0(i)) <= max_state .or. .not. abs(y0(i)) <= huge(y0(i))) cycle
       call check_real('y0('//num2str(i)//')', y0(i), -max_state, max_state, .false., .false., &
-                      'every component of the initial state (x1, x1'', x2, x2'') must lie in '// &
-                      '[-1e3, 1e3]: x1 = theta/theta0 is 1 at the walls', status, message)
+                      'every component of the initial state ('// &
+                      trim(names(merge(2, 1, size(y0) == 8)))//') must lie in [-1e3, 1e3]: '// &
+                      'x1 = theta/theta0 is 1 at the walls', status, message)
       return
     end do
   end subroutine check_initial_state

@@ -27,7 +27,7 @@ module sloshdyn_swirl
                              PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS
   use sloshdyn_model, only: model_t
   use sloshdyn_system, only: tank_system
-  use sloshdyn_spatial, only: spatial_model, spatial_invariants
+  use sloshdyn_spatial, only: spatial_model_t, spatial_model, spatial_invariants
   use sloshdyn_spatial_system, only: spatial_tank_system
   implicit none
   private
@@ -179,7 +179,8 @@ contains
     message = msg
   end subroutine swirl_branch
 
-  !> A periodic orbit of period k T of the spatial model (at the model's excitation along x),
+  !> A periodic orbit of period k T of the spatial model (its excitation: along x for the swirl
+  !> of a planar response, or at any azimuth and ellipticity),
   !> found by Newton shooting on the 8 states (sloshdyn_shooting's shooting_newton) from y0, or
   !> from the state reached from y0 after `transient` k T of integration (transient >= 0): a
   !> swirling orbit from a planar one perturbed out of its plane inside the swirl band. y_orbit
@@ -190,7 +191,7 @@ contains
   subroutine swirl_orbit(model, y0, k, transient, options, method, newton_tol, max_iter, &
                          y_orbit, re, im, iterations, max_x1, amplitude, angular_momentum, &
                          status, message)
-    type(model_t), intent(in) :: model
+    type(spatial_model_t), intent(in) :: model
     real(wp), intent(in) :: y0(8), newton_tol
     integer, intent(in) :: k, transient, method, max_iter
     type(ode_options), intent(in) :: options
@@ -211,8 +212,9 @@ contains
       message = 'transient = '//num2str(transient)//' is out of range: it must be >= 0'
       return
     end if
-    call spatial_model(model, 0.0_wp, 0.0_wp, system%model, status, message)
-    if (status /= SD_OK) return
+    status = SD_OK
+    message = ''
+    system%model = model
     period = k*system%period()
     y_start = y0
     if (transient > 0) then

@@ -64,15 +64,37 @@ module sloshdyn_driver
   implicit none
   private
   public :: run_analysis, print_model, sweep_points, design_codes_table
+  !> Used by the submodule sloshdyn_driver_spatial too; public because gfortran does not export
+  !> a module's private procedures to its submodules' object files.
+  public :: swirl_band
 
   integer, parameter :: max_equilibria = 4096, max_kappa_roots = 64
   !> Room for the slow-flow response table and its special points.
   integer, parameter :: max_response_points = 20000, max_special_points = 200
   !> Room for the edges of a swirl band (as sloshdyn.spatial.swirl_band's max_edges).
-  integer, parameter :: max_swirl_edges = 100
+  integer, parameter, public :: max_swirl_edges = 100
 
-  !> The runs of a tank in SI units, in the submodule sloshdyn_driver_tank
+  !> The runs of a tank in SI units, in the submodule sloshdyn_driver_tank, and of the spatial
+  !> model, in sloshdyn_driver_spatial
   interface
+    module subroutine run_simulate_spatial(config, files, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_simulate_spatial
+    module subroutine run_swirl_boundary(config, files, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_swirl_boundary
+    module subroutine run_swirl_orbit(config, files, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_swirl_orbit
     module subroutine run_seismic_spatial(config, files, status, message)
       type(run_config), intent(in) :: config
       type(result_files), intent(inout) :: files
@@ -114,9 +136,17 @@ contains
     case (ANALYSIS_LINEAR)
       call run_linear(config, files, status, message)
     case (ANALYSIS_SIMULATE)
-      call run_simulate(config, files, status, message)
+      if (config%planar) then
+        call run_simulate(config, files, status, message)
+      else
+        call run_simulate_spatial(config, files, status, message)
+      end if
     case (ANALYSIS_STEADY_STATE)
-      call run_steady_state(config, files, status, message)
+      if (config%planar) then
+        call run_steady_state(config, files, status, message)
+      else
+        call run_swirl_orbit(config, files, status, message)
+      end if
     case (ANALYSIS_SWEEP)
       call run_sweep(config, files, status, message)
     case (ANALYSIS_FREQUENCY_RESPONSE)
@@ -132,7 +162,11 @@ contains
         call run_seismic_spatial(config, files, status, message)
       end if
     case (ANALYSIS_SWIRL)
-      call run_swirl(config, files, status, message)
+      if (config%sweep%n_points > 0) then
+        call run_swirl_boundary(config, files, status, message)
+      else
+        call run_swirl(config, files, status, message)
+      end if
     case (ANALYSIS_STABILITY_CHART)
       call run_chart(config, files, status, message)
     end select
@@ -321,8 +355,8 @@ contains
       allocate (tau(sim%n_out), history(HISTORY_ROWS + 1, sim%n_out))
       tau = [(sim%t_end*(i - 1)/(sim%n_out - 1), i = 1, sim%n_out)]
       history(1, :) = tau
-      call time_history(config%model, 0.0_wp, sim%y0, tau, config%integration, config%method, &
-                        history(2:, :), stats, status, message)
+      call time_history(config%model, 0.0_wp, sim%y0(1:4), tau, config%integration, &
+                        config%method, history(2:, :), stats, status, message)
       call in_context('simulation', status, message)
       if (status /= SD_OK) return
       print '(/a)', 'Simulation ('//used_method(config)//', eq 15'// &
@@ -356,8 +390,9 @@ contains
 
     window = config%steady%window_periods
     allocate (poincare(4, window), rows(table_size('poincare'), window))
-    call steady_state(config%model, config%simulation%y0, config%integration, config%method, &
-                      config%steady, summary, poincare, y_end, stats, status, message)
+    call steady_state(config%model, config%simulation%y0(1:4), config%integration, &
+                      config%method, config%steady, summary, poincare, y_end, stats, status, &
+                      message)
     call in_context('steady state', status, message)
     if (status /= SD_OK) return
     print '(/a)', 'Steady state ('//used_method(config)//') at rho = '// &
@@ -429,7 +464,7 @@ contains
     if (in_frequency) line = line//pad('wave [m]', 14)
     print '(a)', line//'motion'
     flush (output_unit)
-    y = config%simulation%y0
+    y = config%simulation%y0(1:4)
     do first = 1, size(values), step
       last = min(first + step - 1, size(values))
       if (in_frequency) then
@@ -539,7 +574,7 @@ contains
       allocate (points(PERIODIC_POINT_ROWS, capacity), &
                 multipliers(PERIODIC_MULTIPLIER_ROWS, capacity), &
                 special(PERIODIC_SPECIAL_ROWS, 100))
-      call periodic_response_from_rest(config%model, r%parameter, config%simulation%y0, &
+      call periodic_response_from_rest(config%model, r%parameter, config%simulation%y0(1:4), &
                                        r%start, r%stop, config%steady, r%options%continuation, &
                                        config%integration, config%method, points, multipliers, &
                                        n_points, special, n_special, complete, status, message)
@@ -629,23 +664,14 @@ contains
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: start
-    real(wp) :: y_orbit(4)
     real(wp), allocatable :: points(:, :), edges(:, :)
     integer :: n_points, n_edges, i
     logical :: complete
     character(len=:), allocatable :: name
 
     associate (r => config%response)
-      allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
-                edges(SWIRL_EDGE_ROWS, max_swirl_edges))
-      call orbit_from_rest(config%model, r%parameter, config%simulation%y0, r%start, &
-                           config%steady, config%integration, config%method, start, y_orbit, &
-                           status, message)
-      if (status == SD_OK) &
-        call swirl_branch(start, r%parameter, y_orbit, 1, r%start, r%stop, &
-                          r%options%continuation, config%integration, config%method, points, &
-                          n_points, edges, n_edges, complete, status, message)
+      call swirl_band(config, config%model, points, n_points, edges, n_edges, complete, status, &
+                      message)
       call in_context('swirl', status, message)
       if (status /= SD_OK) return
       name = parameter_label(r%parameter)
@@ -668,6 +694,35 @@ contains
                                                 edges(:, 1:n_edges), status, message)
   end subroutine run_swirl
 
+  !> The swirl band of model along &response's range (sloshdyn_swirl's swirl_branch, from the
+  !> planar orbit reached from &simulation's y0 at its start): points(SWIRL_BRANCH_ROWS, :) and
+  !> edges(SWIRL_EDGE_ROWS, :), allocated here.
+  subroutine swirl_band(config, model, points, n_points, edges, n_edges, complete, status, &
+                        message)
+    type(run_config), intent(in) :: config
+    type(model_t), intent(in) :: model
+    real(wp), allocatable, intent(out) :: points(:, :), edges(:, :)
+    integer, intent(out) :: n_points, n_edges, status
+    logical, intent(out) :: complete
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: start
+    real(wp) :: y_orbit(4)
+    n_points = 0
+    n_edges = 0
+    complete = .false.
+    associate (r => config%response)
+      allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
+                edges(SWIRL_EDGE_ROWS, max_swirl_edges))
+      call orbit_from_rest(model, r%parameter, config%simulation%y0(1:4), r%start, &
+                           config%steady, config%integration, config%method, start, y_orbit, &
+                           status, message)
+      if (status == SD_OK) &
+        call swirl_branch(start, r%parameter, y_orbit, 1, r%start, r%stop, &
+                          r%options%continuation, config%integration, config%method, points, &
+                          n_points, edges, n_edges, complete, status, message)
+    end associate
+  end subroutine swirl_band
+
   !> Largest Lyapunov exponent from y0 with its running estimates.
   subroutine run_lyapunov(config, files, status, message)
     type(run_config), intent(in) :: config
@@ -684,7 +739,7 @@ contains
     end if
     associate (ly => config%lyapunov)
       allocate (history(ly%n_periods/ly%renormalise_every))
-      call lyapunov_exponent(config%model, config%simulation%y0, ly%transient_periods, &
+      call lyapunov_exponent(config%model, config%simulation%y0(1:4), ly%transient_periods, &
                              ly%n_periods, ly%renormalise_every, config%integration, &
                              config%method, exponent, history, status, message)
       call in_context('Lyapunov exponent', status, message)
@@ -716,7 +771,7 @@ contains
 
     associate (ly => config%lyapunov)
       allocate (history(4, ly%n_periods/ly%renormalise_every))
-      call tank_lyapunov_spectrum(config%model, config%simulation%y0, ly, config%integration, &
+      call tank_lyapunov_spectrum(config%model, config%simulation%y0(1:4), ly, config%integration, &
                                   config%method, exponents, history, dimension_ky, status, &
                                   message)
       call in_context('Lyapunov spectrum', status, message)
@@ -753,6 +808,9 @@ contains
         print '(a)', '  excitation X = A sin(rho tau): A = '//num2str(m%excitation%A)// &
                      ', rho = '//num2str(m%excitation%rho)
       end if
+      if (.not. (config%planar .or. config%dimensional)) &
+        print '(a)', '  spatial model (planar = .false.): the base moves along azimuth '// &
+                     num2str(config%azimuth)//' rad, ellipticity '//num2str(config%ellipticity)
       print '(a)', '  a1..a6 (eq 11) = '//list(m%a_coef)
       print '(a)', '  b1..b6 (eq 11) = '//list(m%b_coef)
     end associate

@@ -38,7 +38,7 @@ contains
     print '(a)', '  '//pad('overturning moment', 24)// &
                  pad(num2str(peaks(6)/1.0e6_wp, significant=5)//' MN m', 18)//'at t = '// &
                  num2str(peaks(7), significant=5)//' s'
-    if (config%has_ground_y) print '(a)', '  codes'' combinations of the two planar runs '// &
+    print '(a)', '  codes'' combinations of the two planar runs '// &
       '(SRSS, 100/30): wave height '//num2str(peaks(10), significant=5)//', '// &
       num2str(peaks(11), significant=5)//' m; base shear '// &
       num2str(peaks(14)/1.0e6_wp, significant=5)//', '// &

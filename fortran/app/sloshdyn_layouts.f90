@@ -169,10 +169,12 @@ module sloshdyn_layouts
     field_t('parameter', 'code:excitation_parameters'), field_t('start'), field_t('stop'), &
     field_t('n_points', 'integer'), field_t('direction', 'code:directions'), &
     field_t('carry_state', 'flag'), field_t('threads', 'integer')]
-  !> &simulation: t_end, n_out and the initial state y0 = (x1, x1', x2, x2')
+  !> &simulation: t_end, n_out and the initial state y0 = (x1, x1', x2, x2') and, for the
+  !> spatial model, (y1, y1', y2, y2')
   type(field_t), parameter :: simulation_fields(*) = [ &
     field_t('t_end'), field_t('n_out', 'integer'), field_t('y0_1'), field_t('y0_2'), &
-    field_t('y0_3'), field_t('y0_4')]
+    field_t('y0_3'), field_t('y0_4'), field_t('y0_5'), field_t('y0_6'), field_t('y0_7'), &
+    field_t('y0_8')]
   !> &seismic
   type(field_t), parameter :: seismic_fields(*) = [field_t('t_end'), field_t('n_out', 'integer')]
   !> &analysis's numbers (the 3:1 tuning search)

@@ -13,7 +13,8 @@ module sloshdyn_namelist
   use sloshdyn_status, only: SD_OK, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, model_from_arrays, require_stable_trivial
-  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_FREQUENCY, set_excitation_parameter
+  use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A, PARAMETER_FREQUENCY, &
+                                 set_excitation_parameter
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model
   use sloshdyn_tank, only: SHAPE_CIRCULAR, shape_names
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, GROUND_RECORD
@@ -31,7 +32,8 @@ module sloshdyn_namelist
                                  ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_PERIODIC_RESPONSE, &
                                  ANALYSIS_LYAPUNOV, ANALYSIS_SEISMIC, ANALYSIS_STABILITY_CHART, &
                                  ANALYSIS_SWIRL
-  use sloshdyn_namelist_groups, only: open_input, describe_groups, check_threads, G_MODEL, &
+  use sloshdyn_namelist_groups, only: open_input, describe_groups, check_threads, G_SWEEP, &
+                                      G_MODEL, &
                                       G_TANK, G_GROUND_MOTION, G_EXCITATION, G_ANALYSIS, &
                                       read_model, read_tank, read_ground_motion, &
                                       read_excitation, read_analysis, read_output, &
@@ -108,7 +110,7 @@ contains
         end if
       end if
     else
-      call read_excitation(file, A, rho, status, message)
+      call read_excitation(file, A, rho, config%azimuth, config%ellipticity, status, message)
       if (status /= SD_OK) return
       call read_model(file, groups, exponents, config%planar, status, message)
       if (status /= SD_OK) return
@@ -132,8 +134,11 @@ contains
     if (status == SD_OK) call read_simulation(file, config%analysis == ANALYSIS_SIMULATE, &
                                               config%simulation, status, message)
     if (status == SD_OK) call read_steady(file, config%steady, status, message)
-    if (status == SD_OK) call read_sweep(file, config%analysis == ANALYSIS_SWEEP, config%sweep, &
-                                         status, message)
+    ! kind = 'swirl' with &sweep: the band at each A of the sweep (its boundary in (rho, A))
+    if (status == SD_OK) call read_sweep(file, config%analysis == ANALYSIS_SWEEP .or. &
+                                         (config%analysis == ANALYSIS_SWIRL .and. &
+                                          file%groups(G_SWEEP)%given), config%sweep, status, &
+                                         message)
     if (status == SD_OK) call read_response(file, any(config%analysis == &
                                             [ANALYSIS_FREQUENCY_RESPONSE, &
                                              ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_SWIRL]), &
@@ -179,7 +184,7 @@ contains
     call read_tank(file, tank, planar, status, message)
     call read_ground_motion(file, props, -1.0_wp, ground, ground_y, has_y, azimuth, ellipticity, &
                             status, message)
-    call read_excitation(file, A, rho, status, message)
+    call read_excitation(file, A, rho, azimuth, ellipticity, status, message)
     call read_analysis(file, config, status, message)
     call read_output(file, directory, status, message)
     call read_integration(file, integration, method, status, message)
@@ -242,6 +247,15 @@ contains
     case (ANALYSIS_PERIODIC_RESPONSE, ANALYSIS_SWIRL)
       call require_stable_trivial(config%model, status, message)
       if (status /= SD_OK) return
+      if (config%analysis == ANALYSIS_SWIRL .and. config%sweep%n_points > 0) then
+        if (config%sweep%parameter /= PARAMETER_A .or. &
+            config%response%parameter /= PARAMETER_RHO) then
+          call fail(status, message, "&sweep: with kind = 'swirl' it gives the values of A at "// &
+                    'which the swirl band along rho is found (its boundary in (rho, A)): '// &
+                    "&sweep parameter = 'A' and &response parameter = 'rho'")
+          return
+        end if
+      end if
       first = config%model
       if (config%response%parameter == PARAMETER_RHO) first%excitation%rho = config%response%start
       call check_steady(first, config%steady, status, message)
@@ -259,8 +273,11 @@ contains
   end subroutine check_analysis
 
   !> The rules of the spatial model (issue 26): planar = .false. (&model or &tank) with p >= 1
-  !> (sloshdyn_spatial's spatial_model) for the analyses that have it, 'seismic' and 'swirl'
-  !> ('swirl' only), of a circular tank with one sloshing mode; a second component only for it.
+  !> (sloshdyn_spatial's spatial_model) for the analyses that have it, of a circular tank with
+  !> one sloshing mode; a second component and the out-of-plane initial state only for it. The
+  !> analyses that have it: 'simulate' (its time history), 'steady_state' (a periodic orbit of
+  !> it by Newton shooting, sloshdyn_swirl's swirl_orbit), 'seismic' (two components) and
+  !> 'swirl' ('swirl' only); the others are refused, each with its reason (spatial_refusal).
   subroutine check_spatial(config, status, message)
     type(run_config), intent(in) :: config
     integer, intent(inout) :: status
@@ -272,10 +289,21 @@ contains
         call fail(status, message, "&analysis: kind = 'swirl' is the stability of planar "// &
                   'responses out of their plane: it needs the spatial model, planar = .false. '// &
                   'in '//group)
-      else if (config%has_ground_y .or. config%azimuth /= 0 .or. config%ellipticity /= 0) then
+      else if (config%dimensional .and. (config%has_ground_y .or. config%azimuth /= 0 .or. &
+                                         config%ellipticity /= 0)) then
         call fail(status, message, '&ground_motion: record_y, azimuth and ellipticity '// &
                   'describe ground motion in two components: they need the spatial model, '// &
                   'planar = .false. in &tank')
+      else if (config%azimuth /= 0 .or. config%ellipticity /= 0) then
+        call fail(status, message, '&excitation: azimuth and ellipticity describe base '// &
+                  'motion in two components: they need the spatial model, planar = .false. '// &
+                  'in &model')
+      else if (any(config%simulation%y0(5:8) /= 0)) then
+        call fail(status, message, '&simulation: y0(5:8) = '// &
+                  num2str(config%simulation%y0(5))//', '//num2str(config%simulation%y0(6))// &
+                  ', '//num2str(config%simulation%y0(7))//', '// &
+                  num2str(config%simulation%y0(8))//' are the out-of-plane states (y1, y1'''// &
+                  ', y2, y2'') of the spatial model: they need planar = .false. in '//group)
       end if
       return
     end if
@@ -289,10 +317,40 @@ contains
                 "circular tank with one sloshing mode, not shape = '"// &
                 trim(shape_names(config%tank%shape))// &
                 "' with modes = "//num2str(config%tank%modes))
-    else if (.not. any(config%analysis == [ANALYSIS_SEISMIC, ANALYSIS_SWIRL])) then
-      call fail(status, message, group//": planar = .false. (the spatial model) is for kind "// &
-                "= 'seismic' or 'swirl', not kind = '"//trim(known_analyses(config%analysis))// &
-                "'")
+    else if (config%analysis == ANALYSIS_SWIRL .and. (config%azimuth /= 0 .or. &
+                                                      config%ellipticity /= 0)) then
+      call fail(status, message, "&excitation: kind = 'swirl' follows planar responses to "// &
+                'base motion along x: azimuth = '//num2str(config%azimuth)// &
+                ' and ellipticity = '//num2str(config%ellipticity)//' must be 0')
+    else if (.not. any(config%analysis == [ANALYSIS_SIMULATE, ANALYSIS_STEADY_STATE, &
+                                           ANALYSIS_SEISMIC, ANALYSIS_SWIRL])) then
+      call fail(status, message, group//": planar = .false. (the spatial model) is not for "// &
+                "kind = '"//trim(known_analyses(config%analysis))//"': "// &
+                spatial_refusal(config%analysis))
     end if
   end subroutine check_spatial
+
+  !> Why an analysis does not take the spatial model.
+  pure function spatial_refusal(analysis) result(why)
+    integer, intent(in) :: analysis
+    character(len=:), allocatable :: why
+    select case (analysis)
+    case (ANALYSIS_LINEAR)
+      why = 'it is symmetric about the vertical, its linear modes are the planar ones in x '// &
+            'and in y; run planar = .true.'
+    case (ANALYSIS_SWEEP)
+      why = 'its steady states are orbits by shooting (kind = ''steady_state''), along rho '// &
+            'see the swirl band (kind = ''swirl'')'
+    case (ANALYSIS_FREQUENCY_RESPONSE, ANALYSIS_STABILITY_CHART)
+      why = 'the slow flow (eq 41-55) is derived for the planar model; the swirl band is '// &
+            'kind = ''swirl'''
+    case (ANALYSIS_PERIODIC_RESPONSE)
+      why = 'the continuation of swirling orbits is not built; kind = ''swirl'' (planar '// &
+            'orbits) or ''steady_state'' (one swirling orbit)'
+    case (ANALYSIS_LYAPUNOV)
+      why = 'its Lyapunov exponents (8 states) are not built, only the planar model''s 4'
+    case default
+      why = 'not built for it'
+    end select
+  end function spatial_refusal
 end module sloshdyn_namelist

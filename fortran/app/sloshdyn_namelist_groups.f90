@@ -15,9 +15,11 @@ module sloshdyn_namelist_groups
   use sloshdyn_model, only: model_t, model_to_arrays, model_from_arrays, n_real_params, &
                             n_int_params
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A, PARAMETER_FREQUENCY
+  use sloshdyn_spatial, only: spatial_model_t
   use sloshdyn_vessel, only: tank_t, tank_properties, convective_damping
   use sloshdyn_tank, only: shape_names, SHAPE_RECTANGULAR
-  use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, scale_ground
+  use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, scale_ground, &
+                             on_time_grid
   use sloshdyn_records, only: load_record, units_code, units_factor
   use sloshdyn_seismic, only: max_seismic_outputs
   use sloshdyn_stability_chart, only: chart_settings, check_chart_settings
@@ -180,8 +182,9 @@ contains
   !> 'm/s^2', 'cm/s^2'). A sweep in frequency gives the frequency (sweep_frequency >= 0, its
   !> first [Hz]; < 0: no such sweep) when none is given.
   !> The second horizontal component (the spatial model, issue 26; sloshdyn_seismic_spatial):
-  !> record_y, a record across the first (same format, units and dt; scaled by the first one's
-  !> factor, one factor for both as FEMA P695 scales a pair; has_y), or for harmonic motion its
+  !> record_y, a record across the first (same format and units, resampled onto its time grid by
+  !> sloshdyn_ground's on_time_grid; scaled by the first one's factor, one factor for both as
+  !> FEMA P695 scales a pair; has_y), or for harmonic motion its
   !> azimuth [rad from x] and ellipticity (minor over major axis).
   subroutine read_ground_motion(file, props, sweep_frequency, ground, ground_y, has_y, &
                                 azimuth, ellipticity, status, message)
@@ -263,12 +266,9 @@ contains
                            status, message)
           if (status /= SD_OK) then
             message = "record_y = '"//trim(record_y)//"': "//trim(message)
-          else if (dt_y /= dt) then
-            call fail(status, message, "&ground_motion: record_y = '"//trim(record_y)// &
-                      "' is sampled at dt = "//num2str(dt_y)//' s, record at dt = '// &
-                      num2str(dt)//' s: the two components need the same dt')
           else
-            ground_y = record_ground(dt_y, acceleration)
+            ! on the first record's time grid (sloshdyn_ground's on_time_grid)
+            ground_y = on_time_grid(record_ground(dt_y, acceleration), dt)
             has_y = .true.
           end if
         end if
@@ -345,17 +345,23 @@ contains
     settings = seismic_settings(t_end, n_out)
   end subroutine read_seismic
 
-  subroutine read_excitation(file, amplitude, frequency, status, message)
+  !> &excitation: A, rho and, for the spatial model (planar = .false.), the direction of the
+  !> harmonic motion azimuth [rad from x] and its ellipticity (sloshdyn_spatial's
+  !> spatial_model_t).
+  subroutine read_excitation(file, amplitude, frequency, azimuth, ellipticity, status, message)
     type(input_file), intent(inout) :: file
-    real(wp), intent(out) :: amplitude, frequency
+    real(wp), intent(out) :: amplitude, frequency, azimuth, ellipticity
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(model_t) :: defaults
+    type(spatial_model_t) :: spatial_defaults
     real(wp) :: A, rho
     type(namelist_reader) :: reader
-    namelist /excitation/ A, rho
+    namelist /excitation/ A, rho, azimuth, ellipticity
     A = defaults%excitation%A
     rho = defaults%excitation%rho
+    azimuth = spatial_defaults%azimuth
+    ellipticity = spatial_defaults%ellipticity
     status = SD_OK
     message = ''
     call reader%start(file, G_EXCITATION, status)
@@ -367,6 +373,13 @@ contains
       end if
       call reader%check(file, status, message)
     end do
+    call check_real('azimuth', azimuth, -2*pi, 2*pi, .false., .false., &
+                    'azimuth must lie in [-2 pi, 2 pi] rad (from the x axis)', status, message)
+    call check_real('ellipticity', ellipticity, 0.0_wp, 1.0_wp, .false., .false., &
+                    'ellipticity (minor over major axis of the base motion''s ellipse) must '// &
+                    'lie in [0, 1]', status, message)
+    if (status /= SD_OK .and. index(message, '&excitation') /= 1) &
+      message = '&excitation: '//trim(message)
     amplitude = A
     frequency = rho
   end subroutine read_excitation
@@ -503,7 +516,7 @@ contains
     type(simulation_settings), intent(out) :: settings
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: t_end, y0(4)
+    real(wp) :: t_end, y0(8)
     integer :: n_out, i
     type(namelist_reader) :: reader
     namelist /simulation/ t_end, n_out, y0
@@ -521,10 +534,10 @@ contains
       call reader%check(file, status, message)
     end do
     if (status /= SD_OK) return
-    do i = 1, 4
+    do i = 1, size(y0)
       call check_real('y0('//num2str(i)//')', y0(i), -huge(1.0_wp), huge(1.0_wp), .false., &
-                      .false., 'the initial state (x1, x1'', x2, x2'') must be finite', status, &
-                      message)
+                      .false., 'the initial state (x1, x1'', x2, x2'' and, for the spatial '// &
+                      'model, y1, y1'', y2, y2'') must be finite', status, message)
     end do
     if (needed) then
       call require(file, G_SIMULATION, 't_end', status, message)
@@ -967,7 +980,8 @@ contains
     case ('shooting', 'spectrum')
       text = name//' must be .true. or .false.'
     case ('y0')
-      text = 'y0 must be four real numbers (x1, x1'', x2, x2''), or y0(i) = one of them, i = 1..4'
+      text = 'y0 must be four real numbers (x1, x1'', x2, x2''), eight for the spatial model '// &
+             '(then y1, y1'', y2, y2''), or y0(i) = one of them, i = 1..8'
     case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'zeta', 'a', 'rho', &
           'sigma1', 'kappa_min', &
           'kappa_max', 'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 't_end', 'settle_tol', &
@@ -984,7 +998,7 @@ contains
           'frequency_start', &
           'frequency_stop', 'amplitude_start', 'amplitude_stop', 'x1_start', 'x1_stop', &
           'dx1_start', 'dx1_stop', 'tol', 'intensity_start', 'intensity_stop', &
-          'spectral_damping')
+          'spectral_damping', 'azimuth', 'ellipticity')
       text = name//' must be a real number'
     case default
       text = 'unknown variable '''//name//''' (see the namelist reference, docs/namelist.md)'

@@ -53,11 +53,12 @@ module sloshdyn_run_config
   !> Length of the string variables read (longer values are refused as unknown).
   integer, parameter :: word_len = 64
 
-  !> &simulation: the time history from y0 (also the start of steady states and sweeps).
+  !> &simulation: the time history from y0 (also the start of steady states and sweeps): x1,
+  !> x1', x2, x2' and, for the spatial model only, y1, y1', y2, y2'.
   type :: simulation_settings
     real(wp) :: t_end = 0       !< required for 'simulate'
     integer :: n_out = 2001
-    real(wp) :: y0(4) = 0
+    real(wp) :: y0(8) = 0
   end type simulation_settings
 
   !> &sweep.
@@ -122,7 +123,8 @@ module sloshdyn_run_config
     type(ground_motion_t) :: ground
     !> the spatial model (issue 26; &model or &tank planar = .false.): the second horizontal
     !> component, a record across the first (has_ground_y) or harmonic motion along azimuth
-    !> [rad] with ellipticity (sloshdyn_seismic_spatial)
+    !> [rad] with ellipticity (sloshdyn_seismic_spatial; with &model: &excitation's azimuth and
+    !> ellipticity of the harmonic base motion)
     logical :: planar = .true.
     logical :: has_ground_y = .false.
     type(ground_motion_t) :: ground_y

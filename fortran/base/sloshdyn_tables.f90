@@ -22,6 +22,7 @@ module sloshdyn_tables
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
   public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
+  public :: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
@@ -117,6 +118,14 @@ module sloshdyn_tables
   !> output time ('seismic_spatial'), and the peaks over the output times beside the codes'
   !> combinations of the two planar runs ('seismic_spatial_peaks').
   integer, parameter :: SEISMIC_SPATIAL_ROWS = 17, SEISMIC_SPATIAL_PEAKS = 19
+  !> A time history of the spatial model ('spatial_history', rows after tau: the 8 states, the
+  !> pendulum's tilt from the vertical over theta0 and the azimuth of the tilt [rad]), and one
+  !> periodic orbit of it ('swirl_orbit': its 8 states at tau = 0, max|x1|, the swirl amplitude
+  !> max|y1|, the mean angular momentum, Newton's iterations, its 8 Floquet multipliers).
+  integer, parameter :: SPATIAL_HISTORY_ROWS = 10, SWIRL_ORBIT_ROWS = 28
+  !> The edges of the swirl band along rho at several A ('swirl_boundary': A, then the
+  !> 'swirl_edges' columns).
+  integer, parameter :: SWIRL_BOUNDARY_ROWS = 8
 
   !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
   !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
@@ -262,6 +271,14 @@ contains
                're_nu4,im_nu1,im_nu2,im_nu3,im_nu4'
     case ('swirl_edges')
       header = 'lambda,y1,y2,y3,y4,max_x1,refined'
+    case ('swirl_boundary')
+      header = 'A,lambda,y1,y2,y3,y4,max_x1,refined'
+    case ('spatial_history')
+      header = 'tau,x1,dx1,x2,dx2,y1,dy1,y2,dy2,tilt,tilt_azimuth'
+    case ('swirl_orbit')
+      header = 'y1,y2,y3,y4,y5,y6,y7,y8,max_x1,swirl_amplitude,angular_momentum,iterations,'// &
+               're_mu1,re_mu2,re_mu3,re_mu4,re_mu5,re_mu6,re_mu7,re_mu8,'// &
+               'im_mu1,im_mu2,im_mu3,im_mu4,im_mu5,im_mu6,im_mu7,im_mu8'
     case ('seismic_spatial')
       header = 't [s],ground_acceleration_x [m/s^2],ground_acceleration_y [m/s^2],'// &
                'wave_height_x [m],wave_height_y [m],wave_height [m],wave_azimuth [rad],'// &

@@ -17,6 +17,7 @@ program sloshdyn_bridge_sizes
                              SEISMIC_SPATIAL_PEAKS
   use sloshdyn_tables, only: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
                              PRESSURE_INSTANT_ROWS
+  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS
   use sloshdyn_tank, only: max_modes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
@@ -90,6 +91,7 @@ program sloshdyn_bridge_sizes
   call define('base_pressure_rows', BASE_PRESSURE_ROWS)
   call define('pressure_resultant_rows', PRESSURE_RESULTANT_ROWS)
   call define('pressure_instant_rows', PRESSURE_INSTANT_ROWS)
+  call define('spatial_history_rows', SPATIAL_HISTORY_ROWS)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

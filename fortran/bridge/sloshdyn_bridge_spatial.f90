@@ -46,6 +46,42 @@ contains
     end if
   end subroutine spatial_equations
 
+  !> The time history of the spatial model from y0 (8 states) at tau0 at tau_out (ascending,
+  !> >= tau0; sloshdyn_simulation's spatial_time_history): history(SPATIAL_HISTORY_ROWS, n_out)
+  !> in the rows of the 'spatial_history' table after tau, counts as simulate's. On failure the
+  !> columns not reached are NaN.
+  subroutine simulate(rpar, ipar, spatial, tau0, y0, n_out, tau_out, integration, history, &
+                      counts, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, COUNTS_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, SPATIAL_SIZE, to_ode_options, to_method, &
+                                counts_array
+    use sloshdyn_ode, only: ode_stats
+    use sloshdyn_spatial, only: spatial_model_t, spatial_model
+    use sloshdyn_simulation, only: spatial_time_history
+    real(c_double), intent(in) :: rpar(n_real_params), spatial(SPATIAL_SIZE), tau0, y0(8), &
+                                  tau_out(n_out), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n_out
+    real(c_double), intent(out) :: history(SPATIAL_HISTORY_ROWS, n_out), counts(COUNTS_SIZE)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: planar
+    type(spatial_model_t) :: model
+    type(ode_stats) :: stats
+    integer :: info
+    history = 0
+    counts = 0
+    call model_from_arrays(rpar, int(ipar), planar, info, message)
+    if (info == 0) call spatial_model(planar, spatial(1), spatial(2), model, info, message)
+    if (info == 0) then
+      call spatial_time_history(model, tau0, y0, tau_out, to_ode_options(integration), &
+                                to_method(integration), history, stats, info, message)
+      counts = counts_array(stats)
+    end if
+    status = info
+  end subroutine simulate
+
   !> The out-of-plane Floquet multipliers nu(2, 4) = (Re, Im) of the planar orbit of period k T
   !> through y_orbit (sloshdyn_swirl).
   subroutine out_of_plane_multipliers(rpar, ipar, y_orbit, k, integration, nu, status, message)
@@ -108,28 +144,32 @@ contains
     status = code
   end subroutine swirl_branch
 
-  !> A periodic orbit of period k T of the spatial model (excitation along x) from y0 after
-  !> `transient` k T of integration (sloshdyn_swirl's swirl_orbit): y_orbit, multipliers(2, 8) =
-  !> (Re, Im), info(SWIRL_ORBIT_INFO_SIZE) (layout 'swirl_orbit_info').
-  subroutine swirl_orbit(rpar, ipar, y0, k, transient, integration, newton_tol, max_iter, &
-                         y_orbit, multipliers, info, status, message)
+  !> A periodic orbit of period k T of the spatial model (its excitation along spatial's azimuth,
+  !> with its ellipticity) from y0 after `transient` k T of integration (sloshdyn_swirl's
+  !> swirl_orbit): y_orbit, multipliers(2, 8) = (Re, Im), info(SWIRL_ORBIT_INFO_SIZE) (layout
+  !> 'swirl_orbit_info').
+  subroutine swirl_orbit(rpar, ipar, spatial, y0, k, transient, integration, newton_tol, &
+                         max_iter, y_orbit, multipliers, info, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
-    use sloshdyn_layouts, only: INTEGRATION_SIZE, SWIRL_ORBIT_INFO_SIZE, to_ode_options, &
-                                to_method
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, SWIRL_ORBIT_INFO_SIZE, SPATIAL_SIZE, &
+                                to_ode_options, to_method
+    use sloshdyn_spatial, only: spatial_model_t, spatial_model
     use sloshdyn_swirl, only: core => swirl_orbit
-    real(c_double), intent(in) :: rpar(n_real_params), y0(8), integration(INTEGRATION_SIZE), &
-                                  newton_tol
+    real(c_double), intent(in) :: rpar(n_real_params), spatial(SPATIAL_SIZE), y0(8), &
+                                  integration(INTEGRATION_SIZE), newton_tol
     integer(c_int), intent(in) :: ipar(n_int_params), k, transient, max_iter
     real(c_double), intent(out) :: y_orbit(8), multipliers(2, 8), info(SWIRL_ORBIT_INFO_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
-    type(model_t) :: model
+    type(model_t) :: planar
+    type(spatial_model_t) :: model
     real(c_double) :: re(8), im(8), peak, amplitude, angular_momentum
     integer :: code, iterations
     y_orbit = 0; multipliers = 0; info = 0; iterations = 0
     peak = 0; amplitude = 0; angular_momentum = 0
-    call model_from_arrays(rpar, int(ipar), model, code, message)
+    call model_from_arrays(rpar, int(ipar), planar, code, message)
+    if (code == 0) call spatial_model(planar, spatial(1), spatial(2), model, code, message)
     if (code == 0) call core(model, y0, int(k), int(transient), to_ode_options(integration), &
                              to_method(integration), newton_tol, int(max_iter), y_orbit, re, &
                              im, iterations, peak, amplitude, angular_momentum, code, message)

@@ -14,7 +14,8 @@ module sloshdyn_ground
   implicit none
   private
   public :: ground_motion_t, harmonic_ground, record_ground, check_ground, ground_excitation, &
-            ground_acceleration, ground_duration, ground_spectrum, scale_to_pga, scale_to_sa, scale_ground
+            ground_acceleration, ground_duration, ground_spectrum, scale_to_pga, scale_to_sa, &
+            scale_ground, on_time_grid
   public :: spectral_acceleration
   public :: GROUND_HARMONIC, GROUND_RECORD, harmonic_periods
 
@@ -58,6 +59,28 @@ contains
     ground%dt = dt
     allocate (ground%acceleration, source=acceleration)
   end function record_ground
+
+  !> A record resampled onto the time grid t = (i - 1) dt of another record, over its own
+  !> duration (n - 1) ground%dt (the last time within it, at least 2 samples): the same
+  !> piecewise-linear function the model uses between samples (sloshdyn_samples' sampled_value;
+  !> 0 after the record) evaluated there. Two components sampled at different steps so share
+  !> the first one's grid, whose samples every integration steps to; between its samples the
+  !> second is linear, so what it has between them is smoothed out (give the more finely
+  !> sampled record first to keep it). The record as it is when dt is its own.
+  pure function on_time_grid(ground, dt) result(resampled)
+    type(ground_motion_t), intent(in) :: ground
+    real(wp), intent(in) :: dt
+    type(ground_motion_t) :: resampled
+    integer :: i, n
+    resampled = ground
+    if (ground%kind /= GROUND_RECORD .or. ground%dt == dt) return
+    ! the times within the duration; 1e-9 of a step keeps a last time that rounding puts just
+    ! beyond it
+    n = max(2, int((size(ground%acceleration) - 1)*(ground%dt/dt) + 1.0e-9_wp) + 1)
+    resampled%dt = dt
+    resampled%acceleration = [(sampled_value(ground%acceleration, ground%dt, (i - 1)*dt), &
+                               i = 1, n)]
+  end function on_time_grid
 
   !> The rules of a ground motion: a harmonic one with a >= 0 and f > 0; a record with dt >=
   !> min_record_step, at least 2 finite samples and a duration (n - 1) dt of at most

@@ -35,7 +35,7 @@ module sloshdyn_spatial
   public :: spatial_model_t, spatial_model, spatial_equations, spatial_jacobian, &
             spatial_invariants, spatial_accelerations, spatial_mass_matrix, &
             spatial_excitation_direction, ground_acceleration, ground_sensitivity, &
-            spatial_kinematics
+            spatial_kinematics, pendulum_tilt
 
   !> The planar model (its groups and its excitation) and the second horizontal component.
   !> The ground acceleration (X'', Y'') is R(azimuth) (g1, g2): for harmonic excitation
@@ -251,6 +251,21 @@ contains
     a_tank = ground_acceleration(model, tau) + mt%acc(1:2)
     a_mass = a_tank + model%planar%s1*mn%acc(1:2)
   end subroutine spatial_kinematics
+
+  !> The pendulum's tilt from the vertical Theta over theta0 (cos Theta = cos(theta0 x1)
+  !> cos(theta0 y1); the impact potential eq (3) acts on it, the wall is at 1) and the azimuth
+  !> [rad, from x] towards which it tilts, atan2(n_y, n_x) of its horizontal direction n_h (0 at
+  !> the vertical). In the plane (y1 = 0) they are |x1| and 0 or pi.
+  pure function pendulum_tilt(model, y) result(r)
+    type(spatial_model_t), intent(in) :: model
+    real(wp), intent(in) :: y(8)
+    real(wp) :: r(2)
+    type(tilt_t) :: n
+    associate (t0 => model%planar%theta0)
+      n = tilt(t0*y(pendulum_index(1)), t0*y(pendulum_index(2)), -1.0_wp)
+      r = [n%tilt/t0, atan2(n%du(2, 0, 0), n%du(1, 0, 0))]
+    end associate
+  end function pendulum_tilt
 
   !> Energy T + V (eq S2-S3, unit M L^2 omega^2) and angular momentum about the vertical
   !> (unit M L^2 omega), relative to the ground: both constant without forcing and damping.

@@ -254,7 +254,7 @@ def _table(path):
 def _figure(inp, out):
     """(file name, Figure) for the analyses that have one, from their result files."""
     method = inp.integration.method_used
-    if inp.analysis == "simulate":
+    if inp.analysis == "simulate" and inp.planar:
         t = _table(out / "history.csv")
         sim = Simulation(t["tau"], np.array([t[k] for k in ("x1", "dx1", "x2", "dx2")]),
                          np.array([t["u1"], t["u2"]]), t["impact_force"], t["theta"], t["phi"],

@@ -239,7 +239,7 @@ def read_namelist(path) -> Input:
                      "threads": chart_range["threads"]},
         integration=Integration.from_array(integration),
         simulation={"t_end": simulation["t_end"], "n_out": simulation["n_out"],
-                    "y0": [simulation[f"y0_{i}"] for i in range(1, 5)]},
+                    "y0": [simulation[f"y0_{i}"] for i in range(1, 5 if planar else 9)]},
         steady=Steady.from_array(steady),
         sweep={"start_from": "previous" if sweep.pop("carry_state") else "y0", **sweep},
         response=Continuation.from_array(response),

@@ -79,15 +79,9 @@ def _settings(params, integration, steady=None):
         _checks.instance("steady", steady, Steady)
 
 
-def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_start=0.0,
-             integration: Integration = Integration()) -> Simulation:
-    """Integrate from y0 (default: rest) at t_start to t_end; output at tau_out, or at n_out
-    evenly spaced times (default: 20 per forcing or natural period); tolerances and method in
-    `integration`: simulate(p, 100, integration=Integration(rtol=1e-10, atol=1e-13)).
-
-    On failure raises IntegrationError whose ``partial`` attribute holds the history up to
-    where the integration stopped (later columns are NaN)."""
-    _settings(params, integration)
+def _output_times(params, t_end, t_start, n_out, tau_out, rows=9):
+    """The output times of a simulation: tau_out, or n_out evenly spaced times over [t_start,
+    t_end] (default: 20 per forcing or natural period), checked (rows: of the history)."""
     t_end, t_start = _checks.real("t_end", t_end), _checks.real("t_start", t_start)
     if tau_out is None:
         if n_out is None:
@@ -98,9 +92,21 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
                 raise InputError(f"t_end = {_checks.show(t_end)} is out of range: 20 outputs "
                                  f"per period make {n_out}, more than {_checks.C_INT_MAX}; give "
                                  "n_out or tau_out")
-        n_out = _checks.output_size("n_out", _checks.integer("n_out", n_out, 0), 9)
+        n_out = _checks.output_size("n_out", _checks.integer("n_out", n_out, 0), rows)
         tau_out = np.linspace(t_start, t_end, n_out)
-    tau_out = _checks.reals("tau_out", tau_out, ndim=1)
+    return _checks.reals("tau_out", tau_out, ndim=1)
+
+
+def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_start=0.0,
+             integration: Integration = Integration()) -> Simulation:
+    """Integrate from y0 (default: rest) at t_start to t_end; output at tau_out, or at n_out
+    evenly spaced times (default: 20 per forcing or natural period); tolerances and method in
+    `integration`: simulate(p, 100, integration=Integration(rtol=1e-10, atol=1e-13)).
+
+    On failure raises IntegrationError whose ``partial`` attribute holds the history up to
+    where the integration stopped (later columns are NaN)."""
+    _settings(params, integration)
+    tau_out = _output_times(params, t_end, t_start, n_out, tau_out)
     history, counts, status, message = cancellable(
         _bridge.simulate, *params.array(), t_start, _state(y0), tau_out, integration.array())
     result = Simulation(tau_out, history[0:4], history[4:6], history[6], history[7], history[8],

@@ -21,7 +21,7 @@ from ._errors import check_status, message_text, with_partial
 from .asymptotics import Continuation
 from .parameters import Parameters
 from .periodic import PERIODIC_CONTINUATION, Shooting, branch_start, periodic_orbit
-from .simulation import Integration
+from .simulation import Integration, _counts, _output_times
 
 _bridge = _core.sloshdyn_bridge_spatial
 
@@ -52,6 +52,44 @@ def equations_of_motion(params: Parameters, tau, y, *, azimuth=0.0,
         *params.array(), _spatial_array(azimuth, ellipticity), tau, y)
     check_status(status, message)
     return SpatialMotion(mass, dydt, jac, float(invariants[0]), float(invariants[1]))
+
+
+@dataclass(frozen=True)
+class SpatialSimulation:
+    """A time history of the spatial model (docs/model.md, "Spatial model and swirl"). Arrays
+    run over the output times tau."""
+
+    tau: np.ndarray
+    y: np.ndarray               #: (8, n): x1, x1', x2, x2', y1, y1', y2, y2'
+    tilt: np.ndarray            #: the pendulum's tilt from the vertical over theta0 (1 at the
+                                #: wall, at any azimuth; |x1| in the plane)
+    tilt_azimuth: np.ndarray    #: the azimuth towards which it tilts [rad, from x]
+    n_rhs: int
+    n_accepted: int
+    n_rejected: int
+    tau_reached: float
+    method: str                 #: the integration method used ('auto' resolved)
+
+
+def simulate(params: Parameters, t_end, y0=None, *, azimuth=0.0, ellipticity=0.0, n_out=None,
+             tau_out=None, t_start=0.0,
+             integration: Integration = Integration()) -> SpatialSimulation:
+    """Integrate the spatial model under the harmonic base motion of params along ``azimuth``
+    (and ``ellipticity`` times it across) from y0 (8 states; default: rest) at t_start to
+    t_end; output times as ``sloshdyn.simulate``'s. On failure raises IntegrationError whose
+    ``partial`` attribute holds the history up to where the integration stopped."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    spatial = _spatial_array(azimuth, ellipticity)
+    tau_out = _output_times(params, t_end, t_start, n_out, tau_out,
+                            len(_tables.columns("spatial_history")))
+    y0 = np.zeros(8) if y0 is None else _checks.reals("y0", y0, (8,))
+    history, counts, status, message = cancellable(
+        _bridge.simulate, *params.array(), spatial, _checks.real("t_start", t_start), y0,
+        tau_out, integration.array())
+    result = SpatialSimulation(tau_out, history[0:8], history[8], history[9], *_counts(counts),
+                               method=integration.method_used)
+    return with_partial(result, status, message, "simulation of the spatial model")
 
 
 def out_of_plane_multipliers(params: Parameters, y_orbit, *, periods=1,
@@ -175,16 +213,19 @@ class SwirlOrbit:
 
 
 def swirl_orbit(params: Parameters, y0=None, *, periods=1, transient=None, perturbation=0.05,
-                shooting: Shooting = Shooting(),
+                azimuth=0.0, ellipticity=0.0, shooting: Shooting = Shooting(),
                 integration: Integration = Integration()) -> SwirlOrbit:
     """The periodic orbit of the spatial model near y0 (8 states at tau = 0), found by Newton
     shooting on the 8-dimensional system after ``transient`` periods k T of integration from y0
-    (default 0). With y0 None: from the planar periodic orbit (``periodic_orbit(params)``) with
-    y1 = ``perturbation`` max|x1| out of its plane, after ``transient`` = 400 periods by
-    default, so that inside the swirl band the orbit found is the (stable) swirling one."""
+    (default 0), the ground moving along ``azimuth`` (and ``ellipticity`` times it across, as
+    in ``simulate``). With y0 None: from the planar periodic orbit (``periodic_orbit(params)``,
+    in the xz plane) with y1 = ``perturbation`` max|x1| out of its plane, after ``transient`` =
+    400 periods by default, so that inside the swirl band the orbit found is the (stable)
+    swirling one. The namelist's door is kind = 'steady_state' with planar = .false."""
     _checks.instance("params", params, Parameters)
     _checks.instance("shooting", shooting, Shooting)
     _checks.instance("integration", integration, Integration)
+    spatial = _spatial_array(azimuth, ellipticity)
     periods = _checks.integer("periods", periods, 1)
     if y0 is None:
         planar = periodic_orbit(params, periods=periods, shooting=shooting,
@@ -195,7 +236,7 @@ def swirl_orbit(params: Parameters, y0=None, *, periods=1, transient=None, pertu
     y0 = _checks.reals("y0", y0, (8,))
     transient = _checks.integer("transient", 0 if transient is None else transient, 0)
     y, multipliers, info, status, message = cancellable(
-        _bridge.swirl_orbit, *params.array(), y0, periods, transient, integration.array(),
+        _bridge.swirl_orbit, *params.array(), spatial, y0, periods, transient, integration.array(),
         shooting.newton_tol, shooting.max_iter)
     check_status(status, message, "swirl orbit")
     info = _tables.unpack("swirl_orbit_info", info)

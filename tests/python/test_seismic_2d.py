@@ -91,10 +91,68 @@ def test_one_component_along_an_azimuth_is_the_planar_run_turned():
     assert np.abs(both.table["wave_height"] - np.abs(run.wave_height)).max() <= 1e-6 * big
 
 
-def test_the_second_record_must_match_the_first():
-    first, second = _pair(1e-3)
-    other = sloshdyn.GroundMotion(dt=0.01, acceleration=second.acceleration, units="m/s^2")
-    with pytest.raises(sloshdyn.InputError, match="dt"):
-        spatial.seismic_response_2d(TANK, first, other)
+def _on_grid(ground, dt):
+    """ground's samples on the time grid k dt over its duration, by numpy.interp (the record
+    linear between its samples)."""
+    t = ground.dt * np.arange(len(ground.acceleration))
+    n = int((len(t) - 1) * ground.dt / dt + 1e-9) + 1
+    return np.interp(dt * np.arange(n), t, ground.acceleration)
+
+
+@pytest.mark.parametrize("dt_2", [0.03, 0.01])
+def test_a_second_record_at_another_dt_is_put_on_the_first_ones_grid(dt_2):
+    """Coarser or finer: the second record becomes its piecewise-linear function sampled on the
+    first one's grid, as numpy.interp samples it; the run is then that of the resampled pair."""
+    first, _ = _pair(0.5)
+    second = _record((0.25, 0.33, 0.7), (0.5, -1.0, 0.3), 0.35, dt=dt_2, duration=15.0)
+    resampled = sloshdyn.GroundMotion(dt=first.dt, acceleration=_on_grid(second, first.dt),
+                                      units="m/s^2")
+    times = sloshdyn.seismic_defaults(TANK, first)
+    got = spatial.seismic_response_2d(TANK, first, second, times.t_end, times.n_out,
+                                      azimuth=0.3, integration=INTEGRATION)
+    want = spatial.seismic_response_2d(TANK, first, resampled, times.t_end, times.n_out,
+                                       azimuth=0.3, integration=INTEGRATION)
+    # equal samples up to the rounding of the two interpolation formulas
+    for name in ("ground_acceleration_y", "wave_height", "base_shear", "y1"):
+        scale = np.abs(want.table[name]).max()
+        assert np.abs(got.table[name] - want.table[name]).max() <= 1e-9 * scale, name
+    assert got.peaks["base_shear_run_2"] == pytest.approx(want.peaks["base_shear_run_2"],
+                                                          rel=1e-9)
+
+
+def test_the_second_component_must_be_a_record_with_a_record():
+    first, _ = _pair(1e-3)
     with pytest.raises(sloshdyn.InputError, match="second component"):
         spatial.seismic_response_2d(TANK, first)
+
+
+@pytest.mark.parametrize("ellipticity", [0.0, 0.6])
+def test_harmonic_motion_has_the_codes_combinations_of_its_two_axes(ellipticity):
+    """Harmonic motion along an azimuth with an ellipticity e: run 1 is the planar run under the
+    major axis, run 2 under the minor one, e a (the codes combine peaks, phases left out; none
+    for e = 0). Independent: the planar runs of sloshdyn.seismic_response, the SRSS and 100/30
+    formulas, the planar model's linearity (P2 = e P1), and in the linear range the spatial
+    response is the sum of the two axes' responses, so its peak over the wall lies between the
+    larger planar peak and their SRSS."""
+    a, f = 2e-5, 0.2                                  # [g, Hz], linear range
+    major = sloshdyn.GroundMotion.harmonic(a, f)
+    times = sloshdyn.seismic_defaults(TANK, major)
+    both = spatial.seismic_response_2d(TANK, major, None, times.t_end, times.n_out, azimuth=0.4,
+                                       ellipticity=ellipticity, integration=INTEGRATION)
+    run_1 = sloshdyn.seismic_response(TANK, major, times.t_end, times.n_out,
+                                      integration=INTEGRATION)
+    for name in ("wave_height", "base_shear", "overturning_moment"):
+        p1 = np.abs(getattr(run_1, name)).max()
+        p2 = 0.0
+        if ellipticity:
+            minor = sloshdyn.GroundMotion.harmonic(ellipticity * a, f)
+            p2 = np.abs(getattr(sloshdyn.seismic_response(TANK, minor, times.t_end, times.n_out,
+                                                          integration=INTEGRATION),
+                                name)).max()
+            assert p2 == pytest.approx(ellipticity * p1, rel=1e-6)        # linearity
+        peaks = both.peaks
+        assert peaks[f"{name}_run_1"] == p1 and peaks[f"{name}_run_2"] == p2
+        assert peaks[f"{name}_srss"] == pytest.approx(np.hypot(p1, p2), rel=1e-15)
+        assert peaks[f"{name}_100_30"] == pytest.approx(max(p1 + 0.3 * p2, 0.3 * p1 + p2),
+                                                        rel=1e-15)
+        assert (1 - 1e-6) * p1 <= peaks[name] <= (1 + 1e-6) * np.hypot(p1, p2)

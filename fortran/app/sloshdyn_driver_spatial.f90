@@ -1,0 +1,185 @@
+!> The executable's runs of the spatial model of issue 26 with &model or &tank planar = .false.
+!> (a submodule of sloshdyn_driver, which declares their interfaces): the time history
+!> (kind = 'simulate') and one periodic orbit by Newton shooting (kind = 'steady_state', a
+!> swirling orbit when it leaves the plane), and the swirl band's boundary in (rho, A) (kind =
+!> 'swirl' with &sweep). The seismic response in two components is in sloshdyn_driver_tank, the
+!> swirl band in sloshdyn_driver.
+submodule (sloshdyn_driver) sloshdyn_driver_spatial
+  use sloshdyn_spatial, only: spatial_model_t, spatial_model
+  use sloshdyn_excitation, only: excitation_t
+  use sloshdyn_ground, only: ground_excitation
+  use sloshdyn_simulation, only: spatial_time_history
+  use sloshdyn_swirl, only: swirl_orbit
+  use sloshdyn_periodic_response, only: newton_tol_default, max_iter_default
+  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS
+  implicit none
+
+contains
+
+  !> The time history of the spatial model from &simulation's y0 (8 states) at tau = 0 to t_end,
+  !> n_out evenly spaced outputs: spatial_history.csv (the 8 states, the pendulum's tilt over
+  !> theta0 and its azimuth) and simulation.csv.
+  module subroutine run_simulate_spatial(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(spatial_model_t) :: model
+    real(wp), allocatable :: tau(:), history(:, :)
+    type(ode_stats) :: stats
+    integer :: i
+
+    call config_spatial_model(config, model, status, message)
+    if (status /= SD_OK) return
+    associate (sim => config%simulation)
+      allocate (tau(sim%n_out), history(SPATIAL_HISTORY_ROWS + 1, sim%n_out))
+      tau = [(sim%t_end*(i - 1)/(sim%n_out - 1), i = 1, sim%n_out)]
+      history(1, :) = tau
+      call spatial_time_history(model, 0.0_wp, sim%y0, tau, config%integration, config%method, &
+                                history(2:, :), stats, status, message)
+      call in_context('simulation of the spatial model', status, message)
+      if (status /= SD_OK) return
+      print '(/a)', 'Simulation of the spatial model ('//used_method(config)//', eq S7'// &
+                    trim(merge('          ', ', a record', &
+                               config%model%excitation%kind /= EXCITATION_RECORD))// &
+                    ') from tau = 0 to '//num2str(sim%t_end)
+    end associate
+    print '(a)', '  steps accepted '//num2str(stats%n_accepted)//', rejected '// &
+                 num2str(stats%n_rejected)//', right-hand sides '//num2str(stats%n_rhs)
+    print '(a)', '  max|x1| = '//num2str(maxval(abs(history(2, :))))//', max|y1| = '// &
+                 num2str(maxval(abs(history(6, :))))//', max tilt/theta0 = '// &
+                 num2str(maxval(history(10, :)))//' at the output times'
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('spatial_history.csv', 'spatial_history', &
+                                                history, status, message)
+    if (status == SD_OK) call files%write_table('simulation.csv', 'simulation', &
+                                                reshape(counts_array(stats), [COUNTS_SIZE, 1]), &
+                                                status, message)
+  end subroutine run_simulate_spatial
+
+  !> A periodic orbit of the spatial model (period T, Newton shooting on the 8 states,
+  !> sloshdyn_swirl's swirl_orbit) from &simulation's y0 after &steady's transient_periods
+  !> (rounded to whole periods): swirl_orbit.csv.
+  module subroutine run_swirl_orbit(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(spatial_model_t) :: model
+    real(wp) :: row(SWIRL_ORBIT_ROWS), y_orbit(8), re(8), im(8), max_x1, amplitude, &
+                angular_momentum
+    integer :: iterations, transient
+
+    call config_spatial_model(config, model, status, message)
+    if (status /= SD_OK) return
+    transient = nint(config%steady%transient_periods)
+    call swirl_orbit(model, config%simulation%y0, 1, transient, config%integration, &
+                     config%method, newton_tol_default, max_iter_default, y_orbit, re, im, &
+                     iterations, max_x1, amplitude, angular_momentum, status, message)
+    call in_context('periodic orbit of the spatial model', status, message)
+    if (status /= SD_OK) return
+    print '(/a)', 'Periodic orbit of the spatial model ('//used_method(config)//') at rho = '// &
+                  num2str(config%model%excitation%rho)//', A = '// &
+                  num2str(config%model%excitation%A)//', after '//num2str(transient)// &
+                  ' forcing periods from y0: '//num2str(iterations)//' Newton iterations'
+    print '(a)', '  max|x1| = '//num2str(max_x1)//', swirl amplitude max|y1| = '// &
+                 num2str(amplitude)//', mean angular momentum '//num2str(angular_momentum)// &
+                 ' ('//trim(swirl_direction(angular_momentum))//'); '// &
+                 trim(merge('stable  ', 'unstable', maxval(hypot(re, im)) < 1))// &
+                 ' (max |Floquet multiplier| = '//num2str(maxval(hypot(re, im)))//')'
+    row = [y_orbit, max_x1, amplitude, angular_momentum, real(iterations, wp), re, im]
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('swirl_orbit.csv', 'swirl_orbit', &
+                                                reshape(row, [SWIRL_ORBIT_ROWS, 1]), status, &
+                                                message)
+  end subroutine run_swirl_orbit
+
+  !> The boundary of the swirl band in (rho, A) (kind = 'swirl' with &sweep parameter = 'A'):
+  !> the band along rho over &response's range (as run_swirl) at each of &sweep's n_points
+  !> values of A from start to stop, its edges with their A in swirl_boundary.csv (as Python's
+  !> sloshdyn.spatial.swirl_boundary).
+  module subroutine run_swirl_boundary(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: at_A
+    real(wp) :: A
+    real(wp), allocatable :: points(:, :), edges(:, :), rows(:, :)
+    integer :: n_points, n_edges, i, j, n_rows
+    logical :: complete
+
+    associate (r => config%response, sw => config%sweep)
+      allocate (rows(SWIRL_BOUNDARY_ROWS, max_swirl_edges*sw%n_points))
+      print '(/a)', 'Swirl boundary: the swirl band along rho in ['//num2str(r%start)//', '// &
+                    num2str(r%stop)//'] at '//num2str(sw%n_points)//' values of A in ['// &
+                    num2str(sw%start)//', '//num2str(sw%stop)//'] (spatial model; '// &
+                    used_method(config)//')'
+      n_rows = 0
+      do i = 1, sw%n_points
+        A = sw%start + (sw%stop - sw%start)*(i - 1)/max(sw%n_points - 1, 1)
+        at_A = config%model
+        at_A%excitation%A = A
+        call swirl_band(config, at_A, points, n_points, edges, n_edges, complete, status, &
+                        message)
+        if (status /= SD_OK) message = 'at A = '//num2str(A)//': '//trim(message)
+        call in_context('swirl boundary', status, message)
+        if (status /= SD_OK) return
+        print '(a)', '  A = '//pad(num2str(A), 14)//num2str(n_edges)//' edge(s) at rho = '// &
+                     join_values(edges(1, 1:n_edges))
+        do j = 1, n_edges
+          n_rows = n_rows + 1
+          rows(:, n_rows) = [A, edges(:, j)]
+        end do
+      end do
+    end associate
+    call begin_files(config, files, status, message)
+    if (status == SD_OK) call files%write_table('swirl_boundary.csv', 'swirl_boundary', &
+                                                rows(:, 1:n_rows), status, message)
+  end subroutine run_swirl_boundary
+
+  !> Values separated by commas.
+  pure function join_values(values) result(text)
+    real(wp), intent(in) :: values(:)
+    character(len=:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, size(values)
+      text = text//trim(merge(', ', '  ', i > 1))//num2str(values(i))
+    end do
+  end function join_values
+
+  !> The sense of rotation of an orbit with mean angular momentum l about the vertical (seen
+  !> from above).
+  pure function swirl_direction(l) result(name)
+    real(wp), intent(in) :: l
+    character(len=17) :: name
+    if (l > 0) then
+      name = 'counter-clockwise'
+    else if (l < 0) then
+      name = 'clockwise'
+    else
+      name = 'planar'
+    end if
+  end function swirl_direction
+
+  !> The spatial model of config: its planar model, the second component (&excitation's or
+  !> &ground_motion's azimuth and ellipticity, or record_y, which the reader put on the first
+  !> record's time grid).
+  subroutine config_spatial_model(config, model, status, message)
+    type(run_config), intent(in) :: config
+    type(spatial_model_t), intent(out) :: model
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(excitation_t) :: second
+    if (config%has_ground_y) then
+      call ground_excitation(config%ground_y, config%tank_props%omega, &
+                             config%tank_props%rod_length, second, status, message)
+      if (status == SD_OK) call spatial_model(config%model, config%azimuth, 0.0_wp, model, &
+                                              status, message, second)
+    else
+      call spatial_model(config%model, config%azimuth, config%ellipticity, model, status, &
+                         message)
+    end if
+  end subroutine config_spatial_model
+end submodule sloshdyn_driver_spatial
