@@ -24,7 +24,8 @@ program sloshdyn_bridge_sizes
                               PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
                               SWIRL_ORBIT_INFO_SIZE, &
                               MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
-                              NATURAL_FREQUENCIES_SIZE
+                              NATURAL_FREQUENCIES_SIZE, DESIGN_SIZE
+  use sloshdyn_tables, only: DESIGN_ROWS, DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS
   implicit none
   call define('n_real_params', n_real_params)
   call define('n_int_params', n_int_params)
@@ -84,6 +85,10 @@ program sloshdyn_bridge_sizes
   call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
   call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
   call define('natural_frequencies_size', NATURAL_FREQUENCIES_SIZE)
+  call define('design_size', DESIGN_SIZE)
+  call define('design_rows', DESIGN_ROWS)
+  call define('design_loads_columns', DESIGN_LOADS_COLUMNS)
+  call define('freeboard_columns', FREEBOARD_COLUMNS)
 contains
   subroutine define(name, value)
     character(len=*), intent(in) :: name

@@ -178,13 +178,26 @@ class Tank:
     def design_codes(self, ground_motion=None) -> DesignCodes:
         """The tank's sloshing parameters by sloshdyn and by API 650 Annex E, EN 1998-4 Annex A
         and ACI 350.3 side by side (DesignCodes); wave heights from the ground motion's
-        pseudo-spectral acceleration when one is given."""
-        ground, samples = _ground_arrays(ground_motion)
-        codes, status, message = _bridge.design_codes(self.array(), int(ground_motion is not None),
-                                                      ground, samples)
+        pseudo-spectral acceleration when one is given, or from a code design spectrum
+        (sloshdyn.design.DesignSpectrum: its Sa at the tank's sloshing damping)."""
+        from .design import DesignSpectrum
+        if isinstance(ground_motion, DesignSpectrum):
+            codes, status, message = _bridge.design_codes_spectrum(self.array(),
+                                                                   ground_motion.design.array())
+        else:
+            ground, samples = _ground_arrays(ground_motion)
+            codes, status, message = _bridge.design_codes(self.array(),
+                                                          int(ground_motion is not None),
+                                                          ground, samples)
         check_status(status, message)
         # the modal sums (the last two sources) only for a tank with modes > 1
         return DesignCodes(codes[:, :None if self.modes > 1 else -2].copy())
+
+    def design_check(self, design=None, ground_motion=None, response=None):
+        """Each code's seismic loads and freeboard check beside sloshdyn's (a
+        sloshdyn.design.DesignCheck; see sloshdyn.design.design_check)."""
+        from .design import design_check
+        return design_check(self, design, ground_motion, response)
 
 
 @dataclass(frozen=True)
