@@ -94,7 +94,9 @@ contains
     if (h_t == 0) h_t = (tank%liquid_depth + tank%freeboard)/2
 
     ! API 650 Annex E: A_i = Sa_i I/R_wi (E.4.6.1-1), A_c = K Sa(T_c) I/R_wc <= A_i (E.4.6.1-4/-5)
-    if (circular .and. us_codes) then
+    ! (an ACI 350.3 spectrum feeds API 650's rows when it has ASCE 7's T_L)
+    if (circular .and. us_codes .and. (from_ground .or. spec%kind == SPECTRUM_ASCE7 .or. &
+                                        spec%t_l > 0)) then
       call api650_circular(tank%radius, tank%liquid_depth, api, status, message)
       if (status == SD_OK) call impulsive_sa(asce7, .false., sa_i)
       if (status == SD_OK) call sa(asce7, api%convective_period, code_convective_damping, sa_c)

@@ -61,6 +61,8 @@ module sloshdyn_driver
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_layouts, only: counts_array
   use sloshdyn_tank, only: SHAPE_CIRCULAR, max_modes
+  use sloshdyn_tables, only: DESIGN_ROWS, DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS
+  use sloshdyn_design_check, only: design_check
   implicit none
   private
   public :: run_analysis, print_model, sweep_points, design_codes_table
@@ -91,6 +93,13 @@ module sloshdyn_driver
     module subroutine print_tank(config)
       type(run_config), intent(in) :: config
     end subroutine print_tank
+    module subroutine write_design_check(config, files, status, message, peaks)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+      real(wp), intent(in), optional :: peaks(PEAKS_SIZE)
+    end subroutine write_design_check
     pure module function design_codes_table(codes) result(text)
       real(wp), intent(in) :: codes(CODES_COLUMNS, CODES_ROWS)
       character(len=:), allocatable :: text
@@ -751,12 +760,14 @@ contains
   end subroutine run_lyapunov_spectrum
 
   !> Create the output directory (only once the analysis succeeded) and write the parameters
-  !> (and, for a tank, its properties and the design-code cross-check).
-  subroutine begin_files(config, files, status, message)
+  !> (and, for a tank, its properties and the design-code cross-check; with &design the design
+  !> check, with the nonlinear run's peaks when given).
+  subroutine begin_files(config, files, status, message, peaks)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp), intent(in), optional :: peaks(PEAKS_SIZE)
     real(wp) :: row(TANK_SI_SIZE), codes(CODES_COLUMNS, CODES_ROWS), &
                 modes(TANK_MODES_ROWS, max_modes)
     integer :: i, n_codes
@@ -785,6 +796,8 @@ contains
                                                 reshape([(real(i, wp), codes(:, i), &
                                                 i = 1, n_codes)], &
                                                 [CODES_COLUMNS + 1, n_codes]), status, message)
+    if (status == SD_OK .and. config%has_design) call write_design_check(config, files, status, &
+                                                                         message, peaks)
   end subroutine begin_files
 
   subroutine print_model(config)

@@ -118,7 +118,7 @@ contains
                    'are sensitive to impact_stiffness (beta) and impact_damping (delta): its '// &
                    'wall acts (impact force >= 0.001 m g; docs/model.md, "Choice of beta and '// &
                    'delta"); the roof verdict and roof loads are not'
-    call begin_files(config, files, status, message)
+    call begin_files(config, files, status, message, peaks)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
     if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks', &
                                                 reshape(peaks, [PEAKS_SIZE, 1]), status, message)
@@ -254,6 +254,61 @@ contains
     end if
     print '(a)', design_codes_table(codes)
   end subroutine print_tank
+
+  !> The design check (&design; sloshdyn_design_check): each code's loads and freeboard check
+  !> printed and written to design_loads.csv and freeboard_check.csv (the rows its source
+  !> gives), with the nonlinear run's peaks when given.
+  module subroutine write_design_check(config, files, status, message, peaks)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), intent(in), optional :: peaks(PEAKS_SIZE)
+    real(wp) :: loads(DESIGN_LOADS_COLUMNS, DESIGN_ROWS), freeboard(FREEBOARD_COLUMNS, DESIGN_ROWS)
+    logical :: load_rows(DESIGN_ROWS), freeboard_rows(DESIGN_ROWS)
+    integer :: i
+
+    call design_check(config%tank, config%design_spectrum, config%design_factors, &
+                      config%design_from_ground, config%ground, loads, freeboard, status, &
+                      message, peaks)
+    call in_context('design check', status, message)
+    if (status /= SD_OK) return
+    load_rows = loads(15, :) == loads(15, :)
+    freeboard_rows = freeboard(3, :) == freeboard(3, :)
+    print '(/a)', 'Design check (&design; docs/design.md): base shear V [MN], overturning moment '// &
+                  'excluding / including the base pressure [MN m]; freeboard [m]'
+    do i = 1, DESIGN_ROWS
+      if (.not. load_rows(i)) cycle
+      print '(a)', '  '//pad(code_name('o', i), 20)//'V '// &
+                   pad(num2str(loads(15, i)/1.0e6_wp, significant=5), 10)//'M '// &
+                   pad(num2str(loads(16, i)/1.0e6_wp, significant=5), 10)//'M'' '// &
+                   value_text(loads(17, i)/1.0e6_wp)
+    end do
+    do i = 1, DESIGN_ROWS
+      if (.not. freeboard_rows(i)) cycle
+      print '(a)', '  '//pad(code_name('o', i), 20)//'wave '// &
+                   pad(num2str(freeboard(3, i), significant=5), 10)//'required '// &
+                   pad(num2str(freeboard(4, i), significant=5), 10)//'available '// &
+                   pad(num2str(freeboard(5, i), significant=5), 8)// &
+                   trim(merge('sufficient  ', 'insufficient', freeboard(7, i) > 0))
+    end do
+    call files%write_table('design_loads.csv', 'design_loads', &
+                           with_sources(loads, load_rows), status, message)
+    if (status == SD_OK) call files%write_table('freeboard_check.csv', 'freeboard_check', &
+                                                with_sources(freeboard, freeboard_rows), status, &
+                                                message)
+  end subroutine write_design_check
+
+  !> The rows of a design-check table that are present, each with its source code first.
+  pure function with_sources(table, present_rows) result(rows)
+    real(wp), intent(in) :: table(:, :)
+    logical, intent(in) :: present_rows(:)
+    real(wp), allocatable :: rows(:, :)
+    integer :: i
+    rows = reshape([(real(i, wp), table(:, i), i = 1, size(present_rows))], &
+                   [size(table, 1) + 1, size(present_rows)])
+    rows = rows(:, pack([(i, i = 1, size(present_rows))], present_rows))
+  end function with_sources
 
   !> The design-code cross-check as the executable prints it (and Python's str(DesignCodes)):
   !> a header, then a line per quantity: sloshdyn's value and each code's, with its difference
