@@ -97,7 +97,7 @@ contains
       end if
       if (status == SD_OK .and. (spec%ec8_type < 1 .or. spec%ec8_type > 2)) then
         status = SD_BAD_INPUT
-        message = 'ec8_type = '//num2str(spec%ec8_type)//' is out of range: 1 or 2 '// &
+        message = 'spectrum_type = '//num2str(spec%ec8_type)//' is out of range: 1 or 2 '// &
                   '(EN 1998-1 3.2.2.2(2))'
       end if
     case default
