@@ -30,46 +30,56 @@ def _name(column):
     return column.split(" [")[0]
 
 
+#: the fields of &design that describe the spectrum (the rest are the codes' factors)
+SPECTRUM_FIELDS = ("spectrum", "s_ds", "s_d1", "t_l", "k", "a_gr", "gamma_i", "ground_type",
+                   "spectrum_type", "q", "beta")
+
+
 class DesignSpectrum:
     """A code design spectrum: Sa [g] at a period [s] and a damping ratio [%] (`sa`), usable
-    where a record's spectrum is used (Tank.design_codes(spectrum), design_check).
+    where a record's spectrum is used (Tank.design_codes(spectrum), Tank.design_check).
 
     DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8)    ASCE 7-16 11.4.6 (API 650 Annex E)
     DesignSpectrum.aci350(s_ds=1.0, s_d1=0.6)          ACI 350.3-06 9.4 (C_i 5 %, C_c 0.5 %)
     DesignSpectrum.ec8(a_gr=0.25, ground_type='B')     EN 1998-1 3.2.2.2 (and 3.2.2.5 with q)
+    DesignSpectrum(design=read_namelist(path).design)  &design's spectrum
 
     ASCE 7 and ACI 350.3 tabulate 5 % and 0.5 % damping only (0.5 %: API 650's K times the
     5 % ordinate; ACI 350.3's own C_c); EN 1998-1's elastic spectrum takes any damping
     (eta = sqrt(10/(5 + xi)) >= 0.55) up to 4 s. Other inputs are refused with the clause.
-    `design` holds the &design settings (its factors are used by design_check)."""
+    `design` holds it as &design settings (sloshdyn.design.Design)."""
 
-    def __init__(self, design: Design):
+    def __init__(self, *, design: Design):
         _checks.instance("design", design, Design)
         if design.spectrum == "ground_motion":
             raise InputError("spectrum = 'ground_motion' is a ground motion's spectrum, not a "
                              "design spectrum: pass the GroundMotion")
         self.design = design
-        self.sa(1.0, 5.0 if design.spectrum != "ec8" else 5.0)   # the core checks the spectrum
+        self.sa(1.0)                 # the core checks the spectrum's parameters
 
     @classmethod
-    def asce7(cls, s_ds, s_d1, t_l, k=1.5, **factors):
-        return cls(Design(spectrum="asce7", s_ds=s_ds, s_d1=s_d1, t_l=t_l, k=k, **factors))
+    def asce7(cls, s_ds, s_d1, t_l, k=1.5) -> DesignSpectrum:
+        """ASCE 7-16 11.4.6 from S_DS, S_D1 [g] and T_L [s]; K: API 650 E.4.6.1's factor from
+        5 % to 0.5 % damping."""
+        return cls(design=Design(spectrum="asce7", s_ds=s_ds, s_d1=s_d1, t_l=t_l, k=k))
 
     @classmethod
-    def aci350(cls, s_ds, s_d1, t_l=None, **factors):
-        """t_l: only API 650's rows of design_check need it (the ACI spectrum does not)."""
-        extra = {} if t_l is None else {"t_l": t_l}
-        return cls(Design(spectrum="aci350", s_ds=s_ds, s_d1=s_d1, **extra, **factors))
+    def aci350(cls, s_ds, s_d1, t_l=0.0) -> DesignSpectrum:
+        """ACI 350.3-06 9.4 from S_DS, S_D1 [g]; T_L [s] only for API 650's rows of a design
+        check (the ACI spectrum does not use it; 0: none)."""
+        return cls(design=Design(spectrum="aci350", s_ds=s_ds, s_d1=s_d1, t_l=t_l))
 
     @classmethod
-    def ec8(cls, a_gr, ground_type="A", spectrum_type=1, gamma_i=1.0, q=1.0, beta=0.2,
-            **factors):
-        return cls(Design(spectrum="ec8", a_gr=a_gr, ground_type=ground_type,
-                          spectrum_type=spectrum_type, gamma_i=gamma_i, q=q, beta=beta,
-                          **factors))
+    def ec8(cls, a_gr, ground_type="A", spectrum_type=1, gamma_i=1.0, q=1.0,
+            beta=0.2) -> DesignSpectrum:
+        """EN 1998-1 3.2.2.2 (elastic) and 3.2.2.5 (design, behaviour factor q, lower bound
+        beta a_g) from a_gR [g], the ground type A-E, the spectrum type 1 or 2 and gamma_I."""
+        return cls(design=Design(spectrum="ec8", a_gr=a_gr, ground_type=ground_type,
+                                 spectrum_type=spectrum_type, gamma_i=gamma_i, q=q, beta=beta))
 
     @property
     def kind(self):
+        """'asce7', 'aci350' or 'ec8'."""
         return self.design.spectrum
 
     def sa(self, period, damping=5.0):
@@ -133,20 +143,29 @@ class DesignCheck:
         return {s: bool(row["sufficient"]) for s, row in self.freeboard.items()}
 
 
-def design_check(tank, design, ground_motion=None, response=None) -> DesignCheck:
-    """Each code's seismic loads and freeboard check for the tank (DesignCheck), from a design
-    spectrum (a DesignSpectrum, or Design settings with a code spectrum) or, with
-    design.spectrum = 'ground_motion' (or design None), from the ground motion's spectrum;
-    `response` (a SeismicResponse of the same tank and motion) adds sloshdyn's nonlinear row."""
-    from .seismic import SeismicResponse, Tank, _ground_arrays
+def design_check(tank, motion=None, *, design: Design | None = None,
+                 response=None) -> DesignCheck:
+    """Each code's seismic loads and freeboard check for the tank (DesignCheck), beside
+    sloshdyn's. motion: a DesignSpectrum, a GroundMotion (its pseudo-spectral accelerations at
+    each code's periods and dampings), or None (design's own spectrum); design: the codes'
+    factors (importance, use_group, R factors, q, impulsive period, ...; a Design, its defaults
+    when None); response: a SeismicResponse of the same tank and motion, for sloshdyn's
+    nonlinear row."""
+    from .seismic import GroundMotion, SeismicResponse, Tank, _ground_arrays
     _checks.instance("tank", tank, Tank)
-    if design is None:
-        design = Design(spectrum="ground_motion")
-    if isinstance(design, DesignSpectrum):
-        design = design.design
-    _checks.instance("design", design, Design)
-    if design.spectrum == "ground_motion" and ground_motion is None:
-        raise InputError("spectrum = 'ground_motion' needs a ground motion (ground_motion=...)")
+    design = Design() if design is None else _checks.instance("design", design, Design)
+    ground_motion = None
+    if isinstance(motion, DesignSpectrum):
+        design = dataclasses.replace(design, **{name: getattr(motion.design, name)
+                                                for name in SPECTRUM_FIELDS})
+    elif isinstance(motion, GroundMotion):
+        design, ground_motion = dataclasses.replace(design, spectrum="ground_motion"), motion
+    elif motion is not None:
+        raise InputError(f"motion = {motion!r} is not valid: give a sloshdyn.DesignSpectrum, a "
+                         "sloshdyn.GroundMotion or None (design's spectrum)")
+    elif design.spectrum == "ground_motion":
+        raise InputError("spectrum = 'ground_motion' needs the ground motion: "
+                         "design_check(tank, ground_motion, design=...)")
     ground, samples = _ground_arrays(ground_motion)
     peaks = np.zeros(len(_tables.columns("seismic_peaks")))
     if response is not None:

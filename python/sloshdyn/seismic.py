@@ -21,6 +21,7 @@ from . import _checks, _core, _tables
 from ._errors import InputError, SloshdynError, check_status
 from ._settings import convert_fields
 from .parameters import Parameters
+from .design import Design, DesignCheck, DesignSpectrum, design_check
 from .simulation import Integration, Steady
 
 _bridge = _core.sloshdyn_bridge_seismic
@@ -180,7 +181,6 @@ class Tank:
         and ACI 350.3 side by side (DesignCodes); wave heights from the ground motion's
         pseudo-spectral acceleration when one is given, or from a code design spectrum
         (sloshdyn.design.DesignSpectrum: its Sa at the tank's sloshing damping)."""
-        from .design import DesignSpectrum
         if isinstance(ground_motion, DesignSpectrum):
             codes, status, message = _bridge.design_codes_spectrum(self.array(),
                                                                    ground_motion.design.array())
@@ -193,11 +193,11 @@ class Tank:
         # the modal sums (the last two sources) only for a tank with modes > 1
         return DesignCodes(codes[:, :None if self.modes > 1 else -2].copy())
 
-    def design_check(self, design=None, ground_motion=None, response=None):
-        """Each code's seismic loads and freeboard check beside sloshdyn's (a
-        sloshdyn.design.DesignCheck; see sloshdyn.design.design_check)."""
-        from .design import design_check
-        return design_check(self, design, ground_motion, response)
+    def design_check(self, motion=None, *, design: Design | None = None,
+                     response=None) -> DesignCheck:
+        """Each code's seismic loads and freeboard check beside sloshdyn's (DesignCheck):
+        sloshdyn.design_check(tank, motion, design=..., response=...)."""
+        return design_check(self, motion, design=design, response=response)
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,8 @@ import pytest
 from scipy.special import jnp_zeros
 
 import sloshdyn
-from sloshdyn.design import Design, DesignSpectrum, design_check
+from sloshdyn import DesignSpectrum, design_check
+from sloshdyn.design import Design
 from conftest import EXAMPLES, ec8_impulsive, read_csv, run, write
 from test_seismic import spectral_acceleration, tapered_sines
 
@@ -216,8 +217,8 @@ def test_api650_and_aci350_loads_from_the_asce7_spectrum(name, t_i):
     g, m_L = tank.gravity, math.pi * R**2 * H * 1000
     h_t = (H + geometry["freeboard"]) / 2
     t_l = 8.0
-    check = tank.design_check(DesignSpectrum.asce7(s_ds=S_DS, s_d1=S_D1, t_l=t_l,
-                                                   impulsive_period=t_i, **FACTORS))
+    check = tank.design_check(DesignSpectrum.asce7(s_ds=S_DS, s_d1=S_D1, t_l=t_l),
+                              design=Design(impulsive_period=t_i, **FACTORS))
     assert set(check.loads) == {"API 650", "ACI 350.3", "sloshdyn linear"}
     # API 650
     T_c, w_i, w_c, heights = api650_parameters(R, H)
@@ -251,7 +252,7 @@ def test_ec8_loads_from_the_ec8_spectrum(name, t_i):
     g, m_L = tank.gravity, math.pi * R**2 * H * 1000
     h_t = (H + geometry["freeboard"]) / 2
     check = tank.design_check(DesignSpectrum.ec8(a_gr=0.25, ground_type="C", gamma_i=1.2,
-                                                 q=1.5, impulsive_period=t_i))
+                                                 q=1.5), design=Design(impulsive_period=t_i))
     assert set(check.loads) == {"EC8-4", "sloshdyn linear"}
     T_c, w_i, w_c, heights = ec8_parameters(R, H, g)
     a_g = 1.2 * 0.25
@@ -284,8 +285,8 @@ def test_freeboard_api650_by_use_group_and_aci350(geometry, use_group, s_ds, t_l
     tank = make_tank(**geometry)
     R, f = geometry["radius"], geometry["freeboard"]
     importance = {1: 1.0, 2: 1.25, 3: 1.5}[use_group]
-    check = tank.design_check(DesignSpectrum.asce7(s_ds=s_ds, s_d1=0.6, t_l=t_l,
-                                                   importance=importance, use_group=use_group))
+    check = tank.design_check(DesignSpectrum.asce7(s_ds=s_ds, s_d1=0.6, t_l=t_l),
+                              design=Design(importance=importance, use_group=use_group))
     T_c = api650_parameters(R, geometry["liquid_depth"])[0]
     limit = t_l if use_group == 3 else 4.0
     A_f = 1.5 * 0.6 * importance * (1 / T_c if T_c <= limit else limit / T_c**2)
@@ -313,8 +314,8 @@ def test_loads_from_a_record_and_the_nonlinear_row():
     ground = tapered_sines(pga=2.0)
     g = tank.gravity
     response = sloshdyn.seismic_response(tank, ground)
-    design = Design(spectrum="ground_motion", q=1.5, use_group=2, importance=1.25)
-    check = design_check(tank, design, ground, response)
+    check = design_check(tank, ground, design=Design(q=1.5, use_group=2, importance=1.25),
+                         response=response)
     assert list(check.loads) == ["API 650", "EC8-4", "ACI 350.3", "sloshdyn linear",
                                  "sloshdyn nonlinear"]
     pga = 2.0 / g
@@ -370,14 +371,17 @@ def test_design_codes_wave_heights_from_a_design_spectrum():
     (lambda: DesignSpectrum.ec8(a_gr=0.2, q=0.5), ["q = 0.5", "[1, 8]"]),
     (lambda: DesignSpectrum.ec8(a_gr=0.2, ground_type="F"), ["ground_type", "'F'"]),
     (lambda: DesignSpectrum.ec8(a_gr=0.2, spectrum_type=3), ["spectrum_type = 3", "1 or 2"]),
-    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(
-        s_ds=1.0, s_d1=0.6, t_l=8, use_group=4)), ["use_group = 4", "1, 2 or 3", "E.3.1"]),
-    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(
-        s_ds=1.0, s_d1=0.6, t_l=8, r_wi=0.0)), ["r_wi = 0", "Table E-4"]),
-    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(
-        s_ds=1.0, s_d1=0.6, t_l=8, impulsive_damping=2.0)), ["damping = 2", "5 or 0.5"]),
-    (lambda: make_tank(**BROAD).design_check(Design(spectrum="ground_motion")),
-     ["needs a ground motion"]),
+    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8),
+                                             design=Design(use_group=4)),
+     ["use_group = 4", "1, 2 or 3", "E.3.1"]),
+    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8),
+                                             design=Design(r_wi=0.0)), ["r_wi = 0", "Table E-4"]),
+    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8),
+                                             design=Design(impulsive_damping=2.0)),
+     ["damping = 2", "5 or 0.5"]),
+    (lambda: make_tank(**BROAD).design_check(design=Design(spectrum="ground_motion")),
+     ["needs the ground motion"]),
+    (lambda: make_tank(**BROAD).design_check(design=Design()), ["s_ds = 0", "(0, 10]"]),
     (lambda: make_tank(radius=30.0, liquid_depth=10.0, freeboard=2.0, tank_mass=1e5)
      .design_check(DesignSpectrum.ec8(a_gr=0.2)), ["period = ", "T <= 4 s"]),
 ])
@@ -399,7 +403,7 @@ def test_executable_writes_design_loads_and_freeboard_check(exe, tmp_path):
     assert "Design check" in result.stdout
     out = tmp_path / "sloshdyn_output" / "tank_design"
     inp = sloshdyn.read_namelist(EXAMPLES / "tank_design.nml")
-    check = inp.tank.design_check(inp.design)
+    check = inp.tank.design_check(design=inp.design)
     for name, rows in (("design_loads.csv", check.loads),
                        ("freeboard_check.csv", check.freeboard)):
         lines = read_csv(out / name)
