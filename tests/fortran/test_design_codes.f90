@@ -19,6 +19,7 @@ program test_design_codes
   use sloshdyn_design_spectra, only: design_spectrum_t, spectrum_sa, ec8_design_sa, &
                                      ec8_ground_parameters, SPECTRUM_ASCE7, SPECTRUM_ACI350, &
                                      SPECTRUM_EC8
+  use sloshdyn_text, only: num2str
   use checks, only: check_close, check_true, finish
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
   implicit none
@@ -388,7 +389,7 @@ contains
           end do
           convective = convective + 2*tanh(root*gamma)/(gamma*root*(root**2 - 1))
         end do
-        call check_close('EC8: m_i + sum m_cn = m, H/R = '//trim(real_text(gamma)), &
+        call check_close('EC8: m_i + sum m_cn = m, H/R = '//num2str(gamma), &
                          ec8%impulsive_ratio + convective, 1.0_wp, 1.0e-7_wp)
         call check_true('EC8: 3H/8 < h_i < H/2', ec8%impulsive_height > 0.375_wp*H .and. &
                         ec8%impulsive_height < 0.5_wp*H)
@@ -437,16 +438,10 @@ contains
         call spectrum_sa(spec, corners(i)*(1 + 1.0e-12_wp), damping, above, status, message)
       end if
       call check_true(label//': status', status == SD_OK)
-      call check_close(label//': continuous at T = '//trim(real_text(corners(i))), above, &
+      call check_close(label//': continuous at T = '//num2str(corners(i)), above, &
                        below, 1.0e-9_wp)
     end do
   end subroutine continuous
-
-  function real_text(x) result(text)
-    real(wp), intent(in) :: x
-    character(len=24) :: text
-    write (text, '(g0.6)') x
-  end function real_text
 
   !> Heights of the resultants of the first-mode pressure p ~ J1(xi r/R) cosh(xi z/R) cos(theta)
   !> (potential theory, rigid tank): the wall force F = pi R J1(xi) int_0^H cosh(xi z/R) dz, its
