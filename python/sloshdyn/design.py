@@ -82,6 +82,17 @@ class DesignSpectrum:
         """'asce7', 'aci350' or 'ec8'."""
         return self.design.spectrum
 
+    @property
+    def label(self):
+        """The spectrum in a few words (figures)."""
+        d = self.design
+        if self.kind == "ec8":
+            return (f"EN 1998-1 type {d.spectrum_type}, ground {d.ground_type}, "
+                    f"a_g = {d.gamma_i * d.a_gr:g} g")
+        name = "ASCE 7-16" if self.kind == "asce7" else "ACI 350.3-06"
+        return f"{name}, S_DS = {d.s_ds:g} g, S_D1 = {d.s_d1:g} g" + (
+            f", T_L = {d.t_l:g} s" if self.kind == "asce7" else "")
+
     def sa(self, period, damping=5.0):
         """Sa [g] at the period(s) [s] (a scalar or an array) and damping ratio [%]."""
         periods = _checks.reals("period", np.atleast_1d(np.asarray(period, dtype=float)),

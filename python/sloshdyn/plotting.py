@@ -484,21 +484,20 @@ def stability_chart(chart, tank=None):
     return fig
 
 
-def design_spectrum(spectra, dampings=(5.0, 0.5), t_max=None):
-    """Design spectra (a sloshdyn.design.DesignSpectrum or a list of them), Sa [g] against the
-    period T [s], one curve per spectrum and damping [%] (EN 1998-1: up to 4 s, where its
-    elastic spectrum ends; ASCE 7: to twice T_L)."""
+def design_spectrum(spectra, dampings=(5.0, 0.5), t_max=10.0):
+    """Design spectra (a sloshdyn.DesignSpectrum or a list of them), Sa [g] against the period
+    T [s] up to t_max, one curve per spectrum and damping [%] (EN 1998-1's elastic spectrum
+    ends at 4 s)."""
     from .design import DesignSpectrum
     spectra = [spectra] if isinstance(spectra, DesignSpectrum) else list(spectra)
     fig, ax = plt.subplots(figsize=(7, 4))
     for spec in spectra:
-        top = t_max or (4.0 if spec.kind == "ec8" else 2 * max(spec.design.t_l, 3.0))
-        t = np.linspace(0, 4.0 if spec.kind == "ec8" else top, 801)
+        t = np.linspace(0, min(t_max, 4.0) if spec.kind == "ec8" else t_max, 1001)
         for xi in dampings:
-            ax.plot(t, spec.sa(t, xi), label=f"{spec!r}, {xi:g} %")
+            ax.plot(t, spec.sa(t, xi), label=f"{spec.label}, {xi:g} %")
     ax.set_xlabel("period T [s]")
     ax.set_ylabel("spectral acceleration Sa [g]")
-    ax.set_xlim(left=0)
+    ax.set_xlim(0, t_max)
     ax.set_ylim(bottom=0)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")

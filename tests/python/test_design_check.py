@@ -356,6 +356,23 @@ def test_design_codes_wave_heights_from_a_design_spectrum():
         0.42 * 10 * 1.5 * S_D1 / T_api, rel=1e-12)                       # E.7.2-1, I = 1
 
 
+def test_design_spectrum_figure():
+    """plotting.design_spectrum: one curve per spectrum and damping, each the spectrum's Sa
+    (checked above against the codes), on axes in s and g; EN 1998-1's curves end at 4 s."""
+    from sloshdyn import plotting
+    spectra = [DesignSpectrum.asce7(s_ds=S_DS, s_d1=S_D1, t_l=8.0),
+               DesignSpectrum.ec8(a_gr=0.25, ground_type="C")]
+    fig = plotting.design_spectrum(spectra)
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "period T [s]" and ax.get_ylabel().endswith("[g]")
+    lines = ax.get_lines()
+    assert len(lines) == 4
+    for line, (spectrum, xi) in zip(lines, [(s, xi) for s in spectra for xi in (5.0, 0.5)]):
+        t, sa = line.get_data()
+        assert np.array_equal(sa, spectrum.sa(t, xi))
+    assert lines[2].get_data()[0][-1] == 4.0 and lines[0].get_data()[0][-1] == 10.0
+
+
 # --- bad input --------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("make, words", [
@@ -394,20 +411,24 @@ def test_bad_design_input_names_the_variable_value_and_clause(make, words):
 
 # --- the executable ---------------------------------------------------------------------------
 
-def test_executable_writes_design_loads_and_freeboard_check(exe, tmp_path):
-    """data/examples/tank_design.nml (a spectrum, no record) writes design_loads.csv and
-    freeboard_check.csv with the rows its spectrum feeds, the numbers Python's design_check
-    gives for the namelist's tank and &design (one core)."""
-    result = run(exe, EXAMPLES / "tank_design.nml", tmp_path)
+@pytest.mark.parametrize("example, sources", [
+    ("tank_design", ["API 650", "ACI 350.3", "sloshdyn linear"]),
+    ("tank_slender_design", ["EC8-4", "sloshdyn linear"])])
+def test_executable_writes_design_loads_and_freeboard_check(exe, tmp_path, example, sources):
+    """data/examples/tank_design.nml (ASCE 7) and tank_slender_design.nml (EN 1998-1): a
+    spectrum, no record; design_loads.csv and freeboard_check.csv hold the rows the spectrum
+    feeds, the numbers Python's design_check gives for the namelist's tank and &design (one
+    core)."""
+    result = run(exe, EXAMPLES / f"{example}.nml", tmp_path)
     assert result.returncode == 0, result.stderr
     assert "Design check" in result.stdout
-    out = tmp_path / "sloshdyn_output" / "tank_design"
-    inp = sloshdyn.read_namelist(EXAMPLES / "tank_design.nml")
+    out = tmp_path / "sloshdyn_output" / example
+    inp = sloshdyn.read_namelist(EXAMPLES / f"{example}.nml")
     check = inp.tank.design_check(design=inp.design)
     for name, rows in (("design_loads.csv", check.loads),
                        ("freeboard_check.csv", check.freeboard)):
         lines = read_csv(out / name)
-        assert [line["source"] for line in lines] == list(rows)
+        assert [line["source"] for line in lines] == list(rows) == sources
         for line in lines:
             values = [v for k, v in line.items() if k != "source"]
             assert values == pytest.approx(list(rows[line["source"]].values()), rel=1e-15,
