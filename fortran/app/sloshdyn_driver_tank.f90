@@ -259,6 +259,7 @@ contains
   !> printed and written to design_loads.csv and freeboard_check.csv (the rows its source
   !> gives), with the nonlinear run's peaks when given.
   module subroutine write_design_check(config, files, status, message, peaks)
+    use sloshdyn_tables, only: DESIGN_API650, DESIGN_EC8, DESIGN_ACI350
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
@@ -279,19 +280,26 @@ contains
                   'excluding / including the base pressure [MN m]; freeboard [m]'
     do i = 1, DESIGN_ROWS
       if (.not. load_rows(i)) cycle
-      print '(a)', '  '//pad(code_name('o', i), 20)//'V '// &
+      print '(a)', '  '//pad(trim(code_name('o', i)), 20)//'V '// &
                    pad(num2str(loads(15, i)/1.0e6_wp, significant=5), 10)//'M '// &
                    pad(num2str(loads(16, i)/1.0e6_wp, significant=5), 10)//'M'' '// &
                    value_text(loads(17, i)/1.0e6_wp)
     end do
     do i = 1, DESIGN_ROWS
       if (.not. freeboard_rows(i)) cycle
-      print '(a)', '  '//pad(code_name('o', i), 20)//'wave '// &
+      print '(a)', '  '//pad(trim(code_name('o', i)), 20)//'wave '// &
                    pad(num2str(freeboard(3, i), significant=5), 10)//'required '// &
                    pad(num2str(freeboard(4, i), significant=5), 10)//'available '// &
                    pad(num2str(freeboard(5, i), significant=5), 8)// &
                    trim(merge('sufficient  ', 'insufficient', freeboard(7, i) > 0))
     end do
+    ! what the provisions then require (docs/design.md, "Freeboard")
+    if (freeboard(7, DESIGN_API650) == 0) &
+      print '(a)', '  API 650 Table E-7 (notes b, c): with less freeboard than required, '// &
+                   'secondary containment, or a roof and shell designed for the sloshing liquid'
+    if (any(freeboard(7, [DESIGN_EC8, DESIGN_ACI350]) == 0)) &
+      print '(a)', '  ACI 350.3 / EN 1998-4: the wave reaches the roof: design the roof for the '// &
+                   'sloshing wave''s pressure (roof loads: docs/model.md)'
     call files%write_table('design_loads.csv', 'design_loads', &
                            with_sources(loads, load_rows), status, message)
     if (status == SD_OK) call files%write_table('freeboard_check.csv', 'freeboard_check', &
