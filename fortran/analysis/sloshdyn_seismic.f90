@@ -30,6 +30,7 @@ module sloshdyn_seismic
                                    api650_circular, &
                                    api650_wave_height, ec8_circular, ec8_wave_height
   use sloshdyn_roof, only: roof_loads
+  use sloshdyn_design_spectra, only: design_spectrum_t, spectrum_sa
   use sloshdyn_ode, only: ode_options, ode_stats, observed_quantities, linear_observation, &
                           peak_tracker
   use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
@@ -381,21 +382,24 @@ contains
   !> The tank's sloshing parameters by sloshdyn's model and by the design codes, one row per
   !> source (sloshdyn, API 650, EC8-4, ACI 350.3) in the 'design_codes' layout: convective
   !> period [s], convective and impulsive liquid masses [kg], their heights above the bottom
-  !> (EBP) [m], and the wave height [m] from the ground motion's pseudo-spectral acceleration at
+  !> (EBP) [m], and the wave height [m] from the ground motion's pseudo-spectral acceleration
+  !> (or, given, a code design spectrum's spectral acceleration) at
   !> each source's convective period, at the tank's sloshing damping ratio (NaN where a code
-  !> gives no value: EC8-4's impulsive mass needs a series this program does not evaluate).
+  !> gives no value; EC8-4's impulsive mass and height: Annex A.2.1's series, ec8_impulsive).
   !> sloshdyn's wave height is the linear one of its model: 2 R/(xi^2 - 1) Sa/g (4 L/pi^2 Sa/g
   !> for a rectangular tank). A rectangular tank: API 650 (cylinders only) gives NaN; ACI 350.3
   !> its rectangular equations (9-1 to 9-11, 7-1); for EN 1998-4 the rectangular clause's
   !> formulas were not at hand, so its row is the first mode of linear potential flow
   !> (sloshdyn_tank's sloshing_modes: the same as sloshdyn's row; no IBP height), not the code.
-  subroutine design_code_checks(tank, ground, has_ground, codes, status, message)
+  subroutine design_code_checks(tank, ground, has_ground, codes, status, message, spectrum)
     type(tank_t), intent(in) :: tank
     type(ground_motion_t), intent(in) :: ground
     logical, intent(in) :: has_ground
     real(wp), intent(out) :: codes(CODES_COLUMNS, CODES_ROWS)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    !> a code design spectrum in place of the ground motion's (sloshdyn_design_spectra)
+    type(design_spectrum_t), intent(in), optional :: spectrum
     type(model_t) :: model
     type(tank_properties) :: props
     type(api650_parameters) :: api
@@ -416,7 +420,8 @@ contains
     else
       api = api650_parameters(nan, nan, nan, nan, nan, nan, nan, nan)
       ec8 = ec8_parameters(props%omega, props%sloshing_period, &
-                           props%sloshing_mass/props%liquid_mass, props%convective_height, nan)
+                           props%sloshing_mass/props%liquid_mass, props%convective_height, nan, &
+                           nan, nan, nan)
       call aci350_rectangular(tank%length, tank%liquid_depth, tank%gravity, aci, status, message)
     end if
     if (status /= SD_OK) return
@@ -424,7 +429,7 @@ contains
                aci%convective_period]
     wave = nan
     modal_waves = nan
-    if (has_ground) call code_wave_heights()
+    if (has_ground .or. present(spectrum)) call code_wave_heights()
     if (status /= SD_OK) return
     if (props%modes > 1) codes(:, CODES_SOURCES + 1:) = modal_sums(props, &
                                                                    modal_waves(1:props%modes))
@@ -433,8 +438,8 @@ contains
                      props%convective_height, props%impulsive_height, wave(1)]
       codes(:, 2) = [periods(2), api%convective_ratio*mf, api%impulsive_ratio*mf, &
                      api%convective_height, api%impulsive_height, wave(2)]
-      codes(:, 3) = [periods(3), ec8%convective_ratio*mf, nan, ec8%convective_height, nan, &
-                     wave(3)]
+      codes(:, 3) = [periods(3), ec8%convective_ratio*mf, ec8%impulsive_ratio*mf, &
+                     ec8%convective_height, ec8%impulsive_height, wave(3)]
       codes(:, 4) = [periods(4), aci%convective_ratio*mf, aci%impulsive_ratio*mf, &
                      aci%convective_height, aci%impulsive_height, wave(4)]
     end associate
@@ -444,15 +449,24 @@ contains
     !> Each source's wave height from the pseudo-spectral acceleration at its period.
     subroutine code_wave_heights()
       real(wp), dimension(CODES_SOURCES + max_modes - 1) :: spectrum_periods, sd, sv, psa
-      integer :: n
+      integer :: n, i
       ! a source without a period (API 650 for a rectangular tank) asks for sloshdyn's; then
       ! the periods of modes 2..N
       n = CODES_SOURCES + props%modes - 1
       spectrum_periods(1:CODES_SOURCES) = merge(periods, periods(1), periods == periods)
       spectrum_periods(CODES_SOURCES + 1:n) = props%modal_period(2:props%modes)
-      call ground_spectrum(ground, spectrum_periods(1:n), tank%sloshing_damping, &
-                           free_periods*maxval(spectrum_periods(1:CODES_SOURCES)), 0.0_wp, &
-                           sd(1:n), sv(1:n), psa(1:n), status, message)
+      if (present(spectrum)) then
+        do i = 1, n
+          call spectrum_sa(spectrum, spectrum_periods(i), 100*tank%sloshing_damping, psa(i), &
+                           status, message)
+          if (status /= SD_OK) exit
+        end do
+        psa(1:n) = psa(1:n)*tank%gravity
+      else
+        call ground_spectrum(ground, spectrum_periods(1:n), tank%sloshing_damping, &
+                             free_periods*maxval(spectrum_periods(1:CODES_SOURCES)), 0.0_wp, &
+                             sd(1:n), sv(1:n), psa(1:n), status, message)
+      end if
       if (status /= SD_OK) then
         message = 'the spectrum for the design codes: '//trim(message)
         return

@@ -1,6 +1,6 @@
-!> What the run driver (sloshdyn_driver) and its submodule sloshdyn_driver_tank share: the
-!> beginning of the result files (the output directory, the parameters and, for a tank, its
-!> properties and the design-code cross-check), the context of a failed step, the name of the
+!> What the run driver (sloshdyn_driver) and its submodules share: the beginning of the result
+!> files (the output directory, the parameters and, for a tank, its properties, the design-code
+!> cross-check and, with &design, the design check), the context of a failed step, the name of the
 !> method that runs, and the summaries' number texts. A module of its own, so that the driver
 !> exports none of them (gfortran does not export a module's private procedures to its
 !> submodules' object files).
@@ -8,8 +8,13 @@ module sloshdyn_driver_common
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, status_name
   use sloshdyn_text, only: num2str
-  use sloshdyn_tables, only: table_size, CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, &
-                             TANK_SI_SIZE, TANK_MODES_ROWS
+  use sloshdyn_tables, only: table_size, code_name, CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, &
+                             TANK_SI_SIZE, TANK_MODES_ROWS, PEAKS_SIZE, DESIGN_ROWS, &
+                             DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS, DESIGN_API650, DESIGN_EC8, &
+                             DESIGN_ACI350, LOADS_BASE_SHEAR, LOADS_MOMENT_EBP, LOADS_MOMENT_IBP, &
+                             FREEBOARD_WAVE_HEIGHT, FREEBOARD_REQUIRED, FREEBOARD_AVAILABLE, &
+                             FREEBOARD_SUFFICIENT
+  use sloshdyn_design_check, only: design_check
   use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_seismic, only: design_code_checks, tank_summary, tank_modes
   use sloshdyn_tank, only: max_modes
@@ -35,12 +40,14 @@ contains
   end subroutine in_context
 
   !> Create the output directory (only once the analysis succeeded) and write the parameters
-  !> (and, for a tank, its properties and the design-code cross-check).
-  subroutine begin_files(config, files, status, message)
+  !> (and, for a tank, its properties and the design-code cross-check; with &design the design
+  !> check, with the nonlinear run's peaks when given).
+  subroutine begin_files(config, files, status, message, peaks)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp), intent(in), optional :: peaks(PEAKS_SIZE)
     real(wp) :: row(TANK_SI_SIZE), codes(CODES_COLUMNS, CODES_ROWS), &
                 modes(TANK_MODES_ROWS, max_modes)
     integer :: i, n_codes
@@ -69,7 +76,71 @@ contains
                                                 reshape([(real(i, wp), codes(:, i), &
                                                 i = 1, n_codes)], &
                                                 [CODES_COLUMNS + 1, n_codes]), status, message)
+    if (status == SD_OK .and. config%has_design) call write_design_check(config, files, status, &
+                                                                         message, peaks)
   end subroutine begin_files
+
+  !> The design check (&design; sloshdyn_design_check): each code's loads and freeboard check
+  !> printed and written to design_loads.csv and freeboard_check.csv (the rows its source
+  !> gives), with the nonlinear run's peaks when given.
+  subroutine write_design_check(config, files, status, message, peaks)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), intent(in), optional :: peaks(PEAKS_SIZE)
+    real(wp) :: loads(DESIGN_LOADS_COLUMNS, DESIGN_ROWS), freeboard(FREEBOARD_COLUMNS, DESIGN_ROWS)
+    logical :: load_rows(DESIGN_ROWS), freeboard_rows(DESIGN_ROWS)
+    integer :: i
+
+    call design_check(config%tank, config%design_spectrum, config%design_factors, &
+                      config%design_from_ground, config%ground, loads, freeboard, status, &
+                      message, peaks)
+    call in_context('design check', status, message)
+    if (status /= SD_OK) return
+    load_rows = loads(LOADS_BASE_SHEAR, :) == loads(LOADS_BASE_SHEAR, :)
+    freeboard_rows = freeboard(FREEBOARD_WAVE_HEIGHT, :) == freeboard(FREEBOARD_WAVE_HEIGHT, :)
+    print '(/a)', 'Design check (&design; docs/design.md): base shear V [MN], overturning moment '// &
+                  'excluding / including the base pressure [MN m]; freeboard [m]'
+    do i = 1, DESIGN_ROWS
+      if (.not. load_rows(i)) cycle
+      print '(a)', '  '//pad(trim(code_name('o', i)), 20)//'V '// &
+                   pad(num2str(loads(LOADS_BASE_SHEAR, i)/1.0e6_wp, significant=5), 10)//'M '// &
+                   pad(num2str(loads(LOADS_MOMENT_EBP, i)/1.0e6_wp, significant=5), 10)//'M'' '// &
+                   value_text(loads(LOADS_MOMENT_IBP, i)/1.0e6_wp)
+    end do
+    do i = 1, DESIGN_ROWS
+      if (.not. freeboard_rows(i)) cycle
+      print '(a)', '  '//pad(trim(code_name('o', i)), 20)//'wave '// &
+                   pad(num2str(freeboard(FREEBOARD_WAVE_HEIGHT, i), significant=5), 10)//'required '// &
+                   pad(num2str(freeboard(FREEBOARD_REQUIRED, i), significant=5), 10)//'available '// &
+                   pad(num2str(freeboard(FREEBOARD_AVAILABLE, i), significant=5), 8)// &
+                   trim(merge('sufficient  ', 'insufficient', freeboard(FREEBOARD_SUFFICIENT, i) > 0))
+    end do
+    ! what the provisions then require (docs/design.md, "Freeboard")
+    if (freeboard(FREEBOARD_SUFFICIENT, DESIGN_API650) == 0) &
+      print '(a)', '  API 650 Table E-7 (notes b, c): with less freeboard than required, '// &
+                   'secondary containment, or a roof and shell designed for the sloshing liquid'
+    if (any(freeboard(FREEBOARD_SUFFICIENT, [DESIGN_EC8, DESIGN_ACI350]) == 0)) &
+      print '(a)', '  ACI 350.3 / EN 1998-4: the wave reaches the roof: design the roof for the '// &
+                   'sloshing wave''s pressure (roof loads: docs/model.md)'
+    call files%write_table('design_loads.csv', 'design_loads', &
+                           with_sources(loads, load_rows), status, message)
+    if (status == SD_OK) call files%write_table('freeboard_check.csv', 'freeboard_check', &
+                                                with_sources(freeboard, freeboard_rows), status, &
+                                                message)
+  end subroutine write_design_check
+
+  !> The rows of a design-check table that are present, each with its source code first.
+  pure function with_sources(table, present_rows) result(rows)
+    real(wp), intent(in) :: table(:, :)
+    logical, intent(in) :: present_rows(:)
+    real(wp), allocatable :: rows(:, :)
+    integer :: i
+    rows = reshape([(real(i, wp), table(:, i), i = 1, size(present_rows))], &
+                   [size(table, 1) + 1, size(present_rows)])
+    rows = rows(:, pack([(i, i = 1, size(present_rows))], present_rows))
+  end function with_sources
 
   pure function value_text(x) result(text)
     real(wp), intent(in) :: x

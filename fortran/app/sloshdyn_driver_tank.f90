@@ -118,7 +118,7 @@ contains
                    'are sensitive to impact_stiffness (beta) and impact_damping (delta): its '// &
                    'wall acts (impact force >= 0.001 m g; docs/model.md, "Choice of beta and '// &
                    'delta"); the roof verdict and roof loads are not'
-    call begin_files(config, files, status, message)
+    call begin_files(config, files, status, message, peaks)
     if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
     if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks', &
                                                 reshape(peaks, [PEAKS_SIZE, 1]), status, message)

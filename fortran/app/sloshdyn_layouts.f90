@@ -24,6 +24,8 @@ module sloshdyn_layouts
   use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, GROUND_RECORD
   use sloshdyn_stability_chart, only: chart_settings
   use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_KAPPA
+  use sloshdyn_design_spectra, only: design_spectrum_t
+  use sloshdyn_design_loads, only: design_factors_t
   use sloshdyn_run_config, only: run_config, simulation_settings, sweep_settings, &
                                  response_settings, seismic_settings, study_settings
   implicit none
@@ -35,7 +37,7 @@ module sloshdyn_layouts
             PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
             SWIRL_ORBIT_INFO_SIZE, &
             MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
-            NATURAL_FREQUENCIES_SIZE
+            NATURAL_FREQUENCIES_SIZE, DESIGN_SIZE, DESIGN_FROM_GROUND
   public :: chart_axes, CHART_RHO
   public :: layout_names, layout_text, layout_defaults, join, &
             excitation_parameters, ground_kinds, resonances
@@ -46,6 +48,7 @@ module sloshdyn_layouts
   public :: from_analysis, from_simulation, from_sweep, from_response_range, from_seismic, &
             from_study
   public :: field_index
+  public :: to_design, from_design, design_spectra
 
   !> One field of a layout: its name; its kind ('real', 'integer', 'flag' (1/0), or 'code:LIST',
   !> a code of the enumerated option LIST that names() answers); what it is, with its unit (the
@@ -230,12 +233,41 @@ module sloshdyn_layouts
     field_t('azimuth', doc='direction of the ground motion [rad from x]'), &
     field_t('ellipticity', doc='the ground moves by ellipticity A cos(rho tau) across '// &
             'azimuth as well as A sin(rho tau) along it')]
+  !> &design (issue 25; docs/design.md): the spectrum (a code of 'design_spectra': a code
+  !> design spectrum of sloshdyn_design_spectra, or the &ground_motion's), its parameters
+  !> (design_spectrum_t) and the codes' factors (sloshdyn_design_loads' design_factors_t)
+  type(field_t), parameter :: design_fields(*) = [ &
+    field_t('spectrum', 'code:design_spectra', '''asce7'' (ASCE 7-16 11.4.6), ''aci350'' '// &
+            '(ACI 350.3-06 9.4), ''ec8'' (EN 1998-1 3.2.2) or ''ground_motion'''), &
+    field_t('s_ds', doc='ASCE 7 design spectral acceleration at short periods S_DS [g]'), &
+    field_t('s_d1', doc='ASCE 7 design spectral acceleration at 1 s S_D1 [g]'), &
+    field_t('t_l', doc='ASCE 7 long-period transition period T_L [s]'), &
+    field_t('k', doc='API 650 E.4.6.1: factor from 5 % to 0.5 % damping'), &
+    field_t('a_gr', doc='EN 1998-1 reference peak ground acceleration on type A ground [g]'), &
+    field_t('gamma_i', doc='EN 1998-1 importance factor gamma_I (a_g = gamma_I a_gR)'), &
+    field_t('ground_type', 'code:ground_types', 'EN 1998-1 ground type (Table 3.1)'), &
+    field_t('spectrum_type', 'integer', 'EN 1998-1 spectrum type 1 or 2 (3.2.2.2(2))'), &
+    field_t('q', doc='EN 1998-4 behaviour factor of the impulsive response (EN 1998-1 3.2.2.5)'), &
+    field_t('beta', doc='EN 1998-1 3.2.2.5(4): lower bound factor of the design spectrum'), &
+    field_t('importance', doc='importance factor I (API 650 Table E-5, ACI 350.3 Table '// &
+            '4.1.1(a))'), &
+    field_t('use_group', 'integer', 'API 650 seismic use group 1, 2 or 3 (E.3.1)'), &
+    field_t('r_wi', doc='API 650 impulsive response modification factor R_wi (Table E-4)'), &
+    field_t('r_wc', doc='API 650 convective response modification factor R_wc (Table E-4)'), &
+    field_t('r_i', doc='ACI 350.3 impulsive response modification factor R_i (Table 4.1.1(b))'), &
+    field_t('r_c', doc='ACI 350.3 convective response modification factor R_c (Table 4.1.1(b))'), &
+    field_t('impulsive_period', doc='[s]; 0: the plateau of the spectrum (a ground motion: '// &
+            'the rigid tank, its peak acceleration)'), &
+    field_t('impulsive_damping', doc='damping of the impulsive response [%]'), &
+    field_t('tank_mass_height', doc='height of the tank''s own mass (shell, roof) above the '// &
+            'base [m]; 0: (liquid_depth + freeboard)/2')]
   !> Every named layout (names('layouts')); 'model' and 'model_integers' are sloshdyn_model's
   !> rpar and ipar.
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
     'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
-    'routh,orbit_info,swirl_orbit_info,modal_scalars,chart_sizes,spatial,natural_frequencies'
+    'routh,orbit_info,swirl_orbit_info,modal_scalars,chart_sizes,spatial,natural_frequencies,'// &
+    'design'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
@@ -245,6 +277,10 @@ module sloshdyn_layouts
   character(len=*), parameter :: ground_kinds(*) = [character(len=field_len) :: &
     'harmonic', 'record']
   character(len=*), parameter :: resonances(*) = [character(len=field_len) :: 'none', '3:1']
+  !> &design's spectra, by code: design_spectrum_t's kinds, then the ground motion's.
+  character(len=*), parameter :: design_spectra(*) = [character(len=field_len) :: &
+    'asce7', 'aci350', 'ec8', 'ground_motion']
+  integer, parameter :: DESIGN_FROM_GROUND = 4
 
   integer, parameter :: INTEGRATION_SIZE = size(integration_fields), &
                         STEADY_SIZE = size(steady_fields), RESPONSE_SIZE = size(response_fields), &
@@ -268,7 +304,8 @@ module sloshdyn_layouts
                         MODAL_SCALARS_SIZE = size(modal_scalars_fields), &
                         CHART_SIZES_SIZE = size(chart_sizes_fields), &
                         SPATIAL_SIZE = size(spatial_fields), &
-                        NATURAL_FREQUENCIES_SIZE = size(natural_frequencies_fields)
+                        NATURAL_FREQUENCIES_SIZE = size(natural_frequencies_fields), &
+                        DESIGN_SIZE = size(design_fields)
 
 contains
 
@@ -308,6 +345,7 @@ contains
     case ('chart_sizes');    fields = chart_sizes_fields
     case ('spatial');        fields = spatial_fields
     case ('natural_frequencies'); fields = natural_frequencies_fields
+    case ('design');         fields = design_fields
     case default;            allocate (fields(0))
     end select
   end function layout_of
@@ -350,6 +388,7 @@ contains
     case ('shooting');    values = [newton_tol_default, real(max_iter_default, wp)]
     case ('tank');        values = from_tank(tank_t())
     case ('chart');       values = from_chart(chart_settings())
+    case ('design');      values = from_design(design_spectrum_t(), design_factors_t(), .false.)
     case default
       found = .false.
       allocate (values(0))
@@ -594,6 +633,42 @@ contains
          st%dx1_start, st%dx1_stop, real(st%n_grid, wp), st%tol, st%intensity_start, &
          st%intensity_stop, real(st%n_intensities, wp), st%spectral_damping]
   end function from_study
+
+  !> &design(DESIGN_SIZE) as the design spectrum, the codes' factors and whether the spectrum
+  !> is the ground motion's (spectrum = DESIGN_FROM_GROUND; then the spectrum's kind stays its
+  !> default and only k and q count).
+  pure subroutine to_design(a, spec, factors, from_ground)
+    real(wp), intent(in) :: a(DESIGN_SIZE)
+    type(design_spectrum_t), intent(out) :: spec
+    type(design_factors_t), intent(out) :: factors
+    logical, intent(out) :: from_ground
+    from_ground = to_int(a(1)) == DESIGN_FROM_GROUND
+    if (.not. from_ground) spec%kind = to_int(a(1))
+    spec%s_ds = a(2)
+    spec%s_d1 = a(3)
+    spec%t_l = a(4)
+    spec%k = a(5)
+    spec%a_gr = a(6)
+    spec%gamma_i = a(7)
+    spec%ground_type = to_int(a(8))
+    spec%ec8_type = to_int(a(9))
+    spec%q = a(10)
+    spec%beta = a(11)
+    factors = design_factors_t(a(12), to_int(a(13)), a(14), a(15), a(16), a(17), a(18), a(19), &
+                               a(20))
+  end subroutine to_design
+
+  pure function from_design(spec, factors, from_ground) result(a)
+    type(design_spectrum_t), intent(in) :: spec
+    type(design_factors_t), intent(in) :: factors
+    logical, intent(in) :: from_ground
+    real(wp) :: a(DESIGN_SIZE)
+    a = [real(merge(DESIGN_FROM_GROUND, spec%kind, from_ground), wp), spec%s_ds, spec%s_d1, &
+         spec%t_l, spec%k, spec%a_gr, spec%gamma_i, real(spec%ground_type, wp), &
+         real(spec%ec8_type, wp), spec%q, spec%beta, factors%importance, &
+         real(factors%use_group, wp), factors%r_wi, factors%r_wc, factors%r_i, factors%r_c, &
+         factors%impulsive_period, factors%impulsive_damping, factors%tank_mass_height]
+  end function from_design
 
   !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
   pure function counts_array(stats) result(counts)

@@ -39,7 +39,7 @@ module sloshdyn_namelist
                                       read_excitation, read_analysis, read_output, &
                                       read_integration, read_simulation, read_steady, &
                                       read_sweep, read_response, read_lyapunov, read_seismic, &
-                                      read_chart, frequency_of_sweep
+                                      read_chart, frequency_of_sweep, read_design, G_DESIGN
   use sloshdyn_namelist_study, only: read_study
   implicit none
   private
@@ -149,6 +149,18 @@ contains
                                          config%model, config%response%options, config%chart, &
                                          status, message)
     if (status == SD_OK) call read_study(file, config, status, message)
+    if (status == SD_OK) call read_design(file, config%design_spectrum, config%design_factors, &
+                                          config%design_from_ground, status, message)
+    if (status == SD_OK .and. file%groups(G_DESIGN)%given) then
+      config%has_design = .true.
+      if (.not. config%dimensional) then
+        call fail(status, message, '&design goes with &tank (the design check of a tank in SI '// &
+                  'units)')
+      else if (config%design_from_ground .and. .not. config%has_ground) then
+        call fail(status, message, "&design: spectrum = 'ground_motion' needs the ground "// &
+                  'motion (&ground_motion)')
+      end if
+    end if
     ! a study file describes no analysis of the executable: the default one is not checked
     if (status == SD_OK .and. .not. (config%study%given .and. .not. file%groups(G_ANALYSIS)%given)) &
       call check_analysis(config, status, message)
@@ -196,6 +208,8 @@ contains
     call read_seismic(file, seismic, status, message)
     call read_chart(file, .false., config%model, response%options, chart, status, message)
     call read_study(file, study_config, status, message)
+    call read_design(file, study_config%design_spectrum, study_config%design_factors, has_y, &
+                     status, message)
     text = file%description
   end subroutine namelist_defaults
 

@@ -22,6 +22,10 @@ module sloshdyn_namelist_groups
                              on_time_grid
   use sloshdyn_records, only: load_record, units_code, units_factor
   use sloshdyn_seismic, only: max_seismic_outputs
+  use sloshdyn_design_spectra, only: design_spectrum_t, check_spectrum, ground_types, &
+                                     SPECTRUM_ASCE7, SPECTRUM_ACI350, SPECTRUM_EC8
+  use sloshdyn_design_loads, only: design_factors_t, check_factors
+  use sloshdyn_layouts, only: design_spectra, DESIGN_FROM_GROUND
   use sloshdyn_stability_chart, only: chart_settings, check_chart_settings
   use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_A, CHART_GAMMA, &
                                      CHART_KAPPA
@@ -38,16 +42,18 @@ module sloshdyn_namelist_groups
             G_CHART, G_STUDY
   public :: read_model, read_tank, read_ground_motion, read_excitation, read_analysis, &
             read_output, read_integration, read_simulation, read_steady, read_sweep, &
-            read_response, read_lyapunov, read_seismic, read_chart, frequency_of_sweep
+            read_response, read_lyapunov, read_seismic, read_chart, frequency_of_sweep, &
+            read_design
+  public :: G_DESIGN
 
-  character(len=*), parameter :: known_groups(15) = &
+  character(len=*), parameter :: known_groups(16) = &
     [character(len=13) :: 'model', 'tank', 'ground_motion', 'excitation', 'analysis', 'output', &
      'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov', 'seismic', 'chart', &
-     'study']
+     'study', 'design']
   integer, parameter :: G_MODEL = 1, G_TANK = 2, G_GROUND_MOTION = 3, G_EXCITATION = 4, &
                         G_ANALYSIS = 5, G_OUTPUT = 6, G_INTEGRATION = 7, G_SIMULATION = 8, &
                         G_STEADY = 9, G_SWEEP = 10, G_RESPONSE = 11, G_LYAPUNOV = 12, &
-                        G_SEISMIC = 13, G_CHART = 14, G_STUDY = 15
+                        G_SEISMIC = 13, G_CHART = 14, G_STUDY = 15, G_DESIGN = 16
 
   !> The reader of a group of these: its messages say what each variable must be.
   type, extends(group_reader) :: namelist_reader
@@ -344,6 +350,84 @@ contains
     end if
     settings = seismic_settings(t_end, n_out)
   end subroutine read_seismic
+
+  !> &design (issue 25; docs/design.md): the spectrum of the design check and the codes'
+  !> factors, defaults from design_spectrum_t and design_factors_t. spectrum = 'asce7' needs
+  !> s_ds, s_d1 and t_l; 'aci350' s_ds and s_d1 (and t_l for API 650's rows); 'ec8' a_gr;
+  !> 'ground_motion' the &ground_motion (read_input's rule).
+  subroutine read_design(file, spec, factors, from_ground, status, message)
+    type(input_file), intent(inout) :: file
+    type(design_spectrum_t), intent(out) :: spec
+    type(design_factors_t), intent(out) :: factors
+    logical, intent(out) :: from_ground
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=word_len) :: spectrum, ground_type
+    real(wp) :: s_ds, s_d1, t_l, k, a_gr, gamma_i, q, beta, importance, r_wi, r_wc, r_i, r_c, &
+                impulsive_period, impulsive_damping, tank_mass_height
+    integer :: spectrum_type, use_group, code, ground_code
+    type(namelist_reader) :: reader
+    namelist /design/ spectrum, s_ds, s_d1, t_l, k, a_gr, gamma_i, ground_type, spectrum_type, &
+                      q, beta, importance, use_group, r_wi, r_wc, r_i, r_c, impulsive_period, &
+                      impulsive_damping, tank_mass_height
+
+    spectrum = design_spectra(spec%kind); s_ds = spec%s_ds; s_d1 = spec%s_d1; t_l = spec%t_l
+    k = spec%k; a_gr = spec%a_gr; gamma_i = spec%gamma_i
+    ground_type = ground_types(spec%ground_type); spectrum_type = spec%ec8_type
+    q = spec%q; beta = spec%beta
+    importance = factors%importance; use_group = factors%use_group; r_wi = factors%r_wi
+    r_wc = factors%r_wc; r_i = factors%r_i; r_c = factors%r_c
+    impulsive_period = factors%impulsive_period; impulsive_damping = factors%impulsive_damping
+    tank_mass_height = factors%tank_mass_height
+    from_ground = .false.
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_DESIGN, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=design, iostat=reader%ios)
+      else
+        read (reader%text, nml=design, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK .or. .not. file%groups(G_DESIGN)%given) return
+    code = findloc(design_spectra, lower(trim(adjustl(spectrum))), dim=1)
+    if (code == 0) call fail(status, message, "&design: spectrum = '"// &
+                             trim(adjustl(spectrum))//"' is not known; allowed: "// &
+                             join(design_spectra, ', '))
+    ground_code = findloc(ground_types, trim(adjustl(ground_type)), dim=1)
+    if (ground_code == 0) call fail(status, message, "&design: ground_type = '"// &
+                                    trim(adjustl(ground_type))//"' is not known; allowed: "// &
+                                    join(ground_types, ', ')//' (EN 1998-1 Table 3.1)')
+    if (status /= SD_OK) return
+    select case (code)
+    case (SPECTRUM_ASCE7, SPECTRUM_ACI350)
+      call require(file, G_DESIGN, 's_ds', status, message)
+      call require(file, G_DESIGN, 's_d1', status, message)
+      if (code == SPECTRUM_ASCE7) call require(file, G_DESIGN, 't_l', status, message)
+    case (SPECTRUM_EC8)
+      call require(file, G_DESIGN, 'a_gr', status, message)
+    end select
+    if (status /= SD_OK) return
+    from_ground = code == DESIGN_FROM_GROUND
+    spec = design_spectrum_t(merge(SPECTRUM_ASCE7, code, from_ground), s_ds, s_d1, t_l, k, &
+                             a_gr, gamma_i, ground_code, spectrum_type, q, beta)
+    factors = design_factors_t(importance, use_group, r_wi, r_wc, r_i, r_c, impulsive_period, &
+                               impulsive_damping, tank_mass_height)
+    call check_factors(factors, status, message)
+    if (status == SD_OK .and. .not. from_ground) call check_spectrum(spec, status, message)
+    ! a code spectrum for API 650's rows needs T_L too (ASCE 7)
+    if (status == SD_OK .and. code == SPECTRUM_ACI350 .and. t_l > 0) then
+      spec%kind = SPECTRUM_ASCE7
+      call check_spectrum(spec, status, message)
+      spec%kind = SPECTRUM_ACI350
+    end if
+    if (status == SD_OK .and. from_ground) call check_real('q', q, 1.0_wp, 8.0_wp, .false., &
+                                                           .false., 'q must be in [1, 8] '// &
+                                                           '(EN 1998-1 3.2.2.5)', status, message)
+    if (status /= SD_OK) message = '&design: '//trim(message)
+  end subroutine read_design
 
   !> &excitation: A, rho and, for the spatial model (planar = .false.), the direction of the
   !> harmonic motion azimuth [rad from x] and its ellipticity (sloshdyn_spatial's

@@ -198,7 +198,7 @@ contains
         select case (formats(i:i))
         case ('i')
           write (field, '(i0)') nint(data(i, j))
-        case ('s', 'v', 'c', 'k', 'd', 'e')
+        case ('s', 'v', 'c', 'o', 'k', 'd', 'e')
           field = code_name(formats(i:i), nint(data(i, j)))
         case default
           write (field, '(es24.16e3)') data(i, j)

@@ -14,6 +14,8 @@ module sloshdyn_run_config
   use sloshdyn_simulation, only: steady_options
   use sloshdyn_response, only: response_options
   use sloshdyn_periodic_response, only: lyapunov_options
+  use sloshdyn_design_spectra, only: design_spectrum_t
+  use sloshdyn_design_loads, only: design_factors_t
   implicit none
   private
   public :: run_config, simulation_settings, sweep_settings, response_settings, &
@@ -142,5 +144,10 @@ module sloshdyn_run_config
     type(response_settings) :: response
     type(lyapunov_options) :: lyapunov
     type(study_settings) :: study
+    !> &design (with &tank): the design check's spectrum (or the ground motion's:
+    !> design_from_ground) and the codes' factors (sloshdyn_design_check)
+    logical :: has_design = .false., design_from_ground = .false.
+    type(design_spectrum_t) :: design_spectrum
+    type(design_factors_t) :: design_factors
   end type run_config
 end module sloshdyn_run_config

@@ -38,6 +38,10 @@ module sloshdyn_tables
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
   public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
             PRESSURE_INSTANT_ROWS
+  public :: DESIGN_ROWS, DESIGN_API650, DESIGN_EC8, DESIGN_ACI350, DESIGN_LINEAR, &
+            DESIGN_NONLINEAR, DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS, LOADS_CONVECTIVE_PERIOD, &
+            LOADS_BASE_SHEAR, LOADS_MOMENT_EBP, LOADS_MOMENT_IBP, FREEBOARD_WAVE_HEIGHT, &
+            FREEBOARD_REQUIRED, FREEBOARD_AVAILABLE, FREEBOARD_SUFFICIENT
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
             CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
@@ -220,6 +224,29 @@ module sloshdyn_tables
     'tank_acceleration [m/s^2],base_shear [N],overturning_moment [N m],'// &
     'overturning_moment_ibp [N m]'
   integer, parameter :: PRESSURE_INSTANT_ROWS = 5
+  !> The design check (sloshdyn_design_check): one row per source, the codes' loads in their
+  !> own format (accelerations: each code's design coefficient in g, its factors applied) and
+  !> sloshdyn's (linear: the response-spectrum method on its model; nonlinear: the peaks of the
+  !> time history, with a record); the freeboard check per code (sufficient 1/0).
+  character(len=*), parameter :: design_sources = 'API 650,EC8-4,ACI 350.3,sloshdyn linear,'// &
+                                                  'sloshdyn nonlinear'
+  integer, parameter :: DESIGN_ROWS = 5, DESIGN_API650 = 1, DESIGN_EC8 = 2, DESIGN_ACI350 = 3, &
+                        DESIGN_LINEAR = 4, DESIGN_NONLINEAR = 5
+  character(len=*), parameter :: design_loads_names = 'source,impulsive_period [s],'// &
+    'convective_period [s],impulsive_acceleration [g],convective_acceleration [g],'// &
+    'impulsive_mass [kg],convective_mass [kg],tank_mass [kg],impulsive_height [m],'// &
+    'convective_height [m],impulsive_height_ibp [m],convective_height_ibp [m],'// &
+    'tank_mass_height [m],impulsive_shear [N],convective_shear [N],base_shear [N],'// &
+    'moment_ebp [N m],moment_ibp [N m]'
+  character(len=*), parameter :: freeboard_names = 'source,convective_period [s],'// &
+    'convective_acceleration [g],wave_height [m],required_freeboard [m],'// &
+    'available_freeboard [m],margin [m],sufficient'
+  integer, parameter :: DESIGN_LOADS_COLUMNS = 17, FREEBOARD_COLUMNS = 7
+  !> Named columns of those tables (after the source): design_loads' and freeboard_check's.
+  integer, parameter :: LOADS_CONVECTIVE_PERIOD = 2, LOADS_BASE_SHEAR = 15, &
+                        LOADS_MOMENT_EBP = 16, LOADS_MOMENT_IBP = 17
+  integer, parameter :: FREEBOARD_WAVE_HEIGHT = 3, FREEBOARD_REQUIRED = 4, &
+                        FREEBOARD_AVAILABLE = 5, FREEBOARD_SUFFICIENT = 7
 
 contains
 
@@ -328,6 +355,10 @@ contains
       header = pressure_resultant_columns
     case ('pressure_instants')
       header = pressure_instant_columns
+    case ('design_loads')
+      header = design_loads_names
+    case ('freeboard_check')
+      header = freeboard_names
     case default
       header = ''
     end select
@@ -335,7 +366,7 @@ contains
 
   !> How each column of a result table is written, one letter per column: r real, i integer,
   !> and names of codes (code_name): s special-point kind, v verdict, c the source of a
-  !> design-code row, k curve kind, d codimension-2 kind, e curve end.
+  !> design-code row, o the source of a design-check row, k curve kind, d codimension-2 kind, e curve end.
   pure function table_formats(name) result(formats)
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: formats
@@ -366,6 +397,10 @@ contains
       formats = 'irrrrr'
     case ('pressure_resultants')
       formats = 'i'//repeat('r', PRESSURE_RESULTANT_ROWS - 1)
+    case ('design_loads')
+      formats = 'o'//repeat('r', DESIGN_LOADS_COLUMNS)
+    case ('freeboard_check')
+      formats = 'o'//repeat('r', FREEBOARD_COLUMNS)
     case ('chart_curves')
       formats = 'ikrrrrrrrrrrd'
     case ('chart_codim2')
@@ -415,6 +450,9 @@ contains
     case ('source')
       names = code_sources
       first = 1
+    case ('design_source')
+      names = design_sources
+      first = 1
     case ('curve')
       names = curve_kinds
       first = CHART_FOLD
@@ -431,7 +469,7 @@ contains
   end subroutine kind_names
 
   !> The name of a code in a table column written by format letter (table_formats): s special,
-  !> v verdict, c source, k curve kind, d codimension-2 kind, e curve end.
+  !> v verdict, c source, o design-check source, k curve kind, d codimension-2 kind, e curve end.
   pure function code_name(letter, code) result(name)
     character, intent(in) :: letter
     integer, intent(in) :: code
@@ -441,6 +479,7 @@ contains
     case ('s'); call kind_names('special', names, first)
     case ('v'); call kind_names('verdict', names, first)
     case ('c'); call kind_names('source', names, first)
+    case ('o'); call kind_names('design_source', names, first)
     case ('k'); call kind_names('curve', names, first)
     case ('d'); call kind_names('codim2', names, first)
     case default; call kind_names('curve_end', names, first)

@@ -274,6 +274,28 @@ contains
     status = info
   end subroutine design_codes
 
+  !> design_codes with the wave heights from a code design spectrum (&design's layout).
+  subroutine design_codes_spectrum(tank, design, codes, status, message)
+    use sloshdyn_tables, only: CODES_COLUMNS, CODES_ROWS
+    use sloshdyn_layouts, only: TANK_SIZE, DESIGN_SIZE, to_tank, to_design
+    use sloshdyn_seismic, only: design_code_checks
+    use sloshdyn_ground, only: ground_motion_t
+    use sloshdyn_design_spectra, only: design_spectrum_t
+    use sloshdyn_design_loads, only: design_factors_t
+    real(c_double), intent(in) :: tank(TANK_SIZE), design(DESIGN_SIZE)
+    real(c_double), intent(out) :: codes(CODES_COLUMNS, CODES_ROWS)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(design_spectrum_t) :: spec
+    type(design_factors_t) :: factors
+    type(ground_motion_t) :: no_ground
+    logical :: from_ground
+    integer :: info
+    call to_design(design, spec, factors, from_ground)
+    call design_code_checks(to_tank(tank), no_ground, .false., codes, info, message, spec)
+    status = info
+  end subroutine design_codes_spectrum
+
   !> The design-code table as the executable prints it (sloshdyn_driver's design_codes_table).
   subroutine design_codes_text(codes, text)
     use sloshdyn_tables, only: CODES_COLUMNS, CODES_ROWS
@@ -282,4 +304,74 @@ contains
     character(len=2048), intent(out) :: text
     text = design_codes_table(codes)
   end subroutine design_codes_text
+
+  !> A design spectrum's Sa [g] at n periods [s] and one damping [%] (&design's layout
+  !> 'design'; sloshdyn_design_spectra's spectrum_sa); the first failure stops.
+  subroutine design_spectrum_sa(design, n, periods, damping, sa, status, message)
+    !f2py threadsafe
+    use sloshdyn_kinds, only: wp
+    use sloshdyn_layouts, only: DESIGN_SIZE, to_design
+    use sloshdyn_design_spectra, only: design_spectrum_t, spectrum_sa
+    use sloshdyn_design_loads, only: design_factors_t
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: design(DESIGN_SIZE), periods(n), damping
+    real(c_double), intent(out) :: sa(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(design_spectrum_t) :: spec
+    type(design_factors_t) :: factors
+    logical :: from_ground
+    real(wp) :: value
+    integer :: i, info
+    sa = 0
+    status = 0
+    message = ''
+    call to_design(design, spec, factors, from_ground)
+    if (from_ground) then
+      status = 1
+      message = "spectrum = 'ground_motion': the ground motion's spectrum is GroundMotion's"
+      return
+    end if
+    do i = 1, n
+      call spectrum_sa(spec, periods(i), damping, value, info, message)
+      status = info
+      if (info /= 0) return
+      sa(i) = value
+    end do
+  end subroutine design_spectrum_sa
+
+  !> The design check of a tank (sloshdyn_design_check): loads in the 'design_loads' layout
+  !> and freeboard in 'freeboard_check' (without the source column, NaN rows where a source
+  !> gives none), from &design's spectrum or the ground motion's (its samples, n of them); with
+  !> has_peaks = 1 the 'seismic_peaks' of a nonlinear run give the row 'sloshdyn nonlinear'.
+  subroutine design_check(tank, design, ground, n, samples, has_peaks, peaks, loads, freeboard, &
+                          status, message)
+    !f2py threadsafe
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, DESIGN_SIZE, to_tank, to_ground, &
+                                to_design
+    use sloshdyn_tables, only: PEAKS_SIZE, DESIGN_ROWS, DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS
+    use sloshdyn_design_spectra, only: design_spectrum_t
+    use sloshdyn_design_loads, only: design_factors_t
+    use sloshdyn_design_check, only: core => design_check
+    integer(c_int), intent(in) :: n, has_peaks
+    real(c_double), intent(in) :: tank(TANK_SIZE), design(DESIGN_SIZE), ground(GROUND_SIZE), &
+                                  samples(n), peaks(PEAKS_SIZE)
+    real(c_double), intent(out) :: loads(DESIGN_LOADS_COLUMNS, DESIGN_ROWS), &
+                                   freeboard(FREEBOARD_COLUMNS, DESIGN_ROWS)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(design_spectrum_t) :: spec
+    type(design_factors_t) :: factors
+    logical :: from_ground
+    integer :: info
+    call to_design(design, spec, factors, from_ground)
+    if (has_peaks /= 0) then
+      call core(to_tank(tank), spec, factors, from_ground, to_ground(ground, samples), loads, &
+                freeboard, info, message, peaks)
+    else
+      call core(to_tank(tank), spec, factors, from_ground, to_ground(ground, samples), loads, &
+                freeboard, info, message)
+    end if
+    status = info
+  end subroutine design_check
 end module sloshdyn_bridge_seismic

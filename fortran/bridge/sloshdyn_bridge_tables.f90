@@ -28,7 +28,8 @@ contains
     use sloshdyn_wall_pressure, only: combination_names, COMBINE_SRSS
     use sloshdyn_layouts, only: layout_names, layout_text, join, &
                                 excitation_parameters, ground_kinds, resonances, chart_axes, &
-                                CHART_RHO
+                                CHART_RHO, design_spectra
+    use sloshdyn_design_spectra, only: ground_types
     character(len=*), intent(in) :: list
     character(len=8192), intent(out) :: text
     integer(c_int), intent(out) :: first, status
@@ -36,8 +37,8 @@ contains
     !> The enumerated options (the cases below, then the kind lists of sloshdyn_tables).
     character(len=*), parameter :: code_lists = 'analyses,methods,chart_models,chart_axes,'// &
       'excitation_parameters,directions,study_kinds,worker_kinds,continuations,ground_kinds,'// &
-      'resonances,tank_shapes,pressure_combinations,special,motion,verdict,source,curve,'// &
-      'codim2,curve_end'
+      'resonances,tank_shapes,pressure_combinations,design_spectra,ground_types,special,'// &
+      'motion,verdict,source,curve,codim2,curve_end,design_source'
     character(len=:), allocatable :: joined
     integer :: code
     status = 0
@@ -80,6 +81,8 @@ contains
       case ('resonances')
         joined = join(resonances, ',')
         code = 0
+      case ('design_spectra'); joined = join(design_spectra, ',')
+      case ('ground_types');   joined = join(ground_types, ',')
       case ('tank_shapes')
         joined = join(shape_names, ',')
         code = SHAPE_CIRCULAR

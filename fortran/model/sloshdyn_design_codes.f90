@@ -59,10 +59,15 @@ module sloshdyn_design_codes
     real(wp) :: convective_ratio = 0       !< m_c1/m = 2 tanh(lambda_1 gamma)/(gamma lambda_1 (lambda_1^2 - 1))
     real(wp) :: convective_height = 0      !< h_c1 (EBP) [m]
     real(wp) :: convective_height_ibp = 0  !< h_c1' (IBP) [m]
+    real(wp) :: impulsive_ratio = 0        !< m_i/m, A.2.1 (series, ec8_impulsive)
+    real(wp) :: impulsive_height = 0       !< h_i (EBP) [m]
+    real(wp) :: impulsive_height_ibp = 0   !< h_i' (IBP) [m]
   end type ec8_parameters
 
   !> EN 1998-4 Annex A.2.1: the first root of J1' as the code rounds it.
   real(wp), parameter :: ec8_lambda_1 = 1.841_wp
+  !> Terms of EN 1998-4 Annex A.2.1's impulsive series (their tail is below 1e-9 relative).
+  integer, parameter :: ec8_terms = 20000
   !> Branch points of the ACI and API height and mass formulas (D/H).
   real(wp), parameter :: squat_from = 1.333_wp, aci_tall_ibp_below = 0.75_wp
 
@@ -212,7 +217,69 @@ contains
     ec8%convective_ratio = 2*tanh(x)/(gamma*ec8_lambda_1*(ec8_lambda_1**2 - 1))
     ec8%convective_height = depth*(1 - cosh_ratio(x, 1.0_wp))
     ec8%convective_height_ibp = depth*(1 - cosh_ratio(x, 2.0_wp))
+    call ec8_impulsive(gamma, radius, depth, ec8)
   end subroutine ec8_circular
+
+  !> EN 1998-4:2006 Annex A.2.1 (rigid circular tank), impulsive component: with
+  !> nu_n = (2n + 1) pi/2 and gamma = H/R, the wall pressure
+  !> p_i = 2 rho H cos(theta) A_g sum (-1)^n cos(nu_n z/H) I1(nu_n r/(R gamma))/(nu_n^2 I1'(nu_n/gamma))
+  !> integrates to the impulsive mass
+  !>     m_i/m = 2 gamma sum a_n,   a_n = I1(nu_n/gamma)/(nu_n^3 I1'(nu_n/gamma))
+  !> and to the heights of its resultant, excluding the base pressure (wall moment)
+  !>     h_i/H = sum a_n (1 - (-1)^n/nu_n) / sum a_n
+  !> and including it (the base pressure's moment, with int_0^1 x^2 I1(k x) dx = I2(k)/k)
+  !>     h_i' = h_i + R sum (-1)^n I2(nu_n/gamma)/(nu_n^3 I1'(nu_n/gamma)) / sum a_n.
+  !> I1' = I0 - I1/x; the Bessel functions scaled by e^-x (their ratios only).
+  pure subroutine ec8_impulsive(gamma, radius, depth, ec8)
+    real(wp), intent(in) :: gamma, radius, depth
+    type(ec8_parameters), intent(inout) :: ec8
+    real(wp) :: nu, x, i1, d1, a, total, moment, base
+    integer :: n
+    total = 0
+    moment = 0
+    base = 0
+    do n = ec8_terms - 1, 0, -1            ! smallest terms first
+      nu = (2*n + 1)*pi/2
+      x = nu/gamma
+      i1 = scaled_bessel_i(1, x)
+      d1 = scaled_bessel_i(0, x) - i1/x    ! I1'(x) e^-x
+      a = i1/(nu**3*d1)
+      total = total + a
+      moment = moment + a*(1 - (-1)**n/nu)
+      base = base + (-1)**n*scaled_bessel_i(2, x)/(nu**3*d1)
+    end do
+    ec8%impulsive_ratio = 2*gamma*total
+    ec8%impulsive_height = depth*moment/total
+    ec8%impulsive_height_ibp = ec8%impulsive_height + radius*base/total
+  end subroutine ec8_impulsive
+
+  !> e^-x I_nu(x), nu = 0, 1, 2, x > 0 (Abramowitz and Stegun 9.6.10 power series for x <= 20,
+  !> 9.7.1 asymptotic expansion beyond, both to round-off there).
+  elemental real(wp) function scaled_bessel_i(nu, x) result(value)
+    integer, intent(in) :: nu
+    real(wp), intent(in) :: x
+    real(wp) :: term, total
+    integer :: k
+    if (x <= 20) then
+      term = (x/2)**nu/gamma(real(nu + 1, wp))
+      total = term
+      do k = 1, 200
+        term = term*(x/2)**2/(k*(k + nu))
+        total = total + term
+        if (term <= epsilon(1.0_wp)*total) exit
+      end do
+      value = total*exp(-x)
+    else
+      term = 1
+      total = 1
+      do k = 1, 40
+        term = -term*(4*nu**2 - (2*k - 1)**2)/(8*k*x)
+        total = total + term
+        if (abs(term) <= epsilon(1.0_wp)*abs(total)) exit
+      end do
+      value = total/sqrt(2*pi*x)
+    end if
+  end function scaled_bessel_i
 
   !> EN 1998-4:2006 Annex A (A.2.1.4 as cited): maximum vertical displacement of the liquid
   !> surface at the wall, d_max = 0.84 R Se(T_c1)/g, with Se(T_c1) [m/s^2] the elastic spectral

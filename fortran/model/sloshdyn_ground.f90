@@ -16,7 +16,7 @@ module sloshdyn_ground
   public :: ground_motion_t, harmonic_ground, record_ground, check_ground, ground_excitation, &
             ground_acceleration, ground_duration, ground_spectrum, scale_to_pga, scale_to_sa, &
             scale_ground, on_time_grid
-  public :: spectral_acceleration
+  public :: spectral_acceleration, peak_ground_acceleration
   public :: GROUND_HARMONIC, GROUND_RECORD, harmonic_periods
 
   integer, parameter :: GROUND_HARMONIC = 1, GROUND_RECORD = 2

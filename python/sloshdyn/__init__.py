@@ -21,6 +21,7 @@ from .charts import Chart, Codim2Point, Curve, StabilityChart, stability_chart
 from .seismic import (DesignCodes, GroundMotion, HarmonicSweep, SeismicResponse, SeismicTimes,
                       Spectrum, Tank, acceleration_factor, harmonic_sweep, seismic_defaults,
                       seismic_response)
+from .design import DesignCheck, DesignSpectrum, design_check
 from .studies import (FragilityFit, basins, fit_fragility, fragility_study, impact_parameters,
                       response_map)
 from .simulation import (AmplitudeSpectrum, Integration, Simulation, Steady, SteadyState, Sweep,
@@ -49,6 +50,7 @@ __all__ = [
     "PeriodicOrbit", "PeriodicSpecialPoint", "Lyapunov", "LyapunovExponent", "Shooting",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
     "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "SeismicTimes",
+    "DesignSpectrum", "DesignCheck", "design_check",
     "Spectrum", "Tank",
     "acceleration_factor", "harmonic_sweep", "seismic_defaults", "seismic_response",
     "Chart", "Codim2Point", "Curve", "StabilityChart", "stability_chart",

@@ -189,6 +189,7 @@ class Input:
     spatial: dict = field(default_factory=lambda: {"azimuth": 0.0, "ellipticity": 0.0})
     #: &ground_motion's azimuth [rad] and ellipticity (sloshdyn.spatial.seismic_response_2d)
     ground_motion_y: object = None  #: &ground_motion's record_y (scaled by the first's factor)
+    design: object = None         #: &design: sloshdyn.design.Design, or None (no &design)
 
 
 def read_namelist(path) -> Input:
@@ -199,12 +200,13 @@ def read_namelist(path) -> Input:
     from .periodic import Lyapunov
     from .seismic import GroundMotion, Tank
     from .simulation import Integration, Steady
+    from .design import Design
 
     path = _checks.path("path", path)
     (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
      seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
      chart_range, study, store, figure, scheduler, study_records, planar, spatial, has_ground_y,
-     ground_y, n_samples_y, status,
+     ground_y, n_samples_y, has_design, design, status,
      message) = app_call(_core.sloshdyn_bridge_input.read_input, os.fsencode(path))
     check_status(status, message)
     tank = ground_motion = ground_motion_y = None
@@ -246,7 +248,8 @@ def read_namelist(path) -> Input:
         response_range=decode_all("response_range", response_range),
         lyapunov=Lyapunov.from_array(lyapunov),
         study=_study(study, store, figure, scheduler, study_records), planar=bool(planar),
-        spatial=decode_all("spatial", spatial), ground_motion_y=ground_motion_y)
+        spatial=decode_all("spatial", spatial), ground_motion_y=ground_motion_y,
+        design=Design.from_array(design) if has_design else None)
 
 
 def _study(values, store, figure, scheduler, records):

@@ -21,6 +21,7 @@ from . import _checks, _core, _tables
 from ._errors import InputError, SloshdynError, check_status
 from ._settings import convert_fields
 from .parameters import Parameters
+from .design import Design, DesignCheck, DesignSpectrum, design_check
 from .simulation import Integration, Steady
 
 _bridge = _core.sloshdyn_bridge_seismic
@@ -186,13 +187,25 @@ class Tank:
     def design_codes(self, ground_motion=None) -> DesignCodes:
         """The tank's sloshing parameters by sloshdyn and by API 650 Annex E, EN 1998-4 Annex A
         and ACI 350.3 side by side (DesignCodes); wave heights from the ground motion's
-        pseudo-spectral acceleration when one is given."""
-        ground, samples = _ground_arrays(ground_motion)
-        codes, status, message = _bridge.design_codes(self.array(), int(ground_motion is not None),
-                                                      ground, samples)
+        pseudo-spectral acceleration when one is given, or from a code design spectrum
+        (sloshdyn.design.DesignSpectrum: its Sa at the tank's sloshing damping)."""
+        if isinstance(ground_motion, DesignSpectrum):
+            codes, status, message = _bridge.design_codes_spectrum(self.array(),
+                                                                   ground_motion.design.array())
+        else:
+            ground, samples = _ground_arrays(ground_motion)
+            codes, status, message = _bridge.design_codes(self.array(),
+                                                          int(ground_motion is not None),
+                                                          ground, samples)
         check_status(status, message)
         # the modal sums (the last two sources) only for a tank with modes > 1
         return DesignCodes(codes[:, :None if self.modes > 1 else -2].copy())
+
+    def design_check(self, motion=None, *, design: Design | None = None,
+                     response=None) -> DesignCheck:
+        """Each code's seismic loads and freeboard check beside sloshdyn's (DesignCheck):
+        sloshdyn.design_check(tank, motion, design=..., response=...)."""
+        return design_check(self, motion, design=design, response=response)
 
 
 @dataclass(frozen=True)

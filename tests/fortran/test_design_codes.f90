@@ -16,6 +16,10 @@ program test_design_codes
   use sloshdyn_design_codes, only: aci350_parameters, api650_parameters, ec8_parameters, &
                                    aci350_circular, aci350_wave_height, api650_circular, &
                                    api650_wave_height, ec8_circular, ec8_wave_height
+  use sloshdyn_design_spectra, only: design_spectrum_t, spectrum_sa, ec8_design_sa, &
+                                     ec8_ground_parameters, SPECTRUM_ASCE7, SPECTRUM_ACI350, &
+                                     SPECTRUM_EC8
+  use sloshdyn_text, only: num2str
   use checks, only: check_close, check_true, finish
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
   implicit none
@@ -38,6 +42,8 @@ program test_design_codes
   call test_limits()
   call test_wave_heights()
   call test_bad_input()
+  call test_ec8_impulsive()
+  call test_spectra_continuous()
   call finish()
 
 contains
@@ -352,6 +358,90 @@ contains
     real(wp), intent(in) :: x
     j1_derivative = bessel_j0(x) - bessel_j1(x)/x
   end function j1_derivative
+
+  !> EN 1998-4 A.2.1's impulsive mass: 289 t for R = 5 m, H = 6 m of water (issue 25), and
+  !> potential flow's mass balance m_i + sum_n m_cn = m, with the convective masses
+  !> 2 tanh(l_n gamma)/(gamma l_n (l_n^2 - 1)) over the first 3000 roots l_n of J1' (Newton from
+  !> McMahon's l_n ~ (n - 1/4) pi - 7/(8 (n - 1/4) pi), intrinsic bessel_j0, bessel_j1; the tail
+  !> beyond is below 1e-8); h_i between 3H/8 and H/2 (Housner's shallow and deep limits).
+  subroutine test_ec8_impulsive()
+    real(wp) :: geometries(2, 3), convective, root, step, gamma
+    integer :: k, n, iteration
+    geometries = reshape([5.0_wp, 6.0_wp, 3.0_wp, 12.0_wp, 20.0_wp, 4.0_wp], [2, 3])
+    call ec8_circular(5.0_wp, 6.0_wp, g, ec8, status, message)
+    call check_close('EC8 R=5 H=6: m_i = 289 t (issue 25), 0.1 %', &
+                     ec8%impulsive_ratio*pi*25*6*1000, 289.0e3_wp, 1.0e-3_wp)
+    do k = 1, 3
+      associate (R => geometries(1, k), H => geometries(2, k))
+        call ec8_circular(R, H, g, ec8, status, message)
+        gamma = H/R
+        convective = 0
+        do n = 3000, 1, -1
+          root = (n - 0.25_wp)*pi - 7/(8*(n - 0.25_wp)*pi)
+          if (n == 1) root = xi
+          do iteration = 1, 20
+            ! J1' = J0 - J1/x, J1'' = -J1'/x - (1 - 1/x^2) J1 (Bessel's equation)
+            step = (bessel_j0(root) - bessel_j1(root)/root)/ &
+                   (-(bessel_j0(root) - bessel_j1(root)/root)/root - &
+                    (1 - 1/root**2)*bessel_j1(root))
+            root = root - step
+            if (abs(step) < 1.0e-14_wp*root) exit
+          end do
+          convective = convective + 2*tanh(root*gamma)/(gamma*root*(root**2 - 1))
+        end do
+        call check_close('EC8: m_i + sum m_cn = m, H/R = '//num2str(gamma), &
+                         ec8%impulsive_ratio + convective, 1.0_wp, 1.0e-7_wp)
+        call check_true('EC8: 3H/8 < h_i < H/2', ec8%impulsive_height > 0.375_wp*H .and. &
+                        ec8%impulsive_height < 0.5_wp*H)
+        call check_true('EC8: h_i'' > h_i', ec8%impulsive_height_ibp > ec8%impulsive_height)
+      end associate
+    end do
+  end subroutine test_ec8_impulsive
+
+  !> Each design spectrum is continuous at its corner periods (its branches meet: ASCE 7 at T_0,
+  !> T_S, T_L; ACI 350.3 C_i at T_S and C_c at 1.6/T_S; EN 1998-1 Se and Sd at T_B, T_C, T_D,
+  !> for every ground type and both types), and has its plateau value there.
+  subroutine test_spectra_continuous()
+    type(design_spectrum_t) :: spec
+    real(wp) :: p(4)
+    integer :: ground, kind
+    spec = design_spectrum_t(SPECTRUM_ASCE7, s_ds=1.0_wp, s_d1=0.6_wp, t_l=8.0_wp)
+    call continuous('ASCE 7 5 %', spec, [0.12_wp, 0.6_wp, 8.0_wp], 5.0_wp, .false.)
+    call continuous('ASCE 7 0.5 %', spec, [0.12_wp, 0.6_wp, 8.0_wp], 0.5_wp, .false.)
+    spec%kind = SPECTRUM_ACI350
+    call continuous('ACI 350.3 C_i', spec, [0.6_wp], 5.0_wp, .false.)
+    call continuous('ACI 350.3 C_c', spec, [1.6_wp/0.6_wp], 0.5_wp, .false.)
+    do kind = 1, 2
+      do ground = 1, 5
+        spec = design_spectrum_t(SPECTRUM_EC8, a_gr=0.3_wp, ground_type=ground, ec8_type=kind, &
+                                 q=1.5_wp)
+        p = ec8_ground_parameters(spec)
+        call continuous('EC8 Se', spec, p(2:4), 2.0_wp, .false.)
+        call continuous('EC8 Sd', spec, p(2:4), 5.0_wp, .true.)
+      end do
+    end do
+  end subroutine test_spectra_continuous
+
+  subroutine continuous(label, spec, corners, damping, design)
+    character(len=*), intent(in) :: label
+    type(design_spectrum_t), intent(in) :: spec
+    real(wp), intent(in) :: corners(:), damping
+    logical, intent(in) :: design
+    real(wp) :: below, above
+    integer :: i
+    do i = 1, size(corners)
+      if (design) then
+        call ec8_design_sa(spec, corners(i)*(1 - 1.0e-12_wp), below, status, message)
+        call ec8_design_sa(spec, corners(i)*(1 + 1.0e-12_wp), above, status, message)
+      else
+        call spectrum_sa(spec, corners(i)*(1 - 1.0e-12_wp), damping, below, status, message)
+        call spectrum_sa(spec, corners(i)*(1 + 1.0e-12_wp), damping, above, status, message)
+      end if
+      call check_true(label//': status', status == SD_OK)
+      call check_close(label//': continuous at T = '//num2str(corners(i)), above, &
+                       below, 1.0e-9_wp)
+    end do
+  end subroutine continuous
 
   !> Heights of the resultants of the first-mode pressure p ~ J1(xi r/R) cosh(xi z/R) cos(theta)
   !> (potential theory, rigid tank): the wall force F = pi R J1(xi) int_0^H cosh(xi z/R) dz, its

@@ -4,6 +4,7 @@ import pathlib
 import subprocess
 import sysconfig
 
+import numpy as np
 import pytest
 
 import sloshdyn
@@ -58,3 +59,25 @@ def directory_tree(path):
 
 
 os.environ.setdefault("MPLBACKEND", "Agg")
+
+
+def ec8_impulsive(radius, depth, terms=20000):
+    """EN 1998-4 Annex A.2.1's impulsive series (rigid circular tank), by scipy.special: with
+    nu_n = (2n + 1) pi/2, gamma = H/R and a_n = I1(nu_n/gamma)/(nu_n^3 I1'(nu_n/gamma)),
+    m_i/m = 2 gamma sum a_n; the heights of the resultant of its wall pressure
+    p ~ cos(nu_n z/H) I1(nu_n r/(R gamma)), excluding the base pressure
+    h_i/H = sum a_n (1 - (-1)^n/nu_n)/sum a_n, and including it
+    h_i' = h_i + R sum (-1)^n I2(nu_n/gamma)/(nu_n^3 I1'(nu_n/gamma))/sum a_n.
+    Returns (m_i/m, h_i, h_i')."""
+    from scipy.special import ive, ivp
+    gamma = depth / radius
+    n = np.arange(terms)
+    nu = (2 * n + 1) * np.pi / 2
+    x = nu / gamma
+    # I1' by scipy (ivp), scaled by e^-x like ive: ivp(1, x) e^-x without overflow
+    d1 = ive(0, x) - ive(1, x) / x
+    assert np.allclose(d1[x < 50] * np.exp(x[x < 50]), ivp(1, x[x < 50]), rtol=1e-12)
+    a = ive(1, x) / (nu**3 * d1)
+    h_i = depth * np.sum(a * (1 - (-1.0)**n / nu)) / np.sum(a)
+    h_ip = h_i + radius * np.sum((-1.0)**n * ive(2, x) / (nu**3 * d1)) / np.sum(a)
+    return 2 * gamma * np.sum(a), h_i, h_ip

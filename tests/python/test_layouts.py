@@ -59,14 +59,14 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
     path.write_text(MODEL + "&analysis kind = 'stability_chart' /\n")
     (rpar, ipar, _, analysis, _, _, tank, _, ground, _, seismic, integration, steady, response,
      lyapunov, simulation, sweep, response_range, chart, chart_range, study,
-     *_) = _input.read_input(str(path))
+     *rest) = _input.read_input(str(path))
     for name, array in (("model", rpar), ("model_integers", ipar), ("tank", tank),
                         ("integration", integration), ("steady", steady),
                         ("response", response), ("lyapunov", lyapunov), ("chart", chart)):
         assert len(array) == len(arrays[name]), name
     arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
                   sweep=sweep, response_range=response_range, chart_range=chart_range,
-                  study=study)
+                  study=study, design=rest[-3])   # (..., has_design, design, status, message)
     pendulum, status, _ = _model.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
     groups, status, _ = _model.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
     *_, routh, _, _ = _model.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
