@@ -54,13 +54,17 @@ __all__ = [
     "FragilityFit", "basins", "fit_fragility", "fragility_study", "impact_parameters",
     "response_map",
     "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
-    "slow_flow_cycles",
+    "slow_flow_cycles", "design_report",
 ]
 
 
 def __getattr__(name):
-    """plotting, figures, reference and cli load matplotlib and friends: import them on use."""
-    if name in ("plotting", "figures", "reference", "cli"):
+    """plotting, figures, reference, cli and report load matplotlib and friends: import them on
+    use (design_report: the calc sheet, sloshdyn.report)."""
+    if name in ("plotting", "figures", "reference", "cli", "report"):
         import importlib
         return importlib.import_module(f".{name}", __name__)
+    if name == "design_report":
+        from .report import design_report
+        return design_report
     raise AttributeError(f"module 'sloshdyn' has no attribute {name!r}")
