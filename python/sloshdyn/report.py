@@ -33,8 +33,8 @@ import numpy as np
 from ._errors import InputError, SloshdynError
 from ._files import atomic_path, run_directory, save_figure, write_csv, write_text
 
-#: significant digits of every number of the sheet computed by sloshdyn
-DIGITS = 5
+#: significant digits of every number of the sheet computed by sloshdyn, and of the inputs
+DIGITS, INPUT_DIGITS = 5, 12
 #: the standard acceleration of gravity: accelerations are shown in g = 9.80665 m/s^2
 STANDARD_GRAVITY = 9.80665
 #: the analyses the sheet reports: a tank (&tank) under ground motion (&ground_motion)
@@ -44,6 +44,7 @@ SUPPORTED = "&analysis kind = 'seismic' with &tank and &ground_motion (planar, o
 #: The result tables of the sheet, in order: (section, CSV file). A table whose file the run did
 #: not write is left out. A new table enters the sheet by one line here.
 TABLES = (
+    ("Inputs", "inputs.csv"),
     ("Motion", "motion.csv"),
     ("Tank", "tank.csv"),
     ("Tank", "tank_modes.csv"),
@@ -57,6 +58,8 @@ TABLES = (
 )
 #: what each table is, printed above it
 CAPTIONS = {
+    "inputs.csv": "The values as read, defaults included (SI units as in the namelist; "
+                  "0 where the method's default applies, docs/namelist.md).",
     "motion.csv": "The ground motion as scaled by the reader, and its pseudo-spectral "
                   "acceleration at the first sloshing period (0.5 % damping).",
     "tank.csv": "The tank and what follows from it (masses, heights, periods, supports, the "
@@ -233,11 +236,11 @@ def read_table(path):
     return rows[0], [[value(cell) for cell in row] for row in rows[1:]]
 
 
-def _cell(value, factor):
-    return number(value / factor) if isinstance(value, float) else value
+def _cell(value, factor, digits=DIGITS):
+    return number(value / factor, digits) if isinstance(value, float) else value
 
 
-def render_table(path, caption=""):
+def render_table(path, caption="", max_rows=MAX_ROWS, digits=DIGITS):
     """Any result CSV as a Table, by its column names and units. One row: a table of
     quantity, value, unit (a peak beside its time, 'peak_X'/'time_X' or 'X'/'X_time'); several
     rows: one column per quantity, its unit in the header, at most MAX_ROWS rows."""
@@ -247,12 +250,13 @@ def render_table(path, caption=""):
         row = dict(zip(columns, rows[0]))
         names = {split_name(c)[0]: c for c in columns}
         times = {}
-        for name, column in names.items():
-            for peak in (name[len("time_"):] if name.startswith("time_") else None,
-                         name[:-len("_time")] if name.endswith("_time") else None):
-                for candidate in (peak, peak and f"peak_{peak}"):
-                    if candidate in names and candidate != name:
-                        times[names[candidate]] = column
+        for name, column in names.items():     # time_X, X_time: the time of X or peak_X...
+            peak = (name[len("time_"):] if name.startswith("time_") else
+                    name[:-len("_time")] if name.endswith("_time") else None)
+            match = peak and next((c for n, c in names.items() if n != name and (
+                n == peak or n.startswith((f"{peak}_", f"peak_{peak}")))), None)
+            if match:
+                times[match] = column
         shown = []
         for column in columns:
             if column in times.values():
@@ -260,12 +264,12 @@ def render_table(path, caption=""):
             name, unit = split_name(column)
             unit, factor = display_unit(unit, [row[column]])
             time = number(row[times[column]]) if column in times else ""
-            shown.append([name, _cell(row[column], factor), unit, time])
+            shown.append([name, _cell(row[column], factor, digits), unit, time])
         header = ["quantity", "value", "unit"] + (["at t [s]"] if times else [])
         return Table(header, [r if times else r[:3] for r in shown], path.name, caption)
-    if len(rows) > MAX_ROWS:
-        keep = np.unique(np.linspace(0, len(rows) - 1, MAX_ROWS).round().astype(int))
-        caption = (f"{caption} Every {len(rows) // MAX_ROWS}th row or so, {len(keep)} of "
+    if max_rows and len(rows) > max_rows:
+        keep = np.unique(np.linspace(0, len(rows) - 1, max_rows).round().astype(int))
+        caption = (f"{caption} Evenly spaced rows, {len(keep)} of "
                    f"{len(rows)} (all in {path.name}).").strip()
         rows = [rows[k] for k in keep]
     header, factors = [], []
@@ -274,7 +278,7 @@ def render_table(path, caption=""):
         unit, factor = display_unit(unit, [row[k] for row in rows])
         header.append(f"{name} [{unit}]" if unit else name)
         factors.append(factor)
-    return Table(header, [[_cell(v, f) for v, f in zip(row, factors)] for row in rows],
+    return Table(header, [[_cell(v, f, digits) for v, f in zip(row, factors)] for row in rows],
                  path.name, caption)
 
 
@@ -353,6 +357,35 @@ def _motion_table(inp, info):
             "sa_sloshing_period [m/s^2]": [sa]}
 
 
+#: units of the input variables (docs/namelist.md); the others are ratios, counts or names
+INPUT_UNITS = {"radius": "m", "liquid_depth": "m", "freeboard": "m", "liquid_density": "kg/m^3",
+               "liquid_mass": "kg", "tank_mass": "kg", "support_frequency": "Hz",
+               "support_stiffness": "N m/rad", "support_damping_coefficient": "N m s/rad",
+               "support_height": "m", "gravity": "m/s^2", "roof_slope": "degrees",
+               "roof_radius": "m", "length": "m", "width": "m", "t_end": "s", "azimuth": "rad",
+               "h_initial": "tau", "h_max": "tau", "h_min": "tau"}
+
+
+def _inputs_table(inp):
+    """inputs.csv: the values the reader read (defaults included) of &tank, &ground_motion's
+    direction (two components), &seismic and &integration, with their units; the ground
+    motion itself is in motion.csv."""
+    import dataclasses
+    values = [("tank", f.name, getattr(inp.tank, f.name)) for f in dataclasses.fields(inp.tank)]
+    values.append(("tank", "planar", ".true." if inp.planar else ".false."))
+    if not inp.planar:
+        values += [("ground_motion", name, inp.spatial[name]) for name in ("azimuth",
+                                                                             "ellipticity")]
+    values += [("seismic", name, value) for name, value in inp.seismic.items()]
+    values += [("integration", f.name, getattr(inp.integration, f.name))
+               for f in dataclasses.fields(inp.integration)]
+    return {"group": [f"&{group}" for group, _, _ in values],
+            "variable": [name for _, name, _ in values],
+            "value": [value if isinstance(value, str) else float(value)
+                      for _, _, value in values],
+            "unit": [INPUT_UNITS.get(name, "") for _, name, _ in values]}
+
+
 def _spectrum_table(inp):
     """spectrum.csv: pseudo-acceleration spectra of the scaled ground motion (the first
     component; 0.5 % and 5 % damping) from 0.05 s to beyond twice the sloshing period."""
@@ -379,9 +412,9 @@ def _figures(out, spatial, freeboard):
     fig, ax = plt.subplots(figsize=(8, 3))
     if spatial:
         ax.plot(t, series["ground_acceleration_x [m/s^2]"] / STANDARD_GRAVITY, lw=0.7,
-                label="x")
+                label="x component")
         ax.plot(t, series["ground_acceleration_y [m/s^2]"] / STANDARD_GRAVITY, lw=0.7,
-                label="y")
+                label="y component")
         ax.legend(loc="upper right", fontsize="small")
     else:
         ax.plot(t, series["ground_acceleration [m/s^2]"] / STANDARD_GRAVITY, lw=0.7)
@@ -507,6 +540,7 @@ def design_report(input, out):
     if (out / "run_info.csv").exists():
         columns, rows = read_table(out / "run_info.csv")
         run = dict(zip(columns, rows[0]))
+    write_csv(out / "inputs.csv", _inputs_table(inp))
     write_csv(out / "motion.csv", _motion_table(inp, {"records": records, "run": run}))
     write_csv(out / "spectrum.csv", _spectrum_table(inp))
     freeboard = inp.tank.freeboard
@@ -524,18 +558,24 @@ def _sections(out, path, hashes, version, when, verdicts, figures):
         ["sloshdyn version", version], ["date", when], ["input file", str(path)],
         ["output directory", str(out)]] + [[f"SHA-256 of {name}", digest]
                                           for name, digest in hashes])])
-    sections = [head, Section("Inputs", [
-        Paragraph("The input file as read (the namelist reader of the executable; variables "
-                  "not given take their defaults, docs/namelist.md; &output directory is "
-                  "replaced by the output directory above):"),
-        Code(path.read_text(encoding="utf-8", errors="replace"))])]
-    by_title = {}
+    inputs = Section("Inputs", [
+        Paragraph("The input file (read by the namelist reader of the executable; &output "
+                  "directory is replaced by the output directory above):"),
+        Code(path.read_text(encoding="utf-8", errors="replace"))])
+    sections = [head, inputs]
+    by_title = {"Inputs": inputs}
     for title, name in TABLES:
         if (out / name).exists():
             if title not in by_title:
                 by_title[title] = Section(title)
                 sections.append(by_title[title])
-            by_title[title].blocks.append(render_table(out / name, CAPTIONS.get(name, "")))
+            exact = name == "inputs.csv"       # inputs in full, results to DIGITS
+            by_title[title].blocks.append(render_table(
+                out / name, CAPTIONS.get(name, ""), None if exact else MAX_ROWS,
+                INPUT_DIGITS if exact else DIGITS))
+    if verdicts:
+        by_title["Nonlinear run"].blocks += [Paragraph("Verdicts, as the executable prints "
+                                                       "them:"), Bullets(verdicts)]
     placement = {"ground_motion.png": "Motion", "spectrum.png": "Motion",
                  "wave.png": "Nonlinear run", "loads.png": "Nonlinear run",
                  "wall_pressure.png": "Wall pressure"}
@@ -545,8 +585,4 @@ def _sections(out, path, hashes, version, when, verdicts, figures):
             section = by_title[placement[name]] = Section(placement[name])
             sections.append(section)
         section.blocks.append(Figure(name, caption))
-    if verdicts:
-        by_title["Nonlinear run"].blocks.append(Paragraph("Verdicts, as the executable prints "
-                                                          "them:"))
-        by_title["Nonlinear run"].blocks.append(Bullets(verdicts))
     return sections
