@@ -343,7 +343,7 @@ def _motion_table(inp, info):
     run wrote them (run_info.csv) where it did."""
     ground, ground_y = inp.ground_motion, inp.ground_motion_y
     period = inp.tank.sloshing_period
-    sa = ground.response_spectrum([period], 0.005).psa[0]
+    sa = ground.response_spectrum([period], 0.005, **_spectrum_span(inp)).psa[0]
     names = [p.name for p in info["records"]]
     return {"kind": [ground.kind],
             "record": [names[0] if names else ""],
@@ -386,14 +386,29 @@ def _inputs_table(inp):
             "unit": [INPUT_UNITS.get(name, "") for _, name, _ in values]}
 
 
+def _spectrum_span(inp):
+    """The time over which a spectrum is taken, as the core takes the run's Sa at the
+    sloshing period T (sloshdyn_ground spectral_acceleration): a record and a free tail of
+    5 T; harmonic motion over 20 T."""
+    period = inp.tank.sloshing_period
+    if inp.ground_motion.kind == "harmonic":
+        return {"duration": 20 * period}
+    return {"tail_duration": 5 * period}
+
+
 def _spectrum_table(inp):
     """spectrum.csv: pseudo-acceleration spectra of the scaled ground motion (the first
-    component; 0.5 % and 5 % damping) from 0.05 s to beyond twice the sloshing period."""
-    periods = np.geomspace(0.05, max(10.0, 2.5 * inp.tank.sloshing_period), 150)
+    component; 0.5 % and 5 % damping) from 0.05 s to beyond twice the sloshing period, the
+    sloshing period included."""
+    periods = np.union1d(np.geomspace(0.05, max(10.0, 2.5 * inp.tank.sloshing_period), 150),
+                         [inp.tank.sloshing_period])
+    span = _spectrum_span(inp)
+    if "tail_duration" in span:
+        span = {}                               # a record: a tail of 5 times the longest period
     columns = {"period [s]": periods}
     for damping in (0.005, 0.05):
         columns[f"sa_{100 * damping:g}% [m/s^2]"] = \
-            inp.ground_motion.response_spectrum(periods, damping).psa
+            inp.ground_motion.response_spectrum(periods, damping, **span).psa
     return columns
 
 
@@ -409,13 +424,13 @@ def _figures(out, spatial, freeboard):
     t = series["t [s]"]
     figures = []
 
-    fig, ax = plt.subplots(figsize=(8, 3))
+    fig, ax = plt.subplots(figsize=(8, 3), layout="constrained")
     if spatial:
         ax.plot(t, series["ground_acceleration_x [m/s^2]"] / STANDARD_GRAVITY, lw=0.7,
                 label="x component")
         ax.plot(t, series["ground_acceleration_y [m/s^2]"] / STANDARD_GRAVITY, lw=0.7,
                 label="y component")
-        ax.legend(loc="upper right", fontsize="small")
+        fig.legend(loc="outside upper center", ncols=2, fontsize="small")
     else:
         ax.plot(t, series["ground_acceleration [m/s^2]"] / STANDARD_GRAVITY, lw=0.7)
     ax.set(xlabel="t [s]", ylabel="ground acceleration [g]")
@@ -424,11 +439,11 @@ def _figures(out, spatial, freeboard):
 
     spectrum = _columns(out / "spectrum.csv")
     motion = _columns(out / "motion.csv")
-    fig, ax = plt.subplots(figsize=(8, 3.5))
+    fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
     for column in spectrum:
         if column.startswith("sa_"):
             ax.plot(spectrum["period [s]"], spectrum[column] / STANDARD_GRAVITY,
-                    label=f"record, {split_name(column)[0][3:]} damping")
+                    label=f"{split_name(column)[0][3:]} damping")
     design = out / "design_spectrum.csv"
     if design.exists():
         table = _columns(design)
@@ -442,11 +457,11 @@ def _figures(out, spatial, freeboard):
             ms=4, label=f"sloshing period {number(period)} s")
     ax.set(xlabel="T [s]", ylabel="Sa [g]", xscale="log")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(loc="upper right", fontsize="small")
+    fig.legend(loc="outside upper center", ncols=4, fontsize="small")
     figures.append(("spectrum.png", fig, "Pseudo-acceleration spectra of the ground motion "
                                          "(first component, as scaled)."))
 
-    fig, ax = plt.subplots(figsize=(8, 3.5))
+    fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
     ax.plot(t, series["wave_height [m]"], lw=0.8,
             label="wave height at the wall" + (" (largest over the wall)" if spatial else ""))
     if "free_wave_height [m]" in series:
@@ -454,12 +469,11 @@ def _figures(out, spatial, freeboard):
                 label="free wave (no roof)")
     ax.axhline(freeboard, color="r", ls="--", lw=1, label=f"freeboard {number(freeboard)} m")
     ax.set(xlabel="t [s]", ylabel="wave height [m]")
-    ax.set_ylim(top=max(ax.get_ylim()[1], 1.35 * freeboard))
     ax.grid(alpha=0.3)
-    ax.legend(loc="upper right", fontsize="small", ncols=3)
+    fig.legend(loc="outside upper center", ncols=3, fontsize="small")
     figures.append(("wave.png", fig, "Wave height at the wall against the freeboard."))
 
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 5), sharex=True)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 5), sharex=True, layout="constrained")
     top.plot(t, series["base_shear [N]"] / 1e6, lw=0.8)
     top.set(ylabel="base shear [MN]")
     bottom.plot(t, series["overturning_moment [N m]"] / 1e6, lw=0.8, color="C1")
@@ -473,17 +487,16 @@ def _figures(out, spatial, freeboard):
     if pressure.exists():
         table = _columns(pressure)
         height = next(c for c in table if split_name(c)[1] == "m")
-        fig, ax = plt.subplots(figsize=(5, 5))
+        fig, ax = plt.subplots(figsize=(6, 5), layout="constrained")
         for column in table:
             if split_name(column)[1] == "Pa":
                 ax.plot(table[column] / 1e3, table[height], label=split_name(column)[0])
         ax.set(xlabel="pressure [kPa]", ylabel=f"{split_name(height)[0]} [m]")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize="small")
+        fig.legend(loc="outside upper center", ncols=2, fontsize="small")
         figures.append(("wall_pressure.png", fig, "Hydrodynamic wall pressure over the height."))
 
     for name, fig, _ in figures:
-        fig.tight_layout()
         save_figure(fig, out / name)
     return [(name, caption) for name, _, caption in figures]
 
