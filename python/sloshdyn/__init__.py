@@ -27,6 +27,7 @@ from .simulation import (AmplitudeSpectrum, Integration, Simulation, Steady, Ste
                          amplitude_sweep, beat_period, frequency_sweep, poincare_section, simulate, spectrum,
                          steady_state, sweep_values)
 from . import spatial  # noqa: E402  the spatial model and swirl (issue 26): sloshdyn.spatial.*
+from .report import CalcSheet, design_report  # noqa: E402  the calc sheet (issue 25)
 
 from importlib.metadata import version as _installed_version  # noqa: E402
 
@@ -54,17 +55,13 @@ __all__ = [
     "FragilityFit", "basins", "fit_fragility", "fragility_study", "impact_parameters",
     "response_map",
     "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
-    "slow_flow_cycles", "design_report",
+    "slow_flow_cycles", "CalcSheet", "design_report",
 ]
 
 
 def __getattr__(name):
-    """plotting, figures, reference, cli and report load matplotlib and friends: import them on
-    use (design_report: the calc sheet, sloshdyn.report)."""
-    if name in ("plotting", "figures", "reference", "cli", "report"):
+    """plotting, figures, reference and cli load matplotlib and friends: import them on use."""
+    if name in ("plotting", "figures", "reference", "cli"):
         import importlib
         return importlib.import_module(f".{name}", __name__)
-    if name == "design_report":
-        from .report import design_report
-        return design_report
     raise AttributeError(f"module 'sloshdyn' has no attribute {name!r}")

@@ -21,6 +21,7 @@ from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError
 from ._files import run_directory, save_figure, write_text
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
+from .report import design_report
 from .simulation import Simulation, Sweep, _summary
 
 def main(argv=None):
@@ -58,7 +59,8 @@ def main(argv=None):
                               description="Run a namelist file of a tank under ground motion "
                               "(&analysis kind = 'seismic') as `run` does, its CSV files into "
                               "DIR, and write the calc sheet built from them: report.md, a "
-                              "self-contained report.html and the figures. See docs/report.md.")
+                              "self-contained report.html and the figures (docs/python.md, "
+                              "\"The calc sheet\").")
     rpt.add_argument("input", help="namelist file with &tank, &ground_motion and &analysis "
                      "kind = 'seismic'")
     rpt.add_argument("--out", required=True, metavar="DIR", help="output directory")
@@ -86,9 +88,8 @@ def main(argv=None):
             run_input(args.input)
             return 0
         if args.command == "report":
-            from .report import design_report
             sheet = design_report(args.input, args.out)
-            print(f"calc sheet: {sheet} and {sheet.with_suffix('.html')}")
+            print(f"calc sheet: {sheet.markdown} and {sheet.html}")
             return 0
         if args.command == "study":
             return run_study(args.input, args.scheduler, args.workers, not args.no_progress)

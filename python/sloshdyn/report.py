@@ -3,9 +3,10 @@
 
 The input runs exactly as `sloshdyn-py run` runs it (the one reader, the same driver and writers,
 through the bridge), its CSV files written into DIR; the sheet is then built from those CSV files
-only, so every number in it is one of theirs, rounded for print (docs/report.md). One structured
-document (sections of paragraphs, tables, figures, code) is written twice: report.md and a
-self-contained report.html (figures embedded as base64 PNG, also written as PNG files beside).
+only, so every number in it is one of theirs, rounded for print (docs/python.md, "The calc
+sheet"). One structured document (sections of paragraphs, tables, figures, code) is written
+twice: report.md and a self-contained report.html (figures embedded as base64 PNG, also written
+as PNG files beside).
 
 A result table enters the sheet by one line in TABLES: (section title, CSV file name). Any CSV
 renders by its column names and units ('base_shear [N]' is shown in kN or MN, 'p [Pa]' in kPa,
@@ -31,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ._errors import InputError, SloshdynError
-from ._files import atomic_path, run_directory, save_figure, write_csv, write_text
+from ._files import file_error, run_directory, save_figure, write_csv, write_text
 
 #: significant digits of every number of the sheet computed by sloshdyn, and of the inputs
 DIGITS, INPUT_DIGITS = 5, 12
@@ -111,10 +112,21 @@ class Figure:
     caption: str
 
 
-@dataclass
+@dataclass(frozen=True)
 class Section:
     title: str
     blocks: list = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class CalcSheet:
+    """The files of a calc sheet (design_report): report.md, report.html, the figures (PNG)
+    and the CSV files whose numbers it shows, in its order."""
+
+    markdown: Path
+    html: Path
+    figures: tuple
+    tables: tuple
 
 
 def to_markdown(title, sections):
@@ -514,13 +526,14 @@ def _columns(path):
 
 # ---- the sheet --------------------------------------------------------------------------------
 
-def design_report(input, out):
+def design_report(input, out) -> CalcSheet:
     """Run a namelist file as `sloshdyn-py run` does, its CSV files into `out`, and write the
     calc sheet built from them: out/report.md, out/report.html (self-contained) and the
-    figures (PNG). Returns the path of report.md. The run's files are committed together by the
+    figures (PNG); returns their paths (CalcSheet). The run's files are committed together by the
     run; the sheet's files (motion.csv, spectrum.csv, the figures, report.md, report.html)
     together afterwards, or none of them (an earlier report.md/report.html in `out` is removed
-    first, so a sheet never disagrees with the CSV files beside it). Only a tank under ground
+    once the run has written its files, so a sheet never disagrees with the CSV files beside
+    it; a failed run writes none of its files and leaves an earlier sheet with its own). Only a tank under ground
     motion is reported (SUPPORTED); other inputs raise InputError."""
     from .cli import run_input
     from .parameters import read_namelist
@@ -539,14 +552,14 @@ def design_report(input, out):
                            + ("" if inp.tank is not None else " with &model (no &tank)"))
         error.reading = True
         raise error
-    for name in ("report.md", "report.html"):
-        with contextlib.suppress(FileNotFoundError):
-            (out / name).unlink()
     records = _record_files(path)
     hashes = [(path.name, _sha256(path))] + [(p.name, _sha256(p)) for p in records]
     captured = []
     with _captured_output(captured):
         run_input(path, out)
+    for name in ("report.md", "report.html"):   # an earlier sheet: not of these CSV files
+        with file_error(out / name, "remove"):
+            (out / name).unlink(missing_ok=True)
     when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
     spatial = not inp.planar
     run = {}
@@ -563,7 +576,10 @@ def design_report(input, out):
     with run_directory(out):        # the two renamed into place together, or neither
         write_text(out / "report.md", to_markdown(title, sections))
         write_text(out / "report.html", to_html(title, sections, out))
-    return out / "report.md"
+    return CalcSheet(out / "report.md", out / "report.html",
+                     tuple(out / name for name, _ in figures),
+                     tuple(out / block.source for section in sections for block in section.blocks
+                           if isinstance(block, Table) and block.source))
 
 
 def _sections(out, path, hashes, version, when, verdicts, figures):
@@ -587,8 +603,8 @@ def _sections(out, path, hashes, version, when, verdicts, figures):
                 out / name, CAPTIONS.get(name, ""), None if exact else MAX_ROWS,
                 INPUT_DIGITS if exact else DIGITS))
     if verdicts:
-        by_title["Nonlinear run"].blocks += [Paragraph("Verdicts, as the executable prints "
-                                                       "them:"), Bullets(verdicts)]
+        by_title["Nonlinear run"].blocks.extend([Paragraph("Verdicts, as the executable "
+                                                           "prints them:"), Bullets(verdicts)])
     placement = {"ground_motion.png": "Motion", "spectrum.png": "Motion",
                  "wave.png": "Nonlinear run", "loads.png": "Nonlinear run",
                  "wall_pressure.png": "Wall pressure"}

@@ -33,8 +33,9 @@ def sheets(tmp_path_factory):
     out = {}
     for name in TANKS:
         out[name] = tmp_path_factory.mktemp(name)
-        assert sloshdyn.design_report(EXAMPLES / f"{name}.nml", out[name]) == \
-            out[name] / "report.md"
+        sheet = sloshdyn.design_report(EXAMPLES / f"{name}.nml", out[name])
+        assert (sheet.markdown, sheet.html) == (out[name] / "report.md", out[name] / "report.html")
+        assert all(p.exists() for p in sheet.figures + sheet.tables)
     return out
 
 
@@ -152,6 +153,11 @@ def test_every_number_is_the_csv_one(sheets):
         for source, header, rows in tables:
             if source:
                 check_table(out, source, header, rows)
+        # outside the tables, the verdicts (test_verdicts_agree_with_the_csv) and the input
+        # file, only the captions' constants: "0.5 % damping", "modes 2..N", "100/30", "0 where"
+        rest = re.sub(r"```.*?```", "", text, flags=re.S)
+        rest = "\n".join(line for line in rest.splitlines() if not line.startswith(("|", "- ")))
+        assert set(re.findall(r"\d+(?:\.\d+)?", rest)) <= {"0", "0.5", "2", "100", "30"}, name
 
 
 def test_head_version_hashes_and_input(sheets):
@@ -386,3 +392,13 @@ def test_command_line_writes_the_sheet(tmp_path, capsys):
     assert "the wave does not reach the roof" in printed      # the run's summary, passed on
     assert f"calc sheet: {tmp_path / 'report.md'}" in printed
     assert (tmp_path / "report.html").exists()
+
+
+def test_an_output_directory_that_is_a_file(tmp_path, capsys):
+    """--out naming a file: the run cannot write there, a file error (exit 5) naming it."""
+    (tmp_path / "calc").write_text("not a directory")
+    code = cli.main(["report", str(EXAMPLES / "tank_seismic.nml"), "--out",
+                     str(tmp_path / "calc")])
+    err = capsys.readouterr().err
+    assert code == 5, err
+    assert "calc" in err and "internal error" not in err
