@@ -86,16 +86,12 @@ MAX_ROWS = 25
 @dataclass(frozen=True)
 class Paragraph:
     text: str
+    code: bool = False    #: verbatim (a code block)
 
 
 @dataclass(frozen=True)
 class Bullets:
     items: list
-
-
-@dataclass(frozen=True)
-class Code:
-    text: str
 
 
 @dataclass(frozen=True)
@@ -134,12 +130,12 @@ def to_markdown(title, sections):
     for section in sections:
         lines += [f"## {section.title}", ""]
         for block in section.blocks:
-            if isinstance(block, Paragraph):
+            if isinstance(block, Paragraph) and block.code:
+                lines += ["```", block.text.rstrip("\n"), "```", ""]
+            elif isinstance(block, Paragraph):
                 lines += [block.text, ""]
             elif isinstance(block, Bullets):
                 lines += [f"- {item}" for item in block.items] + [""]
-            elif isinstance(block, Code):
-                lines += ["```", block.text.rstrip("\n"), "```", ""]
             elif isinstance(block, Figure):
                 lines += [f"![{block.caption}]({block.file})", "", f"*{block.caption}*", ""]
             else:
@@ -167,12 +163,11 @@ def to_html(title, sections, directory):
         parts.append(f"<h2>{e(section.title)}</h2>")
         for block in section.blocks:
             if isinstance(block, Paragraph):
-                parts.append(f"<p>{e(block.text)}</p>")
+                parts.append(f"<pre>{e(block.text)}</pre>" if block.code else
+                             f"<p>{e(block.text)}</p>")
             elif isinstance(block, Bullets):
                 parts.append("<ul>" + "".join(f"<li>{e(item)}</li>" for item in block.items)
                              + "</ul>")
-            elif isinstance(block, Code):
-                parts.append(f"<pre>{e(block.text)}</pre>")
             elif isinstance(block, Figure):
                 data = base64.b64encode((Path(directory) / block.file).read_bytes()).decode()
                 parts.append(f"<figure><img src=\"data:image/png;base64,{data}\" "
@@ -424,7 +419,7 @@ def _spectrum_table(inp):
     return columns
 
 
-# ---- figures ---------------------------------------------------------------------------------------
+# ---- figures ----------------------------------------------------------------------------------
 
 def _figures(out, spatial, freeboard):
     """The sheet's figures, from the CSV files in `out`: [(file, caption)]."""
@@ -533,8 +528,8 @@ def design_report(input, out) -> CalcSheet:
     run; the sheet's files (motion.csv, spectrum.csv, the figures, report.md, report.html)
     together afterwards, or none of them (an earlier report.md/report.html in `out` is removed
     once the run has written its files, so a sheet never disagrees with the CSV files beside
-    it; a failed run writes none of its files and leaves an earlier sheet with its own). Only a tank under ground
-    motion is reported (SUPPORTED); other inputs raise InputError."""
+    it; a failed run writes none of its files and leaves an earlier sheet with its own). Only a
+    tank under ground motion is reported (SUPPORTED); other inputs raise InputError."""
     from .cli import run_input
     from .parameters import read_namelist
     from . import __version__
@@ -590,7 +585,7 @@ def _sections(out, path, hashes, version, when, verdicts, figures):
     inputs = Section("Inputs", [
         Paragraph("The input file (read by the namelist reader of the executable; &output "
                   "directory is replaced by the output directory above):"),
-        Code(path.read_text(encoding="utf-8", errors="replace"))])
+        Paragraph(path.read_text(encoding="utf-8", errors="replace"), code=True)])
     sections = [head, inputs]
     by_title = {"Inputs": inputs}
     for title, name in TABLES:

@@ -1,10 +1,10 @@
 """The calc sheet (`sloshdyn-py report`, sloshdyn.design_report; issue 25 item 5) on the three
-tank examples under records and the one under harmonic motion (whose wave reaches the roof): every number of report.md is the one of the CSV file it names, to the printed
-precision (the CSV files re-read here with the csv module; units converted with the factors
-below, typed from their definitions), the verdict lines agree with the CSV numbers they
-summarise, report.html holds the same tables and lines, the hashes are hashlib's, the figures
-are PNG files; failures leave no sheet, bad inputs are refused with a message naming the kinds
-supported."""
+tank examples under records and the one under harmonic motion (whose wave reaches the roof):
+every number of report.md is the one of the CSV file it names, to the printed precision (the
+CSV files re-read here with the csv module; units converted with the factors below, typed from
+their definitions), the verdict lines agree with the CSV numbers they summarise, report.html
+holds the same tables and lines, the hashes are hashlib's, the figures are PNG files; failures
+leave no sheet, bad inputs are refused with a message naming the kinds supported."""
 
 import csv
 import hashlib
