@@ -133,19 +133,29 @@ contains
   end subroutine input_record
 
   !> Read a namelist input file and run it exactly as the executable does (summary on standard
-  !> output, CSV files in its output directory); status 1 for bad input. It releases the GIL so
+  !> output, CSV files in its output directory, or in `directory` unless that is blank: the
+  !> calc sheet's, sloshdyn.design_report); status 1 for bad input. It releases the GIL so
   !> that a cancellation request reaches it, but its app layer has static string lengths: never
   !> two calls at once (sloshdyn.cli holds a lock around it).
-  subroutine run_input(path, status, message)
+  subroutine run_input(path, directory, status, message)
     !f2py threadsafe
-    use sloshdyn_namelist, only: run_config, read_input_file => read_input
+    use sloshdyn_namelist, only: run_config, read_input_file => read_input, path_len
     use sloshdyn_driver, only: run_analysis
-    character(len=*), intent(in) :: path
+    use sloshdyn_status, only: SD_BAD_INPUT
+    use sloshdyn_text, only: num2str
+    character(len=*), intent(in) :: path, directory
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(run_config) :: config
     integer :: info
     call read_input_file(path, config, info, message)
+    if (info == 0 .and. len_trim(directory) > path_len) then
+      info = SD_BAD_INPUT
+      message = 'the output directory is too long: it must have at most '//num2str(path_len)// &
+                ' characters'
+    else if (info == 0 .and. len_trim(directory) > 0) then
+      config%directory = directory
+    end if
     if (info == 0) call run_analysis(config, info, message)
     status = info
   end subroutine run_input

@@ -29,6 +29,7 @@ from .simulation import (AmplitudeSpectrum, Integration, Simulation, Steady, Ste
                          steady_state, sweep_values)
 from .pressure import SeismicPressures, WallPressure, seismic_pressures, wall_pressure
 from . import spatial  # noqa: E402  the spatial model and swirl (issue 26): sloshdyn.spatial.*
+from .report import CalcSheet, design_report  # noqa: E402  the calc sheet (issue 25)
 
 from importlib.metadata import version as _installed_version  # noqa: E402
 
@@ -59,6 +60,7 @@ __all__ = [
     "LyapunovSpectrum", "lyapunov_spectrum", "CycleSpecialPoint", "SlowFlowCycles",
     "slow_flow_cycles",
     "WallPressure", "wall_pressure", "SeismicPressures", "seismic_pressures",
+    "CalcSheet", "design_report",
 ]
 
 

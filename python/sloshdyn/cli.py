@@ -1,4 +1,5 @@
-"""The command line: `python -m sloshdyn` (or `sloshdyn-py`) run | reproduce | check."""
+"""The command line: `python -m sloshdyn` (or `sloshdyn-py`) run | report | reproduce | check |
+study."""
 
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError
 from ._files import run_directory, save_figure, write_text
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .parameters import read_namelist
+from .report import design_report
 from .simulation import Simulation, Sweep, _summary
 
 def main(argv=None):
@@ -53,6 +55,16 @@ def main(argv=None):
     chk.add_argument("--reference", help="reference directory (default: the tables installed "
                      "with the package, a copy of data/reference)")
 
+    rpt = commands.add_parser("report", help="the calc sheet of a tank under ground motion",
+                              description="Run a namelist file of a tank under ground motion "
+                              "(&analysis kind = 'seismic') as `run` does, its CSV files into "
+                              "DIR, and write the calc sheet built from them: report.md, a "
+                              "self-contained report.html and the figures (docs/python.md, "
+                              "\"The calc sheet\").")
+    rpt.add_argument("input", help="namelist file with &tank, &ground_motion and &analysis "
+                     "kind = 'seismic'")
+    rpt.add_argument("--out", required=True, metavar="DIR", help="output directory")
+
     sty = commands.add_parser("study", help="run a parameter study (&study) on Dask",
                               description="Run the parameter study of a namelist file's &study "
                               "group (a response map, basins of attraction or a fragility study) "
@@ -73,7 +85,12 @@ def main(argv=None):
     try:
         _check_standard_output()
         if args.command == "run":
-            return run_input(args.input)
+            run_input(args.input)
+            return 0
+        if args.command == "report":
+            sheet = design_report(args.input, args.out)
+            print(f"calc sheet: {sheet.markdown} and {sheet.html}")
+            return 0
         if args.command == "study":
             return run_study(args.input, args.scheduler, args.workers, not args.no_progress)
         if args.command == "reproduce":
@@ -136,25 +153,29 @@ def _on_sigterm(handler):
     return signal.signal(signal.SIGTERM, handler)
 
 
-def run_input(path):
+def run_input(path, directory=None):
     """Run a namelist file exactly as the executable does (the same reader, driver and writers,
-    through the bridge), then draw the figure of the analysis from the files written."""
+    through the bridge), then draw the figure of the analysis from the files written. The files
+    go to `directory` if given (sloshdyn.design_report), else to the file's &output directory.
+    Returns the input as read."""
     try:
         inp = read_namelist(path)
     except SloshdynError as exc:
         exc.reading = True
         raise
-    status, message = app_call(_core.sloshdyn_bridge_input.run_input, os.fsencode(path))
+    out = Path(inp.directory if directory is None else directory)
+    status, message = app_call(_core.sloshdyn_bridge_input.run_input, os.fsencode(path),
+                               os.fsencode("" if directory is None else directory))
     sys.stdout.flush()
     check_status(status, message)
-    figure = _figure(inp, Path(inp.directory))
+    figure = _figure(inp, out)
     if figure:
         try:
-            save_figure(figure[1], Path(inp.directory) / figure[0])
+            save_figure(figure[1], out / figure[0])
         except FileError as exc:
-            raise FileError(f"the result files in {inp.directory} are complete, the figure "
+            raise FileError(f"the result files in {out} are complete, the figure "
                             f"{figure[0]} is not: {exc}", exc.status) from exc
-    return 0
+    return inp
 
 
 def run_study(path, scheduler=None, workers=None, progress=True):
