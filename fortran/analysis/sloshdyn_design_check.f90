@@ -247,13 +247,15 @@ contains
       end associate
     end subroutine set_loads
 
-    !> A row of 'freeboard_check': required and available freeboard, margin, sufficient 1/0.
+    !> A row of 'freeboard_check': required and available freeboard, margin, sufficient 1/0
+    !> (a required freeboard equal to the available one within round-off, 1e-9 of it, is
+    !> sufficient: e.g. ACI 350.3's d_max = R I Sa/g of a record scaled to that Sa).
     subroutine set_freeboard(row, period, acceleration, wave_height, required)
       integer, intent(in) :: row
       real(wp), intent(in) :: period, acceleration, wave_height, required
       freeboard(:, row) = [period, acceleration, wave_height, required, tank%freeboard, &
                            tank%freeboard - required, &
-                           merge(1.0_wp, 0.0_wp, tank%freeboard >= required)]
+                           merge(1.0_wp, 0.0_wp, required <= tank%freeboard*(1 + 1.0e-9_wp))]
     end subroutine set_freeboard
   end subroutine design_check
 end module sloshdyn_design_check

@@ -304,6 +304,20 @@ def test_freeboard_api650_by_use_group_and_aci350(geometry, use_group, s_ds, t_l
     assert check.sufficient["ACI 350.3"] == (f >= d_max)
 
 
+@pytest.mark.parametrize("factor, sufficient", [(1.0, True), (1 - 1e-13, True),
+                                                (1 - 1e-6, False)])
+def test_a_freeboard_equal_to_the_required_one_is_sufficient(factor, sufficient):
+    """ACI 350.3 eq 7-2 with the tank's freeboard set to d_max = R C_c I (numpy) times factor:
+    equal within round-off is sufficient (the core's d_max may differ from numpy's in the last
+    bits), a freeboard 1e-6 short is not."""
+    T_c = aci350_parameters(5.0, 6.0, 9.80665)[0]
+    d_max = 5.0 * aci_cc(T_c, 1.0, 0.6)
+    tank = make_tank(**dict(BROAD, freeboard=d_max * factor))
+    check = tank.design_check(DesignSpectrum.aci350(s_ds=1.0, s_d1=0.6))
+    assert check.freeboard["ACI 350.3"]["required_freeboard"] == pytest.approx(d_max, rel=1e-12)
+    assert check.sufficient["ACI 350.3"] is sufficient
+
+
 def test_loads_from_a_record_and_the_nonlinear_row():
     """From a ground motion: each code's accelerations are its pseudo-spectral accelerations
     (expm here, independent of the core's recurrence) at the code's periods, 0.5 % convective,
