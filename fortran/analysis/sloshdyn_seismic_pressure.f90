@@ -4,7 +4,7 @@
 !> run is integrated again on the same output times (the same states), and at the output time
 !> nearest each instant the tank's absolute acceleration a_t and the modes' absolute
 !> accelerations a_1..a_N give the pressure of sloshdyn_wall_pressure's
-!> instant_pressure_tables (docs/pressure.md, "Pressure at an instant of a time history"):
+!> instant_pressure_tables (docs/model.md, "Pressure at an instant of a time history"):
 !>   a_t = u'' + L (cos(phi) phi'' - sin(phi) phi'^2)              (sloshdyn_vessel)
 !>   a_1 = a_t + l (cos(theta) theta'' - sin(theta) theta'^2)      (the pendulum, mode 1)
 !>   a_n = a_t + x_n'' for n = 2..N, x_n the linear oscillator of mode n on a_t between the

@@ -2,7 +2,7 @@
 !> tank under a horizontal acceleration, by linear potential flow (Jacobsen 1949; Veletsos &
 !> Yang 1977; EN 1998-4:2006 Annex A.2.1.2 (impulsive) and A.2.1.3 (convective)), and the
 !> resultants of each component (mass, heights of the resultant
-!> excluding and including the base pressure). docs/pressure.md derives every formula.
+!> excluding and including the base pressure). docs/model.md ("Hydrodynamic wall and base pressure") derives every formula.
 !>
 !> Coordinates: R the radius, H the liquid depth, gamma = H/R, xi = r/R, zeta = z/H (z from the
 !> bottom), theta the angle around the axis from the direction of the acceleration's inertia
@@ -456,7 +456,7 @@ contains
 
   !> The tables 'wall_pressure' and 'base_pressure' of one instant of a time history with N
   !> sloshing modes (N = size(mode_accelerations)), from the tank's absolute acceleration a_t
-  !> and the modes' a_1..a_N [m/s^2] (docs/pressure.md, "Accelerations to use"): the liquid
+  !> and the modes' a_1..a_N [m/s^2] (docs/model.md, "Accelerations to use"): the liquid
   !> moves as a rigid body with the tank but for the N modes' motion relative to it, so
   !>   p = rho r cos(theta) a_t + sum_{n<=N} p_cn (a_n - a_t),
   !> reported as the part moving with the tank (impulsive_pressure: rho r cos(theta) a_t minus

@@ -3,7 +3,8 @@ acceleration (`wall_pressure`, `Tank.wall_pressure`): impulsive and convective (
 closed forms of potential flow (EN 1998-4 Annex A.2.1, Veletsos), the hoop force per unit
 height, and the resultants of each component. Every number comes from the Fortran core
 (sloshdyn_wall_pressure, the tables 'wall_pressure', 'base_pressure' and
-'pressure_resultants'); docs/pressure.md gives the formulas and their sources.
+'pressure_resultants'); docs/model.md, "Hydrodynamic wall and base pressure", gives the
+formulas and their sources.
 """
 
 from __future__ import annotations
@@ -163,7 +164,8 @@ class SeismicPressures(_Profiles):
     and the shell's inertia give; on the wall at `z` [m] and the base at `r` [m], arrays of shape
     (instants, points): impulsive_pressure (the part moving with the tank), convective_pressure
     (the modes'), total_pressure [Pa], hoop_force [N/m], base_impulsive_pressure,
-    base_convective_pressure, base_total_pressure [Pa], at `angle` [rad]."""
+    base_convective_pressure, base_total_pressure [Pa], at `angle` [rad]; `method`, the
+    integration method used ('auto' resolved)."""
 
     times: np.ndarray
     t: np.ndarray
@@ -172,6 +174,7 @@ class SeismicPressures(_Profiles):
     base_shear: np.ndarray
     overturning_moment: np.ndarray
     overturning_moment_ibp: np.ndarray
+    method: str
 
 
 def seismic_pressures(response, *, integration: Integration = Integration(), times=None,
@@ -205,4 +208,5 @@ def seismic_pressures(response, *, integration: Integration = Integration(), tim
     floor = {"base_" + _name(c): base[j].T.copy()
              for j, c in enumerate(_tables.columns("base_pressure")) if _name(c) != "r"}
     return SeismicPressures(times=times.copy(), mode_accelerations=modal[:tank.modes].T.copy(),
-                            angle=theta, z=z.copy(), r=r.copy(), **columns, **profile, **floor)
+                            angle=theta, z=z.copy(), r=r.copy(), **columns, **profile, **floor,
+                            method=integration.method_used)

@@ -160,7 +160,7 @@ def test_impulsive_mass_of_the_trial_tank_is_289_t():
 @pytest.mark.parametrize("radius, depth", TANKS)
 def test_impulsive_heights_equal_scipy_series(radius, depth):
     """h_i/H = 1 - sum (-1)^n r_n/nu_n^4 / sum r_n/nu_n^3 and h_i' from the base moment sum
-    (-1)^n I2/I1'(nu_n/gamma)/nu_n^3 (docs/pressure.md), summed with scipy, to 1e-8."""
+    (-1)^n I2/I1'(nu_n/gamma)/nu_n^3 (docs/model.md), summed with scipy, to 1e-8."""
     gamma = depth/radius
     n = nu(400_000)
     x = n/gamma
