@@ -13,11 +13,15 @@ module sloshdyn_driver_common
                              DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS, DESIGN_API650, DESIGN_EC8, &
                              DESIGN_ACI350, LOADS_BASE_SHEAR, LOADS_MOMENT_EBP, LOADS_MOMENT_IBP, &
                              FREEBOARD_WAVE_HEIGHT, FREEBOARD_REQUIRED, FREEBOARD_AVAILABLE, &
-                             FREEBOARD_SUFFICIENT
+                             FREEBOARD_SUFFICIENT, DESIGN_LINEAR, LOADS_IMPULSIVE_ACCELERATION, &
+                             LOADS_CONVECTIVE_ACCELERATION, WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, &
+                             PRESSURE_RESULTANT_ROWS, WALL_HEIGHT, WALL_TOTAL_PRESSURE, &
+                             WALL_HOOP_FORCE
   use sloshdyn_design_check, only: design_check
+  use sloshdyn_wall_pressure, only: pressure_tables, combination_names, COMBINE_SRSS, COMBINE_SUM
   use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_seismic, only: design_code_checks, tank_summary, tank_modes
-  use sloshdyn_tank, only: max_modes
+  use sloshdyn_tank, only: max_modes, SHAPE_CIRCULAR
   use sloshdyn_namelist, only: run_config
   use sloshdyn_results, only: result_files
   implicit none
@@ -129,7 +133,52 @@ contains
     if (status == SD_OK) call files%write_table('freeboard_check.csv', 'freeboard_check', &
                                                 with_sources(freeboard, freeboard_rows), status, &
                                                 message)
+    if (status == SD_OK) call write_wall_pressure(config, files, loads, status, message)
   end subroutine write_design_check
+
+  !> The hydrodynamic pressure of the design check (sloshdyn_wall_pressure; docs/model.md,
+  !> "Hydrodynamic wall and base pressure") on the wall (21 heights) and base (11 radii) at
+  !> theta = 0, and its resultants: from EN 1998-4's design accelerations (its pressure formulas,
+  !> Annex A.2.1) combined by their absolute sum as its loads are, or, without an EC8-4 row,
+  !> from sloshdyn's linear row (the elastic spectrum at the model's periods) combined by SRSS.
+  !> A rectangular tank has no wall pressure (its closed forms are not coded).
+  subroutine write_wall_pressure(config, files, loads, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    real(wp), intent(in) :: loads(DESIGN_LOADS_COLUMNS, DESIGN_ROWS)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer, parameter :: n_heights = 21, n_radii = 11
+    real(wp) :: wall(WALL_PRESSURE_ROWS, n_heights), base(BASE_PRESSURE_ROWS, n_radii), &
+                resultants(PRESSURE_RESULTANT_ROWS, 2)
+    integer :: row, combination, i, top
+    status = SD_OK
+    message = ''
+    if (config%tank%shape /= SHAPE_CIRCULAR) return
+    row = merge(DESIGN_EC8, DESIGN_LINEAR, loads(LOADS_BASE_SHEAR, DESIGN_EC8) == &
+                                           loads(LOADS_BASE_SHEAR, DESIGN_EC8))
+    combination = merge(COMBINE_SUM, COMBINE_SRSS, row == DESIGN_EC8)
+    associate (tank => config%tank, a => loads(:, row)*config%tank%gravity)
+      call pressure_tables(tank, a(LOADS_IMPULSIVE_ACCELERATION), &
+                           [a(LOADS_CONVECTIVE_ACCELERATION)], 0.0_wp, combination, &
+                           [(tank%liquid_depth*(i - 1)/(n_heights - 1), i = 1, n_heights)], &
+                           [(tank%radius*(i - 1)/(n_radii - 1), i = 1, n_radii)], wall, base, &
+                           resultants, status, message)
+    end associate
+    call in_context('wall pressure', status, message)
+    if (status /= SD_OK) return
+    top = maxloc(wall(WALL_TOTAL_PRESSURE, :), 1)
+    print '(a)', '  wall pressure ('//trim(code_name('o', row))//'''s accelerations, '// &
+                 trim(combination_names(combination))//'): largest '// &
+                 num2str(wall(WALL_TOTAL_PRESSURE, top)/1.0e3_wp, significant=5)//' kPa at z = '// &
+                 num2str(wall(WALL_HEIGHT, top), significant=5)//' m, hoop force '// &
+                 num2str(wall(WALL_HOOP_FORCE, top)/1.0e3_wp, significant=5)//' kN/m (wall_pressure.csv)'
+    call files%write_table('wall_pressure.csv', 'wall_pressure', wall, status, message)
+    if (status == SD_OK) call files%write_table('base_pressure.csv', 'base_pressure', base, &
+                                                status, message)
+    if (status == SD_OK) call files%write_table('pressure_resultants.csv', &
+                                                'pressure_resultants', resultants, status, message)
+  end subroutine write_wall_pressure
 
   !> The rows of a design-check table that are present, each with its source code first.
   pure function with_sources(table, present_rows) result(rows)

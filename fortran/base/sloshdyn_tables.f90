@@ -36,10 +36,12 @@ module sloshdyn_tables
             PEAKS_SA, PEAKS_BETA_SENSITIVE, &
             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
+  public :: WALL_HEIGHT, WALL_TOTAL_PRESSURE, WALL_HOOP_FORCE
   public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
             PRESSURE_INSTANT_ROWS
   public :: DESIGN_ROWS, DESIGN_API650, DESIGN_EC8, DESIGN_ACI350, DESIGN_LINEAR, &
             DESIGN_NONLINEAR, DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS, LOADS_CONVECTIVE_PERIOD, &
+            LOADS_IMPULSIVE_ACCELERATION, LOADS_CONVECTIVE_ACCELERATION, &
             LOADS_BASE_SHEAR, LOADS_MOMENT_EBP, LOADS_MOMENT_IBP, FREEBOARD_WAVE_HEIGHT, &
             FREEBOARD_REQUIRED, FREEBOARD_AVAILABLE, FREEBOARD_SUFFICIENT
   public :: CHART_FOLD, CHART_HOPF, CHART_PERIOD_DOUBLING, CHART_NEIMARK_SACKER, CODIM2_NONE, &
@@ -216,6 +218,7 @@ module sloshdyn_tables
     'convective_pressure [Pa],total_pressure [Pa]'
   character(len=*), parameter :: pressure_resultant_columns = 'component,mass [kg],'// &
     'height_ebp [m],height_ibp [m],base_shear [N],moment_ebp [N m],moment_ibp [N m]'
+  integer, parameter :: WALL_HEIGHT = 1, WALL_TOTAL_PRESSURE = 4, WALL_HOOP_FORCE = 5
   integer, parameter :: WALL_PRESSURE_ROWS = 5, BASE_PRESSURE_ROWS = 4, &
                         PRESSURE_RESULTANT_ROWS = 7
   !> Instants of a seismic run (sloshdyn_seismic_pressure), one column each: the output time,
@@ -243,7 +246,8 @@ module sloshdyn_tables
     'available_freeboard [m],margin [m],sufficient'
   integer, parameter :: DESIGN_LOADS_COLUMNS = 17, FREEBOARD_COLUMNS = 7
   !> Named columns of those tables (after the source): design_loads' and freeboard_check's.
-  integer, parameter :: LOADS_CONVECTIVE_PERIOD = 2, LOADS_BASE_SHEAR = 15, &
+  integer, parameter :: LOADS_CONVECTIVE_PERIOD = 2, LOADS_IMPULSIVE_ACCELERATION = 3, &
+                        LOADS_CONVECTIVE_ACCELERATION = 4, LOADS_BASE_SHEAR = 15, &
                         LOADS_MOMENT_EBP = 16, LOADS_MOMENT_IBP = 17
   integer, parameter :: FREEBOARD_WAVE_HEIGHT = 3, FREEBOARD_REQUIRED = 4, &
                         FREEBOARD_AVAILABLE = 5, FREEBOARD_SUFFICIENT = 7

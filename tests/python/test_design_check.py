@@ -493,3 +493,35 @@ def test_design_group_errors(exe, tmp_path, text, words):
         sloshdyn.read_namelist(path)
     for word in words:
         assert word in str(info.value)
+
+
+@pytest.mark.parametrize("example, source, srss", [("tank_slender_design", "EC8-4", False),
+                                                   ("tank_design", "sloshdyn linear", True)])
+def test_executable_writes_the_wall_pressure_of_the_design_check(exe, tmp_path, example, source,
+                                                                 srss):
+    """wall_pressure.csv, base_pressure.csv, pressure_resultants.csv of the design check: from
+    EN 1998-4's design accelerations (absolute sum) where it has a row, else from sloshdyn's
+    linear row (SRSS); the impulsive resultant is a_i g m_i with Annex A.2.1's m_i (typed here
+    with scipy, independent of both core series), the convective one a_c g m_c with the row's
+    m_c (to the codes' rounding of lambda_1 = 1.841); profile at 21 heights, hoop force p R."""
+    result = run(exe, EXAMPLES / f"{example}.nml", tmp_path)
+    assert result.returncode == 0, result.stderr
+    out = tmp_path / "sloshdyn_output" / example
+    inp = sloshdyn.read_namelist(EXAMPLES / f"{example}.nml")
+    R, H, g = inp.tank.radius, inp.tank.liquid_depth, inp.tank.gravity
+    row = {line["source"]: line for line in read_csv(out / "design_loads.csv")}[source]
+    a_i, a_c = row["impulsive_acceleration [g]"] * g, row["convective_acceleration [g]"] * g
+    m_i = ec8_impulsive(R, H)[0] * inp.tank.liquid_density * math.pi * R**2 * H
+    impulsive, convective = read_csv(out / "pressure_resultants.csv")
+    assert impulsive["mass [kg]"] == pytest.approx(m_i, rel=1e-9)
+    assert impulsive["base_shear [N]"] == pytest.approx(a_i * m_i, rel=1e-9)
+    assert convective["base_shear [N]"] == pytest.approx(a_c * row["convective_mass [kg]"],
+                                                         rel=2e-3)
+    wall = read_csv(out / "wall_pressure.csv")
+    assert [w["z [m]"] for w in wall] == pytest.approx(np.linspace(0.0, H, 21), abs=1e-12)
+    for w in wall:
+        p_i, p_c = w["impulsive_pressure [Pa]"], w["convective_pressure [Pa]"]
+        total = math.hypot(p_i, p_c) if srss else abs(p_i) + abs(p_c)
+        assert w["total_pressure [Pa]"] == pytest.approx(total, rel=1e-12)
+        assert w["hoop_force [N/m]"] == pytest.approx(w["total_pressure [Pa]"] * R, rel=1e-12)
+    assert len(read_csv(out / "base_pressure.csv")) == 11
