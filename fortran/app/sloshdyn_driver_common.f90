@@ -18,6 +18,7 @@ module sloshdyn_driver_common
                              PRESSURE_RESULTANT_ROWS, WALL_HEIGHT, WALL_TOTAL_PRESSURE, &
                              WALL_HOOP_FORCE
   use sloshdyn_design_check, only: design_check
+  use sloshdyn_design_spectra, only: spectrum_sa, SPECTRUM_EC8
   use sloshdyn_wall_pressure, only: pressure_tables, combination_names, COMBINE_SRSS, COMBINE_SUM
   use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_seismic, only: design_code_checks, tank_summary, tank_modes
@@ -133,8 +134,36 @@ contains
     if (status == SD_OK) call files%write_table('freeboard_check.csv', 'freeboard_check', &
                                                 with_sources(freeboard, freeboard_rows), status, &
                                                 message)
+    if (status == SD_OK .and. .not. config%design_from_ground) &
+      call write_design_spectrum(config, files, status, message)
     if (status == SD_OK) call write_wall_pressure(config, files, loads, status, message)
   end subroutine write_design_check
+
+  !> design_spectrum.csv: the check's elastic design spectrum at 5 % and 0.5 % damping [g]
+  !> over 100 log-spaced periods from 0.02 s to 10 s (EN 1998-1: to 4 s, 3.2.2.1(2)).
+  subroutine write_design_spectrum(config, files, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer, parameter :: n_periods = 100
+    real(wp), parameter :: t_min = 0.02_wp
+    real(wp) :: table(3, n_periods), t_max
+    integer :: i, j
+    t_max = merge(4.0_wp, 10.0_wp, config%design_spectrum%kind == SPECTRUM_EC8)
+    do i = 1, n_periods
+      table(1, i) = t_min*(t_max/t_min)**(real(i - 1, wp)/(n_periods - 1))
+      do j = 2, 3
+        call spectrum_sa(config%design_spectrum, table(1, i), merge(5.0_wp, 0.5_wp, j == 2), &
+                         table(j, i), status, message)
+        if (status /= SD_OK) then
+          call in_context('design spectrum', status, message)
+          return
+        end if
+      end do
+    end do
+    call files%write_table('design_spectrum.csv', 'design_spectrum', table, status, message)
+  end subroutine write_design_spectrum
 
   !> The hydrodynamic pressure of the design check (sloshdyn_wall_pressure; docs/model.md,
   !> "Hydrodynamic wall and base pressure") on the wall (21 heights) and base (11 radii) at

@@ -245,6 +245,9 @@ module sloshdyn_tables
     'convective_acceleration [g],wave_height [m],required_freeboard [m],'// &
     'available_freeboard [m],margin [m],sufficient'
   integer, parameter :: DESIGN_LOADS_COLUMNS = 17, FREEBOARD_COLUMNS = 7
+  !> The design spectrum of the check (elastic, sloshdyn_design_spectra), one row per period.
+  character(len=*), parameter :: design_spectrum_names = 'period [s],'// &
+    'sa_5_percent [g],sa_0.5_percent [g]'
   !> Named columns of those tables (after the source): design_loads' and freeboard_check's.
   integer, parameter :: LOADS_CONVECTIVE_PERIOD = 2, LOADS_IMPULSIVE_ACCELERATION = 3, &
                         LOADS_CONVECTIVE_ACCELERATION = 4, LOADS_BASE_SHEAR = 15, &
@@ -363,6 +366,8 @@ contains
       header = design_loads_names
     case ('freeboard_check')
       header = freeboard_names
+    case ('design_spectrum')
+      header = design_spectrum_names
     case default
       header = ''
     end select

@@ -455,9 +455,10 @@ def _figures(out, spatial, freeboard):
     if design.exists():
         table = _columns(design)
         for column in table:
-            if split_name(column)[1] == "m/s^2":
-                ax.plot(table["period [s]"], table[column] / STANDARD_GRAVITY, "--",
-                        label=f"design: {split_name(column)[0]}")
+            if split_name(column)[1] == "g":
+                ax.plot(table["period [s]"], table[column], "--",
+                        label="design, " + split_name(column)[0][3:].replace("_percent", " %")
+                        + " damping")
     period = float(motion["sloshing_period [s]"][0])
     ax.axvline(period, color="grey", lw=0.8, ls=":")
     ax.plot(period, float(motion["sa_sloshing_period [m/s^2]"][0]) / STANDARD_GRAVITY, "ko",

@@ -525,3 +525,18 @@ def test_executable_writes_the_wall_pressure_of_the_design_check(exe, tmp_path, 
         assert w["total_pressure [Pa]"] == pytest.approx(total, rel=1e-12)
         assert w["hoop_force [N/m]"] == pytest.approx(w["total_pressure [Pa]"] * R, rel=1e-12)
     assert len(read_csv(out / "base_pressure.csv")) == 11
+
+
+def test_executable_writes_the_design_spectrum(exe, tmp_path):
+    """design_spectrum.csv of tank_design.nml (ASCE 7: S_DS 1.0 g, S_D1 0.6 g, T_L 8 s): 100
+    log-spaced periods 0.02-10 s; Sa at 5 % is ASCE 7-16 11.4.6 typed here, at 0.5 % API 650's
+    K = 1.5 times it (E.4.6.1)."""
+    result = run(exe, EXAMPLES / "tank_design.nml", tmp_path)
+    assert result.returncode == 0, result.stderr
+    rows = read_csv(tmp_path / "sloshdyn_output" / "tank_design" / "design_spectrum.csv")
+    periods = [row["period [s]"] for row in rows]
+    assert periods == pytest.approx(np.geomspace(0.02, 10.0, 100), rel=1e-12)
+    for row, T in zip(rows, periods):
+        assert row["sa_5_percent [g]"] == pytest.approx(asce7(T, 1.0, 0.6, 8.0), rel=1e-12)
+        assert row["sa_0.5_percent [g]"] == pytest.approx(1.5 * asce7(T, 1.0, 0.6, 8.0),
+                                                          rel=1e-12)
