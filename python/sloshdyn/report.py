@@ -38,9 +38,11 @@ from ._files import file_error, run_directory, save_figure, write_csv, write_tex
 DIGITS, INPUT_DIGITS = 5, 12
 #: the standard acceleration of gravity: accelerations are shown in g = 9.80665 m/s^2
 STANDARD_GRAVITY = 9.80665
-#: the analyses the sheet reports: a tank (&tank) under ground motion (&ground_motion)
+#: the analyses the sheet reports: a tank (&tank) under ground motion (&ground_motion), or a
+#: tank's design check (&design) against a code spectrum in any analysis of the tank
 SUPPORTED = "&analysis kind = 'seismic' with &tank and &ground_motion (planar, or two components " \
-            "with &tank planar = .false.)"
+            "with &tank planar = .false.), or a &tank with &design (the design check against its " \
+            "code spectrum)"
 
 #: The result tables of the sheet, in order: (section, CSV file). A table whose file the run did
 #: not write is left out. A new table enters the sheet by one line here.
@@ -56,6 +58,7 @@ TABLES = (
     ("Nonlinear run", "seismic_spatial_peaks.csv"),
     ("Nonlinear run", "run_info.csv"),
     ("Wall pressure", "wall_pressure.csv"),
+    ("Wall pressure", "pressure_resultants.csv"),
 )
 #: what each table is, printed above it
 CAPTIONS = {
@@ -75,7 +78,10 @@ CAPTIONS = {
     "seismic_spatial_peaks.csv": "Peaks of the spatial run (two components), beside the codes' "
                                  "SRSS and 100/30 combinations of the two planar runs.",
     "run_info.csv": "What the run rests on (record, scaling, impact stiffness and damping).",
-    "wall_pressure.csv": "Hydrodynamic wall pressure.",
+    "wall_pressure.csv": "Hydrodynamic wall pressure at theta = 0 (times cos theta around the "
+                         "wall) and the hoop force per unit height (docs/design.md).",
+    "pressure_resultants.csv": "Resultants of the pressure: impulsive (component 0) and first "
+                               "convective mode (1).",
 }
 #: rows shown of a long table (evenly spaced, the first and last included)
 MAX_ROWS = 25
@@ -375,17 +381,21 @@ INPUT_UNITS = {"radius": "m", "liquid_depth": "m", "freeboard": "m", "liquid_den
 
 def _inputs_table(inp):
     """inputs.csv: the values the reader read (defaults included) of &tank, &ground_motion's
-    direction (two components), &seismic and &integration, with their units; the ground
-    motion itself is in motion.csv."""
+    direction (two components), &seismic and &integration (with a ground motion) and &design,
+    with their units; the ground motion itself is in motion.csv."""
     import dataclasses
     values = [("tank", f.name, getattr(inp.tank, f.name)) for f in dataclasses.fields(inp.tank)]
     values.append(("tank", "planar", ".true." if inp.planar else ".false."))
     if not inp.planar:
         values += [("ground_motion", name, inp.spatial[name]) for name in ("azimuth",
                                                                              "ellipticity")]
-    values += [("seismic", name, value) for name, value in inp.seismic.items()]
-    values += [("integration", f.name, getattr(inp.integration, f.name))
-               for f in dataclasses.fields(inp.integration)]
+    if inp.ground_motion is not None:
+        values += [("seismic", name, value) for name, value in inp.seismic.items()]
+        values += [("integration", f.name, getattr(inp.integration, f.name))
+                   for f in dataclasses.fields(inp.integration)]
+    if inp.design is not None:
+        values += [("design", f.name, getattr(inp.design, f.name))
+                   for f in dataclasses.fields(inp.design)]
     return {"group": [f"&{group}" for group, _, _ in values],
             "variable": [name for _, name, _ in values],
             "value": [value if isinstance(value, str) else float(value)
@@ -421,12 +431,36 @@ def _spectrum_table(inp):
 
 # ---- figures ----------------------------------------------------------------------------------
 
-def _figures(out, spatial, freeboard):
-    """The sheet's figures, from the CSV files in `out`: [(file, caption)]."""
+def _figures(out, spatial, freeboard, seismic=True):
+    """The sheet's figures, from the CSV files in `out`: [(file, caption)]; those of the
+    seismic run when seismic, else the design spectrum's."""
     import matplotlib
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
+    figures = (_seismic_figures(out, spatial, freeboard, plt) if seismic else
+               _design_spectrum_figure(out, plt))
+    pressure = out / "wall_pressure.csv"
+    if pressure.exists():
+        table = _columns(pressure)
+        height = next(c for c in table if split_name(c)[1] == "m")
+        fig, ax = plt.subplots(figsize=(6, 5), layout="constrained")
+        for column in table:
+            if split_name(column)[1] == "Pa":
+                ax.plot(table[column] / 1e3, table[height], label=split_name(column)[0])
+        ax.set(xlabel="pressure [kPa]", ylabel=f"{split_name(height)[0]} [m]")
+        ax.grid(alpha=0.3)
+        fig.legend(loc="outside upper center", ncols=2, fontsize="small")
+        figures.append(("wall_pressure.png", fig, "Hydrodynamic wall pressure over the height."))
+
+    for name, fig, _ in figures:
+        save_figure(fig, out / name)
+    return [(name, caption) for name, _, caption in figures]
+
+
+def _seismic_figures(out, spatial, freeboard, plt):
+    """Ground motion, spectra (with the design spectrum when written), wave against the
+    freeboard, loads: [(file, figure, caption)]."""
     series = _columns(out / ("seismic_spatial.csv" if spatial else "seismic.csv"))
     t = series["t [s]"]
     figures = []
@@ -490,24 +524,24 @@ def _figures(out, spatial, freeboard):
         ax.grid(alpha=0.3)
     figures.append(("loads.png", fig, "Base shear and overturning moment over time"
                                       + (" (resultants)." if spatial else ".")))
+    return figures
 
-    pressure = out / "wall_pressure.csv"
-    if pressure.exists():
-        table = _columns(pressure)
-        height = next(c for c in table if split_name(c)[1] == "m")
-        fig, ax = plt.subplots(figsize=(6, 5), layout="constrained")
-        for column in table:
-            if split_name(column)[1] == "Pa":
-                ax.plot(table[column] / 1e3, table[height], label=split_name(column)[0])
-        ax.set(xlabel="pressure [kPa]", ylabel=f"{split_name(height)[0]} [m]")
-        ax.grid(alpha=0.3)
-        fig.legend(loc="outside upper center", ncols=2, fontsize="small")
-        figures.append(("wall_pressure.png", fig, "Hydrodynamic wall pressure over the height."))
 
-    for name, fig, _ in figures:
-        save_figure(fig, out / name)
-    return [(name, caption) for name, _, caption in figures]
-
+def _design_spectrum_figure(out, plt):
+    """The code spectrum of the design check (design_spectrum.csv) with the tank's first
+    sloshing period (tank.csv): [(file, figure, caption)]."""
+    table = _columns(out / "design_spectrum.csv")
+    period = float(_columns(out / "tank.csv")["sloshing_period [s]"][0])
+    fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
+    for column in table:
+        if split_name(column)[1] == "g":
+            ax.plot(table["period [s]"], table[column],
+                    label=split_name(column)[0][3:].replace("_percent", " %") + " damping")
+    ax.axvline(period, color="grey", lw=0.8, ls=":", label=f"sloshing period {number(period)} s")
+    ax.set(xlabel="T [s]", ylabel="Sa [g]", xscale="log")
+    ax.grid(alpha=0.3, which="both")
+    fig.legend(loc="outside upper center", ncols=3, fontsize="small")
+    return [("design_spectrum.png", fig, "The code's elastic design spectrum of the check.")]
 
 def _columns(path):
     """A CSV's numeric columns as arrays (text columns as lists)."""
@@ -530,7 +564,8 @@ def design_report(input, out) -> CalcSheet:
     together afterwards, or none of them (an earlier report.md/report.html in `out` is removed
     once the run has written its files, so a sheet never disagrees with the CSV files beside
     it; a failed run writes none of its files and leaves an earlier sheet with its own). Only a
-    tank under ground motion is reported (SUPPORTED); other inputs raise InputError."""
+    tank under ground motion, or a tank with &design, is reported (SUPPORTED); other inputs
+    raise InputError."""
     from .cli import run_input
     from .parameters import read_namelist
     from . import __version__
@@ -542,7 +577,8 @@ def design_report(input, out) -> CalcSheet:
     except SloshdynError as exc:
         exc.reading = True
         raise
-    if inp.analysis != "seismic" or inp.tank is None or inp.ground_motion is None:
+    seismic = inp.analysis == "seismic" and inp.ground_motion is not None
+    if inp.tank is None or not (seismic or inp.design is not None):
         error = InputError(f"{path}: the calc sheet reports {SUPPORTED}; this file asks for "
                            f"kind = '{inp.analysis}'"
                            + ("" if inp.tank is not None else " with &model (no &tank)"))
@@ -563,12 +599,13 @@ def design_report(input, out) -> CalcSheet:
         columns, rows = read_table(out / "run_info.csv")
         run = dict(zip(columns, rows[0]))
     write_csv(out / "inputs.csv", _inputs_table(inp))
-    write_csv(out / "motion.csv", _motion_table(inp, {"records": records, "run": run}))
-    write_csv(out / "spectrum.csv", _spectrum_table(inp))
+    if seismic:
+        write_csv(out / "motion.csv", _motion_table(inp, {"records": records, "run": run}))
+        write_csv(out / "spectrum.csv", _spectrum_table(inp))
     freeboard = inp.tank.freeboard
-    figures = _figures(out, spatial, freeboard)
+    figures = _figures(out, spatial, freeboard, seismic)
     sections = _sections(out, path, hashes, __version__, when, _verdicts(captured[0]), figures)
-    title = f"Seismic calc sheet: {path.name}"
+    title = f"{'Seismic' if seismic else 'Design'} calc sheet: {path.name}"
     with run_directory(out):        # the two renamed into place together, or neither
         write_text(out / "report.md", to_markdown(title, sections))
         write_text(out / "report.html", to_html(title, sections, out))
@@ -602,6 +639,7 @@ def _sections(out, path, hashes, version, when, verdicts, figures):
         by_title["Nonlinear run"].blocks.extend([Paragraph("Verdicts, as the executable "
                                                            "prints them:"), Bullets(verdicts)])
     placement = {"ground_motion.png": "Motion", "spectrum.png": "Motion",
+                 "design_spectrum.png": "Design codes",
                  "wave.png": "Nonlinear run", "loads.png": "Nonlinear run",
                  "wall_pressure.png": "Wall pressure"}
     for name, caption in figures:

@@ -329,6 +329,44 @@ def test_html_holds_the_same_tables_lines_and_figures(sheets):
         assert {"ground_motion.png", "spectrum.png", "wave.png", "loads.png"} <= set(figures)
 
 
+@pytest.mark.parametrize("example, sources", [
+    ("tank_design", ["API 650", "ACI 350.3", "sloshdyn linear"]),
+    ("tank_slender_design", ["EC8-4", "sloshdyn linear"])])
+def test_a_design_check_sheet(tmp_path, example, sources):
+    """A tank with &design and no ground motion (kind = 'linear'): the design sheet holds the
+    inputs with &design, the tank, the codes' values, loads, freeboard checks and wall
+    pressure, every number equal to its CSV; the design spectrum and the pressure profile as
+    figures (in the HTML too); no motion."""
+    import base64
+    sheet = sloshdyn.design_report(EXAMPLES / f"{example}.nml", tmp_path)
+    text = sheet.markdown.read_text()
+    assert text.startswith(f"# Design calc sheet: {example}.nml")
+    tables = markdown_tables(text)
+    assert {t[0] for t in tables if t[0]} == {
+        "inputs.csv", "tank.csv", "design_codes.csv", "design_loads.csv", "freeboard_check.csv",
+        "wall_pressure.csv", "pressure_resultants.csv"}
+    for source, header, rows in tables:
+        if source:
+            check_table(tmp_path, source, header, rows)
+    loads = next(rows for source, _, rows in tables if source == "design_loads.csv")
+    assert [row[0] for row in loads] == sources
+    inputs = next(rows for source, _, rows in tables if source == "inputs.csv")
+    design = f90nml.read(EXAMPLES / f"{example}.nml")["design"]
+    shown = {row[1]: row[2] for row in inputs if row[0] == "&design"}
+    for name, value in design.items():
+        if isinstance(value, str):
+            assert shown[name] == value
+        else:
+            assert float(shown[name]) == pytest.approx(value, rel=1e-12)
+    assert not (tmp_path / "motion.csv").exists()
+    figures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
+    assert figures == ["design_spectrum.png", "wall_pressure.png"]
+    page = _Html()
+    page.feed(sheet.html.read_text())
+    for src, figure in zip(page.images, figures):
+        assert base64.b64decode(src.split(",", 1)[1]) == (tmp_path / figure).read_bytes()
+
+
 def test_any_table_renders_by_its_units(tmp_path):
     """The generic renderer on tables such as the coming design_loads.csv and
     wall_pressure.csv: engineering units from the column names, every value to 5 digits, a long
