@@ -253,9 +253,11 @@ contains
     end do
     call sort_ascending(a1(1:n_roots))
   end subroutine nonresonant_amplitudes
+
   !> Every steady state x of the slow flow at lambda with max|x| <= x_max, from the closed
   !> form of its amplitudes (available = .false. where it does not apply: no forcing or no
-  !> damping, or c21 = 0 with internal resonance). With r = |B1|^2, s = |B2|^2:
+  !> damping, c21 = 0 with internal resonance, or amplitude bounds more than 62 decades apart).
+  !> With r = |B1|^2, s = |B2|^2:
   !>   B2' = 0:  D2 B2 = i k2 c23 B1^3,  D2 = -gamma22/2 + i q2,  q2 = -(3 sigma2 - sigma1)
   !>             + k2 (c21 s + 2 c22 r),  k2 = 1/(8 omega2);
   !>   B1' = 0:  E B1 = -F D2,  E = D1 D2 + k1 k2 c13 c23 r^2,  D1 = -gamma11/2 + i q1,
@@ -308,7 +310,10 @@ contains
     end associate
     available = r_lo > 0 .and. r_lo < r_hi .and. ieee_is_finite(e_max)
     if (.not. available) return
-    n_grid = min(max_grid, max(2, ceiling(per_decade*log10(r_hi/r_lo)) + 1))
+    ! a coarser grid could miss states: beyond max_grid points the closed form is not used
+    available = per_decade*log10(r_hi/r_lo) < max_grid - 1
+    if (.not. available) return
+    n_grid = max(2, ceiling(per_decade*log10(r_hi/r_lo)) + 1)
     ratio = (r_hi/r_lo)**(1.0_wp/(n_grid - 1))
     grid = [(r_lo*ratio**(k - 1), k = 1, n_grid)]
     deallocate (states)

@@ -4,7 +4,7 @@
 !> the closed-form ones, and every closed-form state must solve the slow flow (the closed form
 !> may find more: states the grid of starts misses). Cases: 3:1 resonance at the Fig 12 and
 !> Fig 11 parameters in rho and in A, no internal resonance (also against eq 49's cubic), and
-!> A = 0 (no forcing), where the closed form does not apply.
+!> A = 0 (no forcing) and A = 1e-25, where the closed form does not apply.
 program test_steady_states
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_model, only: model_t, model_from_arrays
@@ -52,6 +52,10 @@ program test_steady_states
   call make(fig12_kappa, 0.001_wp, 0.0_wp, 0.51_wp, .true., PARAMETER_RHO)
   call steady_states(flow, 0.51_wp, 10.0_wp, newton_options(), states, n_states, available)
   call check_true('A = 0: no closed form (the unforced flow has circles of steady states)', &
+                  .not. available)
+  call make(fig12_kappa, 0.001_wp, 1.0e-25_wp, 0.51_wp, .true., PARAMETER_RHO)
+  call steady_states(flow, 0.51_wp, 10.0_wp, newton_options(), states, n_states, available)
+  call check_true('A = 1e-25: no closed form (its grid of amplitudes would span > 62 decades)', &
                   .not. available)
   call finish()
 
