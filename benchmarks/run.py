@@ -55,6 +55,8 @@ SLOSHDYN_METHODS = ("rk45", "dop853", "vern9", "auto")
 DEFAULT_TARGETS = {"solve_ivp DOP853": 50.0, "numbalsoda dop853": 1.2}
 FIG12_TARGET = 0.030      # seconds
 CHART_TARGET = 0.5        # seconds, the default stability chart (issue 28)
+FRAGILITY_TARGET = 15.0   # seconds, 44 records x 20 intensities on 2 cores (issue 28)
+SCALING_TARGET = 1.85     # 2 workers against 1 at the engine's default task size (issue 28)
 
 
 # --------------------------------------------------------------------------- output
@@ -713,6 +715,60 @@ class Bench:
         self.verdicts.append((f"default stability chart < {CHART_TARGET:g} s", fmt_t(t),
                               t < CHART_TARGET, f"{t / CHART_TARGET:.2f} of the budget"))
 
+    # ------------------------------------------------------------------ fragility study
+    def fragility(self):
+        """The fragility study of issue 28: 44 synthetic records of 20-100 s (dt 0.005-0.02 s,
+        seeded; peers.synthetic_records) x 20 intensities, a 10 m tank on 2 Hz supports with
+        1 m freeboard, on 1 and 2 worker processes at the engine's default task size. One run
+        each (a full study takes about a minute); --quick: 2 short records x 2 intensities, 1
+        worker thread (no process to start)."""
+        import shutil
+        import tempfile
+        r = self.report
+        n_records, n_intensities = (2, 2) if self.quick else (44, 20)
+        r.heading(f"Fragility study: {n_records} records x {n_intensities} intensities "
+                  "(sloshdyn.fragility_study)")
+        records = peers.synthetic_records(n_records, quick=self.quick)
+        tank = peers.fragility_tank()
+        intensities = np.linspace(0.05, 0.5, n_intensities)     # Sa(T_sloshing, 0.5 %) [g]
+        rows, results = [], {}
+        for workers in ((1,) if self.quick else (1, 2)):
+            where = tempfile.mkdtemp()
+            log(f"fragility study on {workers} worker(s)")
+            t = time.perf_counter()
+            ds = sloshdyn.fragility_study(tank, records, intensities,
+                                          os.path.join(where, "f.zarr"), workers=workers,
+                                          worker_kind="threads" if self.quick else None,
+                                          progress=False)
+            wall = time.perf_counter() - t
+            shutil.rmtree(where)
+            results[workers] = (wall, ds)
+            rows.append([f"{workers} worker {'thread' if self.quick else 'process(es)'}",
+                         fmt_t(wall),
+                         f"{ds.attrs['compute_seconds']:.1f} s",
+                         fmt_x(results[1][0] / wall)])
+        r.table(["run", "wall time", "task compute time (summed)", "speed-up"], rows)
+        samples = sum(g.acceleration.size for g in records)
+        durations = [g.dt * (g.acceleration.size - 1) for g in records]
+        wall1, ds1 = results[1]
+        r.para(f"{n_records * n_intensities} runs; records {min(durations):.0f}-"
+               f"{max(durations):.0f} s, {samples} samples in all; roof reached in "
+               f"{int((ds1.roof_impact == 1).sum())} runs; lognormal fit: median "
+               f"{float(ds1.fragility_median):.3g} g, dispersion "
+               f"{float(ds1.fragility_dispersion):.3g}.")
+        if 2 in results:
+            wall2, ds2 = results[2]
+            same = all(np.array_equal(ds1[k].values, ds2[k].values, equal_nan=True)
+                       for k in ds1.data_vars if ds1[k].dtype.kind == "f")
+            r.para(f"1 and 2 workers give identical results: {same}.")
+            self.verdicts.append((f"fragility {n_records} x {n_intensities} < "
+                                  f"{FRAGILITY_TARGET:g} s (2 workers)", fmt_t(wall2),
+                                  wall2 < FRAGILITY_TARGET,
+                                  f"{wall2 / FRAGILITY_TARGET:.2f} of the budget"))
+            self.verdicts.append((f"fragility: 2 workers >= {SCALING_TARGET:g}x 1 worker",
+                                  fmt_x(wall1 / wall2), wall1 / wall2 >= SCALING_TARGET,
+                                  f"{wall1 / wall2 / SCALING_TARGET:.2f} of target"))
+
     # ------------------------------------------------------------------ call overhead
     def call_overhead(self):
         r = self.report
@@ -856,6 +912,7 @@ def main(argv=None):
     b.sweep()
     b.fig12()
     b.chart()
+    b.fragility()
     b.call_overhead()
     b.targets()
     total = time.perf_counter() - start

@@ -20,7 +20,8 @@ module sloshdyn_response
   use sloshdyn_model, only: model_t
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
   use sloshdyn_lapack, only: eigenvalues
-  use sloshdyn_slowflow, only: slow_flow, make_slow_flow, characteristic_coefficients
+  use sloshdyn_slowflow, only: slow_flow, make_slow_flow, characteristic_coefficients, &
+                               steady_states
   use sloshdyn_continuation, only: continuation_options, newton_options, branch_test, &
                                    newton_solve, continue_branch, locate_fold, &
                                    locate_zero_on_branch, STOP_CLOSED, STOP_MAX_POINTS, &
@@ -73,7 +74,8 @@ contains
     type(slow_flow) :: flow
     type(continuation_options) :: cont
     real(wp), allocatable :: seeds(:, :), branch(:, :), branch_tangents(:, :)
-    integer :: n, n_seeds, k, n_branch, branch_id, branch_status
+    real(wp) :: lambda
+    integer :: n, n_seeds, i, k, n_branch, branch_id, branch_status
     character(len=message_len) :: branch_message
 
     table = 0
@@ -104,27 +106,53 @@ contains
       return
     end if
     allocate (branch(n + 1, 2*cont%max_points), branch_tangents(n + 1, 2*cont%max_points))
-    call find_seeds(flow, n, lambda_min, lambda_max, options, seeds, n_seeds)
 
+    ! the scan values one after the other, each branch traced as soon as its first seed is
+    ! found: a value whose every steady state (closed form) is already on a computed branch
+    ! needs no Newton starts, since each seed they could give would be skipped below
     branch_id = 0
-    do k = 1, n_seeds
-      if (on_computed_branch(flow, seeds(:, k), table(:, 1:n_points), cont%newton)) cycle
-      branch_id = branch_id + 1
-      call trace_branch(flow, seeds(:, k), cont, branch, branch_tangents, n_branch, &
-                        branch_status, branch_message)
-      if (branch_status /= SD_OK .and. complete) then
-        complete = .false.
-        status = branch_status
-        message = 'branch '//num2str(branch_id)//': '//trim(branch_message)
-      end if
-      if (n_branch > 0) call record_branch(flow, branch(:, 1:n_branch), &
-                                           branch_tangents(:, 1:n_branch), branch_id, cont, &
-                                           table, n_points, special, n_special, status, message)
-      if (status == SD_CAPACITY .or. status == SD_CANCELLED) then
-        complete = .false.
-        return
-      end if
+    do i = 1, options%n_scan
+      lambda = lambda_min + (lambda_max - lambda_min)*(i - 0.5_wp)/options%n_scan
+      if (all_on_computed_branches(lambda)) cycle
+      call find_seeds(flow, n, lambda, options, seeds, n_seeds)
+      do k = 1, n_seeds
+        if (on_computed_branch(flow, seeds(:, k), table(:, 1:n_points), cont%newton)) cycle
+        branch_id = branch_id + 1
+        call trace_branch(flow, seeds(:, k), cont, branch, branch_tangents, n_branch, &
+                          branch_status, branch_message)
+        if (branch_status /= SD_OK .and. complete) then
+          complete = .false.
+          status = branch_status
+          message = 'branch '//num2str(branch_id)//': '//trim(branch_message)
+        end if
+        if (n_branch > 0) call record_branch(flow, branch(:, 1:n_branch), &
+                                             branch_tangents(:, 1:n_branch), branch_id, cont, &
+                                             table, n_points, special, n_special, status, &
+                                             message)
+        if (status == SD_CAPACITY .or. status == SD_CANCELLED) then
+          complete = .false.
+          return
+        end if
+      end do
     end do
+
+  contains
+
+    !> Are the steady states at lambda known in closed form and all on computed branches?
+    logical function all_on_computed_branches(lambda) result(all_on)
+      real(wp), intent(in) :: lambda
+      real(wp), allocatable :: states(:, :)
+      integer :: n_states, j
+      logical :: available
+      call steady_states(flow, lambda, 10*options%amplitude_max, options%continuation%newton, &
+                         states, n_states, available)
+      all_on = available
+      do j = 1, n_states
+        if (.not. all_on) return
+        all_on = on_computed_branch(flow, [states(:, j), lambda], table(:, 1:n_points), &
+                                    cont%newton)
+      end do
+    end function all_on_computed_branches
   end subroutine frequency_response
 
   !> The Newton starts of find_seeds, n_scan (n_amplitudes n_phases)**(n/2), are all kept in
@@ -365,17 +393,17 @@ contains
     end do
   end function is_hopf
 
-  !> Newton from a grid of starts at n_scan parameter values; distinct converged solutions,
-  !> seeds(:, 1:n_seeds) (allocated for every start, so none is lost).
-  subroutine find_seeds(flow, n, lambda_min, lambda_max, options, seeds, n_seeds)
+  !> Newton from a grid of starts at one parameter value lambda; distinct converged solutions,
+  !> seeds(:, 1:n_seeds) = (x, lambda) (allocated for every start, so none is lost).
+  subroutine find_seeds(flow, n, lambda, options, seeds, n_seeds)
     type(slow_flow), intent(in) :: flow
     integer, intent(in) :: n
-    real(wp), intent(in) :: lambda_min, lambda_max
+    real(wp), intent(in) :: lambda
     type(response_options), intent(in) :: options
     real(wp), allocatable, intent(out) :: seeds(:, :)
     integer, intent(out) :: n_seeds
-    real(wp) :: lambda, x(n), radii(options%n_amplitudes), angles(options%n_phases)
-    integer :: i, j, a1, p1, a2, p2, iterations, info, n_second
+    real(wp) :: x(n), radii(options%n_amplitudes), angles(options%n_phases)
+    integer :: j, a1, p1, a2, p2, iterations, info, n_second
     character(len=message_len) :: msg
 
     n_seeds = 0
@@ -383,38 +411,34 @@ contains
               (real(j - 1, wp)/max(options%n_amplitudes - 1, 1)), j = 1, options%n_amplitudes)]
     angles = [(2*pi*(j - 1)/options%n_phases, j = 1, options%n_phases)]
     n_second = merge(options%n_amplitudes*options%n_phases, 1, n == 4)
-    allocate (seeds(n + 1, options%n_scan*options%n_amplitudes*options%n_phases*n_second))
-    do i = 1, options%n_scan
-      lambda = lambda_min + (lambda_max - lambda_min)*(i - 0.5_wp)/options%n_scan
-      do a1 = 1, options%n_amplitudes
-        do p1 = 1, options%n_phases
-          do j = 1, n_second
-            x(1:2) = radii(a1)*[cos(angles(p1)), sin(angles(p1))]
-            if (n == 4) then
-              a2 = (j - 1)/options%n_phases + 1
-              p2 = mod(j - 1, options%n_phases) + 1
-              x(3:4) = radii(a2)*[cos(angles(p2)), sin(angles(p2))]
-            end if
-            call newton_solve(flow, x, lambda, options%continuation%newton, iterations, info, msg, &
-                              explain=.false.)
-            if (info /= SD_OK .or. .not. all(ieee_is_finite(x))) cycle
-            if (maxval(abs(x)) > 10*options%amplitude_max) cycle
-            if (known(x, lambda)) cycle
-            n_seeds = n_seeds + 1
-            seeds(:, n_seeds) = [x, lambda]
-          end do
+    allocate (seeds(n + 1, options%n_amplitudes*options%n_phases*n_second))
+    do a1 = 1, options%n_amplitudes
+      do p1 = 1, options%n_phases
+        do j = 1, n_second
+          x(1:2) = radii(a1)*[cos(angles(p1)), sin(angles(p1))]
+          if (n == 4) then
+            a2 = (j - 1)/options%n_phases + 1
+            p2 = mod(j - 1, options%n_phases) + 1
+            x(3:4) = radii(a2)*[cos(angles(p2)), sin(angles(p2))]
+          end if
+          call newton_solve(flow, x, lambda, options%continuation%newton, iterations, info, msg, &
+                            explain=.false.)
+          if (info /= SD_OK .or. .not. all(ieee_is_finite(x))) cycle
+          if (maxval(abs(x)) > 10*options%amplitude_max) cycle
+          if (known(x)) cycle
+          n_seeds = n_seeds + 1
+          seeds(:, n_seeds) = [x, lambda]
         end do
       end do
     end do
 
   contains
 
-    pure logical function known(x, lambda)
-      real(wp), intent(in) :: x(:), lambda
+    pure logical function known(x)
+      real(wp), intent(in) :: x(:)
       integer :: k
       known = .false.
       do k = 1, n_seeds
-        if (seeds(n + 1, k) /= lambda) cycle
         if (maxval(abs(seeds(1:n, k) - x)) <= 1.0e-8_wp*(1 + maxval(abs(x)))) then
           known = .true.
           return

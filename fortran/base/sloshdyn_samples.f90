@@ -2,6 +2,7 @@
 !> rules and its value between samples. Ground motion and the model's excitation share these,
 !> so a record means the same thing in both.
 module sloshdyn_samples
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
@@ -26,10 +27,14 @@ contains
       status = SD_BAD_INPUT
       message = name//' has '//num2str(size(samples))//' samples: it needs at least 2'
     end if
+    if (status /= SD_OK) return
+    ! the message (with the sample's number) only for the first sample that is not finite:
+    ! formatting a number per sample cost more than a seismic run (issue 28)
     do i = 1, size(samples)
-      if (status /= SD_OK) exit
+      if (ieee_is_finite(samples(i))) cycle
       call check_real(name//' sample '//num2str(i), samples(i), -huge(1.0_wp), huge(1.0_wp), &
                       .false., .false., 'samples must be finite', status, message)
+      return
     end do
   end subroutine check_samples
 

@@ -16,6 +16,7 @@
 !> Response spectra: peak |u| at the samples for each period (the usual convention); the
 !> pseudo-velocity and pseudo-acceleration are omega Sd and omega^2 Sd.
 module sloshdyn_sdof
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
@@ -247,10 +248,11 @@ contains
       return
     end if
     do i = 1, size(accel)
+      if (ieee_is_finite(accel(i))) cycle   ! a number in a message only for a bad sample
       call check_real('accel('//num2str(i)//')', accel(i), -huge(1.0_wp), huge(1.0_wp), &
                       .false., .false., 'every ground acceleration sample must be finite', &
                       status, message)
-      if (status /= SD_OK) return
+      return
     end do
   end subroutine check_record
 end module sloshdyn_sdof
