@@ -100,6 +100,11 @@ def split_unit(column):
     return (match.group(1), match.group(2)) if match else (column, "")
 
 
+def factor(shown_unit, csv_column):
+    """SI per unit shown (1 where the CSV column is in that unit already, e.g. [g])."""
+    return 1.0 if split_unit(csv_column)[1] == shown_unit else FACTORS.get(shown_unit, 1.0)
+
+
 def check_table(out, source, header, rows):
     """Every cell of a sheet table against its CSV file; every CSV column is shown."""
     columns, csv_rows = read_csv(out / source)
@@ -113,7 +118,7 @@ def check_table(out, source, header, rows):
             quantity, value, unit = line[:3]
             k = names[quantity]
             shown.add(k)
-            check_cell(value, row[k], FACTORS.get(unit, 1.0), digits, (source, quantity))
+            check_cell(value, row[k], factor(unit, columns[k]), digits, (source, quantity))
             if unit not in FACTORS:
                 assert unit == split_unit(columns[k])[1], (source, quantity)
             if len(line) > 3 and line[3]:                     # the time of this peak
@@ -134,7 +139,7 @@ def check_table(out, source, header, rows):
             for h, k, text in zip(header, ks, line):
                 unit = split_unit(h)[1]
                 if selected is not None:
-                    check_cell(text, selected[i][k], FACTORS.get(unit, 1.0), digits,
+                    check_cell(text, selected[i][k], factor(unit, columns[k]), digits,
                                (source, i, h))
     assert shown == set(range(len(columns))), (source, "columns not shown")
 
