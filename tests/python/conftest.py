@@ -1,6 +1,7 @@
 import csv
 import os
 import pathlib
+import signal
 import subprocess
 import sysconfig
 
@@ -10,6 +11,13 @@ import pytest
 import sloshdyn
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+# A shell without job control starts a background command (`cmd &`) with SIGINT ignored, and an
+# ignored signal stays ignored in every child: the Ctrl-C tests (test_faults, test_studies,
+# test_reliability_core) would then test nothing but that. They need the terminal's default,
+# which a Python handler gives every child (a handled signal is reset to the default on exec).
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 EXAMPLES = ROOT / "data" / "examples"
 
 
