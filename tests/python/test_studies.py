@@ -1040,3 +1040,24 @@ def test_sigterm_during_a_study_exits_143(tmp_path):
     code, err = interrupt_study(tmp_path, "threads", signal.SIGTERM, group=False)
     assert code == 143, err[-2000:]
     assert "terminated; study interrupted" in err and "rerun the same study" in err
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+def test_a_ctrl_c_lost_in_a_finalizer_is_remembered():
+    """Ctrl-C raises KeyboardInterrupt where Python runs next; inside a finalizer (__del__, as
+    a Dask Future's) it is only printed ("Exception ignored") and the study would run to its
+    end. The engine's event keeps it: set although no KeyboardInterrupt came through; the
+    handler before it is back afterwards."""
+    from sloshdyn.studies import engine
+
+    class Finalized:
+        def __del__(self):
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.01)                     # the handler runs here, inside __del__
+
+    before = signal.getsignal(signal.SIGINT)
+    with engine._remembered_ctrl_c() as ctrl_c:
+        finalized = Finalized()
+        del finalized                            # no KeyboardInterrupt reaches this frame
+        assert ctrl_c.is_set()
+    assert signal.getsignal(signal.SIGINT) is before

@@ -13,9 +13,11 @@ import json
 import math
 import os
 import shutil
+import signal
 import socket
 import struct
 import sys
+import threading
 import time
 import uuid
 import warnings
@@ -478,6 +480,30 @@ def check_size(plan):
                          "memory); split it into smaller studies")
 
 
+@contextlib.contextmanager
+def _remembered_ctrl_c():
+    """An Event set by Ctrl-C (SIGINT) while the block runs, besides the KeyboardInterrupt:
+    Python raises that where it runs next, and when that is a finalizer (a Dask Future's
+    __del__) it is printed as "Exception ignored" and lost, and the study would run to its end;
+    the caller checks the event after every finished task. In the main thread only, and only
+    where SIGINT has Python's handler (an ignored SIGINT stays ignored)."""
+    event = threading.Event()
+    previous = signal.getsignal(signal.SIGINT)
+    if threading.current_thread() is not threading.main_thread() or not callable(previous):
+        yield event
+        return
+
+    def remember(signum, frame):
+        event.set()
+        previous(signum, frame)
+
+    signal.signal(signal.SIGINT, remember)
+    try:
+        yield event
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_kind=None,
              progress=True, derive=None):
     """Run a study plan on Dask, storing each task's results in `store` as it finishes; return
@@ -529,14 +555,19 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                     function, args = plan.task(block)
                     futures[c.submit(function, *args, pure=False)] = block
                 try:
-                    for future in as_completed(futures):
-                        block = futures.pop(future)
-                        result = future.result()
-                        compute_seconds += result.get(SECONDS, 0.0)
-                        writer.write(block, result)
-                        computed += plan.block_size(block)
-                        if bar:
-                            bar.update(plan.block_size(block))
+                    with _remembered_ctrl_c() as ctrl_c:
+                        for future in as_completed(futures):
+                            block = futures.pop(future)
+                            result = future.result()
+                            compute_seconds += result.get(SECONDS, 0.0)
+                            writer.write(block, result)
+                            computed += plan.block_size(block)
+                            if bar:
+                                bar.update(plan.block_size(block))
+                            if ctrl_c.is_set():
+                                raise KeyboardInterrupt
+                        if ctrl_c.is_set():
+                            raise KeyboardInterrupt
                 finally:
                     for future in futures:
                         future.cancel()
