@@ -1043,21 +1043,28 @@ def test_sigterm_during_a_study_exits_143(tmp_path):
 
 
 @pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
-def test_a_ctrl_c_lost_in_a_finalizer_is_remembered():
-    """Ctrl-C raises KeyboardInterrupt where Python runs next; inside a finalizer (__del__, as
-    a Dask Future's) it is only printed ("Exception ignored") and the study would run to its
-    end. The engine's event keeps it: set although no KeyboardInterrupt came through; the
-    handler before it is back afterwards."""
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_an_interrupt_lost_in_a_finalizer_is_raised_again(sig):
+    """Ctrl-C (and sloshdyn-py's SIGTERM) raise KeyboardInterrupt where Python runs next;
+    inside a finalizer (__del__, as a Dask Future's) it is only printed ("Exception ignored")
+    and the study would run to its end. The engine's check raises it again (the handler's own
+    exception); the handlers before it are back afterwards."""
+    from sloshdyn.cli import _on_sigterm, _terminate, _Terminated
     from sloshdyn.studies import engine
 
     class Finalized:
         def __del__(self):
-            os.kill(os.getpid(), signal.SIGINT)
+            os.kill(os.getpid(), sig)
             time.sleep(0.01)                     # the handler runs here, inside __del__
 
-    before = signal.getsignal(signal.SIGINT)
-    with engine._remembered_ctrl_c() as ctrl_c:
-        finalized = Finalized()
-        del finalized                            # no KeyboardInterrupt reaches this frame
-        assert ctrl_c.is_set()
-    assert signal.getsignal(signal.SIGINT) is before
+    before_term = _on_sigterm(_terminate)
+    try:
+        before = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+        with engine._remembered_interrupts() as check:
+            finalized = Finalized()
+            del finalized                        # no KeyboardInterrupt reaches this frame
+            with pytest.raises(_Terminated if sig == signal.SIGTERM else KeyboardInterrupt):
+                check()
+        assert {s: signal.getsignal(s) for s in before} == before
+    finally:
+        signal.signal(signal.SIGTERM, before_term)

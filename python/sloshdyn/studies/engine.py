@@ -481,27 +481,34 @@ def check_size(plan):
 
 
 @contextlib.contextmanager
-def _remembered_ctrl_c():
-    """An Event set by Ctrl-C (SIGINT) while the block runs, besides the KeyboardInterrupt:
-    Python raises that where it runs next, and when that is a finalizer (a Dask Future's
-    __del__) it is printed as "Exception ignored" and lost, and the study would run to its end;
-    the caller checks the event after every finished task. In the main thread only, and only
-    where SIGINT has Python's handler (an ignored SIGINT stays ignored)."""
-    event = threading.Event()
-    previous = signal.getsignal(signal.SIGINT)
-    if threading.current_thread() is not threading.main_thread() or not callable(previous):
-        yield event
-        return
+def _remembered_interrupts():
+    """A check() that raises again a Ctrl-C (SIGINT) or SIGTERM that came while the block runs:
+    their handlers raise KeyboardInterrupt (sloshdyn-py's SIGTERM a kind of it) where Python
+    runs next, and when that is a finalizer (a Dask Future's __del__) it is printed as
+    "Exception ignored" and lost, and the study would run to its end; the caller checks after
+    every finished task. In the main thread only, and only for signals with a Python handler
+    (an ignored signal stays ignored)."""
+    received = []
+    previous = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    previous = {sig: handler for sig, handler in previous.items() if callable(handler)}
 
     def remember(signum, frame):
-        event.set()
-        previous(signum, frame)
+        received.append(signum)
+        previous[signum](signum, frame)
 
-    signal.signal(signal.SIGINT, remember)
+    def check():
+        if received:
+            previous[received[0]](received[0], None)
+
+    if threading.current_thread() is not threading.main_thread():
+        previous = {}
+    for sig in previous:
+        signal.signal(sig, remember)
     try:
-        yield event
+        yield check
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
 
 
 def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_kind=None,
@@ -555,7 +562,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                     function, args = plan.task(block)
                     futures[c.submit(function, *args, pure=False)] = block
                 try:
-                    with _remembered_ctrl_c() as ctrl_c:
+                    with _remembered_interrupts() as check_interrupts:
                         for future in as_completed(futures):
                             block = futures.pop(future)
                             result = future.result()
@@ -564,10 +571,8 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                             computed += plan.block_size(block)
                             if bar:
                                 bar.update(plan.block_size(block))
-                            if ctrl_c.is_set():
-                                raise KeyboardInterrupt
-                        if ctrl_c.is_set():
-                            raise KeyboardInterrupt
+                            check_interrupts()
+                        check_interrupts()
                 finally:
                     for future in futures:
                         future.cancel()
