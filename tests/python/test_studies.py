@@ -609,6 +609,40 @@ def test_fragility_study_of_a_tank(client, tmp_path):
         assert stored[name].attrs == ds[name].attrs
 
 
+def test_fragility_tasks_are_dispatched_longest_first_and_give_the_same_runs(tmp_path,
+                                                                              monkeypatch):
+    """Issue 28: the tasks go to the workers longest first -- by the records' numbers of
+    samples, which a run's time follows -- so that no worker idles long at the end; only the
+    order changes: every run equals that of one task over the records in their given order."""
+    from dask.distributed import Client, LocalCluster
+    from sloshdyn.studies import engine
+    base = records()[0]
+    lengths = [600, 1500, 300, 1200]        # samples: the longest-first order is 1, 3, 0, 2
+    suite = [sloshdyn.GroundMotion(dt=base.dt, acceleration=base.acceleration[:n],
+                                   units="m/s^2") for n in lengths]
+    intensities = [0.2, 0.3]
+    finished = []                           # one worker thread: the order the tasks ran
+    write = engine._Writer.write
+
+    def recording(writer, block, result):
+        finished.append(lengths[block[0].start])
+        return write(writer, block, result)
+    monkeypatch.setattr(engine._Writer, "write", recording)
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster, Client(cluster) as one_thread:
+        ds = sloshdyn.fragility_study(example_tank(), suite, intensities, tmp_path / "a.zarr",
+                                      client=one_thread, points_per_task=len(intensities),
+                                      progress=False)
+    assert finished == sorted(lengths, reverse=True)
+    finished.clear()
+    whole = sloshdyn.fragility_study(example_tank(), suite, intensities, tmp_path / "b.zarr",
+                                     workers=1, worker_kind="threads", progress=False,
+                                     points_per_task=len(lengths) * len(intensities))
+    assert finished == [lengths[0]]         # one task, the records in their given order
+    for name in whole.data_vars:
+        assert np.array_equal(ds[name].values, whole[name].values, equal_nan=True), name
+
+
 def test_fragility_study_bad_input(tmp_path):
     tank = example_tank()
     with pytest.raises(sloshdyn.InputError, match="records is empty"):

@@ -70,6 +70,7 @@ class Plan:
     task: object                 #: block (tuple of slices) -> (function, args)
     chunking: object = None      #: points per task -> chunk shape
     points_per_task: int = None
+    cost: object = None          #: block -> its expected compute time, any unit (None: its size)
 
     def blocks(self):
         ranges = [range(0, len(self.coords[d][0]), c) for d, c in zip(self.dims, self.chunks)]
@@ -83,6 +84,13 @@ class Plan:
 
     def block_size(self, block):
         return math.prod(s.stop - s.start for s in block)
+
+    def longest_first(self, blocks):
+        """The blocks in the order their tasks are dispatched: the longest expected first (by
+        `cost`, else by size; ties in grid order), so that the last tasks to finish are short
+        ones and no worker waits long for the others at the end (longest processing time
+        first, Graham 1969)."""
+        return sorted(blocks, key=self.cost or self.block_size, reverse=True)
 
     def variable_shape(self, name):
         return tuple(len(self.coords[d][0]) for d in self.variables[name].dims)
@@ -558,9 +566,11 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                                desc=plan.kind.replace("_", " "), unit="point", smoothing=0.1)
                 writer = _Writer(path, plan)
                 futures = {}
-                for block in todo:
+                todo = plan.longest_first(todo)
+                for k, block in enumerate(todo):
                     function, args = plan.task(block)
-                    futures[c.submit(function, *args, pure=False)] = block
+                    futures[c.submit(function, *args, pure=False,
+                                     priority=len(todo) - k)] = block
                 try:
                     with _remembered_interrupts() as check_interrupts:
                         for future in as_completed(futures):
