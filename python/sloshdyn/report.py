@@ -485,14 +485,8 @@ def _seismic_figures(out, spatial, freeboard, plt):
         if column.startswith("sa_"):
             ax.plot(spectrum["period [s]"], spectrum[column] / STANDARD_GRAVITY,
                     label=f"{split_name(column)[0][3:]} damping")
-    design = out / "design_spectrum.csv"
-    if design.exists():
-        table = _columns(design)
-        for column in table:
-            if split_name(column)[1] == "g":
-                ax.plot(table["period [s]"], table[column], "--",
-                        label="design, " + split_name(column)[0][3:].replace("_percent", " %")
-                        + " damping")
+    if (out / "design_spectrum.csv").exists():
+        _plot_design_spectrum(ax, out, "--", "design, ")
     period = float(motion["sloshing_period [s]"][0])
     ax.axvline(period, color="grey", lw=0.8, ls=":")
     ax.plot(period, float(motion["sa_sloshing_period [m/s^2]"][0]) / STANDARD_GRAVITY, "ko",
@@ -527,16 +521,22 @@ def _seismic_figures(out, spatial, freeboard, plt):
     return figures
 
 
+def _plot_design_spectrum(ax, out, style, prefix):
+    """design_spectrum.csv's Sa [g] columns (one per damping) over the period, on ax."""
+    table = _columns(out / "design_spectrum.csv")
+    for column in table:
+        if split_name(column)[1] == "g":
+            damping = split_name(column)[0][3:].replace("_percent", " %")
+            ax.plot(table["period [s]"], table[column], style,
+                    label=f"{prefix}{damping} damping")
+
+
 def _design_spectrum_figure(out, plt):
     """The code spectrum of the design check (design_spectrum.csv) with the tank's first
     sloshing period (tank.csv): [(file, figure, caption)]."""
-    table = _columns(out / "design_spectrum.csv")
     period = float(_columns(out / "tank.csv")["sloshing_period [s]"][0])
     fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
-    for column in table:
-        if split_name(column)[1] == "g":
-            ax.plot(table["period [s]"], table[column],
-                    label=split_name(column)[0][3:].replace("_percent", " %") + " damping")
+    _plot_design_spectrum(ax, out, "-", "")
     ax.axvline(period, color="grey", lw=0.8, ls=":", label=f"sloshing period {number(period)} s")
     ax.set(xlabel="T [s]", ylabel="Sa [g]", xscale="log")
     ax.grid(alpha=0.3, which="both")
