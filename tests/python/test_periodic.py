@@ -100,7 +100,10 @@ def test_fig17_is_chaotic_with_a_converged_exponent():
         transient_periods=100, n_periods=2000))
     lam, history = result.exponent, result.history
     assert lam > 0.05
-    assert history[999] == pytest.approx(lam, rel=0.1)   # converged over the second half
+    # converged over the second half: the running estimate of a chaotic orbit still wanders by
+    # about 10 % there (two roundings of this run, libm's sine and sloshdyn_trig's, end at
+    # 0.158 and 0.148 with estimates at 1000 periods 1 % and 16 % away), not more
+    assert history[999:] == pytest.approx(np.full(len(history) - 999, lam), rel=0.2)
 
 
 @pytest.mark.parametrize("rho", [0.50, 0.507, 0.52])
