@@ -28,6 +28,9 @@ module sloshdyn_trig
                          pio2_1 = 1.57079632673412561417e+00_wp, pio2_1t = 6.07710050650619224932e-11_wp, &
                          pio2_2 = 6.07710050630396597660e-11_wp, pio2_2t = 2.02226624879595063154e-21_wp, &
                          pio2_3 = 2.02226624871116645580e-21_wp, pio2_3t = 8.47842766036889956997e-32_wp
+  real(wp), parameter :: pio2_part(2) = [pio2_2, pio2_3], pio2_rest(2) = [pio2_2t, pio2_3t]
+  !> |r| below these fractions of |x| (2^-16, 2^-49) call for the second and third part
+  real(wp), parameter :: cancellation(2) = [2.0_wp**(-16), 2.0_wp**(-49)]
   real(wp), parameter :: pio4 = 7.85398163397448278999e-01_wp
   !> Above this |x| the reduction would lose bits: the intrinsic functions take over.
   real(wp), parameter :: reduction_limit = 1647099.0_wp  ! 2^20 pi/2
@@ -96,25 +99,20 @@ contains
     real(wp), intent(out) :: r, r_low
     integer, intent(out) :: quadrant
     real(wp) :: n, head, w, t
+    integer :: part
     n = (x*inv_pio2 + round_shift) - round_shift
     quadrant = iand(int(n), 3)
     head = x - n*pio2_1
     w = n*pio2_1t
     r = head - w
-    if (abs(r) < abs(x)*2.0_wp**(-16)) then
+    do part = 1, 2
+      if (abs(r) >= abs(x)*cancellation(part)) exit
       t = head
-      w = n*pio2_2
+      w = n*pio2_part(part)
       head = t - w
-      w = n*pio2_2t - ((t - head) - w)
+      w = n*pio2_rest(part) - ((t - head) - w)
       r = head - w
-      if (abs(r) < abs(x)*2.0_wp**(-49)) then
-        t = head
-        w = n*pio2_3
-        head = t - w
-        w = n*pio2_3t - ((t - head) - w)
-        r = head - w
-      end if
-    end if
+    end do
     r_low = (head - r) - w
   end subroutine reduce
 

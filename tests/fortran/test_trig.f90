@@ -6,6 +6,7 @@ program test_trig
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_is_nan
   use sloshdyn_kinds, only: wp, pi
   use sloshdyn_trig, only: sin_cos, sine
+  use sloshdyn_text, only: num2str
   use checks, only: check_true, finish
   implicit none
 
@@ -18,7 +19,7 @@ program test_trig
   do i = 1, 20000
     worst = max(worst, ulp_error(uniform(-pi/4, pi/4)))
   end do
-  call check_true('|x| <= pi/4: error <= 1 ulp ('//fmt(worst)//')', worst <= 1)
+  call check_true('|x| <= pi/4: error <= 1 ulp ('//num2str(worst)//')', worst <= 1)
   worst = 0
   ! rho tau of a harmonic forcing over long runs: one to three parts of pi/2
   do i = 1, 20000
@@ -26,7 +27,7 @@ program test_trig
     worst = max(worst, ulp_error(uniform(-1.0e5_wp, 1.0e5_wp)))
     worst = max(worst, ulp_error(uniform(1.0e5_wp, 1.6e6_wp)))
   end do
-  call check_true('pi/4 < |x| < 1.6e6: error <= 1 ulp ('//fmt(worst)//')', worst <= 1)
+  call check_true('pi/4 < |x| < 1.6e6: error <= 1 ulp ('//num2str(worst)//')', worst <= 1)
   worst = 0
   ! next to n pi/2, where x - n pi/2 cancels most bits of x (the second and third parts of
   ! pi/2 are needed): the doubles nearest n pi/2 and their neighbours
@@ -36,7 +37,7 @@ program test_trig
     x = real(int(uniform(1.0_wp, 1.0e6_wp), int64), wp)*(pi/2)
     worst = max(worst, ulp_error(x), ulp_error(nearest(x, 1.0_wp)))
   end do
-  call check_true('next to multiples of pi/2: error <= 1 ulp ('//fmt(worst)//')', worst <= 1)
+  call check_true('next to multiples of pi/2: error <= 1 ulp ('//num2str(worst)//')', worst <= 1)
   ! beyond the reduction's range the intrinsic functions answer; special values
   call check_true('|x| > 2^20 pi/2: error <= 1 ulp', max(ulp_error(3.0e6_wp), ulp_error(-1.0e15_wp)) <= 1)
   call sin_cos(-0.0_wp, s, c)
@@ -66,10 +67,4 @@ contains
     call random_number(uniform)
     uniform = low + (high - low)*uniform
   end function uniform
-
-  function fmt(value) result(text)
-    real(wp), intent(in) :: value
-    character(len=12) :: text
-    write (text, '(f8.3)') value
-  end function fmt
 end program test_trig
