@@ -59,7 +59,7 @@ module sloshdyn_driver
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_layouts, only: counts_array
   use sloshdyn_driver_common, only: begin_files, in_context, used_method, value_text, &
-                                    difference, pad
+                                    difference, pad, write_peak_pressures
   use sloshdyn_tank, only: SHAPE_CIRCULAR
   implicit none
   private

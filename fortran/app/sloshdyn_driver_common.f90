@@ -16,10 +16,13 @@ module sloshdyn_driver_common
                              FREEBOARD_SUFFICIENT, DESIGN_LINEAR, LOADS_IMPULSIVE_ACCELERATION, &
                              LOADS_CONVECTIVE_ACCELERATION, WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, &
                              PRESSURE_RESULTANT_ROWS, WALL_HEIGHT, WALL_TOTAL_PRESSURE, &
-                             WALL_HOOP_FORCE
+                             WALL_HOOP_FORCE, PRESSURE_INSTANT_ROWS, PEAKS_BASE_SHEAR, &
+                             PEAKS_OVERTURNING_MOMENT
   use sloshdyn_design_check, only: design_check
   use sloshdyn_design_spectra, only: spectrum_sa, SPECTRUM_EC8
   use sloshdyn_wall_pressure, only: pressure_tables, combination_names, COMBINE_SRSS, COMBINE_SUM
+  use sloshdyn_seismic_pressure, only: seismic_pressures
+  use sloshdyn_vessel, only: tank_t
   use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_seismic, only: design_code_checks, tank_summary, tank_modes
   use sloshdyn_tank, only: max_modes, SHAPE_CIRCULAR
@@ -27,7 +30,11 @@ module sloshdyn_driver_common
   use sloshdyn_results, only: result_files
   implicit none
   private
-  public :: begin_files, in_context, used_method, value_text, difference, pad
+  public :: begin_files, in_context, used_method, value_text, difference, pad, &
+            write_peak_pressures
+
+  !> The pressure files' grids: heights on the wall and radii on the base, evenly spaced
+  integer, parameter :: pressure_heights = 21, pressure_radii = 11
 
 contains
 
@@ -177,22 +184,21 @@ contains
     real(wp), intent(in) :: loads(DESIGN_LOADS_COLUMNS, DESIGN_ROWS)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    integer, parameter :: n_heights = 21, n_radii = 11
-    real(wp) :: wall(WALL_PRESSURE_ROWS, n_heights), base(BASE_PRESSURE_ROWS, n_radii), &
-                resultants(PRESSURE_RESULTANT_ROWS, 2)
-    integer :: row, combination, i, top
+    real(wp) :: heights(pressure_heights), radii(pressure_radii), &
+                wall(WALL_PRESSURE_ROWS, pressure_heights), &
+                base(BASE_PRESSURE_ROWS, pressure_radii), resultants(PRESSURE_RESULTANT_ROWS, 2)
+    integer :: row, combination, top
     status = SD_OK
     message = ''
     if (config%tank%shape /= SHAPE_CIRCULAR) return
     row = merge(DESIGN_EC8, DESIGN_LINEAR, loads(LOADS_BASE_SHEAR, DESIGN_EC8) == &
                                            loads(LOADS_BASE_SHEAR, DESIGN_EC8))
     combination = merge(COMBINE_SUM, COMBINE_SRSS, row == DESIGN_EC8)
+    call pressure_grid(config%tank, heights, radii)
     associate (tank => config%tank, a => loads(:, row)*config%tank%gravity)
       call pressure_tables(tank, a(LOADS_IMPULSIVE_ACCELERATION), &
-                           [a(LOADS_CONVECTIVE_ACCELERATION)], 0.0_wp, combination, &
-                           [(tank%liquid_depth*(i - 1)/(n_heights - 1), i = 1, n_heights)], &
-                           [(tank%radius*(i - 1)/(n_radii - 1), i = 1, n_radii)], wall, base, &
-                           resultants, status, message)
+                           [a(LOADS_CONVECTIVE_ACCELERATION)], 0.0_wp, combination, heights, &
+                           radii, wall, base, resultants, status, message)
     end associate
     call in_context('wall pressure', status, message)
     if (status /= SD_OK) return
@@ -208,6 +214,65 @@ contains
     if (status == SD_OK) call files%write_table('pressure_resultants.csv', &
                                                 'pressure_resultants', resultants, status, message)
   end subroutine write_wall_pressure
+
+  !> The hydrodynamic pressure at the base shear and overturning moment peaks of the seismic run
+  !> (sloshdyn_seismic_pressure, theta = 0: the run again on its output times, each instant the
+  !> output time nearest the peak): pressure_at_peaks.csv ('pressure_instants', a column per
+  !> peak) and the wall and base profiles at each. A rectangular tank has none, as in
+  !> write_wall_pressure.
+  subroutine write_peak_pressures(config, files, t_end, n_out, peaks, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    real(wp), intent(in) :: t_end, peaks(PEAKS_SIZE)
+    integer, intent(in) :: n_out
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=*), parameter :: names(2) = [character(len=6) :: 'shear', 'moment'], &
+                                   loads(2) = [character(len=18) :: 'base shear', &
+                                                                    'overturning moment']
+    real(wp) :: heights(pressure_heights), radii(pressure_radii), &
+                instants(PRESSURE_INSTANT_ROWS, 2), modal(max_modes, 2), &
+                wall(WALL_PRESSURE_ROWS, pressure_heights, 2), &
+                base(BASE_PRESSURE_ROWS, pressure_radii, 2)
+    integer :: k, top
+    status = SD_OK
+    message = ''
+    if (config%tank%shape /= SHAPE_CIRCULAR) return
+    call pressure_grid(config%tank, heights, radii)
+    call seismic_pressures(config%tank, config%ground, t_end, n_out, config%integration, &
+                           config%method, [peaks(PEAKS_BASE_SHEAR + 1), &
+                                           peaks(PEAKS_OVERTURNING_MOMENT + 1)], &
+                           heights, radii, 0.0_wp, instants, modal, wall, base, status, message)
+    call in_context('pressure at the peaks', status, message)
+    if (status /= SD_OK) return
+    do k = 1, 2
+      top = maxloc(abs(wall(WALL_TOTAL_PRESSURE, :, k)), 1)
+      print '(a)', '  wall pressure at the '//trim(loads(k))//' peak (t = '// &
+                   num2str(instants(1, k), significant=5)//' s): largest '// &
+                   num2str(wall(WALL_TOTAL_PRESSURE, top, k)/1.0e3_wp, significant=5)// &
+                   ' kPa at z = '//num2str(wall(WALL_HEIGHT, top, k), significant=5)// &
+                   ' m (wall_pressure_at_'//trim(names(k))//'_peak.csv)'
+    end do
+    call files%write_table('pressure_at_peaks.csv', 'pressure_instants', instants, status, message)
+    do k = 1, 2
+      if (status == SD_OK) call files%write_table('wall_pressure_at_'//trim(names(k))// &
+                                                  '_peak.csv', 'wall_pressure', wall(:, :, k), &
+                                                  status, message)
+      if (status == SD_OK) call files%write_table('base_pressure_at_'//trim(names(k))// &
+                                                  '_peak.csv', 'base_pressure', base(:, :, k), &
+                                                  status, message)
+    end do
+  end subroutine write_peak_pressures
+
+  !> The heights [m] on the wall (0 to the liquid depth) and radii [m] on the base (0 to the
+  !> radius) of the pressure files.
+  pure subroutine pressure_grid(tank, heights, radii)
+    type(tank_t), intent(in) :: tank
+    real(wp), intent(out) :: heights(pressure_heights), radii(pressure_radii)
+    integer :: i
+    heights = [(tank%liquid_depth*(i - 1)/(pressure_heights - 1), i = 1, pressure_heights)]
+    radii = [(tank%radius*(i - 1)/(pressure_radii - 1), i = 1, pressure_radii)]
+  end subroutine pressure_grid
 
   !> The rows of a design-check table that are present, each with its source code first.
   pure function with_sources(table, present_rows) result(rows)

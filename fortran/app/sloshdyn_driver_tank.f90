@@ -133,6 +133,8 @@ contains
               num2str(config%tank%impact_damping)//','// &
               num2str(nint(peaks(PEAKS_BETA_SENSITIVE)))
     if (status == SD_OK) call files%write_text('run_info.csv', info, status, message)
+    if (status == SD_OK) call write_peak_pressures(config, files, t_end, n_out, peaks, status, &
+                                                   message)
   end subroutine run_seismic
 
   !> A text field of a CSV row: in double quotes, its quotes doubled (RFC 4180).

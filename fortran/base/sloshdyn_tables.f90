@@ -37,6 +37,7 @@ module sloshdyn_tables
             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
   public :: WALL_HEIGHT, WALL_TOTAL_PRESSURE, WALL_HOOP_FORCE
+  public :: PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT
   public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
             PRESSURE_INSTANT_ROWS
   public :: DESIGN_ROWS, DESIGN_API650, DESIGN_EC8, DESIGN_ACI350, DESIGN_LINEAR, &
@@ -171,6 +172,8 @@ module sloshdyn_tables
                         PEAKS_ROOF_IMPACTS = 19, PEAKS_FREE_WAVE = 20, PEAKS_ROOF_HEAD = 22, &
                         PEAKS_ROOF_UPLIFT = 23, PEAKS_CONFINED_MASS = 24, &
                         PEAKS_SCALE_FACTOR = 25, PEAKS_SA = 26, PEAKS_BETA_SENSITIVE = 27
+  !> the base shear's and overturning moment's peaks (their times follow them)
+  integer, parameter :: PEAKS_BASE_SHEAR = 13, PEAKS_OVERTURNING_MOMENT = 15
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
   character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &

@@ -282,13 +282,15 @@ def _figure(inp, out):
                          0, 0, 0, float(t["tau"][-1]), method)
         return "history.png", plotting.time_history(sim, ("x1", "x2", "impact_force"))
     if inp.analysis == "seismic" and inp.planar:
-        from .seismic import SeismicResponse
+        from .seismic import SeismicResponse, seismic_defaults
         t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
         with open(out / "run_info.csv", newline="", encoding="utf-8") as info:
             inp.ground_motion.name = next(csv.DictReader(info))["record"]
         response = SeismicResponse._from_tables(
             inp.tank, inp.ground_motion, np.array(list(t.values())),
-            np.array([column[0] for column in peaks.values()]), method)
+            np.array([column[0] for column in peaks.values()]),
+            seismic_defaults(inp.tank, inp.ground_motion, inp.seismic["t_end"] or None,
+                             inp.seismic["n_out"] or None).t_end, method)
         return "seismic.png", plotting.seismic(response)
     if inp.analysis == "stability_chart":
         from .charts import chart_from_files

@@ -198,7 +198,7 @@ def seismic_pressures(response, *, integration: Integration = Integration(), tim
     theta = _checks.real("angle", angle)
     ground, samples = _ground_arrays(response.ground_motion)
     instants, modal, wall, base, status, message = cancellable(
-        _bridge.seismic_pressures, tank.array(), ground, samples, float(response.t[-1]), len(response.t),
+        _bridge.seismic_pressures, tank.array(), ground, samples, response.t_end, len(response.t),
         integration.array(), times, z, r, theta)
     check_status(status, message)
     columns = {_name(c): row.copy() for c, row in zip(_tables.columns("pressure_instants"),

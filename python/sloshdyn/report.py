@@ -59,6 +59,9 @@ TABLES = (
     ("Nonlinear run", "run_info.csv"),
     ("Wall pressure", "wall_pressure.csv"),
     ("Wall pressure", "pressure_resultants.csv"),
+    ("Wall pressure", "pressure_at_peaks.csv"),
+    ("Wall pressure", "wall_pressure_at_shear_peak.csv"),
+    ("Wall pressure", "wall_pressure_at_moment_peak.csv"),
 )
 #: what each table is, printed above it
 CAPTIONS = {
@@ -82,6 +85,13 @@ CAPTIONS = {
                          "wall) and the hoop force per unit height (docs/design.md).",
     "pressure_resultants.csv": "Resultants of the pressure: impulsive (component 0) and first "
                                "convective mode (1).",
+    "pressure_at_peaks.csv": "The nonlinear run at its base shear and overturning moment peaks "
+                             "(the output times nearest them): the tank's acceleration and the "
+                             "loads of the hydrodynamic pressure and the shell's inertia.",
+    "wall_pressure_at_shear_peak.csv": "Hydrodynamic wall pressure of the nonlinear run at its "
+                                       "base shear peak, theta = 0.",
+    "wall_pressure_at_moment_peak.csv": "Hydrodynamic wall pressure of the nonlinear run at its "
+                                        "overturning moment peak, theta = 0.",
 }
 #: rows shown of a long table (evenly spaced, the first and last included)
 MAX_ROWS = 25

@@ -471,7 +471,9 @@ class SeismicResponse:
     sa_sloshing_period [m/s^2] and beta_sensitive), `peaks` {quantity: (largest |value|, its
     time [s])}, roof_reached, first_roof_time [s], roof_impacts (of the free wave, without a
     roof: independent of beta and delta), beta_sensitive (the model's loads depend on beta and
-    delta; `warnings` says so); `method`, the integration method used ('auto' resolved)."""
+    delta; `warnings` says so); t_end [s], the end of the run as asked (the output times are
+    computed in the model's time, so t[-1] can differ from it in the last bit); `method`, the
+    integration method used ('auto' resolved)."""
 
     tank: Tank
     ground_motion: GroundMotion
@@ -494,10 +496,11 @@ class SeismicResponse:
     first_roof_time: float
     roof_impacts: int
     beta_sensitive: bool
+    t_end: float
     method: str
 
     @classmethod
-    def _from_tables(cls, tank, ground_motion, table, peaks, method):
+    def _from_tables(cls, tank, ground_motion, table, peaks, t_end, method):
         """The response from the core's 'seismic' table and 'seismic_peaks' row."""
         peak_table = {_name(c): float(v) for c, v in zip(_tables.columns("seismic_peaks"),
                                                           peaks)}
@@ -510,7 +513,8 @@ class SeismicResponse:
                    roof_reached=bool(peak_table["roof_reached"]),
                    first_roof_time=peak_table["first_roof_time"],
                    roof_impacts=int(peak_table["roof_impacts"]),
-                   beta_sensitive=bool(peak_table["beta_sensitive"]), method=method)
+                   beta_sensitive=bool(peak_table["beta_sensitive"]), t_end=float(t_end),
+                   method=method)
 
     @property
     def columns(self):
@@ -573,7 +577,7 @@ def seismic_response(tank: Tank, ground_motion: GroundMotion, t_end=None, n_out=
     table, peaks, status, message = cancellable(_bridge.seismic_response,
         tank.array(), ground, samples, t_end, n_out, integration.array())
     check_status(status, message)
-    return SeismicResponse._from_tables(tank, ground_motion, table.copy(), peaks.copy(),
+    return SeismicResponse._from_tables(tank, ground_motion, table.copy(), peaks.copy(), t_end,
                                        integration.method_used)
 
 

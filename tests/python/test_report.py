@@ -154,6 +154,10 @@ def test_every_number_is_the_csv_one(sheets):
                      {"seismic_peaks.csv", "run_info.csv"})
         if name == "tank_rectangular_seismic":
             expected.add("tank_modes.csv")
+        else:      # a circular tank's planar run: the pressure at its peaks
+            expected |= set() if name == "tank_two_components" else {
+                "pressure_at_peaks.csv", "wall_pressure_at_shear_peak.csv",
+                "wall_pressure_at_moment_peak.csv"}
         assert set(sources) == expected, name
         for source, header, rows in tables:
             if source:
@@ -281,6 +285,15 @@ def test_verdicts_agree_with_the_csv(sheets):
                         "wave_height_srss [m]", "wave_height_100_30 [m]",
                         "base_shear_srss [N]", "base_shear_100_30 [N]"), (1, 1, 1e6, 1e6)):
                     check_number(text, float(peaks[column]), factor, 5, line)
+            elif m := re.fullmatch(r"wall pressure at the (base shear|overturning moment) peak "
+                                   r"\(t = (\S+) s\): largest (\S+) kPa at z = (\S+) m \((\S+)\)",
+                                   line):
+                _, instants = read_csv(out / "pressure_at_peaks.csv")
+                check_number(m[2], instants[0 if m[1] == "base shear" else 1][0], 1, 5, line)
+                _, wall = read_csv(out / m[5])
+                top = max(wall, key=lambda row: abs(float(row[3])))
+                check_number(m[3], top[3], 1e3, 5, line)
+                check_number(m[4], top[0], 1, 5, line)
             else:
                 assert line.startswith("warning: the model's impact force"), line
                 assert peaks["beta_sensitive"] == "1"

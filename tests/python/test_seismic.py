@@ -572,6 +572,52 @@ def test_python_api_gives_the_numbers_of_the_csv_files(both_doors):
     assert np.array_equal(peaks, list(r.peak_table.values()), equal_nan=True)
 
 
+def test_the_pressure_files_are_the_pressure_at_the_run_peaks(both_doors):
+    """A seismic run writes the hydrodynamic pressure at its base shear and overturning moment
+    peaks: pressure_at_peaks.csv and the wall and base profiles at each are
+    sloshdyn.seismic_pressures of the same run on the files' heights and radii, bit for bit;
+    and the wall's pressure integrated over the wall (trapezoids on 21 heights) plus the shell's
+    inertia is the base shear of the instant (docs/model.md, "Pressure at an instant")."""
+    example, exe_out, _ = both_doors
+    inp = sloshdyn.read_namelist(EXAMPLES / example)
+    written = sorted(path.name for path in exe_out.glob("*pressure_at_*.csv"))
+    if inp.analysis != "seismic":
+        assert written == []
+        return
+    assert written == ["base_pressure_at_moment_peak.csv", "base_pressure_at_shear_peak.csv",
+                       "pressure_at_peaks.csv", "wall_pressure_at_moment_peak.csv",
+                       "wall_pressure_at_shear_peak.csv"]
+    run = sloshdyn.seismic_response(inp.tank, inp.ground_motion,
+                                    t_end=inp.seismic["t_end"] or None,
+                                    n_out=inp.seismic["n_out"] or None,
+                                    integration=inp.integration)
+    walls = [np.loadtxt(exe_out / f"wall_pressure_at_{peak}_peak.csv", delimiter=",",
+                        skiprows=1) for peak in ("shear", "moment")]
+    floors = [np.loadtxt(exe_out / f"base_pressure_at_{peak}_peak.csv", delimiter=",",
+                         skiprows=1) for peak in ("shear", "moment")]
+    at_peaks = sloshdyn.seismic_pressures(run, integration=inp.integration,
+                                          heights=walls[0][:, 0], radii=floors[0][:, 0])
+    instants = np.loadtxt(exe_out / "pressure_at_peaks.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(instants.T, [at_peaks.t, at_peaks.tank_acceleration,
+                                       at_peaks.base_shear, at_peaks.overturning_moment,
+                                       at_peaks.overturning_moment_ibp])
+    assert list(at_peaks.times) == [run.peaks["base_shear"][1],
+                                    run.peaks["overturning_moment"][1]]
+    tank = inp.tank
+    for k in range(2):
+        assert np.array_equal(walls[k][:, 1:].T, [at_peaks.impulsive_pressure[k],
+                                                  at_peaks.convective_pressure[k],
+                                                  at_peaks.total_pressure[k],
+                                                  at_peaks.hoop_force[k]])
+        assert np.array_equal(floors[k][:, 1:].T, [at_peaks.base_impulsive_pressure[k],
+                                                   at_peaks.base_convective_pressure[k],
+                                                   at_peaks.base_total_pressure[k]])
+        z, p = walls[k][:, 0], walls[k][:, 3]
+        shear = (np.pi*tank.radius*np.sum((p[1:] + p[:-1])/2*np.diff(z))
+                 + tank.tank_mass*at_peaks.tank_acceleration[k])
+        assert shear == pytest.approx(at_peaks.base_shear[k], rel=2e-3)
+
+
 @pytest.mark.parametrize("example", ["tank_harmonic.nml", "tank_linear.nml"])
 def test_python_prints_the_design_code_table_of_the_executable(exe, tmp_path, example):
     """str(DesignCodes) is the table the executable prints, line for line (one formatter, the
