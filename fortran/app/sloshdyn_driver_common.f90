@@ -119,7 +119,7 @@ contains
       print '(a)', '  '//pad(trim(code_name('o', i)), 20)//'V '// &
                    pad(num2str(loads(LOADS_BASE_SHEAR, i)/1.0e6_wp, significant=5), 10)//'M '// &
                    pad(num2str(loads(LOADS_MOMENT_EBP, i)/1.0e6_wp, significant=5), 10)//'M'' '// &
-                   value_text(loads(LOADS_MOMENT_IBP, i)/1.0e6_wp)
+                   value_text(loads(LOADS_MOMENT_IBP, i)/1.0e6_wp, significant=5)
     end do
     do i = 1, DESIGN_ROWS
       if (.not. freeboard_rows(i)) cycle
@@ -285,13 +285,18 @@ contains
     rows = rows(:, pack([(i, i = 1, size(present_rows))], present_rows))
   end function with_sources
 
-  pure function value_text(x) result(text)
+  !> x with `significant` digits (default 6), or '-' for NaN (a value a code does not give).
+  pure function value_text(x, significant) result(text)
     real(wp), intent(in) :: x
+    integer, intent(in), optional :: significant
     character(len=:), allocatable :: text
+    integer :: digits
+    digits = 6
+    if (present(significant)) digits = significant
     if (x /= x) then
       text = '-'
     else
-      text = num2str(x, significant=6)
+      text = num2str(x, significant=digits)
     end if
   end function value_text
 

@@ -6,6 +6,7 @@ from the codes' equations (numpy and scipy.special, independent of the Fortran c
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -447,6 +448,20 @@ def test_executable_writes_design_loads_and_freeboard_check(exe, tmp_path, examp
             values = [v for k, v in line.items() if k != "source"]
             assert values == pytest.approx(list(rows[line["source"]].values()), rel=1e-15,
                                            nan_ok=True)
+    # the summary's loads are design_loads.csv's in MN and MN m, to 5 significant digits ('-':
+    # a code that gives no moment including the base pressure)
+    printed = {m[1]: m.groups()[1:] for m in re.finditer(
+        r"^  (\S.*?) +V (\S+) +M (\S+) +M' (\S+)$", result.stdout, flags=re.M)}
+    loads = {line["source"]: line for line in read_csv(out / "design_loads.csv")}
+    assert list(printed) == list(loads)
+    for source, texts in printed.items():
+        for text, column in zip(texts, ("base_shear [N]", "moment_ebp [N m]", "moment_ibp [N m]")):
+            value = float(loads[source][column])/1e6
+            if math.isnan(value):
+                assert text == "-"
+            else:
+                assert len(text.lstrip("-").replace(".", "").lstrip("0")) <= 5, (source, text)
+                assert float(text) == float(f"{value:.5g}"), (source, column, text)
 
 
 def test_seismic_run_with_design_from_its_ground_motion(exe, tmp_path):
