@@ -5,6 +5,9 @@
 !> 'swirl' with &sweep). The seismic response in two components is in sloshdyn_driver_tank, the
 !> swirl band in sloshdyn_driver.
 submodule (sloshdyn_driver) sloshdyn_driver_spatial
+  ! by use, not only from the parent: meson rebuilds a submodule when a module it uses changes,
+  ! not when one its parent uses does (a stale object then calls the old interfaces)
+  use sloshdyn_driver_common, only: begin_files, in_context, used_method, pad
   use sloshdyn_spatial, only: spatial_model_t, spatial_model
   use sloshdyn_excitation, only: excitation_t
   use sloshdyn_ground, only: ground_excitation

@@ -2,6 +2,10 @@
 !> their interfaces): the seismic response in one or two horizontal components, the summary of
 !> the tank and the design-code table.
 submodule (sloshdyn_driver) sloshdyn_driver_tank
+  ! by use, not only from the parent: meson rebuilds a submodule when a module it uses changes,
+  ! not when one its parent uses does (a stale object then calls the old interfaces)
+  use sloshdyn_driver_common, only: begin_files, in_context, used_method, value_text, &
+                                    difference, pad, write_peak_pressures
   implicit none
 
 contains
