@@ -43,6 +43,17 @@ SECONDS = "_compute_seconds"
 RUN_ATTRS = ("points_computed", "compute_seconds", "points_repaired", "repaired", "store")
 #: the memory a worker process takes, for the bound on their number (measured: ~150 MiB)
 WORKER_PROCESS_BYTES = 512 * 2**20
+#: Dask settings of an embedded cluster: its servers' periodic work (the event-loop tick, the
+#: workers' sampling profiler, the system and memory monitors), made for dashboards, which
+#: the embedded cluster does not start, took ~4 % of a core in the study's process and ~3 %
+#: in each worker even while idle, CPU that two workers on two cores take from the tasks
+#: (measured: docs/studies.md, "Worker kind and task size")
+CLUSTER_CONFIG = {
+    "distributed.admin.tick.interval": "1s",
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.system-monitor.interval": "2s",
+    "distributed.worker.memory.monitor-interval": "500ms",
+}
 
 
 @dataclass
@@ -405,6 +416,7 @@ def _why_no_processes():
 def _client(client, scheduler, workers, worker_kind):
     """The Dask client of a study: the one given, one connected to `scheduler`, or an embedded
     local cluster sized to the machine (closed afterwards)."""
+    import dask
     from dask.distributed import Client, LocalCluster
     if client is not None:
         yield client
@@ -432,9 +444,10 @@ def _client(client, scheduler, workers, worker_kind):
         processes = False
     options = {"preload": ["sloshdyn.studies.worker"]} if processes else {}
     with contextlib.ExitStack() as stack:
-        cluster = stack.enter_context(LocalCluster(
-            n_workers=n if processes else 1, threads_per_worker=1 if processes else n,
-            processes=processes, dashboard_address=None, silence_logs=50, **options))
+        with dask.config.set(CLUSTER_CONFIG):    # read as the servers start
+            cluster = stack.enter_context(LocalCluster(
+                n_workers=n if processes else 1, threads_per_worker=1 if processes else n,
+                processes=processes, dashboard_address=None, silence_logs=50, **options))
         c = stack.enter_context(Client(cluster))
         yield c
 
