@@ -643,6 +643,67 @@ def test_fragility_tasks_are_dispatched_longest_first_and_give_the_same_runs(tmp
         assert np.array_equal(ds[name].values, whole[name].values, equal_nan=True), name
 
 
+def assert_chunks_are_zarrs(store, names):
+    """Every chunk file of the arrays `names` that the engine wrote is the file zarr writes
+    for the same values: the array is written again by zarr (write_empty_chunks, so every
+    chunk is written) into a copy of the store stripped of its chunk files, and compared
+    byte for byte, the edge chunks (padded) included."""
+    import shutil
+    copy = store.parent / (store.name + ".zarr-written")
+    shutil.copytree(store, copy)
+    for name in names:
+        for chunk in (copy / name).iterdir():
+            if not chunk.name.startswith("."):
+                chunk.unlink()
+        values = zarr.open_array(store / name, mode="r", zarr_format=2)[...]
+        again = zarr.open_array(copy / name, mode="r+", zarr_format=2).with_config(
+            {"write_empty_chunks": True})
+        again[...] = values
+        files = sorted(f.name for f in (store / name).iterdir() if not f.name.startswith("."))
+        assert files == sorted(f.name for f in (copy / name).iterdir()
+                               if not f.name.startswith(".")), name
+        assert len(files) > 1, name
+        for f in files:
+            assert (store / name / f).read_bytes() == (copy / name / f).read_bytes(), (name, f)
+
+
+def test_the_engine_writes_the_chunk_files_zarr_writes(client, tmp_path):
+    """Issue 28: the engine encodes a task's chunks itself (the array's codecs, as Zarr
+    format 2 does) instead of through zarr's pipeline: the files are zarr's own, for floats
+    with NaN fill, integers and booleans, edge chunks (3 frequencies in chunks of 2, 4 records
+    in chunks of 3) and variables with dimensions of their own (basins' states)."""
+    ds = sloshdyn.response_map(FIG12, FREQUENCIES, AMPLITUDES, tmp_path / "map.zarr",
+                               client=client, steady=QUICK, points_per_task=2, progress=False)
+    assert_chunks_are_zarrs(tmp_path / "map.zarr", list(ds.data_vars))
+    frag = sloshdyn.fragility_study(example_tank(), records(), [0.2], tmp_path / "f.zarr",
+                                    client=client, points_per_task=3, progress=False)
+    assert_chunks_are_zarrs(tmp_path / "f.zarr", [n for n in frag.data_vars
+                                                  if frag[n].ndim == 2])
+    basins = sloshdyn.basins(FIG12, (0.0, 0.2), (0.0, 0.2), n=3, store=tmp_path / "b.zarr",
+                             client=client, steady=QUICK, points_per_task=2, progress=False)
+    assert_chunks_are_zarrs(tmp_path / "b.zarr", [   # 'attractor' is derived, written whole
+        n for n in basins.data_vars if set(basins[n].dims) >= {"x1", "dx1"} and n != "attractor"])
+
+
+def test_an_embedded_cluster_runs_without_the_dashboards_periodic_work():
+    """Issue 28: the embedded cluster's servers start with engine.CLUSTER_CONFIG (their
+    periodic work for dashboards slowed or off: the worker processes too, which receive the
+    configuration at their start), the client takes results straight from the workers, and
+    the caller's Dask configuration is left as it was."""
+    import dask
+    from sloshdyn.studies import engine
+    before = dask.config.get("distributed.admin.tick.interval")
+    with engine._client(None, None, 1, "processes") as c:
+        assert c.direct_to_workers is True
+        assert c.cluster.scheduler._tick_interval == 1.0
+        assert c.run(lambda: dask.config.get("distributed.worker.profile.enabled")) == \
+            {w: False for w in c.scheduler_info()["workers"]}
+        assert c.run(lambda dask_worker: "profile" in dask_worker.periodic_callbacks) == \
+            {w: False for w in c.scheduler_info()["workers"]}
+    assert dask.config.get("distributed.admin.tick.interval") == before
+    assert engine.CLUSTER_CONFIG["distributed.worker.profile.enabled"] is False
+
+
 def test_fragility_study_bad_input(tmp_path):
     tank = example_tank()
     with pytest.raises(sloshdyn.InputError, match="records is empty"):
@@ -988,17 +1049,26 @@ def test_the_study_command_refuses_a_huge_grid_and_too_many_workers(tmp_path):
 
 
 def full_disk(monkeypatch, where):
-    """Zarr's file writes fail with ENOSPC (no space left on device) in paths containing
-    `where`, as on a full disk."""
+    """The store's file writes (zarr's, and the engine's writes of the tasks' chunks) fail
+    with ENOSPC (no space left on device) in paths containing `where`, as on a full disk."""
     import errno
     from zarr.storage import _local
-    put = _local._put
+    from sloshdyn.studies import engine
+    put, put_chunk = _local._put, engine._put_chunk
 
-    def failing(path, value, exclusive=False):
+    def full(path):
         if where in str(path):
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+    def failing(path, value, exclusive=False):
+        full(path)
         return put(path, value, exclusive)
+
+    def failing_chunk(path, data):
+        full(path)
+        return put_chunk(path, data)
     monkeypatch.setattr(_local, "_put", failing)
+    monkeypatch.setattr(engine, "_put_chunk", failing_chunk)
 
 
 def test_a_full_disk_while_the_store_is_created_leaves_nothing(client, tmp_path, monkeypatch):

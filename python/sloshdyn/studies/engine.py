@@ -448,39 +448,62 @@ def _client(client, scheduler, workers, worker_kind):
             cluster = stack.enter_context(LocalCluster(
                 n_workers=n if processes else 1, threads_per_worker=1 if processes else n,
                 processes=processes, dashboard_address=None, silence_logs=50, **options))
-        c = stack.enter_context(Client(cluster))
+        # results come straight from the workers (not through the scheduler: one copy and
+        # one (de)serialisation less in the study's process per task)
+        c = stack.enter_context(Client(cluster, direct_to_workers=True))
         yield c
 
 
+def _put_chunk(path, data):
+    """Write a chunk file under a temporary name, then rename it: a killed writer leaves no
+    torn chunk (as Zarr's LocalStore writes)."""
+    tmp = f"{path}.{uuid.uuid4().hex}.partial"
+    try:
+        with open(tmp, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.remove(tmp)
+        raise
+
+
 class _Writer:
-    """Writes a task's results into the store: every variable's region at once (zarr's async
-    API: the chunk files are written concurrently), then the task's 'done' mask, so a point is
-    marked done only once its results are on disk. Zarr's LocalStore writes each chunk file
-    under a temporary name and renames it, so a killed writer leaves no torn chunk."""
+    """Writes a task's results into the store: each variable's chunk of the block, then the
+    block's 'done' chunk, so a point is marked done only once its results are on disk. A
+    chunk is encoded as Zarr format 2 encodes it, with the array's own codecs (the filters in
+    order, then the compressor; an edge chunk padded with the fill value): the files are
+    Zarr's, byte for byte, for a tenth of the CPU of zarr's asynchronous pipeline (which took
+    ~8 ms of the study's process per task of 13 chunks, from the workers' cores)."""
 
     def __init__(self, path, plan):
-        import zarr.api.asynchronous as za
-        from zarr.core.sync import sync
-        self._sync = sync
+        import zarr
         self.plan = plan
         self.path = path
-        group = sync(za.open_group(path, mode="r+"))
-        # every chunk is written, even one equal to the fill value, so that a missing chunk
-        # of a point marked done is damage (_open_study)
-        self.arrays = {name: sync(group.getitem(name)).with_config({"write_empty_chunks": True})
-                       for name in plan.variables}
+        group = zarr.open_group(path, mode="r", zarr_format=2, use_consolidated=True)
+        self.arrays = {}
+        for name in plan.variables:
+            array = group[name]       # its metadata as the study's reads see it (consolidated)
+            fill = np.array(0 if array.fill_value is None else array.fill_value)
+            self.arrays[name] = (array.dtype, array.chunks, fill.astype(array.dtype),
+                                 [*array.filters, *array.compressors])
+
+    def _put(self, name, block, values):
+        dtype, chunks, fill, codecs = self.arrays[name]
+        chunk = np.full(chunks, fill, dtype)
+        chunk[tuple(slice(None) if s.stop is None else slice(0, s.stop - s.start)
+                    for s in self.plan.region(name, block))] = values
+        data = chunk
+        for codec in codecs:
+            data = codec.encode(data)
+        _put_chunk(_chunk_file(self.path, name, self.plan.chunk_index(name, block)), data)
 
     def write(self, block, result):
-        import asyncio
-
-        async def write_all(items):
-            await asyncio.gather(*(self.arrays[name].setitem(
-                self.plan.region(name, block),
-                np.asarray(values, dtype=self.plan.variables[name].dtype))
-                for name, values in items))
         try:
-            self._sync(write_all([(k, v) for k, v in result.items() if k != SECONDS]))
-            self._sync(write_all([("done", np.ones([s.stop - s.start for s in block], bool))]))
+            for name, values in result.items():
+                if name != SECONDS:
+                    self._put(name, block, values)
+            self._put("done", block, True)
         except OSError as exc:
             raise FileError(f"store = {self.path!r}: the results of a task cannot be written "
                             f"({exc.strerror or exc}); the points stored before are kept: "
