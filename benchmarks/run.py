@@ -735,19 +735,27 @@ class Bench:
         for workers in ((1,) if self.quick else (1, 2)):
             where = tempfile.mkdtemp()
             log(f"fragility study on {workers} worker(s)")
+            children = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu = time.process_time()
             t = time.perf_counter()
             ds = sloshdyn.fragility_study(tank, records, intensities,
                                           os.path.join(where, "f.zarr"), workers=workers,
                                           worker_kind="threads" if self.quick else None,
                                           progress=False)
             wall = time.perf_counter() - t
+            cpu = time.process_time() - cpu
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)    # the closed workers'
+            worker_cpu = (after.ru_utime + after.ru_stime
+                          - children.ru_utime - children.ru_stime)
             shutil.rmtree(where)
             results[workers] = (wall, ds)
             rows.append([f"{workers} worker {'thread' if self.quick else 'process(es)'}",
                          fmt_t(wall),
                          f"{ds.attrs['compute_seconds']:.1f} s",
+                         f"{cpu:.2f} s", "-" if self.quick else f"{worker_cpu:.1f} s",
                          fmt_x(results[1][0] / wall)])
-        r.table(["run", "wall time", "task compute time (summed)", "speed-up"], rows)
+        r.table(["run", "wall time", "task compute time (summed)", "CPU of this process",
+                 "CPU of the worker processes", "speed-up"], rows)
         samples = sum(g.acceleration.size for g in records)
         durations = [g.dt * (g.acceleration.size - 1) for g in records]
         wall1, ds1 = results[1]

@@ -6,6 +6,7 @@ own modules."""
 
 from __future__ import annotations
 
+import concurrent.futures
 import contextlib
 import dataclasses
 import hashlib
@@ -555,6 +556,13 @@ def _remembered_interrupts():
             signal.signal(sig, handler)
 
 
+def _load(path, plan):
+    """The study's points from its store, loaded (derived variables are derived again)."""
+    import xarray as xr
+    ds = xr.open_zarr(path, consolidated=True, chunks=None)
+    return ds[list(plan.variables)].load()
+
+
 def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_kind=None,
              progress=True, derive=None):
     """Run a study plan on Dask, storing each task's results in `store` as it finishes; return
@@ -566,8 +574,6 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
     adds the variables derived from all the points (basins' attractor list, the fragility
     fit): they join the store too, derived again by every rerun."""
     require("studies", "dask.distributed", "xarray", "zarr")
-    import xarray as xr
-
     path = _check_store(store)
     if worker_kind is None:
         worker_kind = WORKER_KIND
@@ -583,6 +589,7 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
         plan = dataclasses.replace(plan, chunks=chunks)
     computed = 0
     compute_seconds = 0.0
+    loading = None
     if todo is None or todo:
         from dask.distributed import as_completed
         bar = None
@@ -622,14 +629,17 @@ def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_k
                 finally:
                     for future in futures:
                         future.cancel()
+                # every task is stored: the study is read while the cluster closes
+                reader = concurrent.futures.ThreadPoolExecutor(1)
+                loading = reader.submit(_load, path, plan)
+                reader.shutdown(wait=False)
         except KeyboardInterrupt as exc:    # Ctrl-C, or SIGTERM as sloshdyn-py raises it
             raise type(exc)(f"study interrupted: {computed} points stored in {path} this run; "
                             "rerun the same study on it to resume") from None
         finally:
             if bar:
                 bar.close()
-    ds = xr.open_zarr(path, consolidated=True, chunks=None)
-    ds = ds[list(plan.variables)].load()     # derived variables are derived again
+    ds = loading.result() if loading else _load(path, plan)
     ds.attrs["points_computed"] = computed
     ds.attrs["compute_seconds"] = compute_seconds     #: inside the tasks, summed over workers
     ds.attrs["points_repaired"] = repaired
