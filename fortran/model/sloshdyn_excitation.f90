@@ -14,7 +14,6 @@ module sloshdyn_excitation
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_samples, only: check_samples, sampled_value
-  use sloshdyn_trig, only: sine, sin_cos
   implicit none
   private
   public :: excitation_t, base_acceleration, forcing_period, acceleration_sensitivity, &
@@ -58,7 +57,7 @@ contains
     if (excitation%kind == EXCITATION_RECORD) then
       xdd = sampled_value(excitation%samples, excitation%step, tau)
     else
-      xdd = -excitation%A*excitation%rho**2*sine(excitation%rho*tau)
+      xdd = -excitation%A*excitation%rho**2*sin(excitation%rho*tau)
     end if
   end function base_acceleration
 
@@ -78,16 +77,13 @@ contains
     type(excitation_t), intent(in) :: excitation
     integer, intent(in) :: parameter
     real(wp), intent(in) :: tau
-    real(wp) :: s, c
     dxdd = 0
     if (excitation%kind /= EXCITATION_HARMONIC) return
-    ! the same sine as base_acceleration's
-    call sin_cos(excitation%rho*tau, s, c)
     associate (a => excitation%A, rho => excitation%rho)
       if (parameter == PARAMETER_A) then
-        dxdd = -rho**2*s
+        dxdd = -rho**2*sin(rho*tau)
       else
-        dxdd = -a*(2*rho*s + rho**2*tau*c)
+        dxdd = -a*(2*rho*sin(rho*tau) + rho**2*tau*cos(rho*tau))
       end if
     end associate
   end function acceleration_sensitivity

@@ -6,7 +6,6 @@ module sloshdyn_motion
   use sloshdyn_kinds, only: wp
   use sloshdyn_model, only: model_t
   use sloshdyn_excitation, only: base_acceleration
-  use sloshdyn_trig, only: sin_cos
   implicit none
   private
   public :: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, &
@@ -31,8 +30,8 @@ contains
     real(wp) :: q1, q2
     q1 = model%theta0*y(1)
     q2 = model%theta0*y(3)
-    call sin_cos(q1, t%sin1, t%cos1)
-    call sin_cos(q2, t%sin2, t%cos2)
+    t%cos1 = cos(q1); t%sin1 = sin(q1)
+    t%cos2 = cos(q2); t%sin2 = sin(q2)
     ! angle addition instead of a third sine/cosine pair: the right-hand side's costliest part
     t%cos12 = t%cos1*t%cos2 - t%sin1*t%sin2
     t%sin12 = t%sin1*t%cos2 + t%cos1*t%sin2
