@@ -16,8 +16,8 @@ module sloshdyn_driver_common
                              FREEBOARD_SUFFICIENT, DESIGN_LINEAR, LOADS_IMPULSIVE_ACCELERATION, &
                              LOADS_CONVECTIVE_ACCELERATION, WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, &
                              PRESSURE_RESULTANT_ROWS, WALL_HEIGHT, WALL_TOTAL_PRESSURE, &
-                             WALL_HOOP_FORCE, PRESSURE_INSTANT_ROWS, PEAKS_BASE_SHEAR, &
-                             PEAKS_OVERTURNING_MOMENT
+                             WALL_HOOP_FORCE, PRESSURE_INSTANT_ROWS, PRESSURE_INSTANT_TIME, &
+                             PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT
   use sloshdyn_design_check, only: design_check
   use sloshdyn_design_spectra, only: spectrum_sa, SPECTRUM_EC8
   use sloshdyn_wall_pressure, only: pressure_tables, combination_names, COMBINE_SRSS, COMBINE_SUM
@@ -248,7 +248,7 @@ contains
     do k = 1, 2
       top = maxloc(abs(wall(WALL_TOTAL_PRESSURE, :, k)), 1)
       print '(a)', '  wall pressure at the '//trim(loads(k))//' peak (t = '// &
-                   num2str(instants(1, k), significant=5)//' s): largest '// &
+                   num2str(instants(PRESSURE_INSTANT_TIME, k), significant=5)//' s): largest '// &
                    num2str(wall(WALL_TOTAL_PRESSURE, top, k)/1.0e3_wp, significant=5)// &
                    ' kPa at z = '//num2str(wall(WALL_HEIGHT, top, k), significant=5)// &
                    ' m (wall_pressure_at_'//trim(names(k))//'_peak.csv)'

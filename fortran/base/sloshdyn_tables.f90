@@ -37,7 +37,7 @@ module sloshdyn_tables
             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
   public :: WALL_HEIGHT, WALL_TOTAL_PRESSURE, WALL_HOOP_FORCE
-  public :: PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT
+  public :: PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT, PRESSURE_INSTANT_TIME
   public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
             PRESSURE_INSTANT_ROWS
   public :: DESIGN_ROWS, DESIGN_API650, DESIGN_EC8, DESIGN_ACI350, DESIGN_LINEAR, &
@@ -229,7 +229,7 @@ module sloshdyn_tables
   character(len=*), parameter :: pressure_instant_columns = 't [s],'// &
     'tank_acceleration [m/s^2],base_shear [N],overturning_moment [N m],'// &
     'overturning_moment_ibp [N m]'
-  integer, parameter :: PRESSURE_INSTANT_ROWS = 5
+  integer, parameter :: PRESSURE_INSTANT_ROWS = 5, PRESSURE_INSTANT_TIME = 1
   !> The design check (sloshdyn_design_check): one row per source, the codes' loads in their
   !> own format (accelerations: each code's design coefficient in g, its factors applied) and
   !> sloshdyn's (linear: the response-spectrum method on its model; nonlinear: the peaks of the
