@@ -719,9 +719,9 @@ class Bench:
     def fragility(self):
         """The fragility study of issue 28: 44 synthetic records of 20-100 s (dt 0.005-0.02 s,
         seeded; peers.synthetic_records) x 20 intensities, a 10 m tank on 2 Hz supports with
-        1 m freeboard, on 1 and 2 worker processes at the engine's default task size. One run
-        each (a full study takes about a minute); --quick: 2 short records x 2 intensities, 1
-        worker thread (no process to start)."""
+        1 m freeboard, on 1 and 2 workers of the engine's default kind (threads) at its default
+        task size. One run each (a full study takes about half a minute); --quick: 2 short
+        records x 2 intensities, 1 worker."""
         import shutil
         import tempfile
         r = self.report
@@ -731,6 +731,7 @@ class Bench:
         records = peers.synthetic_records(n_records, quick=self.quick)
         tank = peers.fragility_tank()
         intensities = np.linspace(0.05, 0.5, n_intensities)     # Sa(T_sloshing, 0.5 %) [g]
+        kind = sloshdyn.studies.WORKER_KIND
         rows, results = [], {}
         for workers in ((1,) if self.quick else (1, 2)):
             where = tempfile.mkdtemp()
@@ -740,7 +741,6 @@ class Bench:
             t = time.perf_counter()
             ds = sloshdyn.fragility_study(tank, records, intensities,
                                           os.path.join(where, "f.zarr"), workers=workers,
-                                          worker_kind="threads" if self.quick else None,
                                           progress=False)
             wall = time.perf_counter() - t
             cpu = time.process_time() - cpu
@@ -749,10 +749,10 @@ class Bench:
                           - children.ru_utime - children.ru_stime)
             shutil.rmtree(where)
             results[workers] = (wall, ds)
-            rows.append([f"{workers} worker {'thread' if self.quick else 'process(es)'}",
+            rows.append([f"{workers} worker(s), {kind}",
                          fmt_t(wall),
                          f"{ds.attrs['compute_seconds']:.1f} s",
-                         f"{cpu:.2f} s", "-" if self.quick else f"{worker_cpu:.1f} s",
+                         f"{cpu:.2f} s", f"{worker_cpu:.1f} s" if kind == "processes" else "-",
                          fmt_x(results[1][0] / wall)])
         r.table(["run", "wall time", "task compute time (summed)", "CPU of this process",
                  "CPU of the worker processes", "speed-up"], rows)

@@ -389,6 +389,7 @@ contains
     case ('tank');        values = from_tank(tank_t())
     case ('chart');       values = from_chart(chart_settings())
     case ('design');      values = from_design(design_spectrum_t(), design_factors_t(), .false.)
+    case ('study');       values = from_study(study_settings())
     case default
       found = .false.
       allocate (values(0))

@@ -32,6 +32,7 @@ module sloshdyn_run_config
   character(len=*), parameter :: study_kinds(3) = &
     [character(len=12) :: 'response_map', 'basins', 'fragility']
   character(len=*), parameter :: worker_kinds(2) = [character(len=9) :: 'processes', 'threads']
+  integer, parameter :: WORKER_THREADS = 2        !< the code of 'threads'
   character(len=*), parameter :: continuation_names(4) = &
     [character(len=4) :: 'none', 'up', 'down', 'both']
   !> The analyses, by code (index).
@@ -100,7 +101,9 @@ module sloshdyn_run_config
     integer :: kind = 1                                !< index into study_kinds
     character(len=path_len) :: store = '', figure = '', scheduler = ''
     integer :: workers = 0                             !< embedded cluster: 0 = one per core
-    integer :: worker_kind = 1                         !< index into worker_kinds
+    !> index into worker_kinds: 'threads', faster than processes on one machine (measured:
+    !> docs/studies.md, "Worker kind and task size")
+    integer :: worker_kind = WORKER_THREADS
     integer :: points_per_task = 0                     !< 0 = the engine's choice
     real(wp) :: frequency_start = 0, frequency_stop = 0, amplitude_start = 0, amplitude_stop = 0
     integer :: n_frequencies = 1, n_amplitudes = 1

@@ -137,6 +137,10 @@ def test_namelist_defaults_are_the_python_defaults(tmp_path):
     assert inp.response == sloshdyn.Continuation()
     assert inp.params == sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259,
                                              theta0=0.7853981633974483, gamma=0.001)
+    study = sloshdyn.read_namelist(write(tmp_path, MODEL + (
+        "&excitation A = 0.001, rho = 0.5 /\n&study kind = 'basins', store = 'b.zarr', "
+        "x1_start = -1, x1_stop = 1, dx1_start = -1, dx1_stop = 1 /\n"), "study.nml")).study
+    assert study["worker_kind"] == sloshdyn.studies.WORKER_KIND == "threads"
 
 
 @pytest.mark.parametrize("text, words", [

@@ -884,7 +884,7 @@ import sys, math, sloshdyn
 p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4, gamma=0.001,
                         A=0.00075, rho=0.50)
 ds = sloshdyn.response_map(p, [0.505, 0.52], [0.0005], {store!r}, workers=1,
-                           steady=sloshdyn.Steady(max_transient_periods=600, window_periods=32),
+                           worker_kind="processes", steady=sloshdyn.Steady(max_transient_periods=600, window_periods=32),
                            progress=False)
 print("computed", ds.attrs["points_computed"], float(ds.max_x1.max()))
 """
@@ -893,7 +893,8 @@ print("computed", ds.attrs["points_computed"], float(ds.max_x1.max()))
 @pytest.mark.parametrize("how", ["script", "stdin"])
 def test_a_study_started_without_the_main_guard_runs_on_threads(tmp_path, how):
     """Worker processes import the main module again: a script without the main guard (or
-    standard input) runs the study on threads instead, with the same numbers, and says why."""
+    standard input) that asks for them runs the study on threads instead, with the same
+    numbers, and says why."""
     store = tmp_path / "g.zarr"
     script = tmp_path / "noguard.py"
     script.write_text(NO_GUARD.format(store=str(store)))

@@ -34,8 +34,9 @@ from .._extras import require
 #: bounds (measured by benchmarks/studies.py: the engine's overhead is ~20 % of the work at 8
 #: points per task, ~5 % at 32, ~2 % at 128; docs/studies.md)
 MIN_POINTS_PER_TASK, MAX_POINTS_PER_TASK, TASKS_PER_WORKER = 8, 128, 8
-#: the default worker kind of an embedded cluster, by measurement (docs/studies.md)
-WORKER_KIND = "processes"
+#: the default worker kind of an embedded cluster, the core's (&study worker_kind): threads,
+#: by measurement (docs/studies.md, "Worker kind and task size")
+WORKER_KIND = _tables.codes("worker_kinds")[int(_tables.defaults("study")["worker_kind"])]
 #: how long a scheduler address may take to answer
 CONNECT_TIMEOUT = 5.0
 #: a task's result entry (not stored) with the seconds the task computed

@@ -88,7 +88,7 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
 
     The study runs on `client` (a dask.distributed Client), on the scheduler at address
     `scheduler`, or (neither given) on an embedded local cluster of `workers` workers (default:
-    one per core) of kind `worker_kind` ('processes' by default, 'threads'). Rerunning the same
+    one per core) of kind `worker_kind` ('threads' by default, 'processes'). Rerunning the same
     study on the same store resumes it; a store made by a different study is refused
     (InputError). See docs/studies.md."""
     from ..seismic import Tank
