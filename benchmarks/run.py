@@ -732,6 +732,10 @@ class Bench:
         tank = peers.fragility_tank()
         intensities = np.linspace(0.05, 0.5, n_intensities)     # Sa(T_sloshing, 0.5 %) [g]
         kind = sloshdyn.studies.WORKER_KIND
+        warm = tempfile.mkdtemp()          # Dask, xarray and Zarr imported before the timing
+        sloshdyn.fragility_study(tank, peers.synthetic_records(2, quick=True), intensities[:2],
+                                 os.path.join(warm, "f.zarr"), workers=1, progress=False)
+        shutil.rmtree(warm)
         rows, results = [], {}
         for workers in ((1,) if self.quick else (1, 2)):
             where = tempfile.mkdtemp()

@@ -10,6 +10,8 @@ Sections (medians of --repeats timed runs; every ratio compares runs made here, 
             several task sizes (points per task), on a client started beforehand
   workers   2 local workers against 1 on the same response map, threads and processes,
             with the cluster start-up time
+  kinds     the embedded cluster's two worker kinds on a fragility study (44 records x 20
+            intensities) and a response map at defaults, 1 and 2 workers, alternated by round
   map100    (--map100) a 100 x 100 response map on this machine and its projection to 64 cores
   cluster8  an 8-worker local cluster (processes) gives the serial answer
 Progress goes to stderr, tables to stdout. --quick is a smoke run (tiny sizes, 1 repeat): its
@@ -196,6 +198,49 @@ def section_workers(args):
           f"(machine load now {os.getloadavg()[0]:.2f}: other processes take cores too)")
 
 
+def section_kinds(args):
+    """Issue 28's scaling target on the embedded cluster as a user starts it: each study kind
+    on 1 then 2 workers of each worker kind, the kinds alternated round by round."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import peers
+    print("\n## The embedded cluster's worker kinds: 1 and 2 workers, default task size\n")
+    n_records, n_intensities = (2, 2) if args.quick else (44, 20)
+    records = peers.synthetic_records(n_records, quick=args.quick)
+    intensities = np.linspace(0.05, 0.5, n_intensities)
+    f, a = grid(args, 24 // (4 if args.quick else 1), 8 // (4 if args.quick else 1))
+    studies = {
+        "fragility": lambda store, **kw: sloshdyn.fragility_study(
+            peers.fragility_tank(), records, intensities, store, **kw),
+        "response map": lambda store, **kw: sloshdyn.response_map(FIG12, f, a, store, **kw)}
+
+    def run(study, kind, workers):
+        store = tempfile.mkdtemp(prefix="bench-kinds-")
+        try:
+            t = time.perf_counter()
+            ds = studies[study](os.path.join(store, "s.zarr"), workers=workers,
+                                worker_kind=kind, progress=False)
+            return time.perf_counter() - t, ds
+        finally:
+            shutil.rmtree(store, ignore_errors=True)
+    print(f"fragility: {n_records} records x {n_intensities} intensities; response map: "
+          f"{f.size} x {a.size} points at Steady()\n")
+    print("| study | round | worker kind | 1 worker [s] | 2 workers [s] | speed-up | "
+          "identical | load |")
+    print("|---|---|---|---|---|---|---|---|")
+    for study in studies:
+        for kind in ("threads", "processes"):            # warm-up: imports, first calls
+            run(study, kind, 2)
+        for round_ in range(args.repeats):
+            for kind in ("processes", "threads"):
+                load = os.getloadavg()[0]
+                (t1, d1), (t2, d2) = run(study, kind, 1), run(study, kind, 2)
+                same = all(np.array_equal(d1[v].values, d2[v].values, equal_nan=True)
+                           for v in d1.data_vars)
+                print(f"| {study} | {round_ + 1} | {kind} | {t1:.2f} | {t2:.2f} | "
+                      f"{t1 / t2:.3f}x | {same} | {load:.2f} |", flush=True)
+    print(f"\ndefault worker kind: {sloshdyn.studies.WORKER_KIND}; target >= 1.85x on 2 workers")
+
+
 def section_map100(args):
     print("\n## A 100 x 100 response map on this machine (embedded cluster, defaults)\n")
     n = 10 if args.quick else 100
@@ -241,7 +286,8 @@ def section_cluster8(args):
 
 
 SECTIONS = {"steady": section_steady, "sweep": section_sweep, "tasks": section_tasks,
-            "workers": section_workers, "map100": section_map100, "cluster8": section_cluster8}
+            "workers": section_workers, "kinds": section_kinds, "map100": section_map100,
+            "cluster8": section_cluster8}
 
 
 def main():
