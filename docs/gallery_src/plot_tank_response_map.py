@@ -4,7 +4,7 @@ A tank's response map under harmonic shaking
 
 The steady wave of a tank under harmonic ground motion on a grid of frequency [Hz] and peak
 ground acceleration [g]: each point the steady state from rest of
-``tank.parameters(GroundMotion.harmonic(a, f))``, computed on Dask (two threads here) and
+``tank.parameters(GroundMotion.harmonic(a, f))``, computed on Dask (two worker threads) and
 returned as an xarray Dataset with units in its attributes. Where ``max |x1|`` reaches 1 the
 pendulum reaches θ0: the liquid hits the roof.
 """
@@ -22,7 +22,7 @@ accelerations = [0.01, 0.03, 0.1, 0.3]           # [g]
 quick = sloshdyn.Steady(transient_periods=100, settle_tol=0, window_periods=20)
 with tempfile.TemporaryDirectory() as folder:
     ds = sloshdyn.response_map(tank, frequencies, accelerations, store=f"{folder}/map.zarr",
-                               steady=quick, worker_kind="threads", workers=2, progress=False)
+                               steady=quick, workers=2, progress=False)
     print(ds.max_x1.attrs)
     print("roof reached at", int(ds.roof_impact.sum()), "of", ds.roof_impact.size, "points")
     fig = sloshdyn.plotting.response_map(ds)

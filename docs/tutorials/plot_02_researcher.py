@@ -118,7 +118,7 @@ import tempfile
 with tempfile.TemporaryDirectory() as folder:
     b = sloshdyn.basins(p.replace(rho=0.52), (-0.3, 0.3), (-0.3, 0.3), n=12,
                         store=f"{folder}/basins.zarr", x2=-0.206, dx2=0.140,
-                        worker_kind="threads", workers=2, progress=False)
+                        workers=2, progress=False)
     print(b.attractor_kind.values, b.attractor_share.values)
     fig = sloshdyn.plotting.basins(b)
 
