@@ -187,8 +187,8 @@ contains
     integer, allocatable :: n_seeds(:), level_status(:)
     character(len=message_len), allocatable :: level_message(:)
     real(wp) :: start_p(2)
-    integer :: l, k, curve_status, run_status
-    character(len=message_len) :: curve_message, run_message
+    integer :: l, k, curve_status, run_status, one_status
+    character(len=message_len) :: curve_message, run_message, one_message
 
     status = SD_OK
     message = ''
@@ -216,9 +216,14 @@ contains
     ! seeded in level order, so the chart does not depend on the number of threads
     allocate (seeds(seed_rows, max_run_special, size(levels)), n_seeds(size(levels)), &
               level_status(size(levels)), level_message(size(levels)))
-    !$omp parallel do num_threads(settings%threads) schedule(dynamic, 1)
+    !$omp parallel do num_threads(settings%threads) schedule(dynamic, 1) &
+    !$omp private(one_status, one_message)
     do l = 1, size(levels)
-      call run_level(l)
+      ! a thread's own status (the continuation writes it at every step): neighbouring
+      ! entries of level_status share a cache line, which two threads would pass to and fro
+      call run_level(l, one_status, one_message)
+      level_status(l) = one_status
+      level_message(l) = one_message
     end do
     !$omp end parallel do
     do l = 1, size(levels)
@@ -275,17 +280,19 @@ contains
 
     !> The run at level l: its cells' counts, and its folds and Hopf points as seeds (kind,
     !> p1, state).
-    subroutine run_level(l)
+    subroutine run_level(l, level_status, level_message)
       integer, intent(in) :: l
+      integer, intent(out) :: level_status
+      character(len=message_len), intent(out) :: level_message
       real(wp), allocatable :: table(:, :), special(:, :), multipliers(:, :)
       integer :: n_points, n_special, k, column
       logical :: complete
       n_seeds(l) = 0
       seeds(:, :, l) = 0
-      level_status(l) = SD_OK
-      level_message(l) = ''
-      call check_cancel(level_status(l), level_message(l))   ! the levels left after a request
-      if (level_status(l) /= SD_OK) return
+      level_status = SD_OK
+      level_message = ''
+      call check_cancel(level_status, level_message)   ! the levels left after a request
+      if (level_status /= SD_OK) return
       associate (row => chart%cells(:, (l - 1)*size(columns) + 1:l*size(columns)))
         if (settings%model == CHART_FULL) then
           ! the branch of orbits continued from the steady state reached from rest
@@ -296,9 +303,9 @@ contains
                                            settings%p_max(1), steady_options(), &
                                            settings%response%continuation, orbits%integration, &
                                            orbits%method, table, multipliers, n_points, special, &
-                                           n_special, complete, level_status(l), &
-                                           level_message(l))
-          if (level_status(l) /= SD_OK) return
+                                           n_special, complete, level_status, &
+                                           level_message)
+          if (level_status /= SD_OK) return
           call count_cells(table(1, 1:n_points), table(7, 1:n_points), &
                            [(1, k = 1, n_points)], columns, row)
           do k = 1, n_special
@@ -312,8 +319,8 @@ contains
           call frequency_response(level_model(l), settings%model == CHART_SLOW_FLOW_31, &
                                   settings%parameters(1), settings%p_min(1), settings%p_max(1), &
                                   settings%response, table, n_points, special, n_special, &
-                                  complete, level_status(l), level_message(l))
-          if (level_status(l) /= SD_OK) return
+                                  complete, level_status, level_message)
+          if (level_status /= SD_OK) return
           call count_cells(table(POINT_LAMBDA, 1:n_points), table(POINT_STABLE, 1:n_points), &
                            nint(table(POINT_BRANCH, 1:n_points)), columns, row)
           do k = 1, n_special
@@ -464,14 +471,19 @@ contains
     real(wp), intent(inout) :: cells(:, :)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    integer :: i, cell_status(size(cells, 2))
-    character(len=message_len) :: cell_message(size(cells, 2))
+    integer :: i, cell_status(size(cells, 2)), one_status
+    character(len=message_len) :: cell_message(size(cells, 2)), one_message
+    real(wp) :: n_attractors
     status = SD_OK
     message = ''
-    !$omp parallel do num_threads(settings%threads) schedule(dynamic, 1)
+    !$omp parallel do num_threads(settings%threads) schedule(dynamic, 1) &
+    !$omp private(n_attractors, one_status, one_message)
     do i = 1, size(cells, 2)
-      call attractors_at(field, settings, cells(1:2, i), cells(6, i), cell_status(i), &
-                         cell_message(i))
+      ! a thread's own status and count (as in stability_chart's levels)
+      call attractors_at(field, settings, cells(1:2, i), n_attractors, one_status, one_message)
+      cells(6, i) = n_attractors
+      cell_status(i) = one_status
+      cell_message(i) = one_message
     end do
     !$omp end parallel do
     do i = 1, size(cells, 2)
