@@ -208,16 +208,18 @@ def section_kinds(args):
     records = peers.synthetic_records(n_records, quick=args.quick)
     intensities = np.linspace(0.05, 0.5, n_intensities)
     f, a = grid(args, 24 // (4 if args.quick else 1), 8 // (4 if args.quick else 1))
+    # each study at full size, or (warm-up) on the first two values of each axis
     studies = {
-        "fragility": lambda store, **kw: sloshdyn.fragility_study(
-            peers.fragility_tank(), records, intensities, store, **kw),
-        "response map": lambda store, **kw: sloshdyn.response_map(FIG12, f, a, store, **kw)}
+        "fragility": lambda store, n=None, **kw: sloshdyn.fragility_study(
+            peers.fragility_tank(), records[:n], intensities[:n], store, **kw),
+        "response map": lambda store, n=None, **kw: sloshdyn.response_map(
+            FIG12, f[:n], a[:n], store, **kw)}
 
-    def run(study, kind, workers):
+    def run(study, kind, workers, n=None):
         store = tempfile.mkdtemp(prefix="bench-kinds-")
         try:
             t = time.perf_counter()
-            ds = studies[study](os.path.join(store, "s.zarr"), workers=workers,
+            ds = studies[study](os.path.join(store, "s.zarr"), n, workers=workers,
                                 worker_kind=kind, progress=False)
             return time.perf_counter() - t, ds
         finally:
@@ -229,7 +231,7 @@ def section_kinds(args):
     print("|---|---|---|---|---|---|---|---|")
     for study in studies:
         for kind in ("threads", "processes"):            # warm-up: imports, first calls
-            run(study, kind, 2)
+            run(study, kind, 2, n=2)
         for round_ in range(args.repeats):
             for kind in ("processes", "threads"):
                 load = os.getloadavg()[0]

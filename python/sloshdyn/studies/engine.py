@@ -458,7 +458,9 @@ def _client(client, scheduler, workers, worker_kind):
 
 def _put_chunk(path, data):
     """Write a chunk file under a temporary name, then rename it: a killed writer leaves no
-    torn chunk (as Zarr's LocalStore writes)."""
+    torn chunk (as Zarr's LocalStore writes). Not _files.atomic_path: inside a run_directory
+    that defers every rename to the run's end, and a chunk must be in place before its task's
+    'done' chunk."""
     tmp = f"{path}.{uuid.uuid4().hex}.partial"
     try:
         with open(tmp, "wb") as f:
