@@ -629,6 +629,8 @@ contains
     do i = 1, size(values)
       ! a thread's own status (the integrator writes it at every step): neighbouring entries
       ! of point_status share a cache line, which two threads would pass to and fro (+11 % CPU)
+      ! (the chart's two loops repeat these three lines: kept, as a shared form would need a
+      ! callback per loop)
       call parameter_sweep(model, which, values(i:i), y0, options, method, steady, &
                            summaries(:, i:i), y_final, one_done, one_status, one_message)
       point_done(i) = one_done

@@ -280,19 +280,19 @@ contains
 
     !> The run at level l: its cells' counts, and its folds and Hopf points as seeds (kind,
     !> p1, state).
-    subroutine run_level(l, level_status, level_message)
+    subroutine run_level(l, status_at_level, message_at_level)
       integer, intent(in) :: l
-      integer, intent(out) :: level_status
-      character(len=message_len), intent(out) :: level_message
+      integer, intent(out) :: status_at_level
+      character(len=message_len), intent(out) :: message_at_level
       real(wp), allocatable :: table(:, :), special(:, :), multipliers(:, :)
       integer :: n_points, n_special, k, column
       logical :: complete
       n_seeds(l) = 0
       seeds(:, :, l) = 0
-      level_status = SD_OK
-      level_message = ''
-      call check_cancel(level_status, level_message)   ! the levels left after a request
-      if (level_status /= SD_OK) return
+      status_at_level = SD_OK
+      message_at_level = ''
+      call check_cancel(status_at_level, message_at_level)   ! the levels left after a request
+      if (status_at_level /= SD_OK) return
       associate (row => chart%cells(:, (l - 1)*size(columns) + 1:l*size(columns)))
         if (settings%model == CHART_FULL) then
           ! the branch of orbits continued from the steady state reached from rest
@@ -303,9 +303,9 @@ contains
                                            settings%p_max(1), steady_options(), &
                                            settings%response%continuation, orbits%integration, &
                                            orbits%method, table, multipliers, n_points, special, &
-                                           n_special, complete, level_status, &
-                                           level_message)
-          if (level_status /= SD_OK) return
+                                           n_special, complete, status_at_level, &
+                                           message_at_level)
+          if (status_at_level /= SD_OK) return
           call count_cells(table(1, 1:n_points), table(7, 1:n_points), &
                            [(1, k = 1, n_points)], columns, row)
           do k = 1, n_special
@@ -319,8 +319,8 @@ contains
           call frequency_response(level_model(l), settings%model == CHART_SLOW_FLOW_31, &
                                   settings%parameters(1), settings%p_min(1), settings%p_max(1), &
                                   settings%response, table, n_points, special, n_special, &
-                                  complete, level_status, level_message)
-          if (level_status /= SD_OK) return
+                                  complete, status_at_level, message_at_level)
+          if (status_at_level /= SD_OK) return
           call count_cells(table(POINT_LAMBDA, 1:n_points), table(POINT_STABLE, 1:n_points), &
                            nint(table(POINT_BRANCH, 1:n_points)), columns, row)
           do k = 1, n_special

@@ -3,13 +3,14 @@ which draws figures, so it needs the 'plot' extra (matplotlib)."""
 
 import sys
 
+from ._errors import exit_code
+from ._extras import MissingExtraError
+
 
 def main(argv=None):
     """Run sloshdyn.cli's main; without matplotlib, an error naming the extra to install."""
-    from ._errors import exit_code
-    from ._extras import MissingExtraError
     try:
-        from .cli import main as cli_main
+        from .cli import main as cli_main    # the plot extra: an error naming it if missing
     except MissingExtraError as exc:
         print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
         return exit_code(exc)

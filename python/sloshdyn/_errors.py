@@ -6,6 +6,8 @@ status into an exit code (its exit_code, which the executable applies): `exit_co
 the core, so sloshdyn-py and the executable exit alike by construction.
 """
 
+from . import _core
+
 
 class SloshdynError(Exception):
     """Base class of every sloshdyn error; ``status`` is the Fortran status code."""
@@ -93,7 +95,6 @@ EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED = 4, 130, 143
 def exit_code(error, reading=False):
     """The exit code of a SloshdynError: the core's rule for its status (any status while the
     input is read is an input error)."""
-    from . import _core
     return int(_core.sloshdyn_bridge_input.exit_code(int(error.status or 1), bool(reading)))
 
 

@@ -120,7 +120,7 @@ def _text(value):
 
 
 def save_figure(fig, path):
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt    # the plot extra: only a caller with a figure gets here
     try:
         with atomic_path(path) as tmp:
             fig.savefig(tmp, dpi=110)

@@ -48,6 +48,11 @@ def columns(table):
     return list(names(f"table:{table}")[0])
 
 
+def column_name(column):
+    """A column's name without its unit: 't [s]' -> 't' (the attribute and key names)."""
+    return column.split(" [")[0]
+
+
 def code_lists():
     """The enumerated options whose codes the core names (the bridge's names routine)."""
     return names("code_lists")[0]

@@ -10,9 +10,8 @@ import numpy as np
 from ._cancel import cancellable
 from . import _checks, _core, _tables
 from ._errors import InputError, check_status, message_text, with_partial
-from ._settings import settings
+from .options import Continuation, Integration
 from .parameters import Parameters
-from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_asymptotics
 
@@ -149,12 +148,6 @@ class FrequencyResponse:
     def eigenvalues(self):
         return (np.array([self.table[f"re{i}"] for i in range(1, 5)])
                 + 1j * np.array([self.table[f"im{i}"] for i in range(1, 5)])).T
-
-
-@settings("response")
-class Continuation:
-    """Settings of the branch search and continuation of the slow flow's steady states
-    (&response's numbers)."""
 
 
 def frequency_response(params: Parameters, rho_range=None, *, resonance="3:1", A_range=None,

@@ -15,8 +15,8 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._errors import CapacityError, check_status
-from ._settings import settings
-from .asymptotics import Continuation
+from .ground import acceleration_factor
+from .options import Chart, Continuation
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_charts
@@ -80,20 +80,12 @@ class StabilityChart:
     def frequency_and_acceleration(self, tank, rho, A, *, units="g"):
         """(frequency [Hz], peak ground acceleration [units]) of chart points of a tank's model:
         f = rho omega/(2 pi), a = A rho^2 L omega^2 (harmonic ground motion)."""
-        from .seismic import acceleration_factor
-
         p = tank.properties
         rho, A = np.asarray(rho, dtype=float), np.asarray(A, dtype=float)
         acceleration = A * rho**2 * p["support_height"] * p["omega"] ** 2
         # 'g' is the tank's gravity, as before (acceleration_factor's g is standard gravity)
         scale = tank.gravity if units == "g" else acceleration_factor(units)
         return rho * p["omega"] / (2 * math.pi), acceleration / scale
-
-
-@settings("chart")
-class Chart:
-    """Settings of a stability chart's grid and curves (&chart): the grid has n_x by n_y cells
-    (their midpoints); the one-parameter runs in x at n_y values of y seed the curves."""
 
 
 def stability_chart(params: Parameters, x_range, y_range, *, x="rho", y="A",

@@ -4,25 +4,27 @@ study."""
 from __future__ import annotations
 
 import argparse
-import csv
+import glob
 import json
 import os
+import signal
 import sys
 import threading
 import time
+import traceback
 from pathlib import Path
 
 import numpy as np
+from tqdm.auto import tqdm
 
-from ._cancel import app_call
-from . import __version__, _core, figures, plotting, reference
+from . import figures, plotting, reference, studies
 from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError, InputError,
-                      SloshdynError, check_status, exit_code)
+                      SloshdynError, exit_code)
 from ._files import run_directory, save_figure, write_text
-from .asymptotics import FrequencyResponse, SpecialPoint
-from .parameters import read_namelist
+from ._version import __version__
+from .namelist import read_namelist
 from .report import design_report
-from .simulation import Simulation, Sweep, _summary
+from .runner import run_input
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="sloshdyn-py", description=(
@@ -106,7 +108,6 @@ def main(argv=None):
         print(f"sloshdyn-py: interrupted; {str(exc) or _KEPT}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception:     # a defect of sloshdyn-py itself: its traceback, and not exit 1
-        import traceback
         traceback.print_exc()
         print("sloshdyn-py: internal error (a defect: please report it with the traceback "
               "above)", file=sys.stderr)
@@ -147,41 +148,14 @@ def _terminate(signum, frame):
 
 def _on_sigterm(handler):
     """Install a SIGTERM handler (main thread only; elsewhere nothing changes)."""
-    import signal
     if handler is None or threading.current_thread() is not threading.main_thread():
         return None
     return signal.signal(signal.SIGTERM, handler)
 
 
-def run_input(path, directory=None):
-    """Run a namelist file exactly as the executable does (the same reader, driver and writers,
-    through the bridge), then draw the figure of the analysis from the files written. The files
-    go to `directory` if given (sloshdyn.design_report), else to the file's &output directory.
-    Returns the input as read."""
-    try:
-        inp = read_namelist(path)
-    except SloshdynError as exc:
-        exc.reading = True
-        raise
-    out = Path(inp.directory if directory is None else directory)
-    status, message = app_call(_core.sloshdyn_bridge_input.run_input, os.fsencode(path),
-                               os.fsencode("" if directory is None else directory))
-    sys.stdout.flush()
-    check_status(status, message)
-    figure = _figure(inp, out)
-    if figure:
-        try:
-            save_figure(figure[1], out / figure[0])
-        except FileError as exc:
-            raise FileError(f"the result files in {out} are complete, the figure "
-                            f"{figure[0]} is not: {exc}", exc.status) from exc
-    return inp
-
-
 def run_study(path, scheduler=None, workers=None, progress=True):
     """Run the &study of a namelist file (read by the same reader as every input), print a
     summary and draw its figure (&study figure, default: beside the store)."""
-    from . import plotting, studies
     try:
         inp = read_namelist(path)
     except SloshdynError as exc:
@@ -210,7 +184,6 @@ def run_study(path, scheduler=None, workers=None, progress=True):
               f"roof impacts {int((ds.roof_impact == 1).sum())}; max |x1| = "
               f"{float(ds.max_x1.max()):.6g}")
     elif st["kind"] == "fragility":
-        import glob
         pattern = st["records"] if os.path.isabs(st["records"]) else str(base / st["records"])
         files = sorted(glob.glob(pattern))
         if not files:
@@ -221,8 +194,7 @@ def run_study(path, scheduler=None, workers=None, progress=True):
                                      damping=st["spectral_damping"], **common)
         hit = ds.roof_impact.values
         levels = np.broadcast_to(ds.intensity.values, hit.shape)
-        from .studies import FragilityFit
-        fit = FragilityFit(float(ds.fragility_median), float(ds.fragility_dispersion),
+        fit = studies.FragilityFit(float(ds.fragility_median), float(ds.fragility_dispersion),
                            float(ds.fragility_median_se), float(ds.fragility_dispersion_se), 0,
                            int((hit >= 0).sum()))
         fig = plotting.fragility(fit, levels[hit >= 0], hit[hit >= 0],
@@ -258,70 +230,6 @@ def run_study(path, scheduler=None, workers=None, progress=True):
     return 0
 
 
-def _table(path):
-    """A result CSV as {column: array} (text columns kept as lists of strings)."""
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    columns = {}
-    for k, name in enumerate(rows[0]):
-        values = [row[k] for row in rows[1:]]
-        try:
-            columns[name] = np.array([float(v) for v in values])
-        except ValueError:
-            columns[name] = values
-    return columns
-
-
-def _figure(inp, out):
-    """(file name, Figure) for the analyses that have one, from their result files."""
-    method = inp.integration.method_used
-    if inp.analysis == "simulate" and inp.planar:
-        t = _table(out / "history.csv")
-        sim = Simulation(t["tau"], np.array([t[k] for k in ("x1", "dx1", "x2", "dx2")]),
-                         np.array([t["u1"], t["u2"]]), t["impact_force"], t["theta"], t["phi"],
-                         0, 0, 0, float(t["tau"][-1]), method)
-        return "history.png", plotting.time_history(sim, ("x1", "x2", "impact_force"))
-    if inp.analysis == "seismic" and inp.planar:
-        from .seismic import SeismicResponse, seismic_defaults
-        t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
-        with open(out / "run_info.csv", newline="", encoding="utf-8") as info:
-            inp.ground_motion.name = next(csv.DictReader(info))["record"]
-        response = SeismicResponse._from_tables(
-            inp.tank, inp.ground_motion, np.array(list(t.values())),
-            np.array([column[0] for column in peaks.values()]),
-            seismic_defaults(inp.tank, inp.ground_motion, inp.seismic["t_end"] or None,
-                             inp.seismic["n_out"] or None).t_end, method)
-        return "seismic.png", plotting.seismic(response)
-    if inp.analysis == "stability_chart":
-        from .charts import chart_from_files
-        axes = inp.chart_range
-        chart = chart_from_files(out, axes["x"], axes["y"], axes["model"])
-        return "stability_chart.png", plotting.stability_chart(
-            chart, tank=inp.tank if inp.tank is not None and axes["x"] == "rho"
-            and axes["y"] == "A" else None)
-    if inp.analysis == "sweep" and inp.sweep["parameter"] == "frequency":
-        from .seismic import HarmonicSweep
-        t = _table(out / "harmonic_sweep.csv")
-        return "harmonic_sweep.png", plotting.harmonic_sweep(
-            HarmonicSweep._from_table(inp.tank, [], np.array(list(t.values())), None, method))
-    if inp.analysis == "sweep":
-        t = _table(out / "sweep.csv")
-        points = [_summary(np.array([column[k] for column in t.values()]), method)
-                  for k in range(len(t["rho"]))]
-        return "sweep.png", plotting.sweep(Sweep(inp.sweep["parameter"], points, None, method))
-    if inp.analysis == "frequency_response":
-        t = _table(out / "response.csv")
-        s = _table(out / "special_points.csv")
-        special = [SpecialPoint(kind, int(b), rho, A, a1, a2, f) for kind, b, rho, A, a1, a2, f
-                   in zip(s["kind"], s["branch"], s["rho"], s["A"], s["a1"], s["a2"],
-                          s["frequency"])]
-        response = FrequencyResponse(inp.response_range["parameter"],
-                                     inp.response_range["resonance"], t,
-                                     special, True, "")
-        return "response.png", plotting.frequency_response(response)
-    return None
-
-
 def reproduce(out, only=None, quick=False):
     """Every figure, values.json and report.md into `out`, renamed into place together at the
     end (a failed or interrupted run leaves none of its files)."""
@@ -330,7 +238,6 @@ def reproduce(out, only=None, quick=False):
 
 
 def _reproduce(out, only, quick):
-    from tqdm.auto import tqdm
     selected = only or list(figures.FIGURES)
     reproduced, values = [], {}
     start = time.time()

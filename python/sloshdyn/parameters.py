@@ -1,23 +1,18 @@
-"""Model parameters and the namelist input file.
-
-A namelist file is read by the Fortran reader of the executable, through the bridge: the groups,
-variables, defaults, rules and messages are the same for both front doors by construction
-(README.md, "Namelist reference").
-"""
+"""The dimensionless model of the paper (`Parameters`, eq 9-11) and the equivalent pendulum of
+a cylindrical tank (`tank_pendulum`, eq 2-3). Value types at the bottom of the package: they
+import no analysis (docs/architecture.md, "Python layers")."""
 
 from __future__ import annotations
 
 import dataclasses
-import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from . import _checks, _core, _tables
-from ._cancel import app_call
+from . import _checks, _core, _input, _tables
 from ._errors import InputError, check_status
 from ._files import atomic_path
-from ._settings import convert_fields, decode_all
+from ._settings import convert_fields
 
 #: the core's model_t defaults, by name
 _MODEL_DEFAULTS = {**_tables.defaults("model"), **_tables.defaults("model_integers")}
@@ -113,12 +108,14 @@ class Parameters:
 
     @classmethod
     def from_namelist(cls, path):
-        """The parameters described by a namelist file (either front door's input)."""
-        return read_namelist(path).params
+        """The parameters described by a namelist file (either front door's input; the whole
+        file is read and validated, as sloshdyn.read_namelist does)."""
+        arrays = _input.read_arrays(path)
+        return cls.from_array(arrays.rpar, arrays.ipar)
 
     def to_namelist(self, path):
         """Write &model and &excitation groups (written to a temporary name, then renamed)."""
-        import f90nml
+        import f90nml    # deferred: only writing needs it, and it adds ~30 ms to `import sloshdyn`
 
         groups = {
             "model": {name: getattr(self, name) for name in
@@ -156,118 +153,3 @@ def tank_pendulum(radius, liquid_depth, *, liquid_density=None,
     check_status(status, message)
     return TankPendulum(**{name: float(x)
                            for name, x in _tables.unpack("pendulum", pendulum).items()})
-
-
-@dataclass(frozen=True)
-class Input:
-    """A validated namelist input file: every settings group as its settings object (defaults
-    where the file has no such group), the other groups as dicts of their variables."""
-
-    params: Parameters
-    analysis: str = "linear"
-    sigma1: float = 0.0
-    kappa_min: float = 0.0
-    kappa_max: float | None = None
-    directory: str = "sloshdyn_output"
-    tank: object = None            #: seismic.Tank (from &tank), or None (&model)
-    ground_motion: object = None   #: seismic.GroundMotion (from &ground_motion, scaled), or None
-    seismic: dict = field(default_factory=dict)       #: &seismic: t_end [s], n_out (0: default)
-    chart: object = None          #: &chart's settings: charts.Chart
-    chart_range: dict = field(default_factory=dict)   #: &chart's model, x, y, x_range,
-                                                      #: y_range and threads (stability_chart's
-                                                      #: arguments)
-    integration: object = None    #: &integration: simulation.Integration
-    simulation: dict = field(default_factory=dict)    #: &simulation: t_end, n_out, y0
-    steady: object = None         #: &steady: simulation.Steady
-    sweep: dict = field(default_factory=dict)         #: &sweep: parameter, start, stop, ...
-    response: object = None       #: &response's settings: asymptotics.Continuation
-    response_range: dict = field(default_factory=dict)   #: &response's resonance, parameter,
-                                                         #: start, stop
-    lyapunov: object = None       #: &lyapunov: periodic.Lyapunov
-    study: dict = field(default_factory=dict)         #: &study (empty if none): kind, store, ...
-    planar: bool = True           #: &model or &tank planar (False: the spatial model, issue 26)
-    spatial: dict = field(default_factory=lambda: {"azimuth": 0.0, "ellipticity": 0.0})
-    #: &ground_motion's azimuth [rad] and ellipticity (sloshdyn.spatial.seismic_response_2d)
-    ground_motion_y: object = None  #: &ground_motion's record_y (scaled by the first's factor)
-    design: object = None         #: &design: sloshdyn.design.Design, or None (no &design)
-
-
-def read_namelist(path) -> Input:
-    """Read and validate a namelist input file with the executable's reader (same rules, defaults
-    and messages)."""
-    from .asymptotics import Continuation
-    from .charts import Chart
-    from .periodic import Lyapunov
-    from .seismic import GroundMotion, Tank
-    from .simulation import Integration, Steady
-    from .design import Design
-
-    path = _checks.path("path", path)
-    (rpar, ipar, analysis, values, directory, has_tank, tank_array, has_ground, ground, n_samples,
-     seismic, integration, steady, response, lyapunov, simulation, sweep, response_range, chart,
-     chart_range, study, store, figure, scheduler, study_records, planar, spatial, has_ground_y,
-     ground_y, n_samples_y, has_design, design, status,
-     message) = app_call(_core.sloshdyn_bridge_input.read_input, os.fsencode(path))
-    check_status(status, message)
-    tank = ground_motion = ground_motion_y = None
-    if has_tank:
-        tank = Tank.from_array(tank_array)
-
-    def ground_of(component, array, n):
-        samples = np.zeros(0)
-        if n > 0:
-            samples, status, message = app_call(_core.sloshdyn_bridge_input.input_record,
-                                                os.fsencode(path), component, n)
-            check_status(status, message)
-        return GroundMotion._from_arrays(array, samples.copy())
-
-    if has_ground:
-        ground_motion = ground_of(1, ground, n_samples)
-    if has_ground_y:
-        ground_motion_y = ground_of(2, ground_y, n_samples_y)
-    sweep = decode_all("sweep", sweep)
-    simulation = decode_all("simulation", simulation)
-    chart_range = decode_all("chart_range", chart_range)
-    return Input(
-        params=Parameters.from_array(rpar, ipar),
-        analysis=_tables.codes("analyses")[int(analysis)],
-        **decode_all("analysis", values),
-        directory=_tables._text(directory), tank=tank, ground_motion=ground_motion,
-        seismic=decode_all("seismic", seismic),
-        chart=Chart.from_array(chart),
-        chart_range={"model": chart_range["model"], "x": chart_range["x"], "y": chart_range["y"],
-                     "x_range": (chart_range["x_min"], chart_range["x_max"]),
-                     "y_range": (chart_range["y_min"], chart_range["y_max"]),
-                     "threads": chart_range["threads"]},
-        integration=Integration.from_array(integration),
-        simulation={"t_end": simulation["t_end"], "n_out": simulation["n_out"],
-                    "y0": [simulation[f"y0_{i}"] for i in range(1, 5 if planar else 9)]},
-        steady=Steady.from_array(steady),
-        sweep={"start_from": "previous" if sweep.pop("carry_state") else "y0", **sweep},
-        response=Continuation.from_array(response),
-        response_range=decode_all("response_range", response_range),
-        lyapunov=Lyapunov.from_array(lyapunov),
-        study=_study(study, store, figure, scheduler, study_records), planar=bool(planar),
-        spatial=decode_all("spatial", spatial), ground_motion_y=ground_motion_y,
-        design=Design.from_array(design) if has_design else None)
-
-
-def _study(values, store, figure, scheduler, records):
-    """&study as a dict (empty when the file has none)."""
-    values = decode_all("study", values)
-    if not values["given"]:
-        return {}
-    kind = values["kind"]
-    study = {"kind": kind, "store": _tables._text(store), "figure": _tables._text(figure),
-             "scheduler": _tables._text(scheduler),
-             **{name: values[name] for name in ("workers", "worker_kind", "points_per_task")}}
-    fields = {"response_map": ("frequency_start", "frequency_stop", "n_frequencies",
-                               "amplitude_start", "amplitude_stop", "n_amplitudes",
-                               "continuation"),
-              "basins": ("x1_start", "x1_stop", "dx1_start", "dx1_stop", "n_grid", "tol"),
-              "fragility": ("intensity_start", "intensity_stop", "n_intensities",
-                            "spectral_damping")}[kind]
-    study.update({name: values[name] for name in fields})
-    if kind == "fragility":
-        study["records"] = _tables._text(records)
-    return study

@@ -13,24 +13,13 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import InputError, check_status, message_text, with_partial
-from .asymptotics import Continuation, continuation_array, continuation_range
+from .asymptotics import continuation_array, continuation_range
 from .model import linear_modes
-from ._settings import settings
+from .options import Continuation, Integration, Lyapunov, Shooting
 from .parameters import Parameters
-from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_periodic
 KINDS = _tables.codes("special")
-
-
-@settings("shooting")
-class Shooting:
-    """Settings of the Newton shooting for a periodic orbit."""
-
-
-@settings("lyapunov")
-class Lyapunov:
-    """Settings of the Lyapunov exponents (&lyapunov), in forcing periods."""
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,8 @@ if not os.environ.get("DISPLAY") and not os.environ.get("MPLBACKEND"):
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .ground import DesignSpectrum  # noqa: E402
+
 _LABELS = {"x1": r"$x_1 = \theta/\theta_0$", "x2": r"$x_2 = \varphi/\theta_0$",
            "u1": r"$u_1$", "u2": r"$u_2$", "theta": r"$\theta$ [rad]", "phi": r"$\varphi$ [rad]",
            "impact_force": r"impact force $\beta x_1^{2n-1}$"}
@@ -488,7 +490,6 @@ def design_spectrum(spectra, dampings=(5.0, 0.5), t_max=10.0):
     """Design spectra (a sloshdyn.DesignSpectrum or a list of them), Sa [g] against the period
     T [s] up to t_max, one curve per spectrum and damping [%] (EN 1998-1's elastic spectrum
     ends at 4 s)."""
-    from .design import DesignSpectrum
     spectra = [spectra] if isinstance(spectra, DesignSpectrum) else list(spectra)
     fig, ax = plt.subplots(figsize=(7, 4))
     for spec in spectra:

@@ -1,5 +1,5 @@
 """The hydrodynamic pressure on the wall and the base of a rigid circular tank under a horizontal
-acceleration (`wall_pressure`, `Tank.wall_pressure`): impulsive and convective (modes 1..N)
+acceleration (`wall_pressure`): impulsive and convective (modes 1..N)
 closed forms of potential flow (EN 1998-4 Annex A.2.1, Veletsos), the hoop force per unit
 height, and the resultants of each component. Every number comes from the Fortran core
 (sloshdyn_wall_pressure, the tables 'wall_pressure', 'base_pressure' and
@@ -15,9 +15,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _checks, _core, _tables
+from ._tables import column_name
 from ._cancel import cancellable
 from ._errors import check_status
-from .simulation import Integration
+from .options import Integration
+from .ground import ground_arrays
+from .seismic import SeismicResponse
+from .tank import Tank
 
 _bridge = _core.sloshdyn_bridge_pressure
 #: points of the default profiles: evenly spaced heights on the wall and radii on the base
@@ -25,12 +29,9 @@ DEFAULT_HEIGHTS = 41
 DEFAULT_RADII = 21
 
 
-def _name(column):
-    return column.split(" [")[0]
-
 
 def _units(table):
-    return {_name(c): c.split(" [")[1].rstrip("]") for c in _tables.columns(table) if " [" in c}
+    return {column_name(c): c.split(" [")[1].rstrip("]") for c in _tables.columns(table) if " [" in c}
 
 
 @dataclass(frozen=True)
@@ -97,7 +98,7 @@ class WallPressure(_Profiles):
     def plot(self):
         """The pressure profile on the wall: impulsive, convective and total [kPa] against the
         height [m] (a matplotlib Figure)."""
-        from . import plotting   # noqa: F401  sets the Agg backend when headless
+        from . import plotting   # noqa: F401  the plot extra; sets the Agg backend when headless
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(5, 5))
         for name, style in (("impulsive_pressure", "-"), ("convective_pressure", "--"),
@@ -121,12 +122,13 @@ class WallPressure(_Profiles):
 
 def wall_pressure(tank, impulsive_acceleration, convective_accelerations=(), *, heights=None,
                   radii=None, angle=0.0, combination="srss") -> WallPressure:
-    """The hydrodynamic pressure of a rigid circular `tank` (a seismic.Tank) under the
+    """The hydrodynamic pressure of a rigid circular `tank` (a sloshdyn.Tank) under the
     impulsive acceleration A_g [m/s^2] (the tank's, e.g. the impulsive spectral acceleration)
     and the convective accelerations A_1..A_N [m/s^2] of sloshing modes 1..N (N <= 10, e.g.
     their convective spectral accelerations; independent of tank.modes), on the wall at
     `heights` [m] (default 41 evenly spaced from the bottom to the surface) and on the base
     at `radii` [m] (default 21 from the axis to the wall), at `angle` [rad] (WallPressure)."""
+    _checks.instance("tank", tank, Tank)
     a_g = _checks.real("impulsive_acceleration", impulsive_acceleration)
     a_n = _checks.reals("convective_accelerations", convective_accelerations, ndim=1)
     theta = _checks.real("angle", angle)
@@ -139,10 +141,10 @@ def wall_pressure(tank, impulsive_acceleration, convective_accelerations=(), *, 
     wall, base, resultants, status, message = _bridge.pressure_tables(
         tank.array(), a_g, a_n, theta, _tables.code("pressure_combinations", combination), z, r)
     check_status(status, message)
-    profile = {_name(c): row.copy() for c, row in zip(_tables.columns("wall_pressure"), wall)}
-    floor = {("base_" + _name(c) if _name(c) != "r" else "r"): row.copy()
+    profile = {column_name(c): row.copy() for c, row in zip(_tables.columns("wall_pressure"), wall)}
+    floor = {("base_" + column_name(c) if column_name(c) != "r" else "r"): row.copy()
              for c, row in zip(_tables.columns("base_pressure"), base)}
-    parts = {_name(c): row for c, row in zip(_tables.columns("pressure_resultants"), resultants)}
+    parts = {column_name(c): row for c, row in zip(_tables.columns("pressure_resultants"), resultants)}
     return WallPressure(
         tank=tank, impulsive_acceleration=a_g, convective_accelerations=a_n.copy(), angle=theta,
         combination=combination, **profile, **floor,
@@ -184,7 +186,6 @@ def seismic_pressures(response, *, integration: Integration = Integration(), tim
     its base shear and overturning moment peaks. The run is integrated again on its output
     times; each instant is the output time nearest the requested one (a peak of a run with one
     mode lies between output times)."""
-    from .seismic import SeismicResponse, _ground_arrays
     _checks.instance("response", response, SeismicResponse)
     _checks.instance("integration", integration, Integration)
     tank = response.tank
@@ -196,17 +197,17 @@ def seismic_pressures(response, *, integration: Integration = Integration(), tim
     r = (np.linspace(0.0, tank.radius, DEFAULT_RADII) if radii is None
          else _checks.reals("radii", radii, ndim=1))
     theta = _checks.real("angle", angle)
-    ground, samples = _ground_arrays(response.ground_motion)
+    ground, samples = ground_arrays(response.ground_motion)
     instants, modal, wall, base, status, message = cancellable(
         _bridge.seismic_pressures, tank.array(), ground, samples, response.t_end, len(response.t),
         integration.array(), times, z, r, theta)
     check_status(status, message)
-    columns = {_name(c): row.copy() for c, row in zip(_tables.columns("pressure_instants"),
+    columns = {column_name(c): row.copy() for c, row in zip(_tables.columns("pressure_instants"),
                                                       instants)}
-    profile = {_name(c): wall[j].T.copy()
-               for j, c in enumerate(_tables.columns("wall_pressure")) if _name(c) != "z"}
-    floor = {"base_" + _name(c): base[j].T.copy()
-             for j, c in enumerate(_tables.columns("base_pressure")) if _name(c) != "r"}
+    profile = {column_name(c): wall[j].T.copy()
+               for j, c in enumerate(_tables.columns("wall_pressure")) if column_name(c) != "z"}
+    floor = {"base_" + column_name(c): base[j].T.copy()
+             for j, c in enumerate(_tables.columns("base_pressure")) if column_name(c) != "r"}
     return SeismicPressures(times=times.copy(), mode_accelerations=modal[:tank.modes].T.copy(),
                             angle=theta, z=z.copy(), r=r.copy(), **columns, **profile, **floor,
                             method=integration.method_used)

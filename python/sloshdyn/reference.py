@@ -16,9 +16,11 @@ from . import figures
 from ._errors import InputError
 from ._files import file_error
 from .asymptotics import frequency_response, modal_coefficients
-from .model import kappa_for_detuning, linear_modes
+from .model import equilibrium_angles, frequency_ratio, kappa_for_detuning, linear_modes
+from .options import Lyapunov, Steady
 from .parameters import Parameters
-from .simulation import Steady, spectrum, simulate, steady_state
+from .periodic import lyapunov_exponent, periodic_response
+from .simulation import spectrum, simulate, steady_state
 
 #: the reference tables shipped with the package (a copy of data/reference and docs/errata.md)
 PACKAGE_REFERENCE = Path(__file__).parent / "reference"
@@ -195,7 +197,6 @@ def _linear(quick):
 
 
 def _equilibria(quick):
-    from .model import equilibrium_angles
     values = {"fig4_beta_hat_b": figures._beta_hat_bifurcation(),
               "fig6_pitchfork_kappa_hat": figures._pitchfork()}
     for b in (0.005, 0.08):
@@ -270,7 +271,6 @@ def _fig17(quick):
 
 def _computed(quick):
     """The quantities of computed_values.csv."""
-    from .model import frequency_ratio
     p = figures.FIG12
     response = frequency_response(p, (0.49, 0.53))
     values = {}
@@ -301,15 +301,12 @@ def _slow_flow_point(response, rho):
 
 
 def _full_model(quick):
-    from .periodic import periodic_response
     branch = periodic_response(figures.FIG12.replace(rho=0.50), (0.50, 0.52))
     ns = sorted(s.rho for s in branch.special_points if s.kind == "neimark_sacker")
     return {f"full_ns_rho_{i + 1}": r for i, r in enumerate(ns)}
 
 
 def _lyapunov(quick):
-    from .periodic import Lyapunov, lyapunov_exponent
-    from .simulation import Steady
     values = {}
     for name, p, steady in (("lyapunov_fig14", figures.FIG12, Steady(settle_tol=0, transient_periods=5000)),
                             ("lyapunov_fig15", figures.FIG12.replace(rho=0.513), Steady()),

@@ -16,8 +16,9 @@ masses in t, accelerations in g), with 5 significant digits.
 from __future__ import annotations
 
 import base64
-import csv
 import contextlib
+import csv
+import dataclasses
 import datetime
 import hashlib
 import html
@@ -33,6 +34,9 @@ import numpy as np
 
 from ._errors import InputError, SloshdynError
 from ._files import file_error, run_directory, save_figure, write_csv, write_text
+from ._version import __version__
+from .namelist import read_namelist
+from .runner import run_input
 
 #: significant digits of every number of the sheet computed by sloshdyn, and of the inputs
 DIGITS, INPUT_DIGITS = 5, 12
@@ -353,7 +357,7 @@ def _sha256(path):
 
 def _record_files(path):
     """The record files of &ground_motion (record, record_y), relative to the input's folder."""
-    import f90nml
+    import f90nml    # deferred: only the sheet needs it, and it adds ~30 ms to `import sloshdyn`
     group = f90nml.read(path).get("ground_motion", {})
     folder = Path(path).resolve().parent
     return [folder / group[name] for name in ("record", "record_y")
@@ -393,7 +397,6 @@ def _inputs_table(inp):
     """inputs.csv: the values the reader read (defaults included) of &tank, &ground_motion's
     direction (two components), &seismic and &integration (with a ground motion) and &design,
     with their units; the ground motion itself is in motion.csv."""
-    import dataclasses
     values = [("tank", f.name, getattr(inp.tank, f.name)) for f in dataclasses.fields(inp.tank)]
     values.append(("tank", "planar", ".true." if inp.planar else ".false."))
     if not inp.planar:
@@ -444,7 +447,7 @@ def _spectrum_table(inp):
 def _figures(out, spatial, freeboard, seismic=True):
     """The sheet's figures, from the CSV files in `out`: [(file, caption)]; those of the
     seismic run when seismic, else the design spectrum's."""
-    import matplotlib
+    import matplotlib    # the plot extra: only where the sheet draws its figures
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
@@ -576,10 +579,6 @@ def design_report(input, out) -> CalcSheet:
     it; a failed run writes none of its files and leaves an earlier sheet with its own). Only a
     tank under ground motion, or a tank with &design, is reported (SUPPORTED); other inputs
     raise InputError."""
-    from .cli import run_input
-    from .parameters import read_namelist
-    from . import __version__
-
     path = Path(os.fsdecode(input))
     out = Path(os.fsdecode(out))
     try:

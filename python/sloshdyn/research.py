@@ -14,11 +14,10 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import ConvergenceError, InputError, SloshdynError, check_status, message_text
-from .asymptotics import (Continuation, continuation_array, continuation_range, frequency_response,
+from .asymptotics import (continuation_array, continuation_range, frequency_response,
                           slow_flow_cycle)
+from .options import Continuation, Integration, Lyapunov
 from .parameters import Parameters
-from .periodic import Lyapunov
-from .simulation import Integration
 
 _bridge = _core.sloshdyn_bridge_research
 KINDS = _tables.codes("special")
@@ -226,7 +225,7 @@ def plot_beats(response, cycles: SlowFlowCycles):
     states: modal amplitudes, x = P u, x1 = theta/theta0), the band min..max of |B1| and |B2| over each slow-flow
     cycle shaded between its Hopf points, and a third panel with the beat period in forcing
     periods T = 2 pi/rho."""
-    from . import plotting
+    from . import plotting    # the plot extra (matplotlib): only where a figure is drawn
     import matplotlib.pyplot as plt
 
     _checks.instance("cycles", cycles, SlowFlowCycles)

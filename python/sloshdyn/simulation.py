@@ -11,30 +11,13 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import InputError, IntegrationError, check_status
-from ._settings import settings
+from .options import Integration, Steady
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_simulation
 MOTIONS = _tables.codes("motion")
 METHODS = {name: code for code, name in _tables.codes("methods").items()}
 SUMMARY_COLUMNS = _tables.columns("summary")
-
-
-@settings("integration")
-class Integration:
-    """Settings of the integrators (&integration)."""
-
-    @property
-    def method_used(self):
-        """The method that runs: ``method``, or for 'auto' the one the core picks for rtol
-        (rk45 at loose, dop853 at medium, vern9 at tight tolerances; benchmarks/README.md)."""
-        return _tables.codes("methods")[int(_bridge.method_used(self.array()))]
-
-
-@settings("steady")
-class Steady:
-    """How a steady state is reached and measured (&steady); times in forcing periods
-    T = 2 pi/rho."""
 
 
 @dataclass(frozen=True)
@@ -244,7 +227,7 @@ def run_sweep(label, values, y0, progress, threads, start_from, run, partial, me
     points, extras = [], []
     bar = None
     if progress:
-        from tqdm.auto import tqdm
+        from tqdm.auto import tqdm    # deferred: it adds ~0.1 s to `import sloshdyn`
         bar = tqdm(total=len(values), desc=f"sweep in {label}", unit="point")
     try:
         # one point per Fortran call when the state is carried, so progress shows; independent

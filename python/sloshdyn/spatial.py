@@ -18,10 +18,13 @@ import numpy as np
 from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import check_status, message_text, with_partial
-from .asymptotics import Continuation
+from .ground import GroundMotion
+from .options import Continuation, Integration, Shooting
 from .parameters import Parameters
-from .periodic import PERIODIC_CONTINUATION, Shooting, branch_start, periodic_orbit
-from .simulation import Integration, _counts, _output_times
+from .periodic import PERIODIC_CONTINUATION, branch_start, periodic_orbit
+from .seismic import seismic_defaults
+from .simulation import _counts, _output_times
+from .tank import Tank
 
 _bridge = _core.sloshdyn_bridge_spatial
 
@@ -276,7 +279,6 @@ def seismic_response_2d(tank, ground_motion, ground_motion_2=None, t_end=None, n
     factor, as FEMA P695 does, before passing them), or (ground_motion harmonic,
     ground_motion_2 None) harmonic motion with ``ellipticity`` (the minor axis of the ellipse
     over the major). t_end and n_out default as for ``seismic_response`` of ground_motion."""
-    from .seismic import GroundMotion, Tank, seismic_defaults
     _checks.instance("tank", tank, Tank)
     _checks.instance("ground_motion", ground_motion, GroundMotion)
     _checks.instance("integration", integration, Integration)

@@ -218,8 +218,8 @@ def test_api650_and_aci350_loads_from_the_asce7_spectrum(name, t_i):
     g, m_L = tank.gravity, math.pi * R**2 * H * 1000
     h_t = (H + geometry["freeboard"]) / 2
     t_l = 8.0
-    check = tank.design_check(DesignSpectrum.asce7(s_ds=S_DS, s_d1=S_D1, t_l=t_l),
-                              design=Design(impulsive_period=t_i, **FACTORS))
+    check = sloshdyn.design_check(tank, DesignSpectrum.asce7(s_ds=S_DS, s_d1=S_D1, t_l=t_l),
+                                  design=Design(impulsive_period=t_i, **FACTORS))
     assert set(check.loads) == {"API 650", "ACI 350.3", "sloshdyn linear"}
     # API 650
     T_c, w_i, w_c, heights = api650_parameters(R, H)
@@ -252,8 +252,9 @@ def test_ec8_loads_from_the_ec8_spectrum(name, t_i):
     R, H, m_t = geometry["radius"], geometry["liquid_depth"], geometry["tank_mass"]
     g, m_L = tank.gravity, math.pi * R**2 * H * 1000
     h_t = (H + geometry["freeboard"]) / 2
-    check = tank.design_check(DesignSpectrum.ec8(a_gr=0.25, ground_type="C", gamma_i=1.2,
-                                                 q=1.5), design=Design(impulsive_period=t_i))
+    check = sloshdyn.design_check(tank, DesignSpectrum.ec8(a_gr=0.25, ground_type="C",
+                                                           gamma_i=1.2, q=1.5),
+                                  design=Design(impulsive_period=t_i))
     assert set(check.loads) == {"EC8-4", "sloshdyn linear"}
     T_c, w_i, w_c, heights = ec8_parameters(R, H, g)
     a_g = 1.2 * 0.25
@@ -286,8 +287,8 @@ def test_freeboard_api650_by_use_group_and_aci350(geometry, use_group, s_ds, t_l
     tank = make_tank(**geometry)
     R, f = geometry["radius"], geometry["freeboard"]
     importance = {1: 1.0, 2: 1.25, 3: 1.5}[use_group]
-    check = tank.design_check(DesignSpectrum.asce7(s_ds=s_ds, s_d1=0.6, t_l=t_l),
-                              design=Design(importance=importance, use_group=use_group))
+    check = sloshdyn.design_check(tank, DesignSpectrum.asce7(s_ds=s_ds, s_d1=0.6, t_l=t_l),
+                                  design=Design(importance=importance, use_group=use_group))
     T_c = api650_parameters(R, geometry["liquid_depth"])[0]
     limit = t_l if use_group == 3 else 4.0
     A_f = 1.5 * 0.6 * importance * (1 / T_c if T_c <= limit else limit / T_c**2)
@@ -314,7 +315,7 @@ def test_a_freeboard_equal_to_the_required_one_is_sufficient(factor, sufficient)
     T_c = aci350_parameters(5.0, 6.0, 9.80665)[0]
     d_max = 5.0 * aci_cc(T_c, 1.0, 0.6)
     tank = make_tank(**dict(BROAD, freeboard=d_max * factor))
-    check = tank.design_check(DesignSpectrum.aci350(s_ds=1.0, s_d1=0.6))
+    check = sloshdyn.design_check(tank, DesignSpectrum.aci350(s_ds=1.0, s_d1=0.6))
     assert check.freeboard["ACI 350.3"]["required_freeboard"] == pytest.approx(d_max, rel=1e-12)
     assert check.sufficient["ACI 350.3"] is sufficient
 
@@ -390,6 +391,11 @@ def test_design_spectrum_figure():
 
 # --- bad input --------------------------------------------------------------------------------
 
+
+def asce7_site():
+    """The ASCE 7 site of the broad tank's checks (S_DS 1.0 g, S_D1 0.6 g, T_L 8 s)."""
+    return DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8)
+
 @pytest.mark.parametrize("make, words", [
     (lambda: DesignSpectrum.asce7(s_ds=-1.0, s_d1=0.6, t_l=8), ["s_ds = -1", "(0, 10]",
                                                                "11.4.5"]),
@@ -403,19 +409,19 @@ def test_design_spectrum_figure():
     (lambda: DesignSpectrum.ec8(a_gr=0.2, q=0.5), ["q = 0.5", "[1, 8]"]),
     (lambda: DesignSpectrum.ec8(a_gr=0.2, ground_type="F"), ["ground_type", "'F'"]),
     (lambda: DesignSpectrum.ec8(a_gr=0.2, spectrum_type=3), ["spectrum_type = 3", "1 or 2"]),
-    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8),
-                                             design=Design(use_group=4)),
+    (lambda: sloshdyn.design_check(make_tank(**BROAD), asce7_site(), design=Design(use_group=4)),
      ["use_group = 4", "1, 2 or 3", "E.3.1"]),
-    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8),
-                                             design=Design(r_wi=0.0)), ["r_wi = 0", "Table E-4"]),
-    (lambda: make_tank(**BROAD).design_check(DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8),
-                                             design=Design(impulsive_damping=2.0)),
+    (lambda: sloshdyn.design_check(make_tank(**BROAD), asce7_site(), design=Design(r_wi=0.0)),
+     ["r_wi = 0", "Table E-4"]),
+    (lambda: sloshdyn.design_check(make_tank(**BROAD), asce7_site(),
+                                   design=Design(impulsive_damping=2.0)),
      ["damping = 2", "5 or 0.5"]),
-    (lambda: make_tank(**BROAD).design_check(design=Design(spectrum="ground_motion")),
+    (lambda: sloshdyn.design_check(make_tank(**BROAD), design=Design(spectrum="ground_motion")),
      ["needs the ground motion"]),
-    (lambda: make_tank(**BROAD).design_check(design=Design()), ["s_ds = 0", "(0, 10]"]),
-    (lambda: make_tank(radius=30.0, liquid_depth=10.0, freeboard=2.0, tank_mass=1e5)
-     .design_check(DesignSpectrum.ec8(a_gr=0.2)), ["period = ", "T <= 4 s"]),
+    (lambda: sloshdyn.design_check(make_tank(**BROAD), design=Design()), ["s_ds = 0", "(0, 10]"]),
+    (lambda: sloshdyn.design_check(make_tank(radius=30.0, liquid_depth=10.0, freeboard=2.0,
+                                             tank_mass=1e5), DesignSpectrum.ec8(a_gr=0.2)),
+     ["period = ", "T <= 4 s"]),
 ])
 def test_bad_design_input_names_the_variable_value_and_clause(make, words):
     with pytest.raises(sloshdyn.InputError) as info:
@@ -439,7 +445,7 @@ def test_executable_writes_design_loads_and_freeboard_check(exe, tmp_path, examp
     assert "Design check" in result.stdout
     out = tmp_path / "sloshdyn_output" / example
     inp = sloshdyn.read_namelist(EXAMPLES / f"{example}.nml")
-    check = inp.tank.design_check(design=inp.design)
+    check = sloshdyn.design_check(inp.tank, design=inp.design)
     for name, rows in (("design_loads.csv", check.loads),
                        ("freeboard_check.csv", check.freeboard)):
         lines = read_csv(out / name)

@@ -12,7 +12,7 @@ import numpy as np
 from .. import _checks, _core
 from .._errors import InputError
 from ..parameters import Parameters
-from ..simulation import Integration, Steady
+from ..options import Integration, Steady
 from .engine import SECONDS, Plan, Variable, positive_int, run_plan, version
 from .points import (MAX_PERIOD, MOTIONS, SUMMARY_COLUMNS, common_attrs, orbit_rows,
                      settings_arrays, summary_variables, unpack)

@@ -28,6 +28,7 @@ import numpy as np
 
 from .. import _checks, _tables
 from .._errors import FileError, InputError
+from .._version import __version__
 from .._extras import require
 
 #: points per task unless told: about 8 tasks per worker for the load balance, within these
@@ -133,8 +134,7 @@ def auto_points_per_task(n_points, n_workers):
 
 
 def version():
-    import sloshdyn
-    return sloshdyn.__version__
+    return __version__
 
 
 def _fingerprint(spec):

@@ -16,7 +16,9 @@ import numpy as np
 from .. import _checks, _core, _tables
 from .._errors import InputError
 from .._extras import require
-from ..simulation import Integration
+from ..ground import GroundMotion, acceleration_factor
+from ..options import Integration
+from ..tank import Tank
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
 
 _bridge = _core.sloshdyn_bridge_seismic
@@ -113,7 +115,6 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
     records: GroundMotion objects or record files (PEER .AT2 or two columns, read with
     GroundMotion.from_file). Returns a Dataset with dimensions (record, intensity), written to
     the Zarr store `store` as tasks finish; engine, resumption and errors as response_map."""
-    from ..seismic import GroundMotion, Tank, acceleration_factor
     if not isinstance(tank, Tank):
         raise InputError(f"tank = {type(tank).__name__} is not valid: give a sloshdyn.Tank")
     if isinstance(records, (str, os.PathLike, GroundMotion)):

@@ -11,8 +11,10 @@ import time
 import numpy as np
 
 from .._errors import InputError, SloshdynError
+from ..options import Integration, Lyapunov, Steady
 from ..parameters import Parameters
-from ..simulation import Integration, Steady
+from ..periodic import lyapunov_exponent
+from ..simulation import amplitude_sweep
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
 from .points import MOTION_ATTRS, MOTION_CODES, MOTIONS, common_attrs, settings_arrays
 
@@ -29,8 +31,6 @@ def _impact_task(params, betas, deltas, A_values, steady, integration, lyapunov)
     """One task of an impact-parameter study: at each (beta, delta) of the block, the carried
     continuation along A_values from rest (amplitude_sweep) and the largest Lyapunov exponent
     at the last A from the continuation's final state. Runs on a worker."""
-    from ..periodic import Lyapunov, lyapunov_exponent
-    from ..simulation import amplitude_sweep
     start = time.perf_counter()
     shape, n_a = (len(betas), len(deltas)), len(A_values)
     out = {"max_x1": np.full(shape + (n_a,), np.nan), "motion": np.zeros(shape + (n_a,), np.int8),

@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import _tables
 from .._errors import InputError
-from ..simulation import Integration, Steady
+from ..options import Integration, Steady
 from .engine import Variable, version
 
 SUMMARY_COLUMNS = _tables.columns("summary")

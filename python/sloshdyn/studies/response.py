@@ -11,8 +11,10 @@ import numpy as np
 
 from .. import _checks, _core, _tables
 from .._errors import InputError
+from ..ground import GroundMotion
+from ..options import Integration, Steady
 from ..parameters import Parameters
-from ..simulation import Integration, Steady
+from ..tank import Tank
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
 from .points import (SUMMARY_COLUMNS, common_attrs, orbit_rows, settings_arrays,
                      summary_variables, unpack)
@@ -56,7 +58,6 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
 def _tank_grid(tank, f, a, units):
     """(rho, A) at every (frequency [Hz], peak ground acceleration [units]) of a tank at
     constant acceleration, as Tank.parameters gives them for harmonic ground motion."""
-    from ..seismic import GroundMotion
     rho = np.empty((len(f), len(a)))
     amplitude = np.empty_like(rho)
     for i, fi in enumerate(f):
@@ -91,7 +92,6 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     one per core) of kind `worker_kind` ('threads' by default, 'processes'). Rerunning the same
     study on the same store resumes it; a store made by a different study is refused
     (InputError). See docs/studies.md."""
-    from ..seismic import Tank
     tank = None
     f = axis("frequencies", frequencies, 0.0)
     a = axis("amplitudes", amplitudes, 0.0, lower_open=False)

@@ -1,0 +1,110 @@
+"""The run of a namelist input file, exactly as the executable runs it (the same reader, driver
+and writers, through the bridge), then the figure of its analysis drawn from the files written.
+The command line (`sloshdyn-py run`) and the calc sheet (sloshdyn.report) both run inputs here;
+it stands above the namelist reader and the analyses (docs/architecture.md, "Python layers")."""
+
+from __future__ import annotations
+
+import csv
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ._cancel import app_call
+from . import _core
+from ._errors import FileError, SloshdynError, check_status
+from ._files import save_figure
+from .asymptotics import FrequencyResponse, SpecialPoint
+from .charts import chart_from_files
+from .namelist import read_namelist
+from .seismic import HarmonicSweep, SeismicResponse, seismic_defaults
+from .simulation import Simulation, Sweep, _summary
+
+
+def run_input(path, directory=None):
+    """Run a namelist file exactly as the executable does (the same reader, driver and writers,
+    through the bridge), then draw the figure of the analysis from the files written. The files
+    go to `directory` if given (sloshdyn.design_report), else to the file's &output directory.
+    Returns the input as read."""
+    try:
+        inp = read_namelist(path)
+    except SloshdynError as exc:
+        exc.reading = True
+        raise
+    out = Path(inp.directory if directory is None else directory)
+    status, message = app_call(_core.sloshdyn_bridge_input.run_input, os.fsencode(path),
+                               os.fsencode("" if directory is None else directory))
+    sys.stdout.flush()
+    check_status(status, message)
+    figure = _figure(inp, out)
+    if figure:
+        try:
+            save_figure(figure[1], out / figure[0])
+        except FileError as exc:
+            raise FileError(f"the result files in {out} are complete, the figure "
+                            f"{figure[0]} is not: {exc}", exc.status) from exc
+    return inp
+
+
+def _table(path):
+    """A result CSV as {column: array} (text columns kept as lists of strings)."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    columns = {}
+    for k, name in enumerate(rows[0]):
+        values = [row[k] for row in rows[1:]]
+        try:
+            columns[name] = np.array([float(v) for v in values])
+        except ValueError:
+            columns[name] = values
+    return columns
+
+
+def _figure(inp, out):
+    """(file name, Figure) for the analyses that have one, from their result files."""
+    from . import plotting     # the plot extra (matplotlib): only where a figure is drawn
+    method = inp.integration.method_used
+    if inp.analysis == "simulate" and inp.planar:
+        t = _table(out / "history.csv")
+        sim = Simulation(t["tau"], np.array([t[k] for k in ("x1", "dx1", "x2", "dx2")]),
+                         np.array([t["u1"], t["u2"]]), t["impact_force"], t["theta"], t["phi"],
+                         0, 0, 0, float(t["tau"][-1]), method)
+        return "history.png", plotting.time_history(sim, ("x1", "x2", "impact_force"))
+    if inp.analysis == "seismic" and inp.planar:
+        t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
+        with open(out / "run_info.csv", newline="", encoding="utf-8") as info:
+            inp.ground_motion.name = next(csv.DictReader(info))["record"]
+        response = SeismicResponse._from_tables(
+            inp.tank, inp.ground_motion, np.array(list(t.values())),
+            np.array([column[0] for column in peaks.values()]),
+            seismic_defaults(inp.tank, inp.ground_motion, inp.seismic["t_end"] or None,
+                             inp.seismic["n_out"] or None).t_end, method)
+        return "seismic.png", plotting.seismic(response)
+    if inp.analysis == "stability_chart":
+        axes = inp.chart_range
+        chart = chart_from_files(out, axes["x"], axes["y"], axes["model"])
+        return "stability_chart.png", plotting.stability_chart(
+            chart, tank=inp.tank if inp.tank is not None and axes["x"] == "rho"
+            and axes["y"] == "A" else None)
+    if inp.analysis == "sweep" and inp.sweep["parameter"] == "frequency":
+        t = _table(out / "harmonic_sweep.csv")
+        return "harmonic_sweep.png", plotting.harmonic_sweep(
+            HarmonicSweep._from_table(inp.tank, [], np.array(list(t.values())), None, method))
+    if inp.analysis == "sweep":
+        t = _table(out / "sweep.csv")
+        points = [_summary(np.array([column[k] for column in t.values()]), method)
+                  for k in range(len(t["rho"]))]
+        return "sweep.png", plotting.sweep(Sweep(inp.sweep["parameter"], points, None, method))
+    if inp.analysis == "frequency_response":
+        t = _table(out / "response.csv")
+        s = _table(out / "special_points.csv")
+        special = [SpecialPoint(kind, int(b), rho, A, a1, a2, f) for kind, b, rho, A, a1, a2, f
+                   in zip(s["kind"], s["branch"], s["rho"], s["A"], s["a1"], s["a2"],
+                          s["frequency"])]
+        response = FrequencyResponse(inp.response_range["parameter"],
+                                     inp.response_range["resonance"], t,
+                                     special, True, "")
+        return "response.png", plotting.frequency_response(response)
+    return None
