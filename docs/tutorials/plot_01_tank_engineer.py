@@ -46,7 +46,7 @@ print(f"wall angle theta0 {tank.theta0:.3f} rad (where the pendulum meets the ro
 # files, in g unless told. The record here is the project's synthetic example (Kanai-Tajimi
 # noise, *not* a recorded earthquake, ``data/examples/records/make_synthetic_record.py``), 30 s
 # at 0.01 s, peak 0.30 g. Sloshing responds at the long convective period with about 0.5 %
-# damping (the value the design codes use for sloshing, ``sloshdyn.seismic.CONVECTIVE_DAMPING``),
+# damping (the value the design codes use for sloshing, ``sloshdyn.ground.CONVECTIVE_DAMPING``),
 # so that is where the spectrum matters; here the record is scaled so that its
 # pseudo-spectral acceleration at the sloshing period is 0.2 g.
 

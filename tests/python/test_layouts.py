@@ -13,12 +13,10 @@ import pytest
 import sloshdyn
 from conftest import ROOT
 from sloshdyn import _core, _tables, charts
-from sloshdyn.asymptotics import Continuation
-from sloshdyn.charts import Chart
+from sloshdyn.options import Chart, Continuation, Integration, Lyapunov, Shooting, Steady
 from sloshdyn.parameters import Parameters, TankPendulum
-from sloshdyn.periodic import Lyapunov, Shooting
-from sloshdyn.seismic import Tank
-from sloshdyn.simulation import METHODS, Integration, Steady
+from sloshdyn.simulation import METHODS
+from sloshdyn.tank import Tank
 
 _model, _seismic, _input = (_core.sloshdyn_bridge_model, _core.sloshdyn_bridge_seismic,
                            _core.sloshdyn_bridge_input)
