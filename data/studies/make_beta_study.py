@@ -3,7 +3,11 @@ force, base shear and overturning moment of a tank against the wall stiffness be
 (and the wall dissipation delta), for four records whose free wave clearly exceeds the
 freeboard, beside the roof verdict (judged on the free wave, the same for every beta) and the
 roof loads of the free wave (sloshdyn_roof). Writes data/studies/beta_study.csv. Run from the
-repository root after a build:  python data/studies/make_beta_study.py"""
+repository root after a build:  python data/studies/make_beta_study.py
+
+beta_study.csv was made when a tank's loads were the impact model's; since issue 37 the
+loads are contact-free (docs/model.md, "Loads") and only the impact force (roof_contact =
+'impact') still depends on beta and delta."""
 
 import csv
 import pathlib
@@ -58,7 +62,8 @@ def main():
         ground, scale = scaled(acceleration)
         for delta in DELTAS:
             for beta in BETAS:
-                tank = sloshdyn.Tank(**TANK, impact_stiffness=beta, impact_damping=delta)
+                tank = sloshdyn.Tank(**TANK, impact_stiffness=beta, impact_damping=delta,
+                                     roof_contact="impact")
                 run = sloshdyn.seismic_response(tank, ground)
                 p = run.peak_table
                 rows.append([name, scale, np.max(np.abs(ground.acceleration)), delta, beta,

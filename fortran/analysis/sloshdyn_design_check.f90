@@ -28,7 +28,10 @@ module sloshdyn_design_check
   use sloshdyn_tables, only: DESIGN_ROWS, DESIGN_API650, DESIGN_EC8, DESIGN_ACI350, &
                              DESIGN_LINEAR, DESIGN_NONLINEAR, DESIGN_LOADS_COLUMNS, &
                              FREEBOARD_COLUMNS, PEAKS_SIZE, PEAKS_FREE_WAVE, PEAKS_ROOF_REACHED, &
-                            LOADS_CONVECTIVE_PERIOD, LOADS_BASE_SHEAR, LOADS_MOMENT_EBP, &
+                             PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT, &
+                             PEAKS_OVERTURNING_MOMENT_IBP, &
+                             LOADS_CONVECTIVE_PERIOD, LOADS_BASE_SHEAR, LOADS_MOMENT_EBP, &
+                             LOADS_MOMENT_IBP, &
                             FREEBOARD_SUFFICIENT
   implicit none
   private
@@ -40,8 +43,6 @@ module sloshdyn_design_check
   !> 0.2 and 5 s; sampled at this many log-spaced periods (for API 650's Table E-7 with a
   !> record).
   integer, parameter :: sds_periods = 100
-  !> Rows of 'seismic_peaks' read here: peak base shear and overturning moment.
-  integer, parameter :: peak_shear = 13, peak_moment = 15
 
 contains
 
@@ -171,10 +172,13 @@ contains
     call set_freeboard(DESIGN_LINEAR, props%sloshing_period, a_c, props%wave_factor*a_c, &
                        props%wave_factor*a_c)
 
-    ! sloshdyn, nonlinear: the time history's peaks and the free wave's roof verdict
+    ! sloshdyn, nonlinear: the time history's peaks (the tank without contact below its roof,
+    ! restricted sloshing above it) and the free wave's roof verdict
     if (present(peaks)) then
-      loads([LOADS_CONVECTIVE_PERIOD, LOADS_BASE_SHEAR, LOADS_MOMENT_EBP], DESIGN_NONLINEAR) = &
-        [props%sloshing_period, peaks(peak_shear), peaks(peak_moment)]
+      loads([LOADS_CONVECTIVE_PERIOD, LOADS_BASE_SHEAR, LOADS_MOMENT_EBP, LOADS_MOMENT_IBP], &
+            DESIGN_NONLINEAR) = [props%sloshing_period, peaks(PEAKS_BASE_SHEAR), &
+                                 peaks(PEAKS_OVERTURNING_MOMENT), &
+                                 peaks(PEAKS_OVERTURNING_MOMENT_IBP)]
       call set_freeboard(DESIGN_NONLINEAR, props%sloshing_period, nan, peaks(PEAKS_FREE_WAVE), &
                          peaks(PEAKS_FREE_WAVE))
       freeboard(FREEBOARD_SUFFICIENT, DESIGN_NONLINEAR) = 1 - peaks(PEAKS_ROOF_REACHED)

@@ -1,9 +1,11 @@
 !> A real tank under ground motion, in SI units: the time histories of the sloshing
-!> displacement, the wave height at the wall, the pendulum angle, the tank drift, the impact
-!> force, the base shear and the overturning moment (sloshdyn_vessel's loads), their peaks
-!> (located between the integrator's steps, not read at the output times), and whether and when
-!> the wave reaches the roof (judged on the free wave, see roof_contact); and the cross-check of the tank's sloshing
-!> parameters against the design codes (API 650 Annex E, Eurocode 8-4 Annex A, ACI 350.3).
+!> displacement, the wave height at the wall, the pendulum angle, the tank drift, the tank's
+!> and the convective mass's accelerations, the base shear and the overturning moments
+!> (sloshdyn_vessel's loads) of the tank without contact below its roof and by the
+!> restricted-sloshing method above it, their peaks (located between the integrator's steps,
+!> not read at the output times), and whether and when the free wave reaches the roof; and the
+!> cross-check of the tank's sloshing parameters against the design codes (API 650 Annex E,
+!> Eurocode 8-4 Annex A, ACI 350.3).
 !>
 !> Table layouts (sloshdyn_tables): 'seismic' (one column per output time), 'seismic_peaks' (one
 !> row) and 'design_codes' (one row per source: sloshdyn, API 650, EC8-4, ACI 350.3; with
@@ -18,7 +20,7 @@ module sloshdyn_seismic
   use sloshdyn_motion, only: equations_of_motion
   use sloshdyn_excitation, only: base_acceleration
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS, &
-                            convective_damping, tank_acceleration
+                            convective_damping, ROOF_CONTACT_IMPACT
   use sloshdyn_tank, only: SHAPE_CIRCULAR, max_modes
   use sloshdyn_sdof, only: sdof_response
   use sloshdyn_ground, only: ground_motion_t, ground_excitation, ground_duration, ground_spectrum, &
@@ -29,13 +31,17 @@ module sloshdyn_seismic
                                    aci350_circular, aci350_rectangular, aci350_wave_height, &
                                    api650_circular, &
                                    api650_wave_height, ec8_circular, ec8_wave_height
-  use sloshdyn_roof, only: roof_loads
+  use sloshdyn_roof, only: roof_loads, rectangular_roof_loads
   use sloshdyn_design_spectra, only: design_spectrum_t, spectrum_sa
-  use sloshdyn_ode, only: ode_options, ode_stats, observed_quantities, linear_observation, &
-                          peak_tracker
+  use sloshdyn_ode, only: ode_options, ode_stats, observed_quantities, peak_tracker
   use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
   use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_ROOF_REACHED, &
                              SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, SEISMIC_OVERTURNING_MOMENT, &
+                             SEISMIC_OVERTURNING_MOMENT_IBP, SEISMIC_TANK_ACCELERATION, &
+                             SEISMIC_CONVECTIVE_ACCELERATION, SEISMIC_X1, SEISMIC_X2, &
+                             SEISMIC_FREE_WAVE, SEISMIC_IMPACT_FORCE, PEAK_INSTANT_ROWS, &
+                             PEAK_INSTANTS, PEAKS_WAVE_HEIGHT, PEAKS_FIRST_ROOF_TIME, &
+                             PEAKS_ROOF_EXCESS, &
                              PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, &
                              PEAKS_CONFINED_MASS, PEAKS_IMPACT_FORCE, PEAKS_SCALE_FACTOR, &
                              PEAKS_SA, PEAKS_BETA_SENSITIVE, CODES_COLUMNS, CODES_ROWS, &
@@ -46,6 +52,7 @@ module sloshdyn_seismic
   private
   public :: seismic_response, seismic_setup, seismic_defaults, design_code_checks, tank_summary
   public :: harmonic_sweep, harmonic_sweep_row, free_periods, max_seismic_outputs, tank_modes
+  public :: contact_free, confined_convective_mass, modal_responses, beta_sensitive_force
 
   !> After a record ends the liquid goes on sloshing: t_end defaults to the record plus this
   !> many sloshing periods; harmonic motion runs this many forcing periods.
@@ -61,28 +68,42 @@ module sloshdyn_seismic
   !> data/studies/beta_sensitivity.csv)
   real(wp), parameter :: beta_sensitive_force = 1.0e-3_wp
 
-  !> The loads of sloshdyn_vessel (rows 2..LOAD_ROWS: ground acceleration to overturning moment)
-  !> as quantities observed along the integration, for their peaks between the steps.
+  !> The loads of sloshdyn_vessel (rows 2..LOAD_ROWS: ground acceleration to the overturning
+  !> moment including the base pressure), then x1, as quantities observed along the
+  !> integration, for their peaks and x1's entries into |x1| >= 1 between the steps; from
+  !> tau_contact on, the share `share` of the convective mass moves with the tank.
   type, extends(observed_quantities) :: tank_load_observation
     type(tank_t) :: tank
     type(tank_properties) :: props
     type(model_t) :: model
+    real(wp) :: share = 0, tau_contact = huge(1.0_wp)
   contains
     procedure :: values => load_values
     procedure :: count => load_count
   end type tank_load_observation
+
+  !> The impact force of the paper's wall, coefficient x1^power [N] (eq 4 over the arm l).
+  type, extends(observed_quantities) :: impact_observation
+    real(wp) :: coefficient = 0
+    integer :: power = 11
+  contains
+    procedure :: values => impact_values
+    procedure :: count => impact_count
+  end type impact_observation
 
 contains
 
   !> t_end [s] and n_out when not given (<= 0): the record plus free_periods sloshing periods
   !> (harmonic: harmonic_periods forcing periods), sampled at the finest of the record's step,
   !> 50 points per sloshing (or forcing) period and 20 per period of the tank on its supports.
-  pure subroutine seismic_defaults(props, ground, t_end, n_out)
+  !> With a second component (ground_y, a record across the first), the longer record's end.
+  pure subroutine seismic_defaults(props, ground, t_end, n_out, ground_y)
     type(tank_properties), intent(in) :: props
     type(ground_motion_t), intent(in) :: ground
     real(wp), intent(inout) :: t_end
     integer, intent(inout) :: n_out
-    real(wp) :: dt_out, support_frequency
+    type(ground_motion_t), intent(in), optional :: ground_y
+    real(wp) :: dt_out, support_frequency, duration
     dt_out = props%sloshing_period/outputs_per_period
     ! the tank on its supports: k/(M L^2) - g/L = (2 pi f_s)^2
     support_frequency = sqrt(max(props%stiffness/(props%total_mass*props%rod_length**2) - &
@@ -93,8 +114,12 @@ contains
     if (ground%kind == GROUND_RECORD) then
       ! the record's own step if it is fine enough, so that outputs fall on its samples
       if (ground%dt <= dt_out) dt_out = ground%dt
+      duration = ground_duration(ground)
+      if (present(ground_y)) then
+        if (ground_y%kind == GROUND_RECORD) duration = max(duration, ground_duration(ground_y))
+      end if
       ! a whole number of output steps (a real ceiling: the count may exceed any integer)
-      if (t_end <= 0) t_end = dt_out*real_ceiling((ground_duration(ground) + free_periods* &
+      if (t_end <= 0) t_end = dt_out*real_ceiling((duration + free_periods* &
                                                    props%sloshing_period)/dt_out)
     else
       dt_out = min(dt_out, 1/(outputs_per_period*ground%frequency))
@@ -111,69 +136,240 @@ contains
   end function real_ceiling
 
   !> The response of the tank, at rest at t = 0, to the ground motion, at n_out times evenly
-  !> spaced over [0, t_end] [s]: table(SEISMIC_ROWS, n_out) and the peaks. On failure the times
+  !> spaced over [0, t_end] [s]: table(SEISMIC_ROWS, n_out), the peaks, and at the peaks of the
+  !> base shear and of the overturning moments (excluding and including the base pressure) the
+  !> accelerations the pressure needs (instants, 'seismic_peak_instants'). On failure the times
   !> reached are filled, the rest NaN. A cancellation request stops it within one integrator
   !> step or outputs_per_poll outputs (SD_CANCELLED).
+  !>
+  !> The loads are the tank's without contact (beta = delta = 0) until its free wave reaches
+  !> the roof, and from the first contact on the restricted-sloshing method's: the confined
+  !> convective mass of the run's largest free wave (sloshdyn_roof) moves with the tank
+  !> (tank_loads' confined_share); the motion is not integrated again with the new masses. So
+  !> no load depends on impact_stiffness or impact_damping. With roof_contact = 'impact' the
+  !> paper's model (eq 4-5, the tank's beta and delta) is integrated too, for its impact force
+  !> and the beta-sensitivity flag only (docs/model.md, "Loads").
   subroutine seismic_response(tank, ground, t_end, n_out, options, method, table, peaks, &
-                              status, message)
+                              instants, status, message)
     type(tank_t), intent(in) :: tank
     type(ground_motion_t), intent(in) :: ground
     real(wp), intent(in) :: t_end
     integer, intent(in) :: n_out, method
     type(ode_options), intent(in) :: options
-    real(wp), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE)
+    real(wp), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE), &
+                             instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: model
+    type(model_t) :: model, free
     type(tank_properties) :: props
-    type(ode_stats) :: stats
-    type(tank_load_observation) :: loads
-    type(peak_tracker) :: tracker
-    real(wp), allocatable :: tau(:), history(:, :)
-    real(wp) :: y0(4)
-    integer :: i, run_status
-    character(len=message_len) :: run_message
+    real(wp), allocatable :: tau(:), modal(:, :)
+    real(wp) :: share
+    integer :: i
 
     table = ieee_value(1.0_wp, ieee_quiet_nan)
     peaks = ieee_value(1.0_wp, ieee_quiet_nan)
+    instants = 0
     call seismic_setup(tank, ground, t_end, n_out, model, props, tau, status, message)
     if (status /= SD_OK) return
-    allocate (history(HISTORY_ROWS, n_out))
-    y0 = 0
-    loads = tank_load_observation(tank, props, model)
-    call time_history(model, 0.0_wp, y0, tau, options, method, history, stats, run_status, &
-                      run_message, loads, tracker)
+    free = contact_free(model)
+    allocate (modal(n_out, props%modes))
+    call free_run(tank, props, free, tau, options, method, 0.0_wp, huge(1.0_wp), table, peaks, &
+                  instants, modal, status, message)
+    if (status /= SD_OK) return
+    ! the roof: where the free wave reaches it, the confined mass of its largest height
+    if (peaks(PEAKS_ROOF_REACHED) > 0) then
+      call confined_convective_mass(tank, props, peaks(PEAKS_FREE_WAVE), peaks(PEAKS_ROOF_HEAD), &
+                                    peaks(PEAKS_ROOF_UPLIFT), peaks(PEAKS_CONFINED_MASS), &
+                                    status, message)
+      if (status /= SD_OK) return
+      share = peaks(PEAKS_CONFINED_MASS)/props%sloshing_mass
+      if (share > 0) call free_run(tank, props, free, tau, options, method, share, &
+                                   props%omega*peaks(PEAKS_FIRST_ROOF_TIME), table, peaks, &
+                                   instants, modal, status, message)
+      if (status /= SD_OK) return
+    else
+      peaks(PEAKS_ROOF_HEAD:PEAKS_CONFINED_MASS) = 0
+    end if
+    ! the wave with the roof: the free wave, capped at the freeboard
     do i = 1, n_out
+      table(SEISMIC_WAVE_HEIGHT, i) = sign(min(abs(table(SEISMIC_FREE_WAVE, i)), tank%freeboard), &
+                                           table(SEISMIC_FREE_WAVE, i))
+    end do
+    peaks(PEAKS_WAVE_HEIGHT) = min(peaks(PEAKS_FREE_WAVE), tank%freeboard)
+    if (peaks(PEAKS_ROOF_REACHED) > 0) peaks(PEAKS_WAVE_HEIGHT + 1) = peaks(PEAKS_FIRST_ROOF_TIME)
+    peaks(PEAKS_SCALE_FACTOR) = ground%scale_factor
+    call spectral_acceleration(ground, props%sloshing_period, convective_damping, &
+                               peaks(PEAKS_SA), status, message)
+    if (status == SD_OK .and. tank%roof_contact == ROOF_CONTACT_IMPACT) &
+      call impact_run(tank, props, model, tau, options, method, table(SEISMIC_IMPACT_FORCE, :), &
+                      peaks, status, message)
+  end subroutine seismic_response
+
+  !> The model of the tank without a roof: no wall (beta = delta = 0), the same supports and
+  !> damping.
+  pure function contact_free(model) result(free)
+    type(model_t), intent(in) :: model
+    type(model_t) :: free
+    free = model
+    free%beta = 0
+    free%delta = 0
+    call set_coefficients(free)
+  end function contact_free
+
+  !> The free tank's run (model free) over the output times tau: the 'seismic' table's rows
+  !> 1..SEISMIC_FREE_WAVE, the loads' peaks, the roof verdict of the free wave (the first
+  !> time its height at the wall reaches the freeboard, its entries and its largest height)
+  !> and the accelerations at the load peaks; modal(:, n) the absolute accelerations of the
+  !> modes at the outputs. From tau_contact on, the share `share` of the convective mass moves
+  !> with the tank (tank_loads' confined_share; 0: none, the verdict's run). With one mode the
+  !> peaks and the first contact are located between the integrator's steps (peak_tracker); with
+  !> N > 1 modes the free wave at the wall is mode 1's plus the linear waves of modes 2..N
+  !> driven by the free tank's acceleration (modal_responses), known at the output times: the
+  !> peaks and the verdict are then read there (sampled_roof).
+  subroutine free_run(tank, props, free, tau, options, method, share, tau_contact, table, &
+                      peaks, instants, modal, status, message)
+    type(tank_t), intent(in) :: tank
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: free
+    real(wp), intent(in) :: tau(:), share, tau_contact
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    real(wp), intent(inout) :: table(:, :), peaks(:), instants(:, :), modal(:, :)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_load_observation) :: loads
+    type(peak_tracker) :: tracker
+    type(ode_stats) :: stats
+    real(wp), allocatable :: history(:, :)
+    real(wp) :: freeboard
+    integer :: i, k, run_status
+    character(len=message_len) :: run_message
+    integer, parameter :: peak_rows(PEAK_INSTANTS) = [SEISMIC_BASE_SHEAR, &
+      SEISMIC_OVERTURNING_MOMENT, SEISMIC_OVERTURNING_MOMENT_IBP]
+
+    allocate (history(HISTORY_ROWS, size(tau)))
+    loads = tank_load_observation(tank, props, free, share, tau_contact)
+    allocate (tracker%level(LOAD_ROWS))
+    tracker%level = 0
+    tracker%level(LOAD_ROWS) = 1           ! x1 reaching 1: the free wave at the freeboard
+    tracker%keep_states = .true.
+    call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tau, options, method, &
+                      history, stats, run_status, run_message, loads, tracker)
+    do i = 1, size(tau)
       if (tau(i) > stats%t_reached) exit
       if (mod(i, outputs_per_poll) == 0) call check_cancel(run_status, run_message)
       if (run_status == SD_CANCELLED) exit
-      call loads%values(tau(i), history(1:4, i), table(2:LOAD_ROWS, i))
+      call loads%values(tau(i), history(1:4, i), table(2:LOAD_ROWS + 1, i))
       table(1, i) = tau(i)/props%omega
-      table(LOAD_ROWS + 1, i) = history(1, i)
-      table(LOAD_ROWS + 2, i) = history(3, i)
+      table(SEISMIC_X1:SEISMIC_X2, i) = history([1, 3], i)
+      modal(i, 1) = table(SEISMIC_CONVECTIVE_ACCELERATION, i)
     end do
     status = run_status
     message = run_message
     if (status /= SD_OK) return
+    freeboard = props%wave_factor*sin(free%theta0)
     do i = 1, LOAD_ROWS - 1
       peaks(2*i - 1:2*i) = [tracker%peak(i), tracker%time(i)/props%omega]
     end do
-    if (props%modes > 1) call add_higher_modes(props, model, tank%sloshing_damping, &
-                                               history(1:4, :), table, peaks, status, message)
-    if (status /= SD_OK) return
-    call roof_contact(model, props, tank%sloshing_damping, tau, table(1, :), table(2, :), &
-                      options, method, peaks(PEAKS_ROOF_REACHED:), table(SEISMIC_ROWS, :), &
-                      status, message)
-    ! the roof loads of the free wave's height at the wall, all modes summed (sloshdyn_roof),
-    ! beside the model's impact force
-    if (status == SD_OK .and. tank%shape == SHAPE_CIRCULAR) &
-      call roof_loads(tank%radius, tank%freeboard, tank%roof_slope, tank%roof_radius, &
-                      peaks(PEAKS_FREE_WAVE), props%liquid_mass/ &
-                      (pi*tank%radius**2*tank%liquid_depth), tank%gravity, props%sloshing_mass, &
-                      peaks(PEAKS_ROOF_HEAD), peaks(PEAKS_ROOF_UPLIFT), &
-                      peaks(PEAKS_CONFINED_MASS), status, message)
-    if (status == SD_OK) call run_traceability(tank, ground, props, peaks, status, message)
-  end subroutine seismic_response
+    if (props%modes == 1) then
+      peaks(PEAKS_ROOF_REACHED:PEAKS_FREE_WAVE) = [merge(1.0_wp, 0.0_wp, &
+        tracker%crossings(LOAD_ROWS) > 0), tracker%first_crossing(LOAD_ROWS)/props%omega, &
+        real(tracker%crossings(LOAD_ROWS), wp), &
+        props%wave_factor*sin(min(free%theta0*tracker%peak(LOAD_ROWS), pi/2))]
+      ! the accelerations at the load peaks, from the state there
+      do k = 1, PEAK_INSTANTS
+        associate (y => tracker%state(:, peak_rows(k) - 1), t => tracker%time(peak_rows(k) - 1))
+          instants(1:3, k) = [t/props%omega, loads_at(t, y, SEISMIC_TANK_ACCELERATION), &
+                              loads_at(t, y, SEISMIC_CONVECTIVE_ACCELERATION)]
+        end associate
+      end do
+      table(SEISMIC_FREE_WAVE, :) = table(SEISMIC_WAVE_HEIGHT, :)
+    else
+      call add_higher_modes(props, tank%sloshing_damping, table, peaks, modal, status, message)
+      if (status /= SD_OK) return
+      table(SEISMIC_FREE_WAVE, :) = table(SEISMIC_WAVE_HEIGHT, :)
+      peaks(PEAKS_ROOF_REACHED:PEAKS_FREE_WAVE) = sampled_roof(table(SEISMIC_FREE_WAVE, :), &
+                                                               table(1, :), freeboard)
+      do k = 1, PEAK_INSTANTS
+        i = maxloc(abs(table(peak_rows(k), :)), dim=1)
+        instants(1:2, k) = table([1, SEISMIC_TANK_ACCELERATION], i)
+        instants(3:2 + props%modes, k) = modal(i, :)
+      end do
+    end if
+    peaks(PEAKS_ROOF_EXCESS) = peaks(PEAKS_FREE_WAVE) - freeboard
+
+  contains
+
+    !> Row `row` of the 'seismic' table of the state y at tau.
+    real(wp) function loads_at(t, y, row)
+      real(wp), intent(in) :: t, y(:)
+      integer, intent(in) :: row
+      real(wp) :: values(LOAD_ROWS)
+      call loads%values(t, y, values)
+      loads_at = values(row - 1)
+    end function loads_at
+  end subroutine free_run
+
+  !> The restricted-sloshing method's roof loads of the largest free wave d at the wall
+  !> (sloshdyn_roof): the head d - f, the uplift on the roof and the confined convective mass
+  !> (circular tanks: flat, cone and dome roofs; rectangular tanks: a flat roof).
+  subroutine confined_convective_mass(tank, props, wave, head, uplift, confined, status, &
+                                      message)
+    type(tank_t), intent(in) :: tank
+    type(tank_properties), intent(in) :: props
+    real(wp), intent(in) :: wave
+    real(wp), intent(out) :: head, uplift, confined
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    if (tank%shape == SHAPE_CIRCULAR) then
+      call roof_loads(tank%radius, tank%freeboard, tank%roof_slope, tank%roof_radius, wave, &
+                      props%liquid_mass/(pi*tank%radius**2*tank%liquid_depth), tank%gravity, &
+                      props%sloshing_mass, head, uplift, confined, status, message)
+    else
+      call rectangular_roof_loads(tank%length, tank%width, tank%freeboard, wave, &
+                                  props%liquid_mass/(tank%length*tank%width*tank%liquid_depth), &
+                                  tank%gravity, props%sloshing_mass, head, uplift, confined, &
+                                  status, message)
+    end if
+  end subroutine confined_convective_mass
+
+  !> The paper's impact model (roof_contact = 'impact': the tank's beta and delta, eq 4-5) over
+  !> the output times: its impact force b x1^(2n-1)/l [N] at the outputs, its peak, and whether
+  !> the model's own loads would be sensitive to beta and delta (its wall force reaches
+  !> beta_sensitive_force m g; docs/model.md, "Choice of beta and delta"). Labelled as the
+  !> paper's model; it feeds no load, design row or calc sheet.
+  subroutine impact_run(tank, props, model, tau, options, method, force, peaks, status, message)
+    type(tank_t), intent(in) :: tank
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: tau(:)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    real(wp), intent(out) :: force(:)
+    real(wp), intent(inout) :: peaks(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(impact_observation) :: impact
+    type(peak_tracker) :: tracker
+    type(ode_stats) :: stats
+    real(wp) :: history(HISTORY_ROWS, size(tau)), value(1)
+    integer :: i
+    impact = impact_observation(props%impact_coefficient/props%pendulum_length, 2*model%n - 1)
+    call time_history(model, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tau, options, method, &
+                      history, stats, status, message, impact, tracker)
+    if (status /= SD_OK) then
+      message = 'the paper''s impact model (roof_contact = ''impact''): '//trim(message)
+      return
+    end if
+    do i = 1, size(tau)
+      call impact%values(tau(i), history(1:4, i), value)
+      force(i) = value(1)
+    end do
+    peaks(PEAKS_IMPACT_FORCE:PEAKS_IMPACT_FORCE + 1) = [tracker%peak(1), &
+                                                        tracker%time(1)/props%omega]
+    peaks(PEAKS_BETA_SENSITIVE) = merge(1.0_wp, 0.0_wp, tracker%peak(1) >= &
+                                        beta_sensitive_force*props%sloshing_mass*tank%gravity)
+  end subroutine impact_run
 
   !> What every seismic response sets up first (seismic_response, and sloshdyn_seismic_spatial's
   !> seismic_response_spatial): the tank's model driven by the ground motion, t_end > 0 [s],
@@ -200,40 +396,24 @@ contains
     tau = [(props%omega*t_end*(i - 1)/(n_out - 1), i = 1, n_out)]
   end subroutine seismic_setup
 
-  !> What a run's numbers rest on: the ground motion's scale factor, its pseudo-spectral
-  !> acceleration at the tank's sloshing period for the convective damping (what target_sa
-  !> scales to), and whether the model's loads are sensitive to beta and delta (its wall
-  !> force reaches beta_sensitive_force m g).
-  subroutine run_traceability(tank, ground, props, peaks, status, message)
-    type(tank_t), intent(in) :: tank
-    type(ground_motion_t), intent(in) :: ground
-    type(tank_properties), intent(in) :: props
-    real(wp), intent(inout) :: peaks(PEAKS_SIZE)
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    peaks(PEAKS_SCALE_FACTOR) = ground%scale_factor
-    call spectral_acceleration(ground, props%sloshing_period, convective_damping, &
-                               peaks(PEAKS_SA), status, message)
-    peaks(PEAKS_BETA_SENSITIVE) = merge(1.0_wp, 0.0_wp, abs(peaks(PEAKS_IMPACT_FORCE)) >= &
-                                        beta_sensitive_force*props%sloshing_mass*tank%gravity)
-  end subroutine run_traceability
-
   !> Modes 2..N of the tank (props%modes = N > 1) in the time histories: modal_responses on
   !> the model's run, added to the wave height, base shear and overturning moment rows of the
-  !> table, whose peaks are then the largest at the output times.
-  subroutine add_higher_modes(props, model, damping, states, table, peaks, status, message)
+  !> table, whose peaks are then the largest at the output times; modal(:, 2:N) the modes'
+  !> absolute accelerations at the outputs [m/s^2].
+  subroutine add_higher_modes(props, damping, table, peaks, modal, status, message)
     type(tank_properties), intent(in) :: props
-    type(model_t), intent(in) :: model
-    real(wp), intent(in) :: damping, states(:, :)
-    real(wp), intent(inout) :: table(:, :), peaks(:)
+    real(wp), intent(in) :: damping
+    real(wp), intent(inout) :: table(:, :), peaks(:), modal(:, :)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    integer, parameter :: summed(3) = [SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, &
-                                       SEISMIC_OVERTURNING_MOMENT]
+    integer, parameter :: summed(4) = [SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, &
+                                       SEISMIC_OVERTURNING_MOMENT, &
+                                       SEISMIC_OVERTURNING_MOMENT_IBP]
     integer :: i, n, row
-    call modal_responses(props, model, damping, table(1, :), table(2, :), states, &
+    call modal_responses(props, damping, table(1, :), table(SEISMIC_TANK_ACCELERATION, :), &
                          table(SEISMIC_WAVE_HEIGHT, :), status, message, &
-                         table(SEISMIC_BASE_SHEAR, :), table(SEISMIC_OVERTURNING_MOMENT, :))
+                         table(SEISMIC_BASE_SHEAR, :), table(SEISMIC_OVERTURNING_MOMENT, :), &
+                         table(SEISMIC_OVERTURNING_MOMENT_IBP, :), modal)
     if (status /= SD_OK) return
     do n = 1, size(summed)
       row = summed(n)
@@ -242,32 +422,28 @@ contains
     end do
   end subroutine add_higher_modes
 
-  !> Modes 2..N of the tank (props%modes = N > 1) along a run of the model (states at the times
-  !> t [s], ground acceleration ground [m/s^2] there): each a linear oscillator
-  !> x_n'' + 2 zeta omega_n x_n' + omega_n^2 x_n = -a_t(t) on the tank's acceleration a_t (from
-  !> the state of the model, which counts m_2..m_N as rigid: their reaction on the tank is left
+  !> Modes 2..N of the tank (props%modes = N > 1) along a run of the model (the tank's
+  !> acceleration accel [m/s^2] at the evenly spaced times t [s]): each a linear oscillator
+  !> x_n'' + 2 zeta omega_n x_n' + omega_n^2 x_n = -a_t(t) on the tank's acceleration a_t (of
+  !> the model, which counts m_2..m_N as rigid: their reaction on the tank is left
   !> out), a_t linear between the output times and each x_n exact for that (Nigam & Jennings,
   !> sloshdyn_sdof). Added to the wave height at the wall (wave_n x_n/l_n, the linear wave of
-  !> sloshdyn_tank) and, when given, the base shear (m_n x_n'') and the overturning moment
-  !> (m_n h_n (a_t + x_n''), the model's rigid mass at its height having left them out).
-  subroutine modal_responses(props, model, damping, t, ground, states, wave, status, message, &
-                             shear, moment)
+  !> sloshdyn_tank) and, when given, the base shear (m_n x_n''), the overturning moment
+  !> (m_n h_n (a_t + x_n''), the model's rigid mass at its height having left them out) and the
+  !> moment with the base pressure (m_n (h_n' - h_n) x_n'' more); modal(:, n) = a_t + x_n''.
+  subroutine modal_responses(props, damping, t, accel, wave, status, message, shear, moment, &
+                             moment_ibp, modal)
     type(tank_properties), intent(in) :: props
-    type(model_t), intent(in) :: model
-    real(wp), intent(in) :: damping, t(:), ground(:), states(:, :)
+    real(wp), intent(in) :: damping, t(:), accel(size(t))
     real(wp), intent(inout) :: wave(:)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp), intent(inout), optional :: shear(:), moment(:)
-    real(wp) :: dydt(4), accel(size(t)), x(size(t)), v(size(t)), a_abs(size(t))
-    integer :: i, n
+    real(wp), intent(inout), optional :: shear(:), moment(:), moment_ibp(:), modal(:, :)
+    real(wp) :: x(size(t)), v(size(t)), a_abs(size(t))
+    integer :: n
     status = SD_OK
     message = ''
     if (size(t) < 2) return
-    do i = 1, size(t)
-      call equations_of_motion(model, props%omega*t(i), states(:, i), dydt)
-      accel(i) = tank_acceleration(props, model, states(:, i), dydt, ground(i))
-    end do
     do n = 2, props%modes
       call sdof_response(t(2) - t(1), accel, 2*pi/props%modal_period(n), damping, &
                          0.0_wp, 0.0_wp, x, v, a_abs, status, message)
@@ -275,10 +451,14 @@ contains
       wave = wave + props%modal_wave(n)*x/props%modal_length(n)
       if (present(shear)) shear = shear + props%modal_mass(n)*(a_abs - accel)
       if (present(moment)) moment = moment + props%modal_mass(n)*props%modal_height(n)*a_abs
+      if (present(moment_ibp)) moment_ibp = moment_ibp + props%modal_mass(n)* &
+        (props%modal_height(n)*a_abs + (props%modal_height_ibp(n) - props%modal_height(n))* &
+         (a_abs - accel))
+      if (present(modal)) modal(:, n) = a_abs
     end do
   end subroutine modal_responses
 
-  !> The loads (rows 2..LOAD_ROWS of tank_loads) of the state y at tau.
+  !> The loads (rows 2..LOAD_ROWS of tank_loads) and x1 of the state y at tau.
   pure subroutine load_values(self, t, y, g)
     class(tank_load_observation), intent(in) :: self
     real(wp), intent(in) :: t, y(:)
@@ -287,75 +467,28 @@ contains
     call equations_of_motion(self%model, t, y(1:4), dydt)
     row = tank_loads(self%tank, self%props, self%model, t, y(1:4), dydt, &
                      self%props%rod_length*self%props%omega**2* &
-                     base_acceleration(self%model%excitation, t))
-    g = row(2:LOAD_ROWS)
+                     base_acceleration(self%model%excitation, t), &
+                     merge(self%share, 0.0_wp, t >= self%tau_contact))
+    g(1:LOAD_ROWS - 1) = row(2:LOAD_ROWS)
+    g(LOAD_ROWS) = y(1)
   end subroutine load_values
 
   pure integer function load_count(self)
     class(tank_load_observation), intent(in) :: self
-    load_count = LOAD_ROWS - 1
+    load_count = LOAD_ROWS
   end function load_count
 
-  !> Whether and when the wave reaches the roof, independent of the contact model (beta, delta):
-  !> until the liquid touches the roof the roof exerts no force, so the motion up to the first
-  !> contact is that of the tank without a roof, and contact begins when that free wave's
-  !> height at the wall reaches the freeboard. The free motion (beta = delta = 0, the same
-  !> supports and damping) is integrated from rest over the output times tau (t [s], ground
-  !> acceleration ground [m/s^2] there; free_wave: its wave height at the wall [m]). With one
-  !> mode the free wave is mode 1's, 2 R/(xi^2 - 1) sin(theta), and the entries of |x1| into
-  !> [1, inf) are located on the dense output (peak_tracker). The smooth wall of eq (4) pushes
-  !> back before |x1| = 1 (at x1 = 0.9 with n = 6 already 0.31 beta m g), so the model's own x1
-  !> would depend on beta. With N > 1 modes the free wave at the wall is mode 1's plus the linear
-  !> waves of modes 2..N driven by the free tank's acceleration (modal_responses), known at the
-  !> output times only: the verdict is then that sum's at the output times (sampled_roof).
-  !> After the first contact the free wave is what the design codes and Malhotra compare with
-  !> the freeboard: its entries above the freeboard are counted and its largest height is
-  !> reported. roof(1:5) = [reached (1/0), first contact [s] (NaN: none), entries, largest free
-  !> wave height [m], its excess over the freeboard [m] (negative: the margin left)].
-  subroutine roof_contact(model, props, damping, tau, t, ground, options, method, roof, &
-                          free_wave, status, message)
-    type(model_t), intent(in) :: model
-    type(tank_properties), intent(in) :: props
-    real(wp), intent(in) :: damping, tau(:), t(:), ground(:)
-    type(ode_options), intent(in) :: options
-    integer, intent(in) :: method
-    real(wp), intent(out) :: roof(:), free_wave(:)
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    type(model_t) :: free
-    type(linear_observation) :: x1
-    type(peak_tracker) :: tracker
-    type(ode_stats) :: stats
-    real(wp), allocatable :: history(:, :)
-    real(wp) :: freeboard
-    free = model
-    free%beta = 0
-    free%delta = 0
-    call set_coefficients(free)
-    x1 = linear_observation(reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [1, 4]))
-    tracker%level = [1.0_wp]
-    allocate (history(HISTORY_ROWS, size(tau)))
-    call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tau, options, &
-                      method, history, stats, status, message, x1, tracker)
-    if (status /= SD_OK) then
-      message = 'the free wave (no roof, for the roof contact): '//trim(message)
-      return
-    end if
-    freeboard = props%wave_factor*sin(model%theta0)
-    ! eta = wave_factor sin(theta) at the outputs (sloshdyn_vessel's wave height)
-    free_wave = props%wave_factor*sin(model%theta0*history(1, :))
-    if (props%modes == 1) then
-      roof(1:4) = [merge(1.0_wp, 0.0_wp, tracker%crossings(1) > 0), &
-                   tracker%first_crossing(1)/props%omega, real(tracker%crossings(1), wp), &
-                   props%wave_factor*sin(min(model%theta0*tracker%peak(1), pi/2))]
-    else
-      call modal_responses(props, free, damping, t, ground, history(1:4, :), free_wave, &
-                           status, message)
-      if (status /= SD_OK) return
-      roof(1:4) = sampled_roof(free_wave, t, freeboard)
-    end if
-    roof(5) = roof(4) - freeboard
-  end subroutine roof_contact
+  pure subroutine impact_values(self, t, y, g)
+    class(impact_observation), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: g(:)
+    g(1) = self%coefficient*y(1)**self%power
+  end subroutine impact_values
+
+  pure integer function impact_count(self)
+    class(impact_observation), intent(in) :: self
+    impact_count = 1
+  end function impact_count
 
   !> The roof verdict of a wave eta at the wall sampled at the times t [s], against the
   !> freeboard f: [reached (1/0), the first time |eta| reaches f (linear between the samples;
@@ -556,16 +689,19 @@ contains
       call independent_sweep(model, PARAMETER_FREQUENCY, rho, y0, options, method, steady, &
                              threads, summaries, n_done, status, message)
     end if
-    ! the free wave's verdict for the points done (NaN where the sweep failed before it)
+    ! the free wave's verdict for the points done (NaN where the sweep failed before it): the
+    ! sweep's own steady states, the tank's model being free; with the paper's impact model
+    ! (roof_contact = 'impact') those of the tank without a roof, from rest
     free_max_x1 = ieee_value(1.0_wp, ieee_quiet_nan)
-    if (status == SD_OK .and. n_done > 0) then
+    free_max_x1(1:n_done) = summaries(SUMMARY_MAX_X1, 1:n_done)
+    if (status == SD_OK .and. n_done > 0 .and. tank%roof_contact == ROOF_CONTACT_IMPACT) then
       call free_steady_waves(model, rho(1:n_done), options, method, steady, threads, &
                              free_max_x1(1:n_done), status, message)
       if (status /= SD_OK) n_done = 0
     end if
     do i = 1, n_done
       table(:, i) = harmonic_sweep_row(props, model%theta0, frequencies(i), summaries(:, i), &
-                                       free_max_x1(i))
+                                       free_max_x1(i), tank%roof_contact /= ROOF_CONTACT_IMPACT)
     end do
   end subroutine harmonic_sweep
 
@@ -597,18 +733,22 @@ contains
     free_max_x1 = summaries(SUMMARY_MAX_X1, :)
   end subroutine free_steady_waves
 
-  !> A steady-state summary in SI ('harmonic_sweep' layout): the largest wave height, sloshing
-  !> displacement and pendulum angle from max|x1|, the tank drift from max|x2|, whether the wave
-  !> reaches the roof (the free wave's max|x1| >= 1, free_steady_waves), the kind of motion, its
-  !> period and the free wave's largest height at the wall.
-  pure function harmonic_sweep_row(props, theta0, frequency, summary, free_max_x1) result(row)
+  !> A steady-state summary in SI ('harmonic_sweep' layout): the largest wave height (capped at
+  !> the roof when `capped`: the free tank's wave), sloshing displacement and pendulum angle
+  !> from max|x1|, the tank drift from max|x2|, whether the wave reaches the roof (the free
+  !> wave's max|x1| >= 1), the kind of motion, its period and the free wave's largest height at
+  !> the wall.
+  pure function harmonic_sweep_row(props, theta0, frequency, summary, free_max_x1, capped) &
+    result(row)
     type(tank_properties), intent(in) :: props
     real(wp), intent(in) :: theta0, frequency, summary(SUMMARY_SIZE), free_max_x1
+    logical, intent(in) :: capped
     real(wp) :: row(HARMONIC_SWEEP_ROWS)
     real(wp) :: theta
     theta = theta0*summary(SUMMARY_MAX_X1)
     row = [frequency, summary(SUMMARY_A)*summary(SUMMARY_RHO)**2*props%rod_length*props%omega**2, &
-           props%wave_factor*sin(theta), props%pendulum_length*sin(theta), theta, &
+           props%wave_factor*sin(merge(min(theta, theta0), theta, capped)), &
+           props%pendulum_length*sin(theta), theta, &
            props%rod_length*sin(theta0*summary(SUMMARY_MAX_X2)), &
            merge(1.0_wp, 0.0_wp, free_max_x1 >= 1), summary(SUMMARY_MOTION), &
            summary(SUMMARY_PERIOD), props%wave_factor*sin(min(theta0*free_max_x1, pi/2))]

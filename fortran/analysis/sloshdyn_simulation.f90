@@ -136,14 +136,19 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(spatial_tank_system) :: system
+    type(ode_options) :: settings
     integer :: i
 
     history = 0
     call check_history(tau0, y0, tau_out, status, message)
     if (status /= SD_OK) return
     system%model = model
-    call integrate(method, system, tau0, y0, tau_out, history(1:8, :), &
-                   with_breakpoints(options, model%planar%excitation), stats, status, message)
+    settings = with_breakpoints(options, model%planar%excitation)
+    ! a second record on the same time grid keeps its kinks to its own end
+    if (allocated(model%record_y%samples)) &
+      settings%breakpoint_end = max(settings%breakpoint_end, record_end(model%record_y))
+    call integrate(method, system, tau0, y0, tau_out, history(1:8, :), settings, stats, status, &
+                   message)
     do i = 1, size(tau_out)
       history(9:10, i) = pendulum_tilt(model, history(1:8, i))
     end do

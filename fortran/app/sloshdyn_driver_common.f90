@@ -17,11 +17,11 @@ module sloshdyn_driver_common
                              LOADS_CONVECTIVE_ACCELERATION, WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, &
                              PRESSURE_RESULTANT_ROWS, WALL_HEIGHT, WALL_TOTAL_PRESSURE, &
                              WALL_HOOP_FORCE, PRESSURE_INSTANT_ROWS, PRESSURE_INSTANT_TIME, &
-                             PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT
+                             PEAK_INSTANT_ROWS, PEAK_INSTANTS
   use sloshdyn_design_check, only: design_check
   use sloshdyn_design_spectra, only: spectrum_sa, SPECTRUM_EC8
   use sloshdyn_wall_pressure, only: pressure_tables, combination_names, COMBINE_SRSS, COMBINE_SUM
-  use sloshdyn_seismic_pressure, only: seismic_pressures
+  use sloshdyn_seismic_pressure, only: instant_pressures
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_integrator, only: method_name, chosen_method, METHOD_AUTO
   use sloshdyn_seismic, only: design_code_checks, tank_summary, tank_modes
@@ -215,46 +215,43 @@ contains
                                                 'pressure_resultants', resultants, status, message)
   end subroutine write_wall_pressure
 
-  !> The hydrodynamic pressure at the base shear and overturning moment peaks of the seismic run
-  !> (sloshdyn_seismic_pressure, theta = 0: the run again on its output times, each instant the
-  !> output time nearest the peak): pressure_at_peaks.csv ('pressure_instants', a column per
-  !> peak) and the wall and base profiles at each. A rectangular tank has none, as in
-  !> write_wall_pressure.
-  subroutine write_peak_pressures(config, files, t_end, n_out, peaks, status, message)
+  !> The hydrodynamic pressure at the base shear and overturning moments' peaks of the seismic
+  !> run (sloshdyn_seismic_pressure, theta = 0, from the accelerations the run kept at its peaks,
+  !> `instants`): pressure_at_peaks.csv ('pressure_instants', a column per peak) and the wall and
+  !> base profiles at each. A rectangular tank has none, as in write_wall_pressure.
+  subroutine write_peak_pressures(config, files, instants, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
-    real(wp), intent(in) :: t_end, peaks(PEAKS_SIZE)
-    integer, intent(in) :: n_out
+    real(wp), intent(in) :: instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    character(len=*), parameter :: names(2) = [character(len=6) :: 'shear', 'moment'], &
-                                   loads(2) = [character(len=18) :: 'base shear', &
-                                                                    'overturning moment']
+    character(len=*), parameter :: names(PEAK_INSTANTS) = [character(len=10) :: 'shear', &
+      'moment', 'moment_ibp'], loads(PEAK_INSTANTS) = [character(len=42) :: 'base shear', &
+      'overturning moment', 'overturning moment including base pressure']
     real(wp) :: heights(pressure_heights), radii(pressure_radii), &
-                instants(PRESSURE_INSTANT_ROWS, 2), modal(max_modes, 2), &
-                wall(WALL_PRESSURE_ROWS, pressure_heights, 2), &
-                base(BASE_PRESSURE_ROWS, pressure_radii, 2)
+                at_peaks(PRESSURE_INSTANT_ROWS, PEAK_INSTANTS), &
+                wall(WALL_PRESSURE_ROWS, pressure_heights, PEAK_INSTANTS), &
+                base(BASE_PRESSURE_ROWS, pressure_radii, PEAK_INSTANTS)
     integer :: k, top
     status = SD_OK
     message = ''
     if (config%tank%shape /= SHAPE_CIRCULAR) return
     call pressure_grid(config%tank, heights, radii)
-    call seismic_pressures(config%tank, config%ground, t_end, n_out, config%integration, &
-                           config%method, [peaks(PEAKS_BASE_SHEAR + 1), &
-                                           peaks(PEAKS_OVERTURNING_MOMENT + 1)], &
-                           heights, radii, 0.0_wp, instants, modal, wall, base, status, message)
+    call instant_pressures(config%tank, instants, heights, radii, 0.0_wp, at_peaks, wall, base, &
+                           status, message)
     call in_context('pressure at the peaks', status, message)
     if (status /= SD_OK) return
-    do k = 1, 2
+    do k = 1, PEAK_INSTANTS
       top = maxloc(abs(wall(WALL_TOTAL_PRESSURE, :, k)), 1)
       print '(a)', '  wall pressure at the '//trim(loads(k))//' peak (t = '// &
-                   num2str(instants(PRESSURE_INSTANT_TIME, k), significant=5)//' s): largest '// &
+                   num2str(at_peaks(PRESSURE_INSTANT_TIME, k), significant=5)//' s): largest '// &
                    num2str(wall(WALL_TOTAL_PRESSURE, top, k)/1.0e3_wp, significant=5)// &
                    ' kPa at z = '//num2str(wall(WALL_HEIGHT, top, k), significant=5)// &
                    ' m (wall_pressure_at_'//trim(names(k))//'_peak.csv)'
     end do
-    call files%write_table('pressure_at_peaks.csv', 'pressure_instants', instants, status, message)
-    do k = 1, 2
+    call files%write_table('pressure_at_peaks.csv', 'pressure_instants', at_peaks, status, &
+                           message)
+    do k = 1, PEAK_INSTANTS
       if (status == SD_OK) call files%write_table('wall_pressure_at_'//trim(names(k))// &
                                                   '_peak.csv', 'wall_pressure', wall(:, :, k), &
                                                   status, message)

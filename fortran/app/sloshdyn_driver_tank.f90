@@ -6,6 +6,10 @@ submodule (sloshdyn_driver) sloshdyn_driver_tank
   ! not when one its parent uses does (a stale object then calls the old interfaces)
   use sloshdyn_driver_common, only: begin_files, in_context, used_method, value_text, &
                                     difference, pad, write_peak_pressures
+  use sloshdyn_vessel, only: ROOF_CONTACT_IMPACT, roof_contact_names
+  use sloshdyn_seismic, only: seismic_response, seismic_defaults
+  use sloshdyn_tables, only: SEISMIC_LOADS, SEISMIC_ROWS, SEISMIC_FREE_ROWS, PEAKS_SIZE, &
+                             PEAKS_FREE_SIZE, PEAK_INSTANT_ROWS, PEAK_INSTANTS
   implicit none
 
 contains
@@ -23,7 +27,11 @@ contains
 
     t_end = config%seismic%t_end
     n_out = config%seismic%n_out
-    call seismic_defaults(config%tank_props, config%ground, t_end, n_out)
+    if (config%has_ground_y) then
+      call seismic_defaults(config%tank_props, config%ground, t_end, n_out, config%ground_y)
+    else
+      call seismic_defaults(config%tank_props, config%ground, t_end, n_out)
+    end if
     allocate (table(SEISMIC_SPATIAL_ROWS, n_out))
     call seismic_response_spatial(config%tank, config%ground, config%ground_y, config%azimuth, &
                                   config%ellipticity, t_end, n_out, config%integration, &
@@ -47,6 +55,22 @@ contains
       num2str(peaks(11), significant=5)//' m; base shear '// &
       num2str(peaks(14)/1.0e6_wp, significant=5)//', '// &
       num2str(peaks(15)/1.0e6_wp, significant=5)//' MN'
+    ! the roof, judged on the free wave around the whole wall (sloshdyn_seismic_spatial)
+    if (peaks(20) > 0) then
+      print '(a)', '  the free wave reaches the roof: first at t = '// &
+                   num2str(peaks(21), significant=5)//' s at azimuth '// &
+                   num2str(peaks(22), significant=5)//' rad, '//num2str(nint(peaks(23)))// &
+                   ' time(s); it rises to '//num2str(peaks(24), significant=5)//' m at the wall'
+      print '(a)', '  '//roof_name(config%tank)//', restricted sloshing: head '// &
+                   num2str(peaks(26), significant=5)//' m, uplift '// &
+                   num2str(peaks(27)/1.0e6_wp, significant=5)//' MN, confined convective mass '// &
+                   num2str(peaks(28), significant=5)//' kg, moving with the tank from the '// &
+                   'first contact on'
+    else
+      print '(a)', '  the free wave does not reach the roof: its peak around the wall is '// &
+                   num2str(100*peaks(24)/config%tank%freeboard, significant=3)// &
+                   ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
+    end if
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('seismic_spatial.csv', 'seismic_spatial', table, &
                                                 status, message)
@@ -56,89 +80,108 @@ contains
                                                 status, message)
   end subroutine run_seismic_spatial
 
-  !> A tank under its ground motion (sloshdyn_seismic): SI time histories and their peaks.
+  !> A tank under its ground motion (sloshdyn_seismic): SI time histories and their peaks, the
+  !> roof's verdict and loads (the restricted-sloshing method), and with roof_contact =
+  !> 'impact' the paper's impact model's force, labelled as such.
   module subroutine run_seismic(config, files, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), allocatable :: table(:, :)
-    real(wp) :: peaks(PEAKS_SIZE), t_end
-    integer :: n_out, i
+    real(wp) :: peaks(PEAKS_SIZE), instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS), t_end
+    integer :: n_out, i, columns, peak_columns
     character(len=2*message_len) :: info(2)
-    character(len=*), parameter :: loads(SEISMIC_LOADS - 1) = [character(len=22) :: &
+    character(len=:), allocatable :: suffix
+    character(len=*), parameter :: loads(SEISMIC_LOADS - 1) = [character(len=24) :: &
       'ground acceleration', 'sloshing displacement', 'wave height', 'pendulum angle', &
-      'tank drift', 'impact force', 'base shear', 'overturning moment']
+      'tank drift', 'tank acceleration', 'convective acceleration', 'base shear', &
+      'overturning moment', 'moment incl. base press.']
     ! engineering precision: 5 significant digits, forces in MN and moments in MN m
     character(len=*), parameter :: units(SEISMIC_LOADS - 1) = [character(len=6) :: &
-      'm/s^2', 'm', 'm', 'rad', 'm', 'MN', 'MN', 'MN m']
-    real(wp), parameter :: unit_exponents(SEISMIC_LOADS - 1) = [0, 0, 0, 0, 0, 6, 6, 6]
+      'm/s^2', 'm', 'm', 'rad', 'm', 'm/s^2', 'm/s^2', 'MN', 'MN m', 'MN m']
+    real(wp), parameter :: unit_exponents(SEISMIC_LOADS - 1) = [0, 0, 0, 0, 0, 0, 0, 6, 6, 6]
+    logical :: impact
 
     t_end = config%seismic%t_end
     n_out = config%seismic%n_out
     call seismic_defaults(config%tank_props, config%ground, t_end, n_out)
     allocate (table(SEISMIC_ROWS, n_out))
     call seismic_response(config%tank, config%ground, t_end, n_out, config%integration, &
-                          config%method, table, peaks, status, message)
+                          config%method, table, peaks, instants, status, message)
     call in_context('seismic response', status, message)
     if (status /= SD_OK) return
+    impact = config%tank%roof_contact == ROOF_CONTACT_IMPACT
     print '(/a)', 'Seismic response ('//used_method(config)//') from rest, t = 0 to '// &
-                  num2str(t_end)//' s, '//num2str(n_out)//' outputs; peaks:'
+                  num2str(t_end)//' s, '//num2str(n_out)//' outputs: the tank without contact '// &
+                  'below its roof, restricted sloshing above it; peaks:'
     do i = 1, SEISMIC_LOADS - 1
-      print '(a)', '  '//pad(trim(loads(i)), 24)// &
+      print '(a)', '  '//pad(trim(loads(i)), 26)// &
                    pad(num2str(peaks(2*i - 1)/10.0_wp**unit_exponents(i), significant=5)//' '// &
                    trim(units(i)), 18)//'at t = '//num2str(peaks(2*i), significant=5)//' s'
     end do
-    ! the roof contact and loads of the free wave (no roof; sloshdyn_seismic's roof_contact)
+    ! the roof's verdict and loads, of the free wave (sloshdyn_seismic)
     associate (free_wave => peaks(PEAKS_FREE_WAVE))
       if (peaks(PEAKS_ROOF_REACHED) > 0) then
-        print '(a)', '  the wave reaches the roof: first at t = '// &
+        print '(a)', '  the free wave reaches the roof: first at t = '// &
                      num2str(peaks(PEAKS_FIRST_ROOF_TIME), significant=5)//' s, '// &
-                     num2str(nint(peaks(PEAKS_ROOF_IMPACTS)))//' time(s); the free wave '// &
-                     'rises to '//num2str(free_wave, significant=5)//' m at the wall'
+                     num2str(nint(peaks(PEAKS_ROOF_IMPACTS)))//' time(s); it rises to '// &
+                     num2str(free_wave, significant=5)//' m at the wall (the wave height '// &
+                     'above is capped at the roof)'
         print '(a)', '  '//roof_name(config%tank)//', restricted sloshing: head '// &
                      num2str(peaks(PEAKS_ROOF_HEAD), significant=5)//' m, uplift '// &
                      num2str(peaks(PEAKS_ROOF_UPLIFT)/1.0e6_wp, significant=5)// &
                      ' MN, confined convective mass '// &
-                     num2str(peaks(PEAKS_CONFINED_MASS), significant=5)//' kg (impulsive)'
+                     num2str(peaks(PEAKS_CONFINED_MASS), significant=5)//' kg, moving with '// &
+                     'the tank from the first contact on (the motion is not integrated again)'
       else
-        print '(a)', '  the wave does not reach the roof: the free wave''s peak is '// &
+        print '(a)', '  the free wave does not reach the roof: its peak is '// &
                      num2str(100*free_wave/config%tank%freeboard, significant=3)// &
                      ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
       end if
     end associate
-    ! the smooth wall of eq (4) acts before the roof: say how hard, against the sloshing weight
-    print '(a)', '  the roof''s force on the liquid (impact force) peaks at '// &
-                 num2str(peaks(PEAKS_IMPACT_FORCE)/ &
-                         (config%tank_props%sloshing_mass*config%tank%gravity), &
-                         significant=3)//' times the sloshing weight m g'
     print '(a)', '  ground motion '//ground_name(config%ground)//': scale factor '// &
                  num2str(peaks(PEAKS_SCALE_FACTOR), significant=5)//', PGA '// &
                  num2str(peaks(1)/config%tank%gravity, significant=5)//' g, Sa('// &
                  num2str(config%tank_props%sloshing_period, significant=4)//' s, 0.5 %) '// &
                  num2str(peaks(PEAKS_SA)/config%tank%gravity, significant=5)//' g'
-    if (peaks(PEAKS_BETA_SENSITIVE) > 0) &
-      print '(a)', '  warning: the model''s impact force, base shear and overturning moment '// &
-                   'are sensitive to impact_stiffness (beta) and impact_damping (delta): its '// &
-                   'wall acts (impact force >= 0.001 m g; docs/model.md, "Choice of beta and '// &
-                   'delta"); the roof verdict and roof loads are not'
+    if (impact) then
+      ! the paper's smooth wall (eq 4-5), opt-in: its force, labelled, feeding no load
+      print '(a)', '  the paper''s impact model (roof_contact = ''impact'', beta = '// &
+                   num2str(config%tank%impact_stiffness)//', delta = '// &
+                   num2str(config%tank%impact_damping)//'; not in any load above): its '// &
+                   'impact force peaks at '// &
+                   num2str(peaks(PEAKS_IMPACT_FORCE)/1.0e6_wp, significant=5)//' MN = '// &
+                   num2str(peaks(PEAKS_IMPACT_FORCE)/ &
+                           (config%tank_props%sloshing_mass*config%tank%gravity), &
+                           significant=3)//' times the sloshing weight m g'
+      if (peaks(PEAKS_BETA_SENSITIVE) > 0) &
+        print '(a)', '  warning: the paper''s impact model is sensitive to impact_stiffness '// &
+                     '(beta) and impact_damping (delta) here: its wall acts (impact force '// &
+                     '>= 0.001 m g; docs/model.md, "Choice of beta and delta")'
+    end if
+    columns = merge(SEISMIC_ROWS, SEISMIC_FREE_ROWS, impact)
+    peak_columns = merge(PEAKS_SIZE, PEAKS_FREE_SIZE, impact)
+    suffix = trim(merge('_impact', '       ', impact))
     call begin_files(config, files, status, message, peaks)
-    if (status == SD_OK) call files%write_table('seismic.csv', 'seismic', table, status, message)
-    if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks', &
-                                                reshape(peaks, [PEAKS_SIZE, 1]), status, message)
+    if (status == SD_OK) call files%write_table('seismic.csv', 'seismic'//suffix, &
+                                                table(1:columns, :), status, message)
+    if (status == SD_OK) call files%write_table('seismic_peaks.csv', 'seismic_peaks'//suffix, &
+                                                reshape(peaks(1:peak_columns), &
+                                                        [peak_columns, 1]), status, message)
     ! what the run rests on, beside its numbers (the same row as Python's SeismicResponse)
-    info(1) = table_header('seismic_run')
+    info(1) = table_header('seismic_run'//suffix)
     info(2) = csv_text(config%ground%name)
     info(2) = trim(info(2))//','//csv_text(config%ground%scaling)
     info(2) = trim(info(2))//','//num2str(peaks(PEAKS_SCALE_FACTOR))//','// &
               num2str(peaks(1))//','//num2str(peaks(PEAKS_SA))//','// &
               num2str(config%tank_props%sloshing_period)//','// &
-              num2str(config%tank%impact_stiffness)//','// &
-              num2str(config%tank%impact_damping)//','// &
-              num2str(nint(peaks(PEAKS_BETA_SENSITIVE)))
+              trim(roof_contact_names(config%tank%roof_contact))
+    if (impact) info(2) = trim(info(2))//','//num2str(config%tank%impact_stiffness)//','// &
+                          num2str(config%tank%impact_damping)//','// &
+                          num2str(nint(peaks(PEAKS_BETA_SENSITIVE)))
     if (status == SD_OK) call files%write_text('run_info.csv', info, status, message)
-    if (status == SD_OK) call write_peak_pressures(config, files, t_end, n_out, peaks, status, &
-                                                   message)
+    if (status == SD_OK) call write_peak_pressures(config, files, instants, status, message)
   end subroutine run_seismic
 
   !> A text field of a CSV row: in double quotes, its quotes doubled (RFC 4180).

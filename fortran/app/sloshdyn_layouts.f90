@@ -118,8 +118,8 @@ module sloshdyn_layouts
     field_t('spectrum', 'flag', 'the executable''s lyapunov analysis: all four exponents '// &
             '(QR method), not the largest only; from Python the call decides '// &
             '(lyapunov_exponent or lyapunov_spectrum)')]
-  !> &tank: tank_t's components in order (sloshdyn_vessel; n, p, shape and modes as reals,
-  !> shape a code of 'tank_shapes')
+  !> &tank: tank_t's components in order (sloshdyn_vessel; n, p, shape, modes and roof_contact
+  !> as reals, shape a code of 'tank_shapes', roof_contact of 'roof_contacts')
   type(field_t), parameter :: tank_fields(*) = [ &
     field_t('radius'), field_t('liquid_depth'), field_t('freeboard'), &
     field_t('liquid_density'), field_t('liquid_mass'), field_t('tank_mass'), &
@@ -132,7 +132,10 @@ module sloshdyn_layouts
     field_t('roof_radius', doc='a dome roof''s radius [m] (0: not a dome; neither: a flat '// &
             'roof)'), &
     field_t('shape', 'code:tank_shapes'), field_t('length'), field_t('width'), &
-    field_t('modes', 'integer')]
+    field_t('modes', 'integer'), &
+    field_t('roof_contact', 'code:roof_contacts', 'how the liquid meets the roof: ''none'' (the '// &
+            'tank without contact below its roof, restricted sloshing above it) or ''impact'' '// &
+            '(also the paper''s impact model of eq 4-5, for its impact force only)')]
   !> A ground motion (sloshdyn_ground): kind (ground_kinds), peak_acceleration [m/s^2],
   !> frequency [Hz], dt [s], scale_factor (what it was scaled by); a record's samples [m/s^2]
   !> travel in their own array.
@@ -520,7 +523,7 @@ contains
     type(tank_t) :: tank
     tank = tank_t(a(1), a(2), a(3), a(4), a(5), a(6), a(7), a(8), a(9), a(10), a(11), a(12), &
                   a(13), a(14), to_int(a(15)), to_int(a(16)), a(17), a(18), a(19), &
-                  to_int(a(20)), a(21), a(22), to_int(a(23)))
+                  to_int(a(20)), a(21), a(22), to_int(a(23)), to_int(a(24)))
   end function to_tank
 
   pure function from_tank(tank) result(a)
@@ -531,7 +534,7 @@ contains
          tank%support_damping_coefficient, tank%support_height, tank%sloshing_damping, &
          tank%impact_stiffness, tank%impact_damping, real(tank%n, wp), real(tank%p, wp), &
          tank%gravity, tank%roof_slope, tank%roof_radius, real(tank%shape, wp), tank%length, &
-         tank%width, real(tank%modes, wp)]
+         tank%width, real(tank%modes, wp), real(tank%roof_contact, wp)]
   end function from_tank
 
   !> ground(GROUND_SIZE) = [kind (GROUND_HARMONIC, GROUND_RECORD), peak_acceleration [m/s^2],

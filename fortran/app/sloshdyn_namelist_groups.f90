@@ -16,7 +16,7 @@ module sloshdyn_namelist_groups
                             n_int_params
   use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A, PARAMETER_FREQUENCY
   use sloshdyn_spatial, only: spatial_model_t
-  use sloshdyn_vessel, only: tank_t, tank_properties, convective_damping
+  use sloshdyn_vessel, only: tank_t, tank_properties, convective_damping, roof_contact_names
   use sloshdyn_tank, only: shape_names, SHAPE_RECTANGULAR
   use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, scale_ground, &
                              on_time_grid
@@ -130,14 +130,14 @@ contains
                 support_frequency, support_damping, support_stiffness, &
                 support_damping_coefficient, support_height, sloshing_damping, &
                 impact_stiffness, impact_damping, gravity, roof_slope, roof_radius, length, width
-    integer :: n, p, modes, code
-    character(len=word_len) :: shape
+    integer :: n, p, modes, code, contact
+    character(len=word_len) :: shape, roof_contact
     type(namelist_reader) :: reader
     namelist /tank/ radius, liquid_depth, freeboard, liquid_density, liquid_mass, tank_mass, &
                     support_frequency, support_damping, support_stiffness, &
                     support_damping_coefficient, support_height, sloshing_damping, &
                     impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius, &
-                    shape, length, width, modes, planar
+                    shape, length, width, modes, planar, roof_contact
 
     radius = vessel%radius; liquid_depth = vessel%liquid_depth; freeboard = vessel%freeboard
     liquid_density = vessel%liquid_density; liquid_mass = vessel%liquid_mass
@@ -150,6 +150,7 @@ contains
     roof_slope = vessel%roof_slope; roof_radius = vessel%roof_radius
     shape = shape_names(vessel%shape); length = vessel%length; width = vessel%width
     modes = vessel%modes
+    roof_contact = roof_contact_names(vessel%roof_contact)
     planar = .true.
     status = SD_OK
     message = ''
@@ -165,6 +166,10 @@ contains
     code = findloc(shape_names, lower(trim(adjustl(shape))), dim=1)
     if (code == 0) call fail(status, message, "&tank: shape = '"//trim(adjustl(shape))// &
                              "' is not known; allowed: "//join(shape_names, ', '))
+    contact = findloc(roof_contact_names, lower(trim(adjustl(roof_contact))), dim=1)
+    if (contact == 0) call fail(status, message, "&tank: roof_contact = '"// &
+                                trim(adjustl(roof_contact))//"' is not known; allowed: "// &
+                                join(roof_contact_names, ', '))
     if (code == SHAPE_RECTANGULAR) then
       call require(file, G_TANK, 'length', status, message)
       call require(file, G_TANK, 'width', status, message)
@@ -178,7 +183,7 @@ contains
                     support_frequency, support_damping, support_stiffness, &
                     support_damping_coefficient, support_height, sloshing_damping, &
                     impact_stiffness, impact_damping, n, p, gravity, roof_slope, roof_radius, &
-                    max(code, 1), length, width, modes)
+                    max(code, 1), length, width, modes, max(contact, 1))
   end subroutine read_tank
 
   !> &ground_motion: a record file (PEER NGA .AT2, or two columns time, acceleration) or harmonic

@@ -29,15 +29,19 @@ module sloshdyn_tables
   public :: CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, CYCLE_SPECIAL_ROWS
   public :: HISTORY_X1, HISTORY_X2, HARMONIC_SWEEP_WAVE_HEIGHT, CHART_GRID_N_STABLE, &
             CHART_GRID_NEAR_CURVE, CHART_GRID_BRUTE_FORCE_STABLE
-  public :: SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, SEISMIC_OVERTURNING_MOMENT
-  public :: SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
+  public :: SEISMIC_WAVE_HEIGHT, SEISMIC_TANK_ACCELERATION, SEISMIC_CONVECTIVE_ACCELERATION, &
+            SEISMIC_BASE_SHEAR, SEISMIC_OVERTURNING_MOMENT, SEISMIC_OVERTURNING_MOMENT_IBP, &
+            SEISMIC_X1, SEISMIC_X2, SEISMIC_FREE_WAVE, SEISMIC_IMPACT_FORCE
+  public :: SEISMIC_LOADS, SEISMIC_FREE_ROWS, SEISMIC_ROWS, PEAKS_FREE_SIZE, PEAKS_SIZE, &
+            PEAKS_WAVE_HEIGHT, PEAKS_IMPACT_FORCE, &
             PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, &
-            PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, PEAKS_SCALE_FACTOR, &
-            PEAKS_SA, PEAKS_BETA_SENSITIVE, &
+            PEAKS_ROOF_EXCESS, PEAKS_ROOF_HEAD, PEAKS_ROOF_UPLIFT, PEAKS_CONFINED_MASS, &
+            PEAKS_SCALE_FACTOR, PEAKS_SA, PEAKS_BETA_SENSITIVE, PEAK_INSTANT_ROWS, PEAK_INSTANTS, &
             CODES_COLUMNS, CODES_ROWS, CODES_SOURCES, TANK_SI_SIZE, &
             HARMONIC_SWEEP_ROWS, TANK_MODES_ROWS
   public :: WALL_HEIGHT, WALL_TOTAL_PRESSURE, WALL_HOOP_FORCE
-  public :: PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT, PRESSURE_INSTANT_TIME
+  public :: PEAKS_BASE_SHEAR, PEAKS_OVERTURNING_MOMENT, PEAKS_OVERTURNING_MOMENT_IBP, &
+            PRESSURE_INSTANT_TIME
   public :: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
             PRESSURE_INSTANT_ROWS
   public :: DESIGN_ROWS, DESIGN_API650, DESIGN_EC8, DESIGN_ACI350, DESIGN_LINEAR, &
@@ -123,8 +127,9 @@ module sloshdyn_tables
   integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 7
   !> A tank under ground motion in two horizontal components (sloshdyn_seismic_spatial): at each
   !> output time ('seismic_spatial'), and the peaks over the output times beside the codes'
-  !> combinations of the two planar runs ('seismic_spatial_peaks').
-  integer, parameter :: SEISMIC_SPATIAL_ROWS = 17, SEISMIC_SPATIAL_PEAKS = 19
+  !> combinations of the two planar runs, then the roof verdict of the free wave around the
+  !> wall and its roof loads ('seismic_spatial_peaks').
+  integer, parameter :: SEISMIC_SPATIAL_ROWS = 18, SEISMIC_SPATIAL_PEAKS = 28
   !> A time history of the spatial model ('spatial_history', rows after tau: the 8 states, the
   !> pendulum's tilt from the vertical over theta0 and the azimuth of the tilt [rad]), and one
   !> periodic orbit of it ('swirl_orbit': its 8 states at tau = 0, max|x1|, the swirl amplitude
@@ -141,39 +146,63 @@ module sloshdyn_tables
   integer, parameter :: CYCLE_POINT_ROWS = 7, CYCLE_MULTIPLIER_ROWS = 8, &
                         CYCLE_AMPLITUDE_ROWS = 4, CYCLE_SPECIAL_ROWS = 7
 
-  !> A tank under ground motion, SI (sloshdyn_seismic): the loads of sloshdyn_vessel at each
-  !> output time, then x1 and x2 and the free wave's height at the wall (no roof: beta = delta =
-  !> 0, what the roof verdict judges); the peaks of the loads (value, time), then the roof contact of
-  !> the free wave (no roof): reached, first contact, entries above the freeboard, the free
-  !> wave's largest height at the wall and its excess over the freeboard, and the roof loads of
-  !> that wave (sloshdyn_roof: head d - f, uplift on the roof, confined convective mass); the
-  !> traceability of the run: the ground motion's scale factor, its pseudo-spectral acceleration
-  !> at the tank's sloshing period (0.5 %) and whether the model's loads are sensitive to beta
-  !> and delta (1/0);
-  !> the design-code cross-check (one row per source); the tank's properties.
+  !> A tank under ground motion, SI (sloshdyn_seismic): at each output time the loads of
+  !> sloshdyn_vessel's tank_loads on the tank without contact below its roof and with the
+  !> restricted-sloshing method above it (docs/model.md, "Loads"), then x1 and x2 and the free
+  !> wave's height at the wall (the tank without a roof, what the roof verdict judges); the
+  !> peaks of the loads (value, time), then the roof contact of the free wave: reached, first
+  !> contact, entries above the freeboard, the free wave's largest height at the wall and its
+  !> excess over the freeboard, and the roof loads of that wave (sloshdyn_roof: head d - f,
+  !> uplift on the roof, confined convective mass); the traceability of the run: the ground
+  !> motion's scale factor and its pseudo-spectral acceleration at the tank's sloshing period
+  !> (0.5 %). With &tank roof_contact = 'impact' the tables '..._impact' add the paper's impact
+  !> model (eq 4-5): its impact force (and peak), and whether its loads would be sensitive to
+  !> beta and delta (1/0); those columns are last, so the tables without them are their first
+  !> rows (SEISMIC_FREE_ROWS, PEAKS_FREE_SIZE).
   character(len=*), parameter :: seismic_columns = 't [s],ground_acceleration [m/s^2],'// &
     'sloshing_displacement [m],wave_height [m],pendulum_angle [rad],tank_drift [m],'// &
-    'impact_force [N],base_shear [N],overturning_moment [N m],x1,x2,free_wave_height [m]'
-  integer, parameter :: SEISMIC_LOADS = 9, SEISMIC_ROWS = 12
-  !> The rows of 'seismic' that higher sloshing modes add to (sloshdyn_seismic)
-  integer, parameter :: SEISMIC_WAVE_HEIGHT = 4, SEISMIC_BASE_SHEAR = 8, &
-                        SEISMIC_OVERTURNING_MOMENT = 9
+    'tank_acceleration [m/s^2],convective_acceleration [m/s^2],base_shear [N],'// &
+    'overturning_moment [N m],overturning_moment_ibp [N m],x1,x2,free_wave_height [m]'
+  character(len=*), parameter :: seismic_impact_columns = ',impact_force [N]'
+  !> run_info.csv: the record and its scaling, with the method of the roof contact
+  character(len=*), parameter :: seismic_run_columns = 'record,scaling,scale_factor,'// &
+    'peak_ground_acceleration [m/s^2],sa_sloshing_period [m/s^2],sloshing_period [s],'// &
+    'roof_contact'
+  integer, parameter :: SEISMIC_LOADS = 11, SEISMIC_FREE_ROWS = 14, SEISMIC_ROWS = 15
+  !> The rows of 'seismic' that higher sloshing modes and the restricted sloshing add to
+  !> (sloshdyn_seismic)
+  integer, parameter :: SEISMIC_WAVE_HEIGHT = 4, SEISMIC_TANK_ACCELERATION = 7, &
+                        SEISMIC_CONVECTIVE_ACCELERATION = 8, SEISMIC_BASE_SHEAR = 9, &
+                        SEISMIC_OVERTURNING_MOMENT = 10, SEISMIC_OVERTURNING_MOMENT_IBP = 11, &
+                        SEISMIC_X1 = 12, SEISMIC_X2 = 13, SEISMIC_FREE_WAVE = 14, &
+                        SEISMIC_IMPACT_FORCE = 15
   character(len=*), parameter :: peaks_columns = 'peak_ground_acceleration [m/s^2],'// &
     'time_ground_acceleration [s],peak_sloshing_displacement [m],time_sloshing_displacement [s],'// &
     'peak_wave_height [m],time_wave_height [s],peak_pendulum_angle [rad],'// &
-    'time_pendulum_angle [s],peak_tank_drift [m],time_tank_drift [s],peak_impact_force [N],'// &
-    'time_impact_force [s],peak_base_shear [N],time_base_shear [s],'// &
-    'peak_overturning_moment [N m],time_overturning_moment [s],roof_reached,'// &
-    'first_roof_time [s],roof_impacts,free_wave_height [m],roof_excess [m],roof_head [m],'// &
-    'roof_uplift_force [N],confined_convective_mass [kg],scale_factor,'// &
-    'sa_sloshing_period [m/s^2],beta_sensitive'
-  integer, parameter :: PEAKS_SIZE = 27, PEAKS_WAVE_HEIGHT = 5, PEAKS_IMPACT_FORCE = 11, &
-                        PEAKS_ROOF_REACHED = 17, PEAKS_FIRST_ROOF_TIME = 18, &
-                        PEAKS_ROOF_IMPACTS = 19, PEAKS_FREE_WAVE = 20, PEAKS_ROOF_HEAD = 22, &
-                        PEAKS_ROOF_UPLIFT = 23, PEAKS_CONFINED_MASS = 24, &
-                        PEAKS_SCALE_FACTOR = 25, PEAKS_SA = 26, PEAKS_BETA_SENSITIVE = 27
-  !> the base shear's and overturning moment's peaks (their times follow them)
-  integer, parameter :: PEAKS_BASE_SHEAR = 13, PEAKS_OVERTURNING_MOMENT = 15
+    'time_pendulum_angle [s],peak_tank_drift [m],time_tank_drift [s],'// &
+    'peak_tank_acceleration [m/s^2],time_tank_acceleration [s],'// &
+    'peak_convective_acceleration [m/s^2],time_convective_acceleration [s],'// &
+    'peak_base_shear [N],time_base_shear [s],peak_overturning_moment [N m],'// &
+    'time_overturning_moment [s],peak_overturning_moment_ibp [N m],'// &
+    'time_overturning_moment_ibp [s],roof_reached,first_roof_time [s],roof_impacts,'// &
+    'free_wave_height [m],roof_excess [m],roof_head [m],roof_uplift_force [N],'// &
+    'confined_convective_mass [kg],scale_factor,sa_sloshing_period [m/s^2]'
+  character(len=*), parameter :: peaks_impact_columns = ',peak_impact_force [N],'// &
+    'time_impact_force [s],beta_sensitive'
+  integer, parameter :: PEAKS_FREE_SIZE = 30, PEAKS_SIZE = 33, PEAKS_WAVE_HEIGHT = 5, &
+                        PEAKS_ROOF_REACHED = 21, PEAKS_FIRST_ROOF_TIME = 22, &
+                        PEAKS_ROOF_IMPACTS = 23, PEAKS_FREE_WAVE = 24, PEAKS_ROOF_EXCESS = 25, &
+                        PEAKS_ROOF_HEAD = 26, PEAKS_ROOF_UPLIFT = 27, PEAKS_CONFINED_MASS = 28, &
+                        PEAKS_SCALE_FACTOR = 29, PEAKS_SA = 30, PEAKS_IMPACT_FORCE = 31, &
+                        PEAKS_BETA_SENSITIVE = 33
+  !> the base shear's and overturning moments' peaks (their times follow them)
+  integer, parameter :: PEAKS_BASE_SHEAR = 15, PEAKS_OVERTURNING_MOMENT = 17, &
+                        PEAKS_OVERTURNING_MOMENT_IBP = 19
+  !> The instants of a seismic run's load peaks (base shear, overturning moment excluding and
+  !> including the base pressure), one column each: the time, the tank's acceleration and the
+  !> absolute accelerations of the sloshing modes 1..max_modes (0 beyond the tank's modes),
+  !> what the pressure at the peaks needs (sloshdyn_seismic_pressure).
+  integer, parameter :: PEAK_INSTANT_ROWS = 12, PEAK_INSTANTS = 3
   !> A stability chart (sloshdyn_stability_chart): its curves' points, codimension-2 points,
   !> the curves' ends, and the grid's cells with their counts of steady states.
   character(len=*), parameter :: chart_curve_columns = 'curve,kind,rho,A,gamma,kappa,x1,x2,x3,'// &
@@ -320,7 +349,8 @@ contains
       header = 't [s],ground_acceleration_x [m/s^2],ground_acceleration_y [m/s^2],'// &
                'wave_height_x [m],wave_height_y [m],wave_height [m],wave_azimuth [rad],'// &
                'base_shear_x [N],base_shear_y [N],base_shear [N],overturning_moment_x [N m],'// &
-               'overturning_moment_y [N m],overturning_moment [N m],x1,x2,y1,y2'
+               'overturning_moment_y [N m],overturning_moment [N m],x1,x2,y1,y2,'// &
+               'free_wave_height [m]'
     case ('seismic_spatial_peaks')
       header = 'wave_height [m],wave_azimuth [rad],wave_time [s],base_shear [N],'// &
                'base_shear_time [s],overturning_moment [N m],overturning_moment_time [s],'// &
@@ -328,19 +358,32 @@ contains
                'wave_height_100_30 [m],base_shear_run_1 [N],base_shear_run_2 [N],'// &
                'base_shear_srss [N],base_shear_100_30 [N],overturning_moment_run_1 [N m],'// &
                'overturning_moment_run_2 [N m],overturning_moment_srss [N m],'// &
-               'overturning_moment_100_30 [N m]'
+               'overturning_moment_100_30 [N m],roof_reached,first_roof_time [s],'// &
+               'first_roof_azimuth [rad],roof_impacts,free_wave_height [m],roof_excess [m],'// &
+               'roof_head [m],roof_uplift_force [N],confined_convective_mass [kg]'
     case ('lyapunov')
       header = 'periods,estimate'
     case ('lyapunov_spectrum')
       header = 'periods,lambda1,lambda2,lambda3,lambda4'
     case ('seismic')
       header = seismic_columns
+    case ('seismic_impact')
+      header = seismic_columns//seismic_impact_columns
     case ('seismic_peaks')
       header = peaks_columns
+    case ('seismic_peaks_impact')
+      header = peaks_columns//peaks_impact_columns
+    case ('seismic_peak_instants')
+      header = 't [s],tank_acceleration [m/s^2],mode_1_acceleration [m/s^2],'// &
+               'mode_2_acceleration [m/s^2],mode_3_acceleration [m/s^2],'// &
+               'mode_4_acceleration [m/s^2],mode_5_acceleration [m/s^2],'// &
+               'mode_6_acceleration [m/s^2],mode_7_acceleration [m/s^2],'// &
+               'mode_8_acceleration [m/s^2],mode_9_acceleration [m/s^2],'// &
+               'mode_10_acceleration [m/s^2]'
     case ('seismic_run')
-      header = 'record,scaling,scale_factor,peak_ground_acceleration [m/s^2],'// &
-               'sa_sloshing_period [m/s^2],sloshing_period [s],impact_stiffness,'// &
-               'impact_damping,beta_sensitive'
+      header = seismic_run_columns
+    case ('seismic_run_impact')
+      header = seismic_run_columns//',impact_stiffness,impact_damping,beta_sensitive'
     case ('design_codes')
       header = codes_columns_names
     case ('harmonic_sweep')
@@ -400,7 +443,11 @@ contains
     case ('lyapunov_spectrum')
       formats = 'irrrr'
     case ('seismic_peaks')
-      formats = repeat('r', 16)//'irirrrrrrri'
+      formats = repeat('r', 20)//'irirrrrrrr'
+    case ('seismic_peaks_impact')
+      formats = repeat('r', 20)//'irirrrrrrr'//'rri'
+    case ('seismic_spatial_peaks')
+      formats = repeat('r', 19)//'irrirrrrr'
     case ('design_codes')
       formats = 'c'//repeat('r', CODES_COLUMNS)
     case ('harmonic_sweep')

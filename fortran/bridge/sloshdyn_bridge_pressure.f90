@@ -34,33 +34,46 @@ contains
     status = info
   end subroutine pressure_tables
 
-  !> The pressure at the output times nearest to times [s] of the tank's seismic run
-  !> (sloshdyn_seismic_pressure; the same arguments as sloshdyn_bridge_seismic's
-  !> seismic_response): instants in the 'pressure_instants' layout, modal (the modes' absolute
-  !> accelerations), wall and base ('wall_pressure', 'base_pressure' at each instant).
-  subroutine seismic_pressures(tank, ground, n, samples, t_end, n_out, integration, n_times, &
-                               times, n_heights, heights, n_radii, radii, angle, instants, &
-                               modal, wall, base, status, message)
+  !> The instants of the output times nearest to times [s] of a seismic run whose table gave
+  !> t [s], the tank's and the convective mass's accelerations [m/s^2] at its n_out outputs
+  !> (sloshdyn_seismic_pressure's output_instants; 'seismic_peak_instants' columns).
+  subroutine output_instants(tank, n_out, t, tank_accel, convective_accel, n_times, times, &
+                             instants, status, message)
     !f2py threadsafe
-    use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE, to_tank, to_ground, &
-                                to_ode_options, to_method
-    use sloshdyn_tables, only: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_INSTANT_ROWS
-    use sloshdyn_tank, only: MAX_TANK_MODES => max_modes
-    use sloshdyn_seismic_pressure, only: core => seismic_pressures
-    integer(c_int), intent(in) :: n, n_out, n_times, n_heights, n_radii
-    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end, &
-                                  integration(INTEGRATION_SIZE), times(n_times), &
+    use sloshdyn_layouts, only: TANK_SIZE, to_tank
+    use sloshdyn_tables, only: PEAK_INSTANT_ROWS
+    use sloshdyn_seismic_pressure, only: core => output_instants
+    integer(c_int), intent(in) :: n_out, n_times
+    real(c_double), intent(in) :: tank(TANK_SIZE), t(n_out), tank_accel(n_out), &
+                                  convective_accel(n_out), times(n_times)
+    real(c_double), intent(out) :: instants(PEAK_INSTANT_ROWS, n_times)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    call core(to_tank(tank), t, tank_accel, convective_accel, times, instants, info, message)
+    status = info
+  end subroutine output_instants
+
+  !> The pressure at instants ('seismic_peak_instants' columns: t, a_t, a_1..a_10) of a seismic
+  !> run (sloshdyn_seismic_pressure's instant_pressures): loads in the 'pressure_instants'
+  !> layout, wall and base ('wall_pressure', 'base_pressure' at each instant).
+  subroutine instant_pressures(tank, n_times, instants, n_heights, heights, n_radii, radii, &
+                               angle, loads, wall, base, status, message)
+    !f2py threadsafe
+    use sloshdyn_layouts, only: TANK_SIZE, to_tank
+    use sloshdyn_tables, only: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_INSTANT_ROWS, &
+                               PEAK_INSTANT_ROWS
+    use sloshdyn_seismic_pressure, only: core => instant_pressures
+    integer(c_int), intent(in) :: n_times, n_heights, n_radii
+    real(c_double), intent(in) :: tank(TANK_SIZE), instants(PEAK_INSTANT_ROWS, n_times), &
                                   heights(n_heights), radii(n_radii), angle
-    real(c_double), intent(out) :: instants(PRESSURE_INSTANT_ROWS, n_times), &
-                                   modal(MAX_TANK_MODES, n_times), &
+    real(c_double), intent(out) :: loads(PRESSURE_INSTANT_ROWS, n_times), &
                                    wall(WALL_PRESSURE_ROWS, n_heights, n_times), &
                                    base(BASE_PRESSURE_ROWS, n_radii, n_times)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
-    call core(to_tank(tank), to_ground(ground, samples), t_end, int(n_out), &
-              to_ode_options(integration), to_method(integration), times, heights, radii, &
-              angle, instants, modal, wall, base, info, message)
+    call core(to_tank(tank), instants, heights, radii, angle, loads, wall, base, info, message)
     status = info
-  end subroutine seismic_pressures
+  end subroutine instant_pressures
 end module sloshdyn_bridge_pressure

@@ -175,16 +175,19 @@ contains
   end subroutine ground_spectrum
 
   !> t_end [s] and n_out of a seismic response, the defaults (sloshdyn_seismic) where the given
-  !> ones are <= 0: chosen = [t_end, n_out].
-  subroutine seismic_defaults(tank, ground, n, samples, t_end, n_out, chosen, status, message)
+  !> ones are <= 0: chosen = [t_end, n_out]; with has_y, the second component ground_y
+  !> (samples_y) counts too (the longer record's end).
+  subroutine seismic_defaults(tank, ground, n, samples, has_y, ground_y, n_y, samples_y, t_end, &
+                              n_out, chosen, status, message)
     !f2py threadsafe
     use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, SEISMIC_SIZE, to_tank, to_ground
     use sloshdyn_model, only: model_t
     use sloshdyn_vessel, only: tank_properties_t => tank_properties, tank_model
     use sloshdyn_ground, only: check_ground
     use sloshdyn_seismic, only: core => seismic_defaults
-    integer(c_int), intent(in) :: n, n_out
-    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end
+    integer(c_int), intent(in) :: n, n_out, has_y, n_y
+    real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end, &
+                                  ground_y(GROUND_SIZE), samples_y(n_y)
     real(c_double), intent(out) :: chosen(SEISMIC_SIZE)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
@@ -198,31 +201,39 @@ contains
     if (info == 0) then
       duration = t_end
       count = n_out
-      call core(props, to_ground(ground, samples), duration, count)
+      if (has_y /= 0) then
+        call core(props, to_ground(ground, samples), duration, count, &
+                  to_ground(ground_y, samples_y))
+      else
+        call core(props, to_ground(ground, samples), duration, count)
+      end if
       chosen = [duration, real(count, c_double)]
     end if
     status = info
   end subroutine seismic_defaults
 
-  !> The tank's response from rest (sloshdyn_seismic): table(SEISMIC_ROWS,
-  !> n_out) in the 'seismic' layout
-  !> and peaks(PEAKS_SIZE) in the 'seismic_peaks' layout.
+  !> The tank's response from rest (sloshdyn_seismic): table(SEISMIC_ROWS, n_out) in the
+  !> 'seismic_impact' layout, peaks(PEAKS_SIZE) in the 'seismic_peaks_impact' layout (the
+  !> impact model's entries NaN without roof_contact = 'impact'; the layouts without them are
+  !> their first rows) and the accelerations at the load peaks ('seismic_peak_instants').
   subroutine seismic_response(tank, ground, n, samples, t_end, n_out, integration, table, &
-                              peaks, status, message)
+                              peaks, instants, status, message)
     !f2py threadsafe
-    use sloshdyn_tables, only: SEISMIC_ROWS, PEAKS_SIZE
+    use sloshdyn_tables, only: SEISMIC_ROWS, PEAKS_SIZE, PEAK_INSTANT_ROWS, PEAK_INSTANTS
     use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE, to_tank, to_ground, &
                                 to_ode_options, to_method
     use sloshdyn_seismic, only: core => seismic_response
     integer(c_int), intent(in) :: n, n_out
     real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n), t_end, &
                                   integration(INTEGRATION_SIZE)
-    real(c_double), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE)
+    real(c_double), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE), &
+                                   instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     integer :: info
     call core(to_tank(tank), to_ground(ground, samples), t_end, int(n_out), &
-              to_ode_options(integration), to_method(integration), table, peaks, info, message)
+              to_ode_options(integration), to_method(integration), table, peaks, instants, info, &
+              message)
     status = info
   end subroutine seismic_response
 

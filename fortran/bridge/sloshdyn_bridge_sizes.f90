@@ -17,7 +17,7 @@ program sloshdyn_bridge_sizes
                              SEISMIC_SPATIAL_PEAKS
   use sloshdyn_tables, only: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
                              PRESSURE_INSTANT_ROWS
-  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS
+  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, PEAK_INSTANT_ROWS, PEAK_INSTANTS
   use sloshdyn_tank, only: max_modes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
@@ -53,6 +53,8 @@ program sloshdyn_bridge_sizes
   call define('codes_rows', CODES_ROWS)
   call define('seismic_rows', SEISMIC_ROWS)
   call define('peaks_size', PEAKS_SIZE)
+  call define('peak_instant_rows', PEAK_INSTANT_ROWS)
+  call define('peak_instants', PEAK_INSTANTS)
   call define('harmonic_sweep_rows', HARMONIC_SWEEP_ROWS)
   call define('cycle_point_rows', CYCLE_POINT_ROWS)
   call define('cycle_multiplier_rows', CYCLE_MULTIPLIER_ROWS)

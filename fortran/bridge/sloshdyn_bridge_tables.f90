@@ -25,6 +25,7 @@ contains
     use sloshdyn_excitation, only: PARAMETER_RHO
     use sloshdyn_ground, only: GROUND_HARMONIC
     use sloshdyn_tank, only: shape_names, SHAPE_CIRCULAR
+    use sloshdyn_vessel, only: roof_contact_names, ROOF_CONTACT_NONE
     use sloshdyn_wall_pressure, only: combination_names, COMBINE_SRSS
     use sloshdyn_layouts, only: layout_names, layout_text, join, &
                                 excitation_parameters, ground_kinds, resonances, chart_axes, &
@@ -37,7 +38,8 @@ contains
     !> The enumerated options (the cases below, then the kind lists of sloshdyn_tables).
     character(len=*), parameter :: code_lists = 'analyses,methods,chart_models,chart_axes,'// &
       'excitation_parameters,directions,study_kinds,worker_kinds,continuations,ground_kinds,'// &
-      'resonances,tank_shapes,pressure_combinations,design_spectra,ground_types,special,'// &
+      'resonances,tank_shapes,roof_contacts,pressure_combinations,design_spectra,ground_types,'// &
+      'special,'// &
       'motion,verdict,source,curve,codim2,curve_end,design_source'
     character(len=:), allocatable :: joined
     integer :: code
@@ -86,6 +88,9 @@ contains
       case ('tank_shapes')
         joined = join(shape_names, ',')
         code = SHAPE_CIRCULAR
+      case ('roof_contacts')
+        joined = join(roof_contact_names, ',')
+        code = ROOF_CONTACT_NONE
       case ('pressure_combinations')
         joined = join(combination_names, ',')
         code = COMBINE_SRSS

@@ -19,6 +19,10 @@
 !>   moves with the tank, i.e. is impulsive (the code provision restricted sloshing asks for:
 !>   the constrained convective mass as additional impulsive mass).
 !>
+!> A rectangular tank (length L along the motion, width W) has a flat roof and the first mode's
+!> free wave eta(x) = d sin(pi x/L), x from the centre: the same two loads in closed form
+!> (rectangular_roof_loads).
+!>
 !> The roof at s = r/R above the still liquid, z_roof: flat f; cone f + R (1 - s) tan(alpha),
 !> alpha the roof slope; dome (sphere of radius R_d) f + sqrt(R_d^2 - s^2 R^2) - sqrt(R_d^2 - R^2).
 !> Geometries accepted (check_roof): the self-supporting roofs of API 650, cone slope up to 37
@@ -29,7 +33,7 @@ module sloshdyn_roof
   use sloshdyn_text, only: num2str
   implicit none
   private
-  public :: roof_loads, check_roof
+  public :: roof_loads, rectangular_roof_loads, check_roof
 
   !> the first root of J1' (the wave's shape; the paper's 1.84 rounds it)
   real(wp), parameter :: xi_exact = 1.8411837813406593_wp
@@ -178,4 +182,39 @@ contains
       s_meet = (lo + hi)/2
     end function wave_meets_roof
   end subroutine roof_loads
+
+  !> The same loads for a rectangular tank of length L (along the motion) and width W under a
+  !> flat roof at the freeboard f, with the first mode's free wave eta(x) = d sin(k x), k = pi/L,
+  !> x from the centre: where eta > f, x in (x0, L/2] with sin(k x0) = f/d,
+  !>   uplift   = rho g W [d cos(k x0)/k - f (L/2 - x0)]
+  !>   confined = m_c k^2/d [d (1 - sin(k x0))/k^2 + d x0 cos(k x0)/k - f (L^2/8 - x0^2/2)]
+  !> (the crest's first moment, integral of x eta over 0 < x < L/2, is d/k^2).
+  pure subroutine rectangular_roof_loads(length, width, freeboard, wave_height, density, &
+                                         gravity, convective_mass, head, uplift, confined_mass, &
+                                         status, message)
+    real(wp), intent(in) :: length, width, freeboard, wave_height, density, gravity, &
+                            convective_mass
+    real(wp), intent(out) :: head, uplift, confined_mass
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: k, x0, d, f
+    status = SD_OK
+    message = ''
+    head = 0
+    uplift = 0
+    confined_mass = 0
+    call check_real('freeboard', freeboard, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'the roof method needs a freeboard > 0 [m]', status, message)
+    call check_real('wave_height', wave_height, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the free wave height must be finite and >= 0 [m]', status, message)
+    if (status /= SD_OK .or. wave_height <= freeboard) return
+    d = wave_height
+    f = freeboard
+    head = d - f
+    k = pi/length
+    x0 = asin(f/d)/k
+    uplift = density*gravity*width*(d*cos(k*x0)/k - f*(length/2 - x0))
+    confined_mass = convective_mass*k**2/d*(d*(1 - sin(k*x0))/k**2 + d*x0*cos(k*x0)/k - &
+                                            f*(length**2/8 - x0**2/2))
+  end subroutine rectangular_roof_loads
 end module sloshdyn_roof

@@ -20,6 +20,12 @@
 !> Higher modes (modes = N > 1): modes 2..N are linear oscillators of sloshdyn_tank's
 !> sloshing_modes, driven by the tank's acceleration; the rigid (impulsive) mass is m_F minus
 !> the N modal masses. The paper's pendulum (mode 1) and its model are the same for every N.
+!>
+!> The roof (roof_contact): a tank's liquid feels no contact until its wave reaches the roof,
+!> so the tank's model has no impact wall (beta = delta = 0, ROOF_CONTACT_NONE, the default);
+!> above the roof the seismic run applies the restricted-sloshing method (sloshdyn_seismic).
+!> The paper's smooth wall of eq (4)-(5) with the tank's impact_stiffness and impact_damping
+!> is opt-in (ROOF_CONTACT_IMPACT), for its impact force only (docs/model.md, "Loads").
 module sloshdyn_vessel
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NON_FINITE, check_real
@@ -27,7 +33,8 @@ module sloshdyn_vessel
   use sloshdyn_model, only: model_t, model_from_arrays, n_real_params
   use sloshdyn_roof, only: check_roof
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
-  use sloshdyn_tank, only: tank_pendulum, sloshing_modes, max_modes, shape_names, &
+  use sloshdyn_tank, only: tank_pendulum, sloshing_modes, modal_wave_number, max_modes, &
+                           shape_names, &
                            SHAPE_CIRCULAR, SHAPE_RECTANGULAR, min_tank_size, max_tank_size, &
                            max_liquid_density
   use sloshdyn_tables, only: SEISMIC_LOADS
@@ -35,6 +42,7 @@ module sloshdyn_vessel
   private
   public :: tank_t, tank_properties, tank_model, tank_loads, wave_height_factor
   public :: standard_gravity, LOAD_ROWS, tank_acceleration, sloshing_mass_acceleration
+  public :: roof_contact_names, ROOF_CONTACT_NONE, ROOF_CONTACT_IMPACT
 
   real(wp), parameter :: standard_gravity = 9.80665_wp   !< m/s^2
   !> xi = 1.84 of eq (2): the first root of J1', as the paper rounds it
@@ -47,6 +55,13 @@ module sloshdyn_vessel
   !> tank's sloshing_damping and of every spectral acceleration's damping (&ground_motion
   !> target_damping, &study spectral_damping; Python's GroundMotion.scaled, response_spectrum).
   real(wp), parameter, public :: convective_damping = 0.005_wp
+
+  !> How the liquid meets the roof (&tank roof_contact): 'none', no contact model (the tank's
+  !> model is free below the roof; above it the restricted-sloshing method), or 'impact', the
+  !> paper's smooth wall of eq (4)-(5) beside it, for its impact force (roof_contact_names in
+  !> the order of the codes).
+  integer, parameter :: ROOF_CONTACT_NONE = 1, ROOF_CONTACT_IMPACT = 2
+  character(len=*), parameter :: roof_contact_names(*) = [character(len=6) :: 'none', 'impact']
 
   type :: tank_t
     real(wp) :: radius = 0                  !< R [m]
@@ -71,6 +86,7 @@ module sloshdyn_vessel
     real(wp) :: length = 0                  !< rectangular: L along the motion [m]
     real(wp) :: width = 0                   !< rectangular: W across it [m]
     integer :: modes = 1                    !< sloshing modes 1..N (N <= max_modes)
+    integer :: roof_contact = ROOF_CONTACT_NONE  !< ROOF_CONTACT_NONE or ROOF_CONTACT_IMPACT
   end type tank_t
 
   !> What a tank is in the model's terms, and what the loads need.
@@ -85,20 +101,25 @@ module sloshdyn_vessel
     real(wp) :: theta0 = 0                                !< wall angle [rad]
     real(wp) :: convective_height = 0                     !< of m (wall pressures) [m]
     real(wp) :: impulsive_height = 0                      !< of m0 (wall pressures) [m]
+    !> the base pressure's moment of the liquid moving rigidly, over m_F times its acceleration:
+    !> R^2/(4 h) (circular), L^2/(12 h) (rectangular) [m]
+    real(wp) :: rigid_base_arm = 0
     real(wp) :: shell_height = 0                          !< of the tank mass, (h + freeboard)/2
     real(wp) :: wave_factor = 0                           !< eta = wave_factor sin(theta) [m]
     real(wp) :: impact_coefficient = 0                    !< b = beta m g l [N m]
     !> the sloshing modes 1..modes (mode 1: the pendulum above): period [s], mass [kg], height
-    !> of its wall pressure [m], pendulum length [m], wave at the wall per sin(theta_n) [m]
+    !> of its wall pressure's resultant and of its wall and base pressures' [m], pendulum length
+    !> [m], wave at the wall per sin(theta_n) [m]
     integer :: modes = 1
     real(wp), dimension(max_modes) :: modal_period = 0, modal_mass = 0, modal_height = 0, &
-                                      modal_length = 0, modal_wave = 0
+                                      modal_height_ibp = 0, modal_length = 0, modal_wave = 0
   end type tank_properties
 
   !> Rows of tank_loads: t [s], ground acceleration [m/s^2], sloshing displacement l sin(theta)
-  !> [m], wave height at the wall [m], pendulum angle [rad], tank drift L sin(phi) [m], impact
-  !> force [N], base shear [N], overturning moment [N m] (the 'seismic' table of sloshdyn_tables,
-  !> which adds x1, x2).
+  !> [m], wave height at the wall [m], pendulum angle [rad], tank drift L sin(phi) [m], the
+  !> accelerations of the tank and of the convective mass [m/s^2], base shear [N], overturning
+  !> moments excluding and including the base pressure [N m] (the 'seismic' table of
+  !> sloshdyn_tables, which adds x1, x2 and the free wave).
   integer, parameter :: LOAD_ROWS = SEISMIC_LOADS
 
 contains
@@ -158,6 +179,12 @@ contains
       call check_roof(tank%radius, tank%roof_slope, tank%roof_radius, status, message)
     call check_real('sloshing_damping', tank%sloshing_damping, 0.0_wp, 1.0_wp, .false., .true., &
                     'the sloshing damping ratio must lie in [0, 1)', status, message)
+    if (status == SD_OK .and. (tank%roof_contact < 1 .or. &
+                               tank%roof_contact > size(roof_contact_names))) then
+      status = SD_BAD_INPUT
+      message = 'roof_contact = '//num2str(tank%roof_contact)//' is not a code of '// &
+                "'none' (1) or 'impact' (2)"
+    end if
     call check_real('support_height', tank%support_height, 0.0_wp, big, .false., .true., &
                     'the support height must be >= 0 [m] (0: the tank height h + freeboard)', &
                     status, message)
@@ -227,15 +254,20 @@ contains
                               props%modal_mass(1:props%modes), &
                               props%modal_height(1:props%modes)))/props%rigid_mass
     props%shell_height = (tank%liquid_depth + tank%freeboard)/2
+    props%rigid_base_arm = merge(tank%radius**2/4, tank%length**2/12, &
+                                 tank%shape == SHAPE_CIRCULAR)/tank%liquid_depth
     props%impact_coefficient = tank%impact_stiffness*props%sloshing_mass*tank%gravity* &
                                props%pendulum_length
 
-    ! the groups of eq (9); beta and delta are given dimensionless, zeta is the damping ratio
-    associate (pendulum => props%pendulum_length, rod => props%rod_length, w => props%omega)
+    ! the groups of eq (9); beta and delta are given dimensionless, zeta is the damping ratio;
+    ! without the impact model the tank's liquid feels no wall below its roof: beta = delta = 0
+    associate (pendulum => props%pendulum_length, rod => props%rod_length, w => props%omega, &
+               impact => tank%roof_contact == ROOF_CONTACT_IMPACT)
       rpar = [pendulum/rod, props%sloshing_mass/props%total_mass, &
               props%stiffness/(w**2*rod**2*props%total_mass), props%theta0, &
-              tank%impact_stiffness, props%damping/(w*rod**2*props%total_mass), &
-              tank%impact_damping, 0.0_wp, 0.0_wp, tank%sloshing_damping]
+              merge(tank%impact_stiffness, 0.0_wp, impact), &
+              props%damping/(w*rod**2*props%total_mass), &
+              merge(tank%impact_damping, 0.0_wp, impact), 0.0_wp, 0.0_wp, tank%sloshing_damping]
     end associate
     call model_from_arrays(rpar, [tank%n, tank%p], model, status, message)
     if (status /= SD_OK) call rename(message)
@@ -277,8 +309,8 @@ contains
     pure subroutine higher_modes(tank, props)
       type(tank_t), intent(in) :: tank
       type(tank_properties), intent(inout) :: props
-      real(wp) :: plan_size
-      integer :: n
+      real(wp) :: plan_size, wave_number
+      integer :: n, k
       n = tank%modes
       props%modes = n
       plan_size = merge(tank%radius, tank%length, tank%shape == SHAPE_CIRCULAR)
@@ -294,6 +326,14 @@ contains
       props%modal_height(1) = props%convective_height
       props%modal_length(1) = props%pendulum_length
       props%modal_wave(1) = props%wave_factor
+      ! with the base pressure a mode's resultant rises by csch(k_n h)/k_n (k_n its wave number;
+      ! mode 1 of a cylinder at eq (2)'s xi = 1.84, as its convective height; docs/model.md)
+      do k = 1, n
+        wave_number = modal_wave_number(tank%shape, plan_size, k)
+        if (k == 1 .and. tank%shape == SHAPE_CIRCULAR) wave_number = xi/tank%radius
+        props%modal_height_ibp(k) = props%modal_height(k) + &
+                                    1/(wave_number*sinh(wave_number*tank%liquid_depth))
+      end do
     end subroutine higher_modes
 
     !> The model's names in a message are the tank's: tell which tank inputs made them.
@@ -383,35 +423,38 @@ contains
   end function swing
 
   !> The loads of the state y with rates dydt = (x1', x1'', x2', x2'') at tau, in SI (the rows
-  !> of LOAD_ROWS); ground_acceleration = u'' [m/s^2] at that time.
-  pure function tank_loads(tank, props, model, tau, y, dydt, ground_acceleration) result(row)
+  !> of LOAD_ROWS); ground_acceleration = u'' [m/s^2] at that time. confined_share: the share
+  !> phi of the convective mass that the roof confines (0 before the wave reaches the roof;
+  !> sloshdyn_seismic): it moves with the tank, so the convective mass's mean acceleration is
+  !> a_c = a_m + phi (a_t - a_m) (the restricted-sloshing method, docs/model.md "Roof loads").
+  pure function tank_loads(tank, props, model, tau, y, dydt, ground_acceleration, &
+                           confined_share) result(row)
     type(tank_t), intent(in) :: tank
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: model
-    real(wp), intent(in) :: tau, y(4), dydt(4), ground_acceleration
+    real(wp), intent(in) :: tau, y(4), dydt(4), ground_acceleration, confined_share
     real(wp) :: row(LOAD_ROWS)
-    real(wp) :: theta, phi, tank_accel, mass_accel
+    real(wp) :: theta, phi, tank_accel, convective_accel
     associate (w => props%omega, t0 => model%theta0, pendulum => props%pendulum_length, &
                rod => props%rod_length, m => props%sloshing_mass)
       theta = t0*y(1)
       phi = t0*y(3)
-      ! horizontal accelerations of the tank and of the sloshing mass
+      ! horizontal accelerations of the tank and of the convective (sloshing) mass
       tank_accel = tank_acceleration(props, model, y, dydt, ground_acceleration)
-      mass_accel = sloshing_mass_acceleration(props, model, y, dydt, tank_accel)
-      row(1) = tau/w
-      row(2) = ground_acceleration
-      row(3) = pendulum*sin(theta)
-      row(4) = props%wave_factor*sin(theta)
-      row(5) = theta
-      row(6) = rod*sin(phi)
-      ! the impact moment b x1^(2n-1) of eq (4) acts on m through the arm l
-      row(7) = props%impact_coefficient*y(1)**(2*model%n - 1)/pendulum
-      ! the base shear: the rate of the horizontal momentum (M - m) X_t' + m X_m'
-      row(8) = (props%total_mass - m)*tank_accel + m*mass_accel
+      convective_accel = sloshing_mass_acceleration(props, model, y, dydt, tank_accel)
+      convective_accel = convective_accel + confined_share*(tank_accel - convective_accel)
+      row(1:8) = [tau/w, ground_acceleration, pendulum*sin(theta), props%wave_factor*sin(theta), &
+                  theta, rod*sin(phi), tank_accel, convective_accel]
+      ! the base shear: the rate of the horizontal momentum (M - m) X_t' + m X_c'
+      row(9) = (props%total_mass - m)*tank_accel + m*convective_accel
       ! the overturning moment about the tank bottom of the wall pressures and the shell's
-      ! inertia: each mass's horizontal inertia force at its height
-      row(9) = (props%rigid_mass*props%impulsive_height + tank%tank_mass*props%shell_height)* &
-               tank_accel + m*props%convective_height*mass_accel
+      ! inertia: each mass's horizontal inertia force at its height; with the base pressure,
+      ! the rigid liquid's m_F a_t rigid_base_arm and the mode's rise to its IBP height
+      row(10) = (props%rigid_mass*props%impulsive_height + tank%tank_mass*props%shell_height)* &
+                tank_accel + m*props%convective_height*convective_accel
+      row(11) = row(10) + props%liquid_mass*props%rigid_base_arm*tank_accel + &
+                m*(props%modal_height_ibp(1) - props%convective_height)* &
+                (convective_accel - tank_accel)
     end associate
   end function tank_loads
 end module sloshdyn_vessel

@@ -224,6 +224,9 @@ module sloshdyn_ode
   type :: peak_tracker
     real(wp), allocatable :: peak(:)            !< largest |g_i|
     real(wp), allocatable :: time(:)            !< where it is
+    !> with keep_states (set before start), the state at each peak, state(:, i)
+    real(wp), allocatable :: state(:, :)
+    logical :: keep_states = .false.
     real(wp), allocatable :: level(:)           !< crossing levels (set before start; 0 = none)
     integer, allocatable :: crossings(:)        !< entries of |g_i| into [level_i, inf)
     real(wp), allocatable :: first_crossing(:)  !< time of the first (NaN: none)
@@ -553,6 +556,7 @@ contains
     call obs%values(t, y, g)
     self%peak = abs(g)
     self%time = spread(t, 1, size(g))
+    if (self%keep_states) self%state = spread(y, 2, size(g))
     self%above = self%level > 0 .and. abs(g) >= self%level
     self%crossings = merge(1, 0, self%above)
     self%first_crossing = merge(t, ieee_value(1.0_wp, ieee_quiet_nan), self%above)
@@ -569,7 +573,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(dense_quantity) :: f
-    real(wp), allocatable :: s(:), g(:, :)
+    real(wp), allocatable :: s(:), g(:, :), g_peak(:)
     real(wp) :: a, b, best, rise, s_best, f_best, s_left, s_right, s_root, f_root, v_left, v
     integer :: m, n, i, j, k, n_points
     integer, allocatable :: order(:)
@@ -588,7 +592,7 @@ contains
       n = 0
     end if
     ! the probes, and room for one refined maximum per quantity
-    allocate (s(0:n + 1), g(m, 0:n + 1), order(0:n + 1))
+    allocate (s(0:n + 1), g(m, 0:n + 1), order(0:n + 1), g_peak(m))
     f%integ => integ
     f%obs => obs
     f%a = a
@@ -627,6 +631,7 @@ contains
       if (best > self%peak(i)) then
         self%peak(i) = best
         self%time(i) = a + s_best*(b - a)
+        if (self%keep_states) call state_at(s_best, g_peak, self%state(:, i))
       end if
       if (.not. self%level(i) > 0) cycle
       ! entries into [level, inf) along the probes and the refined maximum, in order
@@ -664,21 +669,24 @@ contains
 
   contains
 
-    !> g at s in [0, 1] of [a, b]: the state itself at the step's end.
-    subroutine state_at(s_point, g_point)
+    !> g at s in [0, 1] of [a, b]: the state itself at the step's end (and that state, y_point).
+    subroutine state_at(s_point, g_point, y_point)
       real(wp), intent(in) :: s_point
       real(wp), intent(out) :: g_point(:)
+      real(wp), intent(out), optional :: y_point(:)
       real(wp) :: t
       t = a + s_point*(b - a)
       if (s_point >= 1) then
         t = b
         if (b == integ%t) then
           call obs%values(t, integ%y, g_point)
+          if (present(y_point)) y_point = integ%y
           return
         end if
       end if
       call integ%dense(t, f%y)
       call obs%values(t, f%y, g_point)
+      if (present(y_point)) y_point = f%y
     end subroutine state_at
   end subroutine tracker_watch
 

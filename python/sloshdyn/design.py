@@ -90,11 +90,11 @@ def design_check(tank, motion=None, *, design: Design | None = None,
         raise InputError("spectrum = 'ground_motion' needs the ground motion: "
                          "design_check(tank, ground_motion, design=...)")
     ground, samples = ground_arrays(ground_motion)
-    peaks = np.zeros(len(_tables.columns("seismic_peaks")))
+    columns = _tables.columns("seismic_peaks_impact")      # the core's whole peaks array
+    peaks = np.zeros(len(columns))
     if response is not None:
         _checks.instance("response", response, SeismicResponse)
-        peaks = np.array([response.peak_table[column_name(c)]
-                          for c in _tables.columns("seismic_peaks")])
+        peaks = np.array([response.peak_table.get(column_name(c), np.nan) for c in columns])
     loads, freeboard, status, message = _bridge.design_check(
         tank.array(), design.array(), ground, samples, int(response is not None), peaks)
     check_status(status, message)

@@ -167,9 +167,12 @@ def seismic(response, loads=("wave_height", "base_shear", "overturning_moment"))
              "sloshing_displacement": ("sloshing displacement [m]", 1.0),
              "pendulum_angle": ("pendulum angle [rad]", 1.0),
              "tank_drift": ("tank drift [m]", 1.0),
-             "impact_force": ("roof/wall impact force [kN]", 1e-3),
+             "tank_acceleration": ("tank acceleration [m/s^2]", 1.0),
+             "convective_acceleration": ("convective acceleration [m/s^2]", 1.0),
+             "impact_force": ("impact force, the paper's model [kN]", 1e-3),
              "base_shear": ("base shear [kN]", 1e-3),
-             "overturning_moment": ("overturning moment [kN m]", 1e-3)}
+             "overturning_moment": ("overturning moment [kN m]", 1e-3),
+             "overturning_moment_ibp": ("moment incl. base pressure [kN m]", 1e-3)}
     for load in loads:
         if load not in units:
             raise ValueError(f"load {load!r} is not known; choose from {', '.join(units)}")
@@ -181,7 +184,7 @@ def seismic(response, loads=("wave_height", "base_shear", "overturning_moment"))
     for ax, load in zip(axes[1:], loads):
         label, factor = units[load]
         ax.plot(t, getattr(response, load) * factor, lw=0.7, color="k",
-                label="model" if load == "wave_height" else None)
+                label="with the roof" if load == "wave_height" else None)
         peak, when = response.peaks[load]
         k = int(np.argmin(np.abs(t - when)))
         unit = label[label.index("[") + 1:-1]
@@ -216,7 +219,7 @@ def _ground_title(response):
         text += (f": uplift {p['roof_uplift_force'] / 1e3:.4g} kN, confined convective mass "
                  f"{p['confined_convective_mass'] / 1e3:.4g} t")
     if response.beta_sensitive:
-        text += "; the model's loads are sensitive to beta and delta"
+        text += "; the paper's impact model is sensitive to beta and delta"
     return text
 
 

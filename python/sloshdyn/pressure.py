@@ -16,11 +16,8 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._tables import column_name
-from ._cancel import cancellable
 from ._errors import check_status
-from .options import Integration
-from .ground import ground_arrays
-from .seismic import SeismicResponse
+from .seismic import PEAK_LOADS, SeismicResponse
 from .tank import Tank
 
 _bridge = _core.sloshdyn_bridge_pressure
@@ -158,16 +155,17 @@ def wall_pressure(tank, impulsive_acceleration, convective_accelerations=(), *, 
 
 @dataclass(frozen=True)
 class SeismicPressures(_Profiles):
-    """The hydrodynamic pressure at instants of a seismic run (`seismic_pressures`), each at the
-    run's output time `t` [s] nearest the requested `times` [s]: the tank's absolute
-    acceleration tank_acceleration [m/s^2] and the sloshing modes' mode_accelerations
-    [m/s^2] (shape (instants, modes)), the base_shear [N], overturning_moment and
-    overturning_moment_ibp [N m] (excluding and including the base pressure) that the pressures
-    and the shell's inertia give; on the wall at `z` [m] and the base at `r` [m], arrays of shape
-    (instants, points): impulsive_pressure (the part moving with the tank), convective_pressure
-    (the modes'), total_pressure [Pa], hoop_force [N/m], base_impulsive_pressure,
-    base_convective_pressure, base_total_pressure [Pa], at `angle` [rad]; `method`, the
-    integration method used ('auto' resolved)."""
+    """The hydrodynamic pressure at instants of a seismic run (`seismic_pressures`): at its
+    load peaks exactly (the accelerations the run kept), or at the run's output time `t` [s]
+    nearest each requested time: the tank's absolute acceleration tank_acceleration [m/s^2]
+    and the sloshing modes' mode_accelerations [m/s^2] (shape (instants, modes)), the
+    base_shear [N], overturning_moment and overturning_moment_ibp [N m] (excluding and
+    including the base pressure) that the pressures and the shell's inertia give; on the wall
+    at `z` [m] and the base at `r` [m], arrays of shape (instants, points):
+    impulsive_pressure (the part moving with the tank), convective_pressure (the modes'),
+    total_pressure [Pa], hoop_force [N/m], base_impulsive_pressure, base_convective_pressure,
+    base_total_pressure [Pa], at `angle` [rad]; `method`, the integration method of the run
+    ('auto' resolved)."""
 
     times: np.ndarray
     t: np.ndarray
@@ -179,35 +177,44 @@ class SeismicPressures(_Profiles):
     method: str
 
 
-def seismic_pressures(response, *, integration: Integration = Integration(), times=None,
-                      heights=None, radii=None, angle=0.0) -> SeismicPressures:
+def seismic_pressures(response, *, times=None, heights=None, radii=None,
+                      angle=0.0) -> SeismicPressures:
     """The pressure on the wall and base at instants of a seismic run (a SeismicResponse of
-    seismic_response, run with the same `integration`): by default the times of
-    its base shear and overturning moment peaks. The run is integrated again on its output
-    times; each instant is the output time nearest the requested one (a peak of a run with one
-    mode lies between output times)."""
+    seismic_response): by default at the peaks of its base shear and overturning moments
+    (excluding and including the base pressure), from the accelerations the run kept there;
+    at given `times` [s], at the output time nearest each (from the run's table; modes 2..N as
+    the run computed them). Nothing is integrated again."""
     _checks.instance("response", response, SeismicResponse)
-    _checks.instance("integration", integration, Integration)
     tank = response.tank
-    if times is None:
-        times = [response.peaks["base_shear"][1], response.peaks["overturning_moment"][1]]
-    times = _checks.reals("times", times, ndim=1)
     z = (np.linspace(0.0, tank.liquid_depth, DEFAULT_HEIGHTS) if heights is None
          else _checks.reals("heights", heights, ndim=1))
     r = (np.linspace(0.0, tank.radius, DEFAULT_RADII) if radii is None
          else _checks.reals("radii", radii, ndim=1))
     theta = _checks.real("angle", angle)
-    ground, samples = ground_arrays(response.ground_motion)
-    instants, modal, wall, base, status, message = cancellable(
-        _bridge.seismic_pressures, tank.array(), ground, samples, response.t_end, len(response.t),
-        integration.array(), times, z, r, theta)
+    rows = len(_tables.columns("seismic_peak_instants"))
+    if times is None:
+        instants = np.zeros((rows, len(PEAK_LOADS)))
+        for k, load in enumerate(PEAK_LOADS):
+            t, a_t, a_n = response.peak_instants[load]
+            instants[:2, k] = t, a_t
+            instants[2:2 + len(a_n), k] = a_n
+        times = instants[0].copy()
+    else:
+        times = _checks.reals("times", times, ndim=1)
+        instants, status, message = _bridge.output_instants(
+            tank.array(), response.t, response.tank_acceleration,
+            response.convective_acceleration, times)
+        check_status(status, message)
+    loads, wall, base, status, message = _bridge.instant_pressures(tank.array(), instants, z, r,
+                                                                   theta)
     check_status(status, message)
     columns = {column_name(c): row.copy() for c, row in zip(_tables.columns("pressure_instants"),
-                                                      instants)}
+                                                            loads)}
     profile = {column_name(c): wall[j].T.copy()
                for j, c in enumerate(_tables.columns("wall_pressure")) if column_name(c) != "z"}
     floor = {"base_" + column_name(c): base[j].T.copy()
              for j, c in enumerate(_tables.columns("base_pressure")) if column_name(c) != "r"}
-    return SeismicPressures(times=times.copy(), mode_accelerations=modal[:tank.modes].T.copy(),
+    return SeismicPressures(times=times.copy(),
+                            mode_accelerations=instants[2:2 + tank.modes].T.copy(),
                             angle=theta, z=z.copy(), r=r.copy(), **columns, **profile, **floor,
-                            method=integration.method_used)
+                            method=response.method)

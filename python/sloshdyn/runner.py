@@ -13,13 +13,13 @@ from pathlib import Path
 import numpy as np
 
 from ._cancel import app_call
-from . import _core
+from . import _core, _tables
 from ._errors import FileError, SloshdynError, check_status
 from ._files import save_figure
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .charts import chart_from_files
 from .namelist import read_namelist
-from .seismic import HarmonicSweep, SeismicResponse, seismic_defaults
+from .seismic import PEAK_LOADS, HarmonicSweep, SeismicResponse, seismic_defaults
 from .simulation import Simulation, Sweep, _summary
 
 
@@ -76,9 +76,11 @@ def _figure(inp, out):
         t, peaks = _table(out / "seismic.csv"), _table(out / "seismic_peaks.csv")
         with open(out / "run_info.csv", newline="", encoding="utf-8") as info:
             inp.ground_motion.name = next(csv.DictReader(info))["record"]
+        # the figure needs no peak instants (the pressure files have them)
         response = SeismicResponse._from_tables(
             inp.tank, inp.ground_motion, np.array(list(t.values())),
             np.array([column[0] for column in peaks.values()]),
+            np.full((len(_tables.columns("seismic_peak_instants")), len(PEAK_LOADS)), np.nan),
             seismic_defaults(inp.tank, inp.ground_motion, inp.seismic["t_end"] or None,
                              inp.seismic["n_out"] or None).t_end, method)
         return "seismic.png", plotting.seismic(response)

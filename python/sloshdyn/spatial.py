@@ -254,12 +254,17 @@ class SeismicResponse2D:
     (docs/model.md, "Spatial model and swirl"). ``table``: one array per column of the core's
     'seismic_spatial' table (names without units): t [s], ground_acceleration_x and _y
     [m/s^2], wave_height_x and _y [m] (the wall's wave height is
-    wave_height_x cos(psi) + wave_height_y sin(psi) at azimuth psi), wave_height [m] (its
-    maximum over the wall) and wave_azimuth [rad] (where), base_shear_x, _y and the resultant
-    base_shear [N], overturning_moment_x, _y (of the forces along x and y) and the resultant
-    [N m], x1, x2, y1, y2. ``peaks``: the 'seismic_spatial_peaks' (the spatial peaks over the
-    output times with their azimuth and times; for two records also the peaks of the two
-    planar runs, one per component, and the codes' SRSS and 100/30 combinations of them)."""
+    wave_height_x cos(psi) + wave_height_y sin(psi) at azimuth psi: the free wave's), wave_height
+    [m] (its maximum over the wall, capped at the roof) and wave_azimuth [rad] (where),
+    base_shear_x, _y and the resultant base_shear [N], overturning_moment_x, _y (of the forces
+    along x and y) and the resultant [N m], x1, x2, y1, y2, free_wave_height [m] (the largest
+    over the wall of the tank without a roof). As the planar run: the tank without contact
+    below its roof, the restricted-sloshing method above it. ``peaks``: the
+    'seismic_spatial_peaks' (the spatial peaks over the output times with their azimuth and
+    times; the peaks of the two planar runs, one per component, and the codes' SRSS and 100/30
+    combinations of them; the roof's verdict on the free wave around the wall, roof_reached,
+    first_roof_time [s] and first_roof_azimuth [rad], roof_impacts, free_wave_height,
+    roof_excess, and its loads roof_head, roof_uplift_force, confined_convective_mass)."""
 
     table: dict
     peaks: dict
@@ -278,13 +283,14 @@ def seismic_response_2d(tank, ground_motion, ground_motion_2=None, t_end=None, n
     from the x axis] and ground_motion_2 across it: two records with one dt (scale both by one
     factor, as FEMA P695 does, before passing them), or (ground_motion harmonic,
     ground_motion_2 None) harmonic motion with ``ellipticity`` (the minor axis of the ellipse
-    over the major). t_end and n_out default as for ``seismic_response`` of ground_motion."""
+    over the major). t_end and n_out default as for ``seismic_response``, to the longer
+    record's end."""
     _checks.instance("tank", tank, Tank)
     _checks.instance("ground_motion", ground_motion, GroundMotion)
     _checks.instance("integration", integration, Integration)
     if ground_motion_2 is not None:
         _checks.instance("ground_motion_2", ground_motion_2, GroundMotion)
-    times = seismic_defaults(tank, ground_motion, t_end, n_out)
+    times = seismic_defaults(tank, ground_motion, t_end, n_out, ground_motion_2=ground_motion_2)
     _checks.output_size("n_out", times.n_out, len(_tables.columns("seismic_spatial")))
     ground, samples = ground_motion._arrays()
     ground_2, samples_2 = (ground_motion_2._arrays() if ground_motion_2 is not None

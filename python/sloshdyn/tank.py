@@ -64,12 +64,17 @@ class Tank:
     length: float = float(_TANK_DEFAULTS["length"])   #: L along the motion [m] (rectangular)
     width: float = float(_TANK_DEFAULTS["width"])     #: W across the motion [m] (rectangular)
     modes: int = int(_TANK_DEFAULTS["modes"])         #: sloshing modes 1..N taken, N <= 10
+    #: "none" (the tank without contact below its roof, restricted sloshing above it) or
+    #: "impact" (also the paper's impact model, eq 4-5, for its impact force only; the core's
+    #: list 'roof_contacts')
+    roof_contact: str = _tables.codes("roof_contacts")[int(_TANK_DEFAULTS["roof_contact"])]
 
     def __post_init__(self):
         convert_fields(self)
-        if self.shape not in _tables.codes("tank_shapes").values():
-            raise InputError(f"shape = {self.shape!r} is not known; allowed: "
-                             + ", ".join(_tables.codes("tank_shapes").values()))
+        for name, codes in (("shape", "tank_shapes"), ("roof_contact", "roof_contacts")):
+            if getattr(self, name) not in _tables.codes(codes).values():
+                raise InputError(f"{name} = {getattr(self, name)!r} is not known; allowed: "
+                                 + ", ".join(_tables.codes(codes).values()))
         row, modes, rpar, ipar, status, message = _bridge.tank_properties(self.array())
         check_status(status, message)
         object.__setattr__(self, "_row", row.copy())
@@ -80,6 +85,7 @@ class Tank:
         """The flat array of the core's layout 'tank' (shape as its code)."""
         values = {name: getattr(self, name) for name in _tables.layout("tank")}
         values["shape"] = _tables.code("tank_shapes", self.shape)
+        values["roof_contact"] = _tables.code("roof_contacts", self.roof_contact)
         return _tables.pack("tank", values)
 
     @classmethod
@@ -89,6 +95,7 @@ class Tank:
         values = {name: (int(x) if kinds[name] == "int" else float(x))
                   for name, x in _tables.unpack("tank", array).items()}
         values["shape"] = _tables.codes("tank_shapes")[int(values["shape"])]
+        values["roof_contact"] = _tables.codes("roof_contacts")[int(values["roof_contact"])]
         return cls(**values)
 
     @property

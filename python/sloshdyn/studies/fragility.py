@@ -26,13 +26,19 @@ _bridge = _core.sloshdyn_bridge_seismic
 
 _PEAKS = [c.split(" [")[0] for c in _tables.columns("seismic_peaks")]
 _FRAGILITY_LOADS = {
-    "peak_wave_height": ("m", "largest wave height at the wall over the run"),
+    "peak_wave_height": ("m", "largest wave height at the wall over the run (capped at the "
+                               "roof)"),
+    "free_wave_height": ("m", "largest wave height at the wall of the tank without a roof"),
     "peak_sloshing_displacement": ("m", "largest displacement of the sloshing mass relative to "
                                         "the tank"),
     "peak_base_shear": ("N", "largest base shear (about the tank bottom)"),
-    "peak_overturning_moment": ("N m", "largest overturning moment about the tank bottom"),
+    "peak_overturning_moment": ("N m", "largest overturning moment about the tank bottom "
+                                       "(excluding the base pressure)"),
+    "peak_overturning_moment_ibp": ("N m", "largest overturning moment about the tank bottom "
+                                           "including the base pressure"),
     "peak_tank_drift": ("m", "largest drift of the tank relative to the ground"),
-    "peak_impact_force": ("N", "largest impact force of the roof/walls on the liquid"),
+    "confined_convective_mass": ("kg", "the convective mass the roof confines (restricted "
+                                       "sloshing; 0 below the roof)"),
     "first_roof_time": ("s", "first time the wave reached the roof (NaN: never)"),
 }
 
@@ -70,11 +76,12 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
                 scaled, scaled_samples, status, _ = _bridge.scale_ground(
                     ground, samples, (sa * sa_factor) / psa, 0.0, 0.0, period, damping)
             if status == 0 and chosen is None:
-                chosen, status, _ = _bridge.seismic_defaults(tank, scaled, scaled_samples, 0.0, 0)
+                chosen, status, _ = _bridge.seismic_defaults(tank, scaled, scaled_samples, 0,
+                                                             scaled, scaled_samples[:0], 0.0, 0)
                 if status != 0:
                     chosen = None
             if status == 0:
-                _, peaks, status, _ = _bridge.seismic_response(
+                _, peaks, _, status, _ = _bridge.seismic_response(
                     tank, scaled, scaled_samples, float(chosen[0]), int(chosen[1]), integration)
             out["status"][i, j] = status
             if status != 0:
