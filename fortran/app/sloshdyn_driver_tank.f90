@@ -96,7 +96,7 @@ contains
     character(len=*), parameter :: loads(SEISMIC_LOADS - 1) = [character(len=24) :: &
       'ground acceleration', 'sloshing displacement', 'wave height', 'pendulum angle', &
       'tank drift', 'tank acceleration', 'convective acceleration', 'base shear', &
-      'overturning moment', 'moment incl. base press.']
+      'overturning moment', 'moment with base press.']
     ! engineering precision: 5 significant digits, forces in MN and moments in MN m
     character(len=*), parameter :: units(SEISMIC_LOADS - 1) = [character(len=6) :: &
       'm/s^2', 'm', 'm', 'rad', 'm', 'm/s^2', 'm/s^2', 'MN', 'MN m', 'MN m']
@@ -116,7 +116,7 @@ contains
                   num2str(t_end)//' s, '//num2str(n_out)//' outputs: the tank without contact '// &
                   'below its roof, restricted sloshing above it; peaks:'
     do i = 1, SEISMIC_LOADS - 1
-      print '(a)', '  '//pad(trim(loads(i)), 26)// &
+      print '(a)', '  '//pad(trim(loads(i)), 24)// &
                    pad(num2str(peaks(2*i - 1)/10.0_wp**unit_exponents(i), significant=5)//' '// &
                    trim(units(i)), 18)//'at t = '//num2str(peaks(2*i), significant=5)//' s'
     end do

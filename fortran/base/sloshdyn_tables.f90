@@ -359,7 +359,7 @@ contains
                'base_shear_srss [N],base_shear_100_30 [N],overturning_moment_run_1 [N m],'// &
                'overturning_moment_run_2 [N m],overturning_moment_srss [N m],'// &
                'overturning_moment_100_30 [N m],roof_reached,first_roof_time [s],'// &
-               'first_roof_azimuth [rad],roof_impacts,free_wave_height [m],roof_excess [m],'// &
+               'first_contact_azimuth [rad],roof_impacts,free_wave_height [m],roof_excess [m],'// &
                'roof_head [m],roof_uplift_force [N],confined_convective_mass [kg]'
     case ('lyapunov')
       header = 'periods,estimate'

@@ -30,7 +30,7 @@ module sloshdyn_vessel
   use sloshdyn_kinds, only: wp, pi, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
-  use sloshdyn_model, only: model_t, model_from_arrays, n_real_params
+  use sloshdyn_model, only: model_t, model_from_arrays, n_real_params, set_coefficients
   use sloshdyn_roof, only: check_roof
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
   use sloshdyn_tank, only: tank_pendulum, sloshing_modes, modal_wave_number, max_modes, &
@@ -259,18 +259,22 @@ contains
     props%impact_coefficient = tank%impact_stiffness*props%sloshing_mass*tank%gravity* &
                                props%pendulum_length
 
-    ! the groups of eq (9); beta and delta are given dimensionless, zeta is the damping ratio;
-    ! without the impact model the tank's liquid feels no wall below its roof: beta = delta = 0
-    associate (pendulum => props%pendulum_length, rod => props%rod_length, w => props%omega, &
-               impact => tank%roof_contact == ROOF_CONTACT_IMPACT)
+    ! the groups of eq (9); beta and delta are given dimensionless, zeta is the damping ratio
+    associate (pendulum => props%pendulum_length, rod => props%rod_length, w => props%omega)
       rpar = [pendulum/rod, props%sloshing_mass/props%total_mass, &
               props%stiffness/(w**2*rod**2*props%total_mass), props%theta0, &
-              merge(tank%impact_stiffness, 0.0_wp, impact), &
-              props%damping/(w*rod**2*props%total_mass), &
-              merge(tank%impact_damping, 0.0_wp, impact), 0.0_wp, 0.0_wp, tank%sloshing_damping]
+              tank%impact_stiffness, props%damping/(w*rod**2*props%total_mass), &
+              tank%impact_damping, 0.0_wp, 0.0_wp, tank%sloshing_damping]
     end associate
     call model_from_arrays(rpar, [tank%n, tank%p], model, status, message)
     if (status /= SD_OK) call rename(message)
+    ! without the impact model the tank's liquid feels no wall below its roof: beta = delta = 0
+    ! (beta and delta checked above all the same, one rule whatever the roof contact)
+    if (status == SD_OK .and. tank%roof_contact /= ROOF_CONTACT_IMPACT) then
+      model%beta = 0
+      model%delta = 0
+      call set_coefficients(model)
+    end if
 
   contains
 

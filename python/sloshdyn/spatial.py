@@ -263,7 +263,7 @@ class SeismicResponse2D:
     'seismic_spatial_peaks' (the spatial peaks over the output times with their azimuth and
     times; the peaks of the two planar runs, one per component, and the codes' SRSS and 100/30
     combinations of them; the roof's verdict on the free wave around the wall, roof_reached,
-    first_roof_time [s] and first_roof_azimuth [rad], roof_impacts, free_wave_height,
+    first_roof_time [s] and first_contact_azimuth [rad], roof_impacts, free_wave_height,
     roof_excess, and its loads roof_head, roof_uplift_force, confined_convective_mass)."""
 
     table: dict

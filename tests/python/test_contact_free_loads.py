@@ -297,7 +297,7 @@ def test_two_components_reach_the_roof_where_the_planar_run_does():
     wave = run.table["free_wave_height"]
     first = int(np.argmax(wave >= tank.freeboard))
     assert run.table["t"][first - 1] <= p["first_roof_time"] <= run.table["t"][first]
-    assert p["first_roof_azimuth"] == pytest.approx(run.table["wave_azimuth"][first], abs=1e-12)
+    assert p["first_contact_azimuth"] == pytest.approx(run.table["wave_azimuth"][first], abs=1e-12)
     assert p["free_wave_height"] == pytest.approx(np.max(wave), rel=1e-12)
     assert p["free_wave_height"] >= planar.peak_table["free_wave_height"] * 0.5
     assert np.max(run.table["wave_height"]) == pytest.approx(tank.freeboard, rel=1e-12)

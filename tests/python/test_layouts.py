@@ -142,7 +142,9 @@ def test_tank_has_the_cores_defaults():
     tank = _tables.defaults("tank")
     for f in dataclasses.fields(Tank):
         if f.default is not dataclasses.MISSING:
-            default = _tables.code("tank_shapes", f.default) if f.name == "shape" else f.default
+            codes = {"shape": "tank_shapes", "roof_contact": "roof_contacts"}
+            default = (_tables.code(codes[f.name], f.default) if f.name in codes
+                       else f.default)
             assert default == tank[f.name], f.name
     model = Parameters(s1=1.5, mu1=0.5, kappa=2.0, theta0=0.5)
     defaults = {**_tables.defaults("model"), **_tables.defaults("model_integers")}
@@ -321,11 +323,15 @@ def test_result_tables_have_the_columns_the_core_names():
     tank = Tank(radius=5.0, liquid_depth=6.0, freeboard=1.0, liquid_density=1000.0,
                 tank_mass=5.0e4, support_frequency=2.0, support_damping=0.02)
     ground, samples = sloshdyn.GroundMotion.harmonic(0.05, 0.3)._arrays()
-    table, peaks, status, _ = _seismic.seismic_response(tank.array(), ground, samples, 2.0, 3,
-                                                       Integration().array())
+    table, peaks, instants, status, _ = _seismic.seismic_response(
+        tank.array(), ground, samples, 2.0, 3, Integration().array())
     assert status == 0
-    assert table.shape == (len(_tables.columns("seismic")), 3)
-    assert peaks.shape == (len(_tables.columns("seismic_peaks")),)
+    # the core's arrays carry the impact model's rows last ('..._impact' layouts)
+    assert table.shape == (len(_tables.columns("seismic_impact")), 3)
+    assert peaks.shape == (len(_tables.columns("seismic_peaks_impact")),)
+    assert instants.shape == (len(_tables.columns("seismic_peak_instants")), 3)
+    assert _tables.columns("seismic_impact")[:-1] == _tables.columns("seismic")
+    assert _tables.columns("seismic_peaks_impact")[:-3] == _tables.columns("seismic_peaks")
     row, *_ = _seismic.tank_properties(tank.array())
     assert row.shape == (len(_tables.columns("tank_si")),)
 

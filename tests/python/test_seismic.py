@@ -340,8 +340,9 @@ def namelist(tank, ground_lines, analysis_lines):
     """A namelist for the tank (every field, full precision) with the given other groups."""
     fields = ", ".join(f"{name} = {value!r}" for name, value in
                        zip(tank.__dataclass_fields__, tank.array().tolist())
-                       if name not in ("n", "p", "shape", "modes")) + \
-        f", n = {tank.n}, p = {tank.p}, shape = '{tank.shape}', modes = {tank.modes}"
+                       if name not in ("n", "p", "shape", "modes", "roof_contact")) + \
+        f", n = {tank.n}, p = {tank.p}, shape = '{tank.shape}', modes = {tank.modes}" \
+        f", roof_contact = '{tank.roof_contact}'"
     return (f"&tank {fields} /\n&ground_motion {ground_lines} /\n{analysis_lines}"
             "&integration rtol = 1e-11, atol = 1e-14 /\n&output directory = 'out' /\n")
 
@@ -371,13 +372,19 @@ def record_velocity(ground, t):
     return at_samples[k] + a[k] * s + (a[k + 1] - a[k]) * s**2 / (2 * dt)
 
 
+#: the tank with its roof out of reach (the loads are then the free motion's momentum rate, the
+#: restricted-sloshing method never starting), swinging far enough for the geometric
+#: nonlinearity of the pendulum and the rods to count
+HIGH_ROOF = dict(TANK, freeboard=4.0)
+
+
 @pytest.fixture(scope="module")
 def record_run(exe, tmp_path_factory):
-    """The tank on 2 Hz supports under a strong record (impacts): states from
-    the executable's 'simulate' (history.csv: x1, x1', x2, x2'), loads from seismic_response on
-    the same tau grid, 16 outputs per record step."""
-    tank = sloshdyn.Tank(**TANK, support_frequency=2.0, support_damping=0.02)
-    ground = tapered_sines(dt=0.04, duration=16.0, pga=4.0)
+    """The tank on 2 Hz supports under a strong record (the pendulum swings by 0.63 rad, below
+    the roof): states from the executable's 'simulate' (history.csv: x1, x1', x2, x2'), loads
+    from seismic_response on the same tau grid, 16 outputs per record step."""
+    tank = sloshdyn.Tank(**HIGH_ROOF, support_frequency=2.0, support_damping=0.02)
+    ground = tapered_sines(dt=0.04, duration=16.0, pga=2.0)
     folder = tmp_path_factory.mktemp("record_run")
     write_at2(folder / "r.AT2", ground)
     ground = sloshdyn.GroundMotion.from_file(folder / "r.AT2")
@@ -393,7 +400,7 @@ def record_run(exe, tmp_path_factory):
     # the same integration twice: the same trajectory
     assert np.max(np.abs(history[:, 0] - omega * r.t)) < 1e-12
     assert np.max(np.abs(history[:, 1] - r.x1)) < 1e-12
-    assert np.max(np.abs(r.x1)) > 0.85      # impact moment 10 x1^11 > gravity's sin(theta0 x1)
+    assert np.max(np.abs(r.pendulum_angle)) > 0.6 and not r.roof_reached
     t = r.t
     accel = np.interp(t, ground.time, ground.acceleration, right=0.0)
     return Run(tank, ground, t, history[:, 1:5].T, r, accel, record_velocity(ground, t))
@@ -401,18 +408,18 @@ def record_run(exe, tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def harmonic_run():
-    """The tank of docs/python.md under 0.3 g at its sloshing frequency (the impact force reaches 2.8
-    times the sloshing weight):
-    states from simulate, loads from seismic_response, 400 outputs per second."""
-    tank = sloshdyn.Tank(**TANK, support_frequency=2.0, support_damping=0.02)
-    a, f = 0.3 * G, 0.29872
+    """The tank of docs/python.md under 0.05 g at its sloshing frequency, its roof out of reach
+    (the pendulum swings by 1 rad): states from simulate, loads from seismic_response, 400
+    outputs per second."""
+    tank = sloshdyn.Tank(**HIGH_ROOF, support_frequency=2.0, support_damping=0.02)
+    a, f = 0.05 * G, 0.29872
     ground = sloshdyn.GroundMotion.harmonic(a, f, units="m/s^2")
     t_end, n_out = 30.0, 400 * 30 + 1
     r = sloshdyn.seismic_response(tank, ground, t_end=t_end, n_out=n_out, integration=TIGHT)
     omega = tank.properties["omega"]
     sim = sloshdyn.simulate(tank.parameters(ground), omega * t_end, n_out=n_out,
                             integration=TIGHT)
-    assert np.max(np.abs(r.x1)) > 0.85      # impact moment 10 x1^11 > gravity's sin(theta0 x1)
+    assert np.max(np.abs(r.pendulum_angle)) > 1.0 and not r.roof_reached
     t = r.t
     return Run(tank, ground, t, sim.y, r, -a * np.sin(2 * np.pi * f * t),
                a / (2 * np.pi * f) * np.cos(2 * np.pi * f * t))
@@ -490,9 +497,11 @@ def test_energy_balance_with_damping(name, request):
     dissipates 75 % and 48 % of that work."""
     s = request.getfixturevalue(name)
     p, tank = s.tank.properties, s.tank
-    k, c, b, g = p["support_stiffness"], p["support_damping_coefficient"], \
-        p["impact_coefficient"], tank.gravity
-    d = tank.impact_damping * s.omega * s.m * s.l**2
+    # the tank's model has no wall below the roof (roof_contact = 'none': beta = delta = 0)
+    model = tank.parameters()
+    k, c, g = p["support_stiffness"], p["support_damping_coefficient"], tank.gravity
+    b = model.beta * s.m * g * s.l
+    d = model.delta * s.omega * s.m * s.l**2
     x1 = s.y[0]
     energy = (s.M / 2 * s.L**2 * s.phi_d**2 + s.m / 2 * s.l**2 * s.theta_d**2 +
               s.m * s.l * s.L * s.theta_d * s.phi_d * np.cos(s.theta + s.phi) +
@@ -584,27 +593,28 @@ def test_the_pressure_files_are_the_pressure_at_the_run_peaks(both_doors):
     if inp.analysis != "seismic":
         assert written == []
         return
-    assert written == ["base_pressure_at_moment_peak.csv", "base_pressure_at_shear_peak.csv",
-                       "pressure_at_peaks.csv", "wall_pressure_at_moment_peak.csv",
-                       "wall_pressure_at_shear_peak.csv"]
+    assert written == ["base_pressure_at_moment_ibp_peak.csv",
+                       "base_pressure_at_moment_peak.csv", "base_pressure_at_shear_peak.csv",
+                       "pressure_at_peaks.csv", "wall_pressure_at_moment_ibp_peak.csv",
+                       "wall_pressure_at_moment_peak.csv", "wall_pressure_at_shear_peak.csv"]
     run = sloshdyn.seismic_response(inp.tank, inp.ground_motion,
                                     t_end=inp.seismic["t_end"] or None,
                                     n_out=inp.seismic["n_out"] or None,
                                     integration=inp.integration)
     walls = [np.loadtxt(exe_out / f"wall_pressure_at_{peak}_peak.csv", delimiter=",",
-                        skiprows=1) for peak in ("shear", "moment")]
+                        skiprows=1) for peak in ("shear", "moment", "moment_ibp")]
     floors = [np.loadtxt(exe_out / f"base_pressure_at_{peak}_peak.csv", delimiter=",",
-                         skiprows=1) for peak in ("shear", "moment")]
-    at_peaks = sloshdyn.seismic_pressures(run, integration=inp.integration,
-                                          heights=walls[0][:, 0], radii=floors[0][:, 0])
+                         skiprows=1) for peak in ("shear", "moment", "moment_ibp")]
+    at_peaks = sloshdyn.seismic_pressures(run, heights=walls[0][:, 0], radii=floors[0][:, 0])
     instants = np.loadtxt(exe_out / "pressure_at_peaks.csv", delimiter=",", skiprows=1)
     assert np.array_equal(instants.T, [at_peaks.t, at_peaks.tank_acceleration,
                                        at_peaks.base_shear, at_peaks.overturning_moment,
                                        at_peaks.overturning_moment_ibp])
     assert list(at_peaks.times) == [run.peaks["base_shear"][1],
-                                    run.peaks["overturning_moment"][1]]
+                                    run.peaks["overturning_moment"][1],
+                                    run.peaks["overturning_moment_ibp"][1]]
     tank = inp.tank
-    for k in range(2):
+    for k in range(3):
         assert np.array_equal(walls[k][:, 1:].T, [at_peaks.impulsive_pressure[k],
                                                   at_peaks.convective_pressure[k],
                                                   at_peaks.total_pressure[k],
@@ -982,13 +992,16 @@ def test_harmonic_sweep_judges_the_roof_on_the_free_wave():
     as seismic_response's: 0.05 g at 1/3, 1 and 3 times the sloshing frequency, 5 % sloshing
     damping, on 50 Hz supports. Off resonance the free wave is the damped SDOF's (as above,
     1e-3); at resonance it is about twice the 1 m freeboard, so the roof is reached for beta =
-    10 and 1000 alike, while at beta = 1000 the model's own wave, pushed back by the smooth wall,
-    stays below the freeboard (the old verdict, |x1| >= 1, said 'not reached')."""
+    10 and 1000 alike, with and without the paper's impact model: the tank's own sweep (no
+    wall) reports the free wave capped at the roof; with roof_contact = 'impact' at beta = 1000
+    the impact model's own wave, pushed back by the smooth wall, stays below the freeboard (the
+    old verdict, |x1| >= 1, said 'not reached')."""
     steady = sloshdyn.Steady(transient_periods=100, settle_tol=1e-9, window_periods=20,
                              samples_per_period=512)
     verdicts = []
-    for beta in (10.0, 1000.0):
-        tank = stiff_tank(sloshing_damping=0.05, impact_stiffness=beta)
+    for beta, contact in ((10.0, "none"), (1000.0, "none"), (10.0, "impact"),
+                          (1000.0, "impact")):
+        tank = stiff_tank(sloshing_damping=0.05, impact_stiffness=beta, roof_contact=contact)
         p = tank.properties
         omega, length = p["omega"], p["pendulum_length"]
         frequencies = omega / (2 * np.pi) * np.array([1 / 3, 1, 3])
@@ -1000,9 +1013,11 @@ def test_harmonic_sweep_judges_the_roof_on_the_free_wave():
             2 * TANK["radius"] / (1.84**2 - 1) * np.sin(theta), rel=1e-3)
         assert h.free_wave_height[1] > 1.5 * TANK["freeboard"]
         verdicts.append(list(h.roof_reached))
-        if beta == 1000.0:
+        if contact == "none":
+            assert h.wave_height[1] == pytest.approx(TANK["freeboard"], rel=1e-12)
+        elif beta == 1000.0:
             assert h.wave_height[1] < TANK["freeboard"]
-    assert verdicts == [[0, 1, 0]] * 2
+    assert verdicts == [[0, 1, 0]] * 4
 
 
 def test_frequency_sweep_example_reduced_through_both_doors(exe, tmp_path):
@@ -1031,9 +1046,13 @@ def test_frequency_sweep_example_reduced_through_both_doors(exe, tmp_path):
 # --- loads: their definitions, and the rigid liquid under slow motion -------------------------
 
 def test_loads_are_the_documented_functions_of_the_state(record_run):
-    """seismic.csv's columns from x1, x2 (docs/namelist.md, docs/model.md): pendulum angle theta = theta0 x1, sloshing
-    displacement l sin(theta), wave height 2 R sin(theta)/(1.84^2 - 1), tank drift L sin(phi),
-    impact force b x1^(2n-1)/l with b = beta m g l."""
+    """seismic.csv's columns from x1, x2 (docs/namelist.md, docs/model.md): pendulum angle
+    theta = theta0 x1, sloshing displacement l sin(theta), wave height 2 R sin(theta)/(1.84^2 -
+    1) (below the roof: the free wave), tank drift L sin(phi); the tank's and the convective
+    mass's accelerations a_t and a_m from the state and its numerical derivative (the momentum
+    test's differences), the moment with the base pressure from the two (docs/model.md,
+    "Loads": the rigid liquid's m_F a_t R^2/(4h), the mode's m (h_c' - h_c)(a_m - a_t)); the
+    paper's impact force is not there (roof_contact = 'none')."""
     s = record_run
     r, tank = s.r, s.tank
     assert np.array_equal(r.x1, s.y[0]) or np.max(np.abs(r.x1 - s.y[0])) < 1e-12
@@ -1043,10 +1062,23 @@ def test_loads_are_the_documented_functions_of_the_state(record_run):
     assert r.wave_height == pytest.approx(2 * tank.radius / (1.84**2 - 1) * np.sin(theta),
                                           rel=1e-14, abs=1e-300)
     assert r.tank_drift == pytest.approx(s.L * np.sin(s.theta0 * r.x2), rel=1e-14, abs=1e-300)
-    b = tank.impact_stiffness * s.m * tank.gravity * s.l
-    assert r.impact_force == pytest.approx(b * r.x1**(2 * tank.n - 1) / s.l, rel=1e-13,
-                                           abs=1e-300)
-    assert r.ground_acceleration == pytest.approx(s.accel, rel=0, abs=1e-12 * 4.0)   # pga 4
+    assert r.impact_force is None and r.free_wave_height == pytest.approx(r.wave_height)
+    assert r.ground_acceleration == pytest.approx(s.accel, rel=0, abs=1e-12 * 2.0)   # pga 2
+    h = s.t[1] - s.t[0]
+    tank_velocity = s.velocity + s.L * np.cos(s.phi) * s.phi_d
+    mass_velocity = tank_velocity + s.l * np.cos(s.theta) * s.theta_d
+    for accel, velocity in ((r.tank_acceleration, tank_velocity),
+                            (r.convective_acceleration, mass_velocity)):
+        differences = cell_derivative(velocity, h, 8)[::2]
+        np.testing.assert_allclose(accel[::2], differences, rtol=0,
+                                   atol=1e-7 * np.max(np.abs(accel)))
+    p = tank.properties
+    rise = tank.radius / 1.84 / np.sinh(1.84 * tank.liquid_depth / tank.radius)
+    expected = r.overturning_moment + p["liquid_mass"] * tank.radius**2 / (
+        4 * tank.liquid_depth) * r.tank_acceleration + s.m * rise * (
+        r.convective_acceleration - r.tank_acceleration)
+    np.testing.assert_allclose(r.overturning_moment_ibp, expected, rtol=1e-12,
+                               atol=1e-12 * np.max(np.abs(expected)))
 
 
 def test_slow_ground_motion_gives_the_rigid_liquid_loads():

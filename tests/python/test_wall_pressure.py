@@ -311,7 +311,13 @@ def test_pressure_at_the_peaks_of_a_seismic_run_integrates_to_its_loads(modes):
     run = sloshdyn.seismic_response(t, tapered_record(), t_end=20.0, n_out=2001)
     z, wz = graded_nodes(depth)
     r, wr = graded_nodes(radius)
-    at_peaks = sloshdyn.seismic_pressures(run, heights=z, radii=r)
+    times = [run.peaks[key][1] for key in ("base_shear", "overturning_moment")]
+    at_peaks = sloshdyn.seismic_pressures(run, times=times, heights=z, radii=r)
+    # by default: at the peaks themselves, from the accelerations the run kept there
+    kept = sloshdyn.seismic_pressures(run, heights=z, radii=r)
+    assert list(kept.t) == [run.peaks[key][1] for key in
+                            ("base_shear", "overturning_moment", "overturning_moment_ibp")]
+    assert kept.mode_accelerations.shape == (3, modes)
     exact = sloshdyn.wall_pressure(t, 0.0, np.zeros(1))
     dm = exact.convective_masses[0] - t.convective_mass
     dmh = (exact.convective_masses[0]*exact.convective_heights[0]

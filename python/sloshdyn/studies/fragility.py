@@ -114,7 +114,7 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
     `period` (default: the tank's sloshing period) for the damping ratio `damping` (default
     0.5 %, the convective damping of the design codes), in `units` -- and the seismic response
     from rest (sloshdyn.seismic_response) with its peaks: wave height, base shear, overturning
-    moment, roof impact (the wave reaches the roof: |x1| >= 1) per run. The lognormal fragility
+    moment, roof impact (the free wave reaches the roof: |x1| >= 1) per run. The lognormal fragility
     curve of roof impact is fitted by maximum likelihood over all runs (fit_fragility):
     variables fragility_median [units] and fragility_dispersion with their standard errors
     (NaN where no run, or every run, reached the roof).
