@@ -251,7 +251,9 @@ contains
     loads = tank_load_observation(tank, props, free, share, tau_contact)
     allocate (tracker%level(LOAD_ROWS))
     tracker%level = 0
-    tracker%level(LOAD_ROWS) = 1           ! x1 reaching 1: the free wave at the freeboard
+    ! x1 reaching 1: the free wave at the freeboard (none where theta0 is capped: the linear
+    ! wave cannot reach a freeboard above 2 R/(xi^2 - 1))
+    if (props%roof_reachable) tracker%level(LOAD_ROWS) = 1
     tracker%keep_states = .true.
     call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tau, options, method, &
                       history, stats, run_status, run_message, loads, tracker)
@@ -267,7 +269,7 @@ contains
     status = run_status
     message = run_message
     if (status /= SD_OK) return
-    freeboard = props%wave_factor*sin(free%theta0)
+    freeboard = tank%freeboard
     do i = 1, LOAD_ROWS - 1
       peaks(2*i - 1:2*i) = [tracker%peak(i), tracker%time(i)/props%omega]
     end do
@@ -590,7 +592,7 @@ contains
       spectrum_periods(CODES_SOURCES + 1:n) = props%modal_period(2:props%modes)
       if (present(spectrum)) then
         do i = 1, n
-          call spectrum_sa(spectrum, spectrum_periods(i), 100*tank%sloshing_damping, psa(i), &
+          call spectrum_sa(spectrum, spectrum_periods(i), tank%sloshing_damping, psa(i), &
                            status, message)
           if (status /= SD_OK) exit
         end do

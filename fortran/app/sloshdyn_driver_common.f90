@@ -18,8 +18,10 @@ module sloshdyn_driver_common
                              PRESSURE_RESULTANT_ROWS, WALL_HEIGHT, WALL_TOTAL_PRESSURE, &
                              WALL_HOOP_FORCE, PRESSURE_INSTANT_ROWS, PRESSURE_INSTANT_TIME, &
                              PEAK_INSTANT_ROWS, PEAK_INSTANTS
-  use sloshdyn_design_check, only: design_check
-  use sloshdyn_design_spectra, only: spectrum_sa, SPECTRUM_EC8
+  use sloshdyn_design_check, only: design_check, wall_pressure_row
+  use sloshdyn_design_report, only: design_report_t, report_lines, VERDICT_NOT_OK, &
+                                    VERDICT_INFO, verdict_names
+  use sloshdyn_design_spectra, only: spectrum_sa
   use sloshdyn_wall_pressure, only: pressure_tables, combination_names, COMBINE_SRSS, COMBINE_SUM
   use sloshdyn_seismic_pressure, only: instant_pressures
   use sloshdyn_vessel, only: tank_t
@@ -103,11 +105,12 @@ contains
     real(wp), intent(in), optional :: peaks(PEAKS_SIZE)
     real(wp) :: loads(DESIGN_LOADS_COLUMNS, DESIGN_ROWS), freeboard(FREEBOARD_COLUMNS, DESIGN_ROWS)
     logical :: load_rows(DESIGN_ROWS), freeboard_rows(DESIGN_ROWS)
+    type(design_report_t) :: report
     integer :: i
 
     call design_check(config%tank, config%design_spectrum, config%design_factors, &
-                      config%design_from_ground, config%ground, loads, freeboard, status, &
-                      message, peaks)
+                      config%design_from_ground, config%ground, config%structure, loads, &
+                      freeboard, report, status, message, peaks)
     call in_context('design check', status, message)
     if (status /= SD_OK) return
     load_rows = loads(LOADS_BASE_SHEAR, :) == loads(LOADS_BASE_SHEAR, :)
@@ -134,10 +137,18 @@ contains
       print '(a)', '  API 650 Table E-7 (notes b, c): with less freeboard than required, '// &
                    'secondary containment, or a roof and shell designed for the sloshing liquid'
     if (any(freeboard(FREEBOARD_SUFFICIENT, [DESIGN_EC8, DESIGN_ACI350]) == 0)) &
-      print '(a)', '  ACI 350.3 / EN 1998-4: the wave reaches the roof: design the roof for the '// &
-                   'sloshing wave''s pressure (roof loads: docs/model.md)'
+      print '(a)', '  ACI 350.3 / EN 1998-4 freeboard check NOT OK (the code''s wave height '// &
+                   'exceeds the freeboard): design the roof for the sloshing wave''s pressure '// &
+                   '(roof loads: docs/model.md)'
+    call print_checks(report)
     call files%write_table('design_loads.csv', 'design_loads', &
                            with_sources(loads, load_rows), status, message)
+    if (status == SD_OK) call files%write_text('design_checks.csv', &
+                                               report_lines(report, 'design_checks'), status, &
+                                               message)
+    if (status == SD_OK) call files%write_text('design_calc.csv', &
+                                               report_lines(report, 'design_calc'), status, &
+                                               message)
     if (status == SD_OK) call files%write_table('freeboard_check.csv', 'freeboard_check', &
                                                 with_sources(freeboard, freeboard_rows), status, &
                                                 message)
@@ -146,8 +157,28 @@ contains
     if (status == SD_OK) call write_wall_pressure(config, files, loads, status, message)
   end subroutine write_design_check
 
+  !> The checks that are not INFO, each with its verdict, ratio and clause; the NOT OK ones
+  !> counted (design_checks.csv holds them all).
+  subroutine print_checks(report)
+    type(design_report_t), intent(in) :: report
+    integer :: i, n_bad
+    n_bad = 0
+    print '(a)', '  checks (design_checks.csv, the hand calculation in design_calc.csv): '// &
+                 'demand / capacity'
+    do i = 1, report%n_checks
+      associate (r => report%checks(i))
+        if (r%verdict == VERDICT_NOT_OK) n_bad = n_bad + 1
+        if (r%verdict == VERDICT_INFO .or. r%capacity <= 0) cycle
+        print '(a)', '  '//pad(trim(r%code), 20)//pad(trim(verdict_names(r%verdict)), 8)// &
+                     pad(num2str(r%demand/r%capacity, significant=3), 8)//trim(r%check)// &
+                     ' ('//trim(r%clause)//')'
+      end associate
+    end do
+    print '(a)', '  '//num2str(n_bad)//' check(s) NOT OK'
+  end subroutine print_checks
+
   !> design_spectrum.csv: the check's elastic design spectrum at 5 % and 0.5 % damping [g]
-  !> over 100 log-spaced periods from 0.02 s to 10 s (EN 1998-1: to 4 s, 3.2.2.1(2)).
+  !> over 100 log-spaced periods from 0.02 s to 10 s (EN 1998-1: beyond 4 s its Annex A).
   subroutine write_design_spectrum(config, files, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
@@ -157,11 +188,11 @@ contains
     real(wp), parameter :: t_min = 0.02_wp
     real(wp) :: table(3, n_periods), t_max
     integer :: i, j
-    t_max = merge(4.0_wp, 10.0_wp, config%design_spectrum%kind == SPECTRUM_EC8)
+    t_max = 10
     do i = 1, n_periods
       table(1, i) = t_min*(t_max/t_min)**(real(i - 1, wp)/(n_periods - 1))
       do j = 2, 3
-        call spectrum_sa(config%design_spectrum, table(1, i), merge(5.0_wp, 0.5_wp, j == 2), &
+        call spectrum_sa(config%design_spectrum, table(1, i), merge(0.05_wp, 0.005_wp, j == 2), &
                          table(j, i), status, message)
         if (status /= SD_OK) then
           call in_context('design spectrum', status, message)
@@ -191,8 +222,7 @@ contains
     status = SD_OK
     message = ''
     if (config%tank%shape /= SHAPE_CIRCULAR) return
-    row = merge(DESIGN_EC8, DESIGN_LINEAR, loads(LOADS_BASE_SHEAR, DESIGN_EC8) == &
-                                           loads(LOADS_BASE_SHEAR, DESIGN_EC8))
+    row = wall_pressure_row(loads, config%design_factors)
     combination = merge(COMBINE_SUM, COMBINE_SRSS, row == DESIGN_EC8)
     call pressure_grid(config%tank, heights, radii)
     associate (tank => config%tank, a => loads(:, row)*config%tank%gravity)
@@ -203,8 +233,11 @@ contains
     call in_context('wall pressure', status, message)
     if (status /= SD_OK) return
     top = maxloc(wall(WALL_TOTAL_PRESSURE, :), 1)
-    print '(a)', '  wall pressure ('//trim(code_name('o', row))//'''s accelerations, '// &
-                 trim(combination_names(combination))//'): largest '// &
+    print '(a)', '  wall pressure ('//trim(code_name('o', row))//'''s '// &
+                 trim(merge('ELASTIC accelerations', 'design accelerations ', row == DESIGN_LINEAR))// &
+                 ' a_i = '//num2str(loads(LOADS_IMPULSIVE_ACCELERATION, row), significant=5)// &
+                 ' g, a_c = '//num2str(loads(LOADS_CONVECTIVE_ACCELERATION, row), significant=5)// &
+                 ' g, '//trim(combination_names(combination))//'): largest '// &
                  num2str(wall(WALL_TOTAL_PRESSURE, top)/1.0e3_wp, significant=5)//' kPa at z = '// &
                  num2str(wall(WALL_HEIGHT, top), significant=5)//' m, hoop force '// &
                  num2str(wall(WALL_HOOP_FORCE, top)/1.0e3_wp, significant=5)//' kN/m (wall_pressure.csv)'

@@ -137,7 +137,7 @@ contains
       else
         print '(a)', '  the free wave does not reach the roof: its peak is '// &
                      num2str(100*free_wave/config%tank%freeboard, significant=3)// &
-                     ' % of the freeboard ('//num2str(config%tank%freeboard)//' m)'
+                     ' % of the freeboard ('//eng(config%tank%freeboard)//' m)'
       end if
     end associate
     print '(a)', '  ground motion '//ground_name(config%ground)//': scale factor '// &
@@ -213,9 +213,9 @@ contains
     type(tank_t), intent(in) :: tank
     character(len=:), allocatable :: name
     if (tank%roof_slope > 0) then
-      name = 'cone roof ('//num2str(tank%roof_slope)//' degrees)'
+      name = 'cone roof ('//eng(tank%roof_slope)//' degrees)'
     else if (tank%roof_radius > 0) then
-      name = 'dome roof (radius '//num2str(tank%roof_radius)//' m)'
+      name = 'dome roof (radius '//eng(tank%roof_radius)//' m)'
     else
       name = 'flat roof'
     end if
@@ -230,35 +230,43 @@ contains
 
     associate (t => config%tank, p => config%tank_props)
       if (t%shape == SHAPE_CIRCULAR) then
-        print '(/a)', 'Tank (SI): radius R = '//num2str(t%radius)//' m, liquid depth h = '// &
-                      num2str(t%liquid_depth)//' m, freeboard = '//num2str(t%freeboard)//' m'
+        print '(/a)', 'Tank (SI): radius R = '//eng(t%radius)//' m, liquid depth h = '// &
+                      eng(t%liquid_depth)//' m, freeboard = '//eng(t%freeboard)//' m'
       else
-        print '(/a)', 'Tank (SI): rectangular, length L = '//num2str(t%length)// &
-                      ' m (along the motion), width '//num2str(t%width)//' m, liquid depth h = '// &
-                      num2str(t%liquid_depth)//' m, freeboard = '//num2str(t%freeboard)//' m'
+        print '(/a)', 'Tank (SI): rectangular, length L = '//eng(t%length)// &
+                      ' m (along the motion), width '//eng(t%width)//' m, liquid depth h = '// &
+                      eng(t%liquid_depth)//' m, freeboard = '//eng(t%freeboard)//' m'
       end if
-      print '(a)', '  liquid '//num2str(p%liquid_mass)//' kg, tank (shell, roof) '// &
-                   num2str(t%tank_mass)//' kg, total M = '//num2str(p%total_mass)//' kg'
+      print '(a)', '  liquid '//eng(p%liquid_mass)//' kg, tank (shell, roof) '// &
+                   eng(t%tank_mass)//' kg, total M = '//eng(p%total_mass)//' kg'
       print '(a)', '  sloshing ('//trim(merge('eq 2-3                ', &
                    'potential flow, mode 1', t%shape == SHAPE_CIRCULAR))// &
-                   '): pendulum l = '//num2str(p%pendulum_length)// &
-                   ' m, convective mass m = '//num2str(p%sloshing_mass)//' kg at '// &
-                   num2str(p%convective_height)//' m, impulsive m0 = '// &
-                   num2str(p%rigid_mass)//' kg at '//num2str(p%impulsive_height)// &
-                   ' m above the bottom; sloshing period '//num2str(p%sloshing_period)//' s'
-      print '(a)', '  supports: L = '//num2str(p%rod_length)//' m, k = '// &
-                   num2str(p%stiffness)//' N m/rad, c = '//num2str(p%damping)// &
-                   ' N m s/rad; sloshing damping '//num2str(100*t%sloshing_damping)// &
+                   '): pendulum l = '//eng(p%pendulum_length)// &
+                   ' m, convective mass m = '//eng(p%sloshing_mass)//' kg at '// &
+                   eng(p%convective_height)//' m, impulsive m0 = '// &
+                   eng(p%rigid_mass)//' kg at '//eng(p%impulsive_height)// &
+                   ' m above the bottom; sloshing period '//eng(p%sloshing_period)//' s'
+      print '(a)', '  supports: L = '//eng(p%rod_length)//' m, k = '// &
+                   eng(p%stiffness)//' N m/rad, c = '//eng(p%damping)// &
+                   ' N m s/rad; sloshing damping '//eng(100*t%sloshing_damping)// &
                    ' % of critical'
-      print '(a)', '  roof: the wave at the wall, '//trim(merge('2 R sin(theta)/(xi^2 - 1)', &
-                   '4 L sin(theta)/pi^2      ', t%shape == SHAPE_CIRCULAR))//' = '// &
-                   num2str(p%wave_factor)//' m sin(theta), reaches the freeboard at theta0 = '// &
-                   num2str(p%theta0)//' rad'
+      if (p%roof_reachable) then
+        print '(a)', '  roof: the wave at the wall, '//trim(merge('2 R sin(theta)/(xi^2 - 1)', &
+                     '4 L sin(theta)/pi^2      ', t%shape == SHAPE_CIRCULAR))//' = '// &
+                     eng(p%wave_factor)//' m sin(theta), reaches the freeboard at theta0 = '// &
+                     eng(p%theta0)//' rad'
+      else
+        ! issue 38: a freeboard beyond the linear wave is checked, not refused
+        print '(a)', '  roof: the linear wave at the wall reaches at most '// &
+                     eng(p%wave_factor)//' m < the freeboard: it cannot reach the roof '// &
+                     '(theta0 capped at '//eng(p%theta0)//' rad for the model; the roof '// &
+                     'verdicts take the free wave against the freeboard)'
+      end if
       do i = 2, p%modes
         print '(a)', '  sloshing mode '//num2str(i)//' (linear): period '// &
-                     num2str(p%modal_period(i))//' s, mass '//num2str(p%modal_mass(i))// &
-                     ' kg at '//num2str(p%modal_height(i))//' m, wave at the wall '// &
-                     num2str(p%modal_wave(i))//' m sin(theta_'//num2str(i)//')'
+                     eng(p%modal_period(i))//' s, mass '//eng(p%modal_mass(i))// &
+                     ' kg at '//eng(p%modal_height(i))//' m, wave at the wall '// &
+                     eng(p%modal_wave(i))//' m sin(theta_'//num2str(i)//')'
       end do
     end associate
     if (config%has_ground) then
@@ -266,25 +274,25 @@ contains
         if (g%kind == GROUND_RECORD) then
           print '(a)', 'Ground motion: the record '''//trim(g%name)//''' of '// &
                        num2str(size(g%acceleration))// &
-                       ' samples every '//num2str(g%dt)//' s ('//num2str(ground_duration(g))// &
-                       ' s), peak '//num2str(maxval(abs(g%acceleration)))//' m/s^2 = '// &
-                       num2str(maxval(abs(g%acceleration))/config%tank%gravity)//' g'
+                       ' samples every '//eng(g%dt)//' s ('//eng(ground_duration(g))// &
+                       ' s), peak '//eng(maxval(abs(g%acceleration)))//' m/s^2 = '// &
+                       eng(maxval(abs(g%acceleration))/config%tank%gravity)//' g'
         else
-          print '(a)', 'Ground motion: harmonic, peak '//num2str(g%peak_acceleration)// &
-                       ' m/s^2 = '//num2str(g%peak_acceleration/config%tank%gravity)//' g at '// &
-                       num2str(g%frequency)//' Hz'
+          print '(a)', 'Ground motion: harmonic, peak '//eng(g%peak_acceleration)// &
+                       ' m/s^2 = '//eng(g%peak_acceleration/config%tank%gravity)//' g at '// &
+                       eng(g%frequency)//' Hz'
         end if
         if (len_trim(g%scaling) > 0) print '(a)', '  scaled ('//trim(g%scaling)// &
-                                                   '): factor '//num2str(g%scale_factor)
+                                                   '): factor '//eng(g%scale_factor)
       end associate
       if (config%has_ground_y) then
-        print '(a)', '  along azimuth '//num2str(config%azimuth)//' rad; across it record_y, '// &
+        print '(a)', '  along azimuth '//eng(config%azimuth)//' rad; across it record_y, '// &
                      num2str(size(config%ground_y%acceleration))//' samples, peak '// &
-                     num2str(maxval(abs(config%ground_y%acceleration)))// &
+                     eng(maxval(abs(config%ground_y%acceleration)))// &
                      ' m/s^2 (scaled by the same factor)'
       else if (.not. config%planar) then
-        print '(a)', '  along azimuth '//num2str(config%azimuth)//' rad, ellipticity '// &
-                     num2str(config%ellipticity)
+        print '(a)', '  along azimuth '//eng(config%azimuth)//' rad, ellipticity '// &
+                     eng(config%ellipticity)
       end if
     end if
     call design_code_checks(config%tank, config%ground, config%has_ground, codes, status, &
@@ -322,12 +330,20 @@ contains
            'ACI 350.3'
     if (n > CODES_SOURCES) text = text//repeat(' ', 13)//pad('modes SRSS', 22)//'modes ABS'
     do i = 1, CODES_COLUMNS
-      line = '  '//pad(trim(quantities(i)), 24)//pad(value_text(codes(i, 1)), 14)
+      line = '  '//pad(trim(quantities(i)), 24)//pad(value_text(codes(i, 1), 5), 14)
       do j = 2, n
-        line = line//pad(value_text(codes(i, j))//difference(codes(i, j), codes(i, 1)), 22)
+        line = line//pad(value_text(codes(i, j), 5)//difference(codes(i, j), codes(i, 1)), 22)
       end do
       text = text//new_line('a')//trim(line)
     end do
   end function design_codes_table
+
+  !> A number of the tank's SI summary: engineering precision, 5 significant digits (the CSV
+  !> files keep full precision).
+  pure function eng(x) result(text)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: text
+    text = num2str(x, significant=5)
+  end function eng
 
 end submodule sloshdyn_driver_tank

@@ -10,22 +10,24 @@
 !> Integer entries are converted by to_int, which keeps out-of-range and NaN values out of range
 !> (so the core's range checks report them) instead of letting them wrap or become 0.
 module sloshdyn_layouts
-  use sloshdyn_kinds, only: wp
+  use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_namelist_scanner, only: join
   use sloshdyn_model, only: real_param_names, model_t, model_to_arrays, n_real_params, &
                             n_int_params
-  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_ode, only: ode_options, ode_stats, check_options
   use sloshdyn_continuation, only: continuation_options, newton_options
-  use sloshdyn_simulation, only: steady_options
+  use sloshdyn_simulation, only: steady_options, check_steady
   use sloshdyn_response, only: response_options
-  use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default
-  use sloshdyn_integrator, only: METHOD_AUTO
+  use sloshdyn_periodic_response, only: lyapunov_options, newton_tol_default, max_iter_default, &
+                                       check_lyapunov
+  use sloshdyn_integrator, only: METHOD_AUTO, check_method
   use sloshdyn_vessel, only: tank_t
   use sloshdyn_ground, only: ground_motion_t, harmonic_ground, record_ground, GROUND_RECORD
   use sloshdyn_stability_chart, only: chart_settings
   use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_KAPPA
   use sloshdyn_design_spectra, only: design_spectrum_t
   use sloshdyn_design_loads, only: design_factors_t
+  use sloshdyn_tank_structure, only: tank_structure_t, max_courses
   use sloshdyn_run_config, only: run_config, simulation_settings, sweep_settings, &
                                  response_settings, seismic_settings, study_settings
   implicit none
@@ -37,9 +39,9 @@ module sloshdyn_layouts
             PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
             SWIRL_ORBIT_INFO_SIZE, &
             MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
-            NATURAL_FREQUENCIES_SIZE, DESIGN_SIZE, DESIGN_FROM_GROUND
+            NATURAL_FREQUENCIES_SIZE, DESIGN_SIZE, DESIGN_FROM_GROUND, TANK_STRUCTURE_SIZE
   public :: chart_axes, CHART_RHO
-  public :: layout_names, layout_text, layout_defaults, join, &
+  public :: layout_names, layout_text, layout_defaults, check_layout, join, &
             excitation_parameters, ground_kinds, resonances
   public :: to_ode_options, to_method, to_steady, to_response, to_lyapunov
   public :: from_ode_options, from_steady, from_response, from_lyapunov, to_int, counts_array
@@ -48,7 +50,7 @@ module sloshdyn_layouts
   public :: from_analysis, from_simulation, from_sweep, from_response_range, from_seismic, &
             from_study
   public :: field_index
-  public :: to_design, from_design, design_spectra
+  public :: to_design, from_design, design_spectra, to_tank_structure, from_tank_structure
 
   !> One field of a layout: its name; its kind ('real', 'integer', 'flag' (1/0), or 'code:LIST',
   !> a code of the enumerated option LIST that names() answers); what it is, with its unit (the
@@ -169,7 +171,7 @@ module sloshdyn_layouts
     field_t('continuation', 'code:continuations'), field_t('x1_start'), field_t('x1_stop'), &
     field_t('dx1_start'), field_t('dx1_stop'), field_t('n_grid', 'integer'), field_t('tol'), &
     field_t('intensity_start'), field_t('intensity_stop'), field_t('n_intensities', 'integer'), &
-    field_t('spectral_damping')]
+    field_t('spectral_damping'), field_t('min_workers', 'integer'), field_t('grace_time')]
   !> &sweep (parameter of excitation_parameters, direction of 'directions', carry_state 1/0)
   type(field_t), parameter :: sweep_fields(*) = [ &
     field_t('parameter', 'code:excitation_parameters'), field_t('start'), field_t('stop'), &
@@ -255,22 +257,83 @@ module sloshdyn_layouts
     field_t('importance', doc='importance factor I (API 650 Table E-5, ACI 350.3 Table '// &
             '4.1.1(a))'), &
     field_t('use_group', 'integer', 'API 650 seismic use group 1, 2 or 3 (E.3.1)'), &
-    field_t('r_wi', doc='API 650 impulsive response modification factor R_wi (Table E-4)'), &
+    field_t('r_wi', doc='API 650 impulsive response modification factor R_wi (Table E-4); '// &
+            '0: by the anchorage, 3.5 self-anchored, 4 mechanically anchored'), &
     field_t('r_wc', doc='API 650 convective response modification factor R_wc (Table E-4)'), &
     field_t('r_i', doc='ACI 350.3 impulsive response modification factor R_i (Table 4.1.1(b))'), &
     field_t('r_c', doc='ACI 350.3 convective response modification factor R_c (Table 4.1.1(b))'), &
-    field_t('impulsive_period', doc='[s]; 0: the plateau of the spectrum (a ground motion: '// &
-            'the rigid tank, its peak acceleration)'), &
-    field_t('impulsive_damping', doc='damping of the impulsive response [%]'), &
+    field_t('impulsive_period', doc='[s]; 0: from &tank_structure where the code uses it, '// &
+            'else the plateau of the spectrum (a ground motion: the rigid tank, its peak)'), &
+    field_t('impulsive_damping_ratio', doc='damping ratio of the impulsive response (of '// &
+            'critical: 0.05 for 5 %)'), &
     field_t('tank_mass_height', doc='height of the tank''s own mass (shell, roof) above the '// &
-            'base [m]; 0: (liquid_depth + freeboard)/2')]
+            'base [m]; 0: (liquid_depth + freeboard)/2'), &
+    field_t('vertical', 'flag', 'take each code''s vertical acceleration into account'), &
+    field_t('vertical_acceleration', doc='the vertical design acceleration [g] in place of '// &
+            'the codes'' own; 0: the codes'' own'), &
+    field_t('wall_pressure', 'code:wall_pressures', 'the accelerations of wall_pressure.csv: '// &
+            '''code'' (a code''s design accelerations) or ''elastic''')]
+  !> &tank_structure (issue 38; docs/namelist.md): the structure of the design check's
+  !> structural checks (sloshdyn_tank_structure's tank_structure_t); given = 1 when the group
+  !> is there; the courses bottom first, 16 of each (course_height_1 ... _16, bottom first;
+  !> 0: none).
+  type(field_t), parameter :: tank_structure_fields(*) = [ &
+    field_t('given', 'flag', '1: the structure is given (&tank_structure)'), &
+    field_t('material', 'code:materials', '''steel'' or ''concrete'''), &
+    field_t('course_height_1', doc='[m]'), field_t('course_height_2', doc='[m]'), &
+    field_t('course_height_3', doc='[m]'), field_t('course_height_4', doc='[m]'), &
+    field_t('course_height_5', doc='[m]'), field_t('course_height_6', doc='[m]'), &
+    field_t('course_height_7', doc='[m]'), field_t('course_height_8', doc='[m]'), &
+    field_t('course_height_9', doc='[m]'), field_t('course_height_10', doc='[m]'), &
+    field_t('course_height_11', doc='[m]'), field_t('course_height_12', doc='[m]'), &
+    field_t('course_height_13', doc='[m]'), field_t('course_height_14', doc='[m]'), &
+    field_t('course_height_15', doc='[m]'), field_t('course_height_16', doc='[m]'), &
+    field_t('course_thickness_1', doc='[mm] as built'), field_t('course_thickness_2', doc='[mm] as built'), &
+    field_t('course_thickness_3', doc='[mm] as built'), field_t('course_thickness_4', doc='[mm] as built'), &
+    field_t('course_thickness_5', doc='[mm] as built'), field_t('course_thickness_6', doc='[mm] as built'), &
+    field_t('course_thickness_7', doc='[mm] as built'), field_t('course_thickness_8', doc='[mm] as built'), &
+    field_t('course_thickness_9', doc='[mm] as built'), field_t('course_thickness_10', doc='[mm] as built'), &
+    field_t('course_thickness_11', doc='[mm] as built'), field_t('course_thickness_12', doc='[mm] as built'), &
+    field_t('course_thickness_13', doc='[mm] as built'), field_t('course_thickness_14', doc='[mm] as built'), &
+    field_t('course_thickness_15', doc='[mm] as built'), field_t('course_thickness_16', doc='[mm] as built'), &
+    field_t('course_yield_strength_1', doc='F_y [MPa]'), field_t('course_yield_strength_2', doc='F_y [MPa]'), &
+    field_t('course_yield_strength_3', doc='F_y [MPa]'), field_t('course_yield_strength_4', doc='F_y [MPa]'), &
+    field_t('course_yield_strength_5', doc='F_y [MPa]'), field_t('course_yield_strength_6', doc='F_y [MPa]'), &
+    field_t('course_yield_strength_7', doc='F_y [MPa]'), field_t('course_yield_strength_8', doc='F_y [MPa]'), &
+    field_t('course_yield_strength_9', doc='F_y [MPa]'), field_t('course_yield_strength_10', doc='F_y [MPa]'), &
+    field_t('course_yield_strength_11', doc='F_y [MPa]'), field_t('course_yield_strength_12', doc='F_y [MPa]'), &
+    field_t('course_yield_strength_13', doc='F_y [MPa]'), field_t('course_yield_strength_14', doc='F_y [MPa]'), &
+    field_t('course_yield_strength_15', doc='F_y [MPa]'), field_t('course_yield_strength_16', doc='F_y [MPa]'), &
+    field_t('course_tensile_strength_1', doc='F_t [MPa]'), field_t('course_tensile_strength_2', doc='F_t [MPa]'), &
+    field_t('course_tensile_strength_3', doc='F_t [MPa]'), field_t('course_tensile_strength_4', doc='F_t [MPa]'), &
+    field_t('course_tensile_strength_5', doc='F_t [MPa]'), field_t('course_tensile_strength_6', doc='F_t [MPa]'), &
+    field_t('course_tensile_strength_7', doc='F_t [MPa]'), field_t('course_tensile_strength_8', doc='F_t [MPa]'), &
+    field_t('course_tensile_strength_9', doc='F_t [MPa]'), field_t('course_tensile_strength_10', doc='F_t [MPa]'), &
+    field_t('course_tensile_strength_11', doc='F_t [MPa]'), field_t('course_tensile_strength_12', doc='F_t [MPa]'), &
+    field_t('course_tensile_strength_13', doc='F_t [MPa]'), field_t('course_tensile_strength_14', doc='F_t [MPa]'), &
+    field_t('course_tensile_strength_15', doc='F_t [MPa]'), field_t('course_tensile_strength_16', doc='F_t [MPa]'), &
+    field_t('corrosion_allowance', doc='of the shell [mm]'), &
+    field_t('joint_efficiency', doc='E of the shell''s vertical joints'), &
+    field_t('elastic_modulus', doc='E of the wall [MPa]; 0: 200 000 for steel'), &
+    field_t('density', doc='of the wall [kg/m^3]; 0: 7850 steel, 2400 concrete'), &
+    field_t('bottom_thickness', doc='the bottom plate [mm]; 0: not weighed'), &
+    field_t('annular_thickness', doc='the bottom annulus under the shell [mm]; 0: the bottom'), &
+    field_t('bottom_corrosion_allowance', doc='of the bottom and annulus [mm]'), &
+    field_t('annular_yield_strength', doc='F_y of the annulus [MPa]; 0: the bottom course''s'), &
+    field_t('roof_mass', doc='[kg]'), &
+    field_t('roof_mass_height', doc='the roof''s centre of mass above the base [m]; 0: the '// &
+            'shell''s top'), &
+    field_t('anchorage', 'code:anchorages', '''self'' or ''mechanical'''), &
+    field_t('anchor_count', 'integer', 'anchors around the circumference'), &
+    field_t('anchor_capacity', doc='the allowable seismic design load of one anchor [N]'), &
+    field_t('friction', doc='friction coefficient bottom on foundation (API 650 E.7.6)')]
   !> Every named layout (names('layouts')); 'model' and 'model_integers' are sloshdyn_model's
   !> rpar and ipar.
   character(len=*), parameter :: layout_names = 'model,model_integers,integration,steady,'// &
     'response,response_range,lyapunov,tank,ground,chart,chart_range,study,sweep,simulation,'// &
     'seismic,analysis,continuation,shooting,pendulum,physical,groups,'// &
     'routh,orbit_info,swirl_orbit_info,modal_scalars,chart_sizes,spatial,natural_frequencies,'// &
-    'design'
+    'design,tank_structure'
   integer, parameter :: field_len = 32
   !> The codes of enumerated options that have no name list elsewhere: the parameter of a sweep
   !> or response (from PARAMETER_RHO of sloshdyn_excitation), the ground kinds (from
@@ -308,7 +371,8 @@ module sloshdyn_layouts
                         CHART_SIZES_SIZE = size(chart_sizes_fields), &
                         SPATIAL_SIZE = size(spatial_fields), &
                         NATURAL_FREQUENCIES_SIZE = size(natural_frequencies_fields), &
-                        DESIGN_SIZE = size(design_fields)
+                        DESIGN_SIZE = size(design_fields), &
+                        TANK_STRUCTURE_SIZE = size(tank_structure_fields)
 
 contains
 
@@ -349,6 +413,7 @@ contains
     case ('spatial');        fields = spatial_fields
     case ('natural_frequencies'); fields = natural_frequencies_fields
     case ('design');         fields = design_fields
+    case ('tank_structure'); fields = tank_structure_fields
     case default;            allocate (fields(0))
     end select
   end function layout_of
@@ -392,12 +457,41 @@ contains
     case ('tank');        values = from_tank(tank_t())
     case ('chart');       values = from_chart(chart_settings())
     case ('design');      values = from_design(design_spectrum_t(), design_factors_t(), .false.)
+    case ('tank_structure'); values = from_tank_structure(tank_structure_t())
     case ('study');       values = from_study(study_settings())
     case default
       found = .false.
       allocate (values(0))
     end select
   end subroutine layout_defaults
+
+  !> The core's range rules for a settings layout's values (the rules every analysis applies
+  !> to them, so that a settings object is checked when it is built, by the same rules in both
+  !> front doors): 'integration' (sloshdyn_ode's check_options, the method's code), 'steady'
+  !> (check_steady, at any rho > 0), 'lyapunov' (check_lyapunov); status 0 for the others.
+  pure subroutine check_layout(name, values, status, message)
+    character(len=*), intent(in) :: name
+    real(wp), intent(in) :: values(:)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: model
+    status = 0
+    message = ''
+    select case (name)
+    case ('integration')
+      if (size(values) == INTEGRATION_SIZE) then
+        call check_options(to_ode_options(values), [0.0_wp], status, message)
+        if (status == 0) call check_method(to_method(values), status, message)
+      end if
+    case ('steady')
+      model%excitation%rho = 1
+      if (size(values) == STEADY_SIZE) call check_steady(model, to_steady(values), status, &
+                                                         message)
+    case ('lyapunov')
+      if (size(values) == LYAPUNOV_SIZE) call check_lyapunov(to_lyapunov(values), status, &
+                                                             message)
+    end select
+  end subroutine check_layout
 
   !> The parameters of a stability chart (its axes), comma-separated in code order from
   !> CHART_RHO.
@@ -635,7 +729,8 @@ contains
          st%frequency_stop, real(st%n_frequencies, wp), st%amplitude_start, st%amplitude_stop, &
          real(st%n_amplitudes, wp), real(st%continuation, wp), st%x1_start, st%x1_stop, &
          st%dx1_start, st%dx1_stop, real(st%n_grid, wp), st%tol, st%intensity_start, &
-         st%intensity_stop, real(st%n_intensities, wp), st%spectral_damping]
+         st%intensity_stop, real(st%n_intensities, wp), st%spectral_damping, &
+         real(st%min_workers, wp), st%grace_time]
   end function from_study
 
   !> &design(DESIGN_SIZE) as the design spectrum, the codes' factors and whether the spectrum
@@ -659,7 +754,7 @@ contains
     spec%q = a(10)
     spec%beta = a(11)
     factors = design_factors_t(a(12), to_int(a(13)), a(14), a(15), a(16), a(17), a(18), a(19), &
-                               a(20))
+                               a(20), a(21) /= 0, a(22), to_int(a(23)))
   end subroutine to_design
 
   pure function from_design(spec, factors, from_ground) result(a)
@@ -671,8 +766,42 @@ contains
          spec%t_l, spec%k, spec%a_gr, spec%gamma_i, real(spec%ground_type, wp), &
          real(spec%ec8_type, wp), spec%q, spec%beta, factors%importance, &
          real(factors%use_group, wp), factors%r_wi, factors%r_wc, factors%r_i, factors%r_c, &
-         factors%impulsive_period, factors%impulsive_damping, factors%tank_mass_height]
+         factors%impulsive_period, factors%impulsive_damping_ratio, factors%tank_mass_height, &
+         merge(1.0_wp, 0.0_wp, factors%vertical), factors%vertical_acceleration, &
+         real(factors%wall_pressure, wp)]
   end function from_design
+
+  !> &tank_structure(TANK_STRUCTURE_SIZE) as tank_structure_t (and back): the layout's order.
+  pure function to_tank_structure(a) result(st)
+    real(wp), intent(in) :: a(TANK_STRUCTURE_SIZE)
+    type(tank_structure_t) :: st
+    integer, parameter :: n = max_courses, c = 3
+    st%given = a(1) /= 0
+    st%material = to_int(a(2))
+    st%course_height = a(c:c + n - 1)
+    st%course_thickness = a(c + n:c + 2*n - 1)
+    st%course_yield_strength = a(c + 2*n:c + 3*n - 1)
+    st%course_tensile_strength = a(c + 3*n:c + 4*n - 1)
+    associate (b => a(c + 4*n:))
+      st%corrosion_allowance = b(1); st%joint_efficiency = b(2); st%elastic_modulus = b(3)
+      st%density = b(4); st%bottom_thickness = b(5); st%annular_thickness = b(6)
+      st%bottom_corrosion_allowance = b(7); st%annular_yield_strength = b(8)
+      st%roof_mass = b(9); st%roof_mass_height = b(10); st%anchorage = to_int(b(11))
+      st%anchor_count = to_int(b(12)); st%anchor_capacity = b(13); st%friction = b(14)
+    end associate
+  end function to_tank_structure
+
+  pure function from_tank_structure(st) result(a)
+    type(tank_structure_t), intent(in) :: st
+    real(wp) :: a(TANK_STRUCTURE_SIZE)
+    a = [merge(1.0_wp, 0.0_wp, st%given), real(st%material, wp), st%course_height, &
+         st%course_thickness, st%course_yield_strength, st%course_tensile_strength, &
+         st%corrosion_allowance, st%joint_efficiency, st%elastic_modulus, st%density, &
+         st%bottom_thickness, st%annular_thickness, st%bottom_corrosion_allowance, &
+         st%annular_yield_strength, st%roof_mass, st%roof_mass_height, real(st%anchorage, wp), &
+         real(st%anchor_count, wp), st%anchor_capacity, st%friction]
+  end function from_tank_structure
+
 
   !> counts(4) = [rhs evaluations, accepted steps, rejected steps, tau reached].
   pure function counts_array(stats) result(counts)

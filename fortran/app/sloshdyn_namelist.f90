@@ -39,8 +39,13 @@ module sloshdyn_namelist
                                       read_excitation, read_analysis, read_output, &
                                       read_integration, read_simulation, read_steady, &
                                       read_sweep, read_response, read_lyapunov, read_seismic, &
-                                      read_chart, frequency_of_sweep, read_design, G_DESIGN
+                                      read_chart, frequency_of_sweep, read_design, G_DESIGN, &
+                                      G_STEADY, G_LYAPUNOV, read_tank_structure, &
+                                      G_TANK_STRUCTURE
   use sloshdyn_namelist_study, only: read_study
+  use sloshdyn_layouts, only: check_layout, from_steady, from_lyapunov
+  use sloshdyn_design_check, only: check_design_input
+  use sloshdyn_tank_structure, only: tank_structure_t
   implicit none
   private
   public :: run_config, simulation_settings, sweep_settings, &
@@ -148,9 +153,24 @@ contains
     if (status == SD_OK) call read_chart(file, config%analysis == ANALYSIS_STABILITY_CHART, &
                                          config%model, config%response%options, config%chart, &
                                          status, message)
+    ! the settings groups by the core's rules whatever the analysis, as Python's settings
+    ! objects check them when built (sloshdyn_layouts' check_layout): one rule in both doors
+    if (status == SD_OK .and. file%groups(G_STEADY)%given) then
+      call check_layout('steady', from_steady(config%steady), status, message)
+      if (status /= SD_OK) message = '&steady: '//trim(message)
+    end if
+    if (status == SD_OK .and. file%groups(G_LYAPUNOV)%given) then
+      call check_layout('lyapunov', from_lyapunov(config%lyapunov), status, message)
+      if (status /= SD_OK) message = '&lyapunov: '//trim(message)
+    end if
     if (status == SD_OK) call read_study(file, config, status, message)
     if (status == SD_OK) call read_design(file, config%design_spectrum, config%design_factors, &
                                           config%design_from_ground, status, message)
+    if (status == SD_OK) call read_tank_structure(file, config%structure, status, message)
+    if (status == SD_OK .and. file%groups(G_TANK_STRUCTURE)%given .and. &
+        .not. file%groups(G_DESIGN)%given) &
+      call fail(status, message, '&tank_structure goes with &design (the structure of the '// &
+                'design check''s structural checks)')
     if (status == SD_OK .and. file%groups(G_DESIGN)%given) then
       config%has_design = .true.
       if (.not. config%dimensional) then
@@ -159,6 +179,17 @@ contains
       else if (config%design_from_ground .and. .not. config%has_ground) then
         call fail(status, message, "&design: spectrum = 'ground_motion' needs the ground "// &
                   'motion (&ground_motion)')
+      else
+        ! the design check's rules with the tank: the same as Python's (sloshdyn_design_check)
+        call check_design_input(config%tank, config%design_spectrum, config%design_factors, &
+                                config%design_from_ground, tank_structure_t(), status, message)
+        if (status /= SD_OK) then
+          message = '&design: '//trim(message)
+        else
+          call check_design_input(config%tank, config%design_spectrum, config%design_factors, &
+                                  config%design_from_ground, config%structure, status, message)
+          if (status /= SD_OK) message = '&tank_structure: '//trim(message)
+        end if
       end if
     end if
     ! a study file describes no analysis of the executable: the default one is not checked
@@ -210,6 +241,7 @@ contains
     call read_study(file, study_config, status, message)
     call read_design(file, study_config%design_spectrum, study_config%design_factors, has_y, &
                      status, message)
+    call read_tank_structure(file, study_config%structure, status, message)
     text = file%description
   end subroutine namelist_defaults
 

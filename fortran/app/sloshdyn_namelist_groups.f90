@@ -24,7 +24,9 @@ module sloshdyn_namelist_groups
   use sloshdyn_seismic, only: max_seismic_outputs
   use sloshdyn_design_spectra, only: design_spectrum_t, check_spectrum, ground_types, &
                                      SPECTRUM_ASCE7, SPECTRUM_ACI350, SPECTRUM_EC8
-  use sloshdyn_design_loads, only: design_factors_t, check_factors
+  use sloshdyn_design_loads, only: design_factors_t, check_factors, wall_pressure_names
+  use sloshdyn_tank_structure, only: tank_structure_t, material_names, anchorage_names, &
+                                     max_courses
   use sloshdyn_layouts, only: design_spectra, DESIGN_FROM_GROUND
   use sloshdyn_stability_chart, only: chart_settings, check_chart_settings
   use sloshdyn_slowflow_chart, only: chart_parameter_name, CHART_RHO, CHART_A, CHART_GAMMA, &
@@ -44,16 +46,17 @@ module sloshdyn_namelist_groups
             read_output, read_integration, read_simulation, read_steady, read_sweep, &
             read_response, read_lyapunov, read_seismic, read_chart, frequency_of_sweep, &
             read_design
-  public :: G_DESIGN
+  public :: G_DESIGN, G_TANK_STRUCTURE, read_tank_structure
 
-  character(len=*), parameter :: known_groups(16) = &
-    [character(len=13) :: 'model', 'tank', 'ground_motion', 'excitation', 'analysis', 'output', &
+  character(len=*), parameter :: known_groups(17) = &
+    [character(len=14) :: 'model', 'tank', 'ground_motion', 'excitation', 'analysis', 'output', &
      'integration', 'simulation', 'steady', 'sweep', 'response', 'lyapunov', 'seismic', 'chart', &
-     'study', 'design']
+     'study', 'design', 'tank_structure']
   integer, parameter :: G_MODEL = 1, G_TANK = 2, G_GROUND_MOTION = 3, G_EXCITATION = 4, &
                         G_ANALYSIS = 5, G_OUTPUT = 6, G_INTEGRATION = 7, G_SIMULATION = 8, &
                         G_STEADY = 9, G_SWEEP = 10, G_RESPONSE = 11, G_LYAPUNOV = 12, &
-                        G_SEISMIC = 13, G_CHART = 14, G_STUDY = 15, G_DESIGN = 16
+                        G_SEISMIC = 13, G_CHART = 14, G_STUDY = 15, G_DESIGN = 16, &
+                        G_TANK_STRUCTURE = 17
 
   !> The reader of a group of these: its messages say what each variable must be.
   type, extends(group_reader) :: namelist_reader
@@ -367,14 +370,17 @@ contains
     logical, intent(out) :: from_ground
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    character(len=word_len) :: spectrum, ground_type
+    character(len=word_len) :: spectrum, ground_type, wall_pressure
     real(wp) :: s_ds, s_d1, t_l, k, a_gr, gamma_i, q, beta, importance, r_wi, r_wc, r_i, r_c, &
-                impulsive_period, impulsive_damping, tank_mass_height
-    integer :: spectrum_type, use_group, code, ground_code
+                impulsive_period, impulsive_damping_ratio, tank_mass_height, &
+                vertical_acceleration
+    integer :: spectrum_type, use_group, code, ground_code, wall_code
+    logical :: vertical
     type(namelist_reader) :: reader
     namelist /design/ spectrum, s_ds, s_d1, t_l, k, a_gr, gamma_i, ground_type, spectrum_type, &
                       q, beta, importance, use_group, r_wi, r_wc, r_i, r_c, impulsive_period, &
-                      impulsive_damping, tank_mass_height
+                      impulsive_damping_ratio, tank_mass_height, vertical, &
+                      vertical_acceleration, wall_pressure
 
     spectrum = design_spectra(spec%kind); s_ds = spec%s_ds; s_d1 = spec%s_d1; t_l = spec%t_l
     k = spec%k; a_gr = spec%a_gr; gamma_i = spec%gamma_i
@@ -382,8 +388,11 @@ contains
     q = spec%q; beta = spec%beta
     importance = factors%importance; use_group = factors%use_group; r_wi = factors%r_wi
     r_wc = factors%r_wc; r_i = factors%r_i; r_c = factors%r_c
-    impulsive_period = factors%impulsive_period; impulsive_damping = factors%impulsive_damping
-    tank_mass_height = factors%tank_mass_height
+    impulsive_period = factors%impulsive_period
+    impulsive_damping_ratio = factors%impulsive_damping_ratio
+    tank_mass_height = factors%tank_mass_height; vertical = factors%vertical
+    vertical_acceleration = factors%vertical_acceleration
+    wall_pressure = wall_pressure_names(factors%wall_pressure)
     from_ground = .false.
     status = SD_OK
     message = ''
@@ -401,6 +410,10 @@ contains
     if (code == 0) call fail(status, message, "&design: spectrum = '"// &
                              trim(adjustl(spectrum))//"' is not known; allowed: "// &
                              join(design_spectra, ', '))
+    wall_code = findloc(wall_pressure_names, lower(trim(adjustl(wall_pressure))), dim=1)
+    if (wall_code == 0) call fail(status, message, "&design: wall_pressure = '"// &
+                                  trim(adjustl(wall_pressure))//"' is not known; allowed: "// &
+                                  join(wall_pressure_names, ', '))
     ground_code = findloc(ground_types, trim(adjustl(ground_type)), dim=1)
     if (ground_code == 0) call fail(status, message, "&design: ground_type = '"// &
                                     trim(adjustl(ground_type))//"' is not known; allowed: "// &
@@ -419,20 +432,76 @@ contains
     spec = design_spectrum_t(merge(SPECTRUM_ASCE7, code, from_ground), s_ds, s_d1, t_l, k, &
                              a_gr, gamma_i, ground_code, spectrum_type, q, beta)
     factors = design_factors_t(importance, use_group, r_wi, r_wc, r_i, r_c, impulsive_period, &
-                               impulsive_damping, tank_mass_height)
+                               impulsive_damping_ratio, tank_mass_height, vertical, &
+                               vertical_acceleration, wall_code)
+    ! the rules that need the tank (sloshdyn_design_check's check_design_input) are read_input's
     call check_factors(factors, status, message)
-    if (status == SD_OK .and. .not. from_ground) call check_spectrum(spec, status, message)
-    ! a code spectrum for API 650's rows needs T_L too (ASCE 7)
-    if (status == SD_OK .and. code == SPECTRUM_ACI350 .and. t_l > 0) then
-      spec%kind = SPECTRUM_ASCE7
-      call check_spectrum(spec, status, message)
-      spec%kind = SPECTRUM_ACI350
-    end if
-    if (status == SD_OK .and. from_ground) call check_real('q', q, 1.0_wp, 8.0_wp, .false., &
-                                                           .false., 'q must be in [1, 8] '// &
-                                                           '(EN 1998-1 3.2.2.5)', status, message)
     if (status /= SD_OK) message = '&design: '//trim(message)
   end subroutine read_design
+
+  !> &tank_structure (issue 38; docs/namelist.md): the tank's structure for the design check's
+  !> structural checks, defaults from tank_structure_t; course_height (the bottom course's) is
+  !> required. Its rules with the tank are sloshdyn_tank_structure's check_structure (read_input).
+  subroutine read_tank_structure(file, st, status, message)
+    type(input_file), intent(inout) :: file
+    type(tank_structure_t), intent(out) :: st
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=word_len) :: material, anchorage
+    real(wp), dimension(max_courses) :: course_height, course_thickness, course_yield_strength, &
+                                        course_tensile_strength
+    real(wp) :: corrosion_allowance, joint_efficiency, elastic_modulus, density, &
+                bottom_thickness, annular_thickness, bottom_corrosion_allowance, &
+                annular_yield_strength, roof_mass, roof_mass_height, anchor_capacity, friction
+    integer :: anchor_count, material_code, anchorage_code
+    type(namelist_reader) :: reader
+    namelist /tank_structure/ material, course_height, course_thickness, &
+                              course_yield_strength, course_tensile_strength, &
+                              corrosion_allowance, joint_efficiency, elastic_modulus, density, &
+                              bottom_thickness, annular_thickness, bottom_corrosion_allowance, &
+                              annular_yield_strength, roof_mass, roof_mass_height, anchorage, &
+                              anchor_count, anchor_capacity, friction
+
+    material = material_names(st%material); course_height = st%course_height
+    course_thickness = st%course_thickness; course_yield_strength = st%course_yield_strength
+    course_tensile_strength = st%course_tensile_strength
+    corrosion_allowance = st%corrosion_allowance; joint_efficiency = st%joint_efficiency
+    elastic_modulus = st%elastic_modulus; density = st%density
+    bottom_thickness = st%bottom_thickness; annular_thickness = st%annular_thickness
+    bottom_corrosion_allowance = st%bottom_corrosion_allowance
+    annular_yield_strength = st%annular_yield_strength; roof_mass = st%roof_mass
+    roof_mass_height = st%roof_mass_height; anchorage = anchorage_names(st%anchorage)
+    anchor_count = st%anchor_count; anchor_capacity = st%anchor_capacity; friction = st%friction
+    status = SD_OK
+    message = ''
+    call reader%start(file, G_TANK_STRUCTURE, status)
+    do while (reader%next())
+      if (reader%describing) then
+        write (reader%written, nml=tank_structure, iostat=reader%ios)
+      else
+        read (reader%text, nml=tank_structure, iostat=reader%ios, iomsg=reader%iomsg)
+      end if
+      call reader%check(file, status, message)
+    end do
+    if (status /= SD_OK .or. .not. file%groups(G_TANK_STRUCTURE)%given) return
+    call require(file, G_TANK_STRUCTURE, 'course_height', status, message)
+    call require(file, G_TANK_STRUCTURE, 'course_thickness', status, message)
+    material_code = findloc(material_names, lower(trim(adjustl(material))), dim=1)
+    if (status == SD_OK .and. material_code == 0) &
+      call fail(status, message, "&tank_structure: material = '"//trim(adjustl(material))// &
+                "' is not known; allowed: "//join(material_names, ', '))
+    anchorage_code = findloc(anchorage_names, lower(trim(adjustl(anchorage))), dim=1)
+    if (status == SD_OK .and. anchorage_code == 0) &
+      call fail(status, message, "&tank_structure: anchorage = '"//trim(adjustl(anchorage))// &
+                "' is not known; allowed: "//join(anchorage_names, ', '))
+    if (status /= SD_OK) return
+    st = tank_structure_t(.true., material_code, course_height, course_thickness, &
+                          course_yield_strength, course_tensile_strength, corrosion_allowance, &
+                          joint_efficiency, elastic_modulus, density, bottom_thickness, &
+                          annular_thickness, bottom_corrosion_allowance, annular_yield_strength, &
+                          roof_mass, roof_mass_height, anchorage_code, anchor_count, &
+                          anchor_capacity, friction)
+  end subroutine read_tank_structure
 
   !> &excitation: A, rho and, for the spatial model (planar = .false.), the direction of the
   !> harmonic motion azimuth [rad from x] and its ellipticity (sloshdyn_spatial's

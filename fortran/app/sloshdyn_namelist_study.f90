@@ -28,11 +28,12 @@ contains
     character(len=study_text_len + 1) :: store, figure, scheduler, records
     real(wp) :: frequency_start, frequency_stop, amplitude_start, amplitude_stop, x1_start, &
                 x1_stop, dx1_start, dx1_stop, tol, intensity_start, intensity_stop, &
-                spectral_damping
-    integer :: workers, points_per_task, n_frequencies, n_amplitudes, n_grid, n_intensities
+                spectral_damping, grace_time
+    integer :: workers, min_workers, points_per_task, n_frequencies, n_amplitudes, n_grid, n_intensities
     type(model_t) :: first
     type(namelist_reader) :: reader
     namelist /study/ kind, store, figure, scheduler, workers, worker_kind, points_per_task, &
+                     min_workers, grace_time, &
                      frequency_start, frequency_stop, n_frequencies, amplitude_start, &
                      amplitude_stop, n_amplitudes, continuation, x1_start, x1_stop, dx1_start, &
                      dx1_stop, n_grid, tol, records, intensity_start, intensity_stop, &
@@ -41,6 +42,7 @@ contains
     kind = study_kinds(defaults%kind); store = ''; figure = ''; scheduler = ''
     workers = defaults%workers; worker_kind = worker_kinds(defaults%worker_kind)
     points_per_task = defaults%points_per_task
+    min_workers = defaults%min_workers; grace_time = defaults%grace_time
     frequency_start = defaults%frequency_start; frequency_stop = defaults%frequency_stop
     n_frequencies = defaults%n_frequencies; amplitude_start = defaults%amplitude_start
     amplitude_stop = defaults%amplitude_stop; n_amplitudes = defaults%n_amplitudes
@@ -82,8 +84,27 @@ contains
       st%scheduler = scheduler(1:study_text_len)
       call check_count('workers', workers, 0, 1024)
       call check_count('points_per_task', points_per_task, 0, 1000000)
+      call check_count('min_workers', min_workers, 1, 100000)
+      if (status == SD_OK .and. workers > 0 .and. min_workers > workers .and. &
+          len_trim(scheduler) == 0) call fail(status, message, '&study: min_workers = '// &
+        num2str(min_workers)//' is out of range: the embedded cluster has workers = '// &
+        num2str(workers))
+      if (status == SD_OK) call check_real('grace_time', grace_time, 0.0_wp, 86400.0_wp, &
+                                           .true., .false., 'grace_time must lie in (0, '// &
+                                           '86400] seconds', status, message)
+      if (status /= SD_OK) then
+        if (index(message, '&study') /= 1) message = '&study: '//trim(message)
+        return
+      end if
       st%workers = workers
       st%points_per_task = points_per_task
+      st%min_workers = min_workers
+      st%grace_time = grace_time
+      ! the studies run the planar model (issue 37): the spatial one is refused before they start
+      if (.not. config%planar) call fail(status, message, '&study: a '// &
+        trim(study_kinds(st%kind))//' study runs the planar model only: planar = .false. '// &
+        '(the spatial model) in '//trim(merge('&tank ', '&model', config%dimensional))// &
+        ' is not for studies; give planar = .true. or run one point with &analysis')
       if (status /= SD_OK) return
       first = config%model
       select case (st%kind)

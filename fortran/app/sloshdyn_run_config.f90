@@ -16,6 +16,7 @@ module sloshdyn_run_config
   use sloshdyn_periodic_response, only: lyapunov_options
   use sloshdyn_design_spectra, only: design_spectrum_t
   use sloshdyn_design_loads, only: design_factors_t
+  use sloshdyn_tank_structure, only: tank_structure_t
   implicit none
   private
   public :: run_config, simulation_settings, sweep_settings, response_settings, &
@@ -105,6 +106,12 @@ module sloshdyn_run_config
     !> docs/studies.md, "Worker kind and task size")
     integer :: worker_kind = WORKER_THREADS
     integer :: points_per_task = 0                     !< 0 = the engine's choice
+    !> workers a study waits for at its start (with scheduler or a cluster of its own)
+    integer :: min_workers = 1
+    !> seconds a study waits for min_workers at its start, and for a worker able to run it
+    !> whenever none is alive, before it fails (of the order of a minute: a batch system's
+    !> workers take that long to start)
+    real(wp) :: grace_time = 60
     real(wp) :: frequency_start = 0, frequency_stop = 0, amplitude_start = 0, amplitude_stop = 0
     integer :: n_frequencies = 1, n_amplitudes = 1
     integer :: continuation = 1                        !< index into continuation_names
@@ -152,5 +159,7 @@ module sloshdyn_run_config
     logical :: has_design = .false., design_from_ground = .false.
     type(design_spectrum_t) :: design_spectrum
     type(design_factors_t) :: design_factors
+    !> &tank_structure (with &design): the structure of the codes' structural checks
+    type(tank_structure_t) :: structure
   end type run_config
 end module sloshdyn_run_config

@@ -277,6 +277,13 @@ module sloshdyn_tables
     'convective_acceleration [g],wave_height [m],required_freeboard [m],'// &
     'available_freeboard [m],margin [m],sufficient'
   integer, parameter :: DESIGN_LOADS_COLUMNS = 17, FREEBOARD_COLUMNS = 7
+  !> The design check's tables for a checker (sloshdyn_design_report; text and numbers): one
+  !> row per check (demand against capacity, verdict OK, NOT OK or INFO), and the hand
+  !> calculation, one row per formula in the order a checker reads it.
+  character(len=*), parameter :: design_checks_names = 'code,check,clause,demand,capacity,'// &
+    'unit,ratio,verdict'
+  character(len=*), parameter :: design_calc_names = 'code,step,quantity,symbol,formula,'// &
+    'substituted,value,unit,clause'
   !> The design spectrum of the check (elastic, sloshdyn_design_spectra), one row per period.
   character(len=*), parameter :: design_spectrum_names = 'period [s],'// &
     'sa_5_percent [g],sa_0.5_percent [g]'
@@ -414,6 +421,10 @@ contains
       header = freeboard_names
     case ('design_spectrum')
       header = design_spectrum_names
+    case ('design_checks')
+      header = design_checks_names
+    case ('design_calc')
+      header = design_calc_names
     case default
       header = ''
     end select

@@ -16,14 +16,15 @@ contains
   !> simulation, sweep, response_range, chart, chart_range and study; study_store, study_figure,
   !> study_scheduler, study_records the &study strings; planar (1/0), spatial ('spatial': azimuth,
   !> ellipticity), has_ground_y, ground_y and n_samples_y the spatial model's second component
-  !> (issue 26); has_design (1/0) and design ('design': &design, issue 25). It releases the GIL (Python calls it one
+  !> (issue 26); has_design (1/0) and design ('design': &design, issue 25); tank_structure
+  !> ('tank_structure': &tank_structure, issue 38; given = 0 without it). It releases the GIL (Python calls it one
   !> at a time, _cancel.app_call), so that Ctrl-C and SIGTERM cancel a long scaling.
   subroutine read_input(path, rpar, ipar, analysis, analysis_values, directory, has_tank, tank, &
                         has_ground, ground, n_samples, seismic, integration, steady, response, &
                         lyapunov, simulation, sweep, response_range, chart, chart_range, study, &
                         study_store, study_figure, study_scheduler, study_records, planar, &
                         spatial, has_ground_y, ground_y, n_samples_y, has_design, design, &
-                        status, message)
+                        tank_structure, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_to_arrays
     use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
@@ -33,7 +34,8 @@ contains
                                 from_lyapunov, from_tank, from_ground, from_chart, &
                                 from_chart_range, from_analysis, from_simulation, from_sweep, &
                                 from_response_range, from_seismic, from_study, SPATIAL_SIZE, &
-                                DESIGN_SIZE, from_design
+                                DESIGN_SIZE, from_design, TANK_STRUCTURE_SIZE, &
+                                from_tank_structure
     use sloshdyn_namelist, only: run_config, core => read_input
     character(len=*), intent(in) :: path
     real(c_double), intent(out) :: rpar(n_real_params), analysis_values(ANALYSIS_SIZE), &
@@ -44,7 +46,8 @@ contains
                                    sweep(SWEEP_SIZE), response_range(RESPONSE_RANGE_SIZE), &
                                    chart(CHART_SIZE), chart_range(CHART_RANGE_SIZE), &
                                    study(STUDY_SIZE), spatial(SPATIAL_SIZE), &
-                                   ground_y(GROUND_SIZE), design(DESIGN_SIZE)
+                                   ground_y(GROUND_SIZE), design(DESIGN_SIZE), &
+                                   tank_structure(TANK_STRUCTURE_SIZE)
     integer(c_int), intent(out) :: ipar(n_int_params), analysis, has_tank, has_ground, &
                                    n_samples, planar, has_ground_y, n_samples_y, has_design, &
                                    status
@@ -59,7 +62,7 @@ contains
     chart_range = 0
     directory = ''; study = 0; study_store = ''; study_figure = ''; study_scheduler = ''
     study_records = ''; planar = 1; spatial = 0; has_ground_y = 0; ground_y = 0; n_samples_y = 0
-    has_design = 0; design = 0
+    has_design = 0; design = 0; tank_structure = 0
     call core(path, config, info, message)
     status = info
     if (info /= 0) return
@@ -100,6 +103,7 @@ contains
     has_design = merge(1, 0, config%has_design)
     design = from_design(config%design_spectrum, config%design_factors, &
                          config%design_from_ground)
+    tank_structure = from_tank_structure(config%structure)
   end subroutine read_input
 
   !> The samples of the ground-motion record of a namelist file (as read_input reads it, scaled):

@@ -316,16 +316,16 @@ contains
     text = design_codes_table(codes)
   end subroutine design_codes_text
 
-  !> A design spectrum's Sa [g] at n periods [s] and one damping [%] (&design's layout
+  !> A design spectrum's Sa [g] at n periods [s] and one damping ratio (&design's layout
   !> 'design'; sloshdyn_design_spectra's spectrum_sa); the first failure stops.
-  subroutine design_spectrum_sa(design, n, periods, damping, sa, status, message)
+  subroutine design_spectrum_sa(design, n, periods, damping_ratio, sa, status, message)
     !f2py threadsafe
     use sloshdyn_kinds, only: wp
     use sloshdyn_layouts, only: DESIGN_SIZE, to_design
     use sloshdyn_design_spectra, only: design_spectrum_t, spectrum_sa
     use sloshdyn_design_loads, only: design_factors_t
     integer(c_int), intent(in) :: n
-    real(c_double), intent(in) :: design(DESIGN_SIZE), periods(n), damping
+    real(c_double), intent(in) :: design(DESIGN_SIZE), periods(n), damping_ratio
     real(c_double), intent(out) :: sa(n)
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
@@ -344,7 +344,7 @@ contains
       return
     end if
     do i = 1, n
-      call spectrum_sa(spec, periods(i), damping, value, info, message)
+      call spectrum_sa(spec, periods(i), damping_ratio, value, info, message)
       status = info
       if (info /= 0) return
       sa(i) = value
@@ -353,36 +353,53 @@ contains
 
   !> The design check of a tank (sloshdyn_design_check): loads in the 'design_loads' layout
   !> and freeboard in 'freeboard_check' (without the source column, NaN rows where a source
-  !> gives none), from &design's spectrum or the ground motion's (its samples, n of them); with
-  !> has_peaks = 1 the 'seismic_peaks' of a nonlinear run give the row 'sloshdyn nonlinear'.
-  subroutine design_check(tank, design, ground, n, samples, has_peaks, peaks, loads, freeboard, &
-                          status, message)
+  !> gives none), from &design's spectrum or the ground motion's (its samples, n of them), with
+  !> the structure ('tank_structure': &tank_structure, given = 0 for none); with has_peaks = 1
+  !> the 'seismic_peaks' of a nonlinear run give the row 'sloshdyn nonlinear'. checks and calc:
+  !> the tables 'design_checks' and 'design_calc' as the executable writes them (CSV text,
+  !> lines ending in a newline; sloshdyn_design_report).
+  subroutine design_check(tank, design, ground, n, samples, tank_structure, has_peaks, peaks, &
+                          loads, freeboard, checks, calc, status, message)
     !f2py threadsafe
-    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, DESIGN_SIZE, to_tank, to_ground, &
-                                to_design
+    use sloshdyn_layouts, only: TANK_SIZE, GROUND_SIZE, DESIGN_SIZE, TANK_STRUCTURE_SIZE, &
+                                to_tank, to_ground, to_design, to_tank_structure
     use sloshdyn_tables, only: PEAKS_SIZE, DESIGN_ROWS, DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS
     use sloshdyn_design_spectra, only: design_spectrum_t
     use sloshdyn_design_loads, only: design_factors_t
+    use sloshdyn_design_report, only: design_report_t, report_text, REPORT_TEXT_LEN
     use sloshdyn_design_check, only: core => design_check
     integer(c_int), intent(in) :: n, has_peaks
     real(c_double), intent(in) :: tank(TANK_SIZE), design(DESIGN_SIZE), ground(GROUND_SIZE), &
-                                  samples(n), peaks(PEAKS_SIZE)
+                                  samples(n), tank_structure(TANK_STRUCTURE_SIZE), &
+                                  peaks(PEAKS_SIZE)
     real(c_double), intent(out) :: loads(DESIGN_LOADS_COLUMNS, DESIGN_ROWS), &
                                    freeboard(FREEBOARD_COLUMNS, DESIGN_ROWS)
+    character(len=524288), intent(out) :: checks, calc
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(design_spectrum_t) :: spec
     type(design_factors_t) :: factors
-    logical :: from_ground
+    type(design_report_t) :: report
+    logical :: from_ground, overflow(2)
     integer :: info
+    checks = ''
+    calc = ''
     call to_design(design, spec, factors, from_ground)
     if (has_peaks /= 0) then
-      call core(to_tank(tank), spec, factors, from_ground, to_ground(ground, samples), loads, &
-                freeboard, info, message, peaks)
+      call core(to_tank(tank), spec, factors, from_ground, to_ground(ground, samples), &
+                to_tank_structure(tank_structure), loads, freeboard, report, info, message, peaks)
     else
-      call core(to_tank(tank), spec, factors, from_ground, to_ground(ground, samples), loads, &
-                freeboard, info, message)
+      call core(to_tank(tank), spec, factors, from_ground, to_ground(ground, samples), &
+                to_tank_structure(tank_structure), loads, freeboard, report, info, message)
     end if
     status = info
+    if (info /= 0) return
+    call report_text(report, 'design_checks', checks, overflow(1))
+    call report_text(report, 'design_calc', calc, overflow(2))
+    if (any(overflow)) then
+      status = 1
+      message = 'the design check''s tables are longer than the bridge''s text ('// &
+                'REPORT_TEXT_LEN characters)'
+    end if
   end subroutine design_check
 end module sloshdyn_bridge_seismic

@@ -27,7 +27,8 @@ program sloshdyn_bridge_sizes
                               PHYSICAL_SIZE, GROUPS_SIZE, ROUTH_TRIVIAL_SIZE, ORBIT_INFO_SIZE, &
                               SWIRL_ORBIT_INFO_SIZE, &
                               MODAL_SCALARS_SIZE, CHART_SIZES_SIZE, SPATIAL_SIZE, &
-                              NATURAL_FREQUENCIES_SIZE, DESIGN_SIZE
+                              NATURAL_FREQUENCIES_SIZE, DESIGN_SIZE, &
+                              TANK_STRUCTURE_SIZE
   use sloshdyn_tables, only: DESIGN_ROWS, DESIGN_LOADS_COLUMNS, FREEBOARD_COLUMNS
   implicit none
   call define('n_real_params', n_real_params)
@@ -96,6 +97,7 @@ program sloshdyn_bridge_sizes
   call define('pressure_instant_rows', PRESSURE_INSTANT_ROWS)
   call define('spatial_history_rows', SPATIAL_HISTORY_ROWS)
   call define('design_size', DESIGN_SIZE)
+  call define('tank_structure_size', TANK_STRUCTURE_SIZE)
   call define('design_rows', DESIGN_ROWS)
   call define('design_loads_columns', DESIGN_LOADS_COLUMNS)
   call define('freeboard_columns', FREEBOARD_COLUMNS)

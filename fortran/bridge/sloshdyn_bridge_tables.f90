@@ -31,6 +31,9 @@ contains
                                 excitation_parameters, ground_kinds, resonances, chart_axes, &
                                 CHART_RHO, design_spectra
     use sloshdyn_design_spectra, only: ground_types
+    use sloshdyn_design_loads, only: wall_pressure_names, WALL_PRESSURE_CODE
+    use sloshdyn_tank_structure, only: material_names, anchorage_names, MATERIAL_STEEL, &
+                                       ANCHORAGE_SELF
     character(len=*), intent(in) :: list
     character(len=8192), intent(out) :: text
     integer(c_int), intent(out) :: first, status
@@ -39,8 +42,8 @@ contains
     character(len=*), parameter :: code_lists = 'analyses,methods,chart_models,chart_axes,'// &
       'excitation_parameters,directions,study_kinds,worker_kinds,continuations,ground_kinds,'// &
       'resonances,tank_shapes,roof_contacts,pressure_combinations,design_spectra,ground_types,'// &
-      'special,'// &
-      'motion,verdict,source,curve,codim2,curve_end,design_source'
+      'special,motion,verdict,source,curve,codim2,curve_end,design_source,wall_pressures,'// &
+      'materials,anchorages'
     character(len=:), allocatable :: joined
     integer :: code
     status = 0
@@ -94,6 +97,15 @@ contains
       case ('pressure_combinations')
         joined = join(combination_names, ',')
         code = COMBINE_SRSS
+      case ('wall_pressures')
+        joined = join(wall_pressure_names, ',')
+        code = WALL_PRESSURE_CODE
+      case ('materials')
+        joined = join(material_names, ',')
+        code = MATERIAL_STEEL
+      case ('anchorages')
+        joined = join(anchorage_names, ',')
+        code = ANCHORAGE_SELF
       case default
         call kind_names(list, joined, code)
       end select
@@ -138,4 +150,22 @@ contains
       values = defaults
     end if
   end subroutine layout_defaults
+
+  !> The core's range rules for the values(n) of a settings layout (sloshdyn_layouts'
+  !> check_layout): status 0, or the status and message naming the variable.
+  subroutine check_settings(name, n, values, status, message)
+    !f2py threadsafe
+    use sloshdyn_kinds, only: wp, message_len
+    use sloshdyn_layouts, only: core => check_layout
+    character(len=*), intent(in) :: name
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: values(n)
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    integer :: info
+    character(len=message_len) :: text
+    call core(name, real(values, wp), info, text)
+    status = info
+    message = text
+  end subroutine check_settings
 end module sloshdyn_bridge_tables

@@ -23,7 +23,7 @@ module sloshdyn_design_codes
   private
   public :: aci350_parameters, api650_parameters, ec8_parameters
   public :: aci350_circular, aci350_rectangular, aci350_wave_height, api650_circular, api650_wave_height, &
-            ec8_circular, ec8_wave_height
+            ec8_circular, ec8_wave_height, ec8_table_a2, table_a2_range, TABLE_A2_COLUMNS
 
   !> ACI 350.3-06, sec 9.2.2 and 9.2.4 (circular tanks), with H = H_L; the same fields for
   !> rectangular tanks, sec 9.2.1 and 9.2.3 (eq 9-1 to 9-11, L in place of D).
@@ -68,6 +68,24 @@ module sloshdyn_design_codes
   real(wp), parameter :: ec8_lambda_1 = 1.841_wp
   !> Terms of EN 1998-4 Annex A.2.1's impulsive series (their tail is below 1e-9 relative).
   integer, parameter :: ec8_terms = 20000
+  !> EN 1998-4:2006 Annex A, Table A.2 (Malhotra, Wenk and Wieland 2000, Table 1): the
+  !> simplified procedure's coefficients of a flexible (steel or concrete) circular tank on a
+  !> rigid foundation, by gamma = H/R: C_i, C_c [s/m^0.5], m_i/m, m_c/m, h_i/H, h_c/H, h_i'/H,
+  !> h_c'/H (columns 2..9; column 1 is H/R). The values as design guides quote them (the
+  !> paid text was not at hand).
+  integer, parameter :: TABLE_A2_COLUMNS = 8
+  real(wp), parameter :: table_a2(9, 8) = reshape([ &
+    0.3_wp, 9.28_wp, 2.09_wp, 0.176_wp, 0.824_wp, 0.400_wp, 0.521_wp, 2.640_wp, 3.414_wp, &
+    0.5_wp, 7.74_wp, 1.74_wp, 0.300_wp, 0.700_wp, 0.400_wp, 0.543_wp, 1.460_wp, 1.517_wp, &
+    0.7_wp, 6.97_wp, 1.60_wp, 0.414_wp, 0.586_wp, 0.401_wp, 0.571_wp, 1.009_wp, 1.011_wp, &
+    1.0_wp, 6.36_wp, 1.52_wp, 0.548_wp, 0.452_wp, 0.419_wp, 0.616_wp, 0.721_wp, 0.785_wp, &
+    1.5_wp, 6.06_wp, 1.48_wp, 0.686_wp, 0.314_wp, 0.439_wp, 0.690_wp, 0.555_wp, 0.734_wp, &
+    2.0_wp, 6.21_wp, 1.48_wp, 0.763_wp, 0.237_wp, 0.448_wp, 0.751_wp, 0.500_wp, 0.764_wp, &
+    2.5_wp, 6.56_wp, 1.48_wp, 0.810_wp, 0.190_wp, 0.452_wp, 0.794_wp, 0.480_wp, 0.796_wp, &
+    3.0_wp, 7.03_wp, 1.48_wp, 0.842_wp, 0.158_wp, 0.453_wp, 0.825_wp, 0.472_wp, 0.825_wp], &
+    [9, 8])
+  !> The range of H/R that Table A.2 covers.
+  real(wp), parameter :: table_a2_range(2) = [0.3_wp, 3.0_wp]
   !> Branch points of the ACI and API height and mass formulas (D/H).
   real(wp), parameter :: squat_from = 1.333_wp, aci_tall_ibp_below = 0.75_wp
 
@@ -295,6 +313,27 @@ contains
     if (status /= SD_OK) return
     d_max = 0.84_wp*radius*se_convective/gravity
   end subroutine ec8_wave_height
+
+  !> EN 1998-4 Table A.2's coefficients at gamma = H/R (C_i, C_c, m_i/m, m_c/m, h_i/H, h_c/H,
+  !> h_i'/H, h_c'/H), linear between its rows, the end row outside its range (the caller says
+  !> so: table_a2_range).
+  pure function ec8_table_a2(gamma) result(row)
+    real(wp), intent(in) :: gamma
+    real(wp) :: row(TABLE_A2_COLUMNS), w
+    integer :: i
+    if (gamma <= table_a2(1, 1)) then
+      row = table_a2(2:9, 1)
+    else if (gamma >= table_a2(1, 8)) then
+      row = table_a2(2:9, 8)
+    else
+      i = 1
+      do while (table_a2(1, i + 1) < gamma)
+        i = i + 1
+      end do
+      w = (gamma - table_a2(1, i))/(table_a2(1, i + 1) - table_a2(1, i))
+      row = (1 - w)*table_a2(2:9, i) + w*table_a2(2:9, i + 1)
+    end if
+  end function ec8_table_a2
 
   !> (cosh x - c)/(x sinh x), x > 0, without overflow for deep tanks:
   !> cosh x - 1 = 2 sinh^2(x/2) and sinh x = 2 sinh(x/2) cosh(x/2) give

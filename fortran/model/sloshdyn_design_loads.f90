@@ -18,24 +18,39 @@ module sloshdyn_design_loads
   implicit none
   private
   public :: design_factors_t, check_factors, code_loads, api650_af, api650_required_freeboard, &
-            LOADS_SIZE
+            LOADS_SIZE, table_e5_importance, wall_pressure_names, WALL_PRESSURE_CODE, &
+            WALL_PRESSURE_ELASTIC
 
   !> The loads of code_loads: [P_i, P_c, V, M (EBP), M' (IBP)] [N, N, N, N m, N m].
   integer, parameter :: LOADS_SIZE = 5
 
+  !> The accelerations of the design check's wall pressure: each code's design accelerations,
+  !> or the elastic spectrum's at sloshdyn's periods (labelled elastic).
+  integer, parameter :: WALL_PRESSURE_CODE = 1, WALL_PRESSURE_ELASTIC = 2
+  character(len=*), parameter :: wall_pressure_names(2) = [character(len=8) :: 'code', &
+                                                           'elastic']
+  !> API 650 Table E-5: the importance factor I of seismic use groups I, II, III.
+  real(wp), parameter :: table_e5_importance(3) = [1.0_wp, 1.25_wp, 1.5_wp]
+
   !> The factors of the codes (&design): importance I (API 650 Table E-5, ACI 350.3 Table
   !> 4.1.1(a)), API 650's seismic use group (E.3.1: 1..3) and response modification factors
   !> R_wi, R_wc (Table E-4: 3.5 and 2 for a self-anchored tank; 4 and 2 mechanically
-  !> anchored), ACI 350.3's R_i, R_c (Table 4.1.1(b): 2.0 fixed or hinged base, R_c = 1.0);
-  !> the impulsive period [s] (0: on the plateau of the spectrum, as the codes assume for a
-  !> tank without a computed one; with a record: the rigid tank, Sa = PGA) and damping [%];
-  !> the height of the tank's own mass [m] (0: half the shell, (H + freeboard)/2).
+  !> anchored; r_wi = 0: by the structure's anchorage), ACI 350.3's R_i, R_c (Table 4.1.1(b):
+  !> 2.0 fixed or hinged base, R_c = 1.0); the impulsive period [s] (0: from the structure where
+  !> the code uses it, else on the plateau of the spectrum, as the codes assume for a tank
+  !> without a computed one; with a record: the rigid tank, Sa = PGA) and damping ratio; the
+  !> height of the tank's own mass [m] (0: half the shell, (H + freeboard)/2); whether the
+  !> codes' vertical accelerations count, and the purchaser's vertical acceleration [g] (0: each
+  !> code's own); the accelerations of the wall pressure (WALL_PRESSURE_*).
   type :: design_factors_t
     real(wp) :: importance = 1
     integer :: use_group = 1
-    real(wp) :: r_wi = 3.5_wp, r_wc = 2, r_i = 2, r_c = 1
-    real(wp) :: impulsive_period = 0, impulsive_damping = 5
+    real(wp) :: r_wi = 0, r_wc = 2, r_i = 2, r_c = 1
+    real(wp) :: impulsive_period = 0, impulsive_damping_ratio = 0.05_wp
     real(wp) :: tank_mass_height = 0
+    logical :: vertical = .true.
+    real(wp) :: vertical_acceleration = 0
+    integer :: wall_pressure = WALL_PRESSURE_CODE
   end type design_factors_t
 
 contains
@@ -47,31 +62,45 @@ contains
     character(len=message_len), intent(out) :: message
     status = SD_OK
     message = ''
-    call check_real('importance', f%importance, 0.0_wp, 3.0_wp, .true., .false., 'I must be '// &
-                    'in (0, 3] (API 650 Table E-5: 1.0, 1.25, 1.5; ACI 350.3 Table 4.1.1(a))', &
-                    status, message)
-    if (status == SD_OK .and. (f%use_group < 1 .or. f%use_group > 3)) then
+    if (f%use_group < 1 .or. f%use_group > 3) then
       status = SD_BAD_INPUT
       message = 'use_group = '//num2str(f%use_group)//' is out of range: 1, 2 or 3 (API 650 '// &
                 'E.3.1, seismic use group I, II, III)'
+      return
     end if
-    call check_real('r_wi', f%r_wi, 0.0_wp, 10.0_wp, .true., .false., 'R_wi must be in '// &
-                    '(0, 10] (API 650 Table E-4: 3.5 self-anchored, 4 mechanically anchored)', &
-                    status, message)
-    call check_real('r_wc', f%r_wc, 0.0_wp, 10.0_wp, .true., .false., 'R_wc must be in '// &
-                    '(0, 10] (API 650 Table E-4: 2)', status, message)
-    call check_real('r_i', f%r_i, 0.0_wp, 10.0_wp, .true., .false., 'R_i must be in (0, 10] '// &
+    call check_real('importance', f%importance, table_e5_importance(f%use_group), 3.0_wp, &
+                    .false., .false., 'I must be in ['// &
+                    num2str(table_e5_importance(f%use_group))//', 3] for use_group = '// &
+                    num2str(f%use_group)//' (API 650 13th ed. Table E-5: 1.0, 1.25, 1.5 for '// &
+                    'SUG I, II, III; a higher I is the purchaser''s choice)', status, message)
+    if (f%r_wi /= 0) call check_real('r_wi', f%r_wi, 1.0_wp, 10.0_wp, .false., .false., &
+                                     'R_wi must be 0 (by the anchorage) or in [1, 10] (API '// &
+                                     '650 Table E-4: 3.5 self-anchored, 4 mechanically '// &
+                                     'anchored)', status, message)
+    call check_real('r_wc', f%r_wc, 1.0_wp, 10.0_wp, .false., .false., 'R_wc must be in '// &
+                    '[1, 10] (API 650 Table E-4: 2)', status, message)
+    call check_real('r_i', f%r_i, 1.0_wp, 10.0_wp, .false., .false., 'R_i must be in [1, 10] '// &
                     '(ACI 350.3 Table 4.1.1(b))', status, message)
-    call check_real('r_c', f%r_c, 0.0_wp, 10.0_wp, .true., .false., 'R_c must be in (0, 10] '// &
+    call check_real('r_c', f%r_c, 1.0_wp, 10.0_wp, .false., .false., 'R_c must be in [1, 10] '// &
                     '(ACI 350.3 Table 4.1.1(b): 1.0)', status, message)
     call check_real('impulsive_period', f%impulsive_period, 0.0_wp, 4.0_wp, .false., .false., &
-                    'the impulsive period must be in [0, 4] [s] (0: the plateau)', status, &
+                    'the impulsive period must be in [0, 4] [s] (0: from the structure, or '// &
+                    'the plateau)', status, message)
+    call check_real('impulsive_damping_ratio', f%impulsive_damping_ratio, 0.0_wp, 0.3_wp, &
+                    .true., .false., 'the impulsive damping ratio must be in (0, 0.3] (a '// &
+                    'ratio of critical: 0.05 for 5 %)', status, message)
+    call check_real('tank_mass_height', f%tank_mass_height, 0.0_wp, 1.0e4_wp, .false., &
+                    .false., 'the height of the tank''s mass must be in [0, 1e4] [m] (0: half '// &
+                    'the shell; at most the tank''s height, checked with the tank)', status, &
                     message)
-    call check_real('impulsive_damping', f%impulsive_damping, 0.0_wp, 30.0_wp, .true., .false., &
-                    'the impulsive damping must be in (0, 30] [%]', status, message)
-    call check_real('tank_mass_height', f%tank_mass_height, 0.0_wp, huge(1.0_wp), .false., &
-                    .true., 'the height of the tank''s mass must be >= 0 [m] (0: half the shell)', &
-                    status, message)
+    call check_real('vertical_acceleration', f%vertical_acceleration, 0.0_wp, 3.0_wp, .false., &
+                    .false., 'the vertical design acceleration must be in [0, 3] [g] (0: each '// &
+                    'code''s own)', status, message)
+    if (status == SD_OK .and. (f%wall_pressure < WALL_PRESSURE_CODE .or. &
+                               f%wall_pressure > WALL_PRESSURE_ELASTIC)) then
+      status = SD_BAD_INPUT
+      message = 'wall_pressure = '//num2str(f%wall_pressure)//' is out of range: code or elastic'
+    end if
   end subroutine check_factors
 
   !> The codes' loads [P_i, P_c, V, M, M'] from the design coefficients a_i, a_c [g], the

@@ -47,6 +47,9 @@ module sloshdyn_roof
   !> [0.8 D, 1.2 D] (5.10.6)
   real(wp), parameter :: max_cone_slope = 37, min_dome_radius = 0.8_wp, &
                          max_dome_radius = 1.2_wp
+  !> A dome radius of exactly 0.8 D or 1.2 D is allowed: the bounds 0.8 (2 R) and 1.2 (2 R)
+  !> carry the round-off of their product (0.8 x 30 = 24.000000000000004)
+  real(wp), parameter :: bound_round_off = 1.0e-12_wp
 
 contains
 
@@ -60,8 +63,8 @@ contains
                     'a cone roof''s slope must lie in (0, 37] degrees (API 650 5.10.5; 0: no '// &
                     'cone)', status, message)
     if (roof_radius /= 0) &
-      call check_real('roof_radius', roof_radius, min_dome_radius*2*radius, &
-                      max_dome_radius*2*radius, .false., .false., &
+      call check_real('roof_radius', roof_radius, min_dome_radius*2*radius*(1 - bound_round_off), &
+                      max_dome_radius*2*radius*(1 + bound_round_off), .false., .false., &
                       'a dome roof''s radius must lie in [0.8 D, 1.2 D] = ['// &
                       num2str(min_dome_radius*2*radius)//', '// &
                       num2str(max_dome_radius*2*radius)//'] m (API 650 5.10.6; 0: no dome)', &

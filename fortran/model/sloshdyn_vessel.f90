@@ -47,6 +47,9 @@ module sloshdyn_vessel
   real(wp), parameter :: standard_gravity = 9.80665_wp   !< m/s^2
   !> xi = 1.84 of eq (2): the first root of J1', as the paper rounds it
   real(wp), parameter :: xi = 1.84_wp
+  !> The largest wall angle of a tank's model [rad] (a freeboard beyond the linear wave's
+  !> reach caps theta0 there, just below the model's bound pi/2).
+  real(wp), parameter, public :: max_theta0 = 0.4999_wp*pi
 
   !> A cylindrical or rectangular tank on supports, SI units. Zero (or negative) means "not given" where an
   !> alternative exists: the liquid by its density or its mass; the supports by their natural
@@ -107,6 +110,9 @@ module sloshdyn_vessel
     real(wp) :: shell_height = 0                          !< of the tank mass, (h + freeboard)/2
     real(wp) :: wave_factor = 0                           !< eta = wave_factor sin(theta) [m]
     real(wp) :: impact_coefficient = 0                    !< b = beta m g l [N m]
+    !> .false. where the freeboard exceeds what the linear wave reaches (theta0 then capped
+    !> at max_theta0; the roof verdicts compare the free wave with the freeboard itself)
+    logical :: roof_reachable = .true.
     !> the sloshing modes 1..modes (mode 1: the pendulum above): period [s], mass [kg], height
     !> of its wall pressure's resultant and of its wall and base pressures' [m], pendulum length
     !> [m], wave at the wall per sin(theta_n) [m]
@@ -218,16 +224,11 @@ contains
       call rectangular_pendulum(tank, props, status, message)
       if (status /= SD_OK) return
     end if
+    ! a freeboard the linear wave cannot reach (it rises at most wave_factor at the wall):
+    ! theta0 capped below pi/2 for the model, and the roof is out of the linear wave's reach
     sin_theta0 = tank%freeboard/props%wave_factor
-    if (sin_theta0 >= sin(0.4999_wp*pi)) then
-      status = SD_BAD_INPUT
-      message = 'freeboard = '//num2str(tank%freeboard)//' is out of range: the linear sloshing '// &
-                'wave reaches at most '//trim(merge('2 R/(xi^2 - 1)', '4 L/pi^2      ', &
-                tank%shape == SHAPE_CIRCULAR))//' = '//num2str(props%wave_factor)//' m at '// &
-                'the wall; the roof impact model needs a smaller freeboard'
-      return
-    end if
-    props%theta0 = asin(sin_theta0)
+    props%roof_reachable = sin_theta0 < sin(max_theta0)
+    props%theta0 = asin(min(sin_theta0, sin(max_theta0)))
     props%total_mass = props%liquid_mass + tank%tank_mass
     props%rod_length = merge(tank%support_height, tank%liquid_depth + tank%freeboard, &
                              tank%support_height > 0)

@@ -30,6 +30,7 @@ from .seismic import (HarmonicSweep, SeismicResponse, SeismicTimes, harmonic_swe
                       seismic_defaults, seismic_response)
 from .pressure import SeismicPressures, WallPressure, seismic_pressures, wall_pressure
 from .design import DesignCheck, design_check
+from .structure import TankStructure
 from . import spatial  # the spatial model and swirl (issue 26): sloshdyn.spatial.*
 from .studies import (FragilityFit, basins, fit_fragility, fragility_study, impact_parameters,
                       response_map)
@@ -52,7 +53,7 @@ __all__ = [
     "PeriodicOrbit", "PeriodicSpecialPoint", "Lyapunov", "LyapunovExponent", "Shooting",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
     "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "SeismicTimes",
-    "DesignSpectrum", "DesignCheck", "design_check",
+    "DesignSpectrum", "DesignCheck", "design_check", "TankStructure",
     "Spectrum", "Tank",
     "acceleration_factor", "harmonic_sweep", "seismic_defaults", "seismic_response",
     "Chart", "Codim2Point", "Curve", "StabilityChart", "stability_chart",

@@ -60,6 +60,14 @@ class FileError(SloshdynError, OSError):
     status = 8
 
 
+class ClusterError(SloshdynError):
+    """A study's cluster cannot run it: no worker that can run sloshdyn of this version has
+    been alive for the study's grace time (all gone, none joined, or all refused), or fewer
+    than its min_workers joined. The points stored are kept (rerun to resume)."""
+
+    exit_status = 7
+
+
 CANCELLED = 10    #: the core stopped on request (python/sloshdyn/_cancel.py): KeyboardInterrupt
 
 _BY_STATUS = {
@@ -87,14 +95,22 @@ EXIT_MEANINGS = {
     5: "the results could not be written (a full disk, a read-only directory); nothing of "
        "the run is left under a final name",
     130: "interrupted (Ctrl-C); no file was left half-written",
+    6: "study: some points failed, each stored with its status and message (the others are "
+       "complete)",
+    7: "study: no worker could run it (none alive, none with this sloshdyn) within its grace "
+       "time, or fewer than min_workers joined; the points stored are kept",
+    130: "interrupted (Ctrl-C); no file was left half-written",
     143: "terminated (SIGTERM); no file was left half-written",
 }
 EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED = 4, 130, 143
+EXIT_POINTS_FAILED = 6
 
 
 def exit_code(error, reading=False):
     """The exit code of a SloshdynError: the core's rule for its status (any status while the
-    input is read is an input error)."""
+    input is read is an input error); a study's own errors have their own code."""
+    if getattr(error, "exit_status", None) is not None:
+        return error.exit_status
     return int(_core.sloshdyn_bridge_input.exit_code(int(error.status or 1), bool(reading)))
 
 

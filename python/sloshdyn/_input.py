@@ -54,6 +54,7 @@ class InputArrays(NamedTuple):
     n_samples_y: int
     has_design: int
     design: np.ndarray
+    tank_structure: np.ndarray
 
 
 def read_arrays(path) -> InputArrays:

@@ -86,6 +86,7 @@ def _post_init(self):
         if choices is not None:
             _checks.choice(name, getattr(self, name), _tables.names(choices)[0])
     convert_fields(self)
+    _tables.check_settings(self.layout, _array(self))   # the core's range rules
     check = getattr(self, "_check", None)
     if check is not None:
         check()

@@ -102,6 +102,13 @@ def code(list_name, name):
     return {v: k for k, v in codes(list_name).items()}[name]
 
 
+def check_settings(name, values):
+    """The core's range rules for the values of a settings layout (sloshdyn_layouts'
+    check_layout): InputError naming the variable, its value and the allowed range."""
+    status, message = _bridge.check_settings(name, np.asarray(values, dtype=float))
+    check_status(status, message)
+
+
 @lru_cache(maxsize=None)
 def defaults(name):
     """The core's defaults {field: value} of a settings layout (the option types' defaults, as

@@ -18,8 +18,8 @@ import numpy as np
 from tqdm.auto import tqdm
 
 from . import figures, plotting, reference, studies
-from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_TERMINATED, FileError, InputError,
-                      SloshdynError, exit_code)
+from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_POINTS_FAILED, EXIT_TERMINATED,
+                      FileError, InputError, SloshdynError, exit_code)
 from ._files import run_directory, save_figure, write_text
 from ._version import __version__
 from .namelist import read_namelist
@@ -57,15 +57,21 @@ def main(argv=None):
     chk.add_argument("--reference", help="reference directory (default: the tables installed "
                      "with the package, a copy of data/reference)")
 
-    rpt = commands.add_parser("report", help="the calc sheet of a tank under ground motion",
+    rpt = commands.add_parser("report", help="the calc sheet of a tank",
                               description="Run a namelist file of a tank under ground motion "
-                              "(&analysis kind = 'seismic') as `run` does, its CSV files into "
-                              "DIR, and write the calc sheet built from them: report.md, a "
-                              "self-contained report.html and the figures (docs/python.md, "
+                              "(&analysis kind = 'seismic') or with &design as `run` does, and "
+                              "write the calc sheet built from its files: report.md, a "
+                              "self-contained report.html, report.pdf and the figures; DIR is "
+                              "replaced as a whole when all are complete (docs/python.md, "
                               "\"The calc sheet\").")
-    rpt.add_argument("input", help="namelist file with &tank, &ground_motion and &analysis "
-                     "kind = 'seismic'")
-    rpt.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    rpt.add_argument("input", help="namelist file with &tank and &ground_motion (&analysis "
+                     "kind = 'seismic') or &design")
+    rpt.add_argument("--out", required=True, metavar="DIR", help="output directory (new, or "
+                     "one that sloshdyn wrote)")
+    rpt.add_argument("--project", default="", help="the project, for the title block")
+    rpt.add_argument("--prepared-by", default="", help="who prepared the sheet")
+    rpt.add_argument("--paper", default="a4", choices=["a4", "letter"],
+                     help="paper size of report.pdf and of report.html's print (default a4)")
 
     sty = commands.add_parser("study", help="run a parameter study (&study) on Dask",
                               description="Run the parameter study of a namelist file's &study "
@@ -90,8 +96,9 @@ def main(argv=None):
             run_input(args.input)
             return 0
         if args.command == "report":
-            sheet = design_report(args.input, args.out)
-            print(f"calc sheet: {sheet.markdown} and {sheet.html}")
+            sheet = design_report(args.input, args.out, project=args.project,
+                                  prepared_by=args.prepared_by, paper=args.paper)
+            print(f"calc sheet: {sheet.markdown}, {sheet.html} and {sheet.pdf}")
             return 0
         if args.command == "study":
             return run_study(args.input, args.scheduler, args.workers, not args.no_progress)
@@ -166,9 +173,19 @@ def run_study(path, scheduler=None, workers=None, progress=True):
         raise InputError(f"{path}: no &study group: a study file needs one (docs/studies.md)")
     base = Path(path).resolve().parent
     store = Path(st["store"]) if os.path.isabs(st["store"]) else base / st["store"]
+    figure = Path(st["figure"]) if st["figure"] else store.with_suffix(".png")
+    if not figure.is_absolute() and st["figure"]:
+        figure = base / figure
+    from matplotlib.backend_bases import FigureCanvasBase
+    formats = FigureCanvasBase.get_supported_filetypes()
+    if figure.suffix[1:].lower() not in formats:   # checked before the first point
+        raise InputError(f"&study: figure = {st['figure']!r} cannot be drawn: its extension "
+                         f"{figure.suffix or '(none)'!r} is not one of "
+                         f"{', '.join('.' + k for k in sorted(formats))}")
     common = dict(client=None, scheduler=scheduler or st["scheduler"] or None,
                   workers=workers if workers is not None else (st["workers"] or None),
                   worker_kind=st["worker_kind"], points_per_task=st["points_per_task"] or None,
+                  min_workers=st["min_workers"], grace_time=st["grace_time"],
                   steady=inp.steady, integration=inp.integration,
                   progress=progress)
     if st["kind"] == "response_map":
@@ -196,13 +213,14 @@ def run_study(path, scheduler=None, workers=None, progress=True):
         levels = np.broadcast_to(ds.intensity.values, hit.shape)
         fit = studies.FragilityFit(float(ds.fragility_median), float(ds.fragility_dispersion),
                            float(ds.fragility_median_se), float(ds.fragility_dispersion_se), 0,
-                           int((hit >= 0).sum()))
+                           int(ds.fragility_runs))
         fig = plotting.fragility(fit, levels[hit >= 0], hit[hit >= 0],
                                  label=f"Sa({ds.attrs['spectral_period']:.3g} s, "
                                        f"{100 * st['spectral_damping']:g} %)")
         print(f"fragility: {ds.sizes['record']} records x {ds.sizes['intensity']} intensities, "
               f"{ds.attrs['points_computed']} runs computed now; roof impacts "
-              f"{int((hit == 1).sum())} of {int((hit >= 0).sum())}; fragility median "
+              f"{int((hit == 1).sum())} of the {int(ds.fragility_runs)} runs that succeeded "
+              f"(of {hit.size}); fragility median "
               f"{fit.median:.4g} g (standard error {fit.median_se:.2g}), dispersion "
               f"{fit.beta:.3g} ({fit.beta_se:.2g}); {ds.attrs.get('fragility_fit', '')}")
     else:
@@ -222,12 +240,13 @@ def run_study(path, scheduler=None, workers=None, progress=True):
     if ds.attrs["points_repaired"]:
         print(f"repaired: {ds.attrs['points_repaired']} finished points of the store whose "
               f"stored data were missing or damaged ({ds.attrs['repaired']}) computed again")
-    figure = Path(st["figure"]) if st["figure"] else store.with_suffix(".png")
-    if not figure.is_absolute() and st["figure"]:
-        figure = base / figure
+    named, failed = studies.engine.failed_points(ds)
+    if failed:
+        print(f"failed: {failed} of {ds['status'].size} points (stored with their "
+              f"status and message): {named}")
     save_figure(fig, figure)
     print(f"store: {store}\nfigure: {figure}")
-    return 0
+    return EXIT_POINTS_FAILED if failed else 0
 
 
 def reproduce(out, only=None, quick=False):

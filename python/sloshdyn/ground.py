@@ -252,7 +252,7 @@ SPECTRUM_FIELDS = ("spectrum", "s_ds", "s_d1", "t_l", "k", "a_gr", "gamma_i", "g
 
 
 class DesignSpectrum:
-    """A code design spectrum: Sa [g] at a period [s] and a damping ratio [%] (`sa`), usable
+    """A code design spectrum: Sa [g] at a period [s] and a damping ratio (`sa`), usable
     where a record's spectrum is used (Tank.design_codes(spectrum), design_check).
 
     DesignSpectrum.asce7(s_ds=1.0, s_d1=0.6, t_l=8)    ASCE 7-16 11.4.6 (API 650 Annex E)
@@ -260,9 +260,10 @@ class DesignSpectrum:
     DesignSpectrum.ec8(a_gr=0.25, ground_type='B')     EN 1998-1 3.2.2.2 (and 3.2.2.5 with q)
     DesignSpectrum(design=read_namelist(path).design)  &design's spectrum
 
-    ASCE 7 and ACI 350.3 tabulate 5 % and 0.5 % damping only (0.5 %: API 650's K times the
-    5 % ordinate; ACI 350.3's own C_c); EN 1998-1's elastic spectrum takes any damping
-    (eta = sqrt(10/(5 + xi)) >= 0.55) up to 4 s. Other inputs are refused with the clause.
+    ASCE 7 and ACI 350.3 tabulate 5 % and 0.5 % damping only (damping_ratio 0.05 and 0.005;
+    0.5 %: API 650's K times the 5 % ordinate; ACI 350.3's own C_c); EN 1998-1's elastic
+    spectrum takes any damping (eta = sqrt(10/(5 + xi)) >= 0.55, xi in %), beyond 4 s by its
+    informative Annex A. Other inputs are refused with the clause.
     `design` holds it as &design settings (sloshdyn.design.Design)."""
 
     def __init__(self, *, design: Design):
@@ -309,15 +310,15 @@ class DesignSpectrum:
         return f"{name}, S_DS = {d.s_ds:g} g, S_D1 = {d.s_d1:g} g" + (
             f", T_L = {d.t_l:g} s" if self.kind == "asce7" else "")
 
-    def sa(self, period, damping=5.0):
-        """Sa [g] at the period(s) [s] (a scalar or an array) and damping ratio [%]."""
-        periods = _checks.reals("period", np.atleast_1d(np.asarray(period, dtype=float)),
-                                ndim=1)
-        damping = _checks.real("damping", damping)
-        values, status, message = _bridge.design_spectrum_sa(self.design.array(), periods,
-                                                             damping)
+    def sa(self, period, *, damping_ratio=0.05):
+        """Sa [g] at the period(s) [s] (a scalar or an array) and the damping ratio (of
+        critical: 0.05 for 5 %; keyword only, so that an old call passing percent fails)."""
+        periods = _checks.reals("period", period)
+        damping_ratio = _checks.real("damping_ratio", damping_ratio)
+        values, status, message = _bridge.design_spectrum_sa(
+            self.design.array(), np.atleast_1d(periods).ravel(), damping_ratio)
         check_status(status, message)
-        return float(values[0]) if np.ndim(period) == 0 else values.reshape(np.shape(period))
+        return float(values[0]) if periods.ndim == 0 else values.reshape(periods.shape)
 
     def __repr__(self):
         d = self.design

@@ -12,6 +12,7 @@ from ._settings import decode_all
 from .ground import GroundMotion
 from .options import Chart, Continuation, Design, Integration, Lyapunov, Steady
 from .parameters import Parameters
+from .structure import TankStructure
 from .tank import Tank
 
 
@@ -47,6 +48,7 @@ class Input:
     #: &ground_motion's azimuth [rad] and ellipticity (sloshdyn.spatial.seismic_response_2d)
     ground_motion_y: object = None  #: &ground_motion's record_y (scaled by the first's factor)
     design: object = None         #: &design: sloshdyn.design.Design, or None (no &design)
+    tank_structure: object = None  #: &tank_structure: sloshdyn.TankStructure, or None
 
 
 def read_namelist(path) -> Input:
@@ -86,7 +88,8 @@ def read_namelist(path) -> Input:
         study=_study(a.study, a.store, a.figure, a.scheduler, a.study_records),
         planar=bool(a.planar), spatial=decode_all("spatial", a.spatial),
         ground_motion_y=ground_motion_y,
-        design=Design.from_array(a.design) if a.has_design else None)
+        design=Design.from_array(a.design) if a.has_design else None,
+        tank_structure=TankStructure.from_array(a.tank_structure))
 
 
 def _study(values, store, figure, scheduler, records):
@@ -97,7 +100,8 @@ def _study(values, store, figure, scheduler, records):
     kind = values["kind"]
     study = {"kind": kind, "store": _tables._text(store), "figure": _tables._text(figure),
              "scheduler": _tables._text(scheduler),
-             **{name: values[name] for name in ("workers", "worker_kind", "points_per_task")}}
+             **{name: values[name] for name in ("workers", "worker_kind", "points_per_task",
+                                                "min_workers", "grace_time")}}
     fields = {"response_map": ("frequency_start", "frequency_stop", "n_frequencies",
                                "amplitude_start", "amplitude_stop", "n_amplitudes",
                                "continuation"),

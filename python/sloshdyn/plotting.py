@@ -489,16 +489,16 @@ def stability_chart(chart, tank=None):
     return fig
 
 
-def design_spectrum(spectra, dampings=(5.0, 0.5), t_max=10.0):
+def design_spectrum(spectra, damping_ratios=(0.05, 0.005), t_max=10.0):
     """Design spectra (a sloshdyn.DesignSpectrum or a list of them), Sa [g] against the period
-    T [s] up to t_max, one curve per spectrum and damping [%] (EN 1998-1's elastic spectrum
-    ends at 4 s)."""
+    T [s] up to t_max, one curve per spectrum and damping ratio (EN 1998-1's elastic spectrum
+    beyond 4 s by its informative Annex A)."""
     spectra = [spectra] if isinstance(spectra, DesignSpectrum) else list(spectra)
     fig, ax = plt.subplots(figsize=(7, 4))
     for spec in spectra:
-        t = np.linspace(0, min(t_max, 4.0) if spec.kind == "ec8" else t_max, 1001)
-        for xi in dampings:
-            ax.plot(t, spec.sa(t, xi), label=f"{spec.label}, {xi:g} %")
+        t = np.linspace(0, t_max, 1001)
+        for ratio in damping_ratios:
+            ax.plot(t, spec.sa(t, damping_ratio=ratio), label=f"{spec.label}, {100 * ratio:g} %")
     ax.set_xlabel("period T [s]")
     ax.set_ylabel("spectral acceleration Sa [g]")
     ax.set_xlim(0, t_max)

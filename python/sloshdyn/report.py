@@ -1,584 +1,100 @@
-"""The calc sheet of a tank under ground motion (issue 25, item 5): `sloshdyn-py report INPUT.nml
---out DIR` and `sloshdyn.design_report(input, out)`.
+"""The calc sheet of a tank (issues 25 and 39): `sloshdyn-py report INPUT.nml --out DIR` and
+`sloshdyn.design_report(input, out)`.
 
 The input runs exactly as `sloshdyn-py run` runs it (the one reader, the same driver and writers,
-through the bridge), its CSV files written into DIR; the sheet is then built from those CSV files
-only, so every number in it is one of theirs, rounded for print (docs/python.md, "The calc
-sheet"). One structured document (sections of paragraphs, tables, figures, code) is written
-twice: report.md and a self-contained report.html (figures embedded as base64 PNG, also written
-as PNG files beside).
-
-A result table enters the sheet by one line in TABLES: (section title, CSV file name). Any CSV
-renders by its column names and units ('base_shear [N]' is shown in kN or MN, 'p [Pa]' in kPa,
-masses in t, accelerations in g), with 5 significant digits.
-"""
+through the bridge), its files written into a directory of the sheet's own; the sheet is then
+built from that directory's files only, so every number in it is one of theirs, rounded for
+print, and no file of an earlier run can enter it. The sheet's order is a checker's: the title
+block (with the fields a checker signs), the summary of every check, the inputs with their
+units, each code's calculation, the wall pressure, the nonlinear run, the assumptions
+(docs/design.md), and an appendix with the model's research parameters and the input file.
+One document (report_layout) is written as report.md, a self-contained report.html with print
+CSS, and report.pdf (WeasyPrint). The directory, run and sheet together, then replaces DIR as
+a whole, or nothing is replaced (docs/python.md, "The calc sheet")."""
 
 from __future__ import annotations
 
-import base64
 import contextlib
-import csv
-import dataclasses
 import datetime
+import errno
 import hashlib
-import html
-import math
 import os
 import re
+import shutil
+import signal
 import sys
 import tempfile
-from dataclasses import dataclass, field
+import threading
+from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
-from ._errors import InputError, SloshdynError
-from ._files import file_error, run_directory, save_figure, write_csv, write_text
+from . import _tables
+from ._errors import FileError, InputError, SloshdynError
+from ._files import file_error, write_csv, write_text
 from ._version import __version__
+from .ground import SPECTRUM_FIELDS
 from .namelist import read_namelist
+from .report_figures import draw_figures
+from .report_layout import (INPUT_DIGITS, PAPERS, Bullets, Figure, Paragraph, Section,
+                            Table, number, plain_number, to_html, to_markdown)
+from .report_pdf import write_pdf
+from .report_tables import (cell, display_unit, inputs_table, motion_table, one_row, read_table,
+                            render_table, spectrum_table, split_name)
 from .runner import run_input
 
-#: significant digits of every number of the sheet computed by sloshdyn, and of the inputs
-DIGITS, INPUT_DIGITS = 5, 12
-#: the standard acceleration of gravity: accelerations are shown in g = 9.80665 m/s^2
-STANDARD_GRAVITY = 9.80665
 #: the analyses the sheet reports: a tank (&tank) under ground motion (&ground_motion), or a
 #: tank's design check (&design) against a code spectrum in any analysis of the tank
 SUPPORTED = "&analysis kind = 'seismic' with &tank and &ground_motion (planar, or two components " \
             "with &tank planar = .false.), or a &tank with &design (the design check against its " \
             "code spectrum)"
-
-#: The result tables of the sheet, in order: (section, CSV file). A table whose file the run did
-#: not write is left out. A new table enters the sheet by one line here.
-TABLES = (
-    ("Inputs", "inputs.csv"),
-    ("Motion", "motion.csv"),
-    ("Tank", "tank.csv"),
-    ("Tank", "tank_modes.csv"),
-    ("Design codes", "design_codes.csv"),
-    ("Design codes", "design_loads.csv"),
-    ("Design codes", "freeboard_check.csv"),
-    ("Nonlinear run", "seismic_peaks.csv"),
-    ("Nonlinear run", "seismic_spatial_peaks.csv"),
-    ("Nonlinear run", "run_info.csv"),
-    ("Wall pressure", "wall_pressure.csv"),
-    ("Wall pressure", "pressure_resultants.csv"),
-    ("Wall pressure", "pressure_at_peaks.csv"),
-    ("Wall pressure", "wall_pressure_at_shear_peak.csv"),
-    ("Wall pressure", "wall_pressure_at_moment_peak.csv"),
-)
-#: what each table is, printed above it
-CAPTIONS = {
-    "inputs.csv": "The values as read, defaults included (SI units as in the namelist; "
-                  "0 where the method's default applies, docs/namelist.md).",
-    "motion.csv": "The ground motion as scaled by the reader, and its pseudo-spectral "
-                  "acceleration at the first sloshing period (0.5 % damping).",
-    "tank.csv": "The tank and what follows from it (masses, heights, periods, supports, the "
-                "model's dimensionless groups; docs/model.md).",
-    "tank_modes.csv": "The sloshing modes taken (modes 2..N linear).",
-    "design_codes.csv": "Each design code's periods, masses and heights for this tank, and the "
-                        "wave height from the motion's spectrum (— where a code gives no value).",
-    "design_loads.csv": "Code-format seismic loads.",
-    "freeboard_check.csv": "Freeboard check per code.",
-    "seismic_peaks.csv": "Peaks of the nonlinear run (largest |value| over the run, at time t) "
-                         "and the roof contact of the free wave.",
-    "seismic_spatial_peaks.csv": "Peaks of the spatial run (two components), beside the codes' "
-                                 "SRSS and 100/30 combinations of the two planar runs.",
-    "run_info.csv": "What the run rests on (record, scaling, impact stiffness and damping).",
-    "wall_pressure.csv": "Hydrodynamic wall pressure at theta = 0 (times cos theta around the "
-                         "wall) and the hoop force per unit height (docs/design.md).",
-    "pressure_resultants.csv": "Resultants of the pressure: impulsive (component 0) and first "
-                               "convective mode (1).",
-    "pressure_at_peaks.csv": "The nonlinear run at its base shear and overturning moment peaks "
-                             "(the output times nearest them): the tank's acceleration and the "
-                             "loads of the hydrodynamic pressure and the shell's inertia.",
-    "wall_pressure_at_shear_peak.csv": "Hydrodynamic wall pressure of the nonlinear run at its "
-                                       "base shear peak, theta = 0.",
-    "wall_pressure_at_moment_peak.csv": "Hydrodynamic wall pressure of the nonlinear run at its "
-                                        "overturning moment peak, theta = 0.",
-}
-#: rows shown of a long table (evenly spaced, the first and last included)
-MAX_ROWS = 25
-
-
-# ---- the structured document ----------------------------------------------------------------
-
-@dataclass(frozen=True)
-class Paragraph:
-    text: str
-    code: bool = False    #: verbatim (a code block)
-
-
-@dataclass(frozen=True)
-class Bullets:
-    items: list
-
-
-@dataclass(frozen=True)
-class Table:
-    header: list
-    rows: list
-    source: str = ""      #: the CSV file the numbers come from
-    caption: str = ""
-
-
-@dataclass(frozen=True)
-class Figure:
-    file: str             #: a PNG in the sheet's directory
-    caption: str
-
-
-@dataclass(frozen=True)
-class Section:
-    title: str
-    blocks: list = field(default_factory=list)
+#: quantities of the paper's impact model (eq 4-5: the smooth wall, beta, delta): never on the
+#: sheet, whose loads rest on the tank's physics and the codes (DESIGN.md, "Two models")
+IMPACT_MODEL = ("peak_impact_force", "time_impact_force", "impact_force", "beta_sensitive",
+                "impact_stiffness", "impact_damping", "impact_coefficient", "beta", "delta",
+                "n", "p")
+#: the model's dimensionless (research) quantities of tank.csv: in the appendix only
+RESEARCH = ("d1", "d0", "omega", "theta0", "wave_factor", "s1", "mu1", "kappa", "gamma", "zeta")
+#: the &design fields of each spectrum (docs/namelist.md, &design; the others are not shown)
+SPECTRUM_INPUTS = {"asce7": ("s_ds", "s_d1", "t_l", "k"), "aci350": ("s_ds", "s_d1", "t_l"),
+                   "ec8": ("a_gr", "gamma_i", "ground_type", "spectrum_type", "q", "beta"),
+                   "ground_motion": ()}
+#: what a 0 of a &tank or &seismic input means (docs/namelist.md; &design's and
+#: &tank_structure's say it in the core's layout descriptions)
+ZERO_MEANS = {"support_height": "0: liquid_depth + freeboard",
+              "roof_slope": "0: not a cone roof", "roof_radius": "0: not a dome roof",
+              "t_end": "0: the run's default", "n_out": "0: the run's default"}
+#: docs/design.md as the package installs it (beside the reference tables; meson.build)
+DESIGN_PAGE = Path(__file__).parent / "reference" / "design.md"
+#: the run's own files beside the sheet's, and the marker a run directory holds (the same
+#: marker and header as the core's run directories, docs/failure.md)
+MARKER = ".sloshdyn-run"
+MARKER_HEADER = ("sloshdyn run directory: every file listed below was written by one run of "
+                 "sloshdyn, and the next run into this directory replaces it as a whole\n")
 
 
 @dataclass(frozen=True)
 class CalcSheet:
-    """The files of a calc sheet (design_report): report.md, report.html, the figures (PNG)
-    and the CSV files whose numbers it shows, in its order."""
+    """The files of a calc sheet (design_report): report.md, report.html, report.pdf, the
+    figures (PNG) and the CSV files whose numbers it shows, in its order."""
 
     markdown: Path
     html: Path
+    pdf: Path
     figures: tuple
     tables: tuple
 
 
-def to_markdown(title, sections):
-    lines = [f"# {title}", ""]
-    for section in sections:
-        lines += [f"## {section.title}", ""]
-        for block in section.blocks:
-            if isinstance(block, Paragraph) and block.code:
-                lines += ["```", block.text.rstrip("\n"), "```", ""]
-            elif isinstance(block, Paragraph):
-                lines += [block.text, ""]
-            elif isinstance(block, Bullets):
-                lines += [f"- {item}" for item in block.items] + [""]
-            elif isinstance(block, Figure):
-                lines += [f"![{block.caption}]({block.file})", "", f"*{block.caption}*", ""]
-            else:
-                if block.caption or block.source:
-                    lines += [" ".join(filter(None, (block.caption, block.source and
-                                                     f"Source: {block.source}"))), ""]
-                lines.append("| " + " | ".join(block.header) + " |")
-                lines.append("|" + "---|" * len(block.header))
-                lines += ["| " + " | ".join(row) + " |" for row in block.rows]
-                lines.append("")
-    return "\n".join(lines)
-
-
-def to_html(title, sections, directory):
-    """The same document as HTML, self-contained: figures embedded as base64 PNG."""
-    e = html.escape
-    parts = ["<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
-             f"<title>{e(title)}</title>",
-             "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
-             "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;"
-             "padding:2px 8px}td{text-align:right}td:first-child{text-align:left}"
-             "pre{background:#f4f4f4;padding:0.5em;overflow-x:auto}img{max-width:100%}"
-             "</style></head><body>", f"<h1>{e(title)}</h1>"]
-    for section in sections:
-        parts.append(f"<h2>{e(section.title)}</h2>")
-        for block in section.blocks:
-            if isinstance(block, Paragraph):
-                parts.append(f"<pre>{e(block.text)}</pre>" if block.code else
-                             f"<p>{e(block.text)}</p>")
-            elif isinstance(block, Bullets):
-                parts.append("<ul>" + "".join(f"<li>{e(item)}</li>" for item in block.items)
-                             + "</ul>")
-            elif isinstance(block, Figure):
-                data = base64.b64encode((Path(directory) / block.file).read_bytes()).decode()
-                parts.append(f"<figure><img src=\"data:image/png;base64,{data}\" "
-                             f"alt=\"{e(block.caption)}\"><figcaption>{e(block.caption)}"
-                             "</figcaption></figure>")
-            else:
-                if block.caption or block.source:
-                    parts.append("<p>" + e(" ".join(filter(None, (
-                        block.caption, block.source and f"Source: {block.source}")))) + "</p>")
-                parts.append("<table><tr>" + "".join(f"<th>{e(h)}</th>" for h in block.header)
-                             + "</tr>")
-                parts += ["<tr>" + "".join(f"<td>{e(c)}</td>" for c in row) + "</tr>"
-                          for row in block.rows]
-                parts.append("</table>")
-    parts.append("</body></html>")
-    return "\n".join(parts)
-
-
-# ---- numbers and units ------------------------------------------------------------------------
-
-def number(value, digits=DIGITS):
-    """A number as the sheet prints it: `digits` significant digits, '—' for NaN."""
-    value = float(value)
-    if math.isnan(value):
-        return "—"
-    if math.isinf(value):
-        return "inf" if value > 0 else "-inf"
-    return f"{value:.{digits}g}"
-
-
-#: CSV unit -> (display unit, factor) choices, the first whose bound (largest |value| shown
-#: below it) fits: forces and moments in kN or MN, pressures in kPa, masses in t, accelerations
-#: in g. Units not listed are shown as written.
-_DISPLAY = {
-    "N": (("kN", 1e3, 1e6), ("MN", 1e6, math.inf)),
-    "N m": (("kN·m", 1e3, 1e6), ("MN·m", 1e6, math.inf)),
-    "N/m": (("kN/m", 1e3, math.inf),),
-    "Pa": (("kPa", 1e3, math.inf),),
-    "kg": (("t", 1e3, math.inf),),
-    "m/s^2": (("g", STANDARD_GRAVITY, math.inf),),
-    "N m/rad": (("MN·m/rad", 1e6, math.inf),),
-    "N m s/rad": (("MN·m·s/rad", 1e6, math.inf),),
-}
-
-
-def split_name(column):
-    """'base_shear [N]' -> ('base_shear', 'N'); 'x1' -> ('x1', '')."""
-    match = re.fullmatch(r"(.*?) \[(.*)\]", column)
-    return (match.group(1), match.group(2)) if match else (column, "")
-
-
-def display_unit(unit, values):
-    """(unit shown, factor) for a column of `values` in `unit`: values / factor are shown."""
-    finite = [abs(v) for v in values if isinstance(v, float) and math.isfinite(v)]
-    largest = max(finite, default=0.0)
-    for shown, factor, bound in _DISPLAY.get(unit, ()):
-        if largest < bound:
-            return shown, factor
-    return unit, 1.0
-
-
-def read_table(path):
-    """A CSV file as (column names, rows of values: float where the text is a number, else
-    the text)."""
-    with open(path, newline="", encoding="utf-8") as f:
-        rows = list(csv.reader(f))
-
-    def value(text):
-        try:
-            return float(text)
-        except ValueError:
-            return text
-    return rows[0], [[value(cell) for cell in row] for row in rows[1:]]
-
-
-def _cell(value, factor, digits=DIGITS):
-    return number(value / factor, digits) if isinstance(value, float) else value
-
-
-def render_table(path, caption="", max_rows=MAX_ROWS, digits=DIGITS):
-    """Any result CSV as a Table, by its column names and units. One row: a table of
-    quantity, value, unit (a peak beside its time, 'peak_X'/'time_X' or 'X'/'X_time'); several
-    rows: one column per quantity, its unit in the header, at most MAX_ROWS rows."""
-    path = Path(path)
-    columns, rows = read_table(path)
-    if len(rows) == 1:
-        row = dict(zip(columns, rows[0]))
-        names = {split_name(c)[0]: c for c in columns}
-        times = {}
-        for name, column in names.items():     # time_X, X_time: the time of X or peak_X...
-            peak = (name[len("time_"):] if name.startswith("time_") else
-                    name[:-len("_time")] if name.endswith("_time") else None)
-            match = peak and next((c for n, c in names.items() if n != name and (
-                n == peak or n.startswith((f"{peak}_", f"peak_{peak}")))), None)
-            if match:
-                times[match] = column
-        shown = []
-        for column in columns:
-            if column in times.values():
-                continue
-            name, unit = split_name(column)
-            unit, factor = display_unit(unit, [row[column]])
-            time = number(row[times[column]]) if column in times else ""
-            shown.append([name, _cell(row[column], factor, digits), unit, time])
-        header = ["quantity", "value", "unit"] + (["at t [s]"] if times else [])
-        return Table(header, [r if times else r[:3] for r in shown], path.name, caption)
-    if max_rows and len(rows) > max_rows:
-        keep = np.unique(np.linspace(0, len(rows) - 1, max_rows).round().astype(int))
-        caption = (f"{caption} Evenly spaced rows, {len(keep)} of "
-                   f"{len(rows)} (all in {path.name}).").strip()
-        rows = [rows[k] for k in keep]
-    header, factors = [], []
-    for k, column in enumerate(columns):
-        name, unit = split_name(column)
-        unit, factor = display_unit(unit, [row[k] for row in rows])
-        header.append(f"{name} [{unit}]" if unit else name)
-        factors.append(factor)
-    return Table(header, [[_cell(v, f, digits) for v, f in zip(row, factors)] for row in rows],
-                 path.name, caption)
-
-
-# ---- the run ------------------------------------------------------------------------------------
-
-@contextlib.contextmanager
-def _captured_output(captured):
-    """Standard output (file descriptor 1, where the core prints its summary) into a temporary
-    file for the block; its text is appended to `captured` and written on to sys.stdout."""
-    sys.stdout.flush()
-    saved = os.dup(1)
-    with tempfile.TemporaryFile() as f:
-        os.dup2(f.fileno(), 1)
-        try:
-            yield
-        finally:
-            sys.stdout.flush()
-            os.dup2(saved, 1)
-            os.close(saved)
-            f.seek(0)
-            text = f.read().decode("utf-8", errors="replace")
-            captured.append(text)
-            sys.stdout.write(text)
-            sys.stdout.flush()
-
-
-def _verdicts(summary):
-    """The lines the executable prints after the seismic run's table of peaks: the roof
-    verdict, the force of the smooth wall, the ground motion, warnings, the codes'
-    combinations (the peak lines have 'at t = ' at column 45, after the name and the value)."""
-    lines, inside = [], False
-    for line in summary.splitlines():
-        if line.startswith("Seismic response"):
-            inside = True
-        elif inside and (not line.strip() or line.startswith("Results written")):
-            break
-        elif inside and line[44:51] != "at t = ":
-            lines.append(line.strip())
-    return lines
-
-
-def _sha256(path):
-    digest = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
-
-
-def _record_files(path):
-    """The record files of &ground_motion (record, record_y), relative to the input's folder."""
-    import f90nml    # deferred: only the sheet needs it, and it adds ~30 ms to `import sloshdyn`
-    group = f90nml.read(path).get("ground_motion", {})
-    folder = Path(path).resolve().parent
-    return [folder / group[name] for name in ("record", "record_y")
-            if str(group.get(name) or "").strip()]
-
-
-def _motion_table(inp, info):
-    """motion.csv: the ground motion as the reader scaled it, its peak and its pseudo-spectral
-    acceleration at the first sloshing period (0.5 %); the record's name and scaling as the
-    run wrote them (run_info.csv) where it did."""
-    ground, ground_y = inp.ground_motion, inp.ground_motion_y
-    period = inp.tank.sloshing_period
-    sa = ground.response_spectrum([period], 0.005, **_spectrum_span(inp)).psa[0]
-    names = [p.name for p in info["records"]]
-    return {"kind": [ground.kind],
-            "record": [names[0] if names else ""],
-            "record_y": [names[1] if len(names) > 1 else ""],
-            "scaling": [info["run"].get("scaling", "")],
-            "scale_factor": [ground.scale_factor],
-            "frequency [Hz]": [ground.frequency if ground.kind == "harmonic" else math.nan],
-            "peak_ground_acceleration [m/s^2]": [ground.pga],
-            "peak_ground_acceleration_y [m/s^2]": [ground_y.pga if ground_y else math.nan],
-            "sloshing_period [s]": [period],
-            "sa_sloshing_period [m/s^2]": [sa]}
-
-
-#: units of the input variables (docs/namelist.md); the others are ratios, counts or names
-INPUT_UNITS = {"radius": "m", "liquid_depth": "m", "freeboard": "m", "liquid_density": "kg/m^3",
-               "liquid_mass": "kg", "tank_mass": "kg", "support_frequency": "Hz",
-               "support_stiffness": "N m/rad", "support_damping_coefficient": "N m s/rad",
-               "support_height": "m", "gravity": "m/s^2", "roof_slope": "degrees",
-               "roof_radius": "m", "length": "m", "width": "m", "t_end": "s", "azimuth": "rad",
-               "h_initial": "tau", "h_max": "tau", "h_min": "tau"}
-
-
-def _inputs_table(inp):
-    """inputs.csv: the values the reader read (defaults included) of &tank, &ground_motion's
-    direction (two components), &seismic and &integration (with a ground motion) and &design,
-    with their units; the ground motion itself is in motion.csv."""
-    values = [("tank", f.name, getattr(inp.tank, f.name)) for f in dataclasses.fields(inp.tank)]
-    values.append(("tank", "planar", ".true." if inp.planar else ".false."))
-    if not inp.planar:
-        values += [("ground_motion", name, inp.spatial[name]) for name in ("azimuth",
-                                                                             "ellipticity")]
-    if inp.ground_motion is not None:
-        values += [("seismic", name, value) for name, value in inp.seismic.items()]
-        values += [("integration", f.name, getattr(inp.integration, f.name))
-                   for f in dataclasses.fields(inp.integration)]
-    if inp.design is not None:
-        values += [("design", f.name, getattr(inp.design, f.name))
-                   for f in dataclasses.fields(inp.design)]
-    return {"group": [f"&{group}" for group, _, _ in values],
-            "variable": [name for _, name, _ in values],
-            "value": [value if isinstance(value, str) else float(value)
-                      for _, _, value in values],
-            "unit": [INPUT_UNITS.get(name, "") for _, name, _ in values]}
-
-
-def _spectrum_span(inp):
-    """The time over which a spectrum is taken, as the core takes the run's Sa at the
-    sloshing period T (sloshdyn_ground spectral_acceleration): a record and a free tail of
-    5 T; harmonic motion over 20 T."""
-    period = inp.tank.sloshing_period
-    if inp.ground_motion.kind == "harmonic":
-        return {"duration": 20 * period}
-    return {"tail_duration": 5 * period}
-
-
-def _spectrum_table(inp):
-    """spectrum.csv: pseudo-acceleration spectra of the scaled ground motion (the first
-    component; 0.5 % and 5 % damping) from 0.05 s to beyond twice the sloshing period, the
-    sloshing period included."""
-    periods = np.union1d(np.geomspace(0.05, max(10.0, 2.5 * inp.tank.sloshing_period), 150),
-                         [inp.tank.sloshing_period])
-    span = _spectrum_span(inp)
-    if "tail_duration" in span:
-        span = {}                               # a record: a tail of 5 times the longest period
-    columns = {"period [s]": periods}
-    for damping in (0.005, 0.05):
-        columns[f"sa_{100 * damping:g}% [m/s^2]"] = \
-            inp.ground_motion.response_spectrum(periods, damping, **span).psa
-    return columns
-
-
-# ---- figures ----------------------------------------------------------------------------------
-
-def _figures(out, spatial, freeboard, seismic=True):
-    """The sheet's figures, from the CSV files in `out`: [(file, caption)]; those of the
-    seismic run when seismic, else the design spectrum's."""
-    import matplotlib    # the plot extra: only where the sheet draws its figures
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    figures = (_seismic_figures(out, spatial, freeboard, plt) if seismic else
-               _design_spectrum_figure(out, plt))
-    pressure = out / "wall_pressure.csv"
-    if pressure.exists():
-        table = _columns(pressure)
-        height = next(c for c in table if split_name(c)[1] == "m")
-        fig, ax = plt.subplots(figsize=(6, 5), layout="constrained")
-        for column in table:
-            if split_name(column)[1] == "Pa":
-                ax.plot(table[column] / 1e3, table[height], label=split_name(column)[0])
-        ax.set(xlabel="pressure [kPa]", ylabel=f"{split_name(height)[0]} [m]")
-        ax.grid(alpha=0.3)
-        fig.legend(loc="outside upper center", ncols=2, fontsize="small")
-        figures.append(("wall_pressure.png", fig, "Hydrodynamic wall pressure over the height."))
-
-    for name, fig, _ in figures:
-        save_figure(fig, out / name)
-    return [(name, caption) for name, _, caption in figures]
-
-
-def _seismic_figures(out, spatial, freeboard, plt):
-    """Ground motion, spectra (with the design spectrum when written), wave against the
-    freeboard, loads: [(file, figure, caption)]."""
-    series = _columns(out / ("seismic_spatial.csv" if spatial else "seismic.csv"))
-    t = series["t [s]"]
-    figures = []
-
-    fig, ax = plt.subplots(figsize=(8, 3), layout="constrained")
-    if spatial:
-        ax.plot(t, series["ground_acceleration_x [m/s^2]"] / STANDARD_GRAVITY, lw=0.7,
-                label="x component")
-        ax.plot(t, series["ground_acceleration_y [m/s^2]"] / STANDARD_GRAVITY, lw=0.7,
-                label="y component")
-        fig.legend(loc="outside upper center", ncols=2, fontsize="small")
-    else:
-        ax.plot(t, series["ground_acceleration [m/s^2]"] / STANDARD_GRAVITY, lw=0.7)
-    ax.set(xlabel="t [s]", ylabel="ground acceleration [g]")
-    ax.grid(alpha=0.3)
-    figures.append(("ground_motion.png", fig, "Ground acceleration (as scaled) over time."))
-
-    spectrum = _columns(out / "spectrum.csv")
-    motion = _columns(out / "motion.csv")
-    fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
-    for column in spectrum:
-        if column.startswith("sa_"):
-            ax.plot(spectrum["period [s]"], spectrum[column] / STANDARD_GRAVITY,
-                    label=f"{split_name(column)[0][3:]} damping")
-    if (out / "design_spectrum.csv").exists():
-        _plot_design_spectrum(ax, out, "--", "design, ")
-    period = float(motion["sloshing_period [s]"][0])
-    ax.axvline(period, color="grey", lw=0.8, ls=":")
-    ax.plot(period, float(motion["sa_sloshing_period [m/s^2]"][0]) / STANDARD_GRAVITY, "ko",
-            ms=4, label=f"sloshing period {number(period)} s")
-    ax.set(xlabel="T [s]", ylabel="Sa [g]", xscale="log")
-    ax.grid(alpha=0.3, which="both")
-    fig.legend(loc="outside upper center", ncols=4, fontsize="small")
-    figures.append(("spectrum.png", fig, "Pseudo-acceleration spectra of the ground motion "
-                                         "(first component, as scaled)."))
-
-    fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
-    ax.plot(t, series["wave_height [m]"], lw=0.8,
-            label="wave height at the wall" + (" (largest over the wall)" if spatial else ""))
-    if "free_wave_height [m]" in series:
-        ax.plot(t, series["free_wave_height [m]"], lw=0.8, alpha=0.7,
-                label="free wave (no roof)")
-    ax.axhline(freeboard, color="r", ls="--", lw=1, label=f"freeboard {number(freeboard)} m")
-    ax.set(xlabel="t [s]", ylabel="wave height [m]")
-    ax.grid(alpha=0.3)
-    fig.legend(loc="outside upper center", ncols=3, fontsize="small")
-    figures.append(("wave.png", fig, "Wave height at the wall against the freeboard."))
-
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 5), sharex=True, layout="constrained")
-    top.plot(t, series["base_shear [N]"] / 1e6, lw=0.8)
-    top.set(ylabel="base shear [MN]")
-    bottom.plot(t, series["overturning_moment [N m]"] / 1e6, lw=0.8, color="C1")
-    bottom.set(xlabel="t [s]", ylabel="overturning moment [MN m]")
-    for ax in (top, bottom):
-        ax.grid(alpha=0.3)
-    figures.append(("loads.png", fig, "Base shear and overturning moment over time"
-                                      + (" (resultants)." if spatial else ".")))
-    return figures
-
-
-def _plot_design_spectrum(ax, out, style, prefix):
-    """design_spectrum.csv's Sa [g] columns (one per damping) over the period, on ax."""
-    table = _columns(out / "design_spectrum.csv")
-    for column in table:
-        if split_name(column)[1] == "g":
-            damping = split_name(column)[0][3:].replace("_percent", " %")
-            ax.plot(table["period [s]"], table[column], style,
-                    label=f"{prefix}{damping} damping")
-
-
-def _design_spectrum_figure(out, plt):
-    """The code spectrum of the design check (design_spectrum.csv) with the tank's first
-    sloshing period (tank.csv): [(file, figure, caption)]."""
-    period = float(_columns(out / "tank.csv")["sloshing_period [s]"][0])
-    fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
-    _plot_design_spectrum(ax, out, "-", "")
-    ax.axvline(period, color="grey", lw=0.8, ls=":", label=f"sloshing period {number(period)} s")
-    ax.set(xlabel="T [s]", ylabel="Sa [g]", xscale="log")
-    ax.grid(alpha=0.3, which="both")
-    fig.legend(loc="outside upper center", ncols=3, fontsize="small")
-    return [("design_spectrum.png", fig, "The code's elastic design spectrum of the check.")]
-
-def _columns(path):
-    """A CSV's numeric columns as arrays (text columns as lists)."""
-    columns, rows = read_table(path)
-    result = {}
-    for k, name in enumerate(columns):
-        values = [row[k] for row in rows]
-        result[name] = (np.array(values) if all(isinstance(v, float) for v in values)
-                        else values)
-    return result
-
-
-# ---- the sheet --------------------------------------------------------------------------------
-
-def design_report(input, out) -> CalcSheet:
-    """Run a namelist file as `sloshdyn-py run` does, its CSV files into `out`, and write the
-    calc sheet built from them: out/report.md, out/report.html (self-contained) and the
-    figures (PNG); returns their paths (CalcSheet). The run's files are committed together by the
-    run; the sheet's files (motion.csv, spectrum.csv, the figures, report.md, report.html)
-    together afterwards, or none of them (an earlier report.md/report.html in `out` is removed
-    once the run has written its files, so a sheet never disagrees with the CSV files beside
-    it; a failed run writes none of its files and leaves an earlier sheet with its own). Only a
-    tank under ground motion, or a tank with &design, is reported (SUPPORTED); other inputs
-    raise InputError."""
+def design_report(input, out, *, project="", prepared_by="", paper="a4") -> CalcSheet:
+    """Run a namelist file as `sloshdyn-py run` does and write its calc sheet: out/report.md,
+    out/report.html (self-contained, print CSS for `paper`, 'a4' or 'letter'), out/report.pdf,
+    the figures (PNG) and the run's CSV files. project and prepared_by fill the title block
+    (checked by and its date are left for the checker). Everything is written into a new
+    directory beside `out` and replaces `out` as a whole when complete; a failure or an
+    interruption leaves `out` as it was (a directory not written by sloshdyn is refused).
+    Only a tank under ground motion, or a tank with &design, is reported (SUPPORTED); other
+    inputs raise InputError."""
+    if paper not in PAPERS:
+        raise InputError(f"paper = {paper!r} is not valid: give one of {', '.join(PAPERS)}")
     path = Path(os.fsdecode(input))
     out = Path(os.fsdecode(out))
     try:
@@ -593,68 +109,467 @@ def design_report(input, out) -> CalcSheet:
                            + ("" if inp.tank is not None else " with &model (no &tank)"))
         error.reading = True
         raise error
-    records = _record_files(path)
-    hashes = [(path.name, _sha256(path))] + [(p.name, _sha256(p)) for p in records]
-    captured = []
-    with _captured_output(captured):
-        run_input(path, out)
-    for name in ("report.md", "report.html"):   # an earlier sheet: not of these CSV files
-        with file_error(out / name, "remove"):
-            (out / name).unlink(missing_ok=True)
-    when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
-    spatial = not inp.planar
-    run = {}
-    if (out / "run_info.csv").exists():
-        columns, rows = read_table(out / "run_info.csv")
-        run = dict(zip(columns, rows[0]))
-    write_csv(out / "inputs.csv", _inputs_table(inp))
-    if seismic:
-        write_csv(out / "motion.csv", _motion_table(inp, {"records": records, "run": run}))
-        write_csv(out / "spectrum.csv", _spectrum_table(inp))
-    freeboard = inp.tank.freeboard
-    figures = _figures(out, spatial, freeboard, seismic)
-    sections = _sections(out, path, hashes, __version__, when, _verdicts(captured[0]), figures)
-    title = f"{'Seismic' if seismic else 'Design'} calc sheet: {path.name}"
-    with run_directory(out):        # the two renamed into place together, or neither
-        write_text(out / "report.md", to_markdown(title, sections))
-        write_text(out / "report.html", to_html(title, sections, out))
-    return CalcSheet(out / "report.md", out / "report.html",
-                     tuple(out / name for name, _ in figures),
-                     tuple(out / block.source for section in sections for block in section.blocks
-                           if isinstance(block, Table) and block.source))
+    source = _input_file(path)
+    sheet = {"path": path, "source": source, "version": __version__, "paper": paper,
+             "project": str(project), "prepared_by": str(prepared_by), "out": out,
+             "when": datetime.datetime.now(datetime.timezone.utc).strftime(
+                 "%Y-%m-%d %H:%M:%S UTC")}
+    with _sheet_directory(out) as directory:
+        with _captured_output(str(directory), str(Path(os.path.abspath(out)))):
+            run_input(path, directory)
+        names = write_sheet(directory, inp, sheet)
+    return CalcSheet(out / "report.md", out / "report.html", out / "report.pdf",
+                     tuple(out / name for name in names["figures"]),
+                     tuple(out / name for name in names["tables"]))
 
 
-def _sections(out, path, hashes, version, when, verdicts, figures):
-    head = Section("Run", [Table(["item", "value"], [
-        ["sloshdyn version", version], ["date", when], ["input file", str(path)],
-        ["output directory", str(out)]] + [[f"SHA-256 of {name}", digest]
-                                          for name, digest in hashes])])
-    inputs = Section("Inputs", [
-        Paragraph("The input file (read by the namelist reader of the executable; &output "
-                  "directory is replaced by the output directory above):"),
-        Paragraph(path.read_text(encoding="utf-8", errors="replace"), code=True)])
-    sections = [head, inputs]
-    by_title = {"Inputs": inputs}
-    for title, name in TABLES:
-        if (out / name).exists():
-            if title not in by_title:
-                by_title[title] = Section(title)
-                sections.append(by_title[title])
-            exact = name == "inputs.csv"       # inputs in full, results to DIGITS
-            by_title[title].blocks.append(render_table(
-                out / name, CAPTIONS.get(name, ""), None if exact else MAX_ROWS,
-                INPUT_DIGITS if exact else DIGITS))
-    if verdicts:
-        by_title["Nonlinear run"].blocks.extend([Paragraph("Verdicts, as the executable "
-                                                           "prints them:"), Bullets(verdicts)])
-    placement = {"ground_motion.png": "Motion", "spectrum.png": "Motion",
-                 "design_spectrum.png": "Design codes",
-                 "wave.png": "Nonlinear run", "loads.png": "Nonlinear run",
-                 "wall_pressure.png": "Wall pressure"}
+def write_sheet(directory, inp, sheet):
+    """The sheet step: the sheet's own tables and figures, then report.md, report.html and
+    report.pdf, all from the files in `directory` (the run's); {'figures', 'tables': names}."""
+    seismic = inp.analysis == "seismic" and inp.ground_motion is not None
+    write_csv(directory / "inputs.csv", inputs_table(inp))
+    if inp.ground_motion is not None:        # also a design check on the motion's spectrum
+        run = one_row(directory / "run_info.csv") if (directory / "run_info.csv").exists() else {}
+        write_csv(directory / "motion.csv", motion_table(inp, {"records": sheet["source"][
+            "records"], "run": run}))
+        write_csv(directory / "spectrum.csv", spectrum_table(inp))
+    figures = draw_figures(directory, not inp.planar, inp.tank.freeboard, seismic,
+                           inp.ground_motion is not None)
+    title = f"{'Seismic' if seismic else 'Design'} calc sheet: {sheet['path'].name}"
+    sections = _sections(directory, inp, sheet, figures, seismic)
+    page = to_html(title, sections, directory, sheet["paper"])
+    write_text(directory / "report.md", to_markdown(title, sections))
+    write_text(directory / "report.html", page)
+    write_pdf(page, directory / "report.pdf")
+    return {"figures": [name for name, _ in figures],
+            "tables": [block.source for section in sections for block in section.blocks
+                       if isinstance(block, Table) and block.source]}
+
+
+# ---- the input file, read as the executable reads it ----------------------------------------
+
+def _input_file(path):
+    """The input file as bytes (hashed), as text for the sheet (UTF-8; any other byte shown as
+    a \\xNN escape: the executable reads bytes, and a comment may hold any), and its record
+    files (&ground_motion record, record_y: paths of bytes, relative to the input's folder)
+    with their hashes."""
+    import f90nml    # deferred: only the sheet needs it, and it adds ~30 ms to `import sloshdyn`
+    with file_error(path, "read"):
+        data = path.read_bytes()
+    group = f90nml.reads(data.decode("utf-8", "surrogateescape")).get("ground_motion", {})
+    folder = path.resolve().parent
+    records = [folder / group[name] for name in ("record", "record_y")
+               if str(group.get(name) or "").strip()]
+    return {"bytes": data, "text": data.decode("utf-8", "backslashreplace"),
+            "hashes": [(path.name, hashlib.sha256(data).hexdigest())]
+            + [(p.name, _sha256(p)) for p in records],
+            "records": records}
+
+
+def _sha256(path):
+    digest = hashlib.sha256()
+    with file_error(path, "read"), open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def _shown(name):
+    """A file name as the sheet prints it (bytes that are not UTF-8 as \\xNN escapes)."""
+    return os.fsencode(name).decode("utf-8", "backslashreplace")
+
+
+@contextlib.contextmanager
+def _captured_output(directory, out):
+    """The core's summary (printed on file descriptor 1) passed on to sys.stdout, so that a
+    caller that captures sys.stdout (a notebook, pytest's capsys) gets it; the sheet's own
+    directory named as `out`, where its files will be ("Results written to ...")."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with tempfile.TemporaryFile() as f:
+        os.dup2(f.fileno(), 1)
+        try:
+            yield
+        finally:
+            sys.stdout.flush()
+            os.dup2(saved, 1)
+            os.close(saved)
+            f.seek(0)
+            sys.stdout.write(f.read().decode("utf-8", errors="replace").replace(directory, out))
+            sys.stdout.flush()
+
+
+# ---- the sheet's directory: all at once or not at all ---------------------------------------
+# (the run-directory rule of docs/failure.md, here for the sheet's directory: a new directory
+# under a name unique to this sheet, beside DIR, swapped into place whole)
+
+def _foreign(directory):
+    """The first file of a directory that no run of sloshdyn wrote (its marker does not list
+    it), or None: an empty directory, or one a run wrote, may be replaced by a sheet."""
+    names = sorted(os.listdir(directory))
+    try:
+        with open(directory / MARKER, encoding="utf-8", errors="replace") as f:
+            text = f.read()
+    except OSError:
+        text = ""
+    marked = text.startswith(MARKER_HEADER)
+    listed = set(text[len(MARKER_HEADER):].splitlines()) if marked else set()
+    for name in names:
+        if not (marked and name == MARKER) and (name not in listed or
+                                                not (directory / name).is_file()):
+            return name
+    return None
+
+
+def _check_directory(out):
+    if out.exists() and not out.is_dir():
+        raise FileError(f"cannot write the calc sheet into {out}: it is not a directory")
+    with file_error(out, "read the directory"):
+        foreign = _foreign(out) if out.is_dir() else None
+    if foreign is not None:
+        raise FileError(f"{out} holds {_shown(foreign)!r}, which no sloshdyn run wrote: the "
+                        "calc sheet replaces its output directory as a whole, so it takes a "
+                        "new directory or one that only a run has written (its marker "
+                        f"{MARKER} lists the run's files)")
+
+
+@contextlib.contextmanager
+def _sheet_directory(out):
+    """A new directory beside `out` for the run and the sheet; when the block succeeds, it
+    replaces `out` whole (the previous sheet's files removed); on failure or interruption it
+    is removed and `out` is untouched."""
+    out = Path(os.path.abspath(out))
+    _check_directory(out)
+    with file_error(out.parent, "create the directory"):
+        out.parent.mkdir(parents=True, exist_ok=True)
+        staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.sheet-{os.getpid()}-",
+                                        dir=out.parent))
+    try:
+        yield staging
+        with file_error(out, "replace"):
+            _swap_into_place(staging, out)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+
+
+def _swap_into_place(staging, out):
+    names = sorted(p.name for p in staging.iterdir() if p.is_file())
+    write_text(staging / MARKER, MARKER_HEADER + "".join(f"{n}\n" for n in names))
+    os.chmod(staging, 0o755)
+    with _signals_held():
+        try:
+            os.rename(staging, out)               # no directory there, or an empty one
+            return
+        except OSError as exc:
+            if exc.errno not in (errno.EEXIST, errno.ENOTEMPTY):
+                raise
+        _check_directory(out)
+        previous = Path(tempfile.mkdtemp(prefix=f".{out.name}.previous-{os.getpid()}-",
+                                         dir=out.parent))
+        os.rename(out, previous)                  # onto the empty directory of that name
+        os.rename(staging, out)
+    shutil.rmtree(previous, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def _signals_held():
+    """Ctrl-C and SIGTERM held back (and delivered after the block) while the directories are
+    swapped, so that an interruption never leaves neither in place."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held = {signal.SIGINT, signal.SIGTERM}
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+# ---- the sections -----------------------------------------------------------------------------
+
+def _sections(directory, inp, sheet, figures, seismic):
+    placement = {"ground_motion.png": "Inputs", "spectrum.png": "Inputs",
+                 "design_spectrum.png": "Design codes", "wave.png": "Nonlinear run",
+                 "loads.png": "Nonlinear run", "wall_pressure.png": "Wall pressure"}
+    sections = [_title_block(directory, sheet), _summary(directory, seismic),
+                _inputs(directory, inp, seismic)]
+    sections += _code_sections(directory)
+    sections += [_wall_pressure(directory), _nonlinear_run(directory, seismic),
+                 _assumptions()]
+    by_title = {section.title: section for section in sections}
     for name, caption in figures:
-        section = by_title.get(placement[name])
-        if section is None:
-            section = by_title[placement[name]] = Section(placement[name])
-            sections.append(section)
-        section.blocks.append(Figure(name, caption))
+        by_title[placement[name]].blocks.append(Figure(name, caption))
+    sections += _appendix(directory, sheet)
+    return [section for section in sections if section.blocks]
+
+
+def _title_block(directory, sheet):
+    """Project, tank, who prepared and who checks (left blank for the checker), the codes and
+    editions, the program and the input file (SHA-256; the records' in Appendix B)."""
+    tank = one_row(directory / "tank.csv")
+    size = (f"circular, radius {number(tank['radius [m]'])} m" if "radius [m]" in tank else
+            "rectangular")
+    editions = _editions(directory)
+    source = sheet["source"]
+    rows = [["Project", sheet["project"]],
+            ["Tank", f"{_shown(sheet['path'].name)}: {size}, liquid depth "
+                     f"{number(tank['liquid_depth [m]'])} m, freeboard "
+                     f"{number(tank['freeboard [m]'])} m"],
+            ["Prepared by", sheet["prepared_by"]], ["Date prepared", sheet["when"]],
+            ["Checked by", ""], ["Date checked", ""],
+            ["Codes", "; ".join(editions) or "—"],
+            ["Program", f"sloshdyn {sheet['version']}"],
+            ["Input file", _shown(sheet["path"])],
+            [f"SHA-256 of {_shown(source['hashes'][0][0])}", source["hashes"][0][1]]]
+    return Section("Title block", [Table(["item", "entry"], rows, form=True)])
+
+
+#: a code and its edition as the core's clauses name them ("API 650 13th ed. E.6.1-1")
+_EDITION = re.compile(r"API 650 \w+ ed\.|ACI 350\.3-\d+|ASCE 7-\d+|EN 1998-\d:\d{4}")
+
+
+def _editions(directory):
+    """The codes and editions the hand calculation and the checks cite, in order of first
+    citation (design_calc.csv, design_checks.csv)."""
+    found = []
+    for name in ("design_calc.csv", "design_checks.csv"):
+        if (directory / name).exists():
+            names, rows = read_table(directory / name)
+            for row in rows:
+                for edition in _EDITION.findall(str(row[names.index("clause")])):
+                    if edition not in found:
+                        found.append(edition)
+    return found
+
+
+def _summary(directory, seismic):
+    """Every check: demand, capacity, ratio and verdict, as the core wrote them
+    (design_checks.csv), and the nonlinear run's roof verdict (seismic_peaks.csv)."""
+    blocks, codes = [], set()
+    checks = directory / "design_checks.csv"
+    if checks.exists():
+        blocks.append(_checks_table(checks, info=False))
+        codes = {row[0] for row in blocks[-1].rows}
+    if seismic and (directory / "seismic_peaks.csv").exists() and \
+            "sloshdyn nonlinear" not in codes:
+        peaks = one_row(directory / "seismic_peaks.csv")
+        blocks.append(Table(
+            ["code", "check", "demand", "capacity", "unit", "verdict"],
+            [["sloshdyn nonlinear", "roof: the free wave's peak at the wall against the "
+              "freeboard", number(peaks["free_wave_height [m]"]),
+              number(one_row(directory / "tank.csv")["freeboard [m]"]), "m",
+              "NOT OK" if peaks["roof_reached"] > 0 else "OK"]],
+            "seismic_peaks.csv", "The nonlinear run's roof verdict (free_wave_height, "
+                                 "roof_reached; the freeboard from tank.csv)."))
+    if checks.exists():          # the values without a capacity after the verdicts
+        blocks.append(_checks_table(checks, info=True))
+    blocks = [b for b in blocks if b.rows]
+    if not blocks:
+        blocks = [Paragraph("No check with a verdict: this run writes none (a design check "
+                            "needs &design; the spatial run's peaks have no roof verdict).")]
+    return Section("Summary of checks", blocks)
+
+
+def _checks_table(path, info):
+    """design_checks.csv's checks with a verdict (OK, NOT OK), or with info its values without
+    a capacity (INFO): a row per check, demand and capacity in the row's unit shown (kN or MN
+    for N, kPa for Pa, ...), the ratio and the verdict as the core wrote them."""
+    names, rows = read_table(path)
+    col = {name: k for k, name in enumerate(names)}
+    shown = []
+    for row in rows:
+        if (row[col["verdict"]] == "INFO") != info:
+            continue
+        unit, factor = display_unit(row[col["unit"]], [row[col["demand"]], row[col["capacity"]]])
+        shown.append([row[col["code"]], row[col["check"]], row[col["clause"]],
+                      cell(row[col["demand"]], factor), cell(row[col["capacity"]], factor) or "—",
+                      unit, cell(row[col["ratio"]]) or "—", row[col["verdict"]]])
+    return Table(["code", "check", "clause", "demand", "capacity", "unit", "ratio", "verdict"],
+                 shown, path.name,
+                 "The values the codes give without a capacity to check them against (INFO)."
+                 if info else "Each check of the codes: demand against capacity, ratio = "
+                              "demand/capacity, verdict.", wide=True)
+
+
+def _inputs(directory, inp, seismic):
+    """The tank's and the design's inputs with their units and what a 0 means; the ground
+    motion as scaled."""
+    names, rows = read_table(directory / "inputs.csv")
+    blocks = []
+    design_shown = set(SPECTRUM_INPUTS.get(inp.design.spectrum, ())) if inp.design else set()
+    meaning = {**(_tables.docs("design") if inp.design else {}),
+               **_structure_docs(inp)}
+    for group, caption in (("&tank", "The tank (SI units, as read; defaults included)."),
+                           ("&tank_structure", "The tank's structure (the courses bottom "
+                                               "first)."),
+                           ("&design", "The design check's inputs for its spectrum "
+                                       f"('{inp.design.spectrum if inp.design else ''}') and "
+                                       "the codes' factors."),
+                           ("&seismic", "The nonlinear run's span."),
+                           ("&ground_motion", "The direction of the ground motion.")):
+        shown = []
+        for g, variable, value, unit in rows:
+            if g != group or variable in IMPACT_MODEL:
+                continue
+            if group == "&design" and variable in SPECTRUM_FIELDS[1:] and \
+                    variable not in design_shown:
+                continue
+            note = ZERO_MEANS.get(variable, "") if value == 0.0 else ""
+            unit = unit or _unit_of(meaning.get(variable, ""))
+            # the description without a leading unit (the unit column shows it)
+            described = re.sub(r"^\[[^\]]*\][;,]?\s*", "", meaning.get(variable, ""))
+            shown.append([variable, cell(value, 1.0, INPUT_DIGITS), unit,
+                          note or _plain(described)])
+        if shown:
+            blocks.append(Table(["variable", "value", "unit", "note"], shown, "inputs.csv",
+                                caption))
+    if (directory / "motion.csv").exists():
+        blocks.append(render_table(directory / "motion.csv", "The ground motion as the reader "
+                                   "scaled it, and its pseudo-spectral acceleration at the "
+                                   "first sloshing period (0.5 % damping)."))
+    return Section("Inputs", blocks)
+
+
+def _structure_docs(inp):
+    """The descriptions of &tank_structure's fields by the names inputs.csv gives them
+    (course_height_1, ...: the layout's own names)."""
+    if getattr(inp, "tank_structure", None) is None:
+        return {}
+    return _tables.docs("tank_structure")
+
+
+def _unit_of(text):
+    """The unit a layout's description ends its name with, e.g. '... S_DS [g]' -> 'g'."""
+    match = re.search(r"\[([^\]]+)\]", text)
+    return match.group(1) if match else ""
+
+
+def _plain(text):
+    """A documentation string without Markdown: `code` and [text](link) as plain text."""
+    return re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", text).replace("`", "")
+
+
+def _code_sections(directory):
+    """Each code's hand calculation (design_calc.csv) where the core writes it; the design
+    codes' values and loads."""
+    blocks = []
+    calc = directory / "design_calc.csv"
+    sections = []
+    if calc.exists():
+        sections += _hand_calculation(calc)
+    for name, caption in (
+            ("design_codes.csv", "Each design code's periods, masses and heights for this tank, "
+                                 "and the wave height from the motion's spectrum (— where a "
+                                 "code gives no value)."),
+            ("design_loads.csv", "Code-format seismic loads. The codes' rows are at design "
+                                 "level (their I, R or q); sloshdyn linear is elastic (no "
+                                 "factor): a comparison, not a design load. An "
+                                 "impulsive_period of 0 s: the impulsive acceleration taken "
+                                 "on the spectrum's plateau (docs/design.md).")):
+        if (directory / name).exists():
+            blocks.append(render_table(directory / name, caption, hidden=IMPACT_MODEL))
+    return sections + [Section("Design codes", blocks)]
+
+
+def _hand_calculation(path):
+    """design_calc.csv, a section per code: each formula as a line of the hand calculation,
+    'symbol = formula = numbers = value unit', with its clause, in the core's order."""
+    names, rows = read_table(path)
+    col = {name: k for k, name in enumerate(names)}
+    by_code = {}
+    for row in rows:
+        by_code.setdefault(row[col["code"]], []).append(row)
+    sections = []
+    for code, lines in by_code.items():
+        shown = []
+        for row in lines:
+            symbol, formula, numbers = (row[col[k]] for k in ("symbol", "formula",
+                                                              "substituted"))
+            steps = ([] if str(formula).startswith(f"{symbol} =") else [symbol]) + [formula] \
+                + ([numbers] if numbers not in ("", formula) else [])
+            shown.append([cell(row[col["step"]], 1.0, 12), row[col["quantity"]],
+                          " = ".join(str(s) for s in steps if s != ""),
+                          plain_number(row[col["value"]]), row[col["unit"]],
+                          row[col["clause"]]])
+        sections.append(Section(f"{code}: hand calculation", [Table(
+            ["step", "quantity", "formula and numbers", "value", "unit", "clause"], shown,
+            path.name, f"{code}: each formula with the numbers put in (5 significant digits) "
+                       "and its result.", style="calc")]))
     return sections
+
+
+def _wall_pressure(directory):
+    blocks = []
+    for name, caption in (
+            ("wall_pressure.csv", "Hydrodynamic wall pressure at theta = 0 (times cos theta "
+                                  "around the wall) and the hoop force per unit height "
+                                  "(docs/design.md)."),
+            ("pressure_resultants.csv", "Resultants of the pressure: impulsive (component 0) "
+                                        "and first convective mode (1).")):
+        if (directory / name).exists():
+            blocks.append(render_table(directory / name, caption))
+    return Section("Wall pressure", blocks)
+
+
+def _nonlinear_run(directory, seismic):
+    """The nonlinear run's peaks and what it rests on, without the paper's impact model."""
+    blocks = []
+    if not seismic:
+        return Section("Nonlinear run", blocks)
+    for name, caption in (
+            ("seismic_peaks.csv", "Peaks of the nonlinear run (largest |value| over the run, at "
+                                  "time t) and the roof contact of the free wave."),
+            ("seismic_spatial_peaks.csv", "Peaks of the spatial run (two components), beside "
+                                          "the codes' SRSS and 100/30 combinations of the two "
+                                          "planar runs."),
+            ("run_info.csv", "What the run rests on (record, scaling)."),
+            ("pressure_at_peaks.csv", "The nonlinear run at its base shear and overturning "
+                                      "moment peaks (the output times nearest them)."),
+            ("wall_pressure_at_shear_peak.csv", "Hydrodynamic wall pressure of the nonlinear "
+                                                "run at its base shear peak, theta = 0."),
+            ("wall_pressure_at_moment_peak.csv", "Hydrodynamic wall pressure of the nonlinear "
+                                                 "run at its overturning moment peak, "
+                                                 "theta = 0.")):
+        if (directory / name).exists():
+            blocks.append(render_table(directory / name, caption, hidden=IMPACT_MODEL))
+    return Section("Nonlinear run", blocks)
+
+
+def _assumptions():
+    """The assumptions of docs/design.md (its section 'Assumptions', installed with the
+    package), as they stand there."""
+    text = DESIGN_PAGE.read_text(encoding="utf-8")
+    return Section("Assumptions", [Bullets(assumptions(text)), Paragraph(
+        "From docs/design.md, \"Assumptions\"; each code's clauses and what was verified "
+        "against the codes' texts: docs/design.md.")])
+
+
+def assumptions(page):
+    """The bullets of a Markdown page's '## Assumptions' section, as plain text."""
+    part = page.split("\n## Assumptions\n", 1)[1].split("\n## ", 1)[0]
+    items = re.split(r"\n- ", part)[1:]           # the first piece is the introduction
+    return [_plain(" ".join(item.split())) for item in items]
+
+
+def _appendix(directory, sheet):
+    """The model's research quantities (none of the sheet's loads rests on them), the
+    values as read in full, and the input file as given."""
+    tank = one_row(directory / "tank.csv")
+    research = [[name, cell(tank[column], 1.0), split_name(column)[1]]
+                for column in tank for name in [split_name(column)[0]] if name in RESEARCH]
+    blocks = [Table(["quantity", "value", "unit"], research, "tank.csv",
+                    "The equivalent mechanical model's quantities for this tank (docs/model.md): "
+                    "the pendulum's offsets d1, d0, its frequency, the angle theta0 at which "
+                    "the wave reaches the roof and the wave per sin(theta), and the "
+                    "dimensionless groups of eq 9. For research; the sheet's checks do not "
+                    "use them (nor the paper's impact model).")]
+    return [Section("Appendix A: the model's research quantities", blocks, page_break=True),
+            Section("Appendix B: the input file", [
+                Table(["item", "value"], [["Output directory", _shown(sheet["out"])]]
+                      + [[f"SHA-256 of {_shown(name)}", digest] for name, digest in
+                         sheet["source"]["hashes"]]),
+                Paragraph("The input file as given (read by the executable's namelist reader, "
+                          "&output directory replaced by the output directory above):"),
+                Paragraph(sheet["source"]["text"], code=True)])]

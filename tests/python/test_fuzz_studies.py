@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import sloshdyn
-from sloshdyn.studies import engine
+from sloshdyn.studies import cluster
 from test_studies import silent_server
 
 pytest.importorskip("dask.distributed")
@@ -122,7 +122,7 @@ addresses = st.one_of(
 @given(addresses)
 def test_a_scheduler_address_is_accepted_or_named(address):
     try:
-        checked, scheme, host, port = engine.check_scheduler(address)
+        checked, scheme, host, port = cluster.check_scheduler(address)
     except sloshdyn.InputError as exc:
         assert "scheduler = " in str(exc)
         return
@@ -137,14 +137,14 @@ def test_a_service_answering_random_bytes_is_no_scheduler(reply):
     try:
         start = time.monotonic()
         try:
-            engine._probe_scheduler(f"tcp://127.0.0.1:{port}", "127.0.0.1", port)
+            cluster.probe_scheduler(f"tcp://127.0.0.1:{port}", "127.0.0.1", port)
             accepted = True
         except sloshdyn.InputError as exc:
             assert f"tcp://127.0.0.1:{port}" in str(exc)
             accepted = False
-        assert time.monotonic() - start < engine.CONNECT_TIMEOUT + 5
+        assert time.monotonic() - start < cluster.CONNECT_TIMEOUT + 5
     finally:
         close()
     # accepted only where the first 8 bytes read as a Dask message length
     header = np.frombuffer(reply[:8], dtype=np.uint64)[0] if len(reply) >= 8 else None
-    assert accepted == (header is not None and 0 < int(header) <= engine._MAX_HANDSHAKE)
+    assert accepted == (header is not None and 0 < int(header) <= cluster.MAX_HANDSHAKE)

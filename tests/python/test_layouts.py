@@ -64,7 +64,8 @@ def test_the_core_arrays_have_the_sizes_of_their_layouts(tmp_path):
         assert len(array) == len(arrays[name]), name
     arrays.update(analysis=analysis, ground=ground, seismic=seismic, simulation=simulation,
                   sweep=sweep, response_range=response_range, chart_range=chart_range,
-                  study=study, design=rest[-3])   # (..., has_design, design, status, message)
+                  study=study, design=rest[-4], tank_structure=rest[-3])
+    # (..., has_design, design, tank_structure, status, message)
     pendulum, status, _ = _model.tank_pendulum(1.0, 1.0, 1000.0, 0.0)
     groups, status, _ = _model.dimensionless_groups(np.ones(len(_tables.layout("physical"))))
     *_, routh, _, _ = _model.equilibria(*Parameters(s1=1.5, mu1=0.5, kappa=2.0,
@@ -293,7 +294,7 @@ def test_settings_groups_read_through_python_by_name(tmp_path):
         "h_min = 5e-12, max_steps = 123456, method = 'vern9' /\n"
         "&steady transient_periods = 11, settle_tol = 2e-6, max_transient_periods = 333, "
         "window_periods = 17, samples_per_period = 41, periodic_tol = 3e-5, shooting = .false. /\n"
-        "&lyapunov transient_periods = 21, n_periods = 301, renormalise_every = 3, "
+        "&lyapunov transient_periods = 21, n_periods = 303, renormalise_every = 3, "
         "spectrum = .true. /\n"
         "&simulation t_end = 12.5, n_out = 77, y0 = 0.1, 0.2, 0.3, 0.4 /\n"))
     assert inp.integration == Integration(rtol=1.5e-7, atol=2.5e-9, h_initial=0.03, h_max=0.4,
@@ -301,7 +302,7 @@ def test_settings_groups_read_through_python_by_name(tmp_path):
     assert inp.steady == Steady(transient_periods=11.0, settle_tol=2e-6,
                                 max_transient_periods=333.0, window_periods=17,
                                 samples_per_period=41, periodic_tol=3e-5, shooting=False)
-    assert inp.lyapunov == Lyapunov(transient_periods=21, n_periods=301, renormalise_every=3,
+    assert inp.lyapunov == Lyapunov(transient_periods=21, n_periods=303, renormalise_every=3,
                                     spectrum=True)
     assert inp.simulation == {"t_end": 12.5, "n_out": 77, "y0": [0.1, 0.2, 0.3, 0.4]}
     assert inp.steady.array().tolist() == [11, 2e-6, 333, 17, 41, 3e-5, 0]

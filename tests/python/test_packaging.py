@@ -63,6 +63,8 @@ STORE = "str(__import__('pathlib').Path(__import__('tempfile').mkdtemp()) / 's.z
     ("studies", "xarray", f"sloshdyn.basins(p, (-1, 1), (-1, 1), n=2, store={STORE})"),
     ("studies", "zarr", f"sloshdyn.response_map(p, [0.5], [1e-3], {STORE})"),
     ("studies", "scipy", "sloshdyn.fit_fragility([1.0, 2.0], [0, 1])"),
+    ("pdf", "weasyprint",
+     "__import__('sloshdyn.report_pdf').report_pdf.write_pdf('<p/>', 'x.pdf')"),
 ])
 def test_a_missing_extra_is_an_error_naming_it(extra, module, call):
     """The error is a SloshdynError and an ImportError, and the extra it names installs the

@@ -18,12 +18,13 @@ EXTENSIONS = {"_core"}
 LAYERS = [
     ("infrastructure", {"_core", "_errors", "_checks", "_tables", "_settings", "_files",
                         "_cancel", "_extras", "_version", "_input"}),
-    ("value types", {"parameters", "options", "ground", "tank"}),
+    ("value types", {"parameters", "options", "ground", "tank", "structure"}),
     ("analyses", {"model", "simulation", "asymptotics", "periodic", "research", "charts",
                   "seismic", "pressure", "design", "spatial", "plotting", "studies"}),
     ("input", {"namelist"}),
     ("runs", {"runner"}),
-    ("front doors", {"report", "figures", "reference", "cli", "__main__", "__init__"}),
+    ("front doors", {"report", "report_layout", "report_tables", "report_figures", "report_pdf",
+                     "figures", "reference", "cli", "__main__", "__init__"}),
 ]
 
 

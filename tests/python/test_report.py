@@ -1,221 +1,299 @@
-"""The calc sheet (`sloshdyn-py report`, sloshdyn.design_report; issue 25 item 5) on the three
-tank examples under records and the one under harmonic motion (whose wave reaches the roof):
-every number of report.md is the one of the CSV file it names, to the printed precision (the
-CSV files re-read here with the csv module; units converted with the factors below, typed from
-their definitions), the verdict lines agree with the CSV numbers they summarise, report.html
-holds the same tables and lines, the hashes are hashlib's, the figures are PNG files; failures
-leave no sheet, bad inputs are refused with a message naming the kinds supported."""
+"""The calc sheet (`sloshdyn-py report`, sloshdyn.design_report; issues 25 and 39) of the tank
+examples: its order (title block, summary of checks, inputs, codes, ..., appendix), every number
+of report.md the one of the CSV file its table names at the printed precision (the CSV files
+re-read here with the csv module, report.md rendered by markdown-it-py; sheet_reading.py), every
+verdict of the summary the one its numbers give, report.html the same document, the hashes
+hashlib's, the assumptions those of docs/design.md, the paper's impact model nowhere, the
+figures PNG files; the executable's tank summary at 5 significant digits."""
 
-import csv
+import base64
 import hashlib
-import html.parser
-import math
 import re
-from pathlib import Path
+import subprocess
 
 import f90nml
 import pytest
 
 import sloshdyn
+from conftest import EXAMPLES, ROOT
+from sheet_reading import (FACTORS, check_cell, check_number, factor, one_row, read_csv,
+                           rendered_markdown, split_unit, Page, significant)
 from sloshdyn import cli, report
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "data" / "examples"
-TANKS = ("tank_seismic", "tank_rectangular_seismic", "tank_two_components", "tank_harmonic")
-#: engineering unit -> SI factor (1 kN = 1e3 N, 1 t = 1e3 kg, 1 g = 9.80665 m/s^2 standard)
-FACTORS = {"kN": 1e3, "MN": 1e6, "kN·m": 1e3, "MN·m": 1e6, "kPa": 1e3, "kN/m": 1e3, "t": 1e3,
-           "g": 9.80665, "MN·m/rad": 1e6, "MN·m·s/rad": 1e6}
+SEISMIC = ("tank_seismic", "tank_rectangular_seismic", "tank_two_components", "tank_harmonic")
+DESIGN = ("tank_design", "tank_slender_design")
 PNG = b"\x89PNG\r\n\x1a\n"
+#: the sheet's sections, in order (those without content left out)
+ORDER = ["Title block", "Summary of checks", "Inputs", "Design codes", "Wall pressure",
+         "Nonlinear run", "Assumptions", "Appendix A: the model's research quantities",
+         "Appendix B: the input file"]
 
 
 @pytest.fixture(scope="module")
 def sheets(tmp_path_factory):
     """{example: output directory} after one report of each tank example."""
     out = {}
-    for name in TANKS:
-        out[name] = tmp_path_factory.mktemp(name)
+    for name in SEISMIC + DESIGN:
+        out[name] = tmp_path_factory.mktemp(name) / "sheet"
         sheet = sloshdyn.design_report(EXAMPLES / f"{name}.nml", out[name])
-        assert (sheet.markdown, sheet.html) == (out[name] / "report.md", out[name] / "report.html")
+        assert (sheet.markdown, sheet.html, sheet.pdf) == tuple(
+            out[name] / f"report.{ext}" for ext in ("md", "html", "pdf"))
         assert all(p.exists() for p in sheet.figures + sheet.tables)
     return out
 
 
-def read_csv(path):
-    with open(path, newline="", encoding="utf-8") as f:
-        rows = list(csv.reader(f))
-    return rows[0], rows[1:]
-
-
-def significant(text):
-    """Significant digits printed in a number's text."""
-    mantissa = re.sub(r"[eE].*", "", text.lstrip("-"))
-    if "." not in mantissa:
-        mantissa = mantissa.rstrip("0")                  # 105630: the zero only places
-    return len(mantissa.replace(".", "").lstrip("0"))
-
-
-def check_number(text, csv_text, factor, digits, where):
-    """A printed number is the CSV value / factor rounded to `digits` significant digits (or
-    fewer when the rest are zeros); NaN prints as a dash."""
-    value = float(csv_text)
-    if math.isnan(value):
-        assert text == "—", where
-        return
-    shown, exact = float(text), value / factor
-    assert significant(text) <= digits, where
-    if exact != 0:
-        ulp = 10.0 ** (math.floor(math.log10(abs(exact))) - digits + 1)
-        assert abs(shown - exact) <= 0.5 * ulp * (1 + 1e-9), (where, text, exact)
-    else:
-        assert shown == 0, where
-
-
-def check_cell(text, csv_text, factor, digits, where):
-    try:
-        float(csv_text)
-    except ValueError:
-        assert text == csv_text, where
-        return
-    check_number(text, csv_text, factor, digits, where)
-
-
-def markdown_tables(text):
-    """[(source CSV name or '', header, rows)] of the Markdown tables."""
-    lines, tables = text.splitlines(), []
-    k = 0
-    while k < len(lines):
-        if lines[k].startswith("|") and k + 1 < len(lines) and lines[k + 1].startswith("|---"):
-            source = re.search(r"Source: (\S+\.csv)", lines[k - 2]) if k >= 2 else None
-            header = [c.strip() for c in lines[k].strip("|").split("|")]
-            rows, k = [], k + 2
-            while k < len(lines) and lines[k].startswith("|"):
-                rows.append([c.strip() for c in lines[k].strip("|").split("|")])
-                k += 1
-            tables.append((source.group(1) if source else "", header, rows))
-        k += 1
-    return tables
-
-
-def split_unit(column):
-    match = re.fullmatch(r"(.*?) \[(.*)\]", column)
-    return (match.group(1), match.group(2)) if match else (column, "")
-
-
-def factor(shown_unit, csv_column):
-    """SI per unit shown (1 where the CSV column is in that unit already, e.g. [g])."""
-    return 1.0 if split_unit(csv_column)[1] == shown_unit else FACTORS.get(shown_unit, 1.0)
+def page(out):
+    return rendered_markdown((out / "report.md").read_text(encoding="utf-8"))
 
 
 def check_table(out, source, header, rows):
-    """Every cell of a sheet table against its CSV file; every CSV column is shown."""
+    """Every cell of a sheet table against its CSV file, by the table's kind (its header)."""
     columns, csv_rows = read_csv(out / source)
-    names = {split_unit(c)[0]: k for k, c in enumerate(columns)}
-    digits = 12 if source == "inputs.csv" else 5
-    shown = set()
-    if header[:3] == ["quantity", "value", "unit"]:          # one CSV row, one line per column
+    col = {split_unit(c)[0]: k for k, c in enumerate(columns)}
+    units = {split_unit(c)[0]: split_unit(c)[1] for c in columns}
+    if header == ["variable", "value", "unit", "note"]:              # inputs.csv, a group
+        for variable, value, unit, _ in rows:
+            matches = [r for r in csv_rows if r[1] == variable]
+            assert matches, variable
+            assert any(r[3] in (unit, "") for r in matches), variable
+            check_cell(value, matches[0][2], 1.0, 12, (source, variable))
+    elif header[:3] == ["quantity", "value", "unit"]:                 # one CSV row
         assert len(csv_rows) == 1
         row = csv_rows[0]
         for line in rows:
             quantity, value, unit = line[:3]
-            k = names[quantity]
-            shown.add(k)
-            check_cell(value, row[k], factor(unit, columns[k]), digits, (source, quantity))
-            if unit not in FACTORS:
-                assert unit == split_unit(columns[k])[1], (source, quantity)
-            if len(line) > 3 and line[3]:                     # the time of this peak
+            k = col[quantity]
+            check_cell(value, row[k], factor(unit, units[quantity]), 5, (source, quantity))
+            assert unit == units[quantity] or unit in FACTORS, (source, quantity)
+            if len(line) > 3 and line[3]:                              # the time of this peak
                 base = quantity.removeprefix("peak_")
-                candidates = [f"time_{base}", f"{quantity}_time", f"{base.split('_')[0]}_time"]
-                t = next(names[c] for c in candidates if c in names)
-                shown.add(t)
-                check_number(line[3], row[t], 1.0, digits, (source, quantity, "time"))
-    else:                                                     # one column per CSV column
-        ks = [names[split_unit(h)[0]] for h in header]
-        shown.update(ks)
-        if len(rows) == len(csv_rows):
-            selected = csv_rows
-        else:                                                 # a long table: rows it shows
-            assert len(rows) <= 25 and rows[0] and len(csv_rows) > 25
-            selected = None
-        for i, line in enumerate(rows):
+                time = next(c for c in (f"time_{base}", f"{quantity}_time",
+                                        f"{base.split('_')[0]}_time") if c in col)
+                check_number(line[3], row[col[time]], 1.0, 5, (source, quantity, "time"))
+    elif header[0].endswith(": quantity"):                            # transposed
+        labels = header[2:]
+        by_label = {r[0]: r for r in csv_rows}
+        for quantity, unit, *values in rows:
+            for label, text in zip(labels, values):
+                check_cell(text, by_label[label][col[quantity]], factor(unit, units[quantity]),
+                           5, (source, quantity, label))
+    elif header == ["code", "check", "demand", "capacity", "unit", "verdict"]:
+        check_summary(out, source, rows)
+    elif header == ["code", "check", "clause", "demand", "capacity", "unit", "ratio", "verdict"]:
+        check_design_checks(out / source, rows)
+    elif header == ["step", "quantity", "formula and numbers", "value", "unit", "clause"]:
+        check_hand_calculation(out / source, rows)
+    else:                                                             # one column per column
+        ks = [col[split_unit(h)[0]] for h in header]
+        selected = csv_rows if len(rows) == len(csv_rows) else None
+        if selected is None:                                          # a long table's rows
+            assert len(rows) <= 25 < len(csv_rows)
+            assert rows[0][0] == check_first(csv_rows[0][ks[0]], header[0], columns[ks[0]])
+        for i, line in enumerate(rows if selected is not None else []):
             for h, k, text in zip(header, ks, line):
-                unit = split_unit(h)[1]
-                if selected is not None:
-                    check_cell(text, selected[i][k], factor(unit, columns[k]), digits,
-                               (source, i, h))
-    assert shown == set(range(len(columns))), (source, "columns not shown")
+                check_cell(text, selected[i][k], factor(split_unit(h)[1], split_unit(
+                    columns[k])[1]), 5, (source, i, h))
+
+
+def check_first(csv_text, header, column):
+    return f"{float(csv_text) / factor(split_unit(header)[1], split_unit(column)[1]):.5g}"
+
+
+def check_summary(out, source, rows):
+    """The summary's rows: demand and capacity the CSV's, the verdict the one the numbers give
+    (demand within capacity, as docs/design.md's round-off rule says)."""
+    for code, check, demand, capacity, unit, verdict in rows:
+        assert unit == "m"
+        if source == "freeboard_check.csv":
+            row = next(r for r in read_csv(out / source)[1] if r[0] == code)
+            columns = read_csv(out / source)[0]
+            required = row[columns.index("required_freeboard [m]")]
+            available = row[columns.index("available_freeboard [m]")]
+            check_number(demand, required, 1, 5, code)
+            check_number(capacity, available, 1, 5, code)
+            fits = float(required) <= float(available) * (1 + 1e-9)
+        else:                                              # the nonlinear run's roof
+            peaks = one_row(out / source)
+            wave = peaks["free_wave_height [m]"]
+            freeboard = one_row(out / "tank.csv")["freeboard [m]"]
+            check_number(demand, wave, 1, 5, code)
+            check_number(capacity, freeboard, 1, 5, code)
+            fits = float(wave) < float(freeboard)
+        assert verdict == ("OK" if fits else "NOT OK"), (code, check)
+
+
+def check_design_checks(path, rows):
+    """design_checks.csv's rows in the summary: demand and capacity the CSV's in the unit
+    shown, the ratio demand/capacity (divided here), the verdict the one the numbers give
+    (demand within capacity, docs/design.md's round-off rule), INFO without capacity."""
+    columns, csv_rows = read_csv(path)
+    by_check = {(r[0], r[1]): dict(zip(columns, r)) for r in csv_rows}
+    assert len({v == "INFO" for *_, v in rows}) == 1      # verdicts, or values without one
+    for code, check, clause, demand, capacity, unit, ratio, verdict in rows:
+        row = by_check[(code, check)]
+        assert clause == row["clause"] and verdict == row["verdict"]
+        f = factor(unit, row["unit"])
+        check_number(demand, row["demand"], f, 5, (code, check))
+        if verdict == "INFO":
+            assert capacity == ratio == "—" and row["capacity"] == row["ratio"] == ""
+            continue
+        check_number(capacity, row["capacity"], f, 5, (code, check))
+        check_number(ratio, float(row["demand"]) / float(row["capacity"]), 1, 5, (code, check))
+        fits = float(row["demand"]) <= float(row["capacity"]) * (1 + 1e-9)
+        assert verdict == ("OK" if fits else "NOT OK"), (code, check)
+
+
+def check_hand_calculation(path, rows):
+    """A code's hand calculation: each line is a row of design_calc.csv (its step), its
+    formula and the numbers put in the core's, its value the CSV's to 5 digits in its unit,
+    its clause named."""
+    columns, csv_rows = read_csv(path)
+    by_step = {r[columns.index("step")]: dict(zip(columns, r)) for r in csv_rows}
+    for step, quantity, formula, value, unit, clause in rows:
+        row = by_step[step]
+        assert (quantity, unit, clause) == (row["quantity"], row["unit"], row["clause"])
+        assert row["formula"] in formula and row["substituted"] in formula, step
+        check_number(value, row["value"], 1, 5, (path.name, step))
 
 
 def test_every_number_is_the_csv_one(sheets):
     for name, out in sheets.items():
-        text = (out / "report.md").read_text()
-        tables = markdown_tables(text)
-        sources = [t[0] for t in tables if t[0]]
-        expected = {"inputs.csv", "motion.csv", "tank.csv", "design_codes.csv"}
-        expected |= ({"seismic_spatial_peaks.csv"} if name == "tank_two_components" else
-                     {"seismic_peaks.csv", "run_info.csv"})
-        if name == "tank_rectangular_seismic":
-            expected.add("tank_modes.csv")
-        else:      # a circular tank's planar run: the pressure at its peaks
-            expected |= set() if name == "tank_two_components" else {
-                "pressure_at_peaks.csv", "wall_pressure_at_shear_peak.csv",
-                "wall_pressure_at_moment_peak.csv"}
-        assert set(sources) == expected, name
+        tables = page(out).tables()
+        sources = {t[0] for t in tables if t[0]}
+        expected = {"inputs.csv", "tank.csv", "design_codes.csv"}
+        if name in SEISMIC:
+            expected |= {"motion.csv"} | ({"seismic_spatial_peaks.csv"}
+                                          if name == "tank_two_components" else
+                                          {"seismic_peaks.csv", "run_info.csv"})
+        if name in ("tank_seismic", "tank_harmonic"):      # circular, planar: the pressures
+            expected |= {"pressure_at_peaks.csv", "wall_pressure_at_shear_peak.csv",
+                         "wall_pressure_at_moment_peak.csv"}
+        if name in DESIGN:
+            expected |= {"design_checks.csv", "design_calc.csv", "design_loads.csv",
+                         "wall_pressure.csv", "pressure_resultants.csv"}
+        assert sources == expected, name
         for source, header, rows in tables:
             if source:
                 check_table(out, source, header, rows)
-        # outside the tables, the verdicts (test_verdicts_agree_with_the_csv) and the input
-        # file, only the captions' constants: "0.5 % damping", "modes 2..N", "100/30", "0 where"
-        rest = re.sub(r"```.*?```", "", text, flags=re.S)
-        rest = "\n".join(line for line in rest.splitlines() if not line.startswith(("|", "- ")))
-        assert set(re.findall(r"\d+(?:\.\d+)?", rest)) <= {"0", "0.5", "2", "100", "30"}, name
 
 
-def test_head_version_hashes_and_input(sheets):
+def test_the_order_of_a_calc_sheet(sheets):
     for name, out in sheets.items():
-        text = (out / "report.md").read_text()
-        head = {row[0]: row[1] for row in markdown_tables(text)[0][2]}
-        assert head["sloshdyn version"] == sloshdyn.__version__
-        assert re.fullmatch(r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d UTC", head["date"])
+        titles = page(out).texts("h2")
+        calc = [t for t in titles if t.endswith(": hand calculation")]
+        order = ORDER[:3] + calc + ORDER[3:]
+        assert titles == [t for t in order if t in titles], name
+        if name in DESIGN:       # a section per code of design_calc.csv, in its order
+            codes = list(dict.fromkeys(r[0] for r in read_csv(out / "design_calc.csv")[1]))
+            assert calc == [f"{code}: hand calculation" for code in codes]
+        assert titles[:3] == ["Title block", "Summary of checks", "Inputs"], name
+        if name == "tank_two_components":       # no verdict in the spatial run's files
+            blocks = page(out).blocks
+            k = blocks.index(("h2", "Summary of checks"))
+            assert blocks[k + 1][0] == "p" and "No check with a verdict" in blocks[k + 1][1]
+        assert ("Nonlinear run" in titles) == (name in SEISMIC)
+
+
+def test_the_summary_holds_every_check(sheets):
+    """Every code's freeboard check (design sheets) and the nonlinear run's roof verdict
+    (seismic sheets) stand in the summary; the harmonic example's wave reaches the roof."""
+    for name, out in sheets.items():
+        summary = [t for t in page(out).tables() if t[1][:2] == ["code", "check"]]
+        codes = [row[0] for t in summary for row in t[2]]
+        if name in DESIGN:       # every row of design_checks.csv, the verdicts first
+            rows = [row for t in summary for row in t[2]]
+            assert sorted((r[0], r[1]) for r in rows) == sorted(
+                (r[0], r[1]) for r in read_csv(out / "design_checks.csv")[1])
+            verdicts = [r[-1] != "INFO" for r in rows]
+            assert verdicts == sorted(verdicts, reverse=True)
+            assert set(codes) >= {r[0] for r in read_csv(out / "freeboard_check.csv")[1]}
+            freeboard = [row for t in summary for row in t[2] if row[1].startswith("freeboard")]
+            assert {row[0] for row in freeboard} == {"API 650", "ACI 350.3"} \
+                if name == "tank_design" else {"EC8-4"}
+        if name in SEISMIC and name != "tank_two_components":
+            roof = next(row for t in summary for row in t[2] if row[0] == "sloshdyn nonlinear")
+            assert roof[-1] == ("NOT OK" if name == "tank_harmonic" else "OK")
+
+
+def test_title_block_version_hashes_and_fields_for_the_checker(sheets):
+    for name, out in sheets.items():
+        rows = page(out).tables()[0][2]
+        head = {row[0]: row[1] for row in rows}
+        assert head["Program"] == f"sloshdyn {sloshdyn.__version__}"
+        assert re.fullmatch(r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d UTC", head["Date prepared"])
+        assert head["Checked by"] == head["Date checked"] == head["Project"] == ""
         nml = EXAMPLES / f"{name}.nml"
         assert head[f"SHA-256 of {nml.name}"] == hashlib.sha256(nml.read_bytes()).hexdigest()
-        group = f90nml.read(nml)["ground_motion"]
+        appendix = {row[0]: row[1] for row in page(out).tables()[-1][2]}   # Appendix B
+        assert appendix[f"SHA-256 of {nml.name}"] == head[f"SHA-256 of {nml.name}"]
+        group = f90nml.read(nml).get("ground_motion", {})
         for key in ("record", "record_y"):
             if key in group:
                 record = EXAMPLES / group[key]
-                assert head[f"SHA-256 of {record.name}"] == \
+                assert appendix[f"SHA-256 of {record.name}"] == \
                     hashlib.sha256(record.read_bytes()).hexdigest()
-        # the input file itself, verbatim
-        assert f"```\n{nml.read_text().rstrip()}\n```" in text
+        # the input file itself, verbatim, in the appendix
+        assert nml.read_text() in page(out).texts("pre")
+
+
+def test_project_and_preparer_in_the_title_block(tmp_path, capsys):
+    assert cli.main(["report", str(EXAMPLES / "tank_design.nml"), "--out", str(tmp_path / "s"),
+                     "--project", "Tank farm 7", "--prepared-by", "A. Engineer"]) == 0
+    head = {row[0]: row[1] for row in page(tmp_path / "s").tables()[0][2]}
+    assert (head["Project"], head["Prepared by"]) == ("Tank farm 7", "A. Engineer")
+    assert head["Checked by"] == ""
+    assert head["Codes"] == "API 650 13th ed.; ASCE 7-16; ACI 350.3-06"   # the clauses'
+
+
+def test_the_design_sheet_names_the_clause_of_every_formula(sheets):
+    """data/examples/tank_design.nml's sheet: every line of every hand calculation names its
+    clause (a code's edition and clause, or the page of docs/ that derives it), and the lines
+    are design_calc.csv's, all of them, in its order."""
+    out = sheets["tank_design"]
+    lines = [row for source, header, rows in page(out).tables() if source == "design_calc.csv"
+             for row in rows]
+    steps = [r[1] for r in read_csv(out / "design_calc.csv")[1]]
+    assert sorted(int(row[0]) for row in lines) == sorted(int(s) for s in steps)
+    for step, quantity, formula, value, unit, clause in lines:
+        assert re.match(r"(API 650 \w+ ed\.|ACI 350\.3-06|ASCE 7-16|EN 1998-\d:\d{4}) \S|"
+                        r"docs/\w+\.md|the spectrum of &design", clause), (step, clause)
 
 
 def test_inputs_as_read_equal_the_file(sheets):
-    """The values the sheet lists as read equal those the file gives (f90nml reads the file
-    here, independently of the core's reader)."""
+    """The inputs the sheet lists equal those the file gives (f90nml reads the file here,
+    independently of the core's reader); the design's spectrum inputs are those of its kind
+    only (no EC8 input on an ASCE 7 sheet) and a 0 that means a default says so."""
     for name, out in sheets.items():
         nml = f90nml.read(EXAMPLES / f"{name}.nml")
-        rows = next(t[2] for t in markdown_tables((out / "report.md").read_text())
-                    if t[0] == "inputs.csv")
-        listed = {(group, variable): value for group, variable, value, _ in rows}
-        for group in ("tank", "seismic", "integration"):
+        listed = {row[0]: row for t in page(out).tables() if t[1][0] == "variable"
+                  for row in t[2]}
+        for group in ("tank", "seismic", "design"):
             for variable, value in nml.get(group, {}).items():
+                shown = listed[variable][1]
                 if variable == "planar":
-                    assert listed[(f"&{group}", variable)] == (".true." if value else ".false.")
+                    assert shown == (".true." if value else ".false.")
                 elif isinstance(value, str):
-                    assert listed[(f"&{group}", variable)] == value
+                    assert shown == value
                 else:
-                    assert float(listed[(f"&{group}", variable)]) == pytest.approx(value,
-                                                                                    rel=1e-11)
-        if "azimuth" in nml["ground_motion"]:
-            assert float(listed[("&ground_motion", "azimuth")]) == pytest.approx(
-                nml["ground_motion"]["azimuth"], rel=1e-11)
+                    assert float(shown) == pytest.approx(value, rel=1e-11)
+        if name == "tank_design":                       # ASCE 7: no EC8 input
+            assert {"s_ds", "s_d1", "t_l", "k"} <= set(listed)
+            assert not {"a_gr", "ground_type", "spectrum_type", "q", "beta"} & set(listed)
+            assert "0: " in listed["impulsive_period"][3]          # what its 0 means
+            assert "plateau" in listed["impulsive_period"][3]
+            assert listed["s_ds"][2] == "g" and listed["t_l"][2] == "s"
+        if name == "tank_slender_design":               # EN 1998-1: no ASCE 7 input
+            assert not {"s_ds", "s_d1", "t_l"} & set(listed) and "a_gr" in listed
+        assert not {"impact_stiffness", "impact_damping", "n", "p"} & set(listed)
 
 
 def test_motion_is_the_target_and_the_run_info(sheets):
     """The Sa at the sloshing period is the namelist's target_sa (the reader scaled the record
     to it); for planar runs motion.csv's numbers are run_info.csv's (the executable's)."""
-    for name, out in sheets.items():
+    for name in SEISMIC:
+        out = sheets[name]
         given = f90nml.read(EXAMPLES / f"{name}.nml")["ground_motion"]
-        columns, rows = read_csv(out / "motion.csv")
-        motion = dict(zip(columns, rows[0]))
+        motion = one_row(out / "motion.csv")
         if "target_sa" in given:
             assert float(motion["sa_sloshing_period [m/s^2]"]) / 9.80665 == pytest.approx(
                 given["target_sa"], rel=1e-6)
@@ -223,214 +301,98 @@ def test_motion_is_the_target_and_the_run_info(sheets):
             assert motion["kind"] == "harmonic"
             assert float(motion["peak_ground_acceleration [m/s^2]"]) / 9.80665 == \
                 pytest.approx(given["peak_acceleration"], rel=1e-12)
-            assert float(motion["frequency [Hz]"]) == given["frequency"]
-        tank = dict(zip(*[row for rows in [read_csv(out / "tank.csv")] for row in
-                          (rows[0], rows[1][0])]))
+        tank = one_row(out / "tank.csv")
         assert float(motion["sloshing_period [s]"]) == float(tank["sloshing_period [s]"])
         if (out / "run_info.csv").exists():
-            columns, rows = read_csv(out / "run_info.csv")
-            info = dict(zip(columns, rows[0]))
+            info = one_row(out / "run_info.csv")
             assert motion["record"] == info["record"]
             for column in ("scale_factor", "peak_ground_acceleration [m/s^2]",
                            "sa_sloshing_period [m/s^2]"):
                 assert float(motion[column]) == pytest.approx(float(info[column]), rel=1e-9)
 
 
-def test_verdicts_agree_with_the_csv(sheets):
+def test_the_papers_impact_model_is_not_on_the_sheet(sheets):
+    """No quantity of the paper's smooth wall (impact force, beta, delta, their exponents) in
+    any table of the sheet (DESIGN.md, "Two models in one core")."""
     for name, out in sheets.items():
-        text = (out / "report.md").read_text()
-        lines = [line[2:] for line in text.split("Verdicts, as the executable prints them:")[1]
-                 .splitlines() if line.startswith("- ")]
-        assert lines, name
-        tank = dict(zip(*(lambda c, r: (c, r[0]))(*read_csv(out / "tank.csv"))))
-        if name == "tank_two_components":
-            columns, rows = read_csv(out / "seismic_spatial_peaks.csv")
-        else:
-            columns, rows = read_csv(out / "seismic_peaks.csv")
-        peaks = dict(zip(columns, rows[0]))
-        for line in lines:
-            if m := re.fullmatch(r"the free wave does not reach the roof: its peak (?:around the "
-                                 r"wall )?is (\S+) % of the freeboard \((\S+) m\)", line):
-                assert peaks["roof_reached"] == "0"
-                check_number(m[1], 100 * float(peaks["free_wave_height [m]"]), 1, 3, line)
-                assert float(m[2]) == float(tank["freeboard [m]"])
-            elif m := re.fullmatch(r"the free wave reaches the roof: first at t = (\S+) s(?: at "
-                                   r"azimuth (\S+) rad)?, (\d+) time\(s\); it rises to (\S+) m at "
-                                   r"the wall(?: \(the wave height above is capped at the "
-                                   r"roof\))?", line):
-                assert peaks["roof_reached"] == "1"
-                check_number(m[1], float(peaks["first_roof_time [s]"]), 1, 5, line)
-                if m[2]:
-                    check_number(m[2], float(peaks["first_contact_azimuth [rad]"]), 1, 5, line)
-                assert int(m[3]) == int(peaks["roof_impacts"])
-                check_number(m[4], float(peaks["free_wave_height [m]"]), 1, 5, line)
-            elif m := re.fullmatch(r"flat roof, restricted sloshing: head (\S+) m, uplift (\S+) "
-                                   r"MN, confined convective mass (\S+) kg, moving with the "
-                                   r"tank from the first contact on.*", line):
-                check_number(m[1], float(peaks["roof_head [m]"]), 1, 5, line)
-                check_number(m[2], float(peaks["roof_uplift_force [N]"]), 1e6, 5, line)
-                check_number(m[3], float(peaks["confined_convective_mass [kg]"]), 1, 5, line)
-            elif m := re.fullmatch(r"ground motion (.+): scale factor (\S+), PGA (\S+) g, "
-                                   r"Sa\((\S+) s, 0.5 %\) (\S+) g", line):
-                info = dict(zip(*(lambda c, r: (c, r[0]))(*read_csv(out / "run_info.csv"))))
-                assert m[1] == (f"'{info['record']}'" if info["record"] else "harmonic")
-                check_number(m[2], float(info["scale_factor"]), 1, 5, line)
-                check_number(m[3], float(info["peak_ground_acceleration [m/s^2]"]), 9.80665,
-                             5, line)
-                check_number(m[4], float(info["sloshing_period [s]"]), 1, 4, line)
-                check_number(m[5], float(info["sa_sloshing_period [m/s^2]"]), 9.80665, 5, line)
-            elif m := re.fullmatch(r"codes' combinations of the two planar runs \(SRSS, "
-                                   r"100/30\): wave height (\S+), (\S+) m; base shear (\S+), "
-                                   r"(\S+) MN", line):
-                for text, column, factor in zip(m.groups(), (
-                        "wave_height_srss [m]", "wave_height_100_30 [m]",
-                        "base_shear_srss [N]", "base_shear_100_30 [N]"), (1, 1, 1e6, 1e6)):
-                    check_number(text, float(peaks[column]), factor, 5, line)
-            elif m := re.fullmatch(r"wall pressure at the (base shear|overturning moment|"
-                                   r"overturning moment including base pressure) peak "
-                                   r"\(t = (\S+) s\): largest (\S+) kPa at z = (\S+) m \((\S+)\)",
-                                   line):
-                _, instants = read_csv(out / "pressure_at_peaks.csv")
-                k = ["base shear", "overturning moment",
-                     "overturning moment including base pressure"].index(m[1])
-                check_number(m[2], instants[k][0], 1, 5, line)
-                _, wall = read_csv(out / m[5])
-                top = max(wall, key=lambda row: abs(float(row[3])))
-                check_number(m[3], top[3], 1e3, 5, line)
-                check_number(m[4], top[0], 1, 5, line)
-            else:
-                # the examples run without the paper's impact model: nothing else is printed
-                raise AssertionError(f"{name}: an unexpected verdict line: {line}")
+        for source, header, rows in page(out).tables():
+            names = header + [row[0] for row in rows]
+            assert not [n for n in names if ("impact" in n and n != "roof_impacts") or n in (
+                "beta", "delta", "n", "p", "beta_sensitive")], name
 
 
-class _Html(html.parser.HTMLParser):
-    """Table cells, list items and embedded images of report.html."""
-
-    def __init__(self):
-        super().__init__()
-        self.tables, self.items, self.images, self._text = [], [], [], None
-
-    def handle_starttag(self, tag, attrs):
-        if tag == "table":
-            self.tables.append([])
-        elif tag == "tr":
-            self.tables[-1].append([])
-        elif tag in ("td", "th", "li"):
-            self._text = ""
-        elif tag == "img":
-            self.images.append(dict(attrs)["src"])
-
-    def handle_data(self, data):
-        if self._text is not None:
-            self._text += data
-
-    def handle_endtag(self, tag):
-        if tag in ("td", "th"):
-            self.tables[-1][-1].append(self._text.strip())
-            self._text = None
-        elif tag == "li":
-            self.items.append(self._text.strip())
-            self._text = None
-
-
-def test_html_holds_the_same_tables_lines_and_figures(sheets):
-    import base64
+def test_research_quantities_only_in_the_appendix(sheets):
+    research = {"d0", "d1", "kappa", "mu1", "s1", "gamma", "zeta", "theta0", "omega"}
     for name, out in sheets.items():
-        text = (out / "report.md").read_text()
-        page = _Html()
-        page.feed((out / "report.html").read_text())
-        md = [[header] + rows for _, header, rows in markdown_tables(text)]
-        assert page.tables == md, name
-        assert page.items == [line[2:] for line in text.splitlines() if line.startswith("- ")]
-        figures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
-        assert len(page.images) == len(figures) >= 4
-        for src, figure in zip(page.images, figures):
+        blocks = page(out).blocks
+        appendix = next(k for k, b in enumerate(blocks) if b[:2] == (
+            "h2", "Appendix A: the model's research quantities"))
+        before = [row[0] for b in blocks[:appendix] if b[0] == "table" for row in b[3]]
+        assert not research & set(before), name
+        listed = {row[0] for row in blocks[appendix + 2][3]}
+        assert research <= listed
+
+
+def test_the_assumptions_are_those_of_docs_design(sheets):
+    """The sheet prints docs/design.md's "Assumptions" as they stand there (the list read here
+    from the repository's page, its Markdown removed by markdown-it-py)."""
+    text = (ROOT / "docs" / "design.md").read_text()
+    section = text.split("\n## Assumptions\n")[1].split("\n## ")[0]
+    expected = rendered_markdown(section).texts("li")
+    assert len(expected) >= 5
+    for out in sheets.values():
+        items = page(out).texts("li")
+        assert items == expected
+
+
+def test_html_holds_the_same_document(sheets):
+    for name, out in sheets.items():
+        md = page(out)
+        html_page = Page((out / "report.html").read_text(encoding="utf-8"))
+        assert html_page.tables() == md.tables(), name
+        assert html_page.texts("li") == md.texts("li")
+        assert html_page.texts("h2") == md.texts("h2")
+        figures = [b[1] for b in md.blocks if b[0] == "img"]
+        images = [b[1] for b in html_page.blocks if b[0] == "img"]
+        assert len(images) == len(figures) >= 2
+        for src, figure in zip(images, figures):
             assert src.startswith("data:image/png;base64,")
             assert base64.b64decode(src.split(",", 1)[1]) == (out / figure).read_bytes()
             assert (out / figure).read_bytes().startswith(PNG)
-        assert {"ground_motion.png", "spectrum.png", "wave.png", "loads.png"} <= set(figures)
-
-
-@pytest.mark.parametrize("example, sources", [
-    ("tank_design", ["API 650", "ACI 350.3", "sloshdyn linear"]),
-    ("tank_slender_design", ["EC8-4", "sloshdyn linear"])])
-def test_a_design_check_sheet(tmp_path, example, sources):
-    """A tank with &design and no ground motion (kind = 'linear'): the design sheet holds the
-    inputs with &design, the tank, the codes' values, loads, freeboard checks and wall
-    pressure, every number equal to its CSV; the design spectrum and the pressure profile as
-    figures (in the HTML too); no motion."""
-    import base64
-    sheet = sloshdyn.design_report(EXAMPLES / f"{example}.nml", tmp_path)
-    text = sheet.markdown.read_text()
-    assert text.startswith(f"# Design calc sheet: {example}.nml")
-    tables = markdown_tables(text)
-    assert {t[0] for t in tables if t[0]} == {
-        "inputs.csv", "tank.csv", "design_codes.csv", "design_loads.csv", "freeboard_check.csv",
-        "wall_pressure.csv", "pressure_resultants.csv"}
-    for source, header, rows in tables:
-        if source:
-            check_table(tmp_path, source, header, rows)
-    loads = next(rows for source, _, rows in tables if source == "design_loads.csv")
-    assert [row[0] for row in loads] == sources
-    inputs = next(rows for source, _, rows in tables if source == "inputs.csv")
-    design = f90nml.read(EXAMPLES / f"{example}.nml")["design"]
-    shown = {row[1]: row[2] for row in inputs if row[0] == "&design"}
-    for name, value in design.items():
-        if isinstance(value, str):
-            assert shown[name] == value
+        if name in SEISMIC:
+            assert {"ground_motion.png", "spectrum.png", "wave.png", "loads.png"} <= set(figures)
         else:
-            assert float(shown[name]) == pytest.approx(value, rel=1e-12)
-    assert not (tmp_path / "motion.csv").exists()
-    figures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
-    assert figures == ["design_spectrum.png", "wall_pressure.png"]
-    page = _Html()
-    page.feed(sheet.html.read_text())
-    for src, figure in zip(page.images, figures):
-        assert base64.b64decode(src.split(",", 1)[1]) == (tmp_path / figure).read_bytes()
+            assert figures == ["design_spectrum.png", "wall_pressure.png"]
 
 
 def test_any_table_renders_by_its_units(tmp_path):
-    """The generic renderer on tables such as the coming design_loads.csv and
-    wall_pressure.csv: engineering units from the column names, every value to 5 digits, a long
-    table shown by evenly spaced rows with its first and last."""
+    """The generic renderer on tables such as design_loads.csv and wall_pressure.csv:
+    engineering units from the column names, every value to 5 digits, a few rows of many
+    columns transposed, a long table shown by evenly spaced rows with its first and last."""
+    from sloshdyn import report_tables
     loads = tmp_path / "design_loads.csv"
     loads.write_text("code,base_shear [N],overturning_moment [N m],mass [kg],p [Pa],"
                      "hoop_force [N/m],a [m/s^2],ratio\n"
                      "API 650,1234567.89,98765.4321,289000.5,12345.678,2.5e5,1.96133,0.123456\n"
                      "EC8-4,2345.6,nan,1,0,-3.5,9.80665,7\n")
-    table = report.render_table(loads)
-    assert table.header == ["code", "base_shear [MN]", "overturning_moment [kN·m]", "mass [t]",
-                            "p [kPa]", "hoop_force [kN/m]", "a [g]", "ratio"]
+    table = report_tables.render_table(loads)
+    assert table.header == ["code: quantity", "unit", "API 650", "EC8-4"]
+    assert [row[:2] for row in table.rows] == [
+        ["base_shear", "MN"], ["overturning_moment", "kN·m"], ["mass", "t"], ["p", "kPa"],
+        ["hoop_force", "kN/m"], ["a", "g"], ["ratio", ""]]
     check_table(tmp_path, "design_loads.csv", table.header, table.rows)
-    assert table.rows[1][2] == "—"
+    assert table.rows[1][3] == "—"
     pressure = tmp_path / "wall_pressure.csv"
     pressure.write_text("z [m],p_impulsive [Pa]\n"
                         + "".join(f"{6 * k / 99},{1000.0 * k}\n" for k in range(100)))
-    table = report.render_table(pressure)
+    table = report_tables.render_table(pressure)
     assert len(table.rows) == 25
     assert table.rows[0] == ["0", "0"] and table.rows[-1] == ["6", "99"]
-    check_table(tmp_path, "wall_pressure.csv", table.header, table.rows)
-    one = tmp_path / "freeboard_check.csv"
+    one = tmp_path / "freeboard.csv"
     one.write_text("required_freeboard [m],available_freeboard [m],sufficient\n"
                    "0.8765432,1.0,1\n")
-    table = report.render_table(one)
-    check_table(tmp_path, "freeboard_check.csv", table.header, table.rows)
-
-
-def test_a_failure_leaves_no_sheet(tmp_path, monkeypatch):
-    """A sheet that fails while written leaves neither report.md nor report.html (not even
-    one from an earlier report in the directory) and no temporary file."""
-    (tmp_path / "report.md").write_text("an earlier sheet")
-
-    def fail(*args):
-        raise RuntimeError("disk on fire")
-    monkeypatch.setattr(report, "to_html", fail)
-    with pytest.raises(RuntimeError, match="disk on fire"):
-        sloshdyn.design_report(EXAMPLES / "tank_seismic.nml", tmp_path)
-    names = {p.name for p in tmp_path.iterdir()}
-    assert "report.md" not in names and "report.html" not in names
-    assert not [n for n in names if ".partial" in n]
-    assert "seismic_peaks.csv" in names           # the run's files are complete
+    table = report_tables.render_table(one)
+    check_table(tmp_path, "freeboard.csv", table.header, table.rows)
 
 
 @pytest.mark.parametrize("example, kind", [("fig12_linear.nml", "linear"),
@@ -443,15 +405,17 @@ def test_inputs_it_cannot_report(tmp_path, capsys, example, kind):
     assert code == 3, err
     assert f"kind = '{kind}'" in err and "kind = 'seismic' with &tank and &ground_motion" in err
     assert not (tmp_path / "sheet").exists()
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_command_line_writes_the_sheet(tmp_path, capsys):
-    assert cli.main(["report", str(EXAMPLES / "tank_seismic.nml"), "--out",
-                     str(tmp_path)]) == 0
+    out = tmp_path / "calc"
+    assert cli.main(["report", str(EXAMPLES / "tank_seismic.nml"), "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "the free wave does not reach the roof" in printed      # the run's summary, passed on
-    assert f"calc sheet: {tmp_path / 'report.md'}" in printed
-    assert (tmp_path / "report.html").exists()
+    assert (f"calc sheet: {out / 'report.md'}, {out / 'report.html'} and "
+            f"{out / 'report.pdf'}") in printed
+    assert (out / "report.pdf").read_bytes().startswith(b"%PDF-")
 
 
 def test_an_output_directory_that_is_a_file(tmp_path, capsys):
@@ -462,3 +426,97 @@ def test_an_output_directory_that_is_a_file(tmp_path, capsys):
     err = capsys.readouterr().err
     assert code == 5, err
     assert "calc" in err and "internal error" not in err
+    assert (tmp_path / "calc").read_text() == "not a directory"
+
+
+def test_the_tank_summary_prints_five_significant_digits(exe, tmp_path):
+    """The executable prints the tank's SI summary at engineering precision (sloshdyn-py run
+    prints the same text: test_front_doors.py): every number of its lines and of the
+    design-code table has at most 5 significant digits, and the masses and the period are
+    tank.csv's (full precision there) rounded to 5."""
+    result = subprocess.run([exe, str(EXAMPLES / "tank_design.nml")], cwd=tmp_path,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.split("Tank (SI)")[1].split("\n\n")[0].splitlines()
+    lines += result.stdout.split("Design-code cross-check")[1].split("\n\n")[0].splitlines()[1:]
+    numbers = [n for line in lines for n in re.findall(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e-?\d+)?",
+                                                       line.split("(eq 2-3)")[-1])]
+    assert numbers and all(significant(n) <= 5 for n in numbers), numbers
+    tank = one_row(tmp_path / "sloshdyn_output" / "tank_design" / "tank.csv")
+    for label, column in (("liquid ", "liquid_mass [kg]"), ("total M = ", "total_mass [kg]"),
+                          ("sloshing period ", "sloshing_period [s]")):
+        text = re.search(re.escape(label) + r"(\d\S*)", "\n".join(lines)).group(1)
+        check_number(text, tank[column], 1, 5, label)
+
+
+def pdf_pages(path):
+    """The text of each page of a PDF (poppler's pdftotext, as laid out)."""
+    text = subprocess.run(["pdftotext", "-layout", str(path), "-"], capture_output=True,
+                          text=True, check=True, timeout=120).stdout
+    return text.split("\f")[:-1]
+
+
+def pdf_size(path):
+    info = subprocess.run(["pdfinfo", str(path)], capture_output=True, text=True, check=True,
+                          timeout=120).stdout
+    return re.search(r"Page size:\s+([\d.]+) x ([\d.]+) pts", info).groups()
+
+
+def test_the_pdf_numbers_its_pages_and_starts_with_the_verdicts(sheets):
+    """Each page of report.pdf says 'page N of M'; page 1 holds the summary's verdicts, every
+    row's numbers and verdict (its values without a capacity may follow); no page ends with
+    a section heading (its table or text on the next page)."""
+    for name, out in sheets.items():
+        pages = pdf_pages(out / "report.pdf")
+        assert len(pages) >= 2, name
+        for n, text in enumerate(pages, 1):
+            assert f"page {n} of {len(pages)}" in text, (name, n)
+        md = page(out)
+        summary = md.blocks.index(("h2", "Summary of checks"))
+        end = md.blocks.index(("h2", "Inputs"))
+        rows = [row for b in md.blocks[summary:end] if b[0] == "table" for row in b[3]
+                if row[-1] != "INFO"]              # the verdicts (the values may follow)
+        first = " ".join(pages[0].split())
+        assert "Summary of checks" in first, name
+        for row in rows:                      # its numbers (names may wrap in their cells)
+            numbers = [c for c in row if re.fullmatch(r"-?[\d.]+(e[-+]\d+)?", c)]
+            assert all(f" {number} " in first for number in numbers), (name, row)
+        assert first.count("NOT OK") >= sum(row[-1] == "NOT OK" for row in rows)
+        headings = set(md.texts("h2"))
+        for n, text in enumerate(pages, 1):
+            lines = [line.strip() for line in text.splitlines() if line.strip()]
+            assert lines[-2] not in headings, (name, n, lines[-2])   # [-1]: the page number
+
+
+def test_long_tables_repeat_their_header_on_every_page(tmp_path):
+    """The print CSS repeats a table's header on each page it spans (WeasyPrint honours
+    thead's table-header-group), on A4 and on Letter paper."""
+    from sloshdyn.report_layout import Section, Table, to_html
+    from sloshdyn.report_pdf import write_pdf
+    rows = [[f"row {k}", f"{k * 0.25:.5g}"] for k in range(300)]
+    for paper, size in (("a4", ("595.276", "841.89")), ("letter", ("612", "792"))):
+        html_text = to_html("A long table", [Section("Table", [Table(
+            ["quantity name", "value in units"], rows)])], tmp_path, paper)
+        write_pdf(html_text, tmp_path / f"{paper}.pdf")
+        pages = pdf_pages(tmp_path / f"{paper}.pdf")
+        assert len(pages) >= 3
+        for text in pages:
+            assert "quantity name" in text and "value in units" in text
+        assert pdf_size(tmp_path / f"{paper}.pdf") == size
+
+
+def test_letter_paper(tmp_path):
+    sheet = sloshdyn.design_report(EXAMPLES / "tank_design.nml", tmp_path / "s", paper="letter")
+    assert pdf_size(sheet.pdf) == ("612", "792")
+    assert "size: letter" in sheet.html.read_text()
+    with pytest.raises(sloshdyn.InputError, match="paper = 'a5'"):
+        sloshdyn.design_report(EXAMPLES / "tank_design.nml", tmp_path / "t", paper="a5")
+
+
+def test_the_summary_names_the_output_directory(tmp_path, capsys):
+    """The run's summary, passed on, says where the files are: --out, not the sheet's own
+    directory that is swapped into place."""
+    out = tmp_path / "calc"
+    assert cli.main(["report", str(EXAMPLES / "tank_design.nml"), "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert f"Results written to {out}/" in printed and ".sheet-" not in printed

@@ -15,6 +15,7 @@ from ..parameters import Parameters
 from ..options import Integration, Steady
 from .engine import SECONDS, Plan, Variable, positive_int, run_plan, version
 from .points import (MAX_PERIOD, MOTIONS, SUMMARY_COLUMNS, common_attrs, orbit_rows,
+                     point_messages,
                      settings_arrays, summary_variables, unpack)
 
 _bridge = _core.sloshdyn_bridge_studies
@@ -26,10 +27,12 @@ def _basin_task(rpar, ipar, y0, integration, steady):
     shape = y0.shape[1:]
     n = int(np.prod(shape))
     flat = np.asfortranarray(y0.reshape(4, n))
-    summaries, y_end, orbit, points, status, _, _ = _bridge.attractor_points(
+    summaries, y_end, orbit, points, status, _, message = _bridge.attractor_points(
         rpar, ipar, flat, integration, steady)
     impact = (summaries[SUMMARY_COLUMNS.index("max_x1")] >= 1).astype(np.int32)
     out = unpack(summaries, orbit, impact, status, shape)
+    out["message"] = point_messages(status, message, lambda i: _bridge.attractor_points(
+        rpar, ipar, np.asfortranarray(flat[:, i:i + 1]), integration, steady)[-1]).reshape(shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
     rows = orbit_rows(orbit)
     out["orbit_found"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)
@@ -42,7 +45,8 @@ def _basin_task(rpar, ipar, y0, integration, steady):
 
 
 def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0, dx2=0.0,
-           client=None, scheduler=None, workers=None, worker_kind=None,
+           client=None, scheduler=None, workers=None, worker_kind=None, min_workers=None,
+           grace_time=None,
            steady: Steady = Steady(), integration: Integration = Integration(), tol=1e-3,
            points_per_task=None, progress=True):
     """Basins of attraction at fixed forcing (params' rho and A): an n x n grid of initial
@@ -106,8 +110,6 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
                                    "(NaN beyond its period and for other motions)"})
     variables["final_state"] = Variable(dims + ("state",), "f8", np.nan, {
         "units": "1", "long_name": "state at the end of the measuring window (forcing phase 0)"})
-    variables["done"] = Variable(dims, "bool", False, {
-        "long_name": "the point is computed and stored (resumable studies)"})
     spec = {"kind": "basins", "parameters": dataclasses.asdict(params), "x1": x1.tolist(),
             "dx1": dx1.tolist(), "x2": float(x2), "dx2": float(dx2),
             "steady": dataclasses.asdict(steady), "integration": dataclasses.asdict(integration),
@@ -123,7 +125,8 @@ def basins(params: Parameters, x1_range, dx1_range, n=50, store=None, *, x2=0.0,
             "units": "1", "long_name": "Poincare point of the orbit, in time order"})},
         variables, attrs, spec, None, task, chunking, ppt)
     return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
-                    worker_kind=worker_kind, progress=progress,
+                    worker_kind=worker_kind, min_workers=min_workers,
+                    grace_time=grace_time, progress=progress,
                     derive=lambda ds: _label_basins(ds, tol))
 
 

@@ -1,78 +1,66 @@
 """The study engine: a study is a `Plan` (axes, variables, attributes, and the task that
-computes one block of the grid); `run_plan` runs it on Dask and writes each task's results to a
-Zarr store as it finishes, so that rerunning the same study on the same store resumes it.
-The study kinds (response maps, basins, impact parameters, fragility) are plans built in their
-own modules."""
+computes one block of the grid); `run_plan` runs it on Dask and writes each task's results to
+a Zarr store as it finishes, so that rerunning the same study on the same store resumes it.
+The store's chunks are fixed when it is created (`store`); a task is one block of whole
+chunks, sized from the workers there when it is handed out, and tasks are handed out in
+waves, a few per worker thread, so that the client's memory stays bounded. Where the study
+runs, and which workers it may use, is `cluster`. The study kinds (response maps, basins,
+impact parameters, fragility) are plans built in their own modules."""
 
 from __future__ import annotations
 
 import concurrent.futures
 import contextlib
 import dataclasses
-import hashlib
 import json
 import math
 import os
-import shutil
 import signal
-import socket
-import struct
-import sys
-import threading
 import time
-import uuid
-import warnings
+import threading
 from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _checks, _tables
-from .._errors import FileError, InputError
-from .._version import __version__
+from .. import _checks, _core
+from .._errors import ClusterError, InputError
 from .._extras import require
+from . import cluster, store as stores
+from .cluster import version       # the study kinds' (their specs and attributes)
 
 #: points per task unless told: about 8 tasks per worker for the load balance, within these
 #: bounds (measured by benchmarks/studies.py: the engine's overhead is ~20 % of the work at 8
 #: points per task, ~5 % at 32, ~2 % at 128; docs/studies.md)
-MIN_POINTS_PER_TASK, MAX_POINTS_PER_TASK, TASKS_PER_WORKER = 8, 128, 8
-#: the default worker kind of an embedded cluster, the core's (&study worker_kind): threads,
-#: by measurement (docs/studies.md, "Worker kind and task size")
-WORKER_KIND = _tables.codes("worker_kinds")[int(_tables.defaults("study")["worker_kind"])]
-#: how long a scheduler address may take to answer
-CONNECT_TIMEOUT = 5.0
+MIN_POINTS_PER_TASK, MAX_POINTS_PER_TASK, TASKS_PER_WORKER = stores.CHUNK_POINTS, 128, 8
+#: tasks handed out ahead per worker thread: one running, one waiting (so a thread never idles
+#: for the client), and no more, so the client holds a few futures, not one per task
+TASKS_AHEAD_PER_THREAD = 2
 #: a task's result entry (not stored) with the seconds the task computed
 SECONDS = "_compute_seconds"
 #: attributes of a returned dataset that describe the call, not the study (not stored)
-RUN_ATTRS = ("points_computed", "compute_seconds", "points_repaired", "repaired", "store")
-#: the memory a worker process takes, for the bound on their number (measured: ~150 MiB)
-WORKER_PROCESS_BYTES = 512 * 2**20
-#: Dask settings of an embedded cluster: its servers' periodic work (the event-loop tick, the
-#: workers' sampling profiler, the system and memory monitors), made for dashboards, which
-#: the embedded cluster does not start, took ~4 % of a core in the study's process and ~3 %
-#: in each worker even while idle, CPU that two workers on two cores take from the tasks
-#: (measured: docs/studies.md, "Worker kind and task size")
-CLUSTER_CONFIG = {
-    "distributed.admin.tick.interval": "1s",
-    "distributed.worker.profile.enabled": False,
-    "distributed.admin.system-monitor.interval": "2s",
-    "distributed.worker.memory.monitor-interval": "500ms",
-}
+RUN_ATTRS = ("points_computed", "compute_seconds", "points_repaired", "repaired", "store",
+             "points_failed")
+
+_cancel = _core.sloshdyn_bridge_input
 
 
 @dataclass
 class Variable:
     dims: tuple
-    dtype: str
+    dtype: str                   #: a numpy dtype, or "str" (text, variable length)
     fill: object
     attrs: dict
 
 
 @dataclass
 class Plan:
-    """A study in index space: its axes, variables, attributes, and tasks (blocks of the grid,
-    aligned with the store's chunks). task(block) is (function, args) for Dask; the function
-    returns {variable: array over the block}. chunking(points_per_task) gives the chunk shape;
-    points_per_task None lets the engine choose (auto_points_per_task)."""
+    """A study in index space: its axes, variables, attributes, and tasks (blocks of whole
+    chunks of the store). task(block) is (function, args) for Dask; the function returns
+    {variable: array over the block}, one call for the whole block (the block is one unit of
+    work: an ensemble of points). chunking(points) gives the shape of a block of about that
+    many points that a task may be (e.g. whole frequency columns for a sweep); the store's
+    chunks are one such shape, fixed at its creation; points_per_task None lets the engine
+    choose (auto_points_per_task)."""
 
     kind: str
     dims: tuple
@@ -82,29 +70,45 @@ class Plan:
     spec: dict                   #: what must match to resume (JSON-able)
     chunks: tuple
     task: object                 #: block (tuple of slices) -> (function, args)
-    chunking: object = None      #: points per task -> chunk shape
+    chunking: object = None      #: points -> block shape
     points_per_task: int = None
     cost: object = None          #: block -> its expected compute time, any unit (None: its size)
-
-    def blocks(self):
-        ranges = [range(0, len(self.coords[d][0]), c) for d, c in zip(self.dims, self.chunks)]
-        for corner in np.ndindex(*[len(r) for r in ranges]):
-            yield tuple(slice(r[i], min(r[i] + c, len(self.coords[d][0])))
-                        for r, i, c, d in zip(ranges, corner, self.chunks, self.dims))
 
     @property
     def shape(self):
         return tuple(len(self.coords[d][0]) for d in self.dims)
 
+    @property
+    def chunk_grid(self):
+        """The number of chunks along each axis."""
+        return tuple(math.ceil(n / c) for n, c in zip(self.shape, self.chunks))
+
+    def block(self, lower, upper):
+        """The block of points of the chunks lower..upper-1 (chunk indices per axis)."""
+        return tuple(slice(lo * c, min(hi * c, n))
+                     for lo, hi, c, n in zip(lower, upper, self.chunks, self.shape))
+
+    def chunk_blocks(self):
+        """(index, block) of every chunk, in grid order."""
+        for index in np.ndindex(*self.chunk_grid):
+            yield index, self.block(index, [i + 1 for i in index])
+
+    def chunks_of(self, block):
+        """The chunks (blocks) that a block of whole chunks is made of."""
+        ranges = [range(s.start // c, math.ceil(s.stop / c)) for s, c in zip(block, self.chunks)]
+        for index in np.ndindex(*[len(r) for r in ranges]):
+            lower = [r[i] for r, i in zip(ranges, index)]
+            yield self.block(lower, [i + 1 for i in lower])
+
     def block_size(self, block):
         return math.prod(s.stop - s.start for s in block)
 
-    def longest_first(self, blocks):
-        """The blocks in the order their tasks are dispatched: the longest expected first (by
-        `cost`, else by size; ties in grid order), so that the last tasks to finish are short
-        ones and no worker waits long for the others at the end (longest processing time
-        first, Graham 1969)."""
-        return sorted(blocks, key=self.cost or self.block_size, reverse=True)
+    def task_extent(self, points):
+        """The chunks along each axis of a task of about `points` points: the plan's block
+        shape for that many, rounded up to whole chunks (at least one)."""
+        shape = self.chunking(points)
+        return tuple(min(g, max(1, math.ceil(s / c)))
+                     for s, c, g in zip(shape, self.chunks, self.chunk_grid))
 
     def variable_shape(self, name):
         return tuple(len(self.coords[d][0]) for d in self.variables[name].dims)
@@ -120,7 +124,7 @@ class Plan:
         return tuple(where.get(d, slice(None)) for d in self.variables[name].dims)
 
     def chunk_index(self, name, block):
-        """The index of the chunk of a variable that a block of the grid is."""
+        """The index of the chunk of a variable where a block of the grid starts."""
         where = dict(zip(self.dims, zip(block, self.chunks)))
         return tuple(where[d][0].start // where[d][1] if d in where else 0
                      for d in self.variables[name].dims)
@@ -133,385 +137,67 @@ def auto_points_per_task(n_points, n_workers):
     return int(min(MAX_POINTS_PER_TASK, max(MIN_POINTS_PER_TASK, wanted)))
 
 
-def version():
-    return __version__
+class Tasks:
+    """The chunks still to hand out, cut into tasks when they are handed out: the grid of
+    chunks is tiled into blocks of the task's extent (it may change from one task to the
+    next, with the workers), taken longest first (by the plan's cost, else by size; ties in
+    grid order: the last tasks to finish are short ones and no worker waits long for the
+    others at the end, Graham's longest processing time first); a tile of which some chunks
+    are taken already is split into the largest blocks of free chunks."""
 
-
-def _fingerprint(spec):
-    return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()
-
-
-def _check_store(store):
-    """The store path: a string or path-like whose parent directory is (or can be made)
-    writable. Checked before anything is computed."""
-    if not isinstance(store, (str, os.PathLike)) or not os.fspath(store):
-        raise InputError(f"store = {store!r} is not valid: give the path of a Zarr store "
-                         "(a directory)")
-    path = os.path.abspath(os.fspath(store))
-    if os.path.exists(path):
-        if not os.path.isdir(path):
-            raise InputError(f"store = {os.fspath(store)!r} is a file, not a Zarr store "
-                             "(a directory)")
-        if not os.access(path, os.W_OK):
-            raise InputError(f"store = {os.fspath(store)!r} is not writable")
-        return path
-    parent = os.path.dirname(path)
-    existing = parent
-    while not os.path.exists(existing):
-        existing = os.path.dirname(existing)
-    if not os.path.isdir(existing) or not os.access(existing, os.W_OK | os.X_OK):
-        raise InputError(f"store = {os.fspath(store)!r} cannot be created: {existing!r} is not "
-                         "a writable directory")
-    return path
-
-
-def _template(plan):
-    """The empty study as a Dataset, and its encoding: the plan's chunks, and a CRC-32 in every
-    chunk of a variable, so that a damaged chunk is found when the study is resumed."""
-    import numcodecs
-    import xarray as xr
-    coords = {d: xr.Variable(d, np.asarray(v), attrs) for d, (v, attrs) in plan.coords.items()}
-    data = {}
-    encoding = {}
-    for name, var in plan.variables.items():
-        data[name] = xr.Variable(var.dims, np.full(plan.variable_shape(name), var.fill,
-                                                   dtype=var.dtype), var.attrs)
-        encoding[name] = {"chunks": plan.variable_chunks(name), "filters": [numcodecs.CRC32()],
-                          "_FillValue": np.nan if np.dtype(var.dtype).kind == "f" else None}
-    ds = xr.Dataset(data, coords=coords, attrs=plan.attrs)
-    return ds, encoding
-
-
-def _remove_tree(path):
-    """Remove a directory that writes still under way may fill again (zarr writes a store's
-    files concurrently: when one write fails, the others go on for a moment)."""
-    for _ in range(100):
-        shutil.rmtree(path, ignore_errors=True)
-        time.sleep(0.05)
-        if not os.path.exists(path):
-            time.sleep(0.2)
-            if not os.path.exists(path):
-                return
-
-
-def _create_store(plan, path):
-    """Write the empty study (every point not done) under a temporary name, then rename it:
-    a store either exists whole or not at all."""
-    ds, encoding = _template(plan)
-    tmp = f"{path}.creating-{uuid.uuid4().hex[:8]}"
-    try:
-        ds.to_zarr(tmp, mode="w-", encoding=encoding, consolidated=True, zarr_format=2,
-                   compute=True)
-        os.replace(tmp, path)
-    except FileExistsError:
-        raise InputError(f"store = {path!r} appeared while it was being created") from None
-    except OSError as exc:
-        raise FileError(f"store = {path!r} cannot be written: {exc.strerror or exc}; nothing "
-                        "of it is left") from exc
-    finally:
-        if os.path.exists(tmp):
-            _remove_tree(tmp)
-
-
-def _damaged(path, what):
-    return InputError(f"store = {path!r} is damaged: {what}; it cannot be repaired by "
-                      "recomputing points: give another store, or delete it to start again")
-
-
-def _chunk_file(path, name, index):
-    """The file of chunk `index` of array `name` (Zarr format 2, '.' separated keys)."""
-    return os.path.join(path, name, ".".join(str(i) for i in index))
-
-
-def _open_study(plan, path):
-    """An existing store checked against the plan: the same study (else refused, naming what
-    differs), every array of the plan there with its shape, coordinates equal to the plan's
-    (else refused as damaged). Returns (chunks, todo, repaired): the store's chunk shape (its
-    tasks), the blocks with points to compute, and the number of finished points whose stored
-    data were missing or unreadable, and the arrays where (a deleted, truncated or garbled chunk: every chunk carries a CRC-32):
-    those blocks' chunk files are removed, so that they are computed again."""
-    import zarr
-    if not os.path.isfile(os.path.join(path, ".zmetadata")):
-        raise _damaged(path, "its consolidated metadata .zmetadata is missing")
-    try:
-        group = zarr.open_group(path, mode="r", zarr_format=2, use_consolidated=True)
-        stored = json.loads(group.attrs["study_spec"])
-    except Exception as exc:
-        raise InputError(f"store = {path!r} exists but is not a sloshdyn study store "
-                         f"({type(exc).__name__}: {exc}); give a new path") from None
-    if _fingerprint(stored) != _fingerprint(plan.spec):
-        differ = sorted(k for k in set(stored) | set(plan.spec) if stored.get(k) != plan.spec.get(k))
-        raise InputError(f"store = {path!r} holds a different study (it differs in: "
-                         f"{', '.join(differ)}); it is never mixed with this one: give another "
-                         "store, or delete it to start again")
-    arrays = {}
-    for name in [*plan.coords, *plan.variables]:
-        if not os.path.isfile(os.path.join(path, name, ".zarray")) or name not in group:
-            raise _damaged(path, f"its array {name!r} is missing")
-        arrays[name] = group[name]
-    for name, (values, _) in plan.coords.items():
-        try:
-            same = np.array_equal(np.asarray(arrays[name][...]).astype(np.asarray(values).dtype),
-                                  values)
-        except Exception:
-            same = False
-        if not same:
-            raise _damaged(path, f"its coordinate {name!r} is unreadable or not the study's")
-    plan = dataclasses.replace(plan, chunks=tuple(arrays["done"].chunks))
-    for name in plan.variables:
-        if arrays[name].shape != plan.variable_shape(name) or \
-                arrays[name].chunks != plan.variable_chunks(name):
-            raise _damaged(path, f"its array {name!r} has shape {arrays[name].shape} in chunks "
-                                 f"{arrays[name].chunks}, not the study's")
-    todo, repaired, damaged_arrays = [], 0, set()
-    for block in plan.blocks():
-        damaged = []
-        for name in ["done", *(v for v in plan.variables if v != "done")]:
-            index = plan.chunk_index(name, block)
-            try:
-                ok = os.path.isfile(_chunk_file(path, name, index))
-                values = arrays[name][plan.region(name, block)] if ok else None
-            except Exception:        # a truncated or garbled chunk (CRC-32, decompression)
-                ok = False
-            if name == "done":
-                if not ok or not values.all():
-                    break            # not done (or its mark is lost): computed again
-            elif not ok:
-                damaged.append(name)
-        else:
-            if not damaged:
-                continue             # done, every variable there
-        todo.append(block)
-        if damaged:                  # the block's chunks go: its points are no longer done
-            for name in ["done", *damaged]:
-                with contextlib.suppress(FileNotFoundError):
-                    os.remove(_chunk_file(path, name, plan.chunk_index(name, block)))
-            repaired += plan.block_size(block)
-            damaged_arrays.update(damaged)
-    return plan.chunks, todo, repaired, sorted(damaged_arrays)
-
-
-def check_scheduler(scheduler):
-    """The scheduler address: [scheme://]host:port, with a scheme Dask can connect by (tcp
-    when none is given) and a port in 1..65535. Returns (address, scheme, host, port)."""
-    from urllib.parse import urlsplit
-    from distributed.comm import registry
-    schemes = sorted(k for k in registry.backends if k != "inproc")
-    if not isinstance(scheduler, str) or not scheduler.strip():
-        raise InputError(f"scheduler = {scheduler!r:.80} is not valid: give the address of a "
-                         "Dask scheduler, such as tcp://host:8786")
-    address = scheduler.strip()
-    scheme = address.split("://", 1)[0] if "://" in address else "tcp"
-    if scheme not in schemes:
-        raise InputError(f"scheduler = {scheduler!r:.80} is not valid: its scheme {scheme!r} "
-                         f"is not one of {', '.join(schemes)}")
-    try:
-        parts = urlsplit(address if "://" in address else f"tcp://{address}")
-        host, port = parts.hostname, parts.port
-    except ValueError:
-        host = port = None
-    if not host or port is None or not 0 < port < 65536 or parts.path or parts.query:
-        raise InputError(f"scheduler = {scheduler!r:.80} is not valid: give "
-                         f"{scheme}://host:port with a port in 1..65535")
-    return f"{scheme}://{parts.netloc}", scheme, host, port
-
-
-#: the largest first message a Dask scheduler sends (its handshake is well under 1 kB)
-_MAX_HANDSHAKE = 1 << 20
-
-
-def _probe_scheduler(scheduler, host, port):
-    """A scheduler at tcp://host:port answers at once with its handshake, a Dask message whose
-    8-byte header is its length: wait for that header at most CONNECT_TIMEOUT, and check that
-    it is a Dask message (an HTTP or other service answers other bytes, which Dask would take
-    for a length of exabytes)."""
-    deadline = time.monotonic() + CONNECT_TIMEOUT
-    header = b""
-    try:
-        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT) as s:
-            while len(header) < 8:
-                s.settimeout(max(0.01, deadline - time.monotonic()))
-                part = s.recv(8 - len(header))
-                if not part:
-                    raise ConnectionError("the connection was closed without a word")
-                header += part
-    except (OSError, TimeoutError) as exc:
-        what = "no answer" if isinstance(exc, TimeoutError) else type(exc).__name__
-        raise InputError(f"scheduler = {scheduler!r} did not answer within "
-                         f"{CONNECT_TIMEOUT:g} s ({what}: {exc})") from None
-    (length,) = struct.unpack("Q", header)
-    if not 0 < length <= _MAX_HANDSHAKE:
-        raise InputError(f"scheduler = {scheduler!r} is not a Dask scheduler: it answered "
-                         f"{header!r} (a Dask scheduler answers with a message of at most "
-                         f"{_MAX_HANDSHAKE} bytes)")
-
-
-def max_workers(worker_kind):
-    """The most workers an embedded cluster may have on this machine: 4 per core; worker
-    processes also at most one per WORKER_PROCESS_BYTES of its memory."""
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    bound = 4 * (cores or 1)
-    if worker_kind == "processes":
-        bound = min(bound, max(1, 2 * _checks.MAX_OUTPUT_BYTES // WORKER_PROCESS_BYTES))
-    return bound
-
-
-def _check_workers(workers, worker_kind):
-    _checks.choice("worker_kind", worker_kind, _tables.names("worker_kinds")[0])
-    if workers is None:
-        return None
-    n = _checks.integer("workers", workers, 1)
-    bound = max_workers(worker_kind)
-    if n > bound:
-        raise InputError(f"workers = {n} is out of range: this machine runs at most {bound} "
-                         f"{'worker processes' if worker_kind == 'processes' else 'threads'} "
-                         "(4 per core" + (", one per 512 MiB of memory" if worker_kind ==
-                                          "processes" else "") + ")")
-    return n
-
-
-def _guarded(filename, lineno):
-    """Line `lineno` of the file is inside a top-level `if __name__ == "__main__":` block."""
-    import ast
-    try:
-        with open(filename, encoding="utf-8") as f:
-            tree = ast.parse(f.read())
-    except (OSError, SyntaxError, ValueError):
-        return False
-
-    def is_main(test):
-        if not (isinstance(test, ast.Compare) and len(test.ops) == 1
-                and isinstance(test.ops[0], ast.Eq)):
-            return False
-        sides = [test.left, test.comparators[0]]
-        return (any(isinstance(x, ast.Name) and x.id == "__name__" for x in sides)
-                and any(isinstance(x, ast.Constant) and x.value == "__main__" for x in sides))
-    return any(isinstance(node, ast.If) and is_main(node.test)
-               and node.body[0].lineno <= lineno <= node.body[-1].end_lineno
-               for node in tree.body)
-
-
-def _why_no_processes():
-    """Why worker processes cannot start from this program, or None. Python starts them by
-    spawning: each imports the program's main module again (as __mp_main__), so a main module
-    read from standard input cannot be imported, and a study called outside the
-    `if __name__ == "__main__":` block would start again in every worker."""
-    main = sys.modules.get("__main__")
-    path = getattr(main, "__file__", None)
-    if getattr(getattr(main, "__spec__", None), "name", None) is None:
-        if path is None:
-            return None                 # python -c, interactive: nothing is imported again
-        if not os.path.isfile(path):
-            return f"its main program ({path}) is not a file that they can import"
-    frame = sys._getframe(1)
-    while frame is not None:
-        if frame.f_code.co_name == "<module>" and frame.f_globals is vars(main) and \
-                not _guarded(frame.f_code.co_filename, frame.f_lineno):
-            return (f"the study is started at line {frame.f_lineno} of "
-                    f"{frame.f_code.co_filename}, outside an `if __name__ == \"__main__\":` "
-                    "block, so every worker process would start it again")
-        frame = frame.f_back
-    return None
-
-
-@contextlib.contextmanager
-def _client(client, scheduler, workers, worker_kind):
-    """The Dask client of a study: the one given, one connected to `scheduler`, or an embedded
-    local cluster sized to the machine (closed afterwards)."""
-    import dask
-    from dask.distributed import Client, LocalCluster
-    if client is not None:
-        yield client
-        return
-    if scheduler:
-        address, scheme, host, port = check_scheduler(scheduler)
-        if scheme == "tcp":
-            _probe_scheduler(scheduler, host, port)
-        try:
-            c = Client(address, timeout=CONNECT_TIMEOUT)
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError(f"scheduler = {scheduler!r} did not answer within "
-                             f"{CONNECT_TIMEOUT:g} s ({type(exc).__name__}: {exc})") from None
-        try:
-            yield c
-        finally:
-            c.close()
-        return
-    n = workers or min(os.cpu_count() or 1, max_workers(worker_kind))
-    processes = worker_kind == "processes"
-    why = _why_no_processes() if processes else None
-    if why:
-        warnings.warn(f"the study runs on {n} threads, not worker processes: {why}",
-                      RuntimeWarning, stacklevel=4)
-        processes = False
-    options = {"preload": ["sloshdyn.studies.worker"]} if processes else {}
-    with contextlib.ExitStack() as stack:
-        with dask.config.set(CLUSTER_CONFIG):    # read as the servers start
-            cluster = stack.enter_context(LocalCluster(
-                n_workers=n if processes else 1, threads_per_worker=1 if processes else n,
-                processes=processes, dashboard_address=None, silence_logs=50, **options))
-        # results come straight from the workers (not through the scheduler: one copy and
-        # one (de)serialisation less in the study's process per task)
-        c = stack.enter_context(Client(cluster, direct_to_workers=True))
-        yield c
-
-
-def _put_chunk(path, data):
-    """Write a chunk file under a temporary name, then rename it: a killed writer leaves no
-    torn chunk (as Zarr's LocalStore writes). Not _files.atomic_path: inside a run_directory
-    that defers every rename to the run's end, and a chunk must be in place before its task's
-    'done' chunk."""
-    tmp = f"{path}.{uuid.uuid4().hex}.partial"
-    try:
-        with open(tmp, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.remove(tmp)
-        raise
-
-
-class _Writer:
-    """Writes a task's results into the store: each variable's chunk of the block, then the
-    block's 'done' chunk, so a point is marked done only once its results are on disk. A
-    chunk is encoded as Zarr format 2 encodes it, with the array's own codecs (the filters in
-    order, then the compressor; an edge chunk padded with the fill value): the files are
-    Zarr's, byte for byte, for a tenth of the CPU of zarr's asynchronous pipeline (which took
-    ~8 ms of the study's process per task of 13 chunks, from the workers' cores)."""
-
-    def __init__(self, path, plan):
-        import zarr
+    def __init__(self, plan, todo):
         self.plan = plan
-        self.path = path
-        group = zarr.open_group(path, mode="r", zarr_format=2, use_consolidated=True)
-        self.arrays = {}
-        for name in plan.variables:
-            array = group[name]       # its metadata as the study's reads see it (consolidated)
-            fill = np.array(0 if array.fill_value is None else array.fill_value)
-            self.arrays[name] = (array.dtype, array.chunks, fill.astype(array.dtype),
-                                 [*array.filters, *array.compressors])
+        self.free = todo.copy()            #: chunks to compute not handed out yet
+        self.extent = None
+        self.order = []
+        self.ready = []                    #: blocks of free chunks of the current tile
 
-    def _put(self, name, block, values):
-        dtype, chunks, fill, codecs = self.arrays[name]
-        chunk = np.full(chunks, fill, dtype)
-        chunk[tuple(slice(None) if s.stop is None else slice(0, s.stop - s.start)
-                    for s in self.plan.region(name, block))] = values
-        data = chunk
-        for codec in codecs:
-            data = codec.encode(data)
-        _put_chunk(_chunk_file(self.path, name, self.plan.chunk_index(name, block)), data)
+    def points_left(self):
+        sizes = [np.diff(np.minimum(np.arange(g + 1) * c, n))
+                 for g, c, n in zip(self.plan.chunk_grid, self.plan.chunks, self.plan.shape)]
+        counts = sizes[0]
+        for s in sizes[1:]:
+            counts = np.multiply.outer(counts, s)
+        return int(counts[self.free].sum())
 
-    def write(self, block, result):
-        try:
-            for name, values in result.items():
-                if name != SECONDS:
-                    self._put(name, block, values)
-            self._put("done", block, True)
-        except OSError as exc:
-            raise FileError(f"store = {self.path!r}: the results of a task cannot be written "
-                            f"({exc.strerror or exc}); the points stored before are kept: "
-                            "rerun the same study on it to resume") from exc
+    def _tile(self, extent):
+        grid = self.plan.chunk_grid
+        corners = [tuple(i * e for i, e in zip(index, extent))
+                   for index in np.ndindex(*[math.ceil(g / e) for g, e in zip(grid, extent)])]
+        tiles = [(lo, tuple(min(a + e, g) for a, e, g in zip(lo, extent, grid)))
+                 for lo in corners]
+        tiles = [t for t in tiles if self.free[tuple(slice(a, b) for a, b in zip(*t))].any()]
+        key = self.plan.cost or self.plan.block_size
+        self.order = sorted(tiles, key=lambda t: key(self.plan.block(*t)), reverse=True)
+        self.order.reverse()               # popped from the end: the longest first
+        self.extent = extent
+
+    def _split(self, lower, upper):
+        """The largest blocks of free chunks in lower..upper-1, halving the longest axis."""
+        region = self.free[tuple(slice(a, b) for a, b in zip(lower, upper))]
+        if region.all():
+            return [(lower, upper)]
+        if not region.any():
+            return []
+        axis = int(np.argmax([b - a for a, b in zip(lower, upper)]))
+        middle = (lower[axis] + upper[axis]) // 2
+        return (self._split(lower, upper[:axis] + (middle,) + upper[axis + 1:])
+                + self._split(lower[:axis] + (middle,) + lower[axis + 1:], upper))
+
+    def take(self, points):
+        """The next task's block, about `points` points of whole chunks, or None when every
+        chunk is handed out."""
+        extent = self.plan.task_extent(points)
+        if extent != self.extent:
+            self._tile(extent)
+            self.ready = []
+        while not self.ready and self.order:
+            self.ready = self._split(*self.order.pop())[::-1]
+        if not self.ready:
+            return None
+        lower, upper = self.ready.pop()
+        self.free[tuple(slice(a, b) for a, b in zip(lower, upper))] = False
+        return self.plan.block(lower, upper)
 
 
 def check_size(plan):
@@ -559,100 +245,209 @@ def _remembered_interrupts():
             signal.signal(sig, handler)
 
 
-def _load(path, plan):
-    """The study's points from its store, loaded (derived variables are derived again)."""
-    import xarray as xr
-    ds = xr.open_zarr(path, consolidated=True, chunks=None)
-    return ds[list(plan.variables)].load()
+def _task_error(error, plan, block):
+    """The error of a task that failed on its worker: a sloshdyn error as it is; a task
+    that ended the workers that ran it (Dask's KilledWorker) names its points."""
+    from distributed import KilledWorker
+    if isinstance(error, KilledWorker):
+        where = ", ".join(f"{d} {plan.coords[d][0][s][0]!s:.12}..{plan.coords[d][0][s][-1]!s:.12}"
+                          for d, s in zip(plan.dims, block))
+        return ClusterError(f"the task of {plan.block_size(block)} points ({where}) ended every "
+                            f"worker that ran it ({error}): it is not retried")
+    return error
+
+
+def _run_tasks(c, plan, tasks, pool, writer, bar, check_interrupts):
+    """Hand out the tasks in waves (TASKS_AHEAD_PER_THREAD per usable worker thread, each
+    sized from the threads there at that moment, restricted to the usable workers), write
+    each result as it comes, and watch the workers (a study without a usable worker fails
+    after the grace time). Returns (points computed, seconds computed)."""
+    from distributed import wait
+    pending = {}                          #: future -> (block, the workers it may run on)
+    computed, seconds = 0, 0.0
+    todo_points = tasks.points_left()
+    sequence = 0
+
+    def submit(block):
+        nonlocal sequence
+        function, args = plan.task(block)
+        allowed = list(pool.usable)
+        sequence += 1
+        future = c.submit(function, *args, pure=False, priority=-sequence, workers=allowed,
+                          allow_other_workers=False)
+        pending[future] = (block, set(allowed))
+
+    try:
+        while True:
+            pool.check_alive()
+            threads = pool.threads()
+            if threads:
+                per_task = plan.points_per_task or auto_points_per_task(todo_points, threads)
+                while len(pending) < TASKS_AHEAD_PER_THREAD * threads:
+                    block = tasks.take(per_task)
+                    if block is None:
+                        break
+                    submit(block)
+                for future, (block, allowed) in list(pending.items()):
+                    if not allowed & set(pool.usable):    # its workers are gone: others now
+                        del pending[future]
+                        future.cancel()
+                        submit(block)
+            if not pending:
+                if not tasks.free.any():
+                    return computed, seconds
+                time.sleep(cluster.TICK)         # no usable worker: check_alive waits
+                continue
+            try:
+                finished = wait(list(pending), timeout=cluster.TICK,
+                                return_when="FIRST_COMPLETED").done
+            except TimeoutError:
+                finished = ()
+            for future in finished:
+                block, _ = pending.pop(future)
+                if future.status == "cancelled":     # by the cluster (not by us): again
+                    submit(block)
+                    continue
+                if future.status != "finished":
+                    raise _task_error(future.exception(), plan, block)
+                result = future.result()
+                seconds += result.get(SECONDS, 0.0)
+                writer.write(block, result)
+                computed += plan.block_size(block)
+                if bar:
+                    bar.update(plan.block_size(block))
+            check_interrupts()
+    finally:
+        for future in pending:
+            future.cancel()
+        pending.clear()
 
 
 def run_plan(plan, store, *, client=None, scheduler=None, workers=None, worker_kind=None,
-             progress=True, derive=None):
+             min_workers=None, grace_time=None, progress=True, derive=None):
     """Run a study plan on Dask, storing each task's results in `store` as it finishes; return
     the whole study as an xarray Dataset (loaded). Already finished points are not recomputed;
     the returned dataset's attrs['points_computed'] counts the points this call computed,
-    attrs['compute_seconds'] the time its tasks spent computing (summed over workers) and
+    attrs['compute_seconds'] the time its tasks spent computing (summed over workers),
     attrs['points_repaired'] the finished points computed again because their stored data were
-    missing or damaged (attrs['repaired'] says which variables). derive(dataset), if given,
+    missing, damaged or not theirs (attrs['repaired'] says which variables) and
+    attrs['points_failed'] the points whose status is not 0. The study waits for
+    `min_workers` usable workers at its start, and for a usable worker whenever none is alive,
+    at most `grace_time` seconds each time (then ClusterError). derive(dataset), if given,
     adds the variables derived from all the points (basins' attractor list, the fragility
     fit): they join the store too, derived again by every rerun."""
     require("studies", "dask.distributed", "xarray", "zarr")
-    path = _check_store(store)
+    path = stores.check_path(store)
+    plan = _with_identity(plan)
     if worker_kind is None:
-        worker_kind = WORKER_KIND
+        worker_kind = cluster.WORKER_KIND
+    embedded = None
     if client is None and scheduler:
-        check_scheduler(scheduler)
+        cluster.check_scheduler(scheduler)
     elif client is None:
-        workers = _check_workers(workers, worker_kind)
+        workers = cluster.check_workers(workers, worker_kind)
+        embedded = cluster.embedded_size(workers, worker_kind)
+    minimum, grace = cluster.check_waiting(min_workers, grace_time, embedded)
     check_size(plan)
     exists = os.path.exists(path)
+    plan = dataclasses.replace(plan, chunks=stores.check_existing(plan, path) if exists else
+                               stores.chunk_shape(plan))
     todo, repaired, damaged = None, 0, []
-    if exists:    # the store's tasks win: its chunks are its tasks
-        chunks, todo, repaired, damaged = _open_study(plan, path)
-        plan = dataclasses.replace(plan, chunks=chunks)
-    computed = 0
-    compute_seconds = 0.0
+    if exists:
+        todo, repaired, damaged = stores.Store(plan, path).verify()
+    computed = compute_seconds = 0
     loading = None
-    if todo is None or todo:
-        from dask.distributed import as_completed
+    if todo is None or todo.any():
         bar = None
         try:
-            with _client(client, scheduler, workers, worker_kind) as c:
-                if not exists:        # the task size needs the workers: the store comes now
-                    ppt = plan.points_per_task or auto_points_per_task(
-                        int(np.prod(plan.shape)), sum(c.nthreads().values()))
-                    plan = dataclasses.replace(plan, chunks=tuple(plan.chunking(ppt)))
-                    _create_store(plan, path)
-                    todo = list(plan.blocks())
-                remaining = sum(plan.block_size(b) for b in todo)
+            with contextlib.ExitStack() as stack:
+                stack.callback(_cancel.clear_cancel)      # once the cluster is closed
+                c = stack.enter_context(cluster.connect(client, scheduler, workers, worker_kind))
+                pool = cluster.Workers(c, grace, minimum if embedded is None else 1)
+                pool.wait_for_minimum()
+                if todo is None:
+                    if not stores.create(plan, path):    # another study created it meanwhile
+                        plan = dataclasses.replace(plan, chunks=stores.check_existing(plan, path))
+                        todo, repaired, damaged = stores.Store(plan, path).verify()
+                    else:
+                        todo = np.ones(plan.chunk_grid, dtype=bool)
+                tasks = Tasks(plan, todo)
                 if progress:
                     from tqdm.auto import tqdm
-                    total = int(np.prod(plan.shape))
-                    bar = tqdm(total=total, initial=total - remaining,
+                    total = math.prod(plan.shape)
+                    bar = tqdm(total=total, initial=total - tasks.points_left(),
                                desc=plan.kind.replace("_", " "), unit="point", smoothing=0.1)
-                writer = _Writer(path, plan)
-                futures = {}
-                todo = plan.longest_first(todo)
-                for k, block in enumerate(todo):
-                    function, args = plan.task(block)
-                    futures[c.submit(function, *args, pure=False,
-                                     priority=len(todo) - k)] = block
                 try:
                     with _remembered_interrupts() as check_interrupts:
-                        for future in as_completed(futures):
-                            block = futures.pop(future)
-                            result = future.result()
-                            compute_seconds += result.get(SECONDS, 0.0)
-                            writer.write(block, result)
-                            computed += plan.block_size(block)
-                            if bar:
-                                bar.update(plan.block_size(block))
-                            check_interrupts()
+                        computed, compute_seconds = _run_tasks(
+                            c, plan, tasks, pool, stores.Store(plan, path), bar,
+                            check_interrupts)
                         check_interrupts()
-                finally:
-                    for future in futures:
-                        future.cancel()
+                except BaseException:
+                    # the tasks running in this process (worker threads) stop within one
+                    # integrator step; the cluster's close waits for them
+                    _cancel.request_cancel()
+                    raise
                 # every task is stored: the study is read while the cluster closes
                 reader = concurrent.futures.ThreadPoolExecutor(1)
-                loading = reader.submit(_load, path, plan)
+                loading = reader.submit(stores.load, path, plan)
                 reader.shutdown(wait=False)
         except KeyboardInterrupt as exc:    # Ctrl-C, or SIGTERM as sloshdyn-py raises it
-            raise type(exc)(f"study interrupted: {computed} points stored in {path} this run; "
-                            "rerun the same study on it to resume") from None
+            raise type(exc)(f"study interrupted: {_stored(plan, path)} points stored in {path}"
+                            "; rerun the same study on it to resume") from None
+        except ClusterError as exc:
+            raise ClusterError(f"{exc}; {_stored(plan, path)} of the study's "
+                               f"{math.prod(plan.shape)} points are stored in {path}: rerun "
+                               "the same study on it to resume") from None
         finally:
             if bar:
                 bar.close()
-    ds = loading.result() if loading else _load(path, plan)
+    ds = loading.result() if loading else stores.load(path, plan)
     ds.attrs["points_computed"] = computed
     ds.attrs["compute_seconds"] = compute_seconds     #: inside the tasks, summed over workers
     ds.attrs["points_repaired"] = repaired
     ds.attrs["repaired"] = ", ".join(damaged)
     ds.attrs["store"] = path
+    ds.attrs["points_failed"] = int((ds["status"] > 0).sum()) if "status" in ds else 0
     if derive is not None:
         points = set(ds.data_vars)
         ds = derive(ds)
-        _store_derived(ds, [name for name in ds.data_vars if name not in points])
+        stores.store_derived(ds, [name for name in ds.data_vars if name not in points], RUN_ATTRS)
     return ds
+
+
+def failed_points(ds, limit=5):
+    """The failed points of a study's dataset named, at most `limit` of them (coordinates,
+    status and message), and how many failed: ("", 0) when none did."""
+    status = ds["status"]
+    where = np.argwhere(status.values > 0)
+    names = []
+    for index in where[:limit]:
+        point = status[tuple(index)]
+        at = ", ".join(f"{d} = {point[d].values!s}" for d in status.dims)
+        names.append(f"{at}: status {int(point)}, {ds['message'].values[tuple(index)]}")
+    more = f"; and {len(where) - limit} more" if len(where) > limit else ""
+    return "; ".join(names) + more, len(where)
+
+
+def _with_identity(plan):
+    """The plan with its `done` variable (each finished chunk's checksum, store.checksum) and
+    the store format in its spec (a store of another format is another study)."""
+    spec = {**plan.spec, "store_format": stores.STORE_FORMAT}
+    variables = {**plan.variables, "done": Variable(plan.dims, "u8", 0, {
+        "units": "1", "long_name": "the point's chunk is computed and stored: the checksum of "
+                                   "its study, place and values (0: not computed)"})}
+    attrs = {**plan.attrs, "study_spec": json.dumps(spec, sort_keys=True)}
+    return dataclasses.replace(plan, spec=spec, variables=variables, attrs=attrs)
+
+
+def _stored(plan, path):
+    """The points marked done in the store (0 if it cannot be read)."""
+    try:
+        done = stores.open_group(path)["done"][...]
+    except Exception:
+        return 0
+    return int((done != 0).sum())
 
 
 def axis(name, values, lower, lower_open=True):
@@ -672,18 +467,3 @@ def axis(name, values, lower, lower_open=True):
 
 def positive_int(name, value, lower=1):
     return _checks.integer(name, value, lower)
-
-
-
-def _store_derived(ds, names):
-    """Write the variables `names` of a study's dataset, derived from its points once they are
-    all in (basins' attractor list, the fragility fit), into the study's store beside them."""
-    import xarray as xr
-    kept = {k: v for k, v in ds.attrs.items() if k not in RUN_ATTRS}   # the store's own
-    try:
-        xr.Dataset({name: ds[name] for name in names}, attrs=kept).to_zarr(
-            ds.attrs["store"], mode="a", consolidated=True)
-    except OSError as exc:
-        raise FileError(f"store = {ds.attrs['store']!r}: {', '.join(names)} cannot be written "
-                        f"({exc.strerror or exc}); its points are complete: rerun the same "
-                        "study on it to write them") from exc

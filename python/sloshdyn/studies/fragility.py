@@ -14,12 +14,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _checks, _core, _tables
-from .._errors import InputError
+from .._errors import InputError, message_text
 from .._extras import require
 from ..ground import GroundMotion, acceleration_factor
 from ..options import Integration
 from ..tank import Tank
-from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
+from .engine import (SECONDS, Plan, Variable, axis, failed_points, positive_int, run_plan,
+                     version)
+from .points import message_variable
 
 _bridge = _core.sloshdyn_bridge_seismic
 
@@ -59,13 +61,14 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
     out["roof_impact"] = np.full(shape, 0, np.int8)
     out["roof_impacts"] = np.full(shape, -1, np.int32)
     out["status"] = np.zeros(shape, np.int16)
+    out["message"] = np.full(shape, "", dtype=object)
     for i, (ground, samples) in enumerate(records):
         psa = chosen = None
         for j, sa in enumerate(intensities):
             if psa is None:
                 # the first intensity as a single run would scale it (checks and messages
                 # included), then the record's Sa at `period` as scale_to_sa computes it
-                scaled, scaled_samples, status, _ = _bridge.scale_ground(
+                scaled, scaled_samples, status, message = _bridge.scale_ground(
                     ground, samples, 1.0, 0.0, sa * sa_factor, period, damping)
                 if status == 0:
                     _, _, spectrum, spectrum_status, _ = _bridge.ground_spectrum(
@@ -73,19 +76,20 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
                     if spectrum_status == 0 and spectrum[0] > 0:
                         psa = float(spectrum[0])
             else:
-                scaled, scaled_samples, status, _ = _bridge.scale_ground(
+                scaled, scaled_samples, status, message = _bridge.scale_ground(
                     ground, samples, (sa * sa_factor) / psa, 0.0, 0.0, period, damping)
             if status == 0 and chosen is None:
-                chosen, status, _ = _bridge.seismic_defaults(tank, scaled, scaled_samples, 0,
-                                                             scaled, scaled_samples[:0], 0.0, 0)
+                chosen, status, message = _bridge.seismic_defaults(
+                    tank, scaled, scaled_samples, 0, scaled, scaled_samples[:0], 0.0, 0)
                 if status != 0:
                     chosen = None
             if status == 0:
-                _, peaks, _, status, _ = _bridge.seismic_response(
+                _, peaks, _, status, message = _bridge.seismic_response(
                     tank, scaled, scaled_samples, float(chosen[0]), int(chosen[1]), integration)
             out["status"][i, j] = status
             if status != 0:
                 out["roof_impact"][i, j] = -1
+                out["message"][i, j] = message_text(message)
                 continue
             values = dict(zip(_PEAKS, peaks))
             for name in _FRAGILITY_LOADS:
@@ -107,6 +111,7 @@ def _record_name(record, k):
 
 def fragility_study(tank, records, intensities, store, *, units="g", period=None,
                     damping=0.005, client=None, scheduler=None, workers=None, worker_kind=None,
+                    min_workers=None, grace_time=None,
                     integration: Integration = Integration(), points_per_task=None,
                     progress=True, names=None):
     """Incremental dynamic analysis of a tank (sloshdyn.Tank) over a suite of ground-motion
@@ -186,8 +191,7 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
         "units": "1", "long_name": "number of strikes on the roof during the run"})
     variables["status"] = Variable(dims, "i2", -1, {
         "units": "1", "long_name": "core status of the run (0 ok, -1 not computed)"})
-    variables["done"] = Variable(dims, "bool", False, {
-        "long_name": "the run is computed and stored (resumable studies)"})
+    variables["message"] = message_variable(dims, "the run")
     digests = [hashlib.sha256(np.ascontiguousarray(a[1]).tobytes() + a[0].tobytes()).hexdigest()
                for a in arrays]
     spec = {"kind": "fragility", "tank": dataclasses.asdict(tank), "records": digests,
@@ -210,23 +214,31 @@ def fragility_study(tank, records, intensities, store, *, units="g", period=None
                                                       "damping"})},
         variables, attrs, spec, None, task, chunking, ppt, cost)
     return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
-                    worker_kind=worker_kind, progress=progress,
+                    worker_kind=worker_kind, min_workers=min_workers,
+                    grace_time=grace_time, progress=progress,
                     derive=lambda ds: _fit_study(ds, units))
 
 
 def _fit_study(ds, units):
-    """The lognormal fit of roof impact over every run, as 0-d variables."""
+    """The lognormal fit of roof impact over the runs that succeeded, as 0-d variables; the
+    runs that failed are no outcome: they are left out, counted and named (attrs
+    'fragility_fit'), and the fit says how many runs it rests on (fragility_runs)."""
     hit = ds["roof_impact"].values
-    ok = hit >= 0
+    ok = (ds["status"].values == 0) & (hit >= 0)
+    named, n_failed = failed_points(ds)
+    basis = f"over {int(ok.sum())} of {ok.size} runs" + (
+        f" ({n_failed} failed and left out: {named})" if n_failed else "")
     xs = np.broadcast_to(ds["intensity"].values, hit.shape)[ok]
     values = dict(median=np.nan, beta=np.nan, median_se=np.nan, beta_se=np.nan)
     try:
         fit = fit_fragility(xs, hit[ok].astype(float))
         values = dict(median=fit.median, beta=fit.beta, median_se=fit.median_se,
                       beta_se=fit.beta_se)
-        ds.attrs["fragility_fit"] = "lognormal, maximum likelihood over every run"
+        ds.attrs["fragility_fit"] = f"lognormal, maximum likelihood {basis}"
     except InputError as exc:     # no run or every run reached the roof, or they separate
-        ds.attrs["fragility_fit"] = f"not fitted: {exc}"
+        ds.attrs["fragility_fit"] = f"not fitted ({basis}): {exc}"
+    ds["fragility_runs"] = ((), int(ok.sum()), {
+        "units": "1", "long_name": "runs the fit rests on (failed runs are left out)"})
     ds["fragility_median"] = ((), values["median"], {
         "units": units, "long_name": "median of the lognormal fragility curve of roof impact "
                                      "(maximum likelihood)"})

@@ -16,7 +16,8 @@ from ..parameters import Parameters
 from ..periodic import lyapunov_exponent
 from ..simulation import amplitude_sweep
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
-from .points import MOTION_ATTRS, MOTION_CODES, MOTIONS, common_attrs, settings_arrays
+from .points import (MOTION_ATTRS, MOTION_CODES, MOTIONS, common_attrs, message_variable,
+                     settings_arrays)
 
 #: the paper's three statements about the continuation in A at rho = 0.513 (sec 4.2), as tested
 #: by impact_parameters: Fig 15 "x1 ~ O(0.01)" (within a factor 3 of 0.01: an order of
@@ -34,7 +35,8 @@ def _impact_task(params, betas, deltas, A_values, steady, integration, lyapunov)
     start = time.perf_counter()
     shape, n_a = (len(betas), len(deltas)), len(A_values)
     out = {"max_x1": np.full(shape + (n_a,), np.nan), "motion": np.zeros(shape + (n_a,), np.int8),
-           "lyapunov": np.full(shape, np.nan), "status": np.zeros(shape, np.int16)}
+           "lyapunov": np.full(shape, np.nan), "status": np.zeros(shape, np.int16),
+           "message": np.full(shape, "", dtype=object)}
     for i, beta in enumerate(betas):
         for j, delta in enumerate(deltas):
             p = params.replace(beta=float(beta), delta=float(delta))
@@ -45,6 +47,7 @@ def _impact_task(params, betas, deltas, A_values, steady, integration, lyapunov)
                     lyapunov=Lyapunov(**lyapunov)).exponent
             except SloshdynError as exc:
                 out["status"][i, j] = exc.status or 1
+                out["message"][i, j] = str(exc)
                 continue
             out["max_x1"][i, j] = [q.max_x1 for q in sweep.points]
             out["motion"][i, j] = [MOTION_CODES[q.motion] for q in sweep.points]
@@ -54,6 +57,7 @@ def _impact_task(params, betas, deltas, A_values, steady, integration, lyapunov)
 
 def impact_parameters(params: Parameters, betas, deltas, A_values, store, *,
                       client=None, scheduler=None, workers=None, worker_kind=None,
+                      min_workers=None, grace_time=None,
                       steady: Steady = Steady(), integration: Integration = Integration(),
                       lyapunov_periods=(100, 2000), points_per_task=None, progress=True):
     """Which impact coefficient beta and dissipation delta reproduce the paper's continuation
@@ -103,8 +107,7 @@ def impact_parameters(params: Parameters, betas, deltas, A_values, store, *,
             "units": "1 per unit tau", "long_name": f"largest Lyapunov exponent at A = {a[-1]:g}"}),
         "status": Variable(dims, "i2", -1, {
             "units": "1", "long_name": "core status of the point (0 ok, -1 not computed)"}),
-        "done": Variable(dims, "bool", False, {
-            "long_name": "the point is computed and stored (resumable studies)"})}
+        "message": message_variable(dims)}
     spec = {"kind": "impact_parameters", "parameters": dataclasses.asdict(params),
             "betas": b.tolist(), "deltas": d.tolist(), "A_values": a.tolist(),
             "steady": dataclasses.asdict(steady), "integration": dataclasses.asdict(integration),
@@ -119,7 +122,8 @@ def impact_parameters(params: Parameters, betas, deltas, A_values, store, *,
                                              "continuation"})},
         variables, attrs, spec, None, task, chunking, ppt)
     ds = run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
-                  worker_kind=worker_kind, progress=progress)
+                  worker_kind=worker_kind, min_workers=min_workers,
+                    grace_time=grace_time, progress=progress)
     return paper_statements(ds)
 
 

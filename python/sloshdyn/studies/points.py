@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import re
 
 import numpy as np
 
 from .. import _tables
-from .._errors import InputError
+from .._errors import InputError, message_text
 from ..options import Integration, Steady
 from .engine import Variable, version
 
@@ -75,7 +76,13 @@ def summary_variables(dims, suffix="", what="steady state from rest"):
     v["status" + suffix] = Variable(dims, "i2", -1, {
         "units": "1", "long_name": f"core status of the point (0 ok, -1 not computed; else "
                                    f"sloshdyn_status codes); {what}"})
+    v["message" + suffix] = message_variable(dims, what)
     return v
+
+
+def message_variable(dims, what="the point"):
+    return Variable(dims, "str", "", {"long_name": f"the core's message of a failed point "
+                                                   f"('' where status is 0); {what}"})
 
 
 def unpack(summaries, orbit, impact, status, shape, suffix="", order="C"):
@@ -91,3 +98,30 @@ def unpack(summaries, orbit, impact, status, shape, suffix="", order="C"):
     out["status" + suffix] = grid(np.asarray(status).astype(np.int16))
     return out
 
+
+
+#: the core's prefix that numbers a failed point within its task (sloshdyn_studies'
+#: steady_path and attractor_points): cut, so that a point's message is the same whatever the
+#: task it ran in
+_POINT_PREFIX = re.compile(r"^(point \d+ \([^)]*\)|initial state \d+): ")
+
+
+def point_messages(status, message, rerun, carried=False):
+    """The message of each point of a task (an object array of text, '' where the status is
+    0): the bridge returns the first failed point's message only, so every other failed point
+    is run again alone (rerun(i) -> its message; the same computation, so the same failure).
+    carried: a sweep that carries its state stops at its first failure; the points after it
+    say so."""
+    status = np.asarray(status).ravel()
+    out = np.full(status.shape, "", dtype=object)
+    failed = np.nonzero(status != 0)[0]
+    for k, i in enumerate(failed):
+        if k == 0:
+            text = message_text(message)
+        elif carried:
+            text = (f"not computed: the sweep carrying the state stopped at the failure of "
+                    f"the point before ({out[failed[0]]})")
+        else:
+            text = message_text(rerun(i))
+        out[i] = _POINT_PREFIX.sub("", text)
+    return out

@@ -16,8 +16,8 @@ from ..options import Integration, Steady
 from ..parameters import Parameters
 from ..tank import Tank
 from .engine import SECONDS, Plan, Variable, axis, positive_int, run_plan, version
-from .points import (SUMMARY_COLUMNS, common_attrs, orbit_rows, settings_arrays,
-                     summary_variables, unpack)
+from .points import (SUMMARY_COLUMNS, common_attrs, orbit_rows, point_messages,
+                     settings_arrays, summary_variables, unpack)
 
 _bridge = _core.sloshdyn_bridge_studies
 
@@ -30,9 +30,12 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
     n = rho.size
     flat_rho = np.ascontiguousarray(rho.ravel())
     flat_a = np.ascontiguousarray(A.ravel())
-    summaries, y_end, orbit, impact, status, _, _ = _bridge.steady_path(
+    summaries, y_end, orbit, impact, status, _, message = _bridge.steady_path(
         rpar, ipar, flat_rho, flat_a, np.zeros((4, n), order="F"), 0, integration, steady)
     out = unpack(summaries, orbit, impact, status, shape)
+    out["message"] = point_messages(status, message, lambda i: _bridge.steady_path(
+        rpar, ipar, flat_rho[i:i + 1], flat_a[i:i + 1], np.zeros((4, 1), order="F"), 0,
+        integration, steady)[-1]).reshape(shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
     rows = orbit_rows(orbit)
     out["shooting"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)
@@ -43,9 +46,10 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
             order = slice(None) if direction == "up" else slice(None, None, -1)
             r = np.ascontiguousarray(rho[order, j])
             a = np.ascontiguousarray(A[order, j])
-            s, _, o, imp, st, _, _ = _bridge.steady_path(
+            s, _, o, imp, st, _, text = _bridge.steady_path(
                 rpar, ipar, r, a, np.zeros((4, len(r)), order="F"), 1, integration, steady)
             part = unpack(s, o, imp, st, (len(r), 1), suffix=f"_{direction}")
+            part[f"message_{direction}"] = point_messages(st, text, None, carried=True)[:, None]
             parts.append({k: v[order] for k, v in part.items()})
         for k in parts[0]:
             out[k] = np.concatenate([p[k] for p in parts], axis=1)
@@ -70,7 +74,8 @@ def _tank_grid(tank, f, a, units):
 
 
 def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None, scheduler=None,
-                 workers=None, worker_kind=None, steady: Steady = Steady(),
+                 workers=None, worker_kind=None, min_workers=None, grace_time=None,
+                 steady: Steady = Steady(),
                  integration: Integration = Integration(), continuation="none",
                  points_per_task=None, progress=True, units="g"):
     """Steady states on a grid of forcing frequency x amplitude, as an xarray Dataset with
@@ -89,9 +94,14 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
 
     The study runs on `client` (a dask.distributed Client), on the scheduler at address
     `scheduler`, or (neither given) on an embedded local cluster of `workers` workers (default:
-    one per core) of kind `worker_kind` ('threads' by default, 'processes'). Rerunning the same
-    study on the same store resumes it; a store made by a different study is refused
-    (InputError). See docs/studies.md."""
+    one per core) of kind `worker_kind` ('threads' by default, 'processes'). It waits for
+    `min_workers` workers able to run it (default 1) at its start, and for one whenever none
+    is alive, at most `grace_time` seconds (default studies.GRACE_TIME) each time, then fails
+    with ClusterError naming the cause; a worker that cannot import sloshdyn, or imports
+    another version, is refused by name. A point that fails is stored with its status and
+    message (attrs['points_failed'] counts them). Rerunning the same study on the same store
+    resumes it; a store made by a different study is refused (InputError). See
+    docs/studies.md."""
     tank = None
     f = axis("frequencies", frequencies, 0.0)
     a = axis("amplitudes", amplitudes, 0.0, lower_open=False)
@@ -141,8 +151,6 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
     for d in directions:
         variables.update(summary_variables(dims, f"_{d}", f"sweep {d} in frequency carrying "
                                                            "the state"))
-    variables["done"] = Variable(dims, "bool", False, {
-        "long_name": "the point is computed and stored (resumable studies)"})
     if tank is not None:
         variables["rho"] = Variable(dims, "f8", np.nan, {
             "units": "1", "long_name": "forcing frequency ratio rho = Omega/omega of the point"})
@@ -174,4 +182,5 @@ def response_map(params_or_tank, frequencies, amplitudes, store, *, client=None,
         "study_spec": json.dumps(spec, sort_keys=True)})
     plan = Plan("response_map", dims, coords, variables, attrs, spec, None, task, chunking, ppt)
     return run_plan(plan, store, client=client, scheduler=scheduler, workers=workers,
-                    worker_kind=worker_kind, progress=progress)
+                    worker_kind=worker_kind, min_workers=min_workers,
+                    grace_time=grace_time, progress=progress)
