@@ -49,7 +49,7 @@ module sloshdyn_driver
                                ANALYSIS_STABILITY_CHART, ANALYSIS_SWIRL, chart_models, &
                               DIRECTION_DOWN, &
                                DIRECTION_BOTH, direction_names
-  use sloshdyn_results, only: result_files
+  use sloshdyn_results, only: result_files, check_output_directory
   use sloshdyn_stability_chart, only: chart_result, stability_chart, chart_tables, &
                                       chart_table_sizes, chart_kind, chart_codim2_kind
   use sloshdyn_slowflow_chart, only: chart_parameter_name
@@ -118,11 +118,15 @@ module sloshdyn_driver
 
 contains
 
-  !> Run the analysis of config: summary to standard output, CSV files into its directory.
-  subroutine run_analysis(config, status, message)
+  !> Run the analysis of config: summary to standard output, CSV files into its directory (by
+  !> the run-directory rule, sloshdyn_results; an output directory that a run may not take is
+  !> refused before anything runs). With staging not blank (sloshdyn-py) the files go into that
+  !> new directory instead, which the caller swaps into place.
+  subroutine run_analysis(config, status, message, staging)
     type(run_config), intent(in) :: config
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    character(len=*), intent(in), optional :: staging
     type(result_files) :: files
 
     if (config%study%given) then
@@ -130,6 +134,14 @@ contains
       message = '&study: this file describes a parameter study, which runs in Python on Dask: '// &
                 'sloshdyn-py study FILE'
       return
+    end if
+    if (present(staging)) then
+      files%staged = len_trim(staging) > 0
+      if (files%staged) files%directory = trim(staging)
+    end if
+    if (.not. files%staged) then
+      call check_output_directory(trim(config%directory), status, message)
+      if (status /= SD_OK) return
     end if
     call print_model(config)
     select case (config%analysis)
@@ -172,7 +184,7 @@ contains
     end select
     if (status == SD_OK) call files%commit(status, message)
     if (status == SD_OK) then
-      print '(/a)', 'Results written to '//files%directory//'/'
+      print '(/a)', 'Results written to '//files%target//'/'
     else
       call files%discard()
     end if
@@ -496,7 +508,8 @@ contains
         call in_context('sweep', status, message)
         message = trim(message)//'; the '//num2str(first - 1 + merge(n_done, 0, &
                   config%sweep%carry_state))//' of '//num2str(size(values))// &
-                  ' points completed are kept in '//files%partial_path('sweep.csv')
+                  ' points completed are kept in '// &
+                  files%partial_path('sweep.csv', in_place=.true.)
         return
       end if
       do i = first, last

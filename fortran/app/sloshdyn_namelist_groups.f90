@@ -599,6 +599,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     character(len=path_len + 1) :: directory
+    character(len=:), allocatable :: full
     type(run_config) :: defaults
     type(namelist_reader) :: reader
     namelist /output/ directory
@@ -616,13 +617,16 @@ contains
       call reader%check(file, status, message)
     end do
     if (status /= SD_OK) return
-    if (len_trim(directory) == 0) then
+    ! relative to the input file's folder, as every path of an input file (docs/namelist.md)
+    full = trim(directory)
+    if (len(full) > 0 .and. .not. file%describing) full = beside(file%path, full)
+    if (len(full) == 0) then
       call fail(status, message, '&output: directory = '''' is empty: give a directory name')
-    else if (len_trim(directory) > path_len) then
+    else if (len(full) > path_len) then
       call fail(status, message, '&output: directory is too long: it must have at most '// &
-                num2str(path_len)//' characters')
+                num2str(path_len)//' characters, with the input file''s folder')
     else
-      path = directory(1:path_len)
+      path = full
     end if
   end subroutine read_output
 

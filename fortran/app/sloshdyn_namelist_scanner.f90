@@ -10,9 +10,11 @@
 !> character of every position precomputed), so a line of megabytes costs no more per character
 !> than a short one (tests/python/test_namelist_scanner.py).
 module sloshdyn_namelist_scanner
+  use, intrinsic :: iso_fortran_env, only: int64
   use sloshdyn_kinds, only: message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_IO_ERROR
   use sloshdyn_text, only: num2str
+  use sloshdyn_files, only: file_type, FILE_OTHER, standard_input_text
   implicit none
   private
   public :: input_file, group_reader, type_hint, scan_file, start_description, require, &
@@ -20,6 +22,8 @@ module sloshdyn_namelist_scanner
 
   !> Longest group name.
   integer, parameter :: name_len = 32
+  !> The longest input file read from standard input (-).
+  integer(int64), parameter :: max_input_bytes = 256_int64*2**20
 
   abstract interface
     !> What a variable must be (for the message on a value that does not parse).
@@ -251,16 +255,34 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     character(len=message_len) :: iomsg
-    integer :: unit, ios, file_size
+    integer :: unit, ios, file_size, kind
+    integer(int64) :: bytes
     logical :: exists
 
     status = SD_OK
     message = ''
+    if (path == '-') then       ! standard input (its relative paths: to the current directory)
+      call standard_input_text(max_input_bytes, text, exists)
+      if (.not. exists) then
+        status = SD_IO_ERROR
+        message = 'cannot read the input file from standard input (-): a read error, or more '// &
+                  'than '//num2str(int(max_input_bytes/2**20))//' MiB'
+        deallocate (text)
+      end if
+      return
+    end if
     inquire (file=path, exist=exists)
     if (exists) inquire (file=trim(path)//'/.', exist=exists)
     if (exists) then
       status = SD_IO_ERROR
       message = 'cannot read input file '''//path//''': it is a directory'
+      return
+    end if
+    call file_type(path, kind, bytes)
+    if (kind == FILE_OTHER) then   ! opening a FIFO waits for a writer; a device may never end
+      status = SD_IO_ERROR
+      message = 'cannot read input file '''//path//''': it is not a regular file (a FIFO, a '// &
+                'device or a socket); give a file, or - for standard input'
       return
     end if
     open (newunit=unit, file=path, status='old', action='read', access='stream', &

@@ -1,16 +1,23 @@
-!> The result files of one run, all or nothing: each table is written as CSV under a temporary
-!> name unique to the run (dir/.name.XXXXXX, mkstemp), every open, write and close checked and
-!> the size on disk compared with the bytes written (gfortran does not report a full disk on
-!> write or close: the file is just shorter); commit renames them all into place once every one
-!> is complete, and if a rename fails it removes the files it already renamed and the
-!> temporaries; discard removes the temporaries. A cancellation requested before commit (Ctrl-C,
-!> SIGTERM) discards the run. Headers and column formats come from sloshdyn_tables, so both
-!> front doors write the same files.
+!> The result files of one run, all or nothing, by the run-directory rule of docs/failure.md:
+!> a run writes into a new directory of its own beside its output directory (PARENT/
+!> .NAME.run-PID-XXXXXX, mkdtemp), and commit swaps it into place whole, with its marker
+!> (.sloshdyn-run, listing the run's files), the previous run's directory removed; an output
+!> directory holding anything that no run wrote is refused by name (check_output_directory),
+!> so an input can never be in it. Sloshdyn-py gives a directory it made itself (staging) and
+!> swaps it by the same rule (python/sloshdyn/_files.py). In the run's directory each table is
+!> written as CSV under a temporary name (.name.XXXXXX, mkstemp: created new), every open,
+!> write and close checked and the size on disk compared with the bytes written (gfortran does
+!> not report a full disk on write or close: the file is just shorter); commit renames them to
+!> their names; discard removes the run's directory. A cancellation requested before commit
+!> (Ctrl-C, SIGTERM) discards the run. Headers and column formats come from sloshdyn_tables, so
+!> both front doors write the same files.
 !>
 !> A table whose rows come one after another as a long computation finishes them (a sweep's
-!> points) is written to dir/stem.partial.ext (begin_rows), each batch appended and flushed as
-!> it is done (append_rows), and renamed to its final name by commit like the others; discard
-!> keeps it, so a failed or killed run leaves the rows it finished.
+!> points) is written to stem.partial.ext in the run's directory (begin_rows, created new),
+!> each batch appended and flushed as it is done (append_rows), and renamed to its final name
+!> by commit like the others; discard keeps it: the run's directory, holding only it, is
+!> swapped into place, so a failed run leaves the rows it finished (a killed one, in its hidden
+!> directory).
 module sloshdyn_results
   use, intrinsic :: iso_fortran_env, only: int64
   use sloshdyn_kinds, only: wp, message_len
@@ -18,21 +25,27 @@ module sloshdyn_results
   use sloshdyn_cancel, only: check_cancel, cancel_signal
   use sloshdyn_text, only: num2str
   use sloshdyn_tables, only: table_header, table_formats, code_name
-  use sloshdyn_files, only: make_directory, rename_file, remove_file, unique_file
+  use sloshdyn_files, only: make_directory, rename_file, remove_file, unique_file, create_new, &
+                            temporary_directory, foreign_entry, remove_run_directory, &
+                            swap_into_place, error_text, file_type, is_link, process_id, &
+                            FILE_MISSING, FILE_DIRECTORY, RUN_MARKER, MARKER_HEADER
   implicit none
   private
-  public :: result_files
+  public :: result_files, check_output_directory
 
   !> Rows written between two polls of the cancellation flag.
   integer, parameter :: rows_per_poll = 4096
 
   type :: pending_file
-    character(len=:), allocatable :: final, temporary
+    character(len=:), allocatable :: final, temporary, name   !< name: in the output directory
     logical :: keep = .false.      !< rows of a partial table: kept by discard
   end type pending_file
 
   type :: result_files
-    character(len=:), allocatable :: directory
+    !> the output directory (as given: in messages), and the run's own directory where the
+    !> files are written (staged: one that sloshdyn-py made and swaps into place itself)
+    character(len=:), allocatable :: target, directory
+    logical :: staged = .false.
     type(pending_file), allocatable :: files(:)
   contains
     procedure :: create => create_directory
@@ -45,27 +58,105 @@ module sloshdyn_results
     procedure :: partial_path
     procedure :: commit
     procedure :: discard
+    procedure, private :: swap
   end type result_files
 
 contains
 
-  !> Create the output directory (with its parents).
+  !> Refuse an output directory that a run may not take (status SD_IO_ERROR, the message
+  !> naming it and why): something else than a directory (a symbolic link included), or a
+  !> directory holding an entry that no run of sloshdyn wrote.
+  subroutine check_output_directory(directory, status, message)
+    character(len=*), intent(in) :: directory
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=:), allocatable :: foreign
+    integer :: kind, code
+    integer(int64) :: size
+    status = SD_OK
+    message = ''
+    call file_type(directory, kind, size)
+    if ((kind /= FILE_MISSING .and. kind /= FILE_DIRECTORY) .or. is_link(directory)) then
+      status = SD_IO_ERROR
+      message = 'cannot write into '''//directory//''': it is not a directory'
+      if (is_link(directory)) message = trim(message)//' but a symbolic link'
+      return
+    end if
+    call foreign_entry(directory, foreign, code)
+    if (code /= 0) then
+      status = SD_IO_ERROR
+      message = 'cannot read the output directory '''//directory//''': '//error_text(code)
+    else if (len(foreign) > 0) then
+      status = SD_IO_ERROR
+      message = 'cannot write into '''//directory//''': it holds '''//foreign//''', which no '// &
+                'sloshdyn run wrote (an output directory belongs to a run and is replaced '// &
+                'whole: give a new directory, or one a run wrote; its '//RUN_MARKER// &
+                ' lists the run''s files)'
+    end if
+  end subroutine check_output_directory
+
+  !> Start the run's files for output directory `directory`: checked, its parents created, and
+  !> the run's own new directory beside it. When staged (sloshdyn-py set directory to a new
+  !> directory that it made and swaps into place itself) the files go there instead.
   subroutine create_directory(self, directory, status, message)
     class(result_files), intent(inout) :: self
     character(len=*), intent(in) :: directory
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     logical :: ok
+    integer :: code
     status = SD_OK
     message = ''
-    self%directory = trim(directory)
+    self%target = strip_slashes(trim(directory))
     allocate (self%files(0))
-    call make_directory(self%directory, ok)
-    if (.not. ok) then
+    if (self%staged) return
+    call check_output_directory(self%target, status, message)
+    if (status /= SD_OK) return
+    call make_directory(parent(self%target), ok)
+    code = 0
+    if (ok) call temporary_directory(beside(self%target, 'run'), self%directory, code)
+    if (.not. ok .or. code /= 0) then
       status = SD_IO_ERROR
-      message = 'cannot create output directory '''//self%directory//''''
+      message = 'cannot write into '''//self%target//''': cannot create its new directory in '''// &
+                parent(self%target)//''''
+      if (code /= 0) message = trim(message)//': '//error_text(code)
     end if
   end subroutine create_directory
+
+  !> The prefix of a run's hidden directory beside `target` (PARENT/.NAME.what-PID-).
+  function beside(target, what) result(prefix)
+    character(len=*), intent(in) :: target, what
+    character(len=:), allocatable :: prefix
+    integer :: slash
+    slash = index(target, '/', back=.true.)
+    prefix = target(1:slash)//'.'//target(slash + 1:)//'.'//what//'-'//num2str(process_id())//'-'
+  end function beside
+
+  !> The folder that holds path ('.' for a bare name).
+  function parent(path) result(folder)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: folder
+    integer :: slash
+    slash = index(path, '/', back=.true.)
+    if (slash == 0) then
+      folder = '.'
+    else if (slash == 1) then
+      folder = '/'
+    else
+      folder = path(1:slash - 1)
+    end if
+  end function parent
+
+  !> path without trailing slashes (the root kept).
+  function strip_slashes(path) result(stripped)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: stripped
+    stripped = path
+    do while (len(stripped) > 1)
+      if (stripped(len(stripped):) /= '/') exit
+      stripped = stripped(1:len(stripped) - 1)
+    end do
+  end function strip_slashes
 
   !> Write data (one column of the array per row of the file) as table `table` into file `name`
   !> under its temporary name.
@@ -122,11 +213,12 @@ contains
     ios = 0
     unit = -1
     file%final = self%directory//'/'//name
+    file%name = name
     call unique_file(self%directory//'/.'//name//'.', file%temporary)
     if (len(file%temporary) == 0) then
       status = SD_IO_ERROR
-      message = 'cannot write '//file%final//': cannot create a temporary file in '// &
-                self%directory
+      message = 'cannot write '//self%target//'/'//name//': cannot create a temporary file in '// &
+                self%target
       return
     end if
     self%files = [self%files, file]
@@ -149,7 +241,7 @@ contains
       message = ''
       if (ios /= 0) then
         status = SD_IO_ERROR
-        message = 'cannot write '//file%final//': '//trim(iomsg)
+        message = 'cannot write '//self%target//'/'//file%name//': '//trim(iomsg)
       end if
     end associate
   end subroutine close_pending
@@ -222,21 +314,28 @@ contains
     end do
   end subroutine write_rows
 
-  !> Where the rows of table file `name` gather until commit: dir/stem.partial.ext.
-  function partial_path(self, name) result(path)
+  !> Where the rows of table file `name` gather until commit: stem.partial.ext, in the run's
+  !> directory (in_place: in the output directory, where a failed run leaves them).
+  function partial_path(self, name, in_place) result(path)
     class(result_files), intent(in) :: self
     character(len=*), intent(in) :: name
+    logical, intent(in), optional :: in_place
     character(len=:), allocatable :: path
     integer :: dot
+    path = self%directory
+    if (present(in_place)) then
+      if (in_place) path = self%target
+    end if
     dot = index(name, '.', back=.true.)
     if (dot == 0) then
-      path = self%directory//'/'//name//'.partial'
+      path = path//'/'//name//'.partial'
     else
-      path = self%directory//'/'//name(1:dot - 1)//'.partial'//name(dot:)
+      path = path//'/'//name(1:dot - 1)//'.partial'//name(dot:)
     end if
   end function partial_path
 
-  !> Start the partial file of table `table` for file `name`: its header, no rows yet.
+  !> Start the partial file of table `table` for file `name` (created new): its header, no rows
+  !> yet.
   subroutine begin_rows(self, name, table, status, message)
     class(result_files), intent(inout) :: self
     character(len=*), intent(in) :: name, table
@@ -244,21 +343,28 @@ contains
     character(len=message_len), intent(out) :: message
     character(len=message_len) :: iomsg
     type(pending_file) :: file
-    integer :: unit, ios
+    integer :: unit, ios, code
     status = SD_OK
     message = ''
     iomsg = ''
     file%final = self%directory//'/'//name
+    file%name = name
     file%temporary = self%partial_path(name)
     file%keep = .true.
+    call create_new(file%temporary, code)
+    if (code /= 0) then
+      status = SD_IO_ERROR
+      message = 'cannot write '//self%partial_path(name, in_place=.true.)//': '//error_text(code)
+      return
+    end if
     self%files = [self%files, file]
-    open (newunit=unit, file=file%temporary, status='replace', action='write', iostat=ios, &
+    open (newunit=unit, file=file%temporary, status='old', action='write', iostat=ios, &
           iomsg=iomsg)
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=iomsg) table_header(table)
     call close_checked(unit, file%temporary, len(table_header(table), int64) + 1, ios, iomsg)
     if (ios /= 0) then
       status = SD_IO_ERROR
-      message = 'cannot write '//file%temporary//': '//trim(iomsg)
+      message = 'cannot write '//self%partial_path(name, in_place=.true.)//': '//trim(iomsg)
     end if
   end subroutine begin_rows
 
@@ -284,18 +390,18 @@ contains
     call close_checked(unit, path, size_before + bytes, ios, iomsg)
     if (ios /= 0) then
       status = SD_IO_ERROR
-      message = 'cannot append to '//path//': '//trim(iomsg)
+      message = 'cannot append to '//self%partial_path(name, in_place=.true.)//': '//trim(iomsg)
     end if
   end subroutine append_rows
 
-  !> Rename every file into place, unless a cancellation is pending; if one rename fails, remove
-  !> the files of this run already renamed and discard the rest: nothing of the run is left
-  !> under a final name.
+  !> Rename every file to its name in the run's directory and swap that into place with its
+  !> marker (staged: sloshdyn-py does), unless a cancellation is pending; if a step fails,
+  !> nothing of the run is left under a final name.
   subroutine commit(self, status, message)
     class(result_files), intent(inout) :: self
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    integer :: i, j
+    integer :: i
     logical :: ok
     status = SD_OK
     message = ''
@@ -310,26 +416,88 @@ contains
         status = SD_IO_ERROR
         message = 'cannot rename '//self%files(i)%temporary//' into '//self%files(i)%final// &
                   '; no result of this run is kept'
-        do j = 1, i - 1
-          call remove_file(self%files(j)%final)
-        end do
+        self%files(:)%keep = .false.
         call self%discard()
         return
       end if
     end do
+    if (.not. self%staged) call self%swap(status, message)
     deallocate (self%files)
     allocate (self%files(0))
   end subroutine commit
 
-  !> Remove every file not yet committed.
+  !> Remove every file not yet committed; the rows of a partial table are kept: the run's
+  !> directory, holding only them, takes the output directory's place.
   subroutine discard(self)
     class(result_files), intent(inout) :: self
-    integer :: i
+    integer :: i, status
+    character(len=message_len) :: message
     if (.not. allocated(self%files)) return
     do i = 1, size(self%files)
       if (.not. self%files(i)%keep) call remove_file(self%files(i)%temporary)
     end do
+    if (.not. self%staged .and. allocated(self%directory)) then
+      if (len(self%directory) == 0) then
+        continue
+      else if (any(self%files(:)%keep)) then
+        self%files = pack(self%files, self%files(:)%keep)
+        do i = 1, size(self%files)
+          self%files(i)%name = self%partial_path(self%files(i)%name)
+          self%files(i)%name = self%files(i)%name(index(self%files(i)%name, '/', back=.true.) &
+                                                  + 1:)
+        end do
+        call self%swap(status, message)
+      else
+        call remove_run_directory(self%directory, all=.true.)
+      end if
+    end if
     deallocate (self%files)
     allocate (self%files(0))
   end subroutine discard
+
+  !> Write the marker of the run's directory (the names of its files) and swap the directory
+  !> into the output directory's place (sloshdyn_files' swap_into_place); on failure the run's
+  !> directory is removed.
+  subroutine swap(self, status, message)
+    class(result_files), intent(inout) :: self
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    character(len=:), allocatable :: marker, foreign
+    integer :: unit, ios, i, code
+    logical :: ok
+    status = SD_IO_ERROR
+    call unique_file(self%directory//'/.marker.', marker)
+    ios = -1
+    if (len(marker) > 0) open (newunit=unit, file=marker, status='old', action='write', &
+                               iostat=ios)
+    if (ios == 0) write (unit, '(a)', iostat=ios) MARKER_HEADER
+    do i = 1, size(self%files)
+      if (ios == 0) write (unit, '(a)', iostat=ios) self%files(i)%name
+    end do
+    if (ios == 0) close (unit, iostat=ios)
+    ok = ios == 0
+    if (ok) call rename_file(marker, self%directory//'/'//RUN_MARKER, ok)
+    if (.not. ok) then
+      message = 'cannot write '//self%target//'/'//RUN_MARKER//'; no result of this run is kept'
+      call remove_run_directory(self%directory, all=.true.)
+      return
+    end if
+    call swap_into_place(self%directory, self%target, beside(self%target, 'previous'), &
+                         foreign, code)
+    if (code == 0) then
+      status = SD_OK
+      message = ''
+      return
+    end if
+    if (code == 1) then
+      call check_output_directory(self%target, status, message)
+      if (status == SD_OK) message = 'cannot write into '''//self%target//''': it holds '''// &
+                                     foreign//''', which no sloshdyn run wrote'
+      status = SD_IO_ERROR
+    else
+      message = 'cannot put the run''s new directory in the place of '''//self%target// &
+                ''': '//error_text(code)//'; no result of this run is kept'
+    end if
+    call remove_run_directory(self%directory, all=.true.)
+  end subroutine swap
 end module sloshdyn_results

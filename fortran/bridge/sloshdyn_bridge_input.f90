@@ -137,17 +137,20 @@ contains
   end subroutine input_record
 
   !> Read a namelist input file and run it exactly as the executable does (summary on standard
-  !> output, CSV files in its output directory, or in `directory` unless that is blank: the
-  !> calc sheet's, sloshdyn.design_report); status 1 for bad input. It releases the GIL so
-  !> that a cancellation request reaches it, but its app layer has static string lengths: never
-  !> two calls at once (sloshdyn.cli holds a lock around it).
-  subroutine run_input(path, directory, status, message)
+  !> output, CSV files), its files written into `staging`, a new directory that the caller made
+  !> and swaps into place (sloshdyn._files.run_directory; blank: as the executable, by the
+  !> core's run-directory rule); `directory`, unless blank, is the output directory named in
+  !> the summary and messages instead of the file's (the calc sheet's, sloshdyn.design_report);
+  !> status 1 for bad input. It releases the GIL so that a cancellation request reaches it, but
+  !> its app layer has static string lengths: never two calls at once (sloshdyn.cli holds a
+  !> lock around it).
+  subroutine run_input(path, directory, staging, status, message)
     !f2py threadsafe
     use sloshdyn_namelist, only: run_config, read_input_file => read_input, path_len
     use sloshdyn_driver, only: run_analysis
     use sloshdyn_status, only: SD_BAD_INPUT
     use sloshdyn_text, only: num2str
-    character(len=*), intent(in) :: path, directory
+    character(len=*), intent(in) :: path, directory, staging
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(run_config) :: config
@@ -160,7 +163,7 @@ contains
     else if (info == 0 .and. len_trim(directory) > 0) then
       config%directory = directory
     end if
-    if (info == 0) call run_analysis(config, info, message)
+    if (info == 0) call run_analysis(config, info, message, staging)
     status = info
   end subroutine run_input
 

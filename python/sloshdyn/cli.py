@@ -36,7 +36,8 @@ def main(argv=None):
                               description="Run the analysis a namelist file asks for (the same "
                               "input as the Fortran executable), print a summary, and write its "
                               "CSV files and a figure into the &output directory.")
-    run.add_argument("input", help="namelist file (see docs/namelist.md)")
+    run.add_argument("input", help="namelist file (see docs/namelist.md), or - for standard "
+                     "input (its relative paths then relative to the current directory)")
 
     rep = commands.add_parser("reproduce", help="recompute every figure of the paper",
                               description="Recompute every numerical figure of the paper (PNG "
@@ -252,11 +253,11 @@ def run_study(path, scheduler=None, workers=None, progress=True):
 def reproduce(out, only=None, quick=False):
     """Every figure, values.json and report.md into `out`, renamed into place together at the
     end (a failed or interrupted run leaves none of its files)."""
-    with run_directory(out):
-        return _reproduce(out, only, quick)
+    with run_directory(out) as run:
+        return _reproduce(run.path, only, quick, out)
 
 
-def _reproduce(out, only, quick):
+def _reproduce(out, only, quick, shown):
     selected = only or list(figures.FIGURES)
     reproduced, values = [], {}
     start = time.time()
@@ -271,7 +272,7 @@ def _reproduce(out, only, quick):
     verdicts = reference.check(values)
     write_report(out, reproduced, verdicts, time.time() - start)
     failed = [v.quantity for v in verdicts if not v.passed]
-    print(f"{len(reproduced)} figures, report: {out / 'report.md'}; "
+    print(f"{len(reproduced)} figures, report: {shown / 'report.md'}; "
           f"{len(verdicts) - len(failed)} of {len(verdicts)} quoted numbers within tolerance"
           + (f"; outside: {', '.join(failed)}" if failed else ""))
     return 0

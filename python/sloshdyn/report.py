@@ -16,21 +16,17 @@ from __future__ import annotations
 
 import contextlib
 import datetime
-import errno
 import hashlib
 import os
 import re
-import shutil
-import signal
 import sys
 import tempfile
-import threading
 from dataclasses import dataclass
 from pathlib import Path
 
 from . import _tables
 from ._errors import FileError, InputError, SloshdynError
-from ._files import file_error, write_csv, write_text
+from ._files import file_error, run_directory, write_csv, write_text
 from ._version import __version__
 from .ground import SPECTRUM_FIELDS
 from .namelist import read_namelist
@@ -65,11 +61,6 @@ ZERO_MEANS = {"support_height": "0: liquid_depth + freeboard",
               "t_end": "0: the run's default", "n_out": "0: the run's default"}
 #: docs/design.md as the package installs it (beside the reference tables; meson.build)
 DESIGN_PAGE = Path(__file__).parent / "reference" / "design.md"
-#: the run's own files beside the sheet's, and the marker a run directory holds (the same
-#: marker and header as the core's run directories, docs/failure.md)
-MARKER = ".sloshdyn-run"
-MARKER_HEADER = ("sloshdyn run directory: every file listed below was written by one run of "
-                 "sloshdyn, and the next run into this directory replaces it as a whole\n")
 
 
 @dataclass(frozen=True)
@@ -97,6 +88,9 @@ def design_report(input, out, *, project="", prepared_by="", paper="a4") -> Calc
         raise InputError(f"paper = {paper!r} is not valid: give one of {', '.join(PAPERS)}")
     path = Path(os.fsdecode(input))
     out = Path(os.fsdecode(out))
+    if os.fsdecode(input) == "-":
+        raise InputError("the calc sheet shows and hashes its input file: give a file, not "
+                         "standard input (-)")
     try:
         inp = read_namelist(path)
     except SloshdynError as exc:
@@ -114,10 +108,10 @@ def design_report(input, out, *, project="", prepared_by="", paper="a4") -> Calc
              "project": str(project), "prepared_by": str(prepared_by), "out": out,
              "when": datetime.datetime.now(datetime.timezone.utc).strftime(
                  "%Y-%m-%d %H:%M:%S UTC")}
-    with _sheet_directory(out) as directory:
-        with _captured_output(str(directory), str(Path(os.path.abspath(out)))):
-            run_input(path, directory)
-        names = write_sheet(directory, inp, sheet)
+    with run_directory(out) as run:
+        with _captured_output():
+            run_input(path, os.path.abspath(out), run.path)
+        names = write_sheet(run.path, inp, sheet)
     return CalcSheet(out / "report.md", out / "report.html", out / "report.pdf",
                      tuple(out / name for name in names["figures"]),
                      tuple(out / name for name in names["tables"]))
@@ -180,10 +174,9 @@ def _shown(name):
 
 
 @contextlib.contextmanager
-def _captured_output(directory, out):
+def _captured_output():
     """The core's summary (printed on file descriptor 1) passed on to sys.stdout, so that a
-    caller that captures sys.stdout (a notebook, pytest's capsys) gets it; the sheet's own
-    directory named as `out`, where its files will be ("Results written to ...")."""
+    caller that captures sys.stdout (a notebook, pytest's capsys) gets it."""
     sys.stdout.flush()
     saved = os.dup(1)
     with tempfile.TemporaryFile() as f:
@@ -195,96 +188,8 @@ def _captured_output(directory, out):
             os.dup2(saved, 1)
             os.close(saved)
             f.seek(0)
-            sys.stdout.write(f.read().decode("utf-8", errors="replace").replace(directory, out))
+            sys.stdout.write(f.read().decode("utf-8", errors="replace"))
             sys.stdout.flush()
-
-
-# ---- the sheet's directory: all at once or not at all ---------------------------------------
-# (the run-directory rule of docs/failure.md, here for the sheet's directory: a new directory
-# under a name unique to this sheet, beside DIR, swapped into place whole)
-
-def _foreign(directory):
-    """The first file of a directory that no run of sloshdyn wrote (its marker does not list
-    it), or None: an empty directory, or one a run wrote, may be replaced by a sheet."""
-    names = sorted(os.listdir(directory))
-    try:
-        with open(directory / MARKER, encoding="utf-8", errors="replace") as f:
-            text = f.read()
-    except OSError:
-        text = ""
-    marked = text.startswith(MARKER_HEADER)
-    listed = set(text[len(MARKER_HEADER):].splitlines()) if marked else set()
-    for name in names:
-        if not (marked and name == MARKER) and (name not in listed or
-                                                not (directory / name).is_file()):
-            return name
-    return None
-
-
-def _check_directory(out):
-    if out.exists() and not out.is_dir():
-        raise FileError(f"cannot write the calc sheet into {out}: it is not a directory")
-    with file_error(out, "read the directory"):
-        foreign = _foreign(out) if out.is_dir() else None
-    if foreign is not None:
-        raise FileError(f"{out} holds {_shown(foreign)!r}, which no sloshdyn run wrote: the "
-                        "calc sheet replaces its output directory as a whole, so it takes a "
-                        "new directory or one that only a run has written (its marker "
-                        f"{MARKER} lists the run's files)")
-
-
-@contextlib.contextmanager
-def _sheet_directory(out):
-    """A new directory beside `out` for the run and the sheet; when the block succeeds, it
-    replaces `out` whole (the previous sheet's files removed); on failure or interruption it
-    is removed and `out` is untouched."""
-    out = Path(os.path.abspath(out))
-    _check_directory(out)
-    with file_error(out.parent, "create the directory"):
-        out.parent.mkdir(parents=True, exist_ok=True)
-        staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.sheet-{os.getpid()}-",
-                                        dir=out.parent))
-    try:
-        yield staging
-        with file_error(out, "replace"):
-            _swap_into_place(staging, out)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
-
-
-def _swap_into_place(staging, out):
-    names = sorted(p.name for p in staging.iterdir() if p.is_file())
-    write_text(staging / MARKER, MARKER_HEADER + "".join(f"{n}\n" for n in names))
-    os.chmod(staging, 0o755)
-    with _signals_held():
-        try:
-            os.rename(staging, out)               # no directory there, or an empty one
-            return
-        except OSError as exc:
-            if exc.errno not in (errno.EEXIST, errno.ENOTEMPTY):
-                raise
-        _check_directory(out)
-        previous = Path(tempfile.mkdtemp(prefix=f".{out.name}.previous-{os.getpid()}-",
-                                         dir=out.parent))
-        os.rename(out, previous)                  # onto the empty directory of that name
-        os.rename(staging, out)
-    shutil.rmtree(previous, ignore_errors=True)
-
-
-@contextlib.contextmanager
-def _signals_held():
-    """Ctrl-C and SIGTERM held back (and delivered after the block) while the directories are
-    swapped, so that an interruption never leaves neither in place."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    held = {signal.SIGINT, signal.SIGTERM}
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 # ---- the sections -----------------------------------------------------------------------------

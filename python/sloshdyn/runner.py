@@ -15,7 +15,7 @@ import numpy as np
 from ._cancel import app_call
 from . import _core, _tables
 from ._errors import FileError, SloshdynError, check_status
-from ._files import save_figure
+from ._files import run_directory, save_figure
 from .asymptotics import FrequencyResponse, SpecialPoint
 from .charts import chart_from_files
 from .namelist import read_namelist
@@ -23,29 +23,44 @@ from .seismic import PEAK_LOADS, HarmonicSweep, SeismicResponse, seismic_default
 from .simulation import Simulation, Sweep, _summary
 
 
-def run_input(path, directory=None):
+def run_input(path, directory=None, staging=None):
     """Run a namelist file exactly as the executable does (the same reader, driver and writers,
     through the bridge), then draw the figure of the analysis from the files written. The files
-    go to `directory` if given (sloshdyn.design_report), else to the file's &output directory.
-    Returns the input as read."""
+    go to `directory` if given (sloshdyn.design_report), else to the file's &output directory,
+    by the run-directory rule (sloshdyn._files.run_directory: a new directory swapped into
+    place whole); with `staging`, into that new directory instead, which the caller swaps into
+    place. Returns the input as read."""
     try:
         inp = read_namelist(path)
     except SloshdynError as exc:
         exc.reading = True
         raise
     out = Path(inp.directory if directory is None else directory)
+    if staging is not None:
+        _run(path, inp, out, Path(staging), directory, None)
+        return inp
+    with run_directory(out) as run:
+        _run(path, inp, out, run.path, directory, run)
+    return inp
+
+
+def _run(path, inp, out, staging, directory, run):
+    """The core's run into `staging`, then the figure; a failed run's files the core kept (a
+    sweep's finished rows) are kept as the executable keeps them."""
     status, message = app_call(_core.sloshdyn_bridge_input.run_input, os.fsencode(path),
-                               os.fsencode("" if directory is None else directory))
+                               os.fsencode("" if directory is None else directory),
+                               os.fsencode(staging))
     sys.stdout.flush()
+    if status != 0 and run is not None and any(staging.iterdir()):
+        run.keep_on_failure()
     check_status(status, message)
-    figure = _figure(inp, out)
+    figure = _figure(inp, staging)
     if figure:
         try:
-            save_figure(figure[1], out / figure[0])
+            save_figure(figure[1], staging / figure[0])
         except FileError as exc:
             raise FileError(f"the result files in {out} are complete, the figure "
                             f"{figure[0]} is not: {exc}", exc.status) from exc
-    return inp
 
 
 def _table(path):

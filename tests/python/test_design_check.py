@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import re
+import shutil
 
 import numpy as np
 import pytest
@@ -416,7 +417,7 @@ def test_executable_writes_design_loads_and_freeboard_check(exe, tmp_path, examp
     spectrum, no record; design_loads.csv and freeboard_check.csv hold the rows the spectrum
     feeds, the numbers Python's design_check gives for the namelist's tank and &design (one
     core)."""
-    result = run(exe, EXAMPLES / f"{example}.nml", tmp_path)
+    result = run(exe, _copied(f"{example}.nml", tmp_path), tmp_path)
     assert result.returncode == 0, result.stderr
     assert "Design check" in result.stdout
     out = tmp_path / "sloshdyn_output" / example
@@ -501,7 +502,7 @@ def test_executable_writes_the_wall_pressure_of_the_design_check(exe, tmp_path, 
     (SRSS); the impulsive resultant is a_i g m_i with Annex A.2.1's m_i (typed here
     with scipy, independent of both core series), the convective one a_c g m_c with the row's
     m_c (to the codes' rounding of lambda_1 = 1.841); profile at 21 heights, hoop force p R."""
-    result = run(exe, EXAMPLES / f"{example}.nml", tmp_path)
+    result = run(exe, _copied(f"{example}.nml", tmp_path), tmp_path)
     assert result.returncode == 0, result.stderr
     out = tmp_path / "sloshdyn_output" / example
     inp = sloshdyn.read_namelist(EXAMPLES / f"{example}.nml")
@@ -532,7 +533,7 @@ def test_executable_writes_the_design_spectrum(exe, tmp_path):
     """design_spectrum.csv of tank_design.nml (ASCE 7: S_DS 1.0 g, S_D1 0.6 g, T_L 8 s): 100
     log-spaced periods 0.02-10 s; Sa at 5 % is ASCE 7-16 11.4.6 typed here, at 0.5 % API 650's
     K = 1.5 times it (E.4.6.1)."""
-    result = run(exe, EXAMPLES / "tank_design.nml", tmp_path)
+    result = run(exe, _copied("tank_design.nml", tmp_path), tmp_path)
     assert result.returncode == 0, result.stderr
     rows = read_csv(tmp_path / "sloshdyn_output" / "tank_design" / "design_spectrum.csv")
     periods = [row["period [s]"] for row in rows]
@@ -541,3 +542,10 @@ def test_executable_writes_the_design_spectrum(exe, tmp_path):
         assert row["sa_5_percent [g]"] == pytest.approx(asce7(T, 1.0, 0.6, 8.0), rel=1e-12)
         assert row["sa_0.5_percent [g]"] == pytest.approx(1.5 * asce7(T, 1.0, 0.6, 8.0),
                                                           rel=1e-12)
+
+
+def _copied(example, folder):
+    """The example input copied into `folder`: its output directory is relative to the file's
+    folder (docs/namelist.md, &output)."""
+    shutil.copy(EXAMPLES / example, folder / example)
+    return folder / example

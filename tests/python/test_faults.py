@@ -56,7 +56,13 @@ def final_files(directory):
 
 
 def leftovers(directory):
-    return {p.name for p in directory.iterdir() if p.name.startswith(".")} if directory.exists() else set()
+    """Temporaries of a run: hidden names in its output directory (its marker .sloshdyn-run
+    aside) and its new directories beside it (.NAME.run-..., .NAME.previous-...)."""
+    inside = {p.name for p in directory.iterdir() if p.name.startswith(".")
+              and p.name != ".sloshdyn-run"} if directory.exists() else set()
+    beside = {p.name for p in directory.parent.iterdir()
+              if p.name.startswith(f".{directory.name}.")} if directory.parent.exists() else set()
+    return inside | beside
 
 
 DOORS = ["executable", "sloshdyn-py"]
@@ -212,17 +218,18 @@ def test_python_writers_commit_a_run_whole_or_not_at_all(tmp_path):
     from sloshdyn._files import run_directory, temporary_name, write_csv, write_text
     assert temporary_name(tmp_path / "a.csv") != temporary_name(tmp_path / "a.csv")
     with pytest.raises(RuntimeError):
-        with run_directory(tmp_path / "run"):
-            write_csv(tmp_path / "run" / "a.csv", {"x": [1.0, 2.0]})
+        with run_directory(tmp_path / "run") as run:
+            write_csv(run.path / "a.csv", {"x": [1.0, 2.0]})
             assert final_files(tmp_path / "run") == set()     # waiting for the commit
             raise RuntimeError("the run fails after its first file")
     assert final_files(tmp_path / "run") == set() and leftovers(tmp_path / "run") == set()
-    with run_directory(tmp_path / "run"):
-        write_csv(tmp_path / "run" / "a.csv", {"x": [1.0, 2.0]})
-        write_text(tmp_path / "run" / "b.txt", "done")
+    with run_directory(tmp_path / "run") as run:
+        write_csv(run.path / "a.csv", {"x": [1.0, 2.0]})
+        write_text(run.path / "b.txt", "done")
     assert final_files(tmp_path / "run") == {"a.csv", "b.txt"}
     assert read_csv(tmp_path / "run" / "a.csv") == [{"x": 1.0}, {"x": 2.0}]
-    (tmp_path / "run" / "c.txt").mkdir()                      # a directory where a file goes
-    with pytest.raises(FileError, match="c.txt"):
-        write_text(tmp_path / "run" / "c.txt", "x")
     assert leftovers(tmp_path / "run") == set()
+    (tmp_path / "c.txt").mkdir()                              # a directory where a file goes
+    with pytest.raises(FileError, match="c.txt"):
+        write_text(tmp_path / "c.txt", "x")
+    assert leftovers(tmp_path / "c.txt") == set()

@@ -45,11 +45,24 @@ def test_sigterm_stops_a_stability_chart_on_a_large_grid(exe, tmp_path):
 
 
 def test_sigterm_ends_a_run_waiting_for_its_input(exe, tmp_path):
-    """An input that is a FIFO with no writer: the open waits (gfortran restarts it after a
-    signal); the first SIGTERM ends the run, 143, as while it reads a long record."""
-    os.mkfifo(tmp_path / "input.nml")
-    code, stderr = terminate_after([exe, "input.nml"], tmp_path, 1.0)
+    """An input read from standard input (-) that never comes (a pipe whose writer waits): the
+    read waits; the first SIGTERM ends the run, 143, as while it reads a long record. (A FIFO
+    as the input file is refused before it is opened: test_run_directory.py.)"""
+    proc = subprocess.Popen([exe, "-"], cwd=tmp_path, stdin=subprocess.PIPE,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    try:
+        code, stderr = terminate_after_started(proc, 1.0)
+    finally:
+        proc.stdin.close()
     assert code == 143
+
+
+def terminate_after_started(proc, delay):
+    import time
+    time.sleep(delay)
+    proc.send_signal(signal.SIGTERM)
+    _, stderr = proc.communicate(timeout=GUARD)
+    return proc.returncode, stderr
 
 
 @pytest.mark.parametrize("door", ["executable", "sloshdyn-py"])

@@ -14,6 +14,7 @@ import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -442,14 +443,17 @@ def sweep_rows(path):
 
 def test_a_failing_sweep_keeps_the_points_it_finished(exe, tmp_path):
     from conftest import run, write
-    nml = write(tmp_path, SWEEP_NML.format(max_steps=300000, steady=""))
-    result = run(exe, nml, tmp_path)
+    write(tmp_path, SWEEP_NML.format(max_steps=300000, steady=""))
+    result = run(exe, "input.nml", tmp_path)       # out: beside it (relative in the message)
     assert result.returncode == 4                       # the last points need more steps
     partial = tmp_path / "out" / "sweep.partial.csv"
     rows = sweep_rows(partial)
     assert f"the {len(rows)} of 6 points completed are kept in out/sweep.partial.csv" in result.stderr
     assert 1 <= len(rows) < 6
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["sweep.partial.csv"]
+    # the failed run's directory, swapped into place, holds them and its marker only
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [".sloshdyn-run",
+                                                                     "sweep.partial.csv"]
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".out.")]
     # the same points in a sweep that completes: identical rows (the independent source)
     done = write(tmp_path, SWEEP_NML.format(max_steps=300000, steady="").replace(
         "stop = 3.0, n_points = 6", f"stop = {rows[-1]['A']!r}, n_points = {len(rows)}")
@@ -464,21 +468,24 @@ def test_a_killed_sweep_keeps_the_points_it_finished(exe, tmp_path):
     slow = "settle_tol = 0, transient_periods = 3000, window_periods = 16, shooting = .false."
     nml = write(tmp_path, SWEEP_NML.format(max_steps=100000000, steady=slow)
                 .replace("stop = 3.0", "stop = 0.00125"))
-    partial = tmp_path / "out" / "sweep.partial.csv"
     child = subprocess.Popen([exe, str(nml)], cwd=tmp_path, stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE)
+                             stderr=subprocess.PIPE, text=True)
     try:
-        deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and child.poll() is None:
-            if partial.exists() and len(partial.read_text().splitlines()) >= 3:
+        said = ""        # the line saying where the points go (in the run's own directory)
+        for line in child.stdout:
+            if "points are written to" in line:
+                said = line
                 break
-            time.sleep(0.02)
+        partial = Path(said.split("points are written to ")[1].split(" as they")[0])
+        assert partial.parent.name.startswith(".out.run-") and partial.name == "sweep.partial.csv"
+        for line in child.stdout:           # a line per point: two points are on disk
+            if line.strip().startswith("0.00") and len(partial.read_text().splitlines()) >= 3:
+                break
         child.kill()
     finally:
         child.wait()
     rows = sweep_rows(partial)
     assert 2 <= len(rows) < 6 and all(len(r) == 11 for r in rows)
-    assert "sweep.partial.csv" in child.stdout.read().decode()    # it said where they go
     # the first point as steady_state computes it from rest (CSV keeps 17 digits: exact)
     first = sloshdyn.steady_state(FIG12.replace(A=rows[0]["A"]), steady=sloshdyn.Steady(
         settle_tol=0, transient_periods=3000, window_periods=16, shooting=False))
