@@ -92,7 +92,8 @@ EXIT_MEANINGS = {
        "(check: a corrupted values.json or reference table); nothing was written",
     4: "the computation failed (no convergence, integration failure, singular matrix, "
        "LAPACK); nothing was written",
-    5: "the results could not be written (a full disk, a read-only directory); nothing of "
+    5: "the results could not be written (a full disk, a read-only directory, an output "
+       "directory that holds a file no run wrote); nothing of "
        "the run is left under a final name",
     130: "interrupted (Ctrl-C); no file was left half-written",
     6: "study: some points failed, each stored with its status and message (the others are "

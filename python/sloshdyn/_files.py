@@ -226,8 +226,8 @@ class RunDirectory:
 def run_directory(out):
     """A run's files into `out`, all at once or none (the rule above): yields a RunDirectory
     whose `path` the block writes into; out is checked before the block runs."""
+    check_output_directory(os.fspath(out))             # named as given, as the core does
     out = Path(os.path.abspath(os.fspath(out)))
-    check_output_directory(out)
     with file_error(out, "create the run's new directory beside"):
         out.parent.mkdir(parents=True, exist_ok=True)
         run = RunDirectory(out, Path(_beside(out, "run")))

@@ -45,20 +45,23 @@ def run_input(path, directory=None, staging=None):
 
 
 def _run(path, inp, out, staging, directory, run):
-    """The core's run into `staging`, then the figure; a failed run's files the core kept (a
-    sweep's finished rows) are kept as the executable keeps them."""
+    """The core's run into `staging`, then the figure; the core's files are kept if only the
+    figure fails, and so are a failed run's files the core kept (a sweep's finished rows), as
+    the executable keeps them."""
     status, message = app_call(_core.sloshdyn_bridge_input.run_input, os.fsencode(path),
                                os.fsencode("" if directory is None else directory),
                                os.fsencode(staging))
     sys.stdout.flush()
     if status != 0 and run is not None and any(staging.iterdir()):
-        run.keep_on_failure()
+        run.keep_on_failure()                   # the rows a failed sweep finished
     check_status(status, message)
     figure = _figure(inp, staging)
     if figure:
         try:
             save_figure(figure[1], staging / figure[0])
         except FileError as exc:
+            if run is not None:
+                run.keep_on_failure()           # the core's files, complete
             raise FileError(f"the result files in {out} are complete, the figure "
                             f"{figure[0]} is not: {exc}", exc.status) from exc
 

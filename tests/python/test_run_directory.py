@@ -259,3 +259,14 @@ def test_the_calc_sheets_out_is_relative_to_the_current_directory(tmp_path):
                             timeout=300)
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "sheet" / "report.md").exists() and not (tmp_path / "sub" / "sheet").exists()
+
+
+def test_both_doors_refuse_a_directory_with_one_message(exe, tmp_path):
+    """The refusal is the same rule in the core and in Python (one message, one exit code)."""
+    (tmp_path / "input.nml").write_text(LINEAR.format(out="."))
+    texts = []
+    for door in DOORS:
+        result = run(door, exe, ["input.nml"], tmp_path)
+        assert result.returncode == EXIT_IO
+        texts.append(result.stderr.split("error: ", 1)[1].strip())
+    assert texts[0] == texts[1] and "which no sloshdyn run wrote" in texts[0]
