@@ -335,13 +335,15 @@ class Store:
 
 
 def put_chunk(path, data):
-    """Write a chunk file under a temporary name, then rename it: a killed writer leaves no
-    torn chunk (as Zarr's LocalStore writes). Not _files.atomic_path: inside a run_directory
-    that defers every rename to the run's end, and a chunk must be in place before its
-    'done' chunk."""
+    """Write a chunk file under a temporary name unique to the writer, created new (never an
+    existing file, never through a symbolic link), then rename it: a killed writer leaves no
+    torn chunk (as Zarr's LocalStore writes), and a chunk is in place before its 'done'
+    chunk. A study's store is no run directory (a rerun resumes it): the rule of
+    docs/failure.md's output directories does not apply, its files are created new all the
+    same."""
     tmp = f"{path}.{uuid.uuid4().hex}.partial"
     try:
-        with open(tmp, "wb") as f:
+        with open(tmp, "xb") as f:
             f.write(data)
         os.replace(tmp, path)
     except BaseException:
