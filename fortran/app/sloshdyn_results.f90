@@ -70,11 +70,19 @@ contains
     character(len=*), intent(in) :: directory
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    character(len=:), allocatable :: foreign
+    character(len=:), allocatable :: foreign, last
     integer :: kind, code
     integer(int64) :: size
     status = SD_OK
     message = ''
+    last = strip_slashes(directory)
+    last = last(index(last, '/', back=.true.) + 1:)
+    if (last == '.' .or. last == '..' .or. last == '') then
+      status = SD_IO_ERROR
+      message = 'cannot write into '''//directory//''': a run replaces its output directory '// &
+                'whole, so it must be named (e.g. ''out''), not . or .. or /'
+      return
+    end if
     call file_type(directory, kind, size)
     if ((kind /= FILE_MISSING .and. kind /= FILE_DIRECTORY) .or. is_link(directory)) then
       status = SD_IO_ERROR

@@ -125,7 +125,10 @@ def foreign_entry(directory):
 def check_output_directory(out):
     """Refuse (FileError) an output directory a run may not take: not a directory (a symbolic
     link included), or one holding an entry that no run wrote; the core's message."""
-    out = Path(out)
+    shown, out = out, Path(out)
+    if os.path.basename(os.fspath(shown).rstrip("/")) in ("", ".", ".."):
+        raise FileError(f"cannot write into '{shown}': a run replaces its output directory "
+                        "whole, so it must be named (e.g. 'out'), not . or .. or /")
     if out.is_symlink() or (out.exists() and not out.is_dir()):
         raise FileError(f"cannot write into '{out}': it is not a directory"
                         + (" but a symbolic link" if out.is_symlink() else ""))

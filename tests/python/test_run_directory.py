@@ -183,24 +183,30 @@ def test_a_record_named_like_a_result_in_the_output_directory_is_refused(exe, tm
 
 @pytest.mark.parametrize("door", DOORS)
 def test_an_input_file_in_its_own_output_directory_is_refused(exe, tmp_path, door):
-    """&output directory = '.': the folder holds the input file itself; refused by name."""
-    (tmp_path / "input.nml").write_text(LINEAR.format(out="."))
-    result = run(door, exe, ["input.nml"], tmp_path)
+    """here/input.nml with directory = '../here': the folder holds the input file itself;
+    refused by name (it was written into, beside the input)."""
+    (tmp_path / "here").mkdir()
+    (tmp_path / "here" / "input.nml").write_text(LINEAR.format(out="../here"))
+    result = run(door, exe, ["here/input.nml"], tmp_path)
     assert result.returncode == EXIT_IO, result.stderr
     assert "'input.nml'" in result.stderr
-    assert sorted(os.listdir(tmp_path)) == ["input.nml"]
+    assert sorted(os.listdir(tmp_path / "here")) == ["input.nml"]
 
 
 def test_the_calc_sheet_never_writes_over_its_record(tmp_path):
-    """`sloshdyn-py report --out .` beside a record named motion.csv (a file of the sheet):
-    it was overwritten by the sheet's table; now refused by name, exit 5."""
+    """`sloshdyn-py report --out ../here` run in here/, beside a record named motion.csv (a
+    file of the sheet): refused by name, exit 5, the record as it was (`--out .` is refused
+    as a directory that cannot be replaced whole)."""
+    tmp_path = tmp_path / "here"
+    tmp_path.mkdir()
     shutil.copy(EXAMPLES / "records" / "synthetic_kt.AT2", tmp_path / "motion.csv")
     text = (EXAMPLES / "tank_seismic.nml").read_text().replace(
         "'records/synthetic_kt.AT2'", "'motion.csv', format = 'at2'")
     (tmp_path / "input.nml").write_text(text)
     before = (tmp_path / "motion.csv").read_bytes()
     result = subprocess.run([sys.executable, "-m", "sloshdyn", "report", "input.nml", "--out",
-                             "."], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+                             "../here"], cwd=tmp_path, capture_output=True, text=True,
+                            timeout=300)
     assert result.returncode == EXIT_IO, result.stderr
     assert "no sloshdyn run wrote" in result.stderr and "Traceback" not in result.stderr
     assert (tmp_path / "motion.csv").read_bytes() == before
@@ -264,10 +270,24 @@ def test_the_calc_sheets_out_is_relative_to_the_current_directory(tmp_path):
 
 def test_both_doors_refuse_a_directory_with_one_message(exe, tmp_path):
     """The refusal is the same rule in the core and in Python (one message, one exit code)."""
-    (tmp_path / "input.nml").write_text(LINEAR.format(out="."))
+    (tmp_path / "input.nml").write_text(LINEAR.format(out="../" + tmp_path.name))
     texts = []
     for door in DOORS:
         result = run(door, exe, ["input.nml"], tmp_path)
         assert result.returncode == EXIT_IO
         texts.append(result.stderr.split("error: ", 1)[1].strip())
     assert texts[0] == texts[1] and "which no sloshdyn run wrote" in texts[0]
+
+
+@pytest.mark.parametrize("door", DOORS)
+@pytest.mark.parametrize("where", [".", "..", "/"])
+def test_a_directory_that_cannot_be_replaced_whole_is_refused(exe, tmp_path, door, where):
+    """`.`, `..` and `/` cannot be swapped for a run's directory: refused by name in both doors
+    (the executable once wrote into them, among whatever was there)."""
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "input.nml").write_text(LINEAR.format(out=where))
+    before = sorted(os.listdir(tmp_path))
+    result = run(door, exe, ["-"], tmp_path / "sub", input=LINEAR.format(out=where))
+    assert result.returncode == EXIT_IO, result.stderr
+    assert "must be named" in result.stderr
+    assert sorted(os.listdir(tmp_path)) == before
