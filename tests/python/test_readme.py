@@ -5,6 +5,7 @@ keeps the two commands that CI runs, and every link inside the repository leads 
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -70,8 +71,10 @@ def test_shown_executable_output_is_what_it_prints(exe, tmp_path, page):
     stands for lines left out)."""
     runs = shown_runs(page)
     assert runs, f"{page.name} shows no run of the executable"
+    # a copy of the examples, run as the page runs them: their files go beside them
+    shutil.copytree(ROOT / "data" / "examples", tmp_path / "data" / "examples")
     for path, shown in runs:
-        result = run(exe, ROOT / path, tmp_path)
+        result = run(exe, path, tmp_path)
         assert result.returncode == 0, result.stderr
         printed = iter(result.stdout.splitlines())
         for line in shown:
