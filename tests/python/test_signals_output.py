@@ -11,14 +11,14 @@ import sys
 import pytest
 
 from conftest import EXAMPLES
-from test_faults import _start_and_signal
-
-GUARD = 30          # seconds a run may take to stop after SIGTERM before the test fails
+from test_faults import _start_and_signal, first_line, handlers_installed, writing
 
 
-def terminate_after(cmd, cwd, delay):
-    """Start cmd, send SIGTERM after `delay` s: (exit code, stderr)."""
-    return _start_and_signal(cmd, cwd, signal.SIGTERM, delay, within=GUARD)
+def terminate_when(cmd, cwd, ready):
+    """Start cmd, send SIGTERM once ready(proc) holds (a readiness marker, not a delay):
+    (exit code, stderr)."""
+    code, stderr, _ = _start_and_signal(cmd, cwd, signal.SIGTERM, ready)
+    return code, stderr
 
 
 def test_sigterm_stops_the_output_of_a_long_seismic_response(exe, tmp_path):
@@ -28,7 +28,7 @@ def test_sigterm_stops_the_output_of_a_long_seismic_response(exe, tmp_path):
         "records/", str(EXAMPLES / "records") + "/").replace(
         "sloshdyn_output/tank_seismic", "out") + "&seismic n_out = 2000000 /\n"
     (tmp_path / "input.nml").write_text(text)
-    code, stderr = terminate_after([exe, "input.nml"], tmp_path, 3.0)
+    code, stderr = terminate_when([exe, "input.nml"], tmp_path, writing(tmp_path / "out"))
     assert code == 143, stderr
     assert not list(tmp_path.glob("out/*.csv"))
 
@@ -39,7 +39,7 @@ def test_sigterm_stops_a_stability_chart_on_a_large_grid(exe, tmp_path):
         "n_x = 41, n_y = 9", "n_x = 10000, n_y = 200").replace(
         "sloshdyn_output/fig12_stability_chart", "out")
     (tmp_path / "input.nml").write_text(text)
-    code, stderr = terminate_after([exe, "input.nml"], tmp_path, 2.0)
+    code, stderr = terminate_when([exe, "input.nml"], tmp_path, first_line)
     assert code == 143, stderr
     assert not list(tmp_path.glob("out/*.csv"))
 
@@ -48,7 +48,8 @@ def test_sigterm_ends_a_run_waiting_for_its_input(exe, tmp_path):
     """An input that is a FIFO with no writer: the open waits (gfortran restarts it after a
     signal); the first SIGTERM ends the run, 143, as while it reads a long record."""
     os.mkfifo(tmp_path / "input.nml")
-    code, stderr = terminate_after([exe, "input.nml"], tmp_path, 1.0)
+    code, stderr = terminate_when([exe, "input.nml"], tmp_path,
+                                  handlers_installed(signal.SIGTERM))
     assert code == 143
 
 
