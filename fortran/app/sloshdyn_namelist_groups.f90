@@ -7,7 +7,7 @@ module sloshdyn_namelist_groups
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real, check_output_count
   use sloshdyn_text, only: num2str
   use sloshdyn_namelist_scanner, only: input_file, group_reader, scan_file, start_description, &
-                                       require, given, fail, lower, join
+                                       require, given, list_length, fail, lower, join
   use sloshdyn_run_config, only: run_config, simulation_settings, sweep_settings, &
                                  response_settings, seismic_settings, known_analyses, path_len, &
                                  word_len, chart_models, direction_names, DIRECTION_UP, &
@@ -708,7 +708,7 @@ contains
       message = '&simulation: '//trim(message)
       return
     end if
-    settings = simulation_settings(t_end, n_out, y0)
+    settings = simulation_settings(t_end, n_out, y0, list_length(file, G_SIMULATION, 'y0'))
   end subroutine read_simulation
 
   !> &steady; its rules with the forcing frequency are applied by check_analysis.

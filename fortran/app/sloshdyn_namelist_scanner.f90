@@ -16,7 +16,7 @@ module sloshdyn_namelist_scanner
   implicit none
   private
   public :: input_file, group_reader, type_hint, scan_file, start_description, require, &
-            given, fail, lower, join
+            given, list_length, fail, lower, join
 
   !> Longest group name.
   integer, parameter :: name_len = 32
@@ -416,6 +416,28 @@ contains
     if (file%groups(group)%given) given = index(file%groups(group)%assigned, ','//name//',') > 0
   end function given
 
+  !> How many values the group's last assignment of the whole array `name` (no index) gives:
+  !> its values separated by commas or blanks, r*value counting r times; -1 if the group has
+  !> no such assignment (none, or only `name(i) = ...`).
+  pure integer function list_length(file, group, name) result(n)
+    type(input_file), intent(in) :: file
+    integer, intent(in) :: group
+    character(len=*), intent(in) :: name
+    integer :: k, last, equals
+    n = -1
+    if (file%describing .or. .not. allocated(file%groups)) return
+    if (.not. file%groups(group)%given) return
+    associate (g => file%groups(group))
+      do k = 1, size(g%starts)
+        last = len(g%body)
+        if (k < size(g%starts)) last = g%starts(k + 1) - 1
+        equals = g%starts(k) + index(g%body(g%starts(k):last), '=') - 1
+        if (lower(trim(adjustl(g%body(g%starts(k):equals - 1)))) == name) &
+          n = count_values(g%body(equals + 1:last))
+      end do
+    end associate
+  end function list_length
+
   pure subroutine fail(status, message, text)
     integer, intent(inout) :: status
     character(len=message_len), intent(inout) :: message
@@ -433,41 +455,15 @@ contains
   pure function bad_value(values) result(token)
     character(len=*), intent(in) :: values
     character(len=:), allocatable :: token
-    integer :: i, start, star
-    character :: quote
+    integer :: i, start, finish, star
 
     token = ''
     i = 1
-    do while (i <= len(values))
-      if (values(i:i) == ' ' .or. values(i:i) == ',') then
-        i = i + 1
-        cycle
-      end if
-      start = i
-      if (values(i:i) == '''' .or. values(i:i) == '"') then
-        ! a quoted string, doubled quotes inside
-        quote = values(i:i)
-        i = i + 1
-        do while (i <= len(values))
-          if (values(i:i) == quote) then
-            if (i < len(values)) then
-              if (values(i + 1:i + 1) == quote) then
-                i = i + 2
-                cycle
-              end if
-            end if
-            exit
-          end if
-          i = i + 1
-        end do
-        i = i + 1
-        cycle
-      end if
-      do while (i <= len(values))
-        if (values(i:i) == ' ' .or. values(i:i) == ',') exit
-        i = i + 1
-      end do
-      token = values(start:i - 1)
+    do
+      call next_token(values, i, start, finish)
+      if (start == 0) return
+      if (values(start:start) == '''' .or. values(start:start) == '"') cycle
+      token = values(start:finish)
       star = index(token, '*')
       if (star > 0) then
         if (verify(token(1:star - 1), '0123456789') == 0 .and. star > 1) token = token(star + 1:)
@@ -475,11 +471,74 @@ contains
       if (len(token) == 0 .or. is_number(lower(token)) .or. is_logical(lower(token))) then
         token = ''
       else
-        token = values(start:i - 1)
+        token = values(start:finish)
         return
       end if
     end do
   end function bad_value
+
+  !> The number of values in an assignment's value text (its tokens as bad_value reads them):
+  !> r*value counts r, a quoted string one.
+  pure integer function count_values(values) result(n)
+    character(len=*), intent(in) :: values
+    integer :: i, start, finish, star, repeat, ios
+    n = 0
+    i = 1
+    do
+      call next_token(values, i, start, finish)
+      if (start == 0) return
+      star = index(values(start:finish), '*')
+      repeat = 1
+      if (star > 1 .and. star <= 10 .and. values(start:start) /= '''' .and. &
+          values(start:start) /= '"') then
+        if (verify(values(start:start + star - 2), '0123456789') == 0) &
+          read (values(start:start + star - 2), *, iostat=ios) repeat
+      end if
+      n = n + repeat
+    end do
+  end function count_values
+
+  !> The next token of a value text from position i: values(start:finish), a quoted string
+  !> (doubled quotes inside) or a run of characters up to a comma or blank; start = 0 if none.
+  !> i moves past it.
+  pure subroutine next_token(values, i, start, finish)
+    character(len=*), intent(in) :: values
+    integer, intent(inout) :: i
+    integer, intent(out) :: start, finish
+    character :: quote
+    start = 0
+    finish = 0
+    do while (i <= len(values))
+      if (values(i:i) /= ' ' .and. values(i:i) /= ',') exit
+      i = i + 1
+    end do
+    if (i > len(values)) return
+    start = i
+    if (values(i:i) == '''' .or. values(i:i) == '"') then
+      quote = values(i:i)
+      i = i + 1
+      do while (i <= len(values))
+        if (values(i:i) == quote) then
+          if (i < len(values)) then
+            if (values(i + 1:i + 1) == quote) then
+              i = i + 2
+              cycle
+            end if
+          end if
+          exit
+        end if
+        i = i + 1
+      end do
+      finish = min(i, len(values))
+      i = i + 1
+      return
+    end if
+    do while (i <= len(values))
+      if (values(i:i) == ' ' .or. values(i:i) == ',') exit
+      i = i + 1
+    end do
+    finish = i - 1
+  end subroutine next_token
 
   !> A Fortran real or integer literal, or NaN/Infinity as list-directed input reads them.
   pure logical function is_number(text)

@@ -425,7 +425,7 @@ def test_a_simulation_from_a_huge_state_ends_within_the_bound(exe, tmp_path):
     1e20) runs past CASE_SECONDS instead of failing (exit 4) or being refused (exit 3)."""
     (tmp_path / "input.nml").write_text(
         MODEL + "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'simulate' /\n"
-        "&simulation t_end = 5, n_out = 20, y0 = 99999999999999999999 /\n"
+        "&simulation t_end = 5, n_out = 20, y0 = 4*99999999999999999999 /\n"
         "&output directory = 'out' /\n")
     code, stderr = _run_executable(exe, (tmp_path / "input.nml").read_text(), tmp_path)
     assert code in (3, 4) and stderr.strip()
