@@ -20,6 +20,14 @@ module sloshdyn_namelist_scanner
 
   !> Longest group name.
   integer, parameter :: name_len = 32
+  !> Values tried on a variable whose value does not parse, to tell its type by which one the
+  !> namelist read takes first (gfortran: a quoted string only for a character variable, .true.
+  !> only for a logical one, 1.5 for a real one, 1 for an integer one; none: not a variable of
+  !> the group).
+  character(len=*), parameter :: PROBES(4) = ["'a'   ", ".true.", "1.5   ", "1     "]
+  character(len=*), parameter :: PROBED_TYPES(4) = [character(len=24) :: 'a quoted string', &
+                                                    '.true. or .false.', 'a real number', &
+                                                    'an integer']
 
   abstract interface
     !> What a variable must be (for the message on a value that does not parse).
@@ -70,6 +78,9 @@ module sloshdyn_namelist_scanner
     integer, allocatable :: starts(:)
     logical :: describing = .false., done = .true.
     character(len=:), allocatable :: name, body, path, text, assignment
+    !> after an assignment that does not parse: the index of the PROBES value tried on its
+    !> variable (0: none), which tells the variable's type (probed_type)
+    integer :: probe = 0
     character(len=message_len) :: iomsg = ''
     character(len=8192) :: written = ''   !< the group written with its values
   contains
@@ -320,7 +331,10 @@ contains
     if (reader%done) return
     next_text = .true.
     reader%step = reader%step + 1
-    if (reader%describing) then
+    if (reader%probe > 0) then
+      reader%text = '&'//reader%name//' '//variable_name(reader%assignment(1:index( &
+                    reader%assignment, '=') - 1))//' = '//trim(PROBES(reader%probe))//' /'
+    else if (reader%describing) then
       reader%text = ''
     else if (reader%step == 1) then
       reader%text = '&'//reader%name//' '//reader%body//' /'
@@ -356,6 +370,10 @@ contains
       reader%done = .true.
       return
     end if
+    if (reader%probe > 0) then
+      call check_probe(reader, status, message)
+      return
+    end if
     if (reader%step == 1) then
       reader%done = reader%ios == 0
       if (reader%done) return
@@ -378,11 +396,8 @@ contains
                   "(a number or a quoted string; a variable needs 'name = value')")
         reader%done = .true.
       else if (reader%ios /= 0) then
-        call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
-                  trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
-                  trim(reader%assignment(equals + 1:))//' is not valid: '// &
-                  reader%hint(variable_name(reader%assignment(1:equals - 1))))
-        reader%done = .true.
+        reader%probe = 1           ! what the variable is: check_probe
+        return
       end if
     end if
     if (.not. reader%done .and. reader%next_start == 0) then
@@ -392,6 +407,34 @@ contains
       reader%done = .true.
     end if
   end subroutine check_text
+
+  !> The outcome of a probe of the variable of an assignment that does not parse: the first
+  !> value the read takes tells its type; the message names the variable and what it must be
+  !> (the group's own hint if it has one), or that the group has no such variable.
+  subroutine check_probe(reader, status, message)
+    class(group_reader), intent(inout) :: reader
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=:), allocatable :: name, must
+    integer :: equals
+    if (reader%ios /= 0 .and. reader%probe < size(PROBES)) then
+      reader%probe = reader%probe + 1
+      return
+    end if
+    equals = index(reader%assignment, '=')
+    name = variable_name(reader%assignment(1:equals - 1))
+    must = reader%hint(name)
+    if (len(must) == 0 .and. reader%ios == 0) then
+      must = name//' must be '//trim(PROBED_TYPES(reader%probe))
+    else if (len(must) == 0) then
+      must = 'unknown variable '''//name//''' (not one of &'//reader%name// &
+             '; see the namelist reference, docs/namelist.md)'
+    end if
+    call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
+              trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
+              trim(reader%assignment(equals + 1:))//' is not valid: '//must)
+    reader%done = .true.
+  end subroutine check_probe
 
   !> A required variable must be assigned in its group (an explicit NaN is assigned, and fails
   !> its range check instead).
