@@ -131,3 +131,21 @@ def test_the_package_ships_the_examples_and_the_namelist_reference(exe, tmp_path
     usage = subprocess.run([exe, "--help"], capture_output=True, text=True, timeout=60).stdout
     assert "docs/namelist.md" not in usage and "sloshdyn-py --help prints" in usage
     assert "sloshdyn-py examples DIR" in usage
+
+
+def test_a_wheel_is_built_for_every_supported_cpython_and_the_readme_says_the_floor():
+    """Issue 44 item 13: the wheel was built for the interpreter that built it only (cp311;
+    pip refuses it on 3.12) while requires-python is >= 3.10. .ci/wheel_matrix.sh (`bash .ci/dev
+    wheels`) builds and runs one for every minor version from requires-python's floor to 3.13,
+    each checked for its cpXY tag and the manylinux_2_35 floor; the README states the floor."""
+    floor = re.fullmatch(r">=\s*3\.(\d+)", PROJECT["requires-python"]).group(1)
+    supported = [f"3.{m}" for m in range(int(floor), 14)]
+    script = (ROOT / ".ci" / "wheel_matrix.sh").read_text()
+    built = re.search(r"versions=\$\{\*:-([\d. ]+)\}", script).group(1).split()
+    assert built == supported
+    assert "manylinux_2_35_x86_64" in script and 'tag=cp${v/./}' in script
+    assert "wheels)" in (ROOT / ".ci" / "dev").read_text() or \
+        "wheel_matrix.sh" in (ROOT / ".ci" / "dev").read_text()
+    readme = " ".join((ROOT / "README.md").read_text().split())
+    assert "manylinux_2_35_x86_64" in readme and "glibc ≥ 2.35" in readme
+    assert "3.10, 3.11, 3.12 and 3.13" in readme and "bash .ci/dev wheels" in readme
