@@ -58,6 +58,11 @@ say "a fresh venv with the wheel (no extras)"
 python3 -m venv "$work/venv"
 "$work/venv/bin/python" -m pip install -q "$wheel" 2>&1 | grep -v '^WARNING: Location' || true
 "$work/venv/bin/python" -c 'import sloshdyn' 2>/dev/null || fail "the wheel does not import"
+"$work/venv/bin/python" -c '
+from sloshdyn._shipped import EXAMPLES, NAMELIST_REFERENCE
+assert NAMELIST_REFERENCE.is_file() and len(list(EXAMPLES.glob("*.nml"))) > 20
+assert (EXAMPLES / "records" / "synthetic_kt.AT2").is_file()' ||
+  fail "the wheel does not hold the examples and the namelist reference"
 
 say "the source build's results"
 mkdir -p "$work/source" "$work/wheel"

@@ -144,6 +144,9 @@ contains
       if (status /= SD_OK) return
     end if
     call print_model(config)
+    ! the summary's first lines out before the analysis runs: the program is ready, its signal
+    ! handlers installed (docs/failure.md, "Signals")
+    flush (output_unit)
     select case (config%analysis)
     case (ANALYSIS_LINEAR)
       call run_linear(config, files, status, message)

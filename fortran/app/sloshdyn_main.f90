@@ -17,8 +17,10 @@ program sloshdyn_main
   use sloshdyn_text, only: num2str
   implicit none
 
-  character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (see docs/namelist.md for the '// &
-                                         'namelist groups and variables)'
+  character(len=*), parameter :: usage = 'usage: sloshdyn INPUT.nml   (the namelist groups and '// &
+                                         'variables: namelist.md, installed with the package, '// &
+                                         'whose path sloshdyn-py --help prints; example '// &
+                                         'inputs: sloshdyn-py examples DIR)'
   character(len=*), parameter :: no_output = 'standard output takes no writes (a full disk or '// &
                                              'device, or closed): the summary would be lost'
   character(len=:), allocatable :: path

@@ -350,6 +350,8 @@ contains
                   ', '//num2str(config%simulation%y0(7))//', '// &
                   num2str(config%simulation%y0(8))//' are the out-of-plane states (y1, y1'''// &
                   ', y2, y2'') of the spatial model: they need planar = .false. in '//group)
+      else
+        call check_y0_values(4, 'planar model (x1, x1'', x2, x2'')')
       end if
       return
     end if
@@ -373,7 +375,24 @@ contains
       call fail(status, message, group//": planar = .false. (the spatial model) is not for "// &
                 "kind = '"//trim(known_analyses(config%analysis))//"': "// &
                 spatial_refusal(config%analysis))
+    else
+      call check_y0_values(8, 'spatial model (x1, x1'', x2, x2'', y1, y1'', y2, y2'')')
     end if
+
+  contains
+
+    !> y0 given as a list has one value per state of the model, as Python's y0 has
+    subroutine check_y0_values(states, model)
+      integer, intent(in) :: states
+      character(len=*), intent(in) :: model
+      integer :: given
+      given = config%simulation%y0_values
+      if (given < 0 .or. given == states) return
+      call fail(status, message, '&simulation: y0 has '//num2str(given)//' value'// &
+                trim(merge('s', ' ', given /= 1))//', the '//model//' has '// &
+                num2str(states)//' states: give all '//num2str(states)// &
+                ', or single ones as y0(i) = value')
+    end subroutine check_y0_values
   end subroutine check_spatial
 
   !> Why an analysis does not take the spatial model.

@@ -7,7 +7,7 @@ module sloshdyn_namelist_groups
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, check_real, check_output_count
   use sloshdyn_text, only: num2str
   use sloshdyn_namelist_scanner, only: input_file, group_reader, scan_file, start_description, &
-                                       require, given, fail, lower, join
+                                       require, given, list_length, fail, lower, join
   use sloshdyn_run_config, only: run_config, simulation_settings, sweep_settings, &
                                  response_settings, seismic_settings, known_analyses, path_len, &
                                  word_len, chart_models, direction_names, DIRECTION_UP, &
@@ -712,7 +712,7 @@ contains
       message = '&simulation: '//trim(message)
       return
     end if
-    settings = simulation_settings(t_end, n_out, y0)
+    settings = simulation_settings(t_end, n_out, y0, list_length(file, G_SIMULATION, 'y0'))
   end subroutine read_simulation
 
   !> &steady; its rules with the forcing frequency are applied by check_analysis.
@@ -1125,45 +1125,14 @@ contains
     end select
   end subroutine excitation_parameter
 
-  !> What a variable must be, for messages.
+  !> What a variable must be, for messages, where its type alone does not say it (the
+  !> scanner tells the type of every other variable: check_probe); '' for the others.
   pure function expected_type(name) result(text)
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: text
-    select case (name)
-    case ('n', 'p', 'max_steps', 'n_out', 'window_periods', 'samples_per_period', 'n_points', &
-          'n_scan', 'n_amplitudes', 'n_phases', 'n_periods', 'renormalise_every', 'max_points', &
-          'threads', 'workers', 'points_per_task', 'n_frequencies', 'n_grid', 'n_intensities', &
-          'max_iter', 'modes')
-      text = name//' must be an integer'
-    case ('kind', 'directory', 'parameter', 'direction', 'resonance', 'method', 'start_from', &
-          'record', 'format', 'units', 'store', 'figure', 'scheduler', 'worker_kind', &
-          'continuation', 'records', 'shape')
-      text = name//' must be a quoted string'
-    case ('shooting', 'spectrum')
-      text = name//' must be .true. or .false.'
-    case ('y0')
-      text = 'y0 must be four real numbers (x1, x1'', x2, x2''), eight for the spatial model '// &
-             '(then y1, y1'', y2, y2''), or y0(i) = one of them, i = 1..8'
-    case ('s1', 'mu1', 'kappa', 'theta0', 'beta', 'gamma', 'delta', 'zeta', 'a', 'rho', &
-          'sigma1', 'kappa_min', &
-          'kappa_max', 'rtol', 'atol', 'h_initial', 'h_max', 'h_min', 't_end', 'settle_tol', &
-          'radius', 'liquid_depth', 'freeboard', 'liquid_density', 'liquid_mass', 'tank_mass', &
-          'support_frequency', 'support_damping', 'support_stiffness', &
-          'support_damping_coefficient', 'support_height', 'sloshing_damping', &
-          'impact_stiffness', 'impact_damping', 'gravity', 'roof_slope', 'roof_radius', &
-          'length', 'width', &
-          'peak_acceleration', 'frequency', &
-          'scale_factor', 'target_pga', 'target_sa', 'target_period', 'target_damping', &
-          'transient_periods', &
-          'max_transient_periods', 'periodic_tol', 'start', 'stop', 'amplitude_min', &
-          'amplitude_max', 'ds', 'ds_min', 'ds_max', 'x_scale', 'x_tol', 'f_tol', &
-          'frequency_start', &
-          'frequency_stop', 'amplitude_start', 'amplitude_stop', 'x1_start', 'x1_stop', &
-          'dx1_start', 'dx1_stop', 'tol', 'intensity_start', 'intensity_stop', &
-          'spectral_damping', 'azimuth', 'ellipticity')
-      text = name//' must be a real number'
-    case default
-      text = 'unknown variable '''//name//''' (see the namelist reference, docs/namelist.md)'
-    end select
+    text = ''
+    if (name == 'y0') text = 'y0 must be four real numbers (x1, x1'', x2, x2''), eight for '// &
+                             'the spatial model (then y1, y1'', y2, y2''), or y0(i) = one of '// &
+                             'them, i = 1..8'
   end function expected_type
 end module sloshdyn_namelist_groups

@@ -18,12 +18,20 @@ module sloshdyn_namelist_scanner
   implicit none
   private
   public :: input_file, group_reader, type_hint, scan_file, start_description, require, &
-            given, fail, lower, join
+            given, list_length, fail, lower, join
 
   !> Longest group name.
   integer, parameter :: name_len = 32
   !> The longest input file read from standard input (-).
   integer(int64), parameter :: max_input_bytes = 256_int64*2**20
+  !> Values tried on a variable whose value does not parse, to tell its type by which one the
+  !> namelist read takes first (gfortran: a quoted string only for a character variable, .true.
+  !> only for a logical one, 1.5 for a real one, 1 for an integer one; none: not a variable of
+  !> the group).
+  character(len=*), parameter :: PROBES(4) = ["'a'   ", ".true.", "1.5   ", "1     "]
+  character(len=*), parameter :: PROBED_TYPES(4) = [character(len=24) :: 'a quoted string', &
+                                                    '.true. or .false.', 'a real number', &
+                                                    'an integer']
 
   abstract interface
     !> What a variable must be (for the message on a value that does not parse).
@@ -74,6 +82,9 @@ module sloshdyn_namelist_scanner
     integer, allocatable :: starts(:)
     logical :: describing = .false., done = .true.
     character(len=:), allocatable :: name, body, path, text, assignment
+    !> after an assignment that does not parse: the index of the PROBES value tried on its
+    !> variable (0: none), which tells the variable's type (probed_type)
+    integer :: probe = 0
     character(len=message_len) :: iomsg = ''
     character(len=8192) :: written = ''   !< the group written with its values
   contains
@@ -342,7 +353,10 @@ contains
     if (reader%done) return
     next_text = .true.
     reader%step = reader%step + 1
-    if (reader%describing) then
+    if (reader%probe > 0) then
+      reader%text = '&'//reader%name//' '//variable_name(reader%assignment(1:index( &
+                    reader%assignment, '=') - 1))//' = '//trim(PROBES(reader%probe))//' /'
+    else if (reader%describing) then
       reader%text = ''
     else if (reader%step == 1) then
       reader%text = '&'//reader%name//' '//reader%body//' /'
@@ -378,6 +392,10 @@ contains
       reader%done = .true.
       return
     end if
+    if (reader%probe > 0) then
+      call check_probe(reader, status, message)
+      return
+    end if
     if (reader%step == 1) then
       reader%done = reader%ios == 0
       if (reader%done) return
@@ -400,11 +418,8 @@ contains
                   "(a number or a quoted string; a variable needs 'name = value')")
         reader%done = .true.
       else if (reader%ios /= 0) then
-        call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
-                  trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
-                  trim(reader%assignment(equals + 1:))//' is not valid: '// &
-                  reader%hint(variable_name(reader%assignment(1:equals - 1))))
-        reader%done = .true.
+        reader%probe = 1           ! what the variable is: check_probe
+        return
       end if
     end if
     if (.not. reader%done .and. reader%next_start == 0) then
@@ -414,6 +429,34 @@ contains
       reader%done = .true.
     end if
   end subroutine check_text
+
+  !> The outcome of a probe of the variable of an assignment that does not parse: the first
+  !> value the read takes tells its type; the message names the variable and what it must be
+  !> (the group's own hint if it has one), or that the group has no such variable.
+  subroutine check_probe(reader, status, message)
+    class(group_reader), intent(inout) :: reader
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    character(len=:), allocatable :: name, must
+    integer :: equals
+    if (reader%ios /= 0 .and. reader%probe < size(PROBES)) then
+      reader%probe = reader%probe + 1
+      return
+    end if
+    equals = index(reader%assignment, '=')
+    name = variable_name(reader%assignment(1:equals - 1))
+    must = reader%hint(name)
+    if (len(must) == 0 .and. reader%ios == 0) then
+      must = name//' must be '//trim(PROBED_TYPES(reader%probe))
+    else if (len(must) == 0) then
+      must = 'unknown variable '''//name//''' (not one of &'//reader%name// &
+             '; see the namelist reference, docs/namelist.md)'
+    end if
+    call fail(status, message, '&'//reader%name//" in '"//reader%path//"': "// &
+              trim(adjustl(reader%assignment(1:equals - 1)))//' ='// &
+              trim(reader%assignment(equals + 1:))//' is not valid: '//must)
+    reader%done = .true.
+  end subroutine check_probe
 
   !> A required variable must be assigned in its group (an explicit NaN is assigned, and fails
   !> its range check instead).
@@ -438,6 +481,28 @@ contains
     if (file%groups(group)%given) given = index(file%groups(group)%assigned, ','//name//',') > 0
   end function given
 
+  !> How many values the group's last assignment of the whole array `name` (no index) gives:
+  !> its values separated by commas or blanks, r*value counting r times; -1 if the group has
+  !> no such assignment (none, or only `name(i) = ...`).
+  pure integer function list_length(file, group, name) result(n)
+    type(input_file), intent(in) :: file
+    integer, intent(in) :: group
+    character(len=*), intent(in) :: name
+    integer :: k, last, equals
+    n = -1
+    if (file%describing .or. .not. allocated(file%groups)) return
+    if (.not. file%groups(group)%given) return
+    associate (g => file%groups(group))
+      do k = 1, size(g%starts)
+        last = len(g%body)
+        if (k < size(g%starts)) last = g%starts(k + 1) - 1
+        equals = g%starts(k) + index(g%body(g%starts(k):last), '=') - 1
+        if (lower(trim(adjustl(g%body(g%starts(k):equals - 1)))) == name) &
+          n = count_values(g%body(equals + 1:last))
+      end do
+    end associate
+  end function list_length
+
   pure subroutine fail(status, message, text)
     integer, intent(inout) :: status
     character(len=message_len), intent(inout) :: message
@@ -455,41 +520,15 @@ contains
   pure function bad_value(values) result(token)
     character(len=*), intent(in) :: values
     character(len=:), allocatable :: token
-    integer :: i, start, star
-    character :: quote
+    integer :: i, start, finish, star
 
     token = ''
     i = 1
-    do while (i <= len(values))
-      if (values(i:i) == ' ' .or. values(i:i) == ',') then
-        i = i + 1
-        cycle
-      end if
-      start = i
-      if (values(i:i) == '''' .or. values(i:i) == '"') then
-        ! a quoted string, doubled quotes inside
-        quote = values(i:i)
-        i = i + 1
-        do while (i <= len(values))
-          if (values(i:i) == quote) then
-            if (i < len(values)) then
-              if (values(i + 1:i + 1) == quote) then
-                i = i + 2
-                cycle
-              end if
-            end if
-            exit
-          end if
-          i = i + 1
-        end do
-        i = i + 1
-        cycle
-      end if
-      do while (i <= len(values))
-        if (values(i:i) == ' ' .or. values(i:i) == ',') exit
-        i = i + 1
-      end do
-      token = values(start:i - 1)
+    do
+      call next_token(values, i, start, finish)
+      if (start == 0) return
+      if (values(start:start) == '''' .or. values(start:start) == '"') cycle
+      token = values(start:finish)
       star = index(token, '*')
       if (star > 0) then
         if (verify(token(1:star - 1), '0123456789') == 0 .and. star > 1) token = token(star + 1:)
@@ -497,11 +536,74 @@ contains
       if (len(token) == 0 .or. is_number(lower(token)) .or. is_logical(lower(token))) then
         token = ''
       else
-        token = values(start:i - 1)
+        token = values(start:finish)
         return
       end if
     end do
   end function bad_value
+
+  !> The number of values in an assignment's value text (its tokens as bad_value reads them):
+  !> r*value counts r, a quoted string one.
+  pure integer function count_values(values) result(n)
+    character(len=*), intent(in) :: values
+    integer :: i, start, finish, star, repeat, ios
+    n = 0
+    i = 1
+    do
+      call next_token(values, i, start, finish)
+      if (start == 0) return
+      star = index(values(start:finish), '*')
+      repeat = 1
+      if (star > 1 .and. star <= 10 .and. values(start:start) /= '''' .and. &
+          values(start:start) /= '"') then
+        if (verify(values(start:start + star - 2), '0123456789') == 0) &
+          read (values(start:start + star - 2), *, iostat=ios) repeat
+      end if
+      n = n + repeat
+    end do
+  end function count_values
+
+  !> The next token of a value text from position i: values(start:finish), a quoted string
+  !> (doubled quotes inside) or a run of characters up to a comma or blank; start = 0 if none.
+  !> i moves past it.
+  pure subroutine next_token(values, i, start, finish)
+    character(len=*), intent(in) :: values
+    integer, intent(inout) :: i
+    integer, intent(out) :: start, finish
+    character :: quote
+    start = 0
+    finish = 0
+    do while (i <= len(values))
+      if (values(i:i) /= ' ' .and. values(i:i) /= ',') exit
+      i = i + 1
+    end do
+    if (i > len(values)) return
+    start = i
+    if (values(i:i) == '''' .or. values(i:i) == '"') then
+      quote = values(i:i)
+      i = i + 1
+      do while (i <= len(values))
+        if (values(i:i) == quote) then
+          if (i < len(values)) then
+            if (values(i + 1:i + 1) == quote) then
+              i = i + 2
+              cycle
+            end if
+          end if
+          exit
+        end if
+        i = i + 1
+      end do
+      finish = min(i, len(values))
+      i = i + 1
+      return
+    end if
+    do while (i <= len(values))
+      if (values(i:i) == ' ' .or. values(i:i) == ',') exit
+      i = i + 1
+    end do
+    finish = i - 1
+  end subroutine next_token
 
   !> A Fortran real or integer literal, or NaN/Infinity as list-directed input reads them.
   pure logical function is_number(text)

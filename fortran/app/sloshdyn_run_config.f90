@@ -63,6 +63,9 @@ module sloshdyn_run_config
     real(wp) :: t_end = 0       !< required for 'simulate'
     integer :: n_out = 2001
     real(wp) :: y0(8) = 0
+    !> how many values the file's `y0 = ...` gave (-1: none, or only y0(i) = ...): one per
+    !> state of the model, as Python's y0 (check_spatial)
+    integer :: y0_values = -1
   end type simulation_settings
 
   !> &sweep.

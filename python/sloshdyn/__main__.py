@@ -12,7 +12,9 @@ def main(argv=None):
     try:
         from .cli import main as cli_main    # the plot extra: an error naming it if missing
     except MissingExtraError as exc:
-        print(f"sloshdyn-py: error: {exc}", file=sys.stderr)
+        from ._shipped import NAMELIST_REFERENCE
+        print(f"sloshdyn-py: error: {exc} (the namelist reference, without it: "
+              f"{NAMELIST_REFERENCE})", file=sys.stderr)
         return exit_code(exc)
     return cli_main(argv)
 

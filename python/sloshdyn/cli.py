@@ -21,6 +21,7 @@ from . import figures, plotting, reference, studies
 from ._errors import (EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_POINTS_FAILED, EXIT_TERMINATED,
                       FileError, InputError, SloshdynError, exit_code)
 from ._files import run_directory, save_figure, write_text
+from ._shipped import NAMELIST_REFERENCE, copy_examples
 from ._version import __version__
 from .namelist import read_namelist
 from .report import design_report
@@ -28,7 +29,9 @@ from .runner import run_input
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="sloshdyn-py", description=(
-        "sloshdyn: sloshing in a partially filled tank (Farid & Gendelman's model)."))
+        "sloshdyn: sloshing in a partially filled tank (Farid & Gendelman's model)."),
+        epilog=f"The namelist reference (every group and variable): {NAMELIST_REFERENCE}. "
+        "Example inputs: sloshdyn-py examples DIR.")
     parser.add_argument("--version", action="version", version=f"sloshdyn {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
 
@@ -36,8 +39,15 @@ def main(argv=None):
                               description="Run the analysis a namelist file asks for (the same "
                               "input as the Fortran executable), print a summary, and write its "
                               "CSV files and a figure into the &output directory.")
-    run.add_argument("input", help="namelist file (see docs/namelist.md), or - for standard "
-                     "input (its relative paths then relative to the current directory)")
+    run.add_argument("input", help=f"namelist file (see {NAMELIST_REFERENCE}), or - for "
+                     "standard input (its relative paths then relative to the current directory)")
+
+    exm = commands.add_parser("examples", help="copy the example inputs into a directory",
+                              description="Copy the example inputs (*.nml, the inputs of the "
+                              "README and the tutorials) and their records into DIR, new or "
+                              "without files of those names; run one with sloshdyn DIR/NAME.nml. "
+                              f"The namelist reference: {NAMELIST_REFERENCE}.")
+    exm.add_argument("dir", metavar="DIR", help="where to copy them")
 
     rep = commands.add_parser("reproduce", help="recompute every figure of the paper",
                               description="Recompute every numerical figure of the paper (PNG "
@@ -95,6 +105,11 @@ def main(argv=None):
         _check_standard_output()
         if args.command == "run":
             run_input(args.input)
+            return 0
+        if args.command == "examples":
+            copied = copy_examples(args.dir)
+            print(f"{len(copied)} example inputs in {args.dir} (with their records); "
+                  f"run one with: sloshdyn {copied[0]}")
             return 0
         if args.command == "report":
             sheet = design_report(args.input, args.out, project=args.project,

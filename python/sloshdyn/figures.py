@@ -19,6 +19,7 @@ from .model import equilibria, equilibrium_angles, frequency_ratio, kappa_for_de
 from .periodic import PERIODIC_CONTINUATION, Lyapunov, lyapunov_exponent, periodic_response
 from .parameters import Parameters
 from .simulation import Steady, amplitude_sweep, beat_period, simulate, spectrum, steady_state
+from matplotlib.ticker import MaxNLocator  # after plotting, which names the 'plot' extra
 
 plt = plotting.plt
 
@@ -344,6 +345,7 @@ def fig13(out, quick=False):
             inside = (r.table["rho"] > zoom[0]) & (r.table["rho"] < zoom[1])
             span = np.max(np.abs(r.table["delta3"][inside]))
             ax.set_ylim(-1.1 * span, 1.1 * span)
+        ax.xaxis.set_major_locator(MaxNLocator(5))   # five-digit labels side by side
     fig.tight_layout()
     return Figure("13", "a) Routh coefficient Δ3 vs. external forcing frequency, b) zoom-in.",
                   _save(fig, out, "fig13", _response_columns(r)))

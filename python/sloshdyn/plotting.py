@@ -104,7 +104,15 @@ def frequency_response(response, columns=("a1", "a2"), simulation=None):
     labels = {"a1": r"$|u_1|$", "a2": r"$|u_2|$"}
     fig, axes = plt.subplots(len(columns), 1, sharex=True, figsize=(7, 2.8 * len(columns)),
                              squeeze=False)
+    names = {"-": "stable", "--": "unstable", "fold": "fold", "hopf": "Hopf point"}
     for ax, column in zip(axes[:, 0], columns):
+        named = set()           # each kind of curve named once in the legend
+
+        def label(kind):
+            first = kind not in named
+            named.add(kind)
+            return names.get(kind, kind) if first else "_nolegend_"
+
         for branch in response.branches:
             x, y, stable = branch["lambda"], branch[column], branch["stable"] > 0
             # split into runs of equal stability, sharing the boundary point
@@ -112,17 +120,19 @@ def frequency_response(response, columns=("a1", "a2"), simulation=None):
             for k in range(1, len(x) + 1):
                 if k == len(x) or stable[k] != stable[start]:
                     end = min(k + 1, len(x))
-                    ax.plot(x[start:end], y[start:end], "-" if stable[start] else "--",
-                            color="k", lw=1.0)
+                    style = "-" if stable[start] else "--"
+                    ax.plot(x[start:end], y[start:end], style, color="k", lw=1.0,
+                            label=label(style))
                     start = k
         for s in response.special_points:
             value = getattr(s, column)
             ax.plot(s.rho if response.parameter == "rho" else s.A, value,
-                    "o" if s.kind == "fold" else "s", mfc="none", color="r", ms=5)
+                    "o" if s.kind == "fold" else "s", mfc="none", color="r", ms=5,
+                    label=label(s.kind))
         if simulation is not None:
             ax.plot(simulation.values, simulation.column("max_" + column.replace("a", "u")), "x",
                     color="b", ms=4, label="direct simulation")
-            ax.legend()
+        ax.legend(fontsize=8)
         ax.set_ylabel(labels.get(column, column))
     axes[-1, 0].set_xlabel(r"$\rho$" if response.parameter == "rho" else "A")
     fig.tight_layout()
@@ -143,6 +153,7 @@ def routh_delta3(response, zoom=None):
     ax.set_ylabel(r"$\Delta_3$")
     if zoom:
         ax.set_xlim(*zoom)
+    ax.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(5))   # labels side by side
     fig.tight_layout()
     return fig
 

@@ -2,6 +2,7 @@
 and writes nothing; Python raises InputError with the same information."""
 
 import math
+import re
 
 import pytest
 
@@ -194,3 +195,58 @@ def test_parameters_validate(fig12, field, value, words):
 def test_kappa_hat_rule_names_kappa(fig12):
     with pytest.raises(sloshdyn.InputError, match=r"kappa = 1.4.*kappa_hat"):
         sloshdyn.linear_modes(fig12.replace(kappa=1.4))
+
+
+def _variables_and_types():
+    """(group, variable, type) of every variable the reader has, its type told by the value
+    gfortran's namelist write gives its default (not by the reader's messages)."""
+    text = sloshdyn._core.sloshdyn_bridge_input.namelist_defaults().decode().strip()
+    cases = []
+    for match in re.finditer(r"&(\w+)(.*?)/\s*$", text, re.M):
+        group = match.group(1).lower()
+        for name, default in re.findall(r"(\w+)=\s*(\"[^\"]*\"|[^,]*?)\s*,", match.group(2)):
+            name, default = name.lower(), default.strip()
+            if default.startswith('"') or default == "":      # record_y is written blank
+                kind = "a quoted string"
+            elif default in ("T", "F"):
+                kind = ".true. or .false."
+            elif all(c in "0123456789-*" for c in default):
+                kind = "an integer"
+            else:
+                kind = "a real number"
+            cases.append((group, name, kind))
+    return cases
+
+
+@pytest.mark.parametrize("group, name, kind", _variables_and_types(),
+                         ids=lambda v: v if isinstance(v, str) and " " not in v else "")
+def test_a_value_of_the_wrong_type_names_the_variable_and_its_type(tmp_path, group, name, kind):
+    """Issue 44 item 5: `radius = 'abc'` in &tank_structure, &design, &chart (and planar,
+    switch_at, min_workers, ...) was "unknown variable": every known variable given a value of
+    another type is named with the type it must be."""
+    wrong = ".true." if kind == "a quoted string" else "'abc'"
+    context = {"model": "", "tank": "", "ground_motion": TANK}.get(group, MODEL)
+    path = write(tmp_path, context + f"&{group} {name} = {wrong} /\n")
+    with pytest.raises(sloshdyn.InputError) as error:
+        sloshdyn.read_namelist(path)
+    message = str(error.value)
+    assert f"&{group} in" in message and f"{name} = {wrong} is not valid" in message, message
+    assert "unknown variable" not in message
+    if name == "y0":
+        assert "y0 must be four real numbers" in message
+    else:
+        assert f"{name} must be {kind}" in message, message
+
+
+def test_an_unknown_variable_is_named_with_its_group_in_both_doors(exe, tmp_path):
+    path = write(tmp_path, MODEL + "&analysis kind = 'linear', knd = 'linear' /\n" + OUTPUT)
+    result = run(exe, path, tmp_path)
+    assert result.returncode == 3
+    assert "knd = 'linear' is not valid: unknown variable 'knd' (not one of &analysis" in \
+        result.stderr
+    with pytest.raises(sloshdyn.InputError, match="unknown variable 'knd'"):
+        sloshdyn.read_namelist(path)
+    path = write(tmp_path, TANK.replace("radius = 5", "radius = 'abc'") + OUTPUT)
+    result = run(exe, path, tmp_path)
+    assert result.returncode == 3
+    assert "radius = 'abc' is not valid: radius must be a real number" in result.stderr

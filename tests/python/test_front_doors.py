@@ -93,7 +93,7 @@ def _analysis_case(tmp_path, analysis, extra):
 
 
 def test_simulate_same_numbers(exe, tmp_path):
-    inp = _analysis_case(tmp_path, "simulate", "&simulation t_end = 200, n_out = 51, y0 = 0.1 /\n")
+    inp = _analysis_case(tmp_path, "simulate", "&simulation t_end = 200, n_out = 51, y0 = 0.1, 0, 0, 0 /\n")
     result = run(exe, "case.nml", tmp_path)
     assert result.returncode == 0, result.stderr
     rows = read_csv(tmp_path / "out" / "history.csv")

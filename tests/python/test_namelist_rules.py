@@ -108,3 +108,50 @@ def test_the_example_chart_still_reads(tmp_path):
     """A box inside the bounds reads as before (the Fig 11-12 chart)."""
     inp = sloshdyn.read_namelist(EXAMPLES / "fig12_stability_chart.nml")
     assert inp.analysis == "stability_chart"
+
+
+SIMULATE = "&excitation A = 0.001, rho = 0.5 /\n&analysis kind = 'simulate' /\n"
+
+
+def spatial_model(planar):
+    return MODEL if planar else MODEL.replace(" /", ", planar = .false. /")
+
+
+@pytest.mark.parametrize("planar, values", [(False, 7), (False, 4), (False, 1),
+                                            (True, 1), (True, 3), (True, 8)])
+def test_a_y0_list_has_one_value_per_state_as_in_python(exe, tmp_path, planar, values):
+    """Issue 44 item 4: `y0 = ` seven values for the spatial model was read with the eighth
+    state 0, while Python's spatial.simulate refuses seven: now one rule, a list of as many
+    values as the model has states (4 planar, 8 spatial), in both doors and in Python."""
+    states = 4 if planar else 8
+    simulate = sloshdyn.simulate if planar else sloshdyn.spatial.simulate
+    p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.8049, theta0=0.785, gamma=0.001, A=0.001,
+                            rho=0.5)
+    y0 = [0.1] + [0] * (values - 1)     # planar with 8: the out-of-plane states 0
+    with pytest.raises(sloshdyn.InputError, match="y0"):
+        simulate(p, 1.0, y0)
+    text = (spatial_model(planar) + SIMULATE +
+            f"&simulation t_end = 1, y0 = {', '.join(map(str, y0))} /\n")
+    message = refused_by_both_doors(exe, tmp_path, text, "&simulation", "y0",
+                                    f"{values} value", f"{states} states")
+    assert "y0(i) = value" in message
+
+
+@pytest.mark.parametrize("planar, y0", [(True, "0.1, 0, 0.2, 0"), (True, "4*0.1"),
+                                        (True, "y0(2) = 0.5"),
+                                        (False, "0.1, 0, 0.2, 0, 0.1, 0.05, 0, 0"),
+                                        (False, "2*0.1, 6*0"), (False, "y0(5) = 0.1")])
+def test_a_y0_of_every_state_or_of_single_entries_reads_as_python_takes_it(exe, tmp_path,
+                                                                             planar, y0):
+    """What the rule keeps: a whole list (repeat counts r*v count r) or single entries
+    y0(i) = v; the run gives the time history Python gives from the state read."""
+    assignment = y0 if y0.startswith("y0(") else f"y0 = {y0}"
+    text = (spatial_model(planar) + SIMULATE +
+            f"&simulation t_end = 1, n_out = 3, {assignment} /\n&output directory = 'out' /\n")
+    path = write(tmp_path, text)
+    inp = sloshdyn.read_namelist(path)
+    assert len(inp.simulation["y0"]) == (4 if planar else 8)
+    simulate = sloshdyn.simulate if planar else sloshdyn.spatial.simulate
+    simulate(inp.params, 1.0, inp.simulation["y0"], n_out=3)   # Python takes the state read
+    result = run(exe, path, tmp_path)
+    assert result.returncode == 0, result.stderr

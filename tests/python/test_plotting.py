@@ -2,6 +2,7 @@
 
 import math
 
+import matplotlib.colors
 import numpy as np
 
 import sloshdyn
@@ -58,3 +59,50 @@ def test_response_spectrum_returns_its_figure():
     # pseudo-spectral acceleration (drawn in g) = (2 pi/T)^2 x spectral displacement
     assert np.allclose(psa * 9.80665, (2 * np.pi / periods) ** 2 * sd, rtol=1e-12)
     assert [line.get_xdata()[0] for ax in fig.axes for line in ax.lines[1:]] == [2.0, 2.0]
+
+
+def _paper_figure(monkeypatch, tmp_path, number):
+    """The matplotlib figure `reproduce` saves for Fig `number` (quick)."""
+    from sloshdyn import figures
+    saved = {}
+
+    def keep(fig, path):
+        saved[path.name] = fig
+    monkeypatch.setattr(figures, "save_figure", keep)
+    figures.FIGURES[number](tmp_path, quick=True)
+    return saved[f"fig{number}.png"]
+
+
+def _style(line):
+    return (line.get_linestyle(), line.get_marker(), matplotlib.colors.to_hex(line.get_color()))
+
+
+def test_fig12_legend_names_every_kind_of_curve(monkeypatch, tmp_path):
+    """Issue 44 item 11: Fig 12's legend named only the direct simulation; now every style drawn
+    (stable solid, unstable dashed, folds, Hopf points, simulation crosses) has its entry."""
+    fig = _paper_figure(monkeypatch, tmp_path, "12")
+    for ax in fig.axes:
+        drawn = {_style(line) for line in ax.get_lines() if len(line.get_xdata())}
+        legend = ax.get_legend()
+        assert legend is not None
+        named = {_style(h) for h in legend.legend_handles}
+        assert drawn == named, (drawn, named)
+        texts = {t.get_text() for t in legend.get_texts()}
+        assert {"stable", "unstable", "fold", "Hopf point", "direct simulation"} <= texts
+
+
+def _overlapping_labels(ax, renderer):
+    boxes = [t.get_window_extent(renderer) for t in ax.get_xticklabels()
+             if t.get_visible() and t.get_text()]
+    return [(a, b) for i, a in enumerate(boxes) for b in boxes[i + 1:] if a.overlaps(b)]
+
+
+def test_fig13_x_labels_do_not_overlap(monkeypatch, tmp_path):
+    """Issue 44 item 11: the zoom's labels 0.50850 ... 0.51050 ran into each other; now no two
+    tick labels of either panel overlap, drawn at the saved size."""
+    fig = _paper_figure(monkeypatch, tmp_path, "13")
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        assert len([t for t in ax.get_xticklabels() if t.get_text()]) >= 3
+        assert _overlapping_labels(ax, renderer) == []

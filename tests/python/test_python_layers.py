@@ -17,7 +17,7 @@ EXTENSIONS = {"_core"}
 #: the layers, lowest first; a module imports only modules of its own layer and lower ones
 LAYERS = [
     ("infrastructure", {"_core", "_errors", "_checks", "_tables", "_settings", "_files",
-                        "_cancel", "_extras", "_version", "_input"}),
+                        "_cancel", "_extras", "_version", "_input", "_shipped"}),
     ("value types", {"parameters", "options", "ground", "tank", "structure"}),
     ("analyses", {"model", "simulation", "asymptotics", "periodic", "research", "charts",
                   "seismic", "pressure", "design", "spatial", "plotting", "studies"}),

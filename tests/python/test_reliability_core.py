@@ -131,8 +131,8 @@ CTRL_C = textwrap.dedent("""\
     p = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.7853981633974483,
                             A=1.0475, rho=0.513)
     call = {call}
-    print("ready", flush=True)
     try:
+        print("ready", flush=True)     # inside the try: a signal right after it is caught too
         call(p)
     except KeyboardInterrupt:
         # the flag is cleared: the next call runs to its end (tau = 10: 101 finite points)

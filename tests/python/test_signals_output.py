@@ -3,7 +3,6 @@ grid, reading), and standard output that takes no writes is a failed write, exit
 The runs are stopped early, so each case costs a few seconds; the timeouts are guards against
 a run that ignores the signal (on the old code these ran for minutes after it)."""
 
-import os
 import signal
 import subprocess
 import sys
@@ -11,14 +10,14 @@ import sys
 import pytest
 
 from conftest import EXAMPLES
-from test_faults import _start_and_signal
-
-GUARD = 30          # seconds a run may take to stop after SIGTERM before the test fails
+from test_faults import _start_and_signal, first_line, handlers_installed, writing
 
 
-def terminate_after(cmd, cwd, delay):
-    """Start cmd, send SIGTERM after `delay` s: (exit code, stderr)."""
-    return _start_and_signal(cmd, cwd, signal.SIGTERM, delay, within=GUARD)
+def terminate_when(cmd, cwd, ready):
+    """Start cmd, send SIGTERM once ready(proc) holds (a readiness marker, not a delay):
+    (exit code, stderr)."""
+    code, stderr, _ = _start_and_signal(cmd, cwd, signal.SIGTERM, ready)
+    return code, stderr
 
 
 def test_sigterm_stops_the_output_of_a_long_seismic_response(exe, tmp_path):
@@ -28,7 +27,7 @@ def test_sigterm_stops_the_output_of_a_long_seismic_response(exe, tmp_path):
         "records/", str(EXAMPLES / "records") + "/").replace(
         "sloshdyn_output/tank_seismic", "out") + "&seismic n_out = 2000000 /\n"
     (tmp_path / "input.nml").write_text(text)
-    code, stderr = terminate_after([exe, "input.nml"], tmp_path, 3.0)
+    code, stderr = terminate_when([exe, "input.nml"], tmp_path, writing(tmp_path / "out"))
     assert code == 143, stderr
     assert not list(tmp_path.glob("out/*.csv"))
 
@@ -39,7 +38,7 @@ def test_sigterm_stops_a_stability_chart_on_a_large_grid(exe, tmp_path):
         "n_x = 41, n_y = 9", "n_x = 10000, n_y = 200").replace(
         "sloshdyn_output/fig12_stability_chart", "out")
     (tmp_path / "input.nml").write_text(text)
-    code, stderr = terminate_after([exe, "input.nml"], tmp_path, 2.0)
+    code, stderr = terminate_when([exe, "input.nml"], tmp_path, first_line)
     assert code == 143, stderr
     assert not list(tmp_path.glob("out/*.csv"))
 
@@ -48,21 +47,10 @@ def test_sigterm_ends_a_run_waiting_for_its_input(exe, tmp_path):
     """An input read from standard input (-) that never comes (a pipe whose writer waits): the
     read waits; the first SIGTERM ends the run, 143, as while it reads a long record. (A FIFO
     as the input file is refused before it is opened: test_run_directory.py.)"""
-    proc = subprocess.Popen([exe, "-"], cwd=tmp_path, stdin=subprocess.PIPE,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    try:
-        code, stderr = terminate_after_started(proc, 1.0)
-    finally:
-        proc.stdin.close()
-    assert code == 143
-
-
-def terminate_after_started(proc, delay):
-    import time
-    time.sleep(delay)
-    proc.send_signal(signal.SIGTERM)
-    _, stderr = proc.communicate(timeout=GUARD)
-    return proc.returncode, stderr
+    code, stderr, _ = _start_and_signal([exe, "-"], tmp_path, signal.SIGTERM,
+                                        handlers_installed(signal.SIGTERM),
+                                        stdin=subprocess.PIPE)
+    assert code == 143, stderr
 
 
 @pytest.mark.parametrize("door", ["executable", "sloshdyn-py"])
