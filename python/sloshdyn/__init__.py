@@ -32,6 +32,7 @@ from .pressure import SeismicPressures, WallPressure, seismic_pressures, wall_pr
 from .design import DesignCheck, design_check
 from .structure import TankStructure
 from . import spatial  # the spatial model and swirl (issue 26): sloshdyn.spatial.*
+from . import export  # branches, curves and studies to xarray and CSV (issue 42): sloshdyn.export.*
 from .studies import (FragilityFit, basins, fit_fragility, fragility_study, impact_parameters,
                       response_map)
 # the namelist input, and the calc sheet that runs it
