@@ -96,6 +96,22 @@ class PeriodicSpecialPoint:
 
 
 @dataclass(frozen=True)
+class Criticality:
+    """The criticality of a period doubling (PeriodicBranch.criticality): the cubic normal-form
+    coefficient c of the stroboscopic map on its centre manifold x = eta q,
+    eta -> -(1 + beta) eta + c eta^3 (mu = -(1 + beta) the critical multiplier; Kuznetsov 2004,
+    eq 8.24). c > 0: supercritical, the doubled orbits are stable and born where the orbit is
+    unstable, at |eta| = sqrt(beta/c); c < 0: subcritical, past the point the motion jumps
+    away."""
+
+    kind: str                    #: 'period_doubling'
+    coefficient: float           #: c (q of unit length)
+    supercritical: bool          #: c > 0
+    multiplier: float            #: the multiplier nearest -1 at the point
+    direction: np.ndarray        #: q: the critical Floquet eigenvector (unit length)
+
+
+@dataclass(frozen=True)
 class PeriodicBranch:
     """A branch of periodic orbits of the full equations, with Floquet stability."""
 
@@ -141,6 +157,23 @@ class PeriodicBranch:
         return _branch(self.parameter, at, int(k_new), (lo, hi), c, self.integration, points,
                        multipliers, n, special, n_special, complete, status, message,
                        "switched branch")
+
+
+    def criticality(self, special_point) -> Criticality:
+        """The criticality of special_point, a 'period_doubling' of this branch: the flip
+        normal-form coefficient from the monodromy matrices of the variational equations
+        (docs/model.md, "Criticality"). Neimark-Sacker points are not covered yet."""
+        _checks.instance("special_point", special_point, PeriodicSpecialPoint)
+        if special_point.kind != "period_doubling":
+            raise InputError(f"special_point.kind = {special_point.kind!r}: the criticality is "
+                             "computed at a 'period_doubling'")
+        at = self.params.replace(rho=special_point.rho, A=special_point.A)
+        c, q, mu, status, message = cancellable(
+            _bridge.period_doubling_criticality, *at.array(),
+            _checks.reals("special_point.y0", special_point.y0, (4,)), self.periods,
+            self.integration.array())
+        check_status(status, message, "period-doubling criticality")
+        return Criticality("period_doubling", float(c), bool(c > 0), float(mu), q)
 
 
 def _branch(parameter, params, periods, lambda_range, continuation, integration, points,
