@@ -16,7 +16,7 @@ from ._errors import InputError, check_status, message_text, with_partial
 from .asymptotics import continuation_array, continuation_range
 from .charts import _chart
 from .model import linear_modes
-from .options import Continuation, Integration, Lyapunov, Shooting
+from .options import Chart, Continuation, Integration, Lyapunov, Shooting
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_periodic
@@ -178,22 +178,23 @@ class PeriodicBranch:
         return Criticality("period_doubling", float(c), bool(c > 0), float(mu), q)
 
 
-    def curve(self, special_point, rho_range, A_range, *, max_points=400):
+    def curve(self, special_point, rho_range, A_range, *, chart: Chart = Chart()):
         """The two-parameter curve in (rho, A) through special_point (a 'fold',
         'period_doubling' or 'neimark_sacker' of this branch), traced both ways inside the box
-        rho_range x A_range with at most max_points points (sloshdyn_orbit_chart: the
+        rho_range x A_range with at most chart.max_points points (its other fields are the
+        grid's, not used here; sloshdyn_orbit_chart: the
         stroboscopic map's defining systems of sloshdyn_map_bifurcation), with its
         codimension-2 points: a charts.Curve (state: the orbits at phase 0; omega: the torus'
         rotation angle on a Neimark-Sacker curve). A curve stopped early has complete False and
-        its note; raises CapacityError if it needs more than max_points."""
+        its note."""
         _checks.instance("special_point", special_point, PeriodicSpecialPoint)
         if special_point.kind not in ("fold", "period_doubling", "neimark_sacker"):
             raise InputError(f"special_point.kind = {special_point.kind!r}: a curve starts at a "
                              "'fold', a 'period_doubling' or a 'neimark_sacker'")
         (r0, r1), (a0, a1) = (_checks.interval("rho_range", rho_range),
                               _checks.interval("A_range", A_range))
-        max_points = _checks.output_size("max_points",
-                                         _checks.integer("max_points", max_points, 3),
+        _checks.instance("chart", chart, Chart)
+        max_points = _checks.output_size("chart.max_points", max(chart.max_points, 3),
                                          len(_tables.columns("chart_curves")))
         lam = getattr(special_point, self.parameter)
         special = np.concatenate([[_tables.code("special", special_point.kind), lam],

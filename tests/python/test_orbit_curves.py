@@ -27,7 +27,8 @@ def doubling_at(rho):
 @pytest.fixture(scope="module")
 def curve():
     asymmetric, doubling = doubling_at(P.rho)
-    return asymmetric.curve(doubling, (0.997, 1.003), (0.9, 1.05), max_points=200)
+    return asymmetric.curve(doubling, (0.997, 1.003), (0.9, 1.05),
+                            chart=sloshdyn.Chart(max_points=200))
 
 
 def test_period_doubling_curve_passes_through_independent_doublings(curve):
