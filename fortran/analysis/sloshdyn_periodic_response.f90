@@ -9,18 +9,21 @@ module sloshdyn_periodic_response
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_continuation, only: continuation_options
-  use sloshdyn_shooting, only: shooting_newton, periodic_branch, switch_branch
+  use sloshdyn_shooting, only: shooting_newton, periodic_branch, switch_branch, monodromy_matrix
+  use sloshdyn_half_period, only: locate_symmetry_breaking
+  use sloshdyn_map_normal_form, only: period_doubling_coefficient
+  use sloshdyn_excitation, only: EXCITATION_HARMONIC
   use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts
   use sloshdyn_simulation, only: steady_options, steady_state
   use sloshdyn_response, only: response_options, frequency_response
   use sloshdyn_linear, only: modal_matrix
   use sloshdyn_excitation, only: PARAMETER_RHO
   use sloshdyn_tables, only: SUMMARY_SIZE, POINT_ROWS, SPECIAL_ROWS, POINT_RHO, POINT_STABLE, &
-                             POINT_X
+                             POINT_X, SPECIAL_BRANCH_POINT
   implicit none
   private
   public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest, &
-            orbit_from_rest, periodic_switch
+            orbit_from_rest, periodic_switch, period_doubling_criticality
   public :: lyapunov_options, check_lyapunov, newton_tol_default, max_iter_default
   public :: periodic_start_state, start_names
 
@@ -85,6 +88,7 @@ contains
     call periodic_branch(system, y0, lambda_min, lambda_max, continuation, options, method, &
                          points, multipliers, n_points, special, n_special, complete, status, &
                          message, k)
+    call refine_branch_points(system, k, options, method, special, n_special)
   end subroutine periodic_response
 
   !> Branch switching (sloshdyn_shooting's switch_branch) at the special point of kind
@@ -110,7 +114,59 @@ contains
     call switch_branch(system, kind, y_special, k, lambda_min, lambda_max, continuation, &
                        options, method, points, multipliers, n_points, special, n_special, &
                        complete, k_new, status, message)
+    call refine_branch_points(system, k_new, options, method, special, n_special)
   end subroutine periodic_switch
+
+  !> The criticality of the period doubling of the orbit of period k T through y at the
+  !> model's excitation (sloshdyn_map_normal_form): the flip coefficient c (> 0 supercritical),
+  !> the critical eigenvector q and multiplier mu.
+  subroutine period_doubling_criticality(model, y, k, options, method, c, q, mu, status, &
+                                         message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4)
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: c, q(4), mu
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    system%model = model
+    call period_doubling_coefficient(system, y, k, options, method, c, q, mu, status, message)
+  end subroutine period_doubling_criticality
+
+  !> The branch points among special(:, 1:n_special) (rows [kind, lambda, y(1:4), max|x1|])
+  !> located again on the half-period map (sloshdyn_half_period), where they are regular: to
+  !> ~1e-12 instead of the full-period map's ~1e-7. Only under harmonic excitation (the Z2
+  !> symmetry) and when the new location is the same point (within 1e-4 in lambda, 1e-3 in
+  !> y); otherwise the full-period location stays.
+  subroutine refine_branch_points(system, k, options, method, special, n_special)
+    type(tank_system), intent(in) :: system
+    integer, intent(in) :: k, method, n_special
+    type(ode_options), intent(in) :: options
+    real(wp), intent(inout) :: special(:, :)
+    type(tank_system) :: at
+    real(wp) :: y0(4), lambda0, y(4), lambda, y_end(4), monodromy(4, 4), max_x1
+    integer :: j, st
+    character(len=message_len) :: msg
+    ! y -> -y, tau -> tau + k T/2 is a symmetry for odd k under X = A sin(rho tau) only
+    if (system%model%excitation%kind /= EXCITATION_HARMONIC .or. mod(k, 2) == 0) return
+    do j = 1, n_special
+      if (nint(special(1, j)) /= SPECIAL_BRANCH_POINT) cycle
+      lambda0 = special(2, j)
+      y0 = special(3:6, j)
+      call locate_symmetry_breaking(system, y0, lambda0, 1.0e-6_wp*max(1.0_wp, abs(lambda0)), &
+                                    k, options, method, y, lambda, st, msg)
+      if (st /= SD_OK) cycle
+      if (abs(lambda - lambda0) > 1.0e-4_wp*max(1.0_wp, abs(lambda0)) .or. &
+          maxval(abs(y - y0)) > 1.0e-3_wp*max(1.0_wp, maxval(abs(y0)))) cycle
+      at = system
+      call at%set_parameter(lambda)
+      call monodromy_matrix(at, y, k, options, method, y_end, monodromy, st, msg, &
+                            max_abs_y1=max_x1)
+      if (st /= SD_OK) cycle
+      special(2:7, j) = [lambda, y, max_x1]
+    end do
+  end subroutine refine_branch_points
 
   !> A start state y_start (at forcing phase 0) for the shooting of a periodic orbit of model,
   !> by name: 'simulation', the steady state reached from rest (steady_state with
@@ -200,6 +256,7 @@ contains
     call periodic_branch(system, y_orbit, lambda_min, lambda_max, continuation, options, &
                          method, points, multipliers, n_points, special, n_special, complete, &
                          status, message)
+    call refine_branch_points(system, 1, options, method, special, n_special)
   end subroutine periodic_response_from_rest
 
   !> The start of a branch of periodic responses from rest: the model with the varied parameter

@@ -62,6 +62,71 @@ contains
     status = info
   end subroutine stability_chart
 
+  !> The two-parameter curve in (rho, A) of the full model's orbits (period k T) through a
+  !> special point of a branch continued in rho (which = 1) or A (2): special = [kind, lambda,
+  !> y0(1:4), max|x1|] (a fold, period doubling or Neimark-Sacker point;
+  !> sloshdyn_orbit_chart's orbit_curve_from_special), inside the box p_min..p_max with at most
+  !> max_points points; the tables as stability_chart's (one curve) and the curve's message
+  !> (why it stopped early: it is kept up to there; status only when it has no point).
+  subroutine orbit_curve(rpar, ipar, which, special, k, p_min, p_max, max_points, max_codim2, &
+                         curves, codim2, ends, sizes, note, status, message)
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS
+    use sloshdyn_layouts, only: CHART_SIZES_SIZE
+    use sloshdyn_status, only: SD_CAPACITY
+    use sloshdyn_text, only: num2str
+    use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
+    use sloshdyn_orbit_chart, only: orbit_chart_options, orbit_curve_from_special
+    use sloshdyn_stability_chart, only: chart_result, chart_tables, chart_table_sizes
+    real(c_double), intent(in) :: rpar(n_real_params), special(7), p_min(2), p_max(2)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, k, max_points, max_codim2
+    real(c_double), intent(out) :: curves(CHART_CURVE_ROWS, max_points), &
+                                   codim2(CHART_CODIM2_ROWS, max_codim2), ends(CHART_END_ROWS, 1)
+    integer(c_int), intent(out) :: sizes(CHART_SIZES_SIZE), status
+    character(len=256), intent(out) :: note, message
+    type(model_t) :: model
+    type(chart_result) :: chart
+    type(orbit_chart_options) :: options
+    real(c_double) :: no_grid(8, 0)
+    integer :: info, used(4)
+    curves = 0; codim2 = 0; ends = 0; sizes = 0
+    note = ''
+    call model_from_arrays(rpar, int(ipar), model, info, message)
+    status = info
+    if (info /= 0) return
+    options%curve%p_min = p_min
+    options%curve%p_max = p_max
+    options%curve%max_points = max_points
+    options%curve%continuation%ds_max = 1   ! as the chart's curves of orbits
+    options%periods = k
+    chart%base = [model%excitation%rho, model%excitation%A, 0.0_c_double, 0.0_c_double]
+    allocate (chart%curves(1), chart%cells(6, 0))
+    chart%n_curves = 1
+    call orbit_curve_from_special(model, merge(PARAMETER_RHO, PARAMETER_A, which == 1), special, &
+                                  options, chart%curves(1), info, message)
+    chart%complete = chart%curves(1)%complete
+    note = chart%curves(1)%message
+    ! a curve that stopped early is kept up to where it stopped (complete = 0, its note)
+    if (info /= 0 .and. chart%curves(1)%n_points > 0) then
+      note = message
+      info = 0
+    end if
+    if (info /= 0) then
+      status = info
+      return
+    end if
+    call chart_table_sizes(chart, used(1), used(2), used(3), used(4))
+    sizes = used
+    if (used(1) > max_points .or. used(2) > max_codim2) then
+      info = SD_CAPACITY
+      message = 'the curve has '//num2str(used(1))//' points and '//num2str(used(2))// &
+                ' codimension-2 points'
+    else if (used(1) > 0) then
+      call chart_tables(chart, curves(:, 1:used(1)), codim2(:, 1:used(2)), ends, no_grid)
+    end if
+    status = info
+  end subroutine orbit_curve
+
   !> The slow flow (3:1 internal resonance: resonance = 1, n = 4; none: 0, n = 2) at the model's
   !> rho and A: f(x) and its Jacobian (sloshdyn_slowflow_chart; x = Re B1, Im B1, Re B2, Im B2).
   subroutine slow_flow_field(rpar, ipar, resonance, n, x, f, jacobian, status, message)

@@ -36,6 +36,29 @@ contains
     status = code
   end subroutine periodic_orbit
 
+  !> The criticality of the period doubling of the orbit of period k T through y (at the
+  !> model's excitation): the flip coefficient c (> 0 supercritical), the critical eigenvector
+  !> q (unit) and multiplier mu (sloshdyn_map_normal_form).
+  subroutine period_doubling_criticality(rpar, ipar, y, k, integration, c, q, mu, status, &
+                                         message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_periodic_response, only: core => period_doubling_criticality
+    real(c_double), intent(in) :: rpar(n_real_params), y(4), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), k
+    real(c_double), intent(out) :: c, q(4), mu
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code
+    c = 0; q = 0; mu = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, y, int(k), to_ode_options(integration), &
+                             to_method(integration), c, q, mu, code, message)
+    status = code
+  end subroutine period_doubling_criticality
+
   !> Continuation of periodic orbits (period k T) in rho (which = 1) or A (which = 2) from the
   !> orbit through y0 at the parameters of rpar; settings = [ds, ds_min, ds_max, x_scale,
   !> direction]; points(7, :) = [lambda, y0(4), max|x1|, stable], multipliers(8, :) =

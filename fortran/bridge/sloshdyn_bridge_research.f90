@@ -8,30 +8,44 @@ module sloshdyn_bridge_research
 
 contains
 
-  !> All four Lyapunov exponents per unit tau from y0 (QR method), their running estimates
-  !> history(4, n_hist) after each renormalisation block and the Kaplan-Yorke dimension;
-  !> settings in the lyapunov layout.
-  subroutine lyapunov_spectrum(rpar, ipar, y0, settings, integration, n_hist, exponents, &
-                               history, dimension_ky, status, message)
+  !> All n Lyapunov exponents per unit tau from y0 (QR method) in decreasing order, their
+  !> running estimates history(n, n_hist) after each renormalisation block and the Kaplan-Yorke
+  !> dimension; settings in the lyapunov layout. n = 4: the planar model; n = 8: the spatial
+  !> one, its ground motion set by spatial = [azimuth, ellipticity] (layout 'spatial').
+  subroutine lyapunov_spectrum(rpar, ipar, spatial, n, y0, settings, integration, n_hist, &
+                               exponents, history, dimension_ky, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
-    use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
-    use sloshdyn_layouts, only: INTEGRATION_SIZE, LYAPUNOV_SIZE, to_ode_options, to_method, &
-                                to_lyapunov
-    real(c_double), intent(in) :: rpar(n_real_params), y0(4), settings(LYAPUNOV_SIZE), &
-                                  integration(INTEGRATION_SIZE)
-    integer(c_int), intent(in) :: ipar(n_int_params), n_hist
-    real(c_double), intent(out) :: exponents(4), history(4, n_hist), dimension_ky
+    use sloshdyn_spatial, only: spatial_model_t, spatial_model
+    use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum, spatial_lyapunov_spectrum
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, LYAPUNOV_SIZE, SPATIAL_SIZE, to_ode_options, &
+                                to_method, to_lyapunov
+    real(c_double), intent(in) :: rpar(n_real_params), spatial(SPATIAL_SIZE), y0(n), &
+                                  settings(LYAPUNOV_SIZE), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), n, n_hist
+    real(c_double), intent(out) :: exponents(n), history(n, n_hist), dimension_ky
     integer(c_int), intent(out) :: status
     character(len=256), intent(out) :: message
     type(model_t) :: model
+    type(spatial_model_t) :: spatial_tank
     integer :: code
     exponents = 0; history = 0; dimension_ky = 0
     call model_from_arrays(rpar, int(ipar), model, code, message)
-    if (code == 0) call tank_lyapunov_spectrum(model, y0, to_lyapunov(settings), &
-                                               to_ode_options(integration), &
-                                               to_method(integration), exponents, history, &
-                                               dimension_ky, code, message)
+    if (code /= 0) then
+      status = code
+      return
+    end if
+    if (n == 8) then
+      call spatial_model(model, spatial(1), spatial(2), spatial_tank, code, message)
+      if (code == 0) call spatial_lyapunov_spectrum(spatial_tank, y0, to_lyapunov(settings), &
+                                                    to_ode_options(integration), &
+                                                    to_method(integration), exponents, &
+                                                    history, dimension_ky, code, message)
+    else
+      call tank_lyapunov_spectrum(model, y0, to_lyapunov(settings), &
+                                  to_ode_options(integration), to_method(integration), &
+                                  exponents, history, dimension_ky, code, message)
+    end if
     status = code
   end subroutine lyapunov_spectrum
 

@@ -10,6 +10,7 @@ module sloshdyn_lyapunov
   use sloshdyn_ode, only: ode_options, rk_integrator
   use sloshdyn_integrator, only: new_integrator
   use sloshdyn_shooting, only: periodic_problem, shooting_setup, make_setup, check_setup
+  use sloshdyn_sort, only: sort_index
   implicit none
   private
   public :: largest_lyapunov, lyapunov_spectrum, kaplan_yorke, check_lyapunov_counts
@@ -41,12 +42,14 @@ contains
 
   !> The m = size(exponents) largest Lyapunov exponents (per unit tau, m <= n = size(y0)) from
   !> y0 at tau = 0 by the QR method: the orbit and m tangent vectors V' = J V of the variational
-  !> equations are integrated together; every renormalise_every forcing periods (at the first
-  !> step end on or after each boundary) V is orthonormalised by modified Gram-Schmidt,
+  !> equations are integrated together; every renormalise_every forcing periods (the steps
+  !> end on the periods' boundaries) V is orthonormalised by modified Gram-Schmidt,
   !> V = Q R, and log R(j, j) is summed for each j (Benettin et al. 1980; Shimada and Nagashima
   !> 1979). The first transient_periods are not counted; exponents(j) = sum log R(j, j) /
-  !> measured time over n_periods (a multiple of renormalise_every), in decreasing order as the
-  !> run converges. history(:, b) = the running estimates after measurement block b
+  !> measured time over n_periods (a multiple of renormalise_every), returned sorted in
+  !> decreasing order (the QR columns come out in that order only once the run has converged:
+  !> a short run or a complex pair of multipliers can leave them unordered); history(:, b) = the
+  !> running estimates after measurement block b, its rows in the order of the sorted exponents
   !> (n_periods/renormalise_every blocks; later columns are NaN). The start frame is the
   !> orthonormalised first m columns of the Hilbert matrix (column 1 the direction 1/i of the
   !> one-vector method). On a periodic orbit exponents(j) tends to log|mu_j|/(k T); their sum
@@ -65,6 +68,7 @@ contains
     real(wp), allocatable :: z(:), sum_log(:), growth(:)
     real(wp) :: period, t_end, t_start
     integer :: n, m, i, j, next_count, total, n_blocks, blocks_done
+    integer, allocatable :: order(:)
     logical :: measuring
 
     n = size(y0)
@@ -94,6 +98,13 @@ contains
     period = problem%period()
     total = transient_periods + n_periods
     t_end = total*period
+    ! steps end on the forcing periods' boundaries, so that the renormalisations and the
+    ! measured time are whole periods (on a periodic orbit the sum of the exponents is then
+    ! the mean divergence over a period, not shifted by a step's part of one)
+    if (setup%options%breakpoint_step <= 0) then
+      setup%options%breakpoint_step = period
+      setup%options%breakpoint_end = t_end
+    end if
     allocate (z(n*(m + 1)), sum_log(m), growth(m))
     z(1:n) = y0
     ! a generic start frame (not aligned with any coordinate): columns of the Hilbert matrix
@@ -155,6 +166,11 @@ contains
       end if
     end do
     exponents = sum_log/(t_end - t_start)
+    ! decreasing order, the history's rows with them
+    allocate (order(m))
+    call sort_index(-exponents, order)
+    exponents = exponents(order)
+    history = history(order, :)
 
   contains
 

@@ -21,7 +21,8 @@ from .simulation import (AmplitudeSpectrum, Simulation, SteadyState, Sweep, ampl
 from .asymptotics import (FrequencyResponse, ModalCoefficients, SlowFlowCycle, SpecialPoint,
                           frequency_response, modal_coefficients, nonresonant_amplitudes,
                           slow_flow_cycle)
-from .periodic import (LyapunovExponent, PeriodicBranch, PeriodicOrbit, PeriodicSpecialPoint,
+from .periodic import (Criticality, LyapunovExponent, PeriodicBranch, PeriodicOrbit,
+                       PeriodicSpecialPoint,
                        lyapunov_exponent, periodic_orbit, periodic_response)
 from .research import (CycleSpecialPoint, LyapunovSpectrum, SlowFlowCycles, lyapunov_spectrum,
                        slow_flow_cycles)
@@ -32,6 +33,7 @@ from .pressure import SeismicPressures, WallPressure, seismic_pressures, wall_pr
 from .design import DesignCheck, design_check
 from .structure import TankStructure
 from . import spatial  # the spatial model and swirl (issue 26): sloshdyn.spatial.*
+from . import export  # branches, curves and studies to xarray and CSV (issue 42): sloshdyn.export.*
 from .studies import (FragilityFit, basins, fit_fragility, fragility_study, impact_parameters,
                       response_map)
 # the namelist input, and the calc sheet that runs it
@@ -50,7 +52,8 @@ __all__ = [
     "sweep_values",
     "ModalCoefficients", "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
     "nonresonant_amplitudes", "SlowFlowCycle", "slow_flow_cycle", "PeriodicBranch",
-    "PeriodicOrbit", "PeriodicSpecialPoint", "Lyapunov", "LyapunovExponent", "Shooting",
+    "PeriodicOrbit", "PeriodicSpecialPoint", "Criticality", "Lyapunov", "LyapunovExponent",
+    "Shooting",
     "lyapunov_exponent", "periodic_orbit", "periodic_response",
     "DesignCodes", "GroundMotion", "HarmonicSweep", "SeismicResponse", "SeismicTimes",
     "DesignSpectrum", "DesignCheck", "design_check", "TankStructure",

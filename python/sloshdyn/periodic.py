@@ -14,11 +14,13 @@ from . import _checks, _core, _tables
 from ._cancel import cancellable
 from ._errors import InputError, check_status, message_text, with_partial
 from .asymptotics import continuation_array, continuation_range
+from .charts import _chart
 from .model import linear_modes
-from .options import Continuation, Integration, Lyapunov, Shooting
+from .options import Chart, Continuation, Integration, Lyapunov, Shooting
 from .parameters import Parameters
 
 _bridge = _core.sloshdyn_bridge_periodic
+_bridge_charts = _core.sloshdyn_bridge_charts
 KINDS = _tables.codes("special")
 
 
@@ -96,6 +98,22 @@ class PeriodicSpecialPoint:
 
 
 @dataclass(frozen=True)
+class Criticality:
+    """The criticality of a period doubling (PeriodicBranch.criticality): the cubic normal-form
+    coefficient c of the stroboscopic map on its centre manifold x = eta q,
+    eta -> -(1 + beta) eta + c eta^3 (mu = -(1 + beta) the critical multiplier; Kuznetsov 2004,
+    eq 8.24). c > 0: supercritical, the doubled orbits are stable and born where the orbit is
+    unstable, at |eta| = sqrt(beta/c); c < 0: subcritical, past the point the motion jumps
+    away."""
+
+    kind: str                    #: 'period_doubling'
+    coefficient: float           #: c (q of unit length)
+    supercritical: bool          #: c > 0
+    multiplier: float            #: the multiplier nearest -1 at the point
+    direction: np.ndarray        #: q: the critical Floquet eigenvector (unit length)
+
+
+@dataclass(frozen=True)
 class PeriodicBranch:
     """A branch of periodic orbits of the full equations, with Floquet stability."""
 
@@ -141,6 +159,60 @@ class PeriodicBranch:
         return _branch(self.parameter, at, int(k_new), (lo, hi), c, self.integration, points,
                        multipliers, n, special, n_special, complete, status, message,
                        "switched branch")
+
+
+    def criticality(self, special_point) -> Criticality:
+        """The criticality of special_point, a 'period_doubling' of this branch: the flip
+        normal-form coefficient from the monodromy matrices of the variational equations
+        (docs/model.md, "Criticality"). Neimark-Sacker points are not covered yet."""
+        _checks.instance("special_point", special_point, PeriodicSpecialPoint)
+        if special_point.kind != "period_doubling":
+            raise InputError(f"special_point.kind = {special_point.kind!r}: the criticality is "
+                             "computed at a 'period_doubling'")
+        at = self.params.replace(rho=special_point.rho, A=special_point.A)
+        c, q, mu, status, message = cancellable(
+            _bridge.period_doubling_criticality, *at.array(),
+            _checks.reals("special_point.y0", special_point.y0, (4,)), self.periods,
+            self.integration.array())
+        check_status(status, message, "period-doubling criticality")
+        return Criticality("period_doubling", float(c), bool(c > 0), float(mu), q)
+
+
+    def curve(self, special_point, rho_range, A_range, *, chart: Chart = Chart()):
+        """The two-parameter curve in (rho, A) through special_point (a 'fold',
+        'period_doubling' or 'neimark_sacker' of this branch), traced both ways inside the box
+        rho_range x A_range with at most chart.max_points points (its other fields are the
+        grid's, not used here; sloshdyn_orbit_chart: the
+        stroboscopic map's defining systems of sloshdyn_map_bifurcation), with its
+        codimension-2 points: a charts.Curve (state: the orbits at phase 0; omega: the torus'
+        rotation angle on a Neimark-Sacker curve). A curve stopped early has complete False and
+        its note."""
+        _checks.instance("special_point", special_point, PeriodicSpecialPoint)
+        if special_point.kind not in ("fold", "period_doubling", "neimark_sacker"):
+            raise InputError(f"special_point.kind = {special_point.kind!r}: a curve starts at a "
+                             "'fold', a 'period_doubling' or a 'neimark_sacker'")
+        (r0, r1), (a0, a1) = (_checks.interval("rho_range", rho_range),
+                              _checks.interval("A_range", A_range))
+        _checks.instance("chart", chart, Chart)
+        max_points = _checks.output_size("chart.max_points", max(chart.max_points, 3),
+                                         len(_tables.columns("chart_curves")))
+        lam = getattr(special_point, self.parameter)
+        special = np.concatenate([[_tables.code("special", special_point.kind), lam],
+                                  _checks.reals("special_point.y0", special_point.y0, (4,)),
+                                  [special_point.max_x1]])
+        at = self.params.replace(rho=special_point.rho, A=special_point.A)
+        curves, codim2, ends, sizes, note, status, message = cancellable(
+            _bridge_charts.orbit_curve, *at.array(), 1 if self.parameter == "rho" else 2,
+            special, self.periods, [r0, a0], [r1, a1], max_points, 100)
+        check_status(status, message, "orbit curve")
+        used = _tables.unpack("chart_sizes", sizes)
+        curves = curves[:, :int(used["curve_points"])]
+        curves[_tables.columns("chart_curves").index("gamma")] = at.gamma
+        curves[_tables.columns("chart_curves").index("kappa")] = at.kappa
+        chart = _chart("rho", "A", "full", curves, codim2[:, :int(used["codim2_points"])],
+                       ends, np.zeros((len(_tables.columns("chart_grid")), 0)),
+                       bool(ends[3, 0]), "curve 1: " + message_text(note), at)
+        return chart.curves[0]
 
 
 def _branch(parameter, params, periods, lambda_range, continuation, integration, points,

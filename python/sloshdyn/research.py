@@ -18,6 +18,7 @@ from .asymptotics import (continuation_array, continuation_range, frequency_resp
                           slow_flow_cycle)
 from .options import Continuation, Integration, Lyapunov
 from .parameters import Parameters
+from .spatial import _spatial_array
 
 _bridge = _core.sloshdyn_bridge_research
 KINDS = _tables.codes("special")
@@ -27,34 +28,42 @@ _STOPS = {1: "lambda_min", 2: "lambda_max", 3: "max_points", 4: "closed", 5: "x_
 
 @dataclass(frozen=True)
 class LyapunovSpectrum:
-    """The four Lyapunov exponents of the full equations (per unit tau) from one start."""
+    """The Lyapunov exponents of the full equations (per unit tau) from one start: four for the
+    planar model, eight for the spatial one."""
 
-    exponents: np.ndarray        #: l1 >= l2 >= l3 >= l4 once converged (the QR order)
-    history: np.ndarray          #: (4, blocks): running estimates after each renormalisation
+    exponents: np.ndarray        #: l1 >= l2 >= ... (sorted in decreasing order)
+    history: np.ndarray          #: (n, blocks): running estimates after each renormalisation
+                                 #: (rows in the order of exponents)
     periods: np.ndarray          #: forcing periods measured at the end of each block
     kaplan_yorke: float          #: Kaplan-Yorke dimension of the sorted exponents
     method: str                  #: the integration method used ('auto' resolved)
 
     @property
     def sum(self):
-        """l1 + .. + l4: the mean phase-space contraction rate (mean trace of the Jacobian)."""
+        """l1 + .. + ln: the mean phase-space contraction rate (mean trace of the Jacobian)."""
         return float(np.sum(self.exponents))
 
 
 def lyapunov_spectrum(params: Parameters, y0=None, *, lyapunov: Lyapunov = Lyapunov(),
-                      integration: Integration = Integration()) -> LyapunovSpectrum:
-    """All four Lyapunov exponents per unit tau from y0 (default rest) by the QR method: the
-    orbit and four tangent vectors of the variational equations, orthonormalised by modified
-    Gram-Schmidt every renormalise_every forcing periods. The first exponent is that of
-    lyapunov_exponent (Benettin's method: the same start direction), up to the step sequence."""
+                      integration: Integration = Integration(), spatial=False, azimuth=0.0,
+                      ellipticity=0.0) -> LyapunovSpectrum:
+    """All Lyapunov exponents per unit tau from y0 (default rest) by the QR method, sorted in
+    decreasing order: the orbit and n tangent vectors of the variational equations,
+    orthonormalised by modified Gram-Schmidt every renormalise_every forcing periods. The planar
+    model (n = 4, y0 = x1, x1', x2, x2') or, with spatial=True, the spatial
+    model (n = 8, y0 = x1, x1', x2, x2', y1, y1', y2, y2'; the ground motion along ``azimuth``
+    and ``ellipticity`` times it across, as in sloshdyn.spatial.simulate), whose spectrum on a
+    planar orbit holds the in-plane and the out-of-plane exponents. The first exponent is that
+    of lyapunov_exponent (Benettin's method: the same start direction) once converged."""
     _checks.instance("params", params, Parameters)
     _checks.instance("lyapunov", lyapunov, Lyapunov)
     _checks.instance("integration", integration, Integration)
-    y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0, (4,))
+    n = 8 if _checks.flag("spatial", spatial) else 4
+    y0 = np.zeros(n) if y0 is None else _checks.reals("y0", y0, (n,))
     blocks = max(lyapunov.n_periods // max(lyapunov.renormalise_every, 1), 1)
     exponents, history, dimension, status, message = cancellable(
-        _bridge.lyapunov_spectrum, *params.array(), y0, lyapunov.array(), integration.array(),
-        blocks)
+        _bridge.lyapunov_spectrum, *params.array(), _spatial_array(azimuth, ellipticity), y0,
+        lyapunov.array(), integration.array(), blocks)
     check_status(status, message, "Lyapunov spectrum")
     periods = lyapunov.renormalise_every * np.arange(1, blocks + 1, dtype=float)
     return LyapunovSpectrum(exponents, history, periods, float(dimension),

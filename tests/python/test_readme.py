@@ -31,7 +31,9 @@ def python_code(page, tmp_path):
     """The page's ```python blocks as one program, writing its files into tmp_path."""
     block = "\n".join(re.findall(r"```python\n(.*?)```", page.read_text(), re.S))
     assert block, f"{page.name} has no python example"
-    return block.replace('"case.nml"', repr(os.fspath(tmp_path / "case.nml")))
+    for name in ("case.nml", "branch.csv"):
+        block = block.replace(f'"{name}"', repr(os.fspath(tmp_path / name)))
+    return block
 
 
 def test_readme_example_runs_and_finds_the_papers_hopf_points(tmp_path, monkeypatch):

@@ -71,6 +71,21 @@ def test_spectrum_on_a_periodic_orbit_is_log_floquet_over_period():
     assert spectrum.kaplan_yorke == 0.0                             # all negative: a point
 
 
+@pytest.mark.parametrize("p, y0, n", [
+    (FIG12.replace(rho=0.509615), None, 4),                       # from rest, short
+    (FIG12.replace(rho=0.513, gamma=0.05, A=0.05), None, 300),    # two complex pairs
+    (FIG12.replace(rho=0.513, A=2.0), None, 20)])                 # Fig 17, chaotic, short
+def test_spectrum_is_sorted_with_its_history(p, y0, n):
+    """Issue 44, item 9: the exponents come sorted, largest first (docs/model.md: l1 >= .. >=
+    l4), whatever the QR columns' order at the end of the run, and the history's rows follow
+    them (its last column is the exponents)."""
+    spectrum = sloshdyn.lyapunov_spectrum(p, y0, lyapunov=Lyapunov(transient_periods=0,
+                                                                   n_periods=n))
+    assert np.all(np.diff(spectrum.exponents) <= 0), spectrum.exponents
+    assert np.array_equal(spectrum.history[:, -1], spectrum.exponents)
+    assert spectrum.kaplan_yorke == pytest.approx(kaplan_yorke(spectrum.exponents), rel=1e-12)
+
+
 def test_largest_of_the_spectrum_is_the_largest_exponent():
     """The first QR column is Benettin's single tangent vector (same start direction, only the
     step sequence differs: the error norm covers four columns instead of one)."""
