@@ -200,8 +200,10 @@ def swap_into_place(staging, out):
 
 @contextlib.contextmanager
 def _signals_held():
-    """Ctrl-C and SIGTERM held back (and delivered after the block) while the directories are
-    swapped, so that an interruption never leaves neither in place."""
+    """Ctrl-C and SIGTERM held back while the directories are swapped, so that an
+    interruption never leaves neither in place. One that came meanwhile is delivered after a
+    failed swap; after a swap that succeeded the run is complete, and it is dropped (exit 0
+    with every file in place, as the executable, whose signals only cancel what is not done)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -209,6 +211,8 @@ def _signals_held():
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
     try:
         yield
+        while signal.sigtimedwait(held, 0) is not None:      # the run is complete
+            pass
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
