@@ -19,7 +19,7 @@ def cli(*args, cwd=None):
                           text=True, timeout=600)
 
 
-@pytest.mark.parametrize("command", [[], ["run"], ["reproduce"], ["check"]])
+@pytest.mark.parametrize("command", [[], ["run"], ["reproduce"], ["check"], ["examples"]])
 def test_help(command):
     result = cli(*command, "--help")
     assert result.returncode == 0 and "usage" in result.stdout
