@@ -19,7 +19,7 @@ contains
     use sloshdyn_spatial, only: spatial_model_t, spatial_model
     use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum, spatial_lyapunov_spectrum
     use sloshdyn_layouts, only: INTEGRATION_SIZE, LYAPUNOV_SIZE, SPATIAL_SIZE, to_ode_options, &
-                                to_method, to_lyapunov
+                                to_method, to_lyapunov, field_index
     real(c_double), intent(in) :: rpar(n_real_params), spatial(SPATIAL_SIZE), y0(n), &
                                   settings(LYAPUNOV_SIZE), integration(INTEGRATION_SIZE)
     integer(c_int), intent(in) :: ipar(n_int_params), n, n_hist
@@ -36,7 +36,9 @@ contains
       return
     end if
     if (n == 8) then
-      call spatial_model(model, spatial(1), spatial(2), spatial_tank, code, message)
+      call spatial_model(model, spatial(field_index('spatial', 'azimuth')), &
+                         spatial(field_index('spatial', 'ellipticity')), spatial_tank, code, &
+                         message)
       if (code == 0) call spatial_lyapunov_spectrum(spatial_tank, y0, to_lyapunov(settings), &
                                                     to_ode_options(integration), &
                                                     to_method(integration), exponents, &

@@ -19,6 +19,10 @@ from .model import linear_modes
 from .options import Chart, Continuation, Integration, Lyapunov, Shooting
 from .parameters import Parameters
 
+#: the core's curve kinds a periodic orbit's special point starts (a Hopf curve is the slow
+#: flow's: charts.stability_chart)
+ORBIT_CURVES = tuple(kind for kind in _tables.codes("curve").values() if kind != "hopf")
+
 _bridge = _core.sloshdyn_bridge_periodic
 _bridge_charts = _core.sloshdyn_bridge_charts
 KINDS = _tables.codes("special")
@@ -188,9 +192,9 @@ class PeriodicBranch:
         rotation angle on a Neimark-Sacker curve). A curve stopped early has complete False and
         its note."""
         _checks.instance("special_point", special_point, PeriodicSpecialPoint)
-        if special_point.kind not in ("fold", "period_doubling", "neimark_sacker"):
-            raise InputError(f"special_point.kind = {special_point.kind!r}: a curve starts at a "
-                             "'fold', a 'period_doubling' or a 'neimark_sacker'")
+        if special_point.kind not in ORBIT_CURVES:
+            raise InputError(f"special_point.kind = {special_point.kind!r}: a curve starts at "
+                             f"one of {', '.join(map(repr, ORBIT_CURVES))}")
         (r0, r1), (a0, a1) = (_checks.interval("rho_range", rho_range),
                               _checks.interval("A_range", A_range))
         _checks.instance("chart", chart, Chart)

@@ -103,6 +103,13 @@ def design_report(input, out, *, project="", prepared_by="", paper="a4") -> Calc
                            + ("" if inp.tank is not None else " with &model (no &tank)"))
         error.reading = True
         raise error
+    if inp.tank.roof_contact != "none":
+        error = InputError(f"{path}: &tank roof_contact = '{inp.tank.roof_contact}' is the "
+                           "paper's impact model (eq 4-5), a research model whose loads rest on "
+                           "its contact stiffness beta; the calc sheet reports the codes' "
+                           "restricted-sloshing loads: give roof_contact = 'none' (the default)")
+        error.reading = True
+        raise error
     source = _input_file(path)
     sheet = {"path": path, "source": source, "version": __version__, "paper": paper,
              "project": str(project), "prepared_by": str(prepared_by), "out": out,

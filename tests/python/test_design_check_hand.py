@@ -604,12 +604,14 @@ def test_both_front_doors_write_the_same_tables_python_reads(exe, tmp_path, tank
     """The executable and sloshdyn-py run write design_checks.csv and design_calc.csv byte for
     byte alike; read_namelist's tank, structure and design give DesignCheck.checks_text and
     calc_text equal to them (one core)."""
-    path = write(tmp_path, namelist(tank, structure, dict(spectrum="asce7", **ASCE, **SUG_II)))
+    text = namelist(tank, structure, dict(spectrum="asce7", **ASCE, **SUG_II))
     (tmp_path / "exe").mkdir()
     (tmp_path / "py").mkdir()
+    path = write(tmp_path / "exe", text)            # each door its own copy: out/ beside it
     result = run(exe, path, tmp_path / "exe")
     assert result.returncode == 0, result.stderr
-    py = subprocess.run([sys.executable, "-m", "sloshdyn", "run", str(path)],
+    py = subprocess.run([sys.executable, "-m", "sloshdyn", "run",
+                         str(write(tmp_path / "py", text))],
                         cwd=tmp_path / "py", capture_output=True, text=True, timeout=120)
     assert py.returncode == 0, py.stderr
     inp = sloshdyn.read_namelist(path)

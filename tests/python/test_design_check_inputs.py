@@ -25,13 +25,14 @@ ASCE_GROUP = "&design\n  spectrum = 'asce7'\n  s_ds = 1.0\n  s_d1 = 0.6\n  t_l =
 
 
 def both_doors(exe, tmp_path, text):
-    """The executable's and sloshdyn-py run's results of one input file: (returncode, output)
-    of each."""
-    path = write(tmp_path, text)
+    """The executable's and sloshdyn-py run's results of one input text, each door on its own
+    copy (exe/input.nml, py/input.nml: &output directory is relative to the input's folder):
+    (returncode, output) of each."""
     (tmp_path / "exe").mkdir(exist_ok=True)
     (tmp_path / "py").mkdir(exist_ok=True)
-    a = run(exe, path, tmp_path / "exe")
-    b = subprocess.run([sys.executable, "-m", "sloshdyn", "run", str(path)],
+    a = run(exe, write(tmp_path / "exe", text), tmp_path / "exe")
+    b = subprocess.run([sys.executable, "-m", "sloshdyn", "run",
+                        str(write(tmp_path / "py", text))],
                        cwd=tmp_path / "py", capture_output=True, text=True, timeout=120)
     return (a.returncode, a.stdout + a.stderr), (b.returncode, b.stdout + b.stderr)
 

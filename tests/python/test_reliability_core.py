@@ -35,8 +35,13 @@ EXIT_INPUT, EXIT_IO, EXIT_INTERRUPTED, EXIT_TERMINATED = 3, 5, 130, 143
 
 
 def _leftovers(directory):
-    """Hidden files (temporaries) left in the output directory."""
-    return sorted(p.name for p in directory.iterdir() if p.name.startswith("."))
+    """Hidden files (temporaries) left in the output directory (its run marker aside) or
+    beside it (a run's new or previous directory, docs/failure.md)."""
+    inside = [p.name for p in directory.iterdir() if p.name.startswith(".")
+              and p.name != ".sloshdyn-run"]
+    beside = [p.name for p in directory.parent.iterdir()
+              if p.name.startswith(f".{directory.name}.")]
+    return sorted(inside + beside)
 
 
 def _limit_file_size(limit):
@@ -60,18 +65,20 @@ def test_a_full_disk_leaves_nothing_and_exits_5(exe, tmp_path):
     assert not out.exists() or list(out.iterdir()) == []
 
 
-def test_a_failed_rename_removes_the_files_of_the_run(exe, tmp_path):
-    # simulation.csv is a non-empty directory: renaming the table onto it fails after
-    # parameters.csv and history.csv are already in place; they must go again
+def test_a_result_name_taken_by_a_directory_is_refused_and_kept(exe, tmp_path):
+    # simulation.csv is a non-empty directory no run wrote: once the table's rename onto it
+    # failed after parameters.csv and history.csv were in place; now the output directory is
+    # refused before the run (it holds what no run wrote) and nothing in it is touched
     write(tmp_path, SIMULATE.format(t_end=10.0, n_out=11))
     blocker = tmp_path / "out" / "simulation.csv"
     blocker.mkdir(parents=True)
     (blocker / "keep").write_text("not ours\n")
     result = run(exe, "input.nml", tmp_path)
     assert result.returncode == EXIT_IO, result.stderr
-    assert "simulation.csv" in result.stderr and "no result of this run is kept" in result.stderr
+    assert "simulation.csv" in result.stderr and "no sloshdyn run wrote" in result.stderr
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["simulation.csv"]
     assert (blocker / "keep").read_text() == "not ours\n"
+    assert _leftovers(tmp_path / "out") == []
 
 
 def test_two_runs_into_one_directory_each_write_whole_files(exe, tmp_path):
@@ -250,10 +257,11 @@ def test_an_excitation_value_blames_its_group(exe, tmp_path, excitation, named):
 
 
 def test_a_directory_nothing_can_be_written_to_exits_5(exe, tmp_path):
-    # /proc/self exists and refuses new files to every user, root included (where chmod 555
-    # would not stop root)
-    write(tmp_path, SIMULATE.format(t_end=10.0, n_out=11).replace("'out'", "'/proc/self'"))
+    # /proc refuses new entries to every user, root included (where chmod 555 would not stop
+    # root): the run's new directory beside /proc/sloshdyn_out cannot be made
+    write(tmp_path, SIMULATE.format(t_end=10.0, n_out=11).replace("'out'",
+                                                                 "'/proc/sloshdyn_out'"))
     result = run(exe, "input.nml", tmp_path)
     assert result.returncode == EXIT_IO, result.stderr
-    assert "cannot create a temporary file in /proc/self" in result.stderr
+    assert "cannot create its new directory in '/proc'" in result.stderr
     assert "Results written" not in result.stdout

@@ -409,6 +409,21 @@ def test_inputs_it_cannot_report(tmp_path, capsys, example, kind):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_the_impact_model_is_refused_by_name(tmp_path, capsys):
+    """roof_contact = 'impact' makes the run's loads the paper's contact model's (they rest on
+    beta): the sheet would show them as the codes' method, so it refuses the input by name and
+    writes nothing (before, it ran and hid only the impact columns)."""
+    text = (EXAMPLES / "tank_seismic.nml").read_text().replace(
+        "records/", str(EXAMPLES / "records") + "/")
+    assert "roof_contact" not in text
+    (tmp_path / "impact.nml").write_text(text.replace("&tank", "&tank roof_contact = 'impact',", 1))
+    code = cli.main(["report", str(tmp_path / "impact.nml"), "--out", str(tmp_path / "sheet")])
+    err = capsys.readouterr().err
+    assert code == 3, err
+    assert "roof_contact = 'impact'" in err and "roof_contact = 'none'" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["impact.nml"]
+
+
 def test_command_line_writes_the_sheet(tmp_path, capsys):
     out = tmp_path / "calc"
     assert cli.main(["report", str(EXAMPLES / "tank_seismic.nml"), "--out", str(out)]) == 0
