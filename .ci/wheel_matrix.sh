@@ -64,4 +64,4 @@ assert NAMELIST_REFERENCE.is_file() and len(list(EXAMPLES.glob("*.nml"))) > 20' 
   cp "$wheel" "$house/"
   say "CPython $v: the wheel runs and agrees with the source build"
 done
-say "wheels in $house: $(cd "$house" && ls)"
+say "wheels in $house: $(cd "$house" && ls | tr "\n" " ")"
