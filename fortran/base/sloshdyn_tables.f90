@@ -123,8 +123,10 @@ module sloshdyn_tables
                         PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
   !> Swirl (sloshdyn_swirl): a planar branch's points with their out-of-plane Floquet
   !> multipliers nu ('swirl_branch'), and the edges of the swirl band, where max|nu| = 1
-  !> ('swirl_edges'; refined 1: located by Brent's method, 0: interpolated between points).
-  integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 7
+  !> ('swirl_edges'; refined 1: located by Brent's method, 0: interpolated between points;
+  !> kind: SPECIAL_BRANCH_POINT (a multiplier through +1), SPECIAL_PERIOD_DOUBLING (-1),
+  !> SPECIAL_NEIMARK_SACKER (a complex pair)).
+  integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 8
   !> A tank under ground motion in two horizontal components (sloshdyn_seismic_spatial): at each
   !> output time ('seismic_spatial'), and the peaks over the output times beside the codes'
   !> combinations of the two planar runs, then the roof verdict of the free wave around the
@@ -137,7 +139,7 @@ module sloshdyn_tables
   integer, parameter :: SPATIAL_HISTORY_ROWS = 10, SWIRL_ORBIT_ROWS = 28
   !> The edges of the swirl band along rho at several A ('swirl_boundary': A, then the
   !> 'swirl_edges' columns).
-  integer, parameter :: SWIRL_BOUNDARY_ROWS = 8
+  integer, parameter :: SWIRL_BOUNDARY_ROWS = 9
 
   !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
   !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
@@ -343,9 +345,9 @@ contains
       header = 'lambda,y1,y2,y3,y4,max_x1,planar_stable,max_abs_nu,re_nu1,re_nu2,re_nu3,'// &
                're_nu4,im_nu1,im_nu2,im_nu3,im_nu4'
     case ('swirl_edges')
-      header = 'lambda,y1,y2,y3,y4,max_x1,refined'
+      header = 'lambda,y1,y2,y3,y4,max_x1,refined,kind'
     case ('swirl_boundary')
-      header = 'A,lambda,y1,y2,y3,y4,max_x1,refined'
+      header = 'A,lambda,y1,y2,y3,y4,max_x1,refined,kind'
     case ('spatial_history')
       header = 'tau,x1,dx1,x2,dx2,y1,dy1,y2,dy2,tilt,tilt_azimuth'
     case ('swirl_orbit')
@@ -447,6 +449,10 @@ contains
       formats = 'srrrrrrr'
     case ('periodic_special_points', 'cycle_special_points')
       formats = 'srrrrrr'
+    case ('swirl_edges')
+      formats = 'rrrrrris'
+    case ('swirl_boundary')
+      formats = 'rrrrrrris'
     case ('simulation')
       formats = 'iiir'
     case ('lyapunov')

@@ -21,12 +21,16 @@ from ._errors import check_status, message_text, with_partial
 from .ground import GroundMotion
 from .options import Continuation, Integration, Shooting
 from .parameters import Parameters
-from .periodic import PERIODIC_CONTINUATION, branch_start, periodic_orbit
+from .periodic import KINDS, PERIODIC_CONTINUATION, branch_start, periodic_orbit
 from .seismic import seismic_defaults
 from .simulation import _counts, _output_times
 from .tank import Tank
 
 _bridge = _core.sloshdyn_bridge_spatial
+
+#: max|nu| beyond 1 + this is swirl (sloshdyn_swirl's stability_margin: undamped, the stable
+#: multipliers sit on the unit circle to rounding)
+SWIRL_MARGIN = 1e-6
 
 
 def _spatial_array(azimuth, ellipticity):
@@ -117,12 +121,16 @@ class SwirlBand:
     parameter: str               #: 'rho' or 'A'
     table: dict                  #: lambda, rho, A, y1..y4, max_x1, planar_stable (in-plane
                                  #: Floquet stability), max_abs_nu, nu1..nu4 (complex), swirl
-                                 #: (max|nu| > 1)
+                                 #: (max|nu| > 1 + SWIRL_MARGIN)
     edges: dict                  #: lambda, rho, A, y1..y4, max_x1, refined (1: located by
-                                 #: Brent's method; 0: interpolated across a fold)
+                                 #: Brent's method; 0: interpolated across a fold), kind
+                                 #: ('branch_point': an out-of-plane multiplier through +1,
+                                 #: the pitchfork onto the swirling orbits; 'period_doubling':
+                                 #: through -1; 'neimark_sacker': a complex pair)
     complete: bool
     message: str                 #: why an incomplete branch stopped ('' if complete)
     method: str                  #: the integration method used ('auto' resolved)
+    skipped: dict = None         #: the tests not run: name -> why ({} if all ran)
 
 
 def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
@@ -138,7 +146,7 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
     parameter = b.parameter
     max_edges = _checks.output_size("max_edges", _checks.integer("max_edges", max_edges, 1),
                                     len(_tables.columns("swirl_edges")))
-    points, n, edges, n_edges, complete, status, message = cancellable(
+    points, n, edges, n_edges, complete, conservative, status, message = cancellable(
         _bridge.swirl_branch, *b.first.array(), _tables.code("excitation_parameters", parameter),
         b.y0, b.periods, b.low, b.high, b.settings, integration.array(), b.max_points, max_edges)
     rows = dict(zip(_tables.columns("swirl_branch"), points[:, :n]))
@@ -155,12 +163,18 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
         table[name] = rows[name]
     for i in range(1, 5):
         table[f"nu{i}"] = rows[f"re_nu{i}"] + 1j * rows[f"im_nu{i}"]
-    table["swirl"] = rows["max_abs_nu"] > 1
+    table["swirl"] = rows["max_abs_nu"] > 1 + SWIRL_MARGIN
     edge_table = with_parameters(edge_rows, n_edges)
     for name in ("y1", "y2", "y3", "y4", "max_x1", "refined"):
         edge_table[name] = edge_rows[name]
+    edge_table["kind"] = np.array([KINDS[int(k)] for k in edge_rows["kind"]], dtype=object)
+    skipped = {}
+    if conservative:
+        why = ("no damping: the monodromy preserves volume, its stable multipliers sit on the "
+               "unit circle, where the complex pairs' test vanishes identically")
+        skipped = {"neimark_sacker (in the plane)": why, "neimark_sacker (out of it)": why}
     band = SwirlBand(parameter, table, edge_table, bool(complete), message_text(message),
-                     integration.method_used)
+                     integration.method_used, skipped)
     return with_partial(band, status, message, "swirl band")
 
 
@@ -170,7 +184,7 @@ class SwirlBoundary:
 
     A: np.ndarray                #: the forcing amplitudes
     bands: tuple                 #: the SwirlBand in rho at each A
-    edges: dict                  #: one row per edge: A, rho, y1..y4, max_x1, refined
+    edges: dict                  #: one row per edge: A, rho, y1..y4, max_x1, refined, kind
     complete: bool               #: every band complete
 
 
@@ -182,7 +196,7 @@ def swirl_boundary(params: Parameters, rho_range, A_values, **band_options) -> S
     A_values = _checks.reals("A_values", A_values, ndim=1, min_size=1)
     bands = tuple(swirl_band(params.replace(A=float(a)), rho_range, **band_options)
                   for a in A_values)
-    names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined")
+    names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined", "kind")
     edges = {name: np.concatenate([band.edges[name] for band in bands]) for name in names}
     return SwirlBoundary(A_values, bands, edges, all(band.complete for band in bands))
 
