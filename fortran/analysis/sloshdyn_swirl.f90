@@ -25,7 +25,7 @@ module sloshdyn_swirl
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues
-  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_ode, only: ode_options, ode_stats, linear_observation, peak_tracker
   use sloshdyn_integrator, only: integrate
   use sloshdyn_roots, only: bracketed_function, brent_zero
   use sloshdyn_continuation, only: continuation_options
@@ -41,7 +41,8 @@ module sloshdyn_swirl
   use sloshdyn_spatial_system, only: spatial_tank_system
   implicit none
   private
-  public :: out_of_plane_multipliers, swirl_branch, swirl_orbit, stability_margin
+  public :: out_of_plane_multipliers, swirl_branch, swirl_orbit, orbit_measures, &
+            stability_margin
 
   !> Newton shooting of the planar orbit at an edge candidate
   real(wp), parameter :: newton_tol = 1.0e-10_wp
@@ -250,9 +251,8 @@ contains
   !> from the state reached from y0 after `transient` k T of integration (transient >= 0): a
   !> swirling orbit from a planar one perturbed out of its plane inside the swirl band. y_orbit
   !> at tau = 0, its multipliers (re, im), Newton's iterations, max|x1| and the swirl amplitude
-  !> max|y1| over the orbit, and the angular momentum about the vertical averaged over the orbit
-  !> (sloshdyn_spatial's spatial_invariants; > 0: counter-clockwise seen from above), both from
-  !> samples_per_period samples per forcing period.
+  !> max|y1| over the orbit, and the angular momentum about the vertical averaged over the
+  !> orbit (orbit_measures).
   subroutine swirl_orbit(model, y0, k, transient, options, method, newton_tol, max_iter, &
                          y_orbit, re, im, iterations, max_x1, amplitude, angular_momentum, &
                          status, message)
@@ -265,9 +265,8 @@ contains
     character(len=message_len), intent(out) :: message
     type(spatial_tank_system) :: system
     type(ode_stats) :: stats
-    real(wp) :: y_start(8), monodromy(8, 8), period, energy, l
-    real(wp), allocatable :: t_out(:), y_out(:, :)
-    integer :: j, n
+    real(wp) :: y_start(8), monodromy(8, 8), period
+    real(wp), allocatable :: y_out(:, :)
 
     y_orbit = ieee_value(1.0_wp, ieee_quiet_nan)
     max_x1 = y_orbit(1); amplitude = y_orbit(1); angular_momentum = y_orbit(1)
@@ -299,23 +298,58 @@ contains
       message = 'swirl orbit: '//trim(message)
       return
     end if
+    call orbit_measures(system, y_orbit, k, options, method, max_x1, amplitude, &
+                        angular_momentum, status, message)
+  end subroutine swirl_orbit
+
+  !> max|x1| and the swirl amplitude max|y1| over the orbit of period k T through y_orbit of the
+  !> spatial system (located on the integrator's continuous extension by sloshdyn_ode's
+  !> peak_tracker, as the planar orbits' max|x1|), and the angular momentum about the vertical
+  !> averaged over it (sloshdyn_spatial's spatial_invariants; > 0: counter-clockwise seen from
+  !> above; the trapezoidal rule on samples_per_period samples per forcing period, spectrally
+  !> accurate on a periodic function).
+  subroutine orbit_measures(system, y_orbit, k, options, method, max_x1, amplitude, &
+                            angular_momentum, status, message)
+    type(spatial_tank_system), intent(in) :: system
+    real(wp), intent(in) :: y_orbit(8)
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: max_x1, amplitude, angular_momentum
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(ode_stats) :: stats
+    type(linear_observation) :: tilts
+    type(peak_tracker) :: tracker
+    real(wp) :: period, energy, l
+    real(wp), allocatable :: t_out(:), y_out(:, :)
+    integer :: j, n
+
+    period = k*system%period()
     n = k*samples_per_period
     t_out = [(j*period/n, j = 1, n)]
     allocate (y_out(8, n))
+    allocate (tilts%c(2, 8))
+    tilts%c = 0
+    tilts%c(1, 1) = 1
+    tilts%c(2, 5) = 1
+    tracker%spacing = period/n
     call integrate(method, system, 0.0_wp, y_orbit, t_out, y_out, options, stats, status, &
-                   message)
+                   message, tilts, tracker)
     if (status /= SD_OK) then
       message = 'swirl orbit, sampling: '//trim(message)
+      max_x1 = ieee_value(1.0_wp, ieee_quiet_nan)
+      amplitude = max_x1
+      angular_momentum = max_x1
       return
     end if
-    max_x1 = maxval(abs(y_out(1, :)))
-    amplitude = maxval(abs(y_out(5, :)))
+    max_x1 = tracker%peak(1)
+    amplitude = tracker%peak(2)
     angular_momentum = 0
     do j = 1, n
       call spatial_invariants(system%model, y_out(:, j), energy, l)
       angular_momentum = angular_momentum + l/n
     end do
-  end subroutine swirl_orbit
+  end subroutine orbit_measures
 
   subroutine swirl_margin_value(self, x, fx, status, message)
     class(swirl_margin), intent(inout) :: self
