@@ -307,7 +307,7 @@ contains
   !> peak_tracker, as the planar orbits' max|x1|), and the angular momentum about the vertical
   !> averaged over it (sloshdyn_spatial's spatial_invariants; > 0: counter-clockwise seen from
   !> above; the trapezoidal rule on samples_per_period samples per forcing period, spectrally
-  !> accurate on a periodic function).
+  !> accurate on a periodic function: 16 times as many change it by 1e-15 relatively).
   subroutine orbit_measures(system, y_orbit, k, options, method, max_x1, amplitude, &
                             angular_momentum, status, message)
     type(spatial_tank_system), intent(in) :: system

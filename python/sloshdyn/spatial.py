@@ -21,7 +21,9 @@ from ._errors import InputError, check_status, message_text, with_partial
 from .ground import GroundMotion
 from .options import Continuation, Integration, Shooting
 from .parameters import Parameters
-from .periodic import KINDS, PERIODIC_CONTINUATION, branch_start, periodic_orbit
+from .asymptotics import continuation_array
+from .periodic import (KINDS, PERIODIC_CONTINUATION, PeriodicSpecialPoint, branch_start,
+                       periodic_orbit)
 from .seismic import seismic_defaults
 from .simulation import _counts, _output_times
 from .tank import Tank
@@ -261,6 +263,80 @@ def swirl_boundary(params: Parameters, rho_range, A_values, **band_options) -> S
     names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined", "kind", "branch")
     edges = {name: np.concatenate([band.edges[name] for band in bands]) for name in names}
     return SwirlBoundary(A_values, bands, edges, all(band.complete for band in bands))
+
+
+@dataclass(frozen=True)
+class SwirlingBranch:
+    """The swirling periodic orbits born at a swirl edge (a pitchfork of the planar orbit,
+    multiplier +1 out of its plane), continued in rho or A on the 8 states."""
+
+    parameter: str               #: 'rho' or 'A'
+    table: dict                  #: lambda, rho, A, y1..y8 (states at tau = 0), max_x1,
+                                 #: swirl_amplitude (max|y1|), angular_momentum (mean L_z),
+                                 #: stable, mu1..mu8 (complex Floquet multipliers)
+    special_points: list         #: PeriodicSpecialPoint (kind, rho, A, max_x1, y0: 8 states):
+                                 #: fold, branch_point, period_doubling, neimark_sacker
+    complete: bool
+    message: str                 #: why an incomplete branch stopped ('' if complete)
+    method: str                  #: the integration method used ('auto' resolved)
+
+
+def swirling_branch(band: SwirlBand, edge=0, lambda_range=None, *, ds=None,
+                    continuation: Continuation = PERIODIC_CONTINUATION,
+                    integration: Integration = Integration(), params: Parameters = None,
+                    periods=1) -> SwirlingBranch:
+    """Switch at edge number ``edge`` of ``band`` (a 'branch_point' edge: an out-of-plane
+    multiplier through +1) onto the swirling orbits and continue them over lambda_range (the
+    band's parameter; default: the band's range) with their 8 Floquet multipliers, folds,
+    branch points, period doublings and Neimark-Sacker points. ``ds``: the first step off the
+    edge along the critical eigenvector (default continuation.ds); its sign picks one of the two
+    mirror-image branches. ``params``: the band's parameters (needed for the fixed one and the
+    model). Raises ConvergenceError (with ``partial``) if the branch stops early."""
+    _checks.instance("band", band, SwirlBand)
+    _checks.instance("params", params, Parameters)
+    _checks.instance("continuation", continuation, Continuation)
+    _checks.instance("integration", integration, Integration)
+    n_edges = len(band.edges["lambda"])
+    edge = _checks.integer("edge", edge, 0)
+    if edge >= n_edges or band.edges["kind"][edge] != "branch_point":
+        raise InputError(f"edge = {edge}: the band has {n_edges} edge(s) of kinds "
+                         f"{list(band.edges['kind'])}; swirling orbits are born at a "
+                         "'branch_point' edge")
+    parameter = band.parameter
+    at = params.replace(**{parameter: float(band.edges["lambda"][edge])})
+    if lambda_range is None:
+        lambda_range = (band.table["lambda"].min(), band.table["lambda"].max())
+    low, high = (_checks.real("lambda_range", x) for x in lambda_range)
+    step = continuation.ds if ds is None else _checks.real("ds", ds)
+    settings = continuation_array(replace(continuation, ds=step), 1.0)
+    max_points = _checks.output_size("max_points", _checks.integer(
+        "max_points", continuation.max_points, 1), len(_tables.columns("swirling_branch")))
+    y_edge = np.array([band.edges[f"y{i}"][edge] for i in range(1, 5)])
+    points, n, special, n_special, complete, status, message = cancellable(
+        _bridge.swirling_branch, *at.array(), _tables.code("excitation_parameters", parameter),
+        y_edge, _checks.integer("periods", periods, 1), low, high, settings,
+        integration.array(), max_points, 4 * max_points)
+    rows = dict(zip(_tables.columns("swirling_branch"), points[:, :n]))
+    lam = rows["lambda"]
+    table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
+             "A": lam if parameter == "A" else np.full(n, params.A)}
+    for i in range(1, 9):
+        table[f"y{i}"] = rows[f"y{i}"]
+    for name in ("max_x1", "swirl_amplitude", "angular_momentum", "stable"):
+        table[name] = rows[name]
+    for i in range(1, 9):
+        table[f"mu{i}"] = rows[f"re_mu{i}"] + 1j * rows[f"im_mu{i}"]
+    specials = []
+    for column in special[:, :n_special].T:
+        point = dict(zip(_tables.columns("swirling_special_points"), column))
+        value = float(point["lambda"])
+        specials.append(PeriodicSpecialPoint(
+            KINDS[int(point["kind"])], value if parameter == "rho" else params.rho,
+            value if parameter == "A" else params.A, float(point["max_x1"]),
+            np.array([point[f"y{i}"] for i in range(1, 9)])))
+    branch = SwirlingBranch(parameter, table, specials, bool(complete), message_text(message),
+                            integration.method_used)
+    return with_partial(branch, status, message, "swirling branch")
 
 
 @dataclass(frozen=True)
