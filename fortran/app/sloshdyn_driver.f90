@@ -95,6 +95,14 @@ module sloshdyn_driver
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
     end subroutine run_swirl_orbit
+    module subroutine run_swirling(config, files, edges, n_edges, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      real(wp), intent(in) :: edges(:, :)
+      integer, intent(in) :: n_edges
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_swirling
     module subroutine run_seismic_spatial(config, files, status, message)
       type(run_config), intent(in) :: config
       type(result_files), intent(inout) :: files
@@ -696,6 +704,8 @@ contains
                                                 points(:, 1:n_points), status, message)
     if (status == SD_OK) call files%write_table('swirl_edges.csv', 'swirl_edges', &
                                                 edges(:, 1:n_edges), status, message)
+    if (status == SD_OK .and. config%response%switch_at > 0) &
+      call run_swirling(config, files, edges, n_edges, status, message)
   end subroutine run_swirl
 
   !> The swirl band of model along &response's range (sloshdyn_swirl's swirl_branch, from the

@@ -14,6 +14,7 @@ import pytest
 import sloshdyn
 from sloshdyn import spatial
 from sloshdyn.options import Continuation, Integration
+from conftest import read_csv, run, write
 
 PARAMS = sloshdyn.Parameters(s1=1.0, mu1=0.01, kappa=1e3, theta0=1.4, beta=0.0, gamma=0.0,
                              delta=0.0, A=1e-3, rho=1.02, zeta=5e-4, n=6, p=2)
@@ -89,3 +90,32 @@ def test_a_bad_edge_is_named():
     band, _ = _branch()
     with pytest.raises(sloshdyn.InputError, match="edge = 3"):
         spatial.swirling_branch(band, 3, params=PARAMS)
+
+
+SWIRLING_NML = ("&model s1 = 1.0, mu1 = 0.01, kappa = 1000, theta0 = 1.4, beta = 0, gamma = 0, "
+                "delta = 0, zeta = 5e-4, n = 6, p = 2, planar = .false. /\n"
+                "&excitation A = 0.001, rho = 1.0 /\n&analysis kind = 'swirl' /\n"
+                "&response parameter = 'rho', start = 1.0, stop = 1.02, switch_at = {edge} /\n"
+                "&output directory = 'out' /\n")
+
+
+def test_the_namelists_switch_at_is_the_python_swirling_branch(exe, tmp_path):
+    path = write(tmp_path, SWIRLING_NML.format(edge=1))
+    result = run(exe, path.name, tmp_path)
+    assert result.returncode == 0, result.stderr
+    rows = read_csv(tmp_path / "out" / "swirling_branch.csv")
+    inp = sloshdyn.read_namelist(path)
+    r = inp.response_range
+    band = spatial.swirl_band(inp.params, (r["start"], r["stop"]), continuation=inp.response,
+                              integration=inp.integration)
+    branch = spatial.swirling_branch(band, 0, (r["start"], r["stop"]), params=inp.params,
+                                     continuation=inp.response, integration=inp.integration)
+    assert len(rows) == len(branch.table["lambda"]) > 3
+    for name in ("lambda", "y5", "max_x1", "swirl_amplitude", "angular_momentum", "stable"):
+        assert [row[name] for row in rows] == list(branch.table[name]), name
+    # born at the edge with a small swirl that grows along the branch (a pitchfork)
+    assert rows[0]["swirl_amplitude"] < rows[-1]["swirl_amplitude"]
+    # an edge that is not there is named
+    path = write(tmp_path, SWIRLING_NML.format(edge=5))
+    result = run(exe, path.name, tmp_path)
+    assert result.returncode == 3 and "switch_at = 5" in result.stderr, result.stderr
