@@ -17,7 +17,7 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import InputError, check_status, message_text, with_partial
+from ._errors import InputError, SloshdynError, check_status, message_text, with_partial
 from .ground import GroundMotion
 from .options import Continuation, Integration, Shooting
 from .parameters import Parameters
@@ -163,7 +163,14 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
     first = starting("high" if from_end == "high" else "low", y0)
     bands = [_follow_band(params, first, max_edges, integration)]
     other_end = "low" if from_end == "high" else "high"
-    other = starting(other_end, None)
+    try:
+        other = starting(other_end, None)
+    except SloshdynError as error:
+        if from_end == "both":
+            raise
+        # undamped, a simulation from rest never settles: no orbit there to compare
+        return _merged(bands, f"not checked: no planar orbit found from start = '{start}' at "
+                              f"the {other_end} end ({error}); other branches may exist")
     separate = not _reaches(bands[0], other)
     others = ""
     if from_end == "both" and separate:
