@@ -6,43 +6,62 @@
 !> columns 5-8) carries the four out-of-plane Floquet multipliers nu. A planar response with
 !> max|nu| > 1 is unstable to swirl: an out-of-plane perturbation grows and the liquid leaves the
 !> plane (rotary sloshing; Miles 1962, 1984). The swirl band is where this holds along a branch
-!> of planar responses; its edges are where max|nu| = 1.
+!> of planar responses; its edges are the bifurcations of the planar orbit out of its plane,
+!> where a multiplier nu passes through +1 (the symmetry-breaking pitchfork onto the swirling
+!> orbits, det(M_b - I) = 0, M_b the out-of-plane block), through -1 (swirl of period 2 k T,
+!> det(M_b + I) = 0), or a complex pair crosses the unit circle (Neimark-Sacker). The first two
+!> tests hold in the conservative limit too (zeta = gamma = delta = 0, beta any: the
+!> monodromy is symplectic, its multipliers in reciprocal pairs on the unit circle while
+!> stable), where max|nu| - 1 is 0 on the whole stable side and the complex pairs' test
+!> vanishes identically: that one is skipped then (and the planar branch's too).
 !>
 !> Layouts (sloshdyn_tables): 'swirl_branch' points(:, j) = [lambda, y0(1:4), max|x1|,
 !> planar_stable (1/0), max|nu|, Re nu(1:4), Im nu(1:4)]; 'swirl_edges' edges(:, j) = [lambda,
-!> y0(1:4), max|x1|, refined (1/0)].
+!> y0(1:4), max|x1|, refined (1/0), kind (SPECIAL_BRANCH_POINT: nu = +1,
+!> SPECIAL_PERIOD_DOUBLING: nu = -1, SPECIAL_NEIMARK_SACKER: a complex pair)].
 module sloshdyn_swirl
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: eigenvalues
-  use sloshdyn_ode, only: ode_options, ode_stats
+  use sloshdyn_ode, only: ode_options, ode_stats, linear_observation, peak_tracker
   use sloshdyn_integrator, only: integrate
   use sloshdyn_roots, only: bracketed_function, brent_zero
   use sloshdyn_continuation, only: continuation_options
   use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, periodic_branch, &
-                               samples_per_period
+                               samples_per_period, kind_test_value, complex_pair_count, &
+                               volume_preserving
   use sloshdyn_tables, only: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, PERIODIC_POINT_ROWS, &
-                             PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS
+                             PERIODIC_MULTIPLIER_ROWS, PERIODIC_SPECIAL_ROWS, &
+                             SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, SPECIAL_NEIMARK_SACKER
   use sloshdyn_model, only: model_t
   use sloshdyn_system, only: tank_system
   use sloshdyn_spatial, only: spatial_model_t, spatial_model, spatial_invariants
   use sloshdyn_spatial_system, only: spatial_tank_system
   implicit none
   private
-  public :: out_of_plane_multipliers, swirl_branch, swirl_orbit
+  public :: out_of_plane_multipliers, swirl_branch, swirl_orbit, orbit_measures, &
+            stability_margin
 
   !> Newton shooting of the planar orbit at an edge candidate
   real(wp), parameter :: newton_tol = 1.0e-10_wp
   integer, parameter :: newton_iterations = 20
+  !> the edge tests, in the order they are tried between two branch points
+  integer, parameter :: edge_kinds(3) = [SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
+                                         SPECIAL_NEIMARK_SACKER]
+  !> max|nu| beyond 1 + this: unstable out of the plane (undamped, a pair about to collide on
+  !> the unit circle has moduli 1 only to about the square root of the integration error)
+  real(wp), parameter :: stability_margin = 1.0e-6_wp
 
-  !> max|nu| - 1 at lambda, the planar orbit found by shooting from a guess interpolated
-  !> linearly in lambda between two branch points (sloshdyn_roots' brent_zero).
+  !> The edge test of kind `kind` (sloshdyn_shooting's kind_test_value: det(M_b - I),
+  !> det(M_b + I), the complex pairs' moduli) at lambda, on the planar orbit found by shooting
+  !> from a guess interpolated linearly in lambda between two branch points (sloshdyn_roots'
+  !> brent_zero).
   type, extends(bracketed_function) :: swirl_margin
     type(tank_system) :: planar
     real(wp) :: lambda(2) = 0, y0(4, 2) = 0
-    integer :: k = 1, method = 0
+    integer :: k = 1, method = 0, kind = SPECIAL_BRANCH_POINT
     type(ode_options) :: options
     real(wp) :: y_orbit(4) = 0, max_x1 = 0
   contains
@@ -82,15 +101,21 @@ contains
   !> The branch of planar orbits of period k T through y0 (at the model's excitation), continued
   !> in rho or A (parameter = PARAMETER_RHO, PARAMETER_A) over [lambda_min, lambda_max]
   !> (sloshdyn_shooting's periodic_branch), the out-of-plane multipliers at each of its points,
-  !> and the edges of the swirl band between consecutive points where max|nu| - 1 changes sign,
-  !> located by Brent's method on the planar orbit found by shooting (refined = 1), or, where
-  !> that shooting fails (a fold of the branch between the points), interpolated linearly
-  !> (refined = 0). points(SWIRL_BRANCH_ROWS, >= continuation%max_points),
-  !> edges(SWIRL_EDGE_ROWS, any): layouts in the module header. complete: the planar branch
-  !> reached lambda_min or lambda_max (or closed) and every edge found was stored.
+  !> and the edges of the swirl band between consecutive points where a test of the module
+  !> header changes sign (det(M_b - I), det(M_b + I), and, unless conservative, the complex
+  !> pairs' moduli at an equal number of pairs), located by Brent's method on the planar orbit
+  !> found by shooting (refined = 1), or, where that shooting fails (a fold of the branch
+  !> between the points), interpolated linearly (refined = 0); where max|nu| crosses
+  !> 1 + stability_margin with no test changing sign (a Krein collision of a conservative
+  !> system) an interpolated Neimark-Sacker edge. points(SWIRL_BRANCH_ROWS,
+  !> >= continuation%max_points), edges(SWIRL_EDGE_ROWS, any): layouts in the module header.
+  !> complete: the planar branch reached lambda_min or lambda_max (or closed) and every edge
+  !> found was stored. conservative: the in-plane monodromy preserves volume at every point
+  !> (sloshdyn_shooting's volume_preserving: no damping), so the Neimark-Sacker tests, in the
+  !> plane and out of it, were skipped.
   subroutine swirl_branch(model, parameter, y0, k, lambda_min, lambda_max, continuation, &
-                          options, method, points, n_points, edges, n_edges, complete, status, &
-                          message)
+                          options, method, points, n_points, edges, n_edges, complete, &
+                          conservative, status, message)
     type(model_t), intent(in) :: model
     integer, intent(in) :: parameter, k, method
     real(wp), intent(in) :: y0(4), lambda_min, lambda_max
@@ -98,13 +123,14 @@ contains
     type(ode_options), intent(in) :: options
     real(wp), intent(out) :: points(:, :), edges(:, :)
     integer, intent(out) :: n_points, n_edges, status
-    logical, intent(out) :: complete
+    logical, intent(out) :: complete, conservative
     character(len=message_len), intent(out) :: message
     type(tank_system) :: planar
     type(swirl_margin) :: margin
     real(wp), allocatable :: branch(:, :), multipliers(:, :), special(:, :)
-    real(wp) :: re(4), im(4), lambda, g, s
-    integer :: j, n_special, st
+    real(wp) :: re(4), im(4), g_ends(2)
+    integer :: i, j, kind, n_special, st
+    logical :: found, full
     character(len=message_len) :: msg
 
     points = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -112,6 +138,8 @@ contains
     n_points = 0
     n_edges = 0
     complete = .false.
+    conservative = .false.
+    full = .false.
     if (size(points, 1) /= SWIRL_BRANCH_ROWS .or. size(edges, 1) /= SWIRL_EDGE_ROWS .or. &
         size(points, 2) < continuation%max_points) then
       status = SD_BAD_INPUT
@@ -146,37 +174,75 @@ contains
       points(13:16, j) = im
     end do
 
+    ! the Neimark-Sacker tests need damping: a conservative system's stable multipliers sit on
+    ! the unit circle, where the complex pairs' test vanishes identically
+    conservative = all([(volume_preserving(multipliers(1:4, j), multipliers(5:8, j)), &
+                         j = 1, n_points)])
     margin%planar = planar
     margin%k = k
     margin%method = method
     margin%options = options
     do j = 1, n_points - 1
-      if ((points(8, j) - 1)*(points(8, j + 1) - 1) > 0 .or. points(8, j) == points(8, j + 1)) &
-        cycle
-      if (n_edges == size(edges, 2)) then
-        complete = .false.
-        msg = 'more swirl edges than the '//num2str(size(edges, 2))//' columns of edges'
-        exit
-      end if
-      n_edges = n_edges + 1
-      ! interpolated edge, kept if shooting between the points fails
-      s = (1 - points(8, j))/(points(8, j + 1) - points(8, j))
-      edges(1:6, n_edges) = (1 - s)*points(1:6, j) + s*points(1:6, j + 1)
-      edges(7, n_edges) = 0
-      if (points(1, j) == points(1, j + 1)) cycle
-      margin%lambda = points(1, [j, j + 1])
-      margin%y0 = points(2:5, [j, j + 1])
-      call brent_zero(margin, points(1, j), points(1, j + 1), points(8, j) - 1, &
-                      points(8, j + 1) - 1, 1.0e-10_wp*max(1.0_wp, abs(points(1, j))), &
-                      1.0e-12_wp, lambda, g, status, message)
-      if (status == SD_OK) then
-        ! the orbit of the last evaluation is at the returned lambda only if it was the last
-        call margin%value(lambda, g, status, message)
-        if (status == SD_OK) edges(:, n_edges) = [lambda, margin%y_orbit, margin%max_x1, 1.0_wp]
-      end if
+      found = .false.
+      do i = 1, size(edge_kinds)
+        kind = edge_kinds(i)
+        if (kind == SPECIAL_NEIMARK_SACKER) then
+          if (conservative .or. found .or. &
+              complex_pair_count(points(9:12, j), points(13:16, j)) /= &
+              complex_pair_count(points(9:12, j + 1), points(13:16, j + 1))) cycle
+        end if
+        g_ends = [kind_test_value(kind, points(9:12, j), points(13:16, j)), &
+                  kind_test_value(kind, points(9:12, j + 1), points(13:16, j + 1))]
+        if (.not. g_ends(1)*g_ends(2) < 0) cycle
+        call add_edge(kind, g_ends, .true.)
+        found = .true.
+      end do
+      ! stability lost or gained out of the plane without a located test (a conservative
+      ! system's Krein collision: two pairs on the circle leave it as a complex quadruplet)
+      if (.not. found .and. ((points(8, j) > 1 + stability_margin) .neqv. &
+                             (points(8, j + 1) > 1 + stability_margin))) &
+        call add_edge(SPECIAL_NEIMARK_SACKER, [points(8, j) - 1, points(8, j + 1) - 1], .false.)
+      if (full) exit
     end do
+    if (full) then
+      complete = .false.
+      msg = 'more swirl edges than the '//num2str(size(edges, 2))//' columns of edges'
+    end if
     status = st
     message = msg
+
+  contains
+
+    !> Store the edge of kind `kind` between points j and j + 1, where its test takes the values
+    !> g_ends: interpolated linearly, then, with locate, by Brent's method on the planar orbit
+    !> found by shooting (kept interpolated where that fails: a fold between the points).
+    subroutine add_edge(kind, g_ends, locate)
+      integer, intent(in) :: kind
+      real(wp), intent(in) :: g_ends(2)
+      logical, intent(in) :: locate
+      real(wp) :: s, lambda, g
+      if (n_edges == size(edges, 2)) then
+        full = .true.
+        return
+      end if
+      n_edges = n_edges + 1
+      s = g_ends(1)/(g_ends(1) - g_ends(2))
+      edges(1:6, n_edges) = (1 - s)*points(1:6, j) + s*points(1:6, j + 1)
+      edges(7, n_edges) = 0
+      edges(8, n_edges) = kind
+      if (.not. locate .or. points(1, j) == points(1, j + 1)) return
+      margin%kind = kind
+      margin%lambda = points(1, [j, j + 1])
+      margin%y0 = points(2:5, [j, j + 1])
+      call brent_zero(margin, points(1, j), points(1, j + 1), g_ends(1), g_ends(2), &
+                      1.0e-10_wp*max(1.0_wp, abs(points(1, j))), 0.0_wp, lambda, g, status, &
+                      message)
+      if (status /= SD_OK) return
+      ! the orbit of the last evaluation is at the returned lambda only if it was the last
+      call margin%value(lambda, g, status, message)
+      if (status == SD_OK) edges(:, n_edges) = [lambda, margin%y_orbit, margin%max_x1, 1.0_wp, &
+                                                real(kind, wp)]
+    end subroutine add_edge
   end subroutine swirl_branch
 
   !> A periodic orbit of period k T of the spatial model (its excitation: along x for the swirl
@@ -185,9 +251,8 @@ contains
   !> from the state reached from y0 after `transient` k T of integration (transient >= 0): a
   !> swirling orbit from a planar one perturbed out of its plane inside the swirl band. y_orbit
   !> at tau = 0, its multipliers (re, im), Newton's iterations, max|x1| and the swirl amplitude
-  !> max|y1| over the orbit, and the angular momentum about the vertical averaged over the orbit
-  !> (sloshdyn_spatial's spatial_invariants; > 0: counter-clockwise seen from above), both from
-  !> samples_per_period samples per forcing period.
+  !> max|y1| over the orbit, and the angular momentum about the vertical averaged over the
+  !> orbit (orbit_measures).
   subroutine swirl_orbit(model, y0, k, transient, options, method, newton_tol, max_iter, &
                          y_orbit, re, im, iterations, max_x1, amplitude, angular_momentum, &
                          status, message)
@@ -200,9 +265,8 @@ contains
     character(len=message_len), intent(out) :: message
     type(spatial_tank_system) :: system
     type(ode_stats) :: stats
-    real(wp) :: y_start(8), monodromy(8, 8), period, energy, l
-    real(wp), allocatable :: t_out(:), y_out(:, :)
-    integer :: j, n
+    real(wp) :: y_start(8), monodromy(8, 8), period
+    real(wp), allocatable :: y_out(:, :)
 
     y_orbit = ieee_value(1.0_wp, ieee_quiet_nan)
     max_x1 = y_orbit(1); amplitude = y_orbit(1); angular_momentum = y_orbit(1)
@@ -234,23 +298,58 @@ contains
       message = 'swirl orbit: '//trim(message)
       return
     end if
+    call orbit_measures(system, y_orbit, k, options, method, max_x1, amplitude, &
+                        angular_momentum, status, message)
+  end subroutine swirl_orbit
+
+  !> max|x1| and the swirl amplitude max|y1| over the orbit of period k T through y_orbit of the
+  !> spatial system (located on the integrator's continuous extension by sloshdyn_ode's
+  !> peak_tracker, as the planar orbits' max|x1|), and the angular momentum about the vertical
+  !> averaged over it (sloshdyn_spatial's spatial_invariants; > 0: counter-clockwise seen from
+  !> above; the trapezoidal rule on samples_per_period samples per forcing period, spectrally
+  !> accurate on a periodic function: 16 times as many change it by 1e-15 relatively).
+  subroutine orbit_measures(system, y_orbit, k, options, method, max_x1, amplitude, &
+                            angular_momentum, status, message)
+    type(spatial_tank_system), intent(in) :: system
+    real(wp), intent(in) :: y_orbit(8)
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: max_x1, amplitude, angular_momentum
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(ode_stats) :: stats
+    type(linear_observation) :: tilts
+    type(peak_tracker) :: tracker
+    real(wp) :: period, energy, l
+    real(wp), allocatable :: t_out(:), y_out(:, :)
+    integer :: j, n
+
+    period = k*system%period()
     n = k*samples_per_period
     t_out = [(j*period/n, j = 1, n)]
     allocate (y_out(8, n))
+    allocate (tilts%c(2, 8))
+    tilts%c = 0
+    tilts%c(1, 1) = 1
+    tilts%c(2, 5) = 1
+    tracker%spacing = period/n
     call integrate(method, system, 0.0_wp, y_orbit, t_out, y_out, options, stats, status, &
-                   message)
+                   message, tilts, tracker)
     if (status /= SD_OK) then
       message = 'swirl orbit, sampling: '//trim(message)
+      max_x1 = ieee_value(1.0_wp, ieee_quiet_nan)
+      amplitude = max_x1
+      angular_momentum = max_x1
       return
     end if
-    max_x1 = maxval(abs(y_out(1, :)))
-    amplitude = maxval(abs(y_out(5, :)))
+    max_x1 = tracker%peak(1)
+    amplitude = tracker%peak(2)
     angular_momentum = 0
     do j = 1, n
       call spatial_invariants(system%model, y_out(:, j), energy, l)
       angular_momentum = angular_momentum + l/n
     end do
-  end subroutine swirl_orbit
+  end subroutine orbit_measures
 
   subroutine swirl_margin_value(self, x, fx, status, message)
     class(swirl_margin), intent(inout) :: self
@@ -270,6 +369,6 @@ contains
     if (status /= SD_OK) return
     call out_of_plane_multipliers(self%planar%model, self%y_orbit, self%k, self%options, &
                                   self%method, re, im, status, message)
-    if (status == SD_OK) fx = maxval(hypot(re, im)) - 1
+    if (status == SD_OK) fx = kind_test_value(self%kind, re, im)
   end subroutine swirl_margin_value
 end module sloshdyn_swirl

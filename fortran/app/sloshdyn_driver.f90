@@ -40,7 +40,7 @@ module sloshdyn_driver
   use sloshdyn_response, only: frequency_response
   use sloshdyn_periodic_response, only: periodic_response_from_rest, lyapunov_exponent, &
                                         orbit_from_rest, periodic_switch
-  use sloshdyn_swirl, only: swirl_branch
+  use sloshdyn_swirl, only: swirl_branch, stability_margin
   use sloshdyn_seismic_spatial, only: seismic_response_spatial
   use sloshdyn_tank_lyapunov, only: tank_lyapunov_spectrum
   use sloshdyn_namelist, only: run_config, known_analyses, ANALYSIS_LINEAR, ANALYSIS_SIMULATE, &
@@ -95,6 +95,14 @@ module sloshdyn_driver
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
     end subroutine run_swirl_orbit
+    module subroutine run_swirling(config, files, edges, n_edges, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      real(wp), intent(in) :: edges(:, :)
+      integer, intent(in) :: n_edges
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_swirling
     module subroutine run_seismic_spatial(config, files, status, message)
       type(run_config), intent(in) :: config
       type(result_files), intent(inout) :: files
@@ -682,12 +690,12 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp), allocatable :: points(:, :), edges(:, :)
     integer :: n_points, n_edges, i
-    logical :: complete
+    logical :: complete, conservative
     character(len=:), allocatable :: name
 
     associate (r => config%response)
       call swirl_band(config, config%model, points, n_points, edges, n_edges, complete, status, &
-                      message)
+                      message, conservative)
       call in_context('swirl', status, message)
       if (status /= SD_OK) return
       name = parameter_label(r%parameter)
@@ -695,37 +703,46 @@ contains
                     '(spatial model; '//used_method(config)//') for '//name//' in ['// &
                     num2str(r%start)//', '//num2str(r%stop)//']'
     end associate
-    print '(a)', '  '//num2str(n_points)//' orbits, '//num2str(count(points(8, 1:n_points) > 1))// &
-                 ' unstable out of their plane (max|nu| > 1); edges of the swirl band:'
+    print '(a)', '  '//num2str(n_points)//' orbits, '// &
+                 num2str(count(points(8, 1:n_points) > 1 + stability_margin))// &
+                 ' unstable out of their plane (max|nu| > 1 + '//num2str(stability_margin)//'); edges of the swirl band:'
     if (n_edges == 0) print '(a)', '  none'
     do i = 1, n_edges
       print '(a)', '  '//name//' = '//pad(num2str(edges(1, i)), 14)//'max|x1| = '// &
-                   pad(num2str(edges(6, i)), 14)// &
+                   pad(num2str(edges(6, i)), 14)//pad(special_kind_name(nint(edges(8, i))), 17)// &
                    trim(merge('(located)     ', '(interpolated)', edges(7, i) > 0))
     end do
+    if (conservative) print '(a)', '  no damping (the monodromy preserves volume): the '// &
+      'Neimark-Sacker tests, in the plane and out of it, were skipped (stable multipliers '// &
+      'sit on the unit circle, where they vanish)'
     call begin_files(config, files, status, message)
     if (status == SD_OK) call files%write_table('swirl_branch.csv', 'swirl_branch', &
                                                 points(:, 1:n_points), status, message)
     if (status == SD_OK) call files%write_table('swirl_edges.csv', 'swirl_edges', &
                                                 edges(:, 1:n_edges), status, message)
+    if (status == SD_OK .and. config%response%switch_at > 0) &
+      call run_swirling(config, files, edges, n_edges, status, message)
   end subroutine run_swirl
 
   !> The swirl band of model along &response's range (sloshdyn_swirl's swirl_branch, from the
   !> planar orbit reached from &simulation's y0 at its start): points(SWIRL_BRANCH_ROWS, :) and
   !> edges(SWIRL_EDGE_ROWS, :), allocated here.
   subroutine swirl_band(config, model, points, n_points, edges, n_edges, complete, status, &
-                        message)
+                        message, conservative)
     type(run_config), intent(in) :: config
     type(model_t), intent(in) :: model
     real(wp), allocatable, intent(out) :: points(:, :), edges(:, :)
     integer, intent(out) :: n_points, n_edges, status
     logical, intent(out) :: complete
+    logical, intent(out), optional :: conservative
     character(len=message_len), intent(out) :: message
     type(model_t) :: start
     real(wp) :: y_orbit(4)
+    logical :: no_damping
     n_points = 0
     n_edges = 0
     complete = .false.
+    no_damping = .false.
     associate (r => config%response)
       allocate (points(SWIRL_BRANCH_ROWS, r%options%continuation%max_points), &
                 edges(SWIRL_EDGE_ROWS, max_swirl_edges))
@@ -735,8 +752,9 @@ contains
       if (status == SD_OK) &
         call swirl_branch(start, r%parameter, y_orbit, 1, r%start, r%stop, &
                           r%options%continuation, config%integration, config%method, points, &
-                          n_points, edges, n_edges, complete, status, message)
+                          n_points, edges, n_edges, complete, no_damping, status, message)
     end associate
+    if (present(conservative)) conservative = no_damping
   end subroutine swirl_band
 
   !> Largest Lyapunov exponent from y0 with its running estimates.

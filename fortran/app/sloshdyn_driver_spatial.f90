@@ -13,8 +13,11 @@ submodule (sloshdyn_driver) sloshdyn_driver_spatial
   use sloshdyn_ground, only: ground_excitation
   use sloshdyn_simulation, only: spatial_time_history
   use sloshdyn_swirl, only: swirl_orbit
+  use sloshdyn_swirling_branch, only: swirling_branch
   use sloshdyn_periodic_response, only: newton_tol_default, max_iter_default
-  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS
+  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS, &
+                             SWIRLING_BRANCH_ROWS, SWIRLING_SPECIAL_ROWS, SPECIAL_BRANCH_POINT, &
+                             special_kind_name
   implicit none
 
 contains
@@ -140,6 +143,66 @@ contains
     if (status == SD_OK) call files%write_table('swirl_boundary.csv', 'swirl_boundary', &
                                                 rows(:, 1:n_rows), status, message)
   end subroutine run_swirl_boundary
+
+  !> With &response switch_at = j (kind = 'swirl'): the swirling orbits born at edge j of the
+  !> swirl band (edges as run_swirl's; a branch_point edge), continued over &response's range
+  !> (sloshdyn_swirling_branch, as Python's sloshdyn.spatial.swirling_branch):
+  !> swirling_branch.csv and swirling_special_points.csv.
+  module subroutine run_swirling(config, files, edges, n_edges, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    real(wp), intent(in) :: edges(:, :)
+    integer, intent(in) :: n_edges
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: at_edge
+    real(wp), allocatable :: points(:, :), special(:, :)
+    integer :: n_points, n_special, j, i
+    logical :: complete
+
+    status = SD_OK
+    message = ''
+    associate (r => config%response)
+      j = r%switch_at
+      if (j > n_edges) then
+        status = SD_BAD_INPUT
+        message = '&response: switch_at = '//num2str(j)//' is out of range: the swirl band has '// &
+                  num2str(n_edges)//' edge(s)'
+      else if (nint(edges(8, j)) /= SPECIAL_BRANCH_POINT) then
+        status = SD_BAD_INPUT
+        message = '&response: switch_at = '//num2str(j)//' is a '// &
+                  special_kind_name(nint(edges(8, j)))//' edge: swirling orbits are born at '// &
+                  'a branch_point edge'
+      end if
+      if (status /= SD_OK) return
+      at_edge = config%model
+      if (r%parameter == PARAMETER_RHO) then
+        at_edge%excitation%rho = edges(1, j)
+      else
+        at_edge%excitation%A = edges(1, j)
+      end if
+      allocate (points(SWIRLING_BRANCH_ROWS, r%options%continuation%max_points), &
+                special(SWIRLING_SPECIAL_ROWS, 4*max(r%options%continuation%max_points, 1)))
+      call swirling_branch(at_edge, r%parameter, edges(2:5, j), 1, r%start, r%stop, &
+                           r%options%continuation, config%integration, config%method, points, &
+                           n_points, special, n_special, complete, status, message)
+      call in_context('swirling branch at swirl edge '//num2str(j), status, message)
+      if (status /= SD_OK) return
+      print '(/a)', 'Swirling orbits born at swirl edge '//num2str(j)//' ('// &
+                    num2str(edges(1, j))//'): '//num2str(n_points)//' orbits, '// &
+                    num2str(count(points(13, 1:n_points) > 0))//' stable; special points:'
+      if (n_special == 0) print '(a)', '  none'
+      do i = 1, n_special
+        print '(a)', '  '//pad(special_kind_name(nint(special(1, i))), 16)// &
+                     pad(num2str(special(2, i)), 14)//'max|x1| = '//num2str(special(11, i))
+      end do
+    end associate
+    call files%write_table('swirling_branch.csv', 'swirling_branch', points(:, 1:n_points), &
+                           status, message)
+    if (status == SD_OK) call files%write_table('swirling_special_points.csv', &
+                                                'swirling_special_points', &
+                                                special(:, 1:n_special), status, message)
+  end subroutine run_swirling
 
   !> Values separated by commas.
   pure function join_values(values) result(text)

@@ -109,7 +109,8 @@ module sloshdyn_layouts
     field_t('resonance', 'code:resonances'), field_t('parameter', 'code:excitation_parameters'), &
     field_t('start'), field_t('stop'), &
     field_t('switch_at', 'integer', 'periodic_response: the special point (1, 2, ...) where '// &
-            'the branch is switched; 0: none')]
+            'the branch is switched; swirl: the edge (1, 2, ...) where the swirling orbits '// &
+            'are followed; 0: none')]
   !> &lyapunov (sloshdyn_periodic_response's lyapunov_options)
   type(field_t), parameter :: lyapunov_fields(*) = [ &
     field_t('transient_periods', 'integer', 'forcing periods integrated before measuring'), &

@@ -22,7 +22,8 @@ module sloshdyn_tables
   public :: SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_BRANCH, SPECIAL_LAMBDA, SPECIAL_RHO, SPECIAL_A, &
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
   public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
-  public :: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS
+  public :: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS, SWIRLING_BRANCH_ROWS, &
+            SWIRLING_SPECIAL_ROWS
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
@@ -123,8 +124,10 @@ module sloshdyn_tables
                         PERIODIC_SPECIAL_LAMBDA = 2, PERIODIC_SPECIAL_MAX_X1 = 7
   !> Swirl (sloshdyn_swirl): a planar branch's points with their out-of-plane Floquet
   !> multipliers nu ('swirl_branch'), and the edges of the swirl band, where max|nu| = 1
-  !> ('swirl_edges'; refined 1: located by Brent's method, 0: interpolated between points).
-  integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 7
+  !> ('swirl_edges'; refined 1: located by Brent's method, 0: interpolated between points;
+  !> kind: SPECIAL_BRANCH_POINT (a multiplier through +1), SPECIAL_PERIOD_DOUBLING (-1),
+  !> SPECIAL_NEIMARK_SACKER (a complex pair)).
+  integer, parameter :: SWIRL_BRANCH_ROWS = 16, SWIRL_EDGE_ROWS = 8
   !> A tank under ground motion in two horizontal components (sloshdyn_seismic_spatial): at each
   !> output time ('seismic_spatial'), and the peaks over the output times beside the codes'
   !> combinations of the two planar runs, then the roof verdict of the free wave around the
@@ -137,7 +140,10 @@ module sloshdyn_tables
   integer, parameter :: SPATIAL_HISTORY_ROWS = 10, SWIRL_ORBIT_ROWS = 28
   !> The edges of the swirl band along rho at several A ('swirl_boundary': A, then the
   !> 'swirl_edges' columns).
-  integer, parameter :: SWIRL_BOUNDARY_ROWS = 8
+  integer, parameter :: SWIRL_BOUNDARY_ROWS = 9
+  !> The swirling orbits born at a swirl edge (sloshdyn_swirling_branch: 'swirling_branch',
+  !> 'swirling_special_points').
+  integer, parameter :: SWIRLING_BRANCH_ROWS = 29, SWIRLING_SPECIAL_ROWS = 11
 
   !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
   !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
@@ -343,9 +349,15 @@ contains
       header = 'lambda,y1,y2,y3,y4,max_x1,planar_stable,max_abs_nu,re_nu1,re_nu2,re_nu3,'// &
                're_nu4,im_nu1,im_nu2,im_nu3,im_nu4'
     case ('swirl_edges')
-      header = 'lambda,y1,y2,y3,y4,max_x1,refined'
+      header = 'lambda,y1,y2,y3,y4,max_x1,refined,kind'
     case ('swirl_boundary')
-      header = 'A,lambda,y1,y2,y3,y4,max_x1,refined'
+      header = 'A,lambda,y1,y2,y3,y4,max_x1,refined,kind'
+    case ('swirling_branch')
+      header = 'lambda,y1,y2,y3,y4,y5,y6,y7,y8,max_x1,swirl_amplitude,angular_momentum,stable,'// &
+               're_mu1,re_mu2,re_mu3,re_mu4,re_mu5,re_mu6,re_mu7,re_mu8,'// &
+               'im_mu1,im_mu2,im_mu3,im_mu4,im_mu5,im_mu6,im_mu7,im_mu8'
+    case ('swirling_special_points')
+      header = 'kind,lambda,y1,y2,y3,y4,y5,y6,y7,y8,max_x1'
     case ('spatial_history')
       header = 'tau,x1,dx1,x2,dx2,y1,dy1,y2,dy2,tilt,tilt_azimuth'
     case ('swirl_orbit')
@@ -447,6 +459,12 @@ contains
       formats = 'srrrrrrr'
     case ('periodic_special_points', 'cycle_special_points')
       formats = 'srrrrrr'
+    case ('swirl_edges')
+      formats = 'rrrrrris'
+    case ('swirling_special_points')
+      formats = 's'//repeat('r', 10)
+    case ('swirl_boundary')
+      formats = 'rrrrrrris'
     case ('simulation')
       formats = 'iiir'
     case ('lyapunov')

@@ -13,7 +13,8 @@ program sloshdyn_bridge_sizes
                              CODES_ROWS, SEISMIC_ROWS, PEAKS_SIZE, HARMONIC_SWEEP_ROWS, &
                              CYCLE_POINT_ROWS, CYCLE_MULTIPLIER_ROWS, CYCLE_AMPLITUDE_ROWS, &
                              CYCLE_SPECIAL_ROWS, TANK_MODES_ROWS, &
-                             SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, &
+                             SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SWIRLING_BRANCH_ROWS, &
+                             SWIRLING_SPECIAL_ROWS, SEISMIC_SPATIAL_ROWS, &
                              SEISMIC_SPATIAL_PEAKS
   use sloshdyn_tables, only: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
                              PRESSURE_INSTANT_ROWS
@@ -88,6 +89,8 @@ program sloshdyn_bridge_sizes
   call define('spatial_size', SPATIAL_SIZE)
   call define('swirl_branch_rows', SWIRL_BRANCH_ROWS)
   call define('swirl_edge_rows', SWIRL_EDGE_ROWS)
+  call define('swirling_branch_rows', SWIRLING_BRANCH_ROWS)
+  call define('swirling_special_rows', SWIRLING_SPECIAL_ROWS)
   call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
   call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
   call define('natural_frequencies_size', NATURAL_FREQUENCIES_SIZE)

@@ -109,10 +109,11 @@ contains
   !> (which = 1) or A (which = 2) over [lambda_min, lambda_max] with settings = [ds, ds_min,
   !> ds_max, x_scale, direction] (sloshdyn_swirl's swirl_branch): points(SWIRL_BRANCH_ROWS, :)
   !> and edges(SWIRL_EDGE_ROWS, :) in the tables 'swirl_branch' and 'swirl_edges'; complete = 0
-  !> if the branch stopped early.
+  !> if the branch stopped early; conservative = 1 if the Neimark-Sacker tests were skipped
+  !> (volume-preserving monodromy: no damping).
   subroutine swirl_branch(rpar, ipar, which, y0, k, lambda_min, lambda_max, settings, &
                           integration, max_points, max_edges, points, n_points, edges, n_edges, &
-                          complete, status, message)
+                          complete, conservative, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_tables, only: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
@@ -125,24 +126,64 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), which, k, max_points, max_edges
     real(c_double), intent(out) :: points(SWIRL_BRANCH_ROWS, max_points), &
                                    edges(SWIRL_EDGE_ROWS, max_edges)
-    integer(c_int), intent(out) :: n_points, n_edges, complete, status
+    integer(c_int), intent(out) :: n_points, n_edges, complete, conservative, status
     character(len=256), intent(out) :: message
     type(model_t) :: model
     type(continuation_options) :: options
     integer :: code, found, found_edges
-    logical :: done
-    points = 0; edges = 0; found = 0; found_edges = 0; done = .false.
+    logical :: done, no_damping
+    points = 0; edges = 0; found = 0; found_edges = 0; done = .false.; no_damping = .false.
     options = to_continuation(settings)
     options%max_points = max_points
     call model_from_arrays(rpar, int(ipar), model, code, message)
     if (code == 0) call core(model, int(which), y0, int(k), lambda_min, lambda_max, options, &
                              to_ode_options(integration), to_method(integration), points, found, &
-                             edges, found_edges, done, code, message)
+                             edges, found_edges, done, no_damping, code, message)
     n_points = found
     n_edges = found_edges
     complete = merge(1, 0, done)
+    conservative = merge(1, 0, no_damping)
     status = code
   end subroutine swirl_branch
+
+  !> The swirling orbits (period k T) born at the swirl edge through the planar orbit y_edge of
+  !> the model (its parameter which = 1 rho, 2 A at the edge), continued over [lambda_min,
+  !> lambda_max] with settings = [ds, ds_min, ds_max, x_scale, direction]
+  !> (sloshdyn_swirling_branch): points and special in the tables 'swirling_branch' and
+  !> 'swirling_special_points'; complete = 0 if the branch stopped early.
+  subroutine swirling_branch(rpar, ipar, which, y_edge, k, lambda_min, lambda_max, settings, &
+                             integration, max_points, max_special, points, n_points, special, &
+                             n_special, complete, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: SWIRLING_BRANCH_ROWS, SWIRLING_SPECIAL_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, CONTINUATION_SIZE, to_ode_options, to_method, &
+                                to_continuation
+    use sloshdyn_continuation, only: continuation_options
+    use sloshdyn_swirling_branch, only: core => swirling_branch
+    real(c_double), intent(in) :: rpar(n_real_params), y_edge(4), lambda_min, lambda_max, &
+                                  settings(CONTINUATION_SIZE), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), which, k, max_points, max_special
+    real(c_double), intent(out) :: points(SWIRLING_BRANCH_ROWS, max_points), &
+                                   special(SWIRLING_SPECIAL_ROWS, max_special)
+    integer(c_int), intent(out) :: n_points, n_special, complete, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    type(continuation_options) :: options
+    integer :: code, found, found_special
+    logical :: done
+    points = 0; special = 0; found = 0; found_special = 0; done = .false.
+    options = to_continuation(settings)
+    options%max_points = max_points
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, int(which), y_edge, int(k), lambda_min, lambda_max, options, &
+                             to_ode_options(integration), to_method(integration), points, found, &
+                             special, found_special, done, code, message)
+    n_points = found
+    n_special = found_special
+    complete = merge(1, 0, done)
+    status = code
+  end subroutine swirling_branch
 
   !> A periodic orbit of period k T of the spatial model (its excitation along spatial's azimuth,
   !> with its ellipticity) from y0 after `transient` k T of integration (sloshdyn_swirl's

@@ -42,7 +42,8 @@ module sloshdyn_shooting
             periodic_set_parameter, variational_system, shooting_setup, make_setup
   public :: monodromy_matrix, shooting_newton, floquet_kind, fold_test, period_doubling_test, &
             neimark_sacker_test, complex_pair_count, periodic_branch, check_setup, kind_test, &
-            branch_point_data, branch_data, locate_special_points, switch_branch
+            branch_point_data, branch_data, locate_special_points, switch_branch, &
+            volume_preserving, kind_test_value
   public :: FLOQUET_STABLE, FLOQUET_NEUTRAL, FLOQUET_UNSTABLE
   public :: samples_per_period
 
@@ -55,6 +56,8 @@ module sloshdyn_shooting
   real(wp), parameter :: scale_floor = 1.0e-12_wp
   !> |mu| tolerance of the stable flag along a branch: stable = FLOQUET_STABLE at this tol.
   real(wp), parameter :: stability_tol = 1.0e-9_wp
+  !> |det M| within this of 1: a volume-preserving (conservative) flow (volume_preserving)
+  real(wp), parameter :: volume_tol = 1.0e-7_wp
   !> Secant iterations at most when a branch point is located by the secant method.
   integer, parameter :: max_secant_iterations = 20
   real(wp), parameter :: secant_newton_tol = 1.0e-8_wp
@@ -353,6 +356,14 @@ contains
     end do
   end function neimark_sacker_test
 
+  !> |det M| = prod |mu_i| within volume_tol of 1: the flow preserves volume (no damping), its
+  !> monodromy is symplectic and its stable multipliers sit on the unit circle, where
+  !> neimark_sacker_test vanishes identically (its sign is rounding noise).
+  pure logical function volume_preserving(re, im)
+    real(wp), intent(in) :: re(:), im(:)
+    volume_preserving = abs(product(hypot(re, im)) - 1) <= volume_tol
+  end function volume_preserving
+
   pure integer function complex_pair_count(re, im) result(pairs)
     real(wp), intent(in) :: re(:), im(:)
     pairs = count(im > 0)
@@ -630,7 +641,8 @@ contains
   !> its tangents and arclength; multipliers(:, j) = [re; im] at point j): folds where the
   !> tangent's lambda component changes sign (locate_fold), else, with branch_points, branch
   !> points where det(M - I) does; period doublings (det(M + I)) and Neimark-Sacker points
-  !> (complex pair moduli, at equal complex_pair_count), located by locate_zero_on_branch with
+  !> (complex pair moduli, at equal complex_pair_count; not between two volume-preserving
+  !> points, where that test is rounding noise), located by locate_zero_on_branch with
   !> test (its kind set to each). Each is stored as special(:, n_special) = [kind,
   !> row(1:n + 2)], row from point_data. The first failure sets status and message if they are
   !> still SD_OK (SD_CAPACITY when special has no more columns); the others are skipped.
@@ -650,18 +662,21 @@ contains
     real(wp) :: z_special(size(z, 1))
     real(wp), allocatable :: det_minus(:), det_plus(:), ns(:)
     integer, allocatable :: pairs(:)
+    logical, allocatable :: conservative(:)
     integer :: n, m, j, locate_status
     character(len=message_len) :: locate_message
 
     m = size(z, 1)
     n = size(multipliers, 1)/2
-    allocate (det_minus(n_points), det_plus(n_points), ns(n_points), pairs(n_points))
+    allocate (det_minus(n_points), det_plus(n_points), ns(n_points), pairs(n_points), &
+              conservative(n_points))
     do j = 1, n_points
       associate (re => multipliers(1:n, j), im => multipliers(n + 1:2*n, j))
         det_minus(j) = fold_test(re, im)
         det_plus(j) = period_doubling_test(re, im)
         ns(j) = neimark_sacker_test(re, im)
         pairs(j) = complex_pair_count(re, im)
+        conservative(j) = volume_preserving(re, im)
       end associate
     end do
     do j = 1, n_points - 1
@@ -673,7 +688,8 @@ contains
         call locate_with(SPECIAL_BRANCH_POINT)
       end if
       if (det_plus(j)*det_plus(j + 1) < 0) call locate_with(SPECIAL_PERIOD_DOUBLING)
-      if (pairs(j) == pairs(j + 1) .and. ns(j)*ns(j + 1) < 0) &
+      if (pairs(j) == pairs(j + 1) .and. ns(j)*ns(j + 1) < 0 .and. &
+          .not. (conservative(j) .and. conservative(j + 1))) &
         call locate_with(SPECIAL_NEIMARK_SACKER)
     end do
 
@@ -950,7 +966,15 @@ contains
     call shoot(self%setup, z(1:n), z(n + 1), result, status, message)
     if (status == SD_OK) call eigenvalues(result%monodromy, re, im, status, message)
     if (status /= SD_OK) return
-    select case (self%kind)
+    g = kind_test_value(self%kind, re, im)
+  end function multiplier_test_value
+
+  !> The multiplier test of special-point kind `kind` (SPECIAL_*): det(M - I) for folds and
+  !> branch points, det(M + I) for period doublings, else the complex pairs' moduli.
+  pure real(wp) function kind_test_value(kind, re, im) result(g)
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: re(:), im(:)
+    select case (kind)
     case (SPECIAL_FOLD, SPECIAL_BRANCH_POINT)
       g = fold_test(re, im)
     case (SPECIAL_PERIOD_DOUBLING)
@@ -958,7 +982,7 @@ contains
     case default
       g = neimark_sacker_test(re, im)
     end select
-  end function multiplier_test_value
+  end function kind_test_value
 
   !> prod(mu_i + shift), real for conjugate pairs.
   pure real(wp) function shifted_product(re, im, shift) result(g)

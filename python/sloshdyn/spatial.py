@@ -11,22 +11,28 @@ minor over major axis; the minor axis moves as ellipticity A cos(rho tau)).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import check_status, message_text, with_partial
+from ._errors import InputError, SloshdynError, check_status, message_text, with_partial
 from .ground import GroundMotion
 from .options import Continuation, Integration, Shooting
 from .parameters import Parameters
-from .periodic import PERIODIC_CONTINUATION, branch_start, periodic_orbit
+from .asymptotics import continuation_array
+from .periodic import (KINDS, PERIODIC_CONTINUATION, PeriodicSpecialPoint, branch_start,
+                       periodic_orbit)
 from .seismic import seismic_defaults
 from .simulation import _counts, _output_times
 from .tank import Tank
 
 _bridge = _core.sloshdyn_bridge_spatial
+
+#: max|nu| beyond 1 + this is swirl (sloshdyn_swirl's stability_margin: undamped, the stable
+#: multipliers sit on the unit circle to rounding)
+SWIRL_MARGIN = 1e-6
 
 
 def _spatial_array(azimuth, ellipticity):
@@ -117,12 +123,18 @@ class SwirlBand:
     parameter: str               #: 'rho' or 'A'
     table: dict                  #: lambda, rho, A, y1..y4, max_x1, planar_stable (in-plane
                                  #: Floquet stability), max_abs_nu, nu1..nu4 (complex), swirl
-                                 #: (max|nu| > 1)
+                                 #: (max|nu| > 1 + SWIRL_MARGIN)
     edges: dict                  #: lambda, rho, A, y1..y4, max_x1, refined (1: located by
-                                 #: Brent's method; 0: interpolated across a fold)
+                                 #: Brent's method; 0: interpolated across a fold), kind
+                                 #: ('branch_point': an out-of-plane multiplier through +1,
+                                 #: the pitchfork onto the swirling orbits; 'period_doubling':
+                                 #: through -1; 'neimark_sacker': a complex pair)
     complete: bool
     message: str                 #: why an incomplete branch stopped ('' if complete)
     method: str                  #: the integration method used ('auto' resolved)
+    skipped: dict = None         #: the tests not run: name -> why ({} if all ran)
+    followed: tuple = ()         #: the branches followed (table["branch"] indexes them)
+    others: str = ""             #: another branch found and not followed ('' if none)
 
 
 def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, periods=1,
@@ -131,14 +143,49 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
                integration: Integration = Integration()) -> SwirlBand:
     """Follow the planar periodic response in rho over rho_range (or in A over A_range) as
     ``periodic_response`` does, with the out-of-plane multipliers at every point and the edges
-    of the band of swirl (planar response unstable out of its plane). Raises ConvergenceError
-    (with ``partial``) if the branch stops before the end of the range."""
-    b = branch_start(params, rho_range, A_range, y0, periods, start, from_end, continuation,
-                     integration, "swirl_branch")
-    parameter = b.parameter
+    of the band of swirl (planar response unstable out of its plane). from_end 'low' or 'high':
+    the branch through the orbit at that end (y0, or found from ``start``); ``.others`` says
+    whether the orbit found from ``start`` at the other end lies on another branch. 'both':
+    the branches through the orbits found from ``start`` at both ends (one if they are the
+    same), their points and edges told apart by the column ``branch``. Raises ConvergenceError
+    (with ``partial``) if a branch stops before the end of the range."""
+    _checks.choice("from_end", from_end, ("low", "high", "both"))
+    if from_end == "both" and y0 is not None:
+        raise InputError("y0: from_end = 'both' starts at both ends from `start`; give y0 "
+                         "with from_end = 'low' or 'high'")
     max_edges = _checks.output_size("max_edges", _checks.integer("max_edges", max_edges, 1),
                                     len(_tables.columns("swirl_edges")))
-    points, n, edges, n_edges, complete, status, message = cancellable(
+
+    def starting(end, guess):
+        return branch_start(params, rho_range, A_range, guess, periods, start, end,
+                            continuation, integration, "swirl_branch")
+
+    first = starting("high" if from_end == "high" else "low", y0)
+    bands = [_follow_band(params, first, max_edges, integration)]
+    other_end = "low" if from_end == "high" else "high"
+    try:
+        other = starting(other_end, None)
+    except SloshdynError as error:
+        if from_end == "both":
+            raise
+        # undamped, a simulation from rest never settles: no orbit there to compare
+        return _merged(bands, f"not checked: no planar orbit found from start = '{start}' at "
+                              f"the {other_end} end ({error}); other branches may exist")
+    separate = not _reaches(bands[0], other)
+    others = ""
+    if from_end == "both" and separate:
+        bands.append(_follow_band(params, other, max_edges, integration))
+    elif separate:
+        others = (f"the planar orbit found from start = '{start}' at the {other_end} end "
+                  f"({other.parameter} = {getattr(other.first, other.parameter):.6g}) "
+                  "is on another branch: from_end = 'both' follows it too")
+    return _merged(bands, others)
+
+
+def _follow_band(params, b, max_edges, integration):
+    """One SwirlBand: the branch of the BranchStart b (raises with ``partial`` if it stops)."""
+    parameter = b.parameter
+    points, n, edges, n_edges, complete, conservative, status, message = cancellable(
         _bridge.swirl_branch, *b.first.array(), _tables.code("excitation_parameters", parameter),
         b.y0, b.periods, b.low, b.high, b.settings, integration.array(), b.max_points, max_edges)
     rows = dict(zip(_tables.columns("swirl_branch"), points[:, :n]))
@@ -155,13 +202,50 @@ def swirl_band(params: Parameters, rho_range=None, *, A_range=None, y0=None, per
         table[name] = rows[name]
     for i in range(1, 5):
         table[f"nu{i}"] = rows[f"re_nu{i}"] + 1j * rows[f"im_nu{i}"]
-    table["swirl"] = rows["max_abs_nu"] > 1
+    table["swirl"] = rows["max_abs_nu"] > 1 + SWIRL_MARGIN
+    table["branch"] = np.zeros(n, int)
     edge_table = with_parameters(edge_rows, n_edges)
     for name in ("y1", "y2", "y3", "y4", "max_x1", "refined"):
         edge_table[name] = edge_rows[name]
+    edge_table["kind"] = np.array([KINDS[int(k)] for k in edge_rows["kind"]], dtype=object)
+    edge_table["branch"] = np.zeros(n_edges, int)
+    skipped = {}
+    if conservative:
+        why = ("no damping: the monodromy preserves volume, its stable multipliers sit on the "
+               "unit circle, where the complex pairs' test vanishes identically")
+        skipped = {"neimark_sacker (in the plane)": why, "neimark_sacker (out of it)": why}
+    followed = (f"the branch through the planar orbit at {parameter} = "
+                f"{getattr(b.first, parameter):.6g}",)
     band = SwirlBand(parameter, table, edge_table, bool(complete), message_text(message),
-                     integration.method_used)
+                     integration.method_used, skipped, followed)
     return with_partial(band, status, message, "swirl band")
+
+
+def _reaches(band, b):
+    """Whether the band's branch passes through the start orbit of BranchStart b (at b's
+    end of the range): the same planar orbit to 1e-6."""
+    lam, end = band.table["lambda"], getattr(b.first, band.parameter)
+    y = np.stack([band.table[f"y{i}"] for i in range(1, 5)])
+    at_end = np.flatnonzero(np.abs(lam - end) <= 1e-12 * max(1.0, abs(end)))
+    scale = 1e-6 * max(1.0, np.abs(b.y0).max())
+    return any(np.abs(y[:, j] - b.y0).max() <= scale for j in at_end)
+
+
+def _merged(bands, others):
+    """The SwirlBand of one or more branches (column ``branch``: the index in ``followed``)."""
+    if len(bands) == 1:
+        return replace(bands[0], others=others)
+    table = {k: np.concatenate([band.table[k] for band in bands]) for k in bands[0].table}
+    edges = {k: np.concatenate([band.edges[k] for band in bands]) for k in bands[0].edges}
+    table["branch"] = np.concatenate([np.full(len(band.table["lambda"]), i)
+                                      for i, band in enumerate(bands)])
+    edges["branch"] = np.concatenate([np.full(len(band.edges["lambda"]), i)
+                                      for i, band in enumerate(bands)])
+    skipped = {k: v for band in bands for k, v in band.skipped.items()}
+    return SwirlBand(bands[0].parameter, table, edges, all(band.complete for band in bands),
+                     "; ".join(band.message for band in bands if band.message),
+                     bands[0].method, skipped, sum((band.followed for band in bands), ()),
+                     others)
 
 
 @dataclass(frozen=True)
@@ -170,7 +254,8 @@ class SwirlBoundary:
 
     A: np.ndarray                #: the forcing amplitudes
     bands: tuple                 #: the SwirlBand in rho at each A
-    edges: dict                  #: one row per edge: A, rho, y1..y4, max_x1, refined
+    edges: dict                  #: one row per edge: A, rho, y1..y4, max_x1, refined, kind,
+                                 #: branch (the index in its band's followed)
     complete: bool               #: every band complete
 
 
@@ -182,9 +267,83 @@ def swirl_boundary(params: Parameters, rho_range, A_values, **band_options) -> S
     A_values = _checks.reals("A_values", A_values, ndim=1, min_size=1)
     bands = tuple(swirl_band(params.replace(A=float(a)), rho_range, **band_options)
                   for a in A_values)
-    names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined")
+    names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined", "kind", "branch")
     edges = {name: np.concatenate([band.edges[name] for band in bands]) for name in names}
     return SwirlBoundary(A_values, bands, edges, all(band.complete for band in bands))
+
+
+@dataclass(frozen=True)
+class SwirlingBranch:
+    """The swirling periodic orbits born at a swirl edge (a pitchfork of the planar orbit,
+    multiplier +1 out of its plane), continued in rho or A on the 8 states."""
+
+    parameter: str               #: 'rho' or 'A'
+    table: dict                  #: lambda, rho, A, y1..y8 (states at tau = 0), max_x1,
+                                 #: swirl_amplitude (max|y1|), angular_momentum (mean L_z),
+                                 #: stable, mu1..mu8 (complex Floquet multipliers)
+    special_points: list         #: PeriodicSpecialPoint (kind, rho, A, max_x1, y0: 8 states):
+                                 #: fold, branch_point, period_doubling, neimark_sacker
+    complete: bool
+    message: str                 #: why an incomplete branch stopped ('' if complete)
+    method: str                  #: the integration method used ('auto' resolved)
+
+
+def swirling_branch(band: SwirlBand, edge=0, lambda_range=None, *, ds=None,
+                    continuation: Continuation = PERIODIC_CONTINUATION,
+                    integration: Integration = Integration(), params: Parameters = None,
+                    periods=1) -> SwirlingBranch:
+    """Switch at edge number ``edge`` of ``band`` (a 'branch_point' edge: an out-of-plane
+    multiplier through +1) onto the swirling orbits and continue them over lambda_range (the
+    band's parameter; default: the band's range) with their 8 Floquet multipliers, folds,
+    branch points, period doublings and Neimark-Sacker points. ``ds``: the first step off the
+    edge along the critical eigenvector (default continuation.ds); its sign picks one of the two
+    mirror-image branches. ``params``: the band's parameters (needed for the fixed one and the
+    model). Raises ConvergenceError (with ``partial``) if the branch stops early."""
+    _checks.instance("band", band, SwirlBand)
+    _checks.instance("params", params, Parameters)
+    _checks.instance("continuation", continuation, Continuation)
+    _checks.instance("integration", integration, Integration)
+    n_edges = len(band.edges["lambda"])
+    edge = _checks.integer("edge", edge, 0)
+    if edge >= n_edges or band.edges["kind"][edge] != "branch_point":
+        raise InputError(f"edge = {edge}: the band has {n_edges} edge(s) of kinds "
+                         f"{list(band.edges['kind'])}; swirling orbits are born at a "
+                         "'branch_point' edge")
+    parameter = band.parameter
+    at = params.replace(**{parameter: float(band.edges["lambda"][edge])})
+    if lambda_range is None:
+        lambda_range = (band.table["lambda"].min(), band.table["lambda"].max())
+    low, high = (_checks.real("lambda_range", x) for x in lambda_range)
+    step = continuation.ds if ds is None else _checks.real("ds", ds)
+    settings = continuation_array(replace(continuation, ds=step), 1.0)
+    max_points = _checks.output_size("max_points", _checks.integer(
+        "max_points", continuation.max_points, 1), len(_tables.columns("swirling_branch")))
+    y_edge = np.array([band.edges[f"y{i}"][edge] for i in range(1, 5)])
+    points, n, special, n_special, complete, status, message = cancellable(
+        _bridge.swirling_branch, *at.array(), _tables.code("excitation_parameters", parameter),
+        y_edge, _checks.integer("periods", periods, 1), low, high, settings,
+        integration.array(), max_points, 4 * max_points)
+    rows = dict(zip(_tables.columns("swirling_branch"), points[:, :n]))
+    lam = rows["lambda"]
+    table = {"lambda": lam, "rho": lam if parameter == "rho" else np.full(n, params.rho),
+             "A": lam if parameter == "A" else np.full(n, params.A)}
+    for i in range(1, 9):
+        table[f"y{i}"] = rows[f"y{i}"]
+    for name in ("max_x1", "swirl_amplitude", "angular_momentum", "stable"):
+        table[name] = rows[name]
+    for i in range(1, 9):
+        table[f"mu{i}"] = rows[f"re_mu{i}"] + 1j * rows[f"im_mu{i}"]
+    specials = []
+    for column in special[:, :n_special].T:
+        point = dict(zip(_tables.columns("swirling_special_points"), column))
+        value = float(point["lambda"])
+        specials.append(PeriodicSpecialPoint(
+            KINDS[int(point["kind"])], value if parameter == "rho" else params.rho,
+            value if parameter == "A" else params.A, float(point["max_x1"]),
+            np.array([point[f"y{i}"] for i in range(1, 9)])))
+    branch = SwirlingBranch(parameter, table, specials, bool(complete), message_text(message),
+                            integration.method_used)
+    return with_partial(branch, status, message, "swirling branch")
 
 
 @dataclass(frozen=True)

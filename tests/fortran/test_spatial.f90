@@ -22,7 +22,8 @@ program test_spatial
   use sloshdyn_shooting, only: monodromy_matrix
   use sloshdyn_lapack, only: eigenvalues
   use sloshdyn_swirl, only: out_of_plane_multipliers
-  use sloshdyn_tables, only: table_size, SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS
+  use sloshdyn_tables, only: table_size, SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, &
+                             SWIRLING_BRANCH_ROWS, SWIRLING_SPECIAL_ROWS, SWIRL_BOUNDARY_ROWS
   use checks, only: check_close, check_true, finish
   implicit none
   type(model_t) :: planar
@@ -181,7 +182,10 @@ program test_spatial
                      sum(re), sum(re_p), 1.0e-9_wp, 1.0e-9_wp)
     call check_true('swirl tables have their documented sizes', &
                     table_size('swirl_branch') == SWIRL_BRANCH_ROWS .and. &
-                    table_size('swirl_edges') == SWIRL_EDGE_ROWS)
+                    table_size('swirl_edges') == SWIRL_EDGE_ROWS .and. &
+                    table_size('swirl_boundary') == SWIRL_BOUNDARY_ROWS .and. &
+                    table_size('swirling_branch') == SWIRLING_BRANCH_ROWS .and. &
+                    table_size('swirling_special_points') == SWIRLING_SPECIAL_ROWS)
   end block
 
   ! p = 0 is refused, naming p

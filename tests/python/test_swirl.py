@@ -186,7 +186,7 @@ def test_the_swirling_orbit_is_the_averaged_equations_swirl():
     y1 = orbit.y0[4] * PARAMS.theta0                   # the swirl of the averaged equations
     s = fsolve(lambda u: field(u, (EPSILON, RHO_SWIRL, ZETA)), [0.0, 0.1, y1, 0.0], xtol=1e-13)
     assert np.hypot(s[2], s[3]) > 0.1                  # a swirl, not the planar fixed point
-    # amplitudes to O(epsilon^(2/3)) relative (measured 0.4% and 0.2%)
+    # amplitudes to O(epsilon^(2/3)) relative (measured 0.3% and 0.1%)
     assert orbit.max_x1 * PARAMS.theta0 == pytest.approx(np.hypot(s[0], s[1]), rel=0.02)
     assert orbit.swirl_amplitude * PARAMS.theta0 == pytest.approx(np.hypot(s[2], s[3]), rel=0.02)
     theory = PARAMS.mu1 * RHO_SWIRL * (s[0] * s[3] - s[1] * s[2])

@@ -1,0 +1,70 @@
+"""
+Swirl: the band, the swirling branch and the boundary in (ρ, A)
+===============================================================
+
+A circular tank forced along x near resonance (the forced spherical pendulum limit: stiff rods,
+small amplitude, no impacts; docs/model.md "Spatial model and swirl"). Left: the planar
+branches from both ends of the range (``swirl_band(..., from_end='both')``), solid where the
+planar orbit is stable out of its plane, red where it swirls, and the swirling orbits born at
+the band's edge (``swirling_branch``), their max|x1| and swirl amplitude max|y1|, dashed where
+unstable: the branch leaves the edge subcritically, folds (square) and comes back stable,
+down to a Neimark-Sacker point (square) near ρ = 1.0007 below which the swirl is
+quasi-periodic. Right: the band's edges in (ρ, A) at several amplitudes (``swirl_boundary``:
+one band per A, not yet a continued curve), the upper edges joined, beside Miles' scaling
+ρ − 1 ∝ A^(2/3).
+"""
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import sloshdyn
+from sloshdyn import spatial
+from sloshdyn.options import Continuation
+
+params = sloshdyn.Parameters(s1=1.0, mu1=0.01, kappa=1e3, theta0=1.4, beta=0.0, gamma=0.0,
+                             delta=0.0, A=1e-3, rho=1.02, zeta=5e-4, n=6, p=2)
+band = spatial.swirl_band(params, (0.98, 1.02), from_end="both")
+resonant = spatial.swirl_band(params, (0.98, 1.02), from_end="high")
+steps = Continuation(ds=0.01, ds_min=1e-9, ds_max=0.05, x_scale=1.0, max_points=400)
+swirling = spatial.swirling_branch(resonant, 0, (0.99, 1.1), params=params, ds=0.01,
+                                   continuation=steps)
+A_values = np.array([2.5e-4, 5e-4, 1e-3, 2e-3])
+boundary = spatial.swirl_boundary(params, (0.995, 1.03), A_values, from_end="high")
+print("edges of the band at A = 1e-3:", resonant.edges["rho"], resonant.edges["kind"])
+print("fold of the swirling branch:", [(p.kind, round(p.rho, 6)) for p in swirling.special_points])
+
+fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.2))
+table = band.table
+for b in set(table["branch"]):
+    on = table["branch"] == b
+    rho, x1, swirl = table["rho"][on], table["max_x1"][on], table["swirl"][on]
+    left.plot(rho, x1, color="0.6", lw=1)
+    left.plot(np.where(swirl, rho, np.nan), np.where(swirl, x1, np.nan), color="r", lw=2)
+t = swirling.table
+for name, color, label in (("max_x1", "b", "swirling: max|x1|"),
+                           ("swirl_amplitude", "g", "swirling: max|y1|")):
+    stable = t["stable"] == 1
+    left.plot(np.where(stable, t["rho"], np.nan), np.where(stable, t[name], np.nan), color=color,
+              label=label)
+    left.plot(np.where(~stable, t["rho"], np.nan), np.where(~stable, t[name], np.nan),
+              color=color, ls="--")
+for p in swirling.special_points:
+    left.plot(p.rho, p.max_x1, "ks", mfc="none")
+left.plot(resonant.edges["rho"], resonant.edges["max_x1"], "ko", label="swirl edge")
+left.plot([], [], color="r", lw=2, label="planar, swirls")
+left.plot([], [], color="0.6", label="planar")
+left.set_xlabel(r"$\rho$")
+left.set_ylabel(r"tilt / $\theta_0$")
+left.legend(fontsize=8)
+left.set_title(r"A = $10^{-3}$, $\zeta = 5\cdot10^{-4}$", fontsize=9)
+
+edges = boundary.edges
+upper = np.array([edges["rho"][edges["A"] == a].max() for a in A_values])
+right.plot(edges["rho"], edges["A"], "o", mfc="none", label="edges (one band per A)")
+right.plot(upper, A_values, "-", color="C0", lw=0.8)
+scale = (upper[A_values == 1e-3][0] - 1) * (A_values / 1e-3) ** (2 / 3)
+right.plot(1 + scale, A_values, "k:", label=r"$\rho - 1 \propto A^{2/3}$")
+right.set_xlabel(r"$\rho$")
+right.set_ylabel("A")
+right.legend(fontsize=8)
+fig.tight_layout()
