@@ -9,9 +9,10 @@ module sloshdyn_system
   use sloshdyn_excitation, only: forcing_period, acceleration_sensitivity, PARAMETER_RHO, &
                                  PARAMETER_A
   use sloshdyn_shooting, only: periodic_problem
+  use sloshdyn_ensemble, only: ensemble_system
   implicit none
   private
-  public :: tank_system
+  public :: tank_system, tank_ensemble
 
   type, extends(periodic_problem) :: tank_system
     type(model_t) :: model
@@ -27,7 +28,26 @@ module sloshdyn_system
     procedure :: state_size => tank_state_size
   end type tank_system
 
+  !> Many tanks, one model per member, as an ensemble_system (sloshdyn_ensemble): column c is
+  !> tank_rhs of member members(c), the same arithmetic, so ensembles reproduce single runs.
+  type, extends(ensemble_system) :: tank_ensemble
+    type(model_t), allocatable :: models(:)
+  contains
+    procedure :: rhs_block => tank_rhs_block
+  end type tank_ensemble
+
 contains
+
+  subroutine tank_rhs_block(self, members, t, y, dydt)
+    class(tank_ensemble), intent(in) :: self
+    integer, intent(in) :: members(:)
+    real(wp), intent(in) :: t(:), y(:, :)
+    real(wp), intent(out) :: dydt(:, :)
+    integer :: c
+    do c = 1, size(members)
+      call equations_of_motion(self%models(members(c)), t(c), y(:, c), dydt(:, c))
+    end do
+  end subroutine tank_rhs_block
 
   subroutine tank_rhs(self, t, y, dydt)
     class(tank_system), intent(in) :: self
