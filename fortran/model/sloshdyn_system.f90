@@ -5,7 +5,8 @@
 module sloshdyn_system
   use sloshdyn_kinds, only: wp, pi
   use sloshdyn_model, only: model_t
-  use sloshdyn_motion, only: equations_of_motion, motion_jacobian, excitation_direction
+  use sloshdyn_motion, only: equations_of_motion, motion_jacobian, excitation_direction, &
+                             equations_of_motion_block
   use sloshdyn_excitation, only: forcing_period, acceleration_sensitivity, PARAMETER_RHO, &
                                  PARAMETER_A
   use sloshdyn_shooting, only: periodic_problem
@@ -43,10 +44,7 @@ contains
     integer, intent(in) :: members(:)
     real(wp), intent(in) :: t(:), y(:, :)
     real(wp), intent(out) :: dydt(:, :)
-    integer :: c
-    do c = 1, size(members)
-      call equations_of_motion(self%models(members(c)), t(c), y(:, c), dydt(:, c))
-    end do
+    call equations_of_motion_block(self%models, members, t, y, dydt)
   end subroutine tank_rhs_block
 
   subroutine tank_rhs(self, t, y, dydt)

@@ -20,7 +20,7 @@ module sloshdyn_ensemble
   use sloshdyn_ode, only: ode_system, ode_options, ode_stats, rk_integrator, &
                           observed_quantities, peak_tracker, method_properties, rk_begin_step, deliver_outputs, &
                           check_outputs
-  use sloshdyn_integrator, only: new_integrator
+  use sloshdyn_integrator, only: new_integrator, chosen_method
   implicit none
   private
   public :: ensemble_system, block_rhs, shared_system, member_system, integrate_ensemble
@@ -84,8 +84,9 @@ contains
 
   !> For every member i = 1..K (K = size(y0, 2)): y at the times t_out(:, i) (ascending, from
   !> t0(i)), y_out(:, j, i) = y(t_out(j, i)), by the method of code method (sloshdyn_integrator),
-  !> exactly as integrate_with would give it alone (with observed(i) -- or observed(1) when
-  !> size(observed) = 1 -- and tracker(i): the peaks over [t0(i), t_out(n, i)]). Failures are
+  !> exactly as integrate_with would give it alone with options(i) (or options(1) for all; the
+  !> method for METHOD_AUTO is chosen by options(1)%rtol), and with observed(i) (or
+  !> observed(1)) and tracker(i): the peaks over [t0(i), t_out(n, i)]). Failures are
   !> per member: status(i), message(i), stats(i)%t_reached, and NaN in y_out beyond the
   !> outputs reached; the other members go on. A Ctrl-C (sloshdyn_cancel) stops all members
   !> still running, with its status.
@@ -95,7 +96,7 @@ contains
     class(ensemble_system), intent(in), target :: esys
     real(wp), intent(in) :: t0(:), y0(:, :), t_out(:, :)
     real(wp), intent(out) :: y_out(:, :, :)
-    type(ode_options), intent(in) :: options
+    type(ode_options), intent(in) :: options(:)
     type(ode_stats), intent(out) :: stats(:)
     integer, intent(out) :: status(:)
     character(len=message_len), intent(out) :: message(:)
@@ -118,7 +119,7 @@ contains
     status = SD_OK
     message = ''
     call check_shapes(st, msg)
-    if (st == SD_OK) call new_integrator(method, options%rtol, proto, st, msg)
+    if (st == SD_OK) call new_integrator(method, options(1)%rtol, proto, st, msg)
     if (st /= SD_OK) then
       status = st
       message = msg
@@ -137,8 +138,8 @@ contains
     m = 0
     do i = 1, n_members
       stats(i)%t_reached = t0(i)
-      call check_outputs(t0(i), y0(:, i), t_out(:, i), y_out(:, :, i), options, status(i), &
-                         message(i))
+      call check_outputs(t0(i), y0(:, i), t_out(:, i), y_out(:, :, i), options_of(i), &
+                         status(i), message(i))
       if (status(i) /= SD_OK) cycle
       if (tracking) call tracker(i)%start(observed_of(i), t0(i), y0(:, i))
       next_out(i) = 1
@@ -149,7 +150,7 @@ contains
       end do
       if (next_out(i) > n_out) cycle
       alone%member = i
-      call integ(i)%init(alone, t0(i), y0(:, i), t_out(n_out, i), options, status(i), &
+      call integ(i)%init(alone, t0(i), y0(:, i), t_out(n_out, i), options_of(i), status(i), &
                          message(i), dense_output=t_out(next_out(i), i) < t_out(n_out, i) &
                          .or. tracking)
       if (status(i) /= SD_OK) then
@@ -270,6 +271,13 @@ contains
       m = kept
     end subroutine leave_if
 
+    !> The options of member j: options(j), or options(1) for all.
+    function options_of(j) result(opt)
+      integer, intent(in) :: j
+      type(ode_options) :: opt
+      opt = options(min(j, size(options)))
+    end function options_of
+
     function observed_of(j) result(obs)
       integer, intent(in) :: j
       class(observed_quantities), pointer :: obs
@@ -279,15 +287,23 @@ contains
     subroutine check_shapes(st, msg)
       integer, intent(out) :: st
       character(len=message_len), intent(out) :: msg
+      integer :: i
       st = SD_OK
       msg = ''
       if (size(t0) /= n_members .or. size(t_out, 2) /= n_members .or. &
           size(y_out, 1) /= n .or. size(y_out, 2) /= n_out .or. size(y_out, 3) /= n_members &
           .or. size(stats) /= n_members .or. size(status) /= n_members .or. &
-          size(message) /= n_members) then
+          size(message) /= n_members .or. &
+          (size(options) /= 1 .and. size(options) /= n_members)) then
         st = SD_BAD_INPUT
         msg = 'ensemble of '//num2str(n_members)//' members (size(y0, 2)): t0, t_out(:, i), '// &
-              'y_out(:, :, i), stats, status and message need one entry per member'
+              'y_out(:, :, i), stats, status and message need one entry per member, '// &
+              'options one or one per member'
+      else if (any([(chosen_method(method, options(i)%rtol), i = 1, size(options))] /= &
+                   chosen_method(method, options(1)%rtol))) then
+        st = SD_BAD_INPUT
+        msg = 'the members'' rtol pick different methods for method = '//num2str(method)// &
+              ' (auto): give one method, or rtol on one side of the crossovers'
       else if (tracking) then
         if (size(tracker) /= n_members .or. &
             (size(observed) /= 1 .and. size(observed) /= n_members)) then

@@ -85,8 +85,8 @@ contains
       trackers(i)%level = [0.02_wp, 0.02_wp]
       trackers(i)%keep_states = .true.
     end do
-    call integrate_ensemble(method, ens, t0, y0, t_out, y_out, options, stats, status, message, &
-                            obs, trackers)
+    call integrate_ensemble(method, ens, t0, y0, t_out, y_out, [options], stats, status, &
+                            message, obs, trackers)
 
     same = .true.
     n_failed = 0
