@@ -10,11 +10,11 @@
 program test_ensemble
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use sloshdyn_kinds, only: wp, pi, message_len
-  use sloshdyn_status, only: SD_OK, SD_TOO_MANY_STEPS
+  use sloshdyn_status, only: SD_OK, SD_TOO_MANY_STEPS, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
   use sloshdyn_ode, only: ode_options, ode_stats, linear_observation, peak_tracker
   use sloshdyn_integrator, only: integrate, method_name, METHOD_DOPRI5, METHOD_DOP853, &
-                                 METHOD_VERN9
+                                 METHOD_VERN9, METHOD_AUTO
   use sloshdyn_ensemble, only: integrate_ensemble
   use sloshdyn_model, only: model_t, model_from_arrays
   use sloshdyn_system, only: tank_system, tank_ensemble
@@ -33,6 +33,7 @@ program test_ensemble
   call compare(METHOD_VERN9, 8, 1.0e-12_wp, 0)
   ! a step budget that the longer members exhaust
   call compare(METHOD_DOP853, 8, 1.0e-9_wp, 450)
+  call bad_inputs()
   call finish()
 
 contains
@@ -129,6 +130,34 @@ contains
       call check_true(label//': every member finished', all(status == SD_OK))
     end if
   end subroutine compare
+
+  !> Inputs an ensemble cannot run are reported for every member, naming what is wrong: a
+  !> y_out of the wrong shape, and members whose rtol would make 'auto' pick different
+  !> methods (each alone would run another method).
+  subroutine bad_inputs()
+    type(tank_ensemble) :: ens
+    type(ode_options) :: options(2)
+    type(ode_stats) :: stats(2)
+    real(wp) :: y0(4, 2), t_end, t_out(2, 2), y_out(4, 2, 2), wrong(4, 3, 2)
+    integer :: status(2), i
+    character(len=message_len) :: message(2)
+    allocate (ens%models(2))
+    do i = 1, 2
+      call member(i, ens%models(i), y0(:, i), t_end)
+      t_out(:, i) = [0.0_wp, 10.0_wp]
+    end do
+    call integrate_ensemble(METHOD_DOP853, ens, [0.0_wp, 0.0_wp], y0, t_out, wrong, &
+                            options(1:1), stats, status, message)
+    call check_true('ensemble: a wrong y_out shape is named: '//trim(message(1)), &
+                    all(status == SD_BAD_INPUT) .and. index(message(1), 'y_out') > 0)
+    options(1)%rtol = 1.0e-6_wp
+    options(2)%rtol = 1.0e-12_wp
+    call integrate_ensemble(METHOD_AUTO, ens, [0.0_wp, 0.0_wp], y0, t_out, y_out, options, &
+                            stats, status, message)
+    call check_true('ensemble: auto with rtol on both sides of a crossover is refused: '// &
+                    trim(message(2)), all(status == SD_BAD_INPUT) .and. &
+                    index(message(2), 'rtol') > 0)
+  end subroutine bad_inputs
 
   !> a and b hold the same bits (NaN equal to NaN).
   pure logical function bits_equal(a, b)
