@@ -16,6 +16,7 @@ Ratios are per rtol against numbalsoda's CPU time. Prints the processor model an
 
     python benchmarks/ensemble.py                      # 200 forcing periods, 3 rounds
     python benchmarks/ensemble.py --periods 50 --repeats 1 --before /tmp/main-site
+    python benchmarks/ensemble.py --blocks --periods 50   # throughput by block size K
 """
 
 from __future__ import annotations
@@ -67,12 +68,48 @@ def timed(run):
     return time.process_time() - c0, time.perf_counter() - w0, out
 
 
+def block_sizes(periods, repeats):
+    """256 trajectories of a rho sweep in blocks of K against the simulate loop (CPU time)."""
+    p = fig14_parameters()
+    t_end = periods * 2 * math.pi / p.rho
+    integ = sloshdyn.Integration(rtol=1e-9, atol=1e-12, method="dop853")
+    params = [p.replace(rho=r) for r in np.linspace(0.49, 0.53, 256)]
+    y0 = (0.01, 0.0, 0.01, 0.0)
+
+    def loop():
+        for q in params:
+            sloshdyn.simulate(q, t_end, y0, n_out=2, integration=integ)
+
+    def blocks(k):
+        return lambda: [sloshdyn.simulate_ensemble(params[i:i + k], t_end, y0, n_out=2,
+                                                   integration=integ)
+                        for i in range(0, len(params), k)]
+    runs = {"loop of simulate": loop, **{str(k): blocks(k) for k in (1, 4, 16, 64, 256)}}
+    for run in runs.values():
+        run()
+    cpu = {k: [] for k in runs}
+    for _ in range(repeats):
+        for k, run in runs.items():
+            cpu[k].append(timed(run)[0])
+    base = float(np.median(cpu["loop of simulate"]))
+    print("| K | CPU s | trajectories/s | vs simulate loop |")
+    print("|---|---:|---:|---:|")
+    for k in runs:
+        m = float(np.median(cpu[k]))
+        print(f"| {k} | {m:.3f} | {len(params) / m:.0f} | {base / m:.2f}x |")
+    print(f"Machine: {cpu_model()}, {os.cpu_count()} cores; load average "
+          f"{os.getloadavg()[0]:.2f} at the end")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--periods", type=float, default=200.0)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--before", help="site directory of another sloshdyn build")
+    ap.add_argument("--blocks", action="store_true", help="throughput by block size only")
     args = ap.parse_args()
+    if args.blocks:
+        return block_sizes(args.periods, args.repeats)
     before = load_before(args.before) if args.before else None
     nb = Numba()
     if not nb.available:
