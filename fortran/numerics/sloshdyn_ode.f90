@@ -2,9 +2,14 @@
 !> the options and work counts, and one driver shared by every embedded pair -- step planning,
 !> the accept/reject loop with Hairer's stabilised (PI) step-size control, HINIT's automatic
 !> first step, replacing the state, and the dense-output loop over output times. A method is a
-!> small extension of rk_integrator that supplies its tableau (trial), its extra stages after an
-!> accepted error test (finish), its continuous extension (store_dense, dense) and its
-!> properties (order, step-control defaults). Integrates forward in time only.
+!> small extension of rk_integrator that supplies its tableau one stage at a time (stage: the
+!> input of stage s; trial_error: y_new and the error norm after the trial stages;
+!> finish_stages: how many stages follow an accepted error test), its continuous extension
+!> (store_dense, dense) and its properties (order, stage counts, step-control defaults). The
+!> driver evaluates the right-hand side between the stages, so the same method code serves a
+!> single integration (rk_step) and an ensemble (sloshdyn_ensemble), with the same bits. After
+!> an accepted error test the stages stop at the first NaN or infinite one (the step is then
+!> retried with the largest cut). Integrates forward in time only.
 !>
 !> Speed: a method does the arithmetic of its stages in a procedure of its own whose arrays are
 !> explicit-shape dummies (contiguous, and free of aliasing by the rules of dummy arguments), not
