@@ -24,6 +24,7 @@ module sloshdyn_simulation
   private
   public :: time_history, spatial_time_history, steady_options, steady_state, check_steady, parameter_sweep, &
             independent_sweep, steady_orbit, max_period, max_tau_span, max_state, amplitudes
+  public :: check_history, with_breakpoints, derive_history
 
   !> Longest span of one time history in tau = omega1 t: 1e7, about 1.6 million natural
   !> periods and an hour or more of work at the integrators' usual steps (a few per period up
@@ -105,8 +106,6 @@ contains
     class(observed_quantities), intent(in), optional :: observed
     type(peak_tracker), intent(inout), optional :: tracker
     type(tank_system) :: system
-    real(wp) :: p_inv(2, 2)
-    integer :: i
 
     history = 0
     call check_history(tau0, y0, tau_out, status, message)
@@ -115,11 +114,21 @@ contains
     call integrate(method, system, tau0, y0, tau_out, history(1:4, :), &
                    with_breakpoints(options, model%excitation), stats, status, message, &
                    observed, tracker)
+    call derive_history(model, history)
+  end subroutine time_history
+
+  !> The rows after the state of a time history (u1, u2, the impact force, theta, phi) from
+  !> its states, history(1:4, :).
+  pure subroutine derive_history(model, history)
+    type(model_t), intent(in) :: model
+    real(wp), intent(inout) :: history(:, :)
+    real(wp) :: p_inv(2, 2)
+    integer :: i
     call inverse_modal_matrix(model, p_inv)
-    do i = 1, size(tau_out)
+    do i = 1, size(history, 2)
       history(5:9, i) = derived_quantities(model, p_inv, history(1:4, i))
     end do
-  end subroutine time_history
+  end subroutine derive_history
 
   !> The time history of the spatial model (sloshdyn_spatial; issue 26), as time_history's of
   !> the planar one: the 8 states, the pendulum's tilt from the vertical over theta0 and its

@@ -38,6 +38,52 @@ contains
     status = info
   end subroutine simulate
 
+  !> Time histories of k tanks in one ensemble (sloshdyn_ensemble_history): member i has the
+  !> parameters rpar(:, i), ipar(:, i), the start tau0(i), the state y0(:, i) and the output
+  !> times tau_out(:, i); history(:, :, i) and counts(:, i) as simulate's, bit for bit.
+  !> status(i) per member; message is the first failure's, naming its member.
+  subroutine simulate_ensemble(k, rpar, ipar, tau0, y0, n_out, tau_out, integration, history, &
+                               counts, status, message)
+    !f2py threadsafe
+    use sloshdyn_kinds, only: message_len
+    use sloshdyn_text, only: num2str
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: HISTORY_ROWS, COUNTS_SIZE
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method, counts_array
+    use sloshdyn_ode, only: ode_stats
+    use sloshdyn_ensemble_history, only: ensemble_history
+    integer(c_int), intent(in) :: k, n_out, ipar(n_int_params, k)
+    real(c_double), intent(in) :: rpar(n_real_params, k), tau0(k), y0(4, k), &
+                                  tau_out(n_out, k), integration(INTEGRATION_SIZE)
+    real(c_double), intent(out) :: history(HISTORY_ROWS, n_out, k), counts(COUNTS_SIZE, k)
+    integer(c_int), intent(out) :: status(k)
+    character(len=256), intent(out) :: message
+    type(model_t) :: models(k)
+    type(ode_stats) :: stats(k)
+    integer :: info(k), i
+    character(len=message_len) :: messages(k)
+    history = 0
+    counts = 0
+    info = 0
+    do i = 1, k
+      call model_from_arrays(rpar(:, i), int(ipar(:, i)), models(i), info(i), messages(i))
+    end do
+    if (all(info == 0)) then
+      call ensemble_history(models, tau0, y0, tau_out, to_ode_options(integration), &
+                            to_method(integration), history, stats, info, messages)
+      do i = 1, k
+        counts(:, i) = counts_array(stats(i))
+      end do
+    end if
+    status = info
+    message = ''
+    do i = 1, k
+      if (info(i) == 0) cycle
+      message = 'member '//num2str(i - 1)//': '//trim(messages(i))
+      exit
+    end do
+  end subroutine simulate_ensemble
+
   !> Steady state from y0 at tau = 0: summary in the 'summary' layout, the window's Poincare
   !> points and the final state (at forcing phase 0).
   subroutine steady_state(rpar, ipar, y0, integration, steady, window, summary, poincare, y_end, &

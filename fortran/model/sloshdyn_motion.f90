@@ -9,7 +9,7 @@ module sloshdyn_motion
   implicit none
   private
   public :: inertia_matrix, forcing_vector, equations_of_motion, motion_jacobian, &
-            excitation_direction
+            excitation_direction, equations_of_motion_block
 
   !> Trigonometric functions and powers of one state, each evaluated once.
   type :: state_terms
@@ -105,6 +105,28 @@ contains
     qdd = solve_inertia(model, t%cos12, force)
     dydt = [y(2), qdd(1), y(4), qdd(2)]
   end subroutine equations_of_motion
+
+  !> equations_of_motion for many states at once, column c of models(members(c)) at
+  !> (tau(c), y(:, c)): the same operations per column (the same bits), ordered so that the
+  !> columns' independent sine and cosine evaluations follow each other and overlap in the
+  !> processor (the ensembles of sloshdyn_ensemble).
+  pure subroutine equations_of_motion_block(models, members, tau, y, dydt)
+    type(model_t), intent(in) :: models(:)
+    integer, intent(in) :: members(:)
+    real(wp), intent(in) :: tau(:), y(:, :)
+    real(wp), intent(out) :: dydt(:, :)
+    type(state_terms) :: t(size(members))
+    real(wp) :: force(2), qdd(2)
+    integer :: c
+    do c = 1, size(members)
+      call evaluate_terms(models(members(c)), tau(c), y(:, c), t(c))
+    end do
+    do c = 1, size(members)
+      force = forcing_from_terms(models(members(c)), y(:, c), t(c))
+      qdd = solve_inertia(models(members(c)), t(c)%cos12, force)
+      dydt(:, c) = [y(2, c), qdd(1), y(4, c), qdd(2)]
+    end do
+  end subroutine equations_of_motion_block
 
   !> M^-1 v for the 2x2 inertia matrix of eq (13); det M = 1 - mu1 cos^2 > 0 for mu1 < 1.
   pure function solve_inertia(model, cos12, v) result(w)

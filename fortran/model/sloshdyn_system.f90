@@ -5,13 +5,15 @@
 module sloshdyn_system
   use sloshdyn_kinds, only: wp, pi
   use sloshdyn_model, only: model_t
-  use sloshdyn_motion, only: equations_of_motion, motion_jacobian, excitation_direction
+  use sloshdyn_motion, only: equations_of_motion, motion_jacobian, excitation_direction, &
+                             equations_of_motion_block
   use sloshdyn_excitation, only: forcing_period, acceleration_sensitivity, PARAMETER_RHO, &
                                  PARAMETER_A
   use sloshdyn_shooting, only: periodic_problem
+  use sloshdyn_ensemble, only: ensemble_system
   implicit none
   private
-  public :: tank_system
+  public :: tank_system, tank_ensemble
 
   type, extends(periodic_problem) :: tank_system
     type(model_t) :: model
@@ -27,7 +29,23 @@ module sloshdyn_system
     procedure :: state_size => tank_state_size
   end type tank_system
 
+  !> Many tanks, one model per member, as an ensemble_system (sloshdyn_ensemble): column c is
+  !> tank_rhs of member members(c), the same arithmetic, so ensembles reproduce single runs.
+  type, extends(ensemble_system) :: tank_ensemble
+    type(model_t), allocatable :: models(:)
+  contains
+    procedure :: rhs_block => tank_rhs_block
+  end type tank_ensemble
+
 contains
+
+  subroutine tank_rhs_block(self, members, t, y, dydt)
+    class(tank_ensemble), intent(in) :: self
+    integer, intent(in) :: members(:)
+    real(wp), intent(in) :: t(:), y(:, :)
+    real(wp), intent(out) :: dydt(:, :)
+    call equations_of_motion_block(self%models, members, t, y, dydt)
+  end subroutine tank_rhs_block
 
   subroutine tank_rhs(self, t, y, dydt)
     class(tank_system), intent(in) :: self

@@ -17,7 +17,7 @@
 module sloshdyn_dop853
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, dense_from_state
+  use sloshdyn_ode, only: rk_integrator, method_properties, dense_from_state
   implicit none
   private
   public :: dop853_integrator
@@ -26,8 +26,9 @@ module sloshdyn_dop853
     real(wp), allocatable :: slope(:)       !< sum b_i k_i: y_new = y + h*slope
     real(wp), allocatable :: e5(:), e3(:)   !< 5th- and 3rd-order error estimates / h
   contains
-    procedure :: trial => dop853_trial
-    procedure :: finish => dop853_finish
+    procedure :: stage => dop853_stage
+    procedure :: trial_error => dop853_trial_error
+    procedure :: finish_stages => dop853_finish_stages
     procedure :: store_dense => dop853_store_dense
     procedure :: dense => dop853_dense
     procedure :: properties => dop853_properties
@@ -214,7 +215,8 @@ contains
   pure function dop853_properties(self) result(info)
     class(dop853_integrator), intent(in) :: self
     type(method_properties) :: info
-    info = method_properties(name='dop853', order=8, stages=16, dense_columns=8, &
+    info = method_properties(name='dop853', order=8, stages=16, trial_stages=11, &
+                             dense_columns=8, &
                              expo_base=0.125_wp, beta_factor=0.2_wp, fac1=0.333_wp, &
                              fac2=6.0_wp, beta=0.0_wp)
   end function dop853_properties
@@ -225,58 +227,94 @@ contains
     allocate (self%slope(n), self%e5(n), self%e3(n))
   end subroutine dop853_allocate
 
-  !> One trial step of size h from (t, y) to t_new: stages k2..k12 (DP86CO's loops 22-32), the
-  !> 8th-order y_new, the error estimates e5, e3 (divided by h) and the error norm.
-  subroutine dop853_trial(self, sys, h, t_new, err, finite)
+  !> Stage s of a step (see sloshdyn_ode's method_stage): s = 1..11 are k2..k12 (DP86CO's loops
+  !> 22-32), s = 12 is k13 = f(t_new, y_new) (the next step's k1), s = 13..15 the dense-output
+  !> stages k14..k16 (loops 51-53).
+  pure subroutine dop853_stage(self, s, h, t_new, t_s, col)
     class(dop853_integrator), intent(inout) :: self
-    class(ode_system), intent(in) :: sys
+    integer, intent(in) :: s
     real(wp), intent(in) :: h, t_new
+    real(wp), intent(out) :: t_s
+    integer, intent(out) :: col
+    real(wp), parameter :: nodes(2:16) = [c2, c3, c4, c5, c6, c7, c8, c9, c10, c11, 1.0_wp, &
+                                          1.0_wp, c14, c15, c16]
+    col = s + 1
+    t_s = self%t + nodes(col)*h
+    if (col == 12 .or. col == 13) t_s = t_new
+    if (col == 13) then
+      self%y_stage = self%y_new
+    else
+      call stage_input(size(self%y), col, h, self%y, self%k, self%y_stage)
+    end if
+  end subroutine dop853_stage
+
+  !> The input y + h sum_j a(col, j) k_j of stage col, on explicit-shape arrays (the family's
+  !> rule, sloshdyn_ode).
+  pure subroutine stage_input(n, col, h, y, k, ys)
+    integer, intent(in) :: n, col
+    real(wp), intent(in) :: h, y(n), k(n, 16)
+    real(wp), intent(out) :: ys(n)
+
+    select case (col)
+    case (2)
+      ys = y + h*a21*k(:, 1)
+    case (3)
+      ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
+    case (4)
+      ys = y + h*(a41*k(:, 1) + a43*k(:, 3))
+    case (5)
+      ys = y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4))
+    case (6)
+      ys = y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5))
+    case (7)
+      ys = y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
+    case (8)
+      ys = y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) + a86*k(:, 6) + a87*k(:, 7))
+    case (9)
+      ys = y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) + a96*k(:, 6) + a97*k(:, 7) + &
+                  a98*k(:, 8))
+    case (10)
+      ys = y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) + a106*k(:, 6) + a107*k(:, 7) + &
+                  a108*k(:, 8) + a109*k(:, 9))
+    case (11)
+      ys = y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) + a116*k(:, 6) + a117*k(:, 7) + &
+                  a118*k(:, 8) + a119*k(:, 9) + a1110*k(:, 10))
+    case (12)
+      ys = y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) + a126*k(:, 6) + a127*k(:, 7) + &
+                  a128*k(:, 8) + a129*k(:, 9) + a1210*k(:, 10) + a1211*k(:, 11))
+    case (14)
+      ys = y + h*(a141*k(:, 1) + a147*k(:, 7) + a148*k(:, 8) + a149*k(:, 9) + &
+                  a1410*k(:, 10) + a1411*k(:, 11) + a1412*k(:, 12) + a1413*k(:, 13))
+    case (15)
+      ys = y + h*(a151*k(:, 1) + a156*k(:, 6) + a157*k(:, 7) + a158*k(:, 8) + &
+                  a1511*k(:, 11) + a1512*k(:, 12) + a1513*k(:, 13) + a1514*k(:, 14))
+    case default
+      ys = y + h*(a161*k(:, 1) + a166*k(:, 6) + a167*k(:, 7) + a168*k(:, 8) + &
+                  a169*k(:, 9) + a1613*k(:, 13) + a1614*k(:, 14) + a1615*k(:, 15))
+    end select
+  end subroutine stage_input
+
+  !> After the trial stages: the 8th-order y_new, the error estimates e5, e3 (divided by h) and
+  !> the error norm.
+  pure subroutine dop853_trial_error(self, h, err, finite)
+    class(dop853_integrator), intent(inout) :: self
+    real(wp), intent(in) :: h
     real(wp), intent(out) :: err
     logical, intent(out) :: finite
 
-    call trial_stages(sys, size(self%y), self%t, h, t_new, self%y, self%k, self%y_stage, &
-                      self%y_new, self%slope, self%e3, self%e5, finite)
-    self%n_rhs = self%n_rhs + 11
+    call trial_end(size(self%y), h, self%y, self%k, self%y_new, self%slope, self%e3, self%e5, &
+                   finite)
     err = 0
     if (finite) err = error_norm(self%e5, self%e3, h, self%y, self%y_new, self%atol, &
                                  self%opt%rtol)
-  end subroutine dop853_trial
+  end subroutine dop853_trial_error
 
-  !> The stages of dop853_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
-  subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, slope, e3, e5, finite)
-    class(ode_system), intent(in) :: sys
+  pure subroutine trial_end(n, h, y, k, yn, slope, e3, e5, finite)
     integer, intent(in) :: n
-    real(wp), intent(in) :: t, h, t_new, y(n)
-    real(wp), intent(inout) :: k(n, 12)
-    real(wp), intent(out) :: ys(n), yn(n), slope(n), e3(n), e5(n)
+    real(wp), intent(in) :: h, y(n), k(n, 16)
+    real(wp), intent(out) :: yn(n), slope(n), e3(n), e5(n)
     logical, intent(out) :: finite
 
-    ys = y + h*a21*k(:, 1)
-    call sys%rhs(t + c2*h, ys, k(:, 2))
-    ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
-    call sys%rhs(t + c3*h, ys, k(:, 3))
-    ys = y + h*(a41*k(:, 1) + a43*k(:, 3))
-    call sys%rhs(t + c4*h, ys, k(:, 4))
-    ys = y + h*(a51*k(:, 1) + a53*k(:, 3) + a54*k(:, 4))
-    call sys%rhs(t + c5*h, ys, k(:, 5))
-    ys = y + h*(a61*k(:, 1) + a64*k(:, 4) + a65*k(:, 5))
-    call sys%rhs(t + c6*h, ys, k(:, 6))
-    ys = y + h*(a71*k(:, 1) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
-    call sys%rhs(t + c7*h, ys, k(:, 7))
-    ys = y + h*(a81*k(:, 1) + a84*k(:, 4) + a85*k(:, 5) + a86*k(:, 6) + a87*k(:, 7))
-    call sys%rhs(t + c8*h, ys, k(:, 8))
-    ys = y + h*(a91*k(:, 1) + a94*k(:, 4) + a95*k(:, 5) + a96*k(:, 6) + a97*k(:, 7) + &
-                a98*k(:, 8))
-    call sys%rhs(t + c9*h, ys, k(:, 9))
-    ys = y + h*(a101*k(:, 1) + a104*k(:, 4) + a105*k(:, 5) + a106*k(:, 6) + a107*k(:, 7) + &
-                a108*k(:, 8) + a109*k(:, 9))
-    call sys%rhs(t + c10*h, ys, k(:, 10))
-    ys = y + h*(a111*k(:, 1) + a114*k(:, 4) + a115*k(:, 5) + a116*k(:, 6) + a117*k(:, 7) + &
-                a118*k(:, 8) + a119*k(:, 9) + a1110*k(:, 10))
-    call sys%rhs(t + c11*h, ys, k(:, 11))
-    ys = y + h*(a121*k(:, 1) + a124*k(:, 4) + a125*k(:, 5) + a126*k(:, 6) + a127*k(:, 7) + &
-                a128*k(:, 8) + a129*k(:, 9) + a1210*k(:, 10) + a1211*k(:, 11))
-    call sys%rhs(t_new, ys, k(:, 12))
     slope = b1*k(:, 1) + b6*k(:, 6) + b7*k(:, 7) + b8*k(:, 8) + b9*k(:, 9) + &
             b10*k(:, 10) + b11*k(:, 11) + b12*k(:, 12)
     yn = y + h*slope
@@ -285,37 +323,13 @@ contains
          er10*k(:, 10) + er11*k(:, 11) + er12*k(:, 12)
     finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(e3)) .and. &
              all(ieee_is_finite(e5))
-  end subroutine trial_stages
+  end subroutine trial_end
 
-  !> For a trial step that passed: k13 = f(t_new, y_new) (the next step's k1), then, with dense
-  !> output, the 3 extra stages k14..k16 (DP86CO's loops 51-53). finite = .false. when any of
-  !> them is NaN or infinite.
-  subroutine dop853_finish(self, sys, h, t_new, finite)
-    class(dop853_integrator), intent(inout) :: self
-    class(ode_system), intent(in) :: sys
-    real(wp), intent(in) :: h, t_new
-    logical, intent(out) :: finite
-    real(wp) :: t
-
-    t = self%t
-    associate (y => self%y, k => self%k, ys => self%y_stage)
-      call sys%rhs(t_new, self%y_new, k(:, 13))
-      self%n_rhs = self%n_rhs + 1
-      finite = all(ieee_is_finite(k(:, 13)))
-      if (.not. finite .or. .not. self%dense_output) return
-      ys = y + h*(a141*k(:, 1) + a147*k(:, 7) + a148*k(:, 8) + a149*k(:, 9) + &
-                  a1410*k(:, 10) + a1411*k(:, 11) + a1412*k(:, 12) + a1413*k(:, 13))
-      call sys%rhs(t + c14*h, ys, k(:, 14))
-      ys = y + h*(a151*k(:, 1) + a156*k(:, 6) + a157*k(:, 7) + a158*k(:, 8) + &
-                  a1511*k(:, 11) + a1512*k(:, 12) + a1513*k(:, 13) + a1514*k(:, 14))
-      call sys%rhs(t + c15*h, ys, k(:, 15))
-      ys = y + h*(a161*k(:, 1) + a166*k(:, 6) + a167*k(:, 7) + a168*k(:, 8) + &
-                  a169*k(:, 9) + a1613*k(:, 13) + a1614*k(:, 14) + a1615*k(:, 15))
-      call sys%rhs(t + c16*h, ys, k(:, 16))
-      self%n_rhs = self%n_rhs + 3
-      finite = all(ieee_is_finite(k(:, 14:16)))
-    end associate
-  end subroutine dop853_finish
+  !> k13 (the next step's k1), and with dense output the 3 extra stages k14..k16.
+  pure integer function dop853_finish_stages(self) result(n)
+    class(dop853_integrator), intent(in) :: self
+    n = merge(4, 1, self%dense_output)
+  end function dop853_finish_stages
 
   !> The dense output coefficients (CONT of DP86CO's loops 62 and 63) of an accepted step;
   !> k13 becomes the next k1.

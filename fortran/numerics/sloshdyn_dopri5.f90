@@ -7,7 +7,7 @@
 module sloshdyn_dopri5
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, rms_error_norm, &
+  use sloshdyn_ode, only: rk_integrator, method_properties, rms_error_norm, &
                           dense_from_state
   implicit none
   private
@@ -16,8 +16,9 @@ module sloshdyn_dopri5
   type, extends(rk_integrator) :: dopri5_integrator
     real(wp), allocatable :: y_err(:)   !< local error estimate of the last trial step
   contains
-    procedure :: trial => dopri5_trial
-    procedure :: finish => dopri5_finish
+    procedure :: stage => dopri5_stage
+    procedure :: trial_error => dopri5_trial_error
+    procedure :: finish_stages => dopri5_finish_stages
     procedure :: store_dense => dopri5_store_dense
     procedure :: dense => dopri5_dense
     procedure :: properties => dopri5_properties
@@ -52,7 +53,8 @@ contains
   pure function dopri5_properties(self) result(info)
     class(dopri5_integrator), intent(in) :: self
     type(method_properties) :: info
-    info = method_properties(name='dopri5', order=5, stages=7, dense_columns=5, &
+    info = method_properties(name='dopri5', order=5, stages=7, trial_stages=6, &
+                             dense_columns=5, &
                              expo_base=0.2_wp, beta_factor=0.75_wp, fac1=0.2_wp, fac2=10.0_wp, &
                              beta=0.04_wp)
   end function dopri5_properties
@@ -63,57 +65,69 @@ contains
     allocate (self%y_err(n))
   end subroutine dopri5_allocate
 
-  !> One trial step of size h from (t, y) to t_new: the stages, y_new (5th order), k7 = f(t_new,
-  !> y_new) and the error estimate y_err with its RMS norm.
-  subroutine dopri5_trial(self, sys, h, t_new, err, finite)
+  !> Stage s of a step (see sloshdyn_ode's method_stage): s = 1..5 are k2..k6, s = 6 is
+  !> k7 = f(t_new, y_new) with the 5th-order y_new (part of the trial: the error estimate uses
+  !> it, and it is the next step's k1).
+  pure subroutine dopri5_stage(self, s, h, t_new, t_s, col)
     class(dopri5_integrator), intent(inout) :: self
-    class(ode_system), intent(in) :: sys
+    integer, intent(in) :: s
     real(wp), intent(in) :: h, t_new
+    real(wp), intent(out) :: t_s
+    integer, intent(out) :: col
+    real(wp), parameter :: nodes(2:7) = [c2, c3, c4, c5, 1.0_wp, 1.0_wp]
+    col = s + 1
+    t_s = self%t + nodes(col)*h
+    if (col >= 6) t_s = t_new
+    call stage_input(size(self%y), col, h, self%y, self%k, self%y_stage, self%y_new)
+  end subroutine dopri5_stage
+
+  !> The input of stage col on explicit-shape arrays (the family's rule, sloshdyn_ode); for
+  !> col = 7 it is y_new.
+  pure subroutine stage_input(n, col, h, y, k, ys, yn)
+    integer, intent(in) :: n, col
+    real(wp), intent(in) :: h, y(n), k(n, 7)
+    real(wp), intent(out) :: ys(n)
+    real(wp), intent(inout) :: yn(n)
+
+    select case (col)
+    case (2)
+      ys = y + h*a21*k(:, 1)
+    case (3)
+      ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
+    case (4)
+      ys = y + h*(a41*k(:, 1) + a42*k(:, 2) + a43*k(:, 3))
+    case (5)
+      ys = y + h*(a51*k(:, 1) + a52*k(:, 2) + a53*k(:, 3) + a54*k(:, 4))
+    case (6)
+      ys = y + h*(a61*k(:, 1) + a62*k(:, 2) + a63*k(:, 3) + a64*k(:, 4) + a65*k(:, 5))
+    case default
+      yn = y + h*(a71*k(:, 1) + a73*k(:, 3) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
+      ys = yn
+    end select
+  end subroutine stage_input
+
+  !> After the trial stages (k7 included): the error estimate y_err and its RMS norm.
+  pure subroutine dopri5_trial_error(self, h, err, finite)
+    class(dopri5_integrator), intent(inout) :: self
+    real(wp), intent(in) :: h
     real(wp), intent(out) :: err
     logical, intent(out) :: finite
 
-    call trial_stages(sys, size(self%y), self%t, h, t_new, self%y, self%k, self%y_stage, &
-                      self%y_new, self%y_err, finite)
-    self%n_rhs = self%n_rhs + 6
+    associate (k => self%k)
+      self%y_err = h*(e1*k(:, 1) + e3*k(:, 3) + e4*k(:, 4) + e5*k(:, 5) + e6*k(:, 6) + &
+                      e7*k(:, 7))
+      finite = all(ieee_is_finite(self%y_new)) .and. all(ieee_is_finite(k(:, 7))) .and. &
+               all(ieee_is_finite(self%y_err))
+    end associate
     err = 0
     if (finite) err = rms_error_norm(self%y_err, self%y, self%y_new, self%atol, self%opt%rtol)
-  end subroutine dopri5_trial
-
-  !> The stages of dopri5_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
-  subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, y_err, finite)
-    class(ode_system), intent(in) :: sys
-    integer, intent(in) :: n
-    real(wp), intent(in) :: t, h, t_new, y(n)
-    real(wp), intent(inout) :: k(n, 7)
-    real(wp), intent(out) :: ys(n), yn(n), y_err(n)
-    logical, intent(out) :: finite
-
-    ys = y + h*a21*k(:, 1)
-    call sys%rhs(t + c2*h, ys, k(:, 2))
-    ys = y + h*(a31*k(:, 1) + a32*k(:, 2))
-    call sys%rhs(t + c3*h, ys, k(:, 3))
-    ys = y + h*(a41*k(:, 1) + a42*k(:, 2) + a43*k(:, 3))
-    call sys%rhs(t + c4*h, ys, k(:, 4))
-    ys = y + h*(a51*k(:, 1) + a52*k(:, 2) + a53*k(:, 3) + a54*k(:, 4))
-    call sys%rhs(t + c5*h, ys, k(:, 5))
-    ys = y + h*(a61*k(:, 1) + a62*k(:, 2) + a63*k(:, 3) + a64*k(:, 4) + a65*k(:, 5))
-    call sys%rhs(t_new, ys, k(:, 6))
-    yn = y + h*(a71*k(:, 1) + a73*k(:, 3) + a74*k(:, 4) + a75*k(:, 5) + a76*k(:, 6))
-    call sys%rhs(t_new, yn, k(:, 7))
-    y_err = h*(e1*k(:, 1) + e3*k(:, 3) + e4*k(:, 4) + e5*k(:, 5) + e6*k(:, 6) + &
-               e7*k(:, 7))
-    finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(k(:, 7))) .and. &
-             all(ieee_is_finite(y_err))
-  end subroutine trial_stages
+  end subroutine dopri5_trial_error
 
   !> Nothing more to evaluate: k7 is part of the trial step.
-  subroutine dopri5_finish(self, sys, h, t_new, finite)
-    class(dopri5_integrator), intent(inout) :: self
-    class(ode_system), intent(in) :: sys
-    real(wp), intent(in) :: h, t_new
-    logical, intent(out) :: finite
-    finite = .true.
-  end subroutine dopri5_finish
+  pure integer function dopri5_finish_stages(self) result(n)
+    class(dopri5_integrator), intent(in) :: self
+    n = 0
+  end function dopri5_finish_stages
 
   !> The dense output coefficients (rcont1..rcont5 of dopri5.f) of an accepted step, with dense
   !> output (init's dense_output); k7 becomes the next k1.

@@ -2,9 +2,14 @@
 !> the options and work counts, and one driver shared by every embedded pair -- step planning,
 !> the accept/reject loop with Hairer's stabilised (PI) step-size control, HINIT's automatic
 !> first step, replacing the state, and the dense-output loop over output times. A method is a
-!> small extension of rk_integrator that supplies its tableau (trial), its extra stages after an
-!> accepted error test (finish), its continuous extension (store_dense, dense) and its
-!> properties (order, step-control defaults). Integrates forward in time only.
+!> small extension of rk_integrator that supplies its tableau one stage at a time (stage: the
+!> input of stage s; trial_error: y_new and the error norm after the trial stages;
+!> finish_stages: how many stages follow an accepted error test), its continuous extension
+!> (store_dense, dense) and its properties (order, stage counts, step-control defaults). The
+!> driver evaluates the right-hand side between the stages, so the same method code serves a
+!> single integration (rk_step) and an ensemble (sloshdyn_ensemble), with the same bits. After
+!> an accepted error test the stages stop at the first NaN or infinite one (the step is then
+!> retried with the largest cut). Integrates forward in time only.
 !>
 !> Speed: a method does the arithmetic of its stages in a procedure of its own whose arrays are
 !> explicit-shape dummies (contiguous, and free of aliasing by the rules of dummy arguments), not
@@ -30,7 +35,8 @@ module sloshdyn_ode
   implicit none
   private
   public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
-  public :: check_options, integrate_with, rms_error_norm, dense_from_state
+  public :: check_options, integrate_with, rms_error_norm, dense_from_state, rk_begin_step
+  public :: deliver_outputs, check_outputs
   public :: default_rtol, default_atol, default_max_steps
   public :: observed_quantities, linear_observation, peak_tracker
 
@@ -91,6 +97,7 @@ module sloshdyn_ode
     character(len=16) :: name = ''
     integer :: order = 0           !< of the error estimate's reference solution (HINIT's IORD)
     integer :: stages = 0          !< columns of the stage array k
+    integer :: trial_stages = 0    !< new right-hand sides of a trial step
     integer :: dense_columns = 0   !< coefficient vectors of the continuous extension
     !> step control: h_new = h / (err**(expo_base - beta_factor*beta) / err_old**beta / safety)
     real(wp) :: expo_base = 0, beta_factor = 0
@@ -117,14 +124,24 @@ module sloshdyn_ode
     real(wp) :: h_max = 0            !< options%h_max, or t_bound - t0 when that is 0
     real(wp) :: fac_old = 1.0e-4_wp  !< previous accepted error norm (FACOLD)
     logical :: rejected = .false.    !< the previous trial step was rejected
+    !> the last trial step of this step had NaN or infinite stages (rk_step's retry rule)
+    logical :: non_finite_trial = .false.
+    integer :: trial_stages = 0      !< right-hand sides of a trial step (method_properties)
+    real(wp) :: expo1 = 0            !< exponent of err in the step-size formula
     logical :: dense_output = .true. !< compute the continuous extension of each step
   contains
     procedure :: init => rk_init
     procedure :: step => rk_step
     procedure :: set_state => rk_set_state
     procedure :: statistics => rk_statistics
-    procedure(method_trial), deferred :: trial
-    procedure(method_finish), deferred :: finish
+    procedure :: trial => rk_trial
+    procedure :: finish => rk_finish
+    procedure :: plan => rk_plan
+    procedure :: judge => rk_judge
+    procedure :: conclude => rk_conclude
+    procedure(method_stage), deferred :: stage
+    procedure(method_trial_error), deferred :: trial_error
+    procedure(method_finish_stages), deferred :: finish_stages
     procedure(method_store_dense), deferred :: store_dense
     procedure(method_dense), deferred :: dense
     procedure(method_info), deferred :: properties
@@ -132,26 +149,34 @@ module sloshdyn_ode
   end type rk_integrator
 
   abstract interface
-    !> One trial step of size h from (t, y) to t_new: the stages, y_new and the error norm err
-    !> (scaled so that err <= 1 passes). finite = .false. when any of them is NaN or infinite.
-    subroutine method_trial(self, sys, h, t_new, err, finite)
-      import :: wp, rk_integrator, ode_system
+    !> The input of stage s of a step of size h from (t, y) to t_new: s = 1..trial_stages are
+    !> the trial step's new stages, s = trial_stages + 1.. those after an accepted error test
+    !> (finish_stages of them). Fills y_stage; f(t_s, y_stage) goes into k(:, col). A stage
+    !> may use the stages before it only (the driver evaluates them in order).
+    pure subroutine method_stage(self, s, h, t_new, t_s, col)
+      import :: wp, rk_integrator
       class(rk_integrator), intent(inout) :: self
-      class(ode_system), intent(in) :: sys
+      integer, intent(in) :: s
       real(wp), intent(in) :: h, t_new
+      real(wp), intent(out) :: t_s
+      integer, intent(out) :: col
+    end subroutine method_stage
+
+    !> After the trial stages: y_new and the error norm err (scaled so that err <= 1 passes).
+    !> finite = .false. when any of them is NaN or infinite.
+    pure subroutine method_trial_error(self, h, err, finite)
+      import :: wp, rk_integrator
+      class(rk_integrator), intent(inout) :: self
+      real(wp), intent(in) :: h
       real(wp), intent(out) :: err
       logical, intent(out) :: finite
-    end subroutine method_trial
+    end subroutine method_trial_error
 
-    !> Stages needed once the error test passed (e.g. f at the new point, dense-output stages);
-    !> finite = .false. when any is NaN or infinite.
-    subroutine method_finish(self, sys, h, t_new, finite)
-      import :: wp, rk_integrator, ode_system
-      class(rk_integrator), intent(inout) :: self
-      class(ode_system), intent(in) :: sys
-      real(wp), intent(in) :: h, t_new
-      logical, intent(out) :: finite
-    end subroutine method_finish
+    !> Stages needed once the error test passed (f at the new point, dense-output stages).
+    pure integer function method_finish_stages(self)
+      import :: rk_integrator
+      class(rk_integrator), intent(in) :: self
+    end function method_finish_stages
 
     !> Before the state moves to y_new: the continuous extension over [t, t + h] into cont,
     !> and the next step's first stage into k(:, 1) (FSAL).
@@ -301,6 +326,8 @@ contains
     self%t_bound = t_bound
     self%y = y0
     self%h_max = merge(options%h_max, t_bound - t0, options%h_max > 0)
+    self%trial_stages = info%trial_stages
+    self%expo1 = info%expo_base - info%beta_factor*self%opt%beta
 
     call sys%rhs(t0, self%y, self%k(:, 1))
     self%n_rhs = 1
@@ -320,93 +347,174 @@ contains
   end subroutine rk_init
 
   !> Advance by one accepted step (rejected trial steps are retried inside). On failure the
-  !> integrator stays at its last accepted step.
+  !> integrator stays at its last accepted step. The step is the sequence plan, trial, judge,
+  !> finish, conclude, which an ensemble (sloshdyn_ensemble) drives for many integrators at
+  !> once with the same arithmetic.
   subroutine rk_step(self, sys, status, message)
     class(rk_integrator), intent(inout) :: self
     class(ode_system), intent(in) :: sys
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(method_properties) :: info
-    real(wp) :: h, t_new, err, fac11, fac, h_new
-    logical :: finite, fixed, non_finite_trial
+    real(wp) :: h, t_new, err, h_new
+    logical :: finite, go_on, accepted
 
+    call rk_begin_step(self, status, message)
+    if (status /= SD_OK) return
+    ! every integration of every analysis passes here: Ctrl-C is honoured within one step
+    call check_cancel(status, message)
+    if (status /= SD_OK) return
+    do
+      call self%plan(h, t_new, status, message)
+      if (status /= SD_OK) return
+      call self%trial(sys, h, t_new, err, finite)
+      call self%judge(h, err, finite, h_new, go_on)
+      if (.not. go_on) cycle
+      if (finite) call self%finish(sys, h, t_new, finite)
+      call self%conclude(h, t_new, err, h_new, finite, accepted, status, message)
+      if (status /= SD_OK .or. accepted) return
+    end do
+  end subroutine rk_step
+
+  !> The checks before a step: set up by init, t_bound not yet reached.
+  subroutine rk_begin_step(self, status, message)
+    class(rk_integrator), intent(inout) :: self
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
     status = SD_OK
     message = ''
     if (.not. allocated(self%k)) then
       status = SD_BAD_INPUT
       message = 'step needs an integrator set up by a successful init'
-      return
-    end if
-    if (self%t >= self%t_bound) then
+    else if (self%t >= self%t_bound) then
       status = SD_BAD_INPUT
       message = 'the integration already reached t_bound = '//num2str(self%t_bound)
+    end if
+    self%non_finite_trial = .false.
+  end subroutine rk_begin_step
+
+  !> The next trial step h from t to t_new (see plan_trial), or the failure that ends the
+  !> integration (step budget, step floor).
+  pure subroutine rk_plan(self, h, t_new, status, message)
+    class(rk_integrator), intent(in) :: self
+    real(wp), intent(out) :: h, t_new
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    call plan_trial(self%opt, self%t, self%t_bound, self%h, self%n_accepted + self%n_rejected, &
+                    self%non_finite_trial, h, t_new, status, message)
+  end subroutine rk_plan
+
+  !> The trial step: the method's trial stages in order, then its error estimate.
+  subroutine rk_trial(self, sys, h, t_new, err, finite)
+    class(rk_integrator), intent(inout) :: self
+    class(ode_system), intent(in) :: sys
+    real(wp), intent(in) :: h, t_new
+    real(wp), intent(out) :: err
+    logical, intent(out) :: finite
+    real(wp) :: t_s
+    integer :: s, col
+    do s = 1, self%trial_stages
+      call self%stage(s, h, t_new, t_s, col)
+      call sys%rhs(t_s, self%y_stage, self%k(:, col))
+    end do
+    self%n_rhs = self%n_rhs + self%trial_stages
+    call self%trial_error(h, err, finite)
+  end subroutine rk_trial
+
+  !> The stages after a passed error test, in order; finite = .false. (and no more stages) as
+  !> soon as one is NaN or infinite.
+  subroutine rk_finish(self, sys, h, t_new, finite)
+    class(rk_integrator), intent(inout) :: self
+    class(ode_system), intent(in) :: sys
+    real(wp), intent(in) :: h, t_new
+    logical, intent(out) :: finite
+    real(wp) :: t_s
+    integer :: s, col
+    finite = .true.
+    do s = self%trial_stages + 1, self%trial_stages + self%finish_stages()
+      call self%stage(s, h, t_new, t_s, col)
+      call sys%rhs(t_s, self%y_stage, self%k(:, col))
+      self%n_rhs = self%n_rhs + 1
+      finite = all(ieee_is_finite(self%k(:, col)))
+      if (.not. finite) return
+    end do
+  end subroutine rk_finish
+
+  !> Hairer's step-size control after a trial step with error norm err: go_on = .false. when
+  !> the error test rejects it (the next h is set); otherwise h_new is the step to try after
+  !> it is accepted (h itself for fixed steps or a non-finite trial).
+  pure subroutine rk_judge(self, h, err, finite, h_new, go_on)
+    class(rk_integrator), intent(inout) :: self
+    real(wp), intent(in) :: h, err
+    logical, intent(in) :: finite
+    real(wp), intent(out) :: h_new
+    logical, intent(out) :: go_on
+    real(wp) :: fac11, fac
+
+    h_new = h
+    go_on = .true.
+    if (.not. finite .or. self%opt%fixed_step > 0) return
+    ! h_new = h*safety/(err**expo1/err_old**beta), clamped
+    fac11 = err**self%expo1
+    if (err > 1) then
+      ! rejected: the plain (non-PI) formula
+      self%h = h/min(1/self%opt%fac1, fac11/self%opt%safety)
+      self%rejected = .true.
+      self%n_rejected = self%n_rejected + 1
+      self%non_finite_trial = .false.
+      go_on = .false.
       return
     end if
+    fac = fac11
+    ! err_old**0 = 1: DOP853's default beta = 0 needs no pow call (a call per step)
+    if (self%opt%beta /= 0) fac = fac/self%fac_old**self%opt%beta
+    fac = max(1/self%opt%fac2, min(1/self%opt%fac1, fac/self%opt%safety))
+    h_new = h/fac
+  end subroutine rk_judge
 
-    ! every integration of every analysis passes here: Ctrl-C is honoured within one step
-    call check_cancel(status, message)
-    if (status /= SD_OK) return
-    info = self%properties()
-    fixed = self%opt%fixed_step > 0
-    non_finite_trial = .false.
-    do
-      call plan_trial(self%opt, self%t, self%t_bound, self%h, &
-                      self%n_accepted + self%n_rejected, non_finite_trial, h, t_new, status, &
-                      message)
-      if (status /= SD_OK) return
+  !> After the finishing stages: accept the step (accepted = .true.: the state moves to t_new,
+  !> the next step is h_new), or, when a stage was NaN or infinite, retry with the largest
+  !> allowed cut (a failure in fixed-step mode).
+  pure subroutine rk_conclude(self, h, t_new, err, h_new, finite, accepted, status, message)
+    class(rk_integrator), intent(inout) :: self
+    real(wp), intent(in) :: h, t_new, err, h_new
+    logical, intent(in) :: finite
+    logical, intent(out) :: accepted
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: h_next
 
-      call self%trial(sys, h, t_new, err, finite)
-      h_new = h
-      if (finite .and. .not. fixed) then
-        ! Hairer's step-size control: h_new = h*safety/(err**expo1/err_old**beta), clamped
-        fac11 = err**(info%expo_base - info%beta_factor*self%opt%beta)
-        if (err > 1) then
-          ! rejected: the plain (non-PI) formula
-          self%h = h/min(1/self%opt%fac1, fac11/self%opt%safety)
-          self%rejected = .true.
-          self%n_rejected = self%n_rejected + 1
-          non_finite_trial = .false.
-          cycle
-        end if
-        fac = fac11
-        ! err_old**0 = 1: DOP853's default beta = 0 needs no pow call (a call per step)
-        if (self%opt%beta /= 0) fac = fac/self%fac_old**self%opt%beta
-        fac = max(1/self%opt%fac2, min(1/self%opt%fac1, fac/self%opt%safety))
-        h_new = h/fac
+    status = SD_OK
+    message = ''
+    accepted = .false.
+    self%non_finite_trial = .not. finite
+    if (.not. finite) then
+      if (self%opt%fixed_step > 0) then
+        status = SD_NON_FINITE
+        message = 'the state became NaN or infinite in the fixed step from tau = '// &
+                  num2str(self%t)//' to '//num2str(t_new)
+        return
       end if
-      if (finite) call self%finish(sys, h, t_new, finite)
-      non_finite_trial = .not. finite
-
-      if (.not. finite) then
-        if (fixed) then
-          status = SD_NON_FINITE
-          message = 'the state became NaN or infinite in the fixed step from tau = '// &
-                    num2str(self%t)//' to '//num2str(t_new)
-          return
-        end if
-        ! the trial left the region where f is defined: retry with the largest allowed cut
-        self%h = h*self%opt%fac1
-        self%rejected = .true.
-        self%n_rejected = self%n_rejected + 1
-        cycle
-      end if
-
-      call self%store_dense(h)
-      self%y(:) = self%y_new
-      self%t_old = self%t
-      self%t = t_new
-      self%h_done = h
-      self%n_accepted = self%n_accepted + 1
-      if (fixed) return
-      self%fac_old = max(err, 1.0e-4_wp)
-      h_new = min(h_new, self%h_max)
-      ! no growth right after a rejection
-      if (self%rejected) h_new = min(h_new, h)
-      self%rejected = .false.
-      self%h = h_new
+      ! the trial left the region where f is defined: retry with the largest allowed cut
+      self%h = h*self%opt%fac1
+      self%rejected = .true.
+      self%n_rejected = self%n_rejected + 1
       return
-    end do
-  end subroutine rk_step
+    end if
+    accepted = .true.
+    call self%store_dense(h)
+    self%y(:) = self%y_new
+    self%t_old = self%t
+    self%t = t_new
+    self%h_done = h
+    self%n_accepted = self%n_accepted + 1
+    if (self%opt%fixed_step > 0) return
+    self%fac_old = max(err, 1.0e-4_wp)
+    h_next = min(h_new, self%h_max)
+    ! no growth right after a rejection
+    if (self%rejected) h_next = min(h_next, h)
+    self%rejected = .false.
+    self%h = h_next
+  end subroutine rk_conclude
 
   !> Replace the state at the current time (e.g. to renormalise variational vectors). This
   !> re-evaluates f for FSAL and ends dense output of the previous step; the step size is kept.
@@ -474,29 +582,9 @@ contains
     integer :: j, n_out
     logical :: tracking
 
-    status = SD_OK
-    message = ''
     stats%t_reached = t0
-    y_out = ieee_value(1.0_wp, ieee_quiet_nan)
     n_out = size(t_out)
-    if (size(y_out, 1) /= size(y0) .or. size(y_out, 2) /= n_out) then
-      status = SD_BAD_INPUT
-      message = 'y_out has shape ('//num2str(size(y_out, 1))//', '//num2str(size(y_out, 2))// &
-                '); it must be (size(y0), size(t_out)) = ('//num2str(size(y0))//', '// &
-                num2str(n_out)//')'
-      return
-    end if
-    if (n_out > 0) call check_real('t_out(1)', t_out(1), t0, huge(t0), .false., .false., &
-                                   't_out must start at or after t0 = '//num2str(t0), status, &
-                                   message)
-    do j = 2, n_out
-      if (t_out(j) >= t_out(j - 1) .and. t_out(j) <= huge(t0)) cycle
-      call check_real('t_out('//num2str(j)//')', t_out(j), t_out(j - 1), huge(t0), .false., &
-                      .false., 't_out must be ascending, >= t_out('//num2str(j - 1)//') = '// &
-                      num2str(t_out(j - 1)), status, message)
-      exit
-    end do
-    call check_options(options, y0, status, message)
+    call check_outputs(t0, y0, t_out, y_out, options, status, message)
     if (status /= SD_OK) return
     tracking = present(observed) .and. present(tracker)
     if (tracking) call tracker%start(observed, t0, y0)
@@ -517,18 +605,62 @@ contains
       if (status /= SD_OK) exit
       if (tracking) call tracker%watch(integ, observed, t0, t_out(n_out), status, message)
       if (status /= SD_OK) exit
-      do while (j <= n_out)
-        if (t_out(j) > integ%t) exit
-        if (t_out(j) == integ%t) then
-          y_out(:, j) = integ%y
-        else
-          call integ%dense(t_out(j), y_out(:, j))
-        end if
-        j = j + 1
-      end do
+      call deliver_outputs(integ, t_out, j, y_out)
     end do
     stats = integ%statistics()
   end subroutine integrate_with
+
+  !> integrate_with's checks of its inputs (y_out is set to NaN first): the shape of y_out,
+  !> t_out ascending from t0, the options and y0.
+  pure subroutine check_outputs(t0, y0, t_out, y_out, options, status, message)
+    real(wp), intent(in) :: t0, y0(:), t_out(:)
+    real(wp), intent(out) :: y_out(:, :)
+    type(ode_options), intent(in) :: options
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: j, n_out
+
+    n_out = size(t_out)
+    status = SD_OK
+    message = ''
+    y_out = ieee_value(1.0_wp, ieee_quiet_nan)
+    if (size(y_out, 1) /= size(y0) .or. size(y_out, 2) /= n_out) then
+      status = SD_BAD_INPUT
+      message = 'y_out has shape ('//num2str(size(y_out, 1))//', '//num2str(size(y_out, 2))// &
+                '); it must be (size(y0), size(t_out)) = ('//num2str(size(y0))//', '// &
+                num2str(n_out)//')'
+      return
+    end if
+    if (n_out > 0) call check_real('t_out(1)', t_out(1), t0, huge(t0), .false., .false., &
+                                   't_out must start at or after t0 = '//num2str(t0), status, &
+                                   message)
+    do j = 2, n_out
+      if (t_out(j) >= t_out(j - 1) .and. t_out(j) <= huge(t0)) cycle
+      call check_real('t_out('//num2str(j)//')', t_out(j), t_out(j - 1), huge(t0), .false., &
+                      .false., 't_out must be ascending, >= t_out('//num2str(j - 1)//') = '// &
+                      num2str(t_out(j - 1)), status, message)
+      exit
+    end do
+    call check_options(options, y0, status, message)
+  end subroutine check_outputs
+
+  !> After an accepted step: y at the output times t_out(j), t_out(j + 1), ... up to integ%t
+  !> (the state itself at integ%t, the continuous extension before it); j moves past them.
+  pure subroutine deliver_outputs(integ, t_out, j, y_out)
+    class(rk_integrator), intent(in) :: integ
+    real(wp), intent(in) :: t_out(:)
+    integer, intent(inout) :: j
+    real(wp), intent(inout) :: y_out(:, :)
+    do while (j <= size(t_out))
+      if (t_out(j) > integ%t) exit
+      if (t_out(j) == integ%t) then
+        y_out(:, j) = integ%y
+      else
+        call integ%dense(t_out(j), y_out(:, j))
+      end if
+      j = j + 1
+    end do
+  end subroutine deliver_outputs
 
   pure subroutine linear_values(self, t, y, g)
     class(linear_observation), intent(in) :: self

@@ -16,7 +16,7 @@
 module sloshdyn_vern9
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use sloshdyn_kinds, only: wp
-  use sloshdyn_ode, only: ode_system, rk_integrator, method_properties, rms_error_norm, &
+  use sloshdyn_ode, only: rk_integrator, method_properties, rms_error_norm, &
                           dense_from_state
   implicit none
   private
@@ -25,8 +25,9 @@ module sloshdyn_vern9
   type, extends(rk_integrator) :: vern9_integrator
     real(wp), allocatable :: y_err(:)   !< local error estimate of the last trial step
   contains
-    procedure :: trial => vern9_trial
-    procedure :: finish => vern9_finish
+    procedure :: stage => vern9_stage
+    procedure :: trial_error => vern9_trial_error
+    procedure :: finish_stages => vern9_finish_stages
     procedure :: store_dense => vern9_store_dense
     procedure :: dense => vern9_dense
     procedure :: properties => vern9_properties
@@ -295,7 +296,8 @@ contains
   pure function vern9_properties(self) result(info)
     class(vern9_integrator), intent(in) :: self
     type(method_properties) :: info
-    info = method_properties(name='vern9', order=9, stages=21, dense_columns=9, &
+    info = method_properties(name='vern9', order=9, stages=21, trial_stages=15, &
+                             dense_columns=9, &
                              expo_base=1.0_wp/9, beta_factor=0.2_wp, fac1=0.333_wp, &
                              fac2=6.0_wp, beta=0.0_wp)
   end function vern9_properties
@@ -306,115 +308,125 @@ contains
     allocate (self%y_err(n))
   end subroutine vern9_allocate
 
-  !> One trial step of size h from (t, y) to t_new: stages k2..k16, the 9th-order y_new, the
-  !> error estimate y_err and its RMS norm.
-  subroutine vern9_trial(self, sys, h, t_new, err, finite)
+  !> Stage s of a step (see sloshdyn_ode's method_stage): s = 1..15 are k2..k16, s = 16 is
+  !> k17 = f(t_new, y_new) (the next step's k1), s = 17..20 the interpolant's stages k18..k21.
+  pure subroutine vern9_stage(self, s, h, t_new, t_s, col)
     class(vern9_integrator), intent(inout) :: self
-    class(ode_system), intent(in) :: sys
+    integer, intent(in) :: s
     real(wp), intent(in) :: h, t_new
+    real(wp), intent(out) :: t_s
+    integer, intent(out) :: col
+    real(wp), parameter :: nodes(2:21) = [c2, c3, c4, c5, c6, c7, c8, c9, c10, c11, c12, c13, &
+                                          c14, 1.0_wp, 1.0_wp, 1.0_wp, c18, c19, c20, c21]
+    col = s + 1
+    t_s = self%t + nodes(col)*h
+    if (col >= 15 .and. col <= 17) t_s = t_new
+    if (col == 17) then
+      self%y_stage = self%y_new
+    else
+      call stage_input(size(self%y), col, h, self%y, self%k, self%y_stage)
+    end if
+  end subroutine vern9_stage
+
+  !> The input y + h sum_j a(col, j) k_j of stage col, on explicit-shape arrays (the family's
+  !> rule, sloshdyn_ode).
+  pure subroutine stage_input(n, col, h, y, k, ys)
+    integer, intent(in) :: n, col
+    real(wp), intent(in) :: h, y(n), k(n, 21)
+    real(wp), intent(out) :: ys(n)
+
+    select case (col)
+    case (2)
+      ys = y + h*(a2_1*k(:, 1))
+    case (3)
+      ys = y + h*(a3_1*k(:, 1) + a3_2*k(:, 2))
+    case (4)
+      ys = y + h*(a4_1*k(:, 1) + a4_3*k(:, 3))
+    case (5)
+      ys = y + h*(a5_1*k(:, 1) + a5_3*k(:, 3) + a5_4*k(:, 4))
+    case (6)
+      ys = y + h*(a6_1*k(:, 1) + a6_4*k(:, 4) + a6_5*k(:, 5))
+    case (7)
+      ys = y + h*(a7_1*k(:, 1) + a7_4*k(:, 4) + a7_5*k(:, 5) + a7_6*k(:, 6))
+    case (8)
+      ys = y + h*(a8_1*k(:, 1) + a8_6*k(:, 6) + a8_7*k(:, 7))
+    case (9)
+      ys = y + h*(a9_1*k(:, 1) + a9_6*k(:, 6) + a9_7*k(:, 7) + a9_8*k(:, 8))
+    case (10)
+      ys = y + h*(a10_1*k(:, 1) + a10_6*k(:, 6) + a10_7*k(:, 7) + a10_8*k(:, 8) + &
+                  a10_9*k(:, 9))
+    case (11)
+      ys = y + h*(a11_1*k(:, 1) + a11_6*k(:, 6) + a11_7*k(:, 7) + a11_8*k(:, 8) + &
+                  a11_9*k(:, 9) + a11_10*k(:, 10))
+    case (12)
+      ys = y + h*(a12_1*k(:, 1) + a12_6*k(:, 6) + a12_7*k(:, 7) + a12_8*k(:, 8) + &
+                  a12_9*k(:, 9) + a12_10*k(:, 10) + a12_11*k(:, 11))
+    case (13)
+      ys = y + h*(a13_1*k(:, 1) + a13_6*k(:, 6) + a13_7*k(:, 7) + a13_8*k(:, 8) + &
+                  a13_9*k(:, 9) + a13_10*k(:, 10) + a13_11*k(:, 11) + a13_12*k(:, 12))
+    case (14)
+      ys = y + h*(a14_1*k(:, 1) + a14_6*k(:, 6) + a14_7*k(:, 7) + a14_8*k(:, 8) + &
+                  a14_9*k(:, 9) + a14_10*k(:, 10) + a14_11*k(:, 11) + a14_12*k(:, 12) + &
+                  a14_13*k(:, 13))
+    case (15)
+      ys = y + h*(a15_1*k(:, 1) + a15_6*k(:, 6) + a15_7*k(:, 7) + a15_8*k(:, 8) + &
+                  a15_9*k(:, 9) + a15_10*k(:, 10) + a15_11*k(:, 11) + a15_12*k(:, 12) + &
+                  a15_13*k(:, 13) + a15_14*k(:, 14))
+    case (16)
+      ys = y + h*(a16_1*k(:, 1) + a16_6*k(:, 6) + a16_7*k(:, 7) + a16_8*k(:, 8) + &
+                  a16_9*k(:, 9) + a16_10*k(:, 10) + a16_11*k(:, 11) + a16_12*k(:, 12) + &
+                  a16_13*k(:, 13))
+    case (18)
+      ys = y + h*(a18_1*k(:, 1) + a18_8*k(:, 8) + a18_9*k(:, 9) + a18_10*k(:, 10) + &
+                  a18_11*k(:, 11) + a18_12*k(:, 12) + a18_13*k(:, 13) + a18_14*k(:, 14) + &
+                  a18_15*k(:, 15) + a18_17*k(:, 17))
+    case (19)
+      ys = y + h*(a19_1*k(:, 1) + a19_8*k(:, 8) + a19_9*k(:, 9) + a19_10*k(:, 10) + &
+                  a19_11*k(:, 11) + a19_12*k(:, 12) + a19_13*k(:, 13) + a19_14*k(:, 14) + &
+                  a19_15*k(:, 15) + a19_17*k(:, 17) + a19_18*k(:, 18))
+    case (20)
+      ys = y + h*(a20_1*k(:, 1) + a20_8*k(:, 8) + a20_9*k(:, 9) + a20_10*k(:, 10) + &
+                  a20_11*k(:, 11) + a20_12*k(:, 12) + a20_13*k(:, 13) + a20_14*k(:, 14) + &
+                  a20_15*k(:, 15) + a20_17*k(:, 17) + a20_18*k(:, 18) + a20_19*k(:, 19))
+    case default
+      ys = y + h*(a21_1*k(:, 1) + a21_8*k(:, 8) + a21_9*k(:, 9) + a21_10*k(:, 10) + &
+                  a21_11*k(:, 11) + a21_12*k(:, 12) + a21_13*k(:, 13) + a21_14*k(:, 14) + &
+                  a21_15*k(:, 15) + a21_17*k(:, 17) + a21_18*k(:, 18) + a21_19*k(:, 19) + &
+                  a21_20*k(:, 20))
+    end select
+  end subroutine stage_input
+
+  !> After the trial stages: the 9th-order y_new, the error estimate y_err and its RMS norm.
+  pure subroutine vern9_trial_error(self, h, err, finite)
+    class(vern9_integrator), intent(inout) :: self
+    real(wp), intent(in) :: h
     real(wp), intent(out) :: err
     logical, intent(out) :: finite
 
-    call trial_stages(sys, size(self%y), self%t, h, t_new, self%y, self%k, self%y_stage, &
-                      self%y_new, self%y_err, finite)
-    self%n_rhs = self%n_rhs + 15
+    call trial_end(size(self%y), h, self%y, self%k, self%y_new, self%y_err, finite)
     err = 0
     if (finite) err = rms_error_norm(self%y_err, self%y, self%y_new, self%atol, self%opt%rtol)
-  end subroutine vern9_trial
+  end subroutine vern9_trial_error
 
-  !> The stages of vern9_trial, on explicit-shape arrays (the family's rule, sloshdyn_ode).
-  subroutine trial_stages(sys, n, t, h, t_new, y, k, ys, yn, y_err, finite)
-    class(ode_system), intent(in) :: sys
+  pure subroutine trial_end(n, h, y, k, yn, y_err, finite)
     integer, intent(in) :: n
-    real(wp), intent(in) :: t, h, t_new, y(n)
-    real(wp), intent(inout) :: k(n, 16)
-    real(wp), intent(out) :: ys(n), yn(n), y_err(n)
+    real(wp), intent(in) :: h, y(n), k(n, 21)
+    real(wp), intent(out) :: yn(n), y_err(n)
     logical, intent(out) :: finite
 
-    ys = y + h*(a2_1*k(:, 1))
-    call sys%rhs(t + c2*h, ys, k(:, 2))
-    ys = y + h*(a3_1*k(:, 1) + a3_2*k(:, 2))
-    call sys%rhs(t + c3*h, ys, k(:, 3))
-    ys = y + h*(a4_1*k(:, 1) + a4_3*k(:, 3))
-    call sys%rhs(t + c4*h, ys, k(:, 4))
-    ys = y + h*(a5_1*k(:, 1) + a5_3*k(:, 3) + a5_4*k(:, 4))
-    call sys%rhs(t + c5*h, ys, k(:, 5))
-    ys = y + h*(a6_1*k(:, 1) + a6_4*k(:, 4) + a6_5*k(:, 5))
-    call sys%rhs(t + c6*h, ys, k(:, 6))
-    ys = y + h*(a7_1*k(:, 1) + a7_4*k(:, 4) + a7_5*k(:, 5) + a7_6*k(:, 6))
-    call sys%rhs(t + c7*h, ys, k(:, 7))
-    ys = y + h*(a8_1*k(:, 1) + a8_6*k(:, 6) + a8_7*k(:, 7))
-    call sys%rhs(t + c8*h, ys, k(:, 8))
-    ys = y + h*(a9_1*k(:, 1) + a9_6*k(:, 6) + a9_7*k(:, 7) + a9_8*k(:, 8))
-    call sys%rhs(t + c9*h, ys, k(:, 9))
-    ys = y + h*(a10_1*k(:, 1) + a10_6*k(:, 6) + a10_7*k(:, 7) + a10_8*k(:, 8) + &
-                a10_9*k(:, 9))
-    call sys%rhs(t + c10*h, ys, k(:, 10))
-    ys = y + h*(a11_1*k(:, 1) + a11_6*k(:, 6) + a11_7*k(:, 7) + a11_8*k(:, 8) + &
-                a11_9*k(:, 9) + a11_10*k(:, 10))
-    call sys%rhs(t + c11*h, ys, k(:, 11))
-    ys = y + h*(a12_1*k(:, 1) + a12_6*k(:, 6) + a12_7*k(:, 7) + a12_8*k(:, 8) + &
-                a12_9*k(:, 9) + a12_10*k(:, 10) + a12_11*k(:, 11))
-    call sys%rhs(t + c12*h, ys, k(:, 12))
-    ys = y + h*(a13_1*k(:, 1) + a13_6*k(:, 6) + a13_7*k(:, 7) + a13_8*k(:, 8) + &
-                a13_9*k(:, 9) + a13_10*k(:, 10) + a13_11*k(:, 11) + a13_12*k(:, 12))
-    call sys%rhs(t + c13*h, ys, k(:, 13))
-    ys = y + h*(a14_1*k(:, 1) + a14_6*k(:, 6) + a14_7*k(:, 7) + a14_8*k(:, 8) + &
-                a14_9*k(:, 9) + a14_10*k(:, 10) + a14_11*k(:, 11) + a14_12*k(:, 12) + &
-                a14_13*k(:, 13))
-    call sys%rhs(t + c14*h, ys, k(:, 14))
-    ys = y + h*(a15_1*k(:, 1) + a15_6*k(:, 6) + a15_7*k(:, 7) + a15_8*k(:, 8) + &
-                a15_9*k(:, 9) + a15_10*k(:, 10) + a15_11*k(:, 11) + a15_12*k(:, 12) + &
-                a15_13*k(:, 13) + a15_14*k(:, 14))
-    call sys%rhs(t_new, ys, k(:, 15))
-    ys = y + h*(a16_1*k(:, 1) + a16_6*k(:, 6) + a16_7*k(:, 7) + a16_8*k(:, 8) + &
-                a16_9*k(:, 9) + a16_10*k(:, 10) + a16_11*k(:, 11) + a16_12*k(:, 12) + &
-                a16_13*k(:, 13))
-    call sys%rhs(t_new, ys, k(:, 16))
     yn = y + h*(b1*k(:, 1) + b8*k(:, 8) + b9*k(:, 9) + b10*k(:, 10) + b11*k(:, 11) + &
                 b12*k(:, 12) + b13*k(:, 13) + b14*k(:, 14) + b15*k(:, 15))
     y_err = h*(d1*k(:, 1) + d8*k(:, 8) + d9*k(:, 9) + d10*k(:, 10) + d11*k(:, 11) + &
                d12*k(:, 12) + d13*k(:, 13) + d14*k(:, 14) + d15*k(:, 15) + &
                d16*k(:, 16))
     finite = all(ieee_is_finite(yn)) .and. all(ieee_is_finite(y_err))
-  end subroutine trial_stages
+  end subroutine trial_end
 
-  !> For a trial step that passed: k17 = f(t_new, y_new) (the next step's k1), then, with dense
-  !> output, the 4 extra stages k18..k21 of the interpolant.
-  subroutine vern9_finish(self, sys, h, t_new, finite)
-    class(vern9_integrator), intent(inout) :: self
-    class(ode_system), intent(in) :: sys
-    real(wp), intent(in) :: h, t_new
-    logical, intent(out) :: finite
-    real(wp) :: t
-
-    t = self%t
-    associate (y => self%y, k => self%k, ys => self%y_stage)
-      call sys%rhs(t_new, self%y_new, k(:, 17))
-      self%n_rhs = self%n_rhs + 1
-      finite = all(ieee_is_finite(k(:, 17)))
-      if (.not. finite .or. .not. self%dense_output) return
-      ys = y + h*(a18_1*k(:, 1) + a18_8*k(:, 8) + a18_9*k(:, 9) + a18_10*k(:, 10) + &
-                  a18_11*k(:, 11) + a18_12*k(:, 12) + a18_13*k(:, 13) + a18_14*k(:, 14) + &
-                  a18_15*k(:, 15) + a18_17*k(:, 17))
-      call sys%rhs(t + c18*h, ys, k(:, 18))
-      ys = y + h*(a19_1*k(:, 1) + a19_8*k(:, 8) + a19_9*k(:, 9) + a19_10*k(:, 10) + &
-                  a19_11*k(:, 11) + a19_12*k(:, 12) + a19_13*k(:, 13) + a19_14*k(:, 14) + &
-                  a19_15*k(:, 15) + a19_17*k(:, 17) + a19_18*k(:, 18))
-      call sys%rhs(t + c19*h, ys, k(:, 19))
-      ys = y + h*(a20_1*k(:, 1) + a20_8*k(:, 8) + a20_9*k(:, 9) + a20_10*k(:, 10) + &
-                  a20_11*k(:, 11) + a20_12*k(:, 12) + a20_13*k(:, 13) + a20_14*k(:, 14) + &
-                  a20_15*k(:, 15) + a20_17*k(:, 17) + a20_18*k(:, 18) + a20_19*k(:, 19))
-      call sys%rhs(t + c20*h, ys, k(:, 20))
-      ys = y + h*(a21_1*k(:, 1) + a21_8*k(:, 8) + a21_9*k(:, 9) + a21_10*k(:, 10) + &
-                  a21_11*k(:, 11) + a21_12*k(:, 12) + a21_13*k(:, 13) + a21_14*k(:, 14) + &
-                  a21_15*k(:, 15) + a21_17*k(:, 17) + a21_18*k(:, 18) + a21_19*k(:, 19) + &
-                  a21_20*k(:, 20))
-      call sys%rhs(t + c21*h, ys, k(:, 21))
-      self%n_rhs = self%n_rhs + 4
-      finite = all(ieee_is_finite(k(:, 18:21)))
-    end associate
-  end subroutine vern9_finish
+  !> k17 (the next step's k1), and with dense output the 4 extra stages k18..k21.
+  pure integer function vern9_finish_stages(self) result(n)
+    class(vern9_integrator), intent(in) :: self
+    n = merge(5, 1, self%dense_output)
+  end function vern9_finish_stages
 
   !> The interpolant's coefficient vectors of an accepted step: cont(:, 1) = y and
   !> cont(:, j + 1) = h sum_i interp(j, i) k_i; k17 becomes the next k1.

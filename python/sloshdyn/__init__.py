@@ -15,9 +15,9 @@ from .tank import DesignCodes, Tank
 from .model import (Equilibria, Equilibrium, EquilibriumAngles, LinearModes, Motion, equilibria,
                     equilibrium_angles, equations_of_motion, frequency_ratio, kappa_for_detuning,
                     linear_modes)
-from .simulation import (AmplitudeSpectrum, Simulation, SteadyState, Sweep, amplitude_sweep,
-                         beat_period, frequency_sweep, poincare_section, simulate, spectrum,
-                         steady_state, sweep_values)
+from .simulation import (AmplitudeSpectrum, Ensemble, Simulation, SteadyState, Sweep,
+                         amplitude_sweep, beat_period, frequency_sweep, poincare_section,
+                         simulate, simulate_ensemble, spectrum, steady_state, sweep_values)
 from .asymptotics import (FrequencyResponse, ModalCoefficients, SlowFlowCycle, SpecialPoint,
                           frequency_response, modal_coefficients, nonresonant_amplitudes,
                           slow_flow_cycle)
@@ -49,7 +49,7 @@ __all__ = [
     "read_namelist", "tank_pendulum",
     "AmplitudeSpectrum", "Integration", "Simulation", "Steady", "SteadyState", "Sweep", "amplitude_sweep",
     "beat_period", "frequency_sweep", "poincare_section", "simulate", "spectrum", "steady_state",
-    "sweep_values",
+    "sweep_values", "Ensemble", "simulate_ensemble",
     "ModalCoefficients", "modal_coefficients", "Continuation", "FrequencyResponse", "SpecialPoint", "frequency_response",
     "nonresonant_amplitudes", "SlowFlowCycle", "slow_flow_cycle", "PeriodicBranch",
     "PeriodicOrbit", "PeriodicSpecialPoint", "Criticality", "Lyapunov", "LyapunovExponent",

@@ -104,6 +104,103 @@ def simulate(params: Parameters, t_end, y0=None, *, n_out=None, tau_out=None, t_
 
 
 @dataclass(frozen=True)
+class Ensemble:
+    """Time histories of K trajectories integrated together (simulate_ensemble). Arrays run
+    over the members first, then as Simulation's; member i equals simulate's run of it bit
+    for bit (``ensemble.member(i)`` is that Simulation)."""
+
+    tau: np.ndarray             #: (K, n) output times
+    y: np.ndarray               #: (K, 4, n): x1, x1', x2, x2'
+    u: np.ndarray               #: (K, 2, n): modal coordinates (eq 34)
+    impact_force: np.ndarray    #: (K, n)
+    theta: np.ndarray           #: (K, n)
+    phi: np.ndarray             #: (K, n)
+    n_rhs: np.ndarray           #: (K,) work counts per member
+    n_accepted: np.ndarray
+    n_rejected: np.ndarray
+    tau_reached: np.ndarray
+    status: np.ndarray          #: (K,) 0 = finished; else the core's status of that member
+    method: str
+
+    def __len__(self):
+        return len(self.tau)
+
+    def member(self, i) -> Simulation:
+        """Member i as a Simulation."""
+        return Simulation(self.tau[i], self.y[i], self.u[i], self.impact_force[i],
+                          self.theta[i], self.phi[i], int(self.n_rhs[i]),
+                          int(self.n_accepted[i]), int(self.n_rejected[i]),
+                          float(self.tau_reached[i]), self.method)
+
+
+def simulate_ensemble(params, t_end, y0=None, *, n_out=None, tau_out=None, t_start=0.0,
+                      integration: Integration = Integration()) -> Ensemble:
+    """K trajectories at once (issue 43), each with its own step control, exactly as K calls
+    of simulate would give them: params is one Parameters or a sequence of K (e.g. a rho
+    sweep); y0 None (rest), one state (4,) or K states (K, 4); t_end and t_start a number or K
+    numbers; tau_out None (n_out evenly spaced times per member: default the most any member
+    gets from simulate's rule), one ascending array for all, or (K, n). K is the longest of
+    params, y0, t_end, t_start and a 2-D tau_out; the others must have that length or one
+    entry. Faster per trajectory than a loop over simulate (benchmarks/README.md, "Ensembles").
+
+    On failure of any member raises IntegrationError naming the first (0-based) member, whose
+    ``partial`` attribute holds the whole Ensemble (status per member; NaN where a member
+    stopped)."""
+    _checks.instance("integration", integration, Integration)
+    members = list(params) if isinstance(params, (list, tuple)) else [params]
+    for i, p in enumerate(members):
+        _checks.instance(f"params[{i}]", p, Parameters)
+    y0 = np.zeros(4) if y0 is None else _checks.reals("y0", y0)
+    if y0.ndim not in (1, 2) or y0.shape[-1] != 4:
+        raise InputError(f"y0 has shape {y0.shape}: it must be (4,) or (K, 4)")
+    t_end = _checks.reals("t_end", t_end)
+    t_start = _checks.reals("t_start", t_start)
+    if tau_out is not None:
+        tau_out = _checks.reals("tau_out", tau_out)
+        if tau_out.ndim not in (1, 2):
+            raise InputError(f"tau_out has shape {tau_out.shape}: it must be (n,) or (K, n)")
+    sizes = {"params": len(members), "y0": len(y0) if y0.ndim == 2 else 1,
+             "t_end": t_end.size, "t_start": t_start.size,
+             "tau_out": len(tau_out) if tau_out is not None and tau_out.ndim == 2 else 1}
+    k = max(sizes.values())
+    for name, size in sizes.items():
+        if size not in (1, k):
+            raise InputError(f"{name} has {size} members: it must have 1 or K = {k} (the "
+                             "longest of params, y0, t_end, t_start and tau_out)")
+    members = members * k if len(members) == 1 else members
+    y0 = np.broadcast_to(y0, (k, 4))
+    t_end = np.broadcast_to(t_end.ravel(), (k,))
+    t_start = np.broadcast_to(t_start.ravel(), (k,))
+    if tau_out is None:
+        if n_out is None:
+            n_out = max(len(_output_times(p, e, s, None, None))
+                        for p, e, s in zip(members, t_end, t_start))
+        tau_out = np.stack([_output_times(p, e, s, n_out, None)
+                            for p, e, s in zip(members, t_end, t_start)])
+    tau_out = np.ascontiguousarray(np.broadcast_to(tau_out, (k, tau_out.shape[-1])))
+    _checks.output_size("n_out", tau_out.shape[1] * k, 9)
+    arrays = [p.array() for p in members]
+    rpar = np.stack([a[0] for a in arrays], axis=1)
+    ipar = np.stack([a[1] for a in arrays], axis=1)
+    history, counts, status, message = cancellable(
+        _bridge.simulate_ensemble, rpar, ipar, np.ascontiguousarray(t_start),
+        np.ascontiguousarray(y0.T), tau_out.T, integration.array())
+    h = np.moveaxis(history, 2, 0)
+    result = Ensemble(tau_out, h[:, 0:4], h[:, 4:6], h[:, 6], h[:, 7], h[:, 8],
+                      counts[0].astype(int), counts[1].astype(int), counts[2].astype(int),
+                      counts[3].copy(), np.asarray(status, dtype=int),
+                      method=integration.method_used)
+    first = np.flatnonzero(status)
+    if len(first):
+        try:
+            check_status(int(status[first[0]]), message, "ensemble simulation")
+        except IntegrationError as exc:
+            exc.partial = result
+            raise
+    return result
+
+
+@dataclass(frozen=True)
 class SteadyState:
     """Steady response at one (rho, A): amplitudes over the window and the kind of motion."""
 
