@@ -192,8 +192,10 @@ def test_a_record_scaled_by_1e250_ends_in_an_error_not_infinity(exe, tmp_path):
     """The design check of a ground motion scaled by 1e250 overflows: an error naming the
     quantity in both doors (main: Infinity in design_loads.csv and exit 0)."""
     t = np.arange(400) * 0.02
-    (tmp_path / "record.csv").write_text("".join(f"{x:.4f} {0.2 * math.sin(2 * x):.6f}\n"
-                                                 for x in t))
+    for door in ("exe", "py"):                  # beside each door's copy of the input
+        (tmp_path / door).mkdir()
+        (tmp_path / door / "record.csv").write_text(
+            "".join(f"{x:.4f} {0.2 * math.sin(2 * x):.6f}\n" for x in t))
     ground = "&ground_motion\n  record = 'record.csv'\n  scale_factor = 1e250\n/\n"
     text = TANK.format(R=15, H=10, f=1) + ground + \
         "&design\n  spectrum = 'ground_motion'\n/\n" + LINEAR
