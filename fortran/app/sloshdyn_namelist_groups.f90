@@ -500,14 +500,16 @@ contains
     character(len=message_len), intent(out) :: message
     character(len=word_len) :: resonance, parameter
     real(wp) :: start, stop, amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, x_tol, &
-                f_tol
-    integer :: n_scan, n_amplitudes, n_phases, max_points, max_iter, switch_at
+                f_tol, curve_start, curve_stop
+    integer :: n_scan, n_amplitudes, n_phases, max_points, max_iter, switch_at, curve_at
     type(namelist_reader) :: reader
     namelist /response/ resonance, parameter, start, stop, n_scan, n_amplitudes, n_phases, &
                         amplitude_min, amplitude_max, ds, ds_min, ds_max, x_scale, max_points, &
-                        x_tol, f_tol, max_iter, switch_at
+                        x_tol, f_tol, max_iter, switch_at, curve_at, curve_start, curve_stop
 
     resonance = '3:1'; parameter = 'rho'; start = 0; stop = 0; switch_at = settings%switch_at
+    curve_at = settings%curve_at; curve_start = settings%curve_start
+    curve_stop = settings%curve_stop
     associate (o => settings%options, c => settings%options%continuation)
       n_scan = o%n_scan; n_amplitudes = o%n_amplitudes; n_phases = o%n_phases
       amplitude_min = o%amplitude_min; amplitude_max = o%amplitude_max
@@ -544,6 +546,8 @@ contains
                 ' is out of range: it must be >= 0 (0: no branch switching)')
       return
     end if
+    call read_curve_range(file, settings, curve_at, curve_start, curve_stop, status, message)
+    if (status /= SD_OK) return
     associate (o => settings%options, c => settings%options%continuation)
       o%n_scan = n_scan; o%n_amplitudes = n_amplitudes; o%n_phases = n_phases
       o%amplitude_min = amplitude_min; o%amplitude_max = amplitude_max
@@ -564,6 +568,44 @@ contains
                                 settings%stop, status, message)
     if (status /= SD_OK) message = '&response: '//trim(message)
   end subroutine read_response
+
+  !> &response's curve through a special point (periodic_response): curve_at >= 0 (0: none)
+  !> and, with it, the other parameter's range curve_start, curve_stop (A >= 0, rho > 0; stored
+  !> lower end first).
+  subroutine read_curve_range(file, settings, curve_at, curve_start, curve_stop, status, message)
+    type(input_file), intent(inout) :: file
+    type(response_settings), intent(inout) :: settings
+    integer, intent(in) :: curve_at
+    real(wp), intent(in) :: curve_start, curve_stop
+    integer, intent(inout) :: status
+    character(len=message_len), intent(inout) :: message
+    logical :: rho
+    character(len=:), allocatable :: other, rule
+    settings%curve_at = curve_at
+    settings%curve_start = min(curve_start, curve_stop)
+    settings%curve_stop = max(curve_start, curve_stop)
+    if (curve_at < 0) then
+      call fail(status, message, '&response: curve_at = '//num2str(curve_at)// &
+                ' is out of range: it must be >= 0 (0: no curve)')
+      return
+    end if
+    if (curve_at == 0) return
+    call require(file, G_RESPONSE, 'curve_start', status, message)
+    call require(file, G_RESPONSE, 'curve_stop', status, message)
+    if (status /= SD_OK) return
+    rho = settings%parameter /= PARAMETER_RHO    ! the curve's other parameter is rho
+    other = trim(merge('rho', 'A  ', rho))
+    rule = ' (the curve''s range of '//other//') must be '//trim(merge('> 0 ', '>= 0', rho))
+    call check_real('curve_start', curve_start, 0.0_wp, huge(1.0_wp), rho, .true., &
+                    'curve_start'//rule, status, message)
+    call check_real('curve_stop', curve_stop, 0.0_wp, huge(1.0_wp), rho, .true., &
+                    'curve_stop'//rule, status, message)
+    if (status == SD_OK .and. curve_start == curve_stop) &
+      call fail(status, message, 'curve_start = curve_stop = '//num2str(curve_start)// &
+                ': the curve''s range is empty')
+    if (status /= SD_OK .and. index(message, '&response') /= 1) &
+      message = '&response: '//trim(message)
+  end subroutine read_curve_range
 
   subroutine read_lyapunov(file, options, status, message)
     type(input_file), intent(inout) :: file

@@ -211,8 +211,6 @@ class PeriodicBranch:
         check_status(status, message, "orbit curve")
         used = _tables.unpack("chart_sizes", sizes)
         curves = curves[:, :int(used["curve_points"])]
-        curves[_tables.columns("chart_curves").index("gamma")] = at.gamma
-        curves[_tables.columns("chart_curves").index("kappa")] = at.kappa
         chart = _chart("rho", "A", "full", curves, codim2[:, :int(used["codim2_points"])],
                        ends, np.zeros((len(_tables.columns("chart_grid")), 0)),
                        bool(ends[3, 0]), "curve 1: " + message_text(note), at)
