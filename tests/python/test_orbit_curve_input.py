@@ -98,3 +98,27 @@ def test_a_branch_point_has_no_curve(tmp_path):
     assert exe.returncode == 3, exe.stdout + exe.stderr
     assert ("curve_at = 1 is a branch_point: a curve starts at a fold, a period_doubling or a "
             "neimark_sacker") in exe.stdout + exe.stderr
+
+
+def test_a_branch_in_A_takes_the_curves_range_in_rho(tmp_path):
+    # the same Neimark-Sacker curve, met by a branch in A at rho = 0.50925 (A ~ 0.00074)
+    text_a = (MODEL + "&excitation A = 0.0007, rho = 0.50925 /\n"
+              "&analysis kind = 'periodic_response' /\n"
+              f"&response parameter = 'A', start = 0.0007, stop = 0.0008, max_points = {POINTS}, "
+              "curve_at = 1, curve_start = 0.5085, curve_stop = 0.5095 /\n"
+              "&output directory = 'out' /\n")
+    write(tmp_path, text_a)
+    exe = run(sys_exe(), "input.nml", tmp_path)
+    assert exe.returncode == 0, exe.stdout + exe.stderr
+    branch = sloshdyn.periodic_response(FIG12.replace(rho=0.50925, A=0.0007), A_range=A_BOX,
+                                        continuation=CONTINUATION)
+    assert [s.kind for s in branch.special_points] == ["neimark_sacker"]
+    curve = branch.curve(branch.special_points[0], (0.5085, 0.5095), A_BOX,
+                         chart=sloshdyn.Chart(max_points=POINTS))
+    rows = read_csv(tmp_path / "out" / "periodic_curve.csv")
+    assert len(rows) == len(curve.rho) >= 5 and curve.complete
+    for name, column in (("rho", curve.rho), ("A", curve.A), ("x2", curve.state[1])):
+        np.testing.assert_allclose([r[name] for r in rows], column, rtol=1e-15, atol=0)
+    # from edge to edge of the box in A: the branch's range, not the curve's range in rho
+    assert curve.ends == ("box", "box")
+    assert (curve.A.min(), curve.A.max()) == (pytest.approx(0.0007), pytest.approx(0.0008))
