@@ -11,7 +11,7 @@ module sloshdyn_periodic_response
   use sloshdyn_continuation, only: continuation_options
   use sloshdyn_shooting, only: shooting_newton, periodic_branch, switch_branch, monodromy_matrix
   use sloshdyn_half_period, only: locate_symmetry_breaking
-  use sloshdyn_map_normal_form, only: period_doubling_coefficient
+  use sloshdyn_map_normal_form, only: period_doubling_coefficient, neimark_sacker_coefficient
   use sloshdyn_excitation, only: EXCITATION_HARMONIC
   use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts
   use sloshdyn_simulation, only: steady_options, steady_state
@@ -23,7 +23,8 @@ module sloshdyn_periodic_response
   implicit none
   private
   public :: periodic_orbit, periodic_response, lyapunov_exponent, periodic_response_from_rest, &
-            orbit_from_rest, periodic_switch, period_doubling_criticality
+            orbit_from_rest, periodic_switch, period_doubling_criticality, &
+            neimark_sacker_criticality
   public :: lyapunov_options, check_lyapunov, newton_tol_default, max_iter_default
   public :: periodic_start_state, start_names
 
@@ -133,6 +134,23 @@ contains
     system%model = model
     call period_doubling_coefficient(system, y, k, options, method, c, q, mu, status, message)
   end subroutine period_doubling_criticality
+
+  !> The criticality of the Neimark-Sacker point of the orbit of period k T through y at the
+  !> model's excitation (sloshdyn_map_normal_form): the coefficient d (< 0 supercritical), the
+  !> critical eigenvector q and multiplier mu (Im mu > 0).
+  subroutine neimark_sacker_criticality(model, y, k, options, method, d, q, mu, status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y(4)
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: d
+    complex(wp), intent(out) :: q(4), mu
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(tank_system) :: system
+    system%model = model
+    call neimark_sacker_coefficient(system, y, k, options, method, d, q, mu, status, message)
+  end subroutine neimark_sacker_criticality
 
   !> The branch points among special(:, 1:n_special) (rows [kind, lambda, y(1:4), max|x1|])
   !> located again on the half-period map (sloshdyn_half_period), where they are regular: to

@@ -58,7 +58,7 @@ module sloshdyn_stability_chart
   implicit none
   private
   public :: chart_settings, stability_chart, check_chart_settings, chart_tables, &
-            chart_table_sizes, chart_kind, chart_codim2_kind
+            chart_table_sizes, chart_kind, chart_codim2_kind, special_point_chart
   public :: CHART_SLOW_FLOW_31, CHART_SLOW_FLOW_NONRESONANT, CHART_FULL
 
   !> Which model a chart is of: a slow flow, or the full equations' periodic orbits.
@@ -593,6 +593,42 @@ contains
       end do
     end subroutine polish
   end subroutine attractors_at
+
+  !> The chart of one curve in (rho, A): the full model's orbits (period k T) through a special
+  !> point of a branch continued in `parameter` (PARAMETER_RHO or PARAMETER_A): special =
+  !> [kind, lambda, y0(1:4), max|x1|] (a fold, period doubling or Neimark-Sacker point;
+  !> sloshdyn_orbit_chart's orbit_curve_from_special), inside the box p_min..p_max (rho, A) with
+  !> at most max_points points. A curve that stopped early is kept up to there (status SD_OK,
+  !> chart%complete false, note why); status only when it has no point. The one place both
+  !> front doors set such a curve up (bridge orbit_curve, the executable's periodic_response
+  !> with &response curve_at).
+  subroutine special_point_chart(model, parameter, special, k, p_min, p_max, max_points, chart, &
+                                 note, status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: parameter, k, max_points
+    real(wp), intent(in) :: special(:), p_min(2), p_max(2)
+    type(chart_result), intent(out) :: chart
+    character(len=message_len), intent(out) :: note
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(orbit_chart_options) :: options
+    options%curve%p_min = p_min
+    options%curve%p_max = p_max
+    options%curve%max_points = max_points
+    options%curve%continuation%ds_max = 1   ! as the chart's curves of orbits
+    options%periods = k
+    chart%base = [model%excitation%rho, model%excitation%A, model%gamma, model%kappa]
+    allocate (chart%curves(1), chart%cells(6, 0))
+    chart%n_curves = 1
+    call orbit_curve_from_special(model, parameter, special, options, chart%curves(1), status, &
+                                  message)
+    chart%complete = chart%curves(1)%complete
+    note = chart%curves(1)%message
+    if (status /= SD_OK .and. chart%curves(1)%n_points > 0) then
+      note = message
+      status = SD_OK
+    end if
+  end subroutine special_point_chart
 
   !> Columns the tables need: points of all curves, codimension-2 points, curves, cells.
   pure subroutine chart_table_sizes(chart, n_points, n_codim2, n_curves, n_cells)

@@ -15,8 +15,8 @@ module sloshdyn_driver
                              SUMMARY_PERIOD, SUMMARY_TRANSIENT, SUMMARY_SPREAD, SUMMARY_SETTLED, &
                              POINT_ROWS, SPECIAL_ROWS, SPECIAL_KIND, SPECIAL_LAMBDA, SPECIAL_A1, &
                              SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_HOPF, POINT_BRANCH, &
-                             SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, &
-                             MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
+                             SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING, SPECIAL_FOLD, &
+                             SPECIAL_NEIMARK_SACKER, MOTION_PERIODIC, motion_name, special_kind_name, verdict_name, &
                              SEISMIC_LOADS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_WAVE_HEIGHT, &
                              PEAKS_IMPACT_FORCE, PEAKS_ROOF_REACHED, PEAKS_FIRST_ROOF_TIME, &
                              PEAKS_ROOF_IMPACTS, PEAKS_FREE_WAVE, PEAKS_ROOF_HEAD, &
@@ -51,7 +51,8 @@ module sloshdyn_driver
                                DIRECTION_BOTH, direction_names
   use sloshdyn_results, only: result_files, check_output_directory
   use sloshdyn_stability_chart, only: chart_result, stability_chart, chart_tables, &
-                                      chart_table_sizes, chart_kind, chart_codim2_kind
+                                      chart_table_sizes, chart_kind, chart_codim2_kind, &
+                                      special_point_chart
   use sloshdyn_slowflow_chart, only: chart_parameter_name
   use sloshdyn_seismic, only: seismic_response, seismic_defaults, design_code_checks, &
                               harmonic_sweep
@@ -581,7 +582,8 @@ contains
   !> Periodic orbits of the full equations (shooting, Floquet multipliers) continued in rho or
   !> A from the steady state reached from y0 at the start of the range; with switch_at, also
   !> the branch born at that special point (periodic_switched_branch.csv,
-  !> periodic_switched_special_points.csv).
+  !> periodic_switched_special_points.csv); with curve_at, the two-parameter curve through that
+  !> special point (periodic_curve.csv, periodic_curve_codim2.csv, periodic_curve_ends.csv).
   subroutine run_periodic(config, files, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
@@ -592,6 +594,7 @@ contains
     integer :: n_points, n_special, capacity, n_new, n_new_special, k_new, kind
     logical :: complete
     character(len=:), allocatable :: name
+    type(chart_result) :: chart
 
     associate (r => config%response)
       capacity = r%options%continuation%max_points
@@ -641,6 +644,10 @@ contains
                       num2str(r%switch_at)//' (orbits of period '//num2str(k_new)//' T)'
         call print_branch(n_new, new_special(:, 1:n_new_special))
       end if
+      if (r%curve_at > 0) then
+        call periodic_curve(config, special(:, 1:n_special), chart, status, message)
+        if (status /= SD_OK) return
+      end if
     end associate
     call begin_files(config, files, status, message)
     call write_branch('periodic_branch.csv', 'periodic_special_points.csv', points, &
@@ -648,6 +655,9 @@ contains
     if (allocated(new_points)) &
       call write_branch('periodic_switched_branch.csv', 'periodic_switched_special_points.csv', &
                         new_points, new_multipliers, n_new, new_special(:, 1:n_new_special))
+    if (allocated(chart%curves)) call write_chart_tables(chart, 'periodic_curve.csv', &
+                                                         'periodic_curve_codim2.csv', &
+                                                         'periodic_curve_ends.csv')
 
   contains
 
@@ -678,7 +688,78 @@ contains
       if (status == SD_OK) call files%write_table(special_file, 'periodic_special_points', &
                                                   found, status, message)
     end subroutine write_branch
+
+    subroutine write_chart_tables(found, curve_file, codim2_file, ends_file)
+      type(chart_result), intent(in) :: found
+      character(len=*), intent(in) :: curve_file, codim2_file, ends_file
+      real(wp), allocatable :: curves(:, :), codim2(:, :), ends(:, :), grid(:, :)
+      integer :: n_curve, n_codim2, n_curves, n_cells
+      call chart_table_sizes(found, n_curve, n_codim2, n_curves, n_cells)
+      allocate (curves(CHART_CURVE_ROWS, n_curve), codim2(CHART_CODIM2_ROWS, n_codim2), &
+                ends(CHART_END_ROWS, n_curves), grid(CHART_GRID_ROWS, n_cells))
+      call chart_tables(found, curves, codim2, ends, grid)
+      if (status == SD_OK) call files%write_table(curve_file, 'chart_curves', curves, status, &
+                                                  message)
+      if (status == SD_OK) call files%write_table(codim2_file, 'chart_codim2', codim2, status, &
+                                                  message)
+      if (status == SD_OK) call files%write_table(ends_file, 'chart_ends', ends, status, message)
+    end subroutine write_chart_tables
   end subroutine run_periodic
+
+  !> &response curve_at = j: the two-parameter curve in (rho, A) of the orbits through special
+  !> point j of the branch (a fold, period doubling or Neimark-Sacker point), inside the box of
+  !> the branch's range times [curve_start, curve_stop] of the other parameter, with at most
+  !> max_points points (as Python's PeriodicBranch.curve with that box and Chart(max_points)).
+  subroutine periodic_curve(config, special, chart, status, message)
+    type(run_config), intent(in) :: config
+    real(wp), intent(in) :: special(:, :)
+    type(chart_result), intent(out) :: chart
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: model
+    real(wp) :: p_min(2), p_max(2)
+    character(len=message_len) :: note
+    integer :: kind, j, c
+    associate (r => config%response)
+      j = r%curve_at
+      status = SD_BAD_INPUT
+      if (j > size(special, 2)) then
+        message = '&response: curve_at = '//num2str(j)//' is out of range: the branch has '// &
+                  num2str(size(special, 2))//' special points'
+        return
+      end if
+      kind = nint(special(PERIODIC_SPECIAL_KIND, j))
+      if (kind /= SPECIAL_FOLD .and. kind /= SPECIAL_PERIOD_DOUBLING .and. &
+          kind /= SPECIAL_NEIMARK_SACKER) then
+        message = '&response: curve_at = '//num2str(j)//' is a '//special_kind_name(kind)// &
+                  ': a curve starts at a fold, a period_doubling or a neimark_sacker'
+        return
+      end if
+      model = config%model
+      if (r%parameter == PARAMETER_RHO) then
+        model%excitation%rho = special(PERIODIC_SPECIAL_LAMBDA, j)
+        p_min = [r%start, r%curve_start]
+        p_max = [r%stop, r%curve_stop]
+      else
+        model%excitation%A = special(PERIODIC_SPECIAL_LAMBDA, j)
+        p_min = [r%curve_start, r%start]
+        p_max = [r%curve_stop, r%stop]
+      end if
+      call special_point_chart(model, r%parameter, special(:, j), 1, p_min, p_max, &
+                               max(r%options%continuation%max_points, 3), chart, note, status, &
+                               message)
+      call in_context('curve at special point '//num2str(j), status, message)
+      if (status /= SD_OK) return
+      c = chart%curves(1)%n_points
+      print '(/a)', 'The '//trim(code_name('k', chart_kind(chart%curves(1)%kind)))// &
+                    ' curve through special point '//num2str(j)//' in rho in ['// &
+                    num2str(p_min(1))//', '//num2str(p_max(1))//'] x A in ['// &
+                    num2str(p_min(2))//', '//num2str(p_max(2))//']: '//num2str(c)//' points, '// &
+                    num2str(chart%curves(1)%n_codim2)//' codimension-2 points'// &
+                    trim(merge('              ', ', INCOMPLETE: ', chart%complete))
+      if (.not. chart%complete) print '(a)', '  '//trim(note)
+    end associate
+  end subroutine periodic_curve
 
   !> The swirl band (sloshdyn_swirl): the branch of planar periodic responses (started as
   !> run_periodic's) with the out-of-plane Floquet multipliers at each point, and the band's

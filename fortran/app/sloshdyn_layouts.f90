@@ -110,7 +110,13 @@ module sloshdyn_layouts
     field_t('start'), field_t('stop'), &
     field_t('switch_at', 'integer', 'periodic_response: the special point (1, 2, ...) where '// &
             'the branch is switched; swirl: the edge (1, 2, ...) where the swirling orbits '// &
-            'are followed; 0: none')]
+            'are followed; 0: none'), &
+    field_t('curve_at', 'integer', 'periodic_response: the special point (1, 2, ...; a '// &
+            'fold, period_doubling or neimark_sacker) whose two-parameter curve in (rho, A) '// &
+            'is traced; 0: none'), &
+    field_t('curve_start', doc='the curve''s range of the other parameter (A when the '// &
+            'branch is in rho), lower end'), &
+    field_t('curve_stop', doc='... upper end')]
   !> &lyapunov (sloshdyn_periodic_response's lyapunov_options)
   type(field_t), parameter :: lyapunov_fields(*) = [ &
     field_t('transient_periods', 'integer', 'forcing periods integrated before measuring'), &
@@ -712,7 +718,8 @@ contains
     type(response_settings), intent(in) :: settings
     real(wp) :: a(RESPONSE_RANGE_SIZE)
     a = [merge(1.0_wp, 0.0_wp, settings%internal_resonance), real(settings%parameter, wp), &
-         settings%start, settings%stop, real(settings%switch_at, wp)]
+         settings%start, settings%stop, real(settings%switch_at, wp), &
+         real(settings%curve_at, wp), settings%curve_start, settings%curve_stop]
   end function from_response_range
 
   pure function from_seismic(settings) result(a)

@@ -89,6 +89,11 @@ module sloshdyn_run_config
     !> periodic_response: also follow the branch born at this special point of the branch (its
     !> number in periodic_special_points.csv: a branch point or a period doubling); 0: none
     integer :: switch_at = 0
+    !> periodic_response: also the two-parameter curve in (rho, A) through this special point (a
+    !> fold, period doubling or Neimark-Sacker point; 0: none), the other parameter (A when the
+    !> branch is continued in rho) over [curve_start, curve_stop]
+    integer :: curve_at = 0
+    real(wp) :: curve_start = 0, curve_stop = 0
   end type response_settings
 
   !> &seismic: the duration [s] and number of outputs of a seismic response (0: the defaults of

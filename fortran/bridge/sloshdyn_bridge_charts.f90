@@ -76,8 +76,8 @@ contains
     use sloshdyn_status, only: SD_CAPACITY
     use sloshdyn_text, only: num2str
     use sloshdyn_excitation, only: PARAMETER_RHO, PARAMETER_A
-    use sloshdyn_orbit_chart, only: orbit_chart_options, orbit_curve_from_special
-    use sloshdyn_stability_chart, only: chart_result, chart_tables, chart_table_sizes
+    use sloshdyn_stability_chart, only: chart_result, chart_tables, chart_table_sizes, &
+                                        special_point_chart
     real(c_double), intent(in) :: rpar(n_real_params), special(7), p_min(2), p_max(2)
     integer(c_int), intent(in) :: ipar(n_int_params), which, k, max_points, max_codim2
     real(c_double), intent(out) :: curves(CHART_CURVE_ROWS, max_points), &
@@ -86,7 +86,6 @@ contains
     character(len=256), intent(out) :: note, message
     type(model_t) :: model
     type(chart_result) :: chart
-    type(orbit_chart_options) :: options
     real(c_double) :: no_grid(8, 0)
     integer :: info, used(4)
     curves = 0; codim2 = 0; ends = 0; sizes = 0
@@ -94,23 +93,8 @@ contains
     call model_from_arrays(rpar, int(ipar), model, info, message)
     status = info
     if (info /= 0) return
-    options%curve%p_min = p_min
-    options%curve%p_max = p_max
-    options%curve%max_points = max_points
-    options%curve%continuation%ds_max = 1   ! as the chart's curves of orbits
-    options%periods = k
-    chart%base = [model%excitation%rho, model%excitation%A, 0.0_c_double, 0.0_c_double]
-    allocate (chart%curves(1), chart%cells(6, 0))
-    chart%n_curves = 1
-    call orbit_curve_from_special(model, merge(PARAMETER_RHO, PARAMETER_A, which == 1), special, &
-                                  options, chart%curves(1), info, message)
-    chart%complete = chart%curves(1)%complete
-    note = chart%curves(1)%message
-    ! a curve that stopped early is kept up to where it stopped (complete = 0, its note)
-    if (info /= 0 .and. chart%curves(1)%n_points > 0) then
-      note = message
-      info = 0
-    end if
+    call special_point_chart(model, merge(PARAMETER_RHO, PARAMETER_A, which == 1), special, k, &
+                             p_min, p_max, max_points, chart, note, info, message)
     if (info /= 0) then
       status = info
       return

@@ -59,6 +59,32 @@ contains
     status = code
   end subroutine period_doubling_criticality
 
+  !> The Neimark-Sacker coefficient d of the orbit of period k T through y (a Neimark-Sacker
+  !> point; < 0 supercritical), with its eigenvector q = q_re + i q_im and multiplier mu.
+  subroutine neimark_sacker_criticality(rpar, ipar, y, k, integration, d, q_re, q_im, mu_re, &
+                                        mu_im, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_periodic_response, only: core => neimark_sacker_criticality
+    real(c_double), intent(in) :: rpar(n_real_params), y(4), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), k
+    real(c_double), intent(out) :: d, q_re(4), q_im(4), mu_re, mu_im
+    integer(c_int), intent(out) :: status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    complex(c_double) :: q(4), mu
+    integer :: code
+    d = 0; q_re = 0; q_im = 0; mu_re = 0; mu_im = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) then
+      call core(model, y, int(k), to_ode_options(integration), to_method(integration), d, q, &
+                mu, code, message)
+      q_re = real(q, c_double); q_im = aimag(q); mu_re = real(mu, c_double); mu_im = aimag(mu)
+    end if
+    status = code
+  end subroutine neimark_sacker_criticality
+
   !> Continuation of periodic orbits (period k T) in rho (which = 1) or A (which = 2) from the
   !> orbit through y0 at the parameters of rpar; settings = [ds, ds_min, ds_max, x_scale,
   !> direction]; points(7, :) = [lambda, y0(4), max|x1|, stable], multipliers(8, :) =

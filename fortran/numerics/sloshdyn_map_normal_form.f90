@@ -13,18 +13,31 @@
 !> B and C come from the monodromy matrices of the variational equations (never from second
 !> differences of P): B(q, u) = D(M q) u = (M(y + h u) q - M(y - h u) q)/(2 h) and C(q, q, q)
 !> = D^2(M q)(q, q) = (M(y + h q) q - 2 M(y) q + M(y - h q) q)/h^2, h = step (1 + max|y|).
+!>
+!> The criticality of a Neimark-Sacker point (a pair of multipliers e^{+-i theta}, 0 < theta <
+!> pi): the first Lyapunov coefficient of the map's normal form z -> e^{i theta} z (1 + beta +
+!> d |z|^2) (Kuznetsov 2004: the normal form sec 4.7, its coefficient on the centre manifold of
+!> an n-dimensional map sec 5.4):
+!>   d = 1/2 Re{e^{-i theta} [<p, C(q, q, qb)> + 2 <p, B(q, (I - A)^-1 B(q, qb))>
+!>                            + <p, B(qb, (e^{2 i theta} I - A)^-1 B(q, q))>]},
+!> A q = e^{i theta} q, A^T p = e^{-i theta} p, <p, q> = conj(p)^T q = 1, qb = conj(q). For d < 0
+!> a stable invariant closed curve (a torus of the flow) is born where the orbit is unstable
+!> (supercritical); d > 0: an unstable one where it is stable (subcritical). B and C extend to
+!> complex vectors by linearity, from the same monodromy matrices: B(q, z) = (D_qr M + i D_qi
+!> M) z and C(q, q, z) = (H_rr - H_ii + 2 i H_ri) z, q = qr + i qi, H_uv the second
+!> derivatives of M along u, v (H_ri by polarisation along qr + qi and qr - qi).
 module sloshdyn_map_normal_form
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_text, only: num2str
-  use sloshdyn_lapack, only: solve_linear
+  use sloshdyn_lapack, only: solve_linear, eigenvalues
   use sloshdyn_ode, only: ode_options
   use sloshdyn_shooting, only: periodic_problem, monodromy_matrix
   use sloshdyn_bifurcation, only: null_vectors
   implicit none
   private
-  public :: period_doubling_coefficient
+  public :: period_doubling_coefficient, neimark_sacker_coefficient
 
   !> the finite-difference step relative to 1 + max|y|
   real(wp), parameter :: step = 1.0e-4_wp
@@ -122,4 +135,115 @@ contains
       b = scale*(plus - minus)/(2*h)
     end subroutine mixed
   end subroutine period_doubling_coefficient
+
+  !> The Neimark-Sacker coefficient d (above) of the orbit of period k T through y at the
+  !> problem's parameter, with the critical multiplier mu = |mu| e^{i theta} (Im mu > 0)
+  !> nearest the unit circle and its eigenvector q (unit length). Fails with SD_BAD_INPUT when no complex multiplier lies within
+  !> 1e-3 of the unit circle.
+  subroutine neimark_sacker_coefficient(problem, y, k, options, method, d, q, mu, status, &
+                                        message)
+    class(periodic_problem), intent(in) :: problem
+    real(wp), intent(in) :: y(:)
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: d
+    complex(wp), intent(out) :: q(:), mu
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: a(size(y), size(y)), y_end(size(y)), wr(size(y)), wi(size(y)), h
+    real(wp) :: big(2*size(y), 2*size(y)), x(2*size(y)), xl(2*size(y)), rhs(2*size(y))
+    real(wp), dimension(size(y), size(y)) :: g_r, g_i, h_rr, h_ii, h_ri, h_w, g_w, m_plus, &
+                                             m_minus, eye
+    real(wp) :: w1(size(y))
+    complex(wp) :: p(size(y)), e, bqq(size(y)), w2(size(y)), term
+    integer :: n, i, j
+
+    n = size(y)
+    d = ieee_value(1.0_wp, ieee_quiet_nan)
+    mu = cmplx(d, d, wp)
+    q = mu
+    call monodromy_matrix(problem, y, k, options, method, y_end, a, status, message)
+    if (status /= SD_OK) return
+    call eigenvalues(a, wr, wi, status, message)
+    if (status /= SD_OK) return
+    j = 0
+    do i = 1, n
+      if (wi(i) <= 0) cycle
+      if (j == 0) then
+        j = i
+      else if (abs(hypot(wr(i), wi(i)) - 1) < abs(hypot(wr(j), wi(j)) - 1)) then
+        j = i
+      end if
+    end do
+    if (j == 0) then
+      status = SD_BAD_INPUT
+      message = 'no complex pair of multipliers: not a Neimark-Sacker point'
+      return
+    end if
+    mu = cmplx(wr(j), wi(j), wp)
+    if (abs(abs(mu) - 1) > max_distance) then
+      status = SD_BAD_INPUT
+      message = 'the complex multipliers nearest the unit circle have modulus '// &
+                num2str(abs(mu))//': not a Neimark-Sacker point (it must lie within '// &
+                num2str(max_distance)//' of 1)'
+      return
+    end if
+    e = mu/abs(mu)
+    eye = 0
+    do i = 1, n
+      eye(i, i) = 1
+    end do
+    ! q and p from the null vectors of the real form of A - mu I (and of its transpose)
+    big(1:n, 1:n) = a - wr(j)*eye
+    big(1:n, n + 1:) = wi(j)*eye
+    big(n + 1:, 1:n) = -wi(j)*eye
+    big(n + 1:, n + 1:) = a - wr(j)*eye
+    call null_vectors(big, x, xl, status, message)
+    if (status /= SD_OK) return
+    q = cmplx(x(1:n), x(n + 1:), wp)
+    q = q/sqrt(sum(abs(q)**2))
+    p = cmplx(xl(1:n), xl(n + 1:), wp)
+    p = p/conjg(dot_product(p, q))          ! dot_product(p, q) = conj(p)^T q
+    h = step*(1 + maxval(abs(y)))
+    call derivatives(real(q, wp), g_r, h_rr)
+    if (status == SD_OK) call derivatives(aimag(q), g_i, h_ii)
+    if (status /= SD_OK) return
+    call derivatives(real(q, wp) + aimag(q), g_w, h_ri)        ! along qr + qi ...
+    if (status == SD_OK) call derivatives(real(q, wp) - aimag(q), g_w, h_w)   ! ... qr - qi
+    if (status /= SD_OK) return
+    h_ri = (h_ri - h_w)/4
+    ! (I - A) w1 = B(q, qb), a real vector
+    w1 = real(matmul(cmplx(g_r, g_i, wp), conjg(q)), wp)
+    call solve_linear(eye - a, w1, status, message)
+    if (status /= SD_OK) return
+    ! (e^2 I - A) w2 = B(q, q), in real form
+    bqq = matmul(cmplx(g_r, g_i, wp), q)
+    big(1:n, 1:n) = real(e**2, wp)*eye - a
+    big(1:n, n + 1:) = -aimag(e**2)*eye
+    big(n + 1:, 1:n) = aimag(e**2)*eye
+    big(n + 1:, n + 1:) = real(e**2, wp)*eye - a
+    rhs = [real(bqq, wp), aimag(bqq)]
+    call solve_linear(big, rhs, status, message)
+    if (status /= SD_OK) return
+    w2 = cmplx(rhs(1:n), rhs(n + 1:), wp)
+    term = dot_product(p, matmul(cmplx(h_rr - h_ii, 2*h_ri, wp), conjg(q))) &
+           + 2*dot_product(p, matmul(cmplx(g_r, g_i, wp), cmplx(w1, 0.0_wp, wp))) &
+           + dot_product(p, matmul(cmplx(g_r, -g_i, wp), w2))
+    d = real(conjg(e)*term, wp)/2
+
+  contains
+
+    !> The first (central) and second differences of M along u.
+    subroutine derivatives(u, first, second)
+      real(wp), intent(in) :: u(:)
+      real(wp), intent(out) :: first(:, :), second(:, :)
+      real(wp) :: z_end(size(y))
+      call monodromy_matrix(problem, y + h*u, k, options, method, z_end, m_plus, status, message)
+      if (status == SD_OK) call monodromy_matrix(problem, y - h*u, k, options, method, z_end, &
+                                                 m_minus, status, message)
+      if (status /= SD_OK) return
+      first = (m_plus - m_minus)/(2*h)
+      second = (m_plus - 2*a + m_minus)/h**2
+    end subroutine derivatives
+  end subroutine neimark_sacker_coefficient
 end module sloshdyn_map_normal_form

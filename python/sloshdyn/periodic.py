@@ -103,18 +103,23 @@ class PeriodicSpecialPoint:
 
 @dataclass(frozen=True)
 class Criticality:
-    """The criticality of a period doubling (PeriodicBranch.criticality): the cubic normal-form
-    coefficient c of the stroboscopic map on its centre manifold x = eta q,
-    eta -> -(1 + beta) eta + c eta^3 (mu = -(1 + beta) the critical multiplier; Kuznetsov 2004,
-    eq 8.24). c > 0: supercritical, the doubled orbits are stable and born where the orbit is
-    unstable, at |eta| = sqrt(beta/c); c < 0: subcritical, past the point the motion jumps
-    away."""
+    """The criticality of a period doubling or a Neimark-Sacker point
+    (PeriodicBranch.criticality). Period doubling: the cubic normal-form coefficient c of the
+    stroboscopic map on its centre manifold x = eta q, eta -> -(1 + beta) eta + c eta^3
+    (mu = -(1 + beta) the critical multiplier; Kuznetsov 2004, eq 8.24). c > 0: supercritical,
+    the doubled orbits are stable and born where the orbit is unstable, at |eta| =
+    sqrt(beta/c); c < 0: subcritical, past the point the motion jumps away. Neimark-Sacker: the
+    first Lyapunov coefficient d of the map's normal form z -> e^{i theta} z (1 + beta +
+    d |z|^2) on the centre manifold x = z q + conj(z q) (Kuznetsov 2004, secs 4.7 and 5.4);
+    d < 0: supercritical, a stable invariant closed curve (a torus of the flow) is born where
+    the orbit is unstable; d > 0: subcritical."""
 
-    kind: str                    #: 'period_doubling'
-    coefficient: float           #: c (q of unit length)
-    supercritical: bool          #: c > 0
-    multiplier: float            #: the multiplier nearest -1 at the point
-    direction: np.ndarray        #: q: the critical Floquet eigenvector (unit length)
+    kind: str                    #: 'period_doubling' or 'neimark_sacker'
+    coefficient: float           #: c, or d (q of unit length)
+    supercritical: bool          #: c > 0, or d < 0
+    multiplier: complex          #: the critical multiplier (near -1, or e^{i theta}, Im > 0)
+    direction: np.ndarray        #: q: the critical Floquet eigenvector (unit length; complex
+    #: for a Neimark-Sacker point)
 
 
 @dataclass(frozen=True)
@@ -166,14 +171,22 @@ class PeriodicBranch:
 
 
     def criticality(self, special_point) -> Criticality:
-        """The criticality of special_point, a 'period_doubling' of this branch: the flip
-        normal-form coefficient from the monodromy matrices of the variational equations
-        (docs/model.md, "Criticality"). Neimark-Sacker points are not covered yet."""
+        """The criticality of special_point, a 'period_doubling' or 'neimark_sacker' of this
+        branch: the normal-form coefficient from the monodromy matrices of the variational
+        equations (docs/model.md, "Criticality")."""
         _checks.instance("special_point", special_point, PeriodicSpecialPoint)
-        if special_point.kind != "period_doubling":
+        if special_point.kind not in ("period_doubling", "neimark_sacker"):
             raise InputError(f"special_point.kind = {special_point.kind!r}: the criticality is "
-                             "computed at a 'period_doubling'")
+                             "computed at a 'period_doubling' or a 'neimark_sacker'")
         at = self.params.replace(rho=special_point.rho, A=special_point.A)
+        if special_point.kind == "neimark_sacker":
+            d, q_re, q_im, mu_re, mu_im, status, message = cancellable(
+                _bridge.neimark_sacker_criticality, *at.array(),
+                _checks.reals("special_point.y0", special_point.y0, (4,)), self.periods,
+                self.integration.array())
+            check_status(status, message, "Neimark-Sacker criticality")
+            return Criticality("neimark_sacker", float(d), bool(d < 0), complex(mu_re, mu_im),
+                               q_re + 1j * q_im)
         c, q, mu, status, message = cancellable(
             _bridge.period_doubling_criticality, *at.array(),
             _checks.reals("special_point.y0", special_point.y0, (4,)), self.periods,
@@ -211,8 +224,6 @@ class PeriodicBranch:
         check_status(status, message, "orbit curve")
         used = _tables.unpack("chart_sizes", sizes)
         curves = curves[:, :int(used["curve_points"])]
-        curves[_tables.columns("chart_curves").index("gamma")] = at.gamma
-        curves[_tables.columns("chart_curves").index("kappa")] = at.kappa
         chart = _chart("rho", "A", "full", curves, codim2[:, :int(used["codim2_points"])],
                        ends, np.zeros((len(_tables.columns("chart_grid")), 0)),
                        bool(ends[3, 0]), "curve 1: " + message_text(note), at)

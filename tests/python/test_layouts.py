@@ -241,7 +241,8 @@ def test_every_resonance_reads_through_python(tmp_path, resonance, parameter):
                 "n_amplitudes = 5, n_phases = 3, amplitude_min = 1e-4, amplitude_max = 2.0, "
                 "ds = 0.002, ds_min = 1e-9, ds_max = 0.02, x_scale = 2.0, max_points = 900 /\n")
     assert inp.response_range == {"resonance": resonance, "parameter": parameter,
-                                  "start": 0.49, "stop": 0.53, "switch_at": 0}
+                                  "start": 0.49, "stop": 0.53, "switch_at": 0, "curve_at": 0,
+                                  "curve_start": 0.0, "curve_stop": 0.0}
     assert inp.response == Continuation(n_scan=7, n_amplitudes=5, n_phases=3,
                                         amplitude_min=1e-4, amplitude_max=2.0, ds=0.002,
                                         ds_min=1e-9, ds_max=0.02, x_scale=2.0, max_points=900)
