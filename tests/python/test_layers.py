@@ -40,3 +40,15 @@ def test_every_use_goes_to_the_same_or_a_lower_layer():
 def test_the_scan_sees_use_statements(text, expected):
     """The check above can fail: the pattern finds use statements in any case and indentation."""
     assert {u.lower() for u in re.findall(r"^\s*use\s+(sloshdyn_\w+)", text, re.M | re.I)} == expected
+
+
+#: the longest a source file of the core may grow (DESIGN.md: one module per concern; a file
+#: past this is split, as sloshdyn_namelist_groups.f90 was into a submodule)
+MAX_LINES = 1100
+
+
+def test_no_core_file_is_longer_than_the_limit():
+    lengths = {path.relative_to(ROOT).as_posix(): len(path.read_text().splitlines())
+               for path in sorted((ROOT / "fortran").rglob("*")) if path.suffix in (".f90", ".c")}
+    assert len(lengths) > 20
+    assert {name: n for name, n in lengths.items() if n > MAX_LINES} == {}
