@@ -16,7 +16,6 @@ from scipy.optimize import minimize_scalar
 
 import sloshdyn
 from sloshdyn import spatial
-from sloshdyn._errors import InputError
 
 PARAMS = sloshdyn.Parameters(s1=1.0, mu1=0.01, kappa=1e3, theta0=1.4, beta=0.0, gamma=0.0,
                              delta=0.0, A=2.5e-4, rho=1.02, zeta=5e-4, n=6, p=2)
@@ -92,5 +91,18 @@ def test_the_closing_point_is_where_a_bisection_on_zeta_closes_the_band():
 def test_bad_input_is_named(options, name):
     kwargs = {"A_range": A_RANGE, "from_end": "high", **options}
     A_range = kwargs.pop("A_range")
-    with pytest.raises(InputError, match=name):
+    with pytest.raises(sloshdyn.InputError, match=name):
         spatial.swirl_boundary_curve(PARAMS, RHO_RANGE, A_range, **kwargs)
+
+
+def test_a_curve_stopped_early_raises_with_the_curve_so_far():
+    with pytest.raises(sloshdyn.ConvergenceError, match="max_points = 3") as info:
+        spatial.swirl_boundary_curve(PARAMS, RHO_RANGE, A_RANGE, max_points=3, from_end="high")
+    partial = info.value.partial
+    assert not partial.complete and len(partial.table["rho"]) == 5    # 3 each way, one shared
+    # its points are edges all the same: an out-of-plane multiplier at +1
+    for j in range(5):
+        params = PARAMS.replace(rho=partial.table["rho"][j], A=partial.table["A"][j])
+        nu = spatial.out_of_plane_multipliers(params, [partial.table[f"y{i}"][j]
+                                                       for i in range(1, 5)])
+        assert np.abs(nu - 1).min() <= 1e-9
