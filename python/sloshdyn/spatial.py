@@ -294,8 +294,8 @@ class _EdgeFunction:
     by Newton shooting from the last accepted one (y0)."""
 
     def __init__(self, params, kind, y0, shooting, integration):
-        self.params, self.sign, self.scale = params, 1.0 if kind == "branch_point" else -1.0, \
-            params.A
+        self.params, self.scale = params, params.A
+        self.sign = 1.0 if kind == "branch_point" else -1.0
         self.shooting, self.integration, self.y0 = shooting, integration, np.asarray(y0, float)
 
     def __call__(self, u):
