@@ -9,9 +9,11 @@ planar orbit is stable out of its plane, red where it swirls, and the swirling o
 the band's edge (``swirling_branch``), their max|x1| and swirl amplitude max|y1|, dashed where
 unstable: the branch leaves the edge subcritically, folds (square) and comes back stable,
 down to a Neimark-Sacker point (square) near ρ = 1.0007 below which the swirl is
-quasi-periodic. Right: the band's edges in (ρ, A) at several amplitudes (``swirl_boundary``:
-one band per A, not yet a continued curve), the upper edges joined, beside Miles' scaling
-ρ − 1 ∝ A^(2/3).
+quasi-periodic. Right: the swirl boundary in (ρ, A) continued as one curve
+(``swirl_boundary_curve``: pseudo-arclength on det(M_b − I) = 0 from an edge at A = 2.5·10⁻⁴),
+through the band's low and high edges, with the codimension-2 point where damping closes the
+band (star: the least A with swirl), the single-A edges of ``swirl_boundary`` (circles) on it,
+beside Miles' scaling ρ − 1 ∝ A^(2/3).
 """
 
 import matplotlib.pyplot as plt
@@ -29,8 +31,12 @@ steps = Continuation(ds=0.01, ds_min=1e-9, ds_max=0.05, x_scale=1.0, max_points=
 swirling = spatial.swirling_branch(resonant, 0, (0.99, 1.1), params=params, ds=0.01,
                                    continuation=steps)
 A_values = np.array([2.5e-4, 5e-4, 1e-3, 2e-3])
-boundary = spatial.swirl_boundary(params, (0.995, 1.03), A_values, from_end="high")
+boundary = spatial.swirl_boundary(params, (0.98, 1.03), A_values, from_end="high")
+curve = spatial.swirl_boundary_curve(params.replace(A=2.5e-4), (0.98, 1.03), (4e-5, 2e-3),
+                                     ds=0.2, from_end="high")
+closing = curve.folds[0]
 print("edges of the band at A = 1e-3:", resonant.edges["rho"], resonant.edges["kind"])
+print("closing of the band:", closing["kind"], closing["rho"], closing["A"])
 print("fold of the swirling branch:", [(p.kind, round(p.rho, 6)) for p in swirling.special_points])
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.2))
@@ -59,12 +65,16 @@ left.legend(fontsize=8)
 left.set_title(r"A = $10^{-3}$, $\zeta = 5\cdot10^{-4}$", fontsize=9)
 
 edges = boundary.edges
+right.plot(curve.table["rho"], curve.table["A"], "-", color="C0", label="continued boundary")
+right.plot(edges["rho"], edges["A"], "o", color="C1", mfc="none", label="edges (one band per A)")
+right.plot(closing["rho"], closing["A"], "k*", ms=10, label="closing (fold in A)")
 upper = np.array([edges["rho"][edges["A"] == a].max() for a in A_values])
-right.plot(edges["rho"], edges["A"], "o", mfc="none", label="edges (one band per A)")
-right.plot(upper, A_values, "-", color="C0", lw=0.8)
 scale = (upper[A_values == 1e-3][0] - 1) * (A_values / 1e-3) ** (2 / 3)
 right.plot(1 + scale, A_values, "k:", label=r"$\rho - 1 \propto A^{2/3}$")
+right.text(0.9995, 3e-4, "swirl", fontsize=9, ha="center")
+right.set_yscale("log")
 right.set_xlabel(r"$\rho$")
 right.set_ylabel("A")
+right.set_title(r"$\zeta = 5\cdot10^{-4}$", fontsize=9)
 right.legend(fontsize=8)
 fig.tight_layout()

@@ -17,7 +17,8 @@ import numpy as np
 
 from . import _checks, _core, _tables
 from ._cancel import cancellable
-from ._errors import InputError, SloshdynError, check_status, message_text, with_partial
+from ._errors import (ConvergenceError, InputError, SloshdynError, check_status, message_text,
+                      with_partial)
 from .ground import GroundMotion
 from .options import Continuation, Integration, Shooting
 from .parameters import Parameters
@@ -270,6 +271,200 @@ def swirl_boundary(params: Parameters, rho_range, A_values, **band_options) -> S
     names = ("A", "rho", "y1", "y2", "y3", "y4", "max_x1", "refined", "kind", "branch")
     edges = {name: np.concatenate([band.edges[name] for band in bands]) for name in names}
     return SwirlBoundary(A_values, bands, edges, all(band.complete for band in bands))
+
+
+@dataclass(frozen=True)
+class SwirlBoundaryCurve:
+    """The swirl boundary in (rho, A) continued as one curve: the points where an out-of-plane
+    multiplier of the planar orbit is +1 (det(M_b - I) = 0; -1 for a period-doubling edge)."""
+
+    kind: str                    #: the edge's kind: 'branch_point' or 'period_doubling'
+    table: dict                  #: rho, A, y1..y4 (the planar orbit at tau = 0), max_x1, along
+                                 #: the curve (arclength order)
+    at: dict                     #: the curve's points at the A of A_values, same columns
+    folds: list                  #: the codimension-2 points, folds of the curve in A: dicts
+                                 #: rho, A, y0, max_x1, kind ('closing': a least A of the
+                                 #: band, where damping closes it; 'opening': a greatest A)
+    complete: bool               #: both ends left the box rho_range x A_range
+    message: str                 #: why the continuation stopped early ('' if complete)
+
+
+class _EdgeFunction:
+    """g(rho, a) = det(M_b -+ I) on the planar orbit at (rho, A = a * scale), the orbit found
+    by Newton shooting from the last accepted one (y0)."""
+
+    def __init__(self, params, kind, y0, shooting, integration):
+        self.params, self.scale = params, params.A
+        self.sign = 1.0 if kind == "branch_point" else -1.0
+        self.shooting, self.integration, self.y0 = shooting, integration, np.asarray(y0, float)
+
+    def __call__(self, u):
+        params = self.params.replace(rho=float(u[0]), A=float(u[1] * self.scale))
+        orbit = periodic_orbit(params, self.y0, shooting=self.shooting,
+                               integration=self.integration)
+        nu = out_of_plane_multipliers(params, orbit.y0, integration=self.integration)
+        return float(np.prod(1 - self.sign * nu).real), orbit
+
+    def gradient(self, u, value, h=1e-7):
+        return np.array([(self(u + h * e)[0] - value) / h for e in np.eye(2)])
+
+    def point(self, u, orbit):
+        self.y0 = orbit.y0
+        return (float(u[0]), float(u[1]), orbit.y0, orbit.max_x1)
+
+
+def swirl_boundary_curve(params: Parameters, rho_range, A_range, *, edge=0, A_values=(),
+                         ds=0.1, max_points=400, tol=1e-12, shooting: Shooting = Shooting(),
+                         integration: Integration = Integration(),
+                         **band_options) -> SwirlBoundaryCurve:
+    """Continue swirl edge number ``edge`` of ``swirl_band(params, rho_range, **band_options)``
+    (at params.A) as a curve in (rho, A): pseudo-arclength in (rho, A/params.A) on
+    g(rho, A) = det(M_b - I) = 0 (det(M_b + I) for a period-doubling edge; M_b the out-of-plane
+    4x4 block of the planar orbit's monodromy, rods included), the planar orbit followed by
+    Newton shooting, both ways from the edge until the curve leaves rho_range x A_range (steps
+    at most ``ds``, at most max_points each way). The curve's points at each A of A_values are
+    located exactly (Newton in rho to ``tol``), and its folds in A, the codimension-2 points
+    where the band closes (damped: the least A with swirl) or opens, by successive parabolic
+    interpolation. Raises ConvergenceError (with ``partial``) if the curve is lost."""
+    _checks.instance("params", params, Parameters)
+    rho_lo, rho_hi = sorted(_checks.real("rho_range", x) for x in rho_range)
+    A_lo, A_hi = sorted(_checks.real("A_range", x) for x in A_range)
+    if not A_lo <= params.A <= A_hi:
+        raise InputError(f"A_range = {tuple(A_range)}: must contain params.A = {params.A:g}")
+    A_values = (_checks.reals("A_values", A_values, ndim=1) if len(A_values) else np.zeros(0))
+    ds, tol = _checks.real("ds", ds), _checks.real("tol", tol)
+    max_points = _checks.integer("max_points", max_points, 2)
+    band = swirl_band(params, rho_range, integration=integration, **band_options)
+    n_edges = len(band.edges["rho"])
+    edge = _checks.integer("edge", edge, 0)
+    if edge >= n_edges or band.edges["kind"][edge] not in ("branch_point", "period_doubling"):
+        raise InputError(f"edge = {edge}: the band at A = {params.A:g} has {n_edges} edge(s) "
+                         f"of kinds {list(band.edges['kind'])}; the curve follows a "
+                         "'branch_point' or 'period_doubling' edge")
+    kind = band.edges["kind"][edge]
+    y_edge = np.array([band.edges[f"y{i}"][edge] for i in range(1, 5)])
+    g = _EdgeFunction(params, kind, y_edge, shooting, integration)
+    scale = params.A
+    box = (rho_lo, rho_hi, A_lo / scale, A_hi / scale)
+    halves, messages = [], []
+    for direction in (-1.0, 1.0):
+        g.y0 = y_edge
+        points, message = _continue_edge(g, (band.edges["rho"][edge], 1.0), direction, ds,
+                                         max_points, tol, box)
+        halves.append(points)
+        messages += [message] if message else []
+    points = halves[0][::-1] + halves[1][1:]
+    at = [_at_A(g, points, j, a / scale, tol) for a in A_values
+          for j in _crossings(points, a / scale)]
+    folds = [_fold(g, points, j, tol) for j in range(1, len(points) - 1)
+             if (points[j][1] - points[j - 1][1]) * (points[j + 1][1] - points[j][1]) < 0]
+    curve = SwirlBoundaryCurve(kind, _curve_table(points, scale), _curve_table(at, scale),
+                               [dict(zip(("rho", "A", "y0", "max_x1", "kind"),
+                                         (f[0], f[1] * scale, f[2], f[3], f[4])))
+                                for f in folds],
+                               not messages, "; ".join(messages))
+    if messages:
+        error = ConvergenceError(f"swirl boundary curve: {curve.message}")
+        error.partial = curve
+        raise error
+    return curve
+
+
+def _newton(g, u, equation, direction, tol, max_iterations=12):
+    """(point, iterations) solving g = 0 with the extra equation(v) = 0 (linear, normal
+    ``direction``) from u by chord Newton (g's gradient at u), or None if it fails."""
+    try:
+        value, orbit = g(u)
+        grad = g.gradient(u, value)
+        for iteration in range(1, max_iterations + 1):
+            du = np.linalg.solve(np.array([grad, direction]), -np.array([value, equation(u)]))
+            u = u + du
+            value, orbit = g(u)
+            if np.abs(du).max() <= tol:
+                return g.point(u, orbit), iteration
+    except (SloshdynError, np.linalg.LinAlgError):
+        pass
+    return None, max_iterations
+
+
+def _continue_edge(g, start, direction, ds, max_points, tol, box):
+    """The curve's points from the edge at start = (rho, a) one way (direction: +-1 along the
+    tangent (-dg/da, dg/drho)), and '' or why it stopped before leaving box."""
+    u = np.asarray(start, float)
+    value, orbit = g(u)
+    points = [g.point(u, orbit)]
+    grad = g.gradient(u, value)
+    tangent = direction * np.array([-grad[1], grad[0]]) / np.linalg.norm(grad)
+    step = ds / 4
+    while len(points) < max_points:
+        guess = u + step * tangent
+        point, iterations = _newton(g, guess, lambda v: tangent @ (v - guess), tangent, tol)
+        if point is None:
+            step /= 2
+            if step < 1e-9:
+                return points, f"lost the curve at rho = {u[0]:.10g}, A = {u[1] * g.scale:.6g}"
+            continue
+        v = np.array(point[:2])
+        value, _ = g(v)
+        grad = g.gradient(v, value)
+        new = np.array([-grad[1], grad[0]]) / np.linalg.norm(grad)
+        tangent = new if new @ tangent > 0 else -new
+        u = v
+        points.append(point)
+        if not (box[0] <= u[0] <= box[1] and box[2] <= u[1] <= box[3]):
+            return points, ""
+        step = min(ds, step * 1.5) if iterations <= 4 else step
+    return points, f"max_points = {max_points} reached before leaving the box"
+
+
+def _crossings(points, a):
+    return [j for j in range(len(points) - 1)
+            if (points[j][1] - a) * (points[j + 1][1] - a) <= 0 and points[j][1] != a]
+
+
+def _at_A(g, points, j, a, tol):
+    """The curve's point at A = a between points j and j + 1 (Newton in rho, a fixed)."""
+    (r0, a0, y0, _), (r1, a1) = points[j], points[j + 1][:2]
+    g.y0 = y0
+    guess = np.array([r0 + (r1 - r0) * (a - a0) / (a1 - a0), a])
+    point, _ = _newton(g, guess, lambda v: v[1] - a, np.array([0.0, 1.0]), tol)
+    if point is None:
+        raise ConvergenceError(f"swirl boundary curve: no point at A = {a * g.scale:g} "
+                               f"near rho = {guess[0]:.10g}")
+    return point
+
+
+def _fold(g, points, j, tol, max_iterations=20):
+    """The fold of the curve in A near point j (an extremum of A): successive parabolic
+    interpolation of A(rho) on the curve, each A at fixed rho by Newton."""
+    trio = [points[j - 1], points[j], points[j + 1]]
+    kind = "closing" if points[j][1] < points[j - 1][1] else "opening"
+    for _ in range(max_iterations):
+        r, a = np.array([p[0] for p in trio]), np.array([p[1] for p in trio])
+        c = np.polyfit(r - r[1], a, 2)
+        r_vertex = r[1] - c[1] / (2 * c[0])
+        g.y0 = trio[1][2]
+        guess = np.array([r_vertex, np.polyval(c, r_vertex - r[1])])
+        point, _ = _newton(g, guess, lambda v: v[0] - r_vertex, np.array([1.0, 0.0]), tol)
+        if point is None:
+            raise ConvergenceError(f"swirl boundary curve: the fold near rho = "
+                                   f"{r_vertex:.10g} not located")
+        done = abs(r_vertex - trio[1][0]) <= 1e3 * tol
+        worst = int(np.argmax(a)) if kind == "closing" else int(np.argmin(a))
+        trio[worst] = point
+        trio.sort(key=lambda p: p[0])
+        if done:
+            break
+    return (*point, kind)
+
+
+def _curve_table(points, scale):
+    table = {"rho": np.array([p[0] for p in points]),
+             "A": np.array([p[1] * scale for p in points])}
+    for i in range(4):
+        table[f"y{i + 1}"] = np.array([p[2][i] for p in points])
+    table["max_x1"] = np.array([p[3] for p in points])
+    return table
 
 
 @dataclass(frozen=True)
