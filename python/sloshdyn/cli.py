@@ -28,10 +28,13 @@ from .report import design_report
 from .runner import run_input
 
 def main(argv=None):
+    # Raw epilog: argparse's wrapping breaks a path at its hyphens ("site-" / "packages"),
+    # and a reader copies the reference's path from here.
     parser = argparse.ArgumentParser(prog="sloshdyn-py", description=(
         "sloshdyn: sloshing in a partially filled tank (Farid & Gendelman's model)."),
-        epilog=f"The namelist reference (every group and variable): {NAMELIST_REFERENCE}. "
-        "Example inputs: sloshdyn-py examples DIR.")
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=f"The namelist reference (every group and variable):\n  {NAMELIST_REFERENCE}\n"
+        "Example inputs: sloshdyn-py examples DIR")
     parser.add_argument("--version", action="version", version=f"sloshdyn {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
 
