@@ -8,5 +8,5 @@ module sloshdyn_kinds
   integer, parameter :: wp = real64
   real(wp), parameter :: pi = 3.14159265358979323846264338327950288_wp
   !> Length of every status message handed back to a caller (fixed, so it crosses f2py).
-  integer, parameter :: message_len = 256
+  integer, parameter :: message_len = 512
 end module sloshdyn_kinds

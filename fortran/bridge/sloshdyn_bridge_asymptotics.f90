@@ -25,7 +25,7 @@ contains
     real(c_double), intent(out) :: scalars(MODAL_SCALARS_SIZE), c(2, 3), g(2, 34), &
                                    g_forcing(2, 0:34), h(2, 34), h_forcing(2, 0:34)
     integer(c_int), intent(out) :: exponents(4, 34), status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(modal_coefficients) :: mc
     integer :: info, r, k, e(4, 34)
@@ -67,7 +67,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n
     real(c_double), intent(out) :: amplitudes(3, n)
     integer(c_int), intent(out) :: counts(n), status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(modal_coefficients) :: mc
     integer :: info, i, found
@@ -101,7 +101,7 @@ contains
     real(c_double), intent(out) :: table(POINT_ROWS, max_points), &
                                    special(SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, complete, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info, points, specials
     logical :: done
@@ -130,7 +130,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n_samples
     real(c_double), intent(out) :: x_cycle(4), period, multipliers(2, 4)
     integer(c_int), intent(out) :: iterations, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: code, shots
     real(c_double) :: re(4), im(4)

@@ -33,7 +33,7 @@ contains
                                    ends(CHART_END_ROWS, max_curves), grid(CHART_GRID_ROWS, n_cells)
     integer(c_int), intent(out) :: sizes(CHART_SIZES_SIZE), complete, status
     character(len=4096), intent(out) :: notes
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(chart_result) :: chart
     integer :: info, used(4), c
@@ -83,7 +83,7 @@ contains
     real(c_double), intent(out) :: curves(CHART_CURVE_ROWS, max_points), &
                                    codim2(CHART_CODIM2_ROWS, max_codim2), ends(CHART_END_ROWS, 1)
     integer(c_int), intent(out) :: sizes(CHART_SIZES_SIZE), status
-    character(len=256), intent(out) :: note, message
+    character(len=512), intent(out) :: note, message
     type(model_t) :: model
     type(chart_result) :: chart
     real(c_double) :: no_grid(8, 0)
@@ -123,7 +123,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), resonance, n
     real(c_double), intent(out) :: f(n), jacobian(n, n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(field_t) :: field
     real(c_double) :: fp(n, 2)

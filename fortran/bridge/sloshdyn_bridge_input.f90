@@ -53,7 +53,7 @@ contains
                                    status
     character(len=4096), intent(out) :: directory, study_store, study_figure, study_scheduler, &
                                         study_records
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(run_config) :: config
     integer :: info, ints(n_int_params)
     rpar = 0; ipar = 0; analysis = 0; analysis_values = 0; tank = 0; integration = 0
@@ -117,7 +117,7 @@ contains
     integer(c_int), intent(in) :: component, n
     real(c_double), intent(out) :: samples(n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(run_config) :: config
     type(ground_motion_t) :: ground
     integer :: info
@@ -152,7 +152,7 @@ contains
     use sloshdyn_text, only: num2str
     character(len=*), intent(in) :: path, directory, staging
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(run_config) :: config
     integer :: info
     call read_input_file(path, config, info, message)

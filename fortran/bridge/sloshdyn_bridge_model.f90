@@ -35,7 +35,7 @@ contains
     real(c_double), intent(in) :: radius, depth, density, liquid_mass
     real(c_double), intent(out) :: pendulum(PENDULUM_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call core(radius, depth, density, liquid_mass, &
               l=pendulum(field_index('pendulum', 'pendulum_length')), &
@@ -57,7 +57,7 @@ contains
     real(c_double), intent(in) :: physical(PHYSICAL_SIZE)
     real(c_double), intent(out) :: groups(GROUPS_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call model_from_physical(total_mass=physical(field_index('physical', 'M')), &
                              rod_length=physical(field_index('physical', 'L')), &
@@ -87,7 +87,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: a(6), b(6)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info
     call model_from_arrays(rpar, int(ipar), model, info, message)
@@ -109,7 +109,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: mass(2, 2), force(2), dydt(4), jacobian(4, 4)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info
     mass = 0; force = 0; dydt = 0; jacobian = 0
@@ -142,7 +142,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: omegas(NATURAL_FREQUENCIES_SIZE), stiffness(2, 2), modal(2, 2), modal_inverse(2, 2)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info
     omegas = 0; stiffness = 0; modal = 0; modal_inverse = 0
@@ -167,7 +167,7 @@ contains
     real(c_double), intent(in) :: sigma_t(n), mu_t(n)
     real(c_double), intent(out) :: ratio(n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: i
     status = 0
     message = ''
@@ -196,7 +196,7 @@ contains
     integer(c_int), intent(in) :: max_roots
     real(c_double), intent(out) :: roots(max_roots)
     integer(c_int), intent(out) :: n_roots, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info, found
     call core(s1, mu1, sigma1, kappa_min, kappa_max, roots, found, info, message)
     n_roots = found
@@ -213,7 +213,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), which, max_roots
     real(c_double), intent(out) :: roots(max_roots)
     integer(c_int), intent(out) :: n_roots, truncated, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info, found
     logical :: cut
@@ -245,7 +245,7 @@ contains
     real(c_double), intent(out) :: theta(max_eq), phi(max_eq), eig_re(4, max_eq), &
                                    eig_im(4, max_eq), routh(ROUTH_TRIVIAL_SIZE)
     integer(c_int), intent(out) :: physical(max_eq), verdict(max_eq), n_eq, truncated, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info, found, verdicts(max_eq)
     logical :: is_physical(max_eq), cut, routh_stable

@@ -22,7 +22,7 @@ contains
     real(c_double), intent(out) :: y_orbit(4), monodromy(4, 4), multipliers(2, 4), &
                                    info(ORBIT_INFO_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: code, iterations
     real(c_double) :: re(4), im(4), peak
@@ -49,7 +49,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), k
     real(c_double), intent(out) :: c, q(4), mu
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: code
     c = 0; q = 0; mu = 0
@@ -71,7 +71,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), k
     real(c_double), intent(out) :: d, q_re(4), q_im(4), mu_re, mu_im
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     complex(c_double) :: q(4), mu
     integer :: code
@@ -109,7 +109,7 @@ contains
                                    multipliers(PERIODIC_MULTIPLIER_ROWS, max_points), &
                                    special(PERIODIC_SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, complete, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(continuation_options) :: options
     integer :: code, found, found_special
@@ -140,7 +140,7 @@ contains
     character(len=*), intent(in) :: start
     real(c_double), intent(out) :: y_start(4)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: code
     y_start = 0
@@ -175,7 +175,7 @@ contains
                                    multipliers(PERIODIC_MULTIPLIER_ROWS, max_points), &
                                    special(PERIODIC_SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, complete, k_new, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(continuation_options) :: options
     integer :: code, found, found_special, periods
@@ -213,7 +213,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n_hist
     real(c_double), intent(out) :: exponent, history(n_hist)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(lyapunov_options) :: options
     integer :: code

@@ -27,7 +27,7 @@ contains
                                    base(BASE_PRESSURE_ROWS, n_radii), &
                                    resultants(PRESSURE_RESULTANT_ROWS, modes + 1)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call fill(to_tank(tank), impulsive_acceleration, convective_accelerations, angle, &
               combination, heights, radii, wall, base, resultants, info, message)
@@ -48,7 +48,7 @@ contains
                                   convective_accel(n_out), times(n_times)
     real(c_double), intent(out) :: instants(PEAK_INSTANT_ROWS, n_times)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call core(to_tank(tank), t, tank_accel, convective_accel, times, instants, info, message)
     status = info
@@ -71,7 +71,7 @@ contains
                                    wall(WALL_PRESSURE_ROWS, n_heights, n_times), &
                                    base(BASE_PRESSURE_ROWS, n_radii, n_times)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call core(to_tank(tank), instants, heights, radii, angle, loads, wall, base, info, message)
     status = info

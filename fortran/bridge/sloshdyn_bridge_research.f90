@@ -25,7 +25,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n, n_hist
     real(c_double), intent(out) :: exponents(n), history(n, n_hist), dimension_ky
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(spatial_model_t) :: spatial_tank
     integer :: code
@@ -77,7 +77,7 @@ contains
                                    amplitudes(CYCLE_AMPLITUDE_ROWS, max_points), &
                                    special(CYCLE_SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, stop_reason, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(continuation_options) :: options
     integer :: code, found, found_special, reason

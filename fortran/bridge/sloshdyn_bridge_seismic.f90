@@ -23,7 +23,7 @@ contains
     real(c_double), intent(out) :: row(TANK_SI_SIZE), modes(TANK_MODES_ROWS, MAX_TANK_MODES), &
                                    rpar(n_real_params)
     integer(c_int), intent(out) :: ipar(n_int_params), status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(tank_properties_t) :: props
     integer :: info, ints(n_int_params)
@@ -51,7 +51,7 @@ contains
     real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE)
     real(c_double), intent(out) :: A, rho
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(tank_properties_t) :: props
     type(excitation_t) :: excitation
@@ -82,7 +82,7 @@ contains
     integer(c_int), intent(in) :: n
     real(c_double), intent(in) :: ground(GROUND_SIZE), samples(n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call core(to_ground(ground, samples), info, message)
     status = info
@@ -94,7 +94,7 @@ contains
     character(len=*), intent(in) :: name
     real(c_double), intent(out) :: factor
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: code, info
     call units_code(name, code, info, message)
     factor = 0
@@ -113,7 +113,7 @@ contains
     integer(c_int), intent(in) :: n_max
     real(c_double), intent(out) :: dt, samples(n_max)
     integer(c_int), intent(out) :: n, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     real(wp), allocatable :: accel(:)
     integer :: info
     samples = 0; n = 0
@@ -143,7 +143,7 @@ contains
                                   target_period, target_damping
     real(c_double), intent(out) :: scaled(GROUND_SIZE), scaled_samples(n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(ground_motion_t) :: motion
     integer :: info
     motion = to_ground(ground, samples)
@@ -167,7 +167,7 @@ contains
                                   duration
     real(c_double), intent(out) :: sd(m), sv(m), psa(m)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call core(to_ground(ground, samples), periods, damping, tail_duration, duration, sd, sv, &
               psa, info, message)
@@ -190,7 +190,7 @@ contains
                                   ground_y(GROUND_SIZE), samples_y(n_y)
     real(c_double), intent(out) :: chosen(SEISMIC_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(tank_properties_t) :: props
     real(c_double) :: duration
@@ -229,7 +229,7 @@ contains
     real(c_double), intent(out) :: table(SEISMIC_ROWS, n_out), peaks(PEAKS_SIZE), &
                                    instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call core(to_tank(tank), to_ground(ground, samples), t_end, int(n_out), &
               to_ode_options(integration), to_method(integration), table, peaks, instants, info, &
@@ -257,7 +257,7 @@ contains
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), table(HARMONIC_SWEEP_ROWS, n), &
                                    y_final(4)
     integer(c_int), intent(out) :: n_done, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     real(c_double) :: no_samples(0)
     integer :: info, done
     call core(to_tank(tank), to_ground(ground, no_samples), frequencies, y0, &
@@ -278,7 +278,7 @@ contains
     real(c_double), intent(in) :: tank(TANK_SIZE), ground(GROUND_SIZE), samples(n)
     real(c_double), intent(out) :: codes(CODES_COLUMNS, CODES_ROWS)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call design_code_checks(to_tank(tank), to_ground(ground, samples), has_ground /= 0, codes, &
                             info, message)
@@ -296,7 +296,7 @@ contains
     real(c_double), intent(in) :: tank(TANK_SIZE), design(DESIGN_SIZE)
     real(c_double), intent(out) :: codes(CODES_COLUMNS, CODES_ROWS)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(design_spectrum_t) :: spec
     type(design_factors_t) :: factors
     type(ground_motion_t) :: no_ground
@@ -328,7 +328,7 @@ contains
     real(c_double), intent(in) :: design(DESIGN_SIZE), periods(n), damping_ratio
     real(c_double), intent(out) :: sa(n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(design_spectrum_t) :: spec
     type(design_factors_t) :: factors
     logical :: from_ground
@@ -376,7 +376,7 @@ contains
                                    freeboard(FREEBOARD_COLUMNS, DESIGN_ROWS)
     character(len=524288), intent(out) :: checks, calc
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(design_spectrum_t) :: spec
     type(design_factors_t) :: factors
     type(design_report_t) :: report

@@ -23,7 +23,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n_out
     real(c_double), intent(out) :: history(HISTORY_ROWS, n_out), counts(COUNTS_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(ode_stats) :: stats
     integer :: info
@@ -57,7 +57,7 @@ contains
                                   tau_out(n_out, k), integration(INTEGRATION_SIZE)
     real(c_double), intent(out) :: history(HISTORY_ROWS, n_out, k), counts(COUNTS_SIZE, k)
     integer(c_int), intent(out) :: status(k)
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: models(k)
     type(ode_stats) :: stats(k)
     integer :: info(k), i
@@ -101,7 +101,7 @@ contains
     real(c_double), intent(out) :: summary(SUMMARY_SIZE), poincare(4, window), y_end(4), &
                                    counts(COUNTS_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(ode_stats) :: stats
     integer :: info
@@ -131,7 +131,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), which, n
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_final(4)
     integer(c_int), intent(out) :: n_done, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info, done
     summaries = 0; y_final = y0; done = 0
@@ -159,7 +159,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), which, n, n_threads
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n)
     integer(c_int), intent(out) :: n_done, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info, done
     summaries = 0; done = 0
@@ -176,7 +176,7 @@ contains
     use sloshdyn_namelist, only: check_threads
     integer(c_int), intent(in) :: threads, carry
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     info = 0
     message = ''

@@ -25,7 +25,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params)
     real(c_double), intent(out) :: mass(4, 4), dydt(8), jacobian(8, 8), invariants(2)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: planar
     type(spatial_model_t) :: model
     integer :: info
@@ -65,7 +65,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n_out
     real(c_double), intent(out) :: history(SPATIAL_HISTORY_ROWS, n_out), counts(COUNTS_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: planar
     type(spatial_model_t) :: model
     type(ode_stats) :: stats
@@ -93,7 +93,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), k
     real(c_double), intent(out) :: nu(2, 4)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     real(c_double) :: re(4), im(4)
     integer :: code
@@ -127,7 +127,7 @@ contains
     real(c_double), intent(out) :: points(SWIRL_BRANCH_ROWS, max_points), &
                                    edges(SWIRL_EDGE_ROWS, max_edges)
     integer(c_int), intent(out) :: n_points, n_edges, complete, conservative, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(continuation_options) :: options
     integer :: code, found, found_edges
@@ -167,7 +167,7 @@ contains
     real(c_double), intent(out) :: points(SWIRLING_BRANCH_ROWS, max_points), &
                                    special(SWIRLING_SPECIAL_ROWS, max_special)
     integer(c_int), intent(out) :: n_points, n_special, complete, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     type(continuation_options) :: options
     integer :: code, found, found_special
@@ -202,7 +202,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), k, transient, max_iter
     real(c_double), intent(out) :: y_orbit(8), multipliers(2, 8), info(SWIRL_ORBIT_INFO_SIZE)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: planar
     type(spatial_model_t) :: model
     real(c_double) :: re(8), im(8), peak, amplitude, angular_momentum
@@ -238,7 +238,7 @@ contains
     real(c_double), intent(out) :: table(SEISMIC_SPATIAL_ROWS, n_out), &
                                    peaks(SEISMIC_SPATIAL_PEAKS)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     call core(to_tank(tank), to_ground(ground, samples), to_ground(ground_2, samples_2), &
               spatial(1), spatial(2), t_end, int(n_out), to_ode_options(integration), &

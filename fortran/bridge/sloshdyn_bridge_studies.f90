@@ -26,7 +26,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n, carry
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n)
     integer(c_int), intent(out) :: impact(n), point_status(n), status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info, statuses(n)
     summaries = 0; y_end = 0; orbit = 0; impact = 0; statuses = 0
@@ -61,7 +61,7 @@ contains
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n), &
                                    orbit_points(4, MAX_ORBIT_PERIODS, n)
     integer(c_int), intent(out) :: point_status(n), status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: info, statuses(n)
     summaries = 0; y_end = 0; orbit = 0; orbit_points = 0; statuses = 0

@@ -37,7 +37,7 @@ contains
     character(len=*), intent(in) :: list
     character(len=8192), intent(out) :: text
     integer(c_int), intent(out) :: first, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     !> The enumerated options (the cases below, then the kind lists of sloshdyn_tables).
     character(len=*), parameter :: code_lists = 'analyses,methods,chart_models,chart_axes,'// &
       'excitation_parameters,directions,study_kinds,worker_kinds,continuations,ground_kinds,'// &
@@ -132,7 +132,7 @@ contains
     integer(c_int), intent(in) :: n
     real(c_double), intent(out) :: values(n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     real(wp), allocatable :: defaults(:)
     logical :: found
     values = 0
@@ -161,7 +161,7 @@ contains
     integer(c_int), intent(in) :: n
     real(c_double), intent(in) :: values(n)
     integer(c_int), intent(out) :: status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     integer :: info
     character(len=message_len) :: text
     call core(name, real(values, wp), info, text)

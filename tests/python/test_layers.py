@@ -52,3 +52,17 @@ def test_no_core_file_is_longer_than_the_limit():
                for path in sorted((ROOT / "fortran").rglob("*")) if path.suffix in (".f90", ".c")}
     assert len(lengths) > 20
     assert {name: n for name, n in lengths.items() if n > MAX_LINES} == {}
+
+
+def test_every_bridge_message_has_the_cores_length():
+    """A bridge message shorter than the core's message_len would cut what the core says (f2py
+    needs a literal length, so the bridge cannot name message_len itself)."""
+    kinds = (ROOT / "fortran" / "base" / "sloshdyn_kinds.f90").read_text()
+    core_length = int(re.search(r"message_len\s*=\s*(\d+)", kinds).group(1))
+    lengths = {}
+    for path in sorted((ROOT / "fortran" / "bridge").glob("*.f90")):
+        for n in re.findall(r"character\(len=(\d+)\),\s*intent\(out\)\s*::[^!\n]*\bmessage\b",
+                            path.read_text(), re.I):
+            lengths.setdefault(int(n), set()).add(path.name)
+    assert core_length in lengths
+    assert set(lengths) == {core_length}, lengths

@@ -161,6 +161,21 @@ def test_the_bytes_of_a_bad_file_are_quoted_short_and_escaped(exe, tmp_path):
         assert "\x1b" not in run.stderr and "\\x1b" in run.stderr
 
 
+def test_a_message_longer_than_256_characters_arrives_whole(tmp_path):
+    """The core's messages were cut at 256 characters: a deep record path left no room for the
+    line and the reason. The message names the whole path, the line and what was wrong."""
+    folder = tmp_path / ("d" * 200)
+    folder.mkdir()
+    path = folder / ("r" * 40 + ".txt")
+    path.write_text("0 0\n0.01 0.1\n0.02 0.3 9\n")
+    with pytest.raises(sloshdyn.InputError) as raised:
+        sloshdyn.GroundMotion.from_file(path)
+    message = str(raised.value)
+    assert len(message) > 256
+    assert message == (f"record file '{path}', line 3: expected 2 values (time, acceleration), "
+                       "found 3")
+
+
 def test_a_unicode_record_path_works_in_both_doors(exe, tmp_path):
     folder = tmp_path / "séismes"
     folder.mkdir()
