@@ -132,8 +132,11 @@ def check_output_directory(out):
     if out.is_symlink() or (out.exists() and not out.is_dir()):
         raise FileError(f"cannot write into '{out}': it is not a directory"
                         + (" but a symbolic link" if out.is_symlink() else ""))
-    with file_error(out, "read the output directory"):
+    try:
         foreign = foreign_entry(out)
+    except OSError as exc:
+        raise FileError(f"cannot read the output directory '{out}': {exc.strerror or exc}") \
+            from exc
     if foreign is not None:
         shown = os.fsencode(foreign).decode("utf-8", "backslashreplace")
         raise FileError(f"cannot write into '{out}': it holds '{shown}', which no sloshdyn run "
@@ -233,11 +236,15 @@ class RunDirectory:
 def run_directory(out):
     """A run's files into `out`, all at once or none (the rule above): yields a RunDirectory
     whose `path` the block writes into; out is checked before the block runs."""
-    check_output_directory(os.fspath(out))             # named as given, as the core does
+    shown = os.fspath(out).rstrip("/") or "/"          # named as given, as the core does
+    check_output_directory(shown)
     out = Path(os.path.abspath(os.fspath(out)))
-    with file_error(out, "create the run's new directory beside"):
+    try:
         out.parent.mkdir(parents=True, exist_ok=True)
         run = RunDirectory(out, Path(_beside(out, "run")))
+    except OSError as exc:
+        raise FileError(f"cannot write into '{shown}': cannot create its new directory in "
+                        f"'{os.path.dirname(shown) or '.'}': {exc.strerror or exc}") from exc
     try:
         yield run
     except BaseException as exc:

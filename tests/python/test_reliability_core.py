@@ -261,7 +261,15 @@ def test_a_directory_nothing_can_be_written_to_exits_5(exe, tmp_path):
     # root): the run's new directory beside /proc/sloshdyn_out cannot be made
     write(tmp_path, SIMULATE.format(t_end=10.0, n_out=11).replace("'out'",
                                                                  "'/proc/sloshdyn_out'"))
-    result = run(exe, "input.nml", tmp_path)
-    assert result.returncode == EXIT_IO, result.stderr
-    assert "cannot create its new directory in '/proc'" in result.stderr
-    assert "Results written" not in result.stdout
+    errors = []
+    for command in ([exe], [sys.executable, "-m", "sloshdyn", "run"]):
+        result = subprocess.run(command + ["input.nml"], cwd=tmp_path, capture_output=True,
+                                text=True)
+        assert result.returncode == EXIT_IO, result.stderr
+        assert "Results written" not in result.stdout
+        errors.append([line.split(": ", 1)[1] for line in result.stderr.splitlines()
+                       if "cannot" in line])                # without the program's name
+    assert errors[0] == errors[1]                       # both doors say it in the same words
+    assert errors[0] and errors[0][0].endswith(
+        "cannot write into '/proc/sloshdyn_out': cannot create its new directory in '/proc': "
+        + os.strerror(2)), errors
