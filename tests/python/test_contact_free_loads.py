@@ -352,3 +352,30 @@ def test_roof_contact_is_a_named_choice_in_both_doors(exe, tmp_path):
     assert "roof_contact = 'wall'" in done.stderr and "none, impact" in done.stderr
     with pytest.raises(sloshdyn.InputError, match="roof_contact = 'wall'"):
         tank_with("broad", contact="wall")
+
+
+@pytest.mark.parametrize("ratio", [0.7, 1.5])
+def test_the_design_checks_nonlinear_row_is_blind_to_the_impact_model(ratio):
+    """The design check's 'sloshdyn nonlinear' row takes a time history's peaks: its loads,
+    its freeboard verdict and its checks are the same for every contact model beside the run,
+    and the freeboard suffices exactly when the free wave stays below the roof."""
+    ground = scaled_to(tank_with("broad"), kt_record(), ratio)
+
+    def nonlinear(beta, delta, contact):
+        tank = tank_with("broad", beta, delta, contact)
+        check = sloshdyn.design_check(tank, ground,
+                                      response=sloshdyn.seismic_response(tank, ground))
+        return (check.loads["sloshdyn nonlinear"], check.freeboard["sloshdyn nonlinear"],
+                [row for row in check.checks if row["code"] == "sloshdyn nonlinear"])
+    reference = nonlinear(0.0, 0.0, "none")
+    assert reference[1]["sufficient"] == (ratio < 1)
+    assert reference[1]["wave_height"] == pytest.approx(ratio * TANKS["broad"]["freeboard"],
+                                                        rel=1e-2)     # the record's scaling
+    assert [row["verdict"] for row in reference[2]][-1] == ("OK" if ratio < 1 else "NOT OK")
+    for beta, delta, contact in CONTACTS:
+        loads, freeboard, checks = nonlinear(beta, delta, contact)
+        what = f"beta {beta}, delta {delta}, {contact}"
+        for row, expected in ((loads, reference[0]), (freeboard, reference[1])):
+            assert row.keys() == expected.keys()
+            assert all(same(row[k], expected[k]) for k in row), what
+        assert checks == reference[2], what
