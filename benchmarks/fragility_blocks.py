@@ -90,8 +90,9 @@ def main():
     one = records[0].scaled(sa=0.3, period=tank.sloshing_period, damping=0.005, units="g")
     if args.before:
         before = load_before(args.before)
-        one_before = before.GroundMotion(dt=one.dt, acceleration=one.acceleration,
-                                         units="m/s^2")
+        one_before = before.GroundMotion(dt=records[0].dt, acceleration=records[0].acceleration,
+                                         units="m/s^2").scaled(
+            sa=0.3, period=tank.sloshing_period, damping=0.005, units="g")
         tank_before = before.Tank(**{f: getattr(tank, f) for f in (
             "radius", "liquid_depth", "freeboard", "liquid_density", "tank_mass",
             "support_frequency", "support_damping")})
