@@ -80,6 +80,23 @@ def test_fragility_runs_in_blocks_are_the_single_runs_bit_for_bit(block, monkeyp
     assert_same_runs(out, single_path(t, motions, integration))
 
 
+def test_fragility_blocks_are_capped_by_their_outputs(monkeypatch):
+    """ENSEMBLE_OUTPUTS bounds a block's outputs (n_out x runs): at 3 runs' worth, the 5
+    intensities of a record go in blocks of 3 and 2, with the single runs' results."""
+    t, motions, integration = tank(), records()[:1], sloshdyn.Integration()
+    n_out = sloshdyn.seismic_defaults(t, motions[0]).n_out
+    monkeypatch.setattr(fragility, "ENSEMBLE_OUTPUTS", 3 * n_out + 1)
+    sizes, run_block = [], fragility._run_block
+
+    def recording(tank_array, ground, samples, runs, *rest):
+        sizes.append(len(runs))
+        return run_block(tank_array, ground, samples, runs, *rest)
+    monkeypatch.setattr(fragility, "_run_block", recording)
+    out = task(t, motions, integration)
+    assert sizes == [3, 2]
+    assert_same_runs(out, single_path(t, motions, integration))
+
+
 def test_fragility_blocks_with_the_impact_model_are_the_single_runs():
     """roof_contact = 'impact': the paper's model is integrated as a third phase of the block;
     every peak of the block's runs (the impact force's and the beta-sensitivity flag too)
@@ -113,3 +130,22 @@ def test_fragility_blocks_with_failing_runs_fail_as_the_single_runs(monkeypatch)
     failed = [isinstance(r, Exception) for r in runs.values()]
     assert 1 < sum(failed) < len(failed)         # some runs fail, some do not
     assert_same_runs(task(t, motions, integration), runs)
+
+
+def test_a_record_none_of_whose_runs_can_be_scaled_leaves_no_block():
+    """A record shorter than the spectral period cannot be scaled to Sa (scale_to_sa's
+    check): every intensity fails with that message, as the single path's scaling does, and
+    no block is run; the other record's runs equal the single runs."""
+    t = tank()
+    base = records()[0]
+    short = sloshdyn.GroundMotion(dt=base.dt, acceleration=base.acceleration[:50],
+                                  units="m/s^2")
+    assert 50 * base.dt < t.sloshing_period
+    with pytest.raises(sloshdyn.InputError) as alone:
+        short.scaled(sa=0.2, period=t.sloshing_period, damping=0.005, units="g")
+    out = task(t, [short, base], sloshdyn.Integration())
+    assert np.all(out["status"][0] != 0) and np.all(out["roof_impact"][0] == -1)
+    assert all("longer than the record" in m and m in str(alone.value)
+               for m in out["message"][0])
+    second = {k: v[1:] for k, v in out.items() if k != fragility.SECONDS}
+    assert_same_runs(second, single_path(t, [base], sloshdyn.Integration()))

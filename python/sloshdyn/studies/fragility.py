@@ -49,6 +49,10 @@ _FRAGILITY_LOADS = {
 #: seismic_responses) at most: chosen by measurement (benchmarks/README.md, "Ensembles",
 #: "The fragility study in blocks").
 ENSEMBLE_BLOCK = 20
+#: ... and outputs (n_out x runs) in a block at most: a member holds its tables, about 32
+#: numbers an output (256 MB for the block at this cap; a block of the usual 20 runs reaches
+#: it only past 50 000 outputs a run)
+ENSEMBLE_OUTPUTS = 1_000_000
 
 
 def _fragility_task(tank, records, intensities, sa_factor, period, damping, integration):
@@ -98,8 +102,11 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
                 out["status"][i, j] = status
                 out["roof_impact"][i, j] = -1
                 out["message"][i, j] = message_text(message)
-        for first in range(0, len(runs), ENSEMBLE_BLOCK):
-            _run_block(tank, ground, samples, runs[first:first + ENSEMBLE_BLOCK], chosen,
+        if not runs:
+            continue
+        block = max(1, min(ENSEMBLE_BLOCK, ENSEMBLE_OUTPUTS // int(chosen[1])))
+        for first in range(0, len(runs), block):
+            _run_block(tank, ground, samples, runs[first:first + block], chosen,
                        integration, out, i)
     out[SECONDS] = time.perf_counter() - start
     return out
