@@ -46,14 +46,7 @@ def old_run_block(tank, ground, samples, runs, chosen, integration, out, i):
             out["roof_impact"][i, j] = -1
             out["message"][i, j] = message_text(message)
             continue
-        values = dict(zip(fragility._PEAKS, peaks))
-        for name in fragility._FRAGILITY_LOADS:
-            out[name][i, j] = values[name]
-        out["roof_impact"][i, j] = int(values["roof_reached"] != 0)
-        out["roof_impacts"][i, j] = int(values["roof_impacts"])
-        peak_in = np.max(np.abs(samples)) if samples.size else ground[1]
-        peak_out = np.max(np.abs(member_samples)) if member_samples.size else scaled[1]
-        out["scale_factor"][i, j] = peak_out / peak_in
+        fragility._store_run(out, (i, j), peaks, (ground, samples), (scaled, member_samples))
 
 
 def main():

@@ -133,14 +133,21 @@ def _run_block(tank, ground, samples, runs, chosen, integration, out, i):
             out["roof_impact"][i, j] = -1
             out["message"][i, j] = message_text(message)
             continue
-        values = dict(zip(_PEAKS, peaks[:, k]))
-        for name in _FRAGILITY_LOADS:
-            out[name][i, j] = values[name]
-        out["roof_impact"][i, j] = int(values["roof_reached"] != 0)
-        out["roof_impacts"][i, j] = int(values["roof_impacts"])
-        peak_in = np.max(np.abs(samples)) if samples.size else ground[1]
-        peak_out = np.max(np.abs(member_samples)) if member_samples.size else scaled[1]
-        out["scale_factor"][i, j] = peak_out / peak_in
+        _store_run(out, (i, j), peaks[:, k], (ground, samples), (scaled, member_samples))
+
+
+def _store_run(out, where, peaks, record, scaled):
+    """The results of one run that succeeded (its 'seismic_peaks' row) into out[...][where];
+    record and scaled: (ground, samples) of the record and of the run."""
+    values = dict(zip(_PEAKS, peaks))
+    for name in _FRAGILITY_LOADS:
+        out[name][where] = values[name]
+    out["roof_impact"][where] = int(values["roof_reached"] != 0)
+    out["roof_impacts"][where] = int(values["roof_impacts"])
+    (ground, samples), (scaled_ground, scaled_samples) = record, scaled
+    peak_in = np.max(np.abs(samples)) if samples.size else ground[1]
+    peak_out = np.max(np.abs(scaled_samples)) if scaled_samples.size else scaled_ground[1]
+    out["scale_factor"][where] = peak_out / peak_in
 
 
 def _record_name(record, k):
