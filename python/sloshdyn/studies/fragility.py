@@ -48,10 +48,10 @@ _FRAGILITY_LOADS = {
 #: Runs of one record integrated together by the ensemble integrator (the core's
 #: seismic_responses) at most: chosen by measurement (benchmarks/README.md, "Ensembles",
 #: "The fragility study in blocks").
-ENSEMBLE_BLOCK = 20
+ENSEMBLE_BLOCK = 10
 #: ... and outputs (n_out x runs) in a block at most: a member holds its tables, about 32
-#: numbers an output (256 MB for the block at this cap; a block of the usual 20 runs reaches
-#: it only past 50 000 outputs a run)
+#: numbers an output (256 MB for the block at this cap; a block of 10 runs reaches it only
+#: past 100 000 outputs a run)
 ENSEMBLE_OUTPUTS = 1_000_000
 
 
