@@ -34,7 +34,8 @@ module sloshdyn_seismic
   use sloshdyn_roof, only: roof_loads, rectangular_roof_loads
   use sloshdyn_design_spectra, only: design_spectrum_t, spectrum_sa
   use sloshdyn_ode, only: ode_options, ode_stats, observed_quantities, peak_tracker
-  use sloshdyn_simulation, only: time_history, steady_options, parameter_sweep, independent_sweep
+  use sloshdyn_simulation, only: steady_options, parameter_sweep, independent_sweep
+  use sloshdyn_ensemble_history, only: tank_histories
   use sloshdyn_tables, only: HISTORY_ROWS, SEISMIC_ROWS, PEAKS_SIZE, PEAKS_ROOF_REACHED, &
                              SEISMIC_WAVE_HEIGHT, SEISMIC_BASE_SHEAR, SEISMIC_OVERTURNING_MOMENT, &
                              SEISMIC_OVERTURNING_MOMENT_IBP, SEISMIC_TANK_ACCELERATION, &
@@ -50,7 +51,7 @@ module sloshdyn_seismic
                              SUMMARY_MAX_X1, SUMMARY_MAX_X2, SUMMARY_MOTION, SUMMARY_PERIOD
   implicit none
   private
-  public :: seismic_response, seismic_setup, seismic_defaults, design_code_checks, tank_summary
+  public :: seismic_response, seismic_responses, seismic_setup, seismic_defaults, design_code_checks, tank_summary
   public :: harmonic_sweep, harmonic_sweep_row, free_periods, max_seismic_outputs, tank_modes
   public :: contact_free, confined_convective_mass, modal_responses, beta_sensitive_force
 
@@ -160,50 +161,97 @@ contains
                              instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: model, free
-    type(tank_properties) :: props
-    real(wp), allocatable :: tau(:), modal(:, :)
-    real(wp) :: share
-    integer :: i
+    real(wp), allocatable :: tables(:, :, :)
+    real(wp) :: member_peaks(PEAKS_SIZE, 1), member_instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS, 1)
+    integer :: member_status(1)
+    character(len=message_len) :: member_message(1)
+    allocate (tables(SEISMIC_ROWS, max(n_out, 0), 1))
+    call seismic_responses(tank, [ground], t_end, n_out, options, method, tables, member_peaks, &
+                           member_instants, member_status, member_message)
+    table = tables(:, :, 1)
+    peaks = member_peaks(:, 1)
+    instants = member_instants(:, :, 1)
+    status = member_status(1)
+    message = member_message(1)
+  end subroutine seismic_response
+
+  !> seismic_response of the tank for every ground motion grounds(i) (one t_end and n_out for
+  !> all; issue 43): table(:, :, i), peaks(:, i), instants(:, :, i), status(i) and message(i),
+  !> bit for bit those of seismic_response(grounds(i)) alone. The runs are made phase by phase
+  !> for all members together -- the free runs, then those of the members whose wave reached
+  !> the roof with their confined mass, then (roof_contact = 'impact') the paper's model -- and
+  !> each phase's runs go through the ensemble integrator together (tank_histories); a member
+  !> that fails leaves, the others go on. One member runs by the single path.
+  subroutine seismic_responses(tank, grounds, t_end, n_out, options, method, table, peaks, &
+                               instants, status, message)
+    type(tank_t), intent(in) :: tank
+    type(ground_motion_t), intent(in) :: grounds(:)
+    real(wp), intent(in) :: t_end
+    integer, intent(in) :: n_out, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: table(:, :, :), peaks(:, :), instants(:, :, :)
+    integer, intent(out) :: status(:)
+    character(len=message_len), intent(out) :: message(:)
+    type(model_t) :: models(size(grounds)), free(size(grounds))
+    type(tank_properties) :: props, member_props
+    real(wp), allocatable :: tau(:), member_tau(:), modal(:, :, :)
+    real(wp) :: share(size(grounds)), contact(size(grounds))
+    integer :: i, j, members(size(grounds))
 
     table = ieee_value(1.0_wp, ieee_quiet_nan)
     peaks = ieee_value(1.0_wp, ieee_quiet_nan)
     instants = 0
-    call seismic_setup(tank, ground, t_end, n_out, model, props, tau, status, message)
-    if (status /= SD_OK) return
-    free = contact_free(model)
-    allocate (modal(n_out, props%modes))
-    call free_run(tank, props, free, tau, options, method, 0.0_wp, huge(1.0_wp), table, peaks, &
-                  instants, modal, status, message)
-    if (status /= SD_OK) return
-    ! the roof: where the free wave reaches it, the confined mass of its largest height
-    if (peaks(PEAKS_ROOF_REACHED) > 0) then
-      call confined_convective_mass(tank, props, peaks(PEAKS_FREE_WAVE), peaks(PEAKS_ROOF_HEAD), &
-                                    peaks(PEAKS_ROOF_UPLIFT), peaks(PEAKS_CONFINED_MASS), &
-                                    status, message)
-      if (status /= SD_OK) return
-      share = peaks(PEAKS_CONFINED_MASS)/props%sloshing_mass
-      if (share > 0) call free_run(tank, props, free, tau, options, method, share, &
-                                   props%omega*peaks(PEAKS_FIRST_ROOF_TIME), table, peaks, &
-                                   instants, modal, status, message)
-      if (status /= SD_OK) return
-    else
-      peaks(PEAKS_ROOF_HEAD:PEAKS_CONFINED_MASS) = 0
-    end if
-    ! the wave with the roof: the free wave, capped at the freeboard
-    do i = 1, n_out
-      table(SEISMIC_WAVE_HEIGHT, i) = sign(min(abs(table(SEISMIC_FREE_WAVE, i)), tank%freeboard), &
-                                           table(SEISMIC_FREE_WAVE, i))
+    members = [(i, i = 1, size(grounds))]
+    ! the tank's properties and the output times are the same for every member
+    do i = 1, size(grounds)
+      call seismic_setup(tank, grounds(i), t_end, n_out, models(i), member_props, member_tau, &
+                         status(i), message(i))
+      if (status(i) /= SD_OK) cycle
+      free(i) = contact_free(models(i))
+      props = member_props
+      tau = member_tau
     end do
-    peaks(PEAKS_WAVE_HEIGHT) = min(peaks(PEAKS_FREE_WAVE), tank%freeboard)
-    if (peaks(PEAKS_ROOF_REACHED) > 0) peaks(PEAKS_WAVE_HEIGHT + 1) = peaks(PEAKS_FIRST_ROOF_TIME)
-    peaks(PEAKS_SCALE_FACTOR) = ground%scale_factor
-    call spectral_acceleration(ground, props%sloshing_period, convective_damping, &
-                               peaks(PEAKS_SA), status, message)
-    if (status == SD_OK .and. tank%roof_contact == ROOF_CONTACT_IMPACT) &
-      call impact_run(tank, props, model, tau, options, method, table(SEISMIC_IMPACT_FORCE, :), &
-                      peaks, status, message)
-  end subroutine seismic_response
+    if (all(status /= SD_OK)) return
+    allocate (modal(n_out, props%modes, size(grounds)))
+    share = 0
+    contact = huge(1.0_wp)
+    call free_runs(tank, props, free, tau, options, method, share, contact, &
+                   pack(members, status == SD_OK), table, peaks, instants, modal, status, message)
+    ! the roof: where the free wave reaches it, the confined mass of its largest height
+    do i = 1, size(grounds)
+      if (status(i) /= SD_OK) cycle
+      if (peaks(PEAKS_ROOF_REACHED, i) > 0) then
+        call confined_convective_mass(tank, props, peaks(PEAKS_FREE_WAVE, i), &
+                                      peaks(PEAKS_ROOF_HEAD, i), peaks(PEAKS_ROOF_UPLIFT, i), &
+                                      peaks(PEAKS_CONFINED_MASS, i), status(i), message(i))
+        if (status(i) /= SD_OK) cycle
+        share(i) = peaks(PEAKS_CONFINED_MASS, i)/props%sloshing_mass
+        contact(i) = props%omega*peaks(PEAKS_FIRST_ROOF_TIME, i)
+      else
+        peaks(PEAKS_ROOF_HEAD:PEAKS_CONFINED_MASS, i) = 0
+      end if
+    end do
+    call free_runs(tank, props, free, tau, options, method, share, contact, &
+                   pack(members, status == SD_OK .and. share > 0), table, peaks, instants, &
+                   modal, status, message)
+    do i = 1, size(grounds)
+      if (status(i) /= SD_OK) cycle
+      ! the wave with the roof: the free wave, capped at the freeboard
+      do j = 1, n_out
+        table(SEISMIC_WAVE_HEIGHT, j, i) = sign(min(abs(table(SEISMIC_FREE_WAVE, j, i)), &
+                                                    tank%freeboard), table(SEISMIC_FREE_WAVE, j, i))
+      end do
+      peaks(PEAKS_WAVE_HEIGHT, i) = min(peaks(PEAKS_FREE_WAVE, i), tank%freeboard)
+      if (peaks(PEAKS_ROOF_REACHED, i) > 0) &
+        peaks(PEAKS_WAVE_HEIGHT + 1, i) = peaks(PEAKS_FIRST_ROOF_TIME, i)
+      peaks(PEAKS_SCALE_FACTOR, i) = grounds(i)%scale_factor
+      call spectral_acceleration(grounds(i), props%sloshing_period, convective_damping, &
+                                 peaks(PEAKS_SA, i), status(i), message(i))
+    end do
+    if (tank%roof_contact == ROOF_CONTACT_IMPACT) &
+      call impact_runs(tank, props, models, tau, options, method, pack(members, status == SD_OK), &
+                       table, peaks, status, message)
+  end subroutine seismic_responses
 
   !> The model of the tank without a roof: no wall (beta = delta = 0), the same supports and
   !> damping.
@@ -216,58 +264,94 @@ contains
     call set_coefficients(free)
   end function contact_free
 
-  !> The free tank's run (model free) over the output times tau: the 'seismic' table's rows
-  !> 1..SEISMIC_FREE_WAVE, the loads' peaks, the roof verdict of the free wave (the first
-  !> time its height at the wall reaches the freeboard, its entries and its largest height)
-  !> and the accelerations at the load peaks; modal(:, n) the absolute accelerations of the
-  !> modes at the outputs. From tau_contact on, the share `share` of the convective mass moves
-  !> with the tank (tank_loads' confined_share; 0: none, the verdict's run). With one mode the
-  !> peaks and the first contact are located between the integrator's steps (peak_tracker); with
+  !> The free tanks' runs (models free(j)) over the output times tau of the members j =
+  !> run(:), together (tank_histories): for each, free_results into table(:, :, j), peaks(:, j),
+  !> instants(:, :, j), modal(:, :, j); from tau_contact(j) on, the share share(j) of the
+  !> convective mass moves with the tank (tank_loads' confined_share; 0: none, the verdict's
+  !> run). With one mode the peaks and the first contact are located between the integrator's
+  !> steps (peak_tracker) of the loads and of x1 reaching 1 (the free wave at the freeboard;
+  !> none where theta0 is capped: the linear wave cannot reach a freeboard above
+  !> 2 R/(xi^2 - 1)).
+  subroutine free_runs(tank, props, free, tau, options, method, share, tau_contact, run, table, &
+                       peaks, instants, modal, status, message)
+    type(tank_t), intent(in) :: tank
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: free(:)
+    real(wp), intent(in) :: tau(:), share(:), tau_contact(:)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method, run(:)
+    real(wp), intent(inout) :: table(:, :, :), peaks(:, :), instants(:, :, :), modal(:, :, :)
+    integer, intent(inout) :: status(:)
+    character(len=message_len), intent(inout) :: message(:)
+    type(tank_load_observation) :: loads(size(run))
+    type(peak_tracker) :: tracker(size(run))
+    type(ode_stats) :: stats(size(run))
+    real(wp), allocatable :: history(:, :, :)
+    integer :: c, run_status(size(run))
+    character(len=message_len) :: run_message(size(run))
+
+    if (size(run) == 0) return
+    allocate (history(HISTORY_ROWS, size(tau), size(run)))
+    do c = 1, size(run)
+      associate (j => run(c))
+        loads(c) = tank_load_observation(tank, props, free(j), share(j), tau_contact(j))
+        allocate (tracker(c)%level(LOAD_ROWS))
+        tracker(c)%level = 0
+        if (props%roof_reachable) tracker(c)%level(LOAD_ROWS) = 1
+        tracker(c)%keep_states = .true.
+      end associate
+    end do
+    call tank_histories(free(run), spread(0.0_wp, 1, size(run)), &
+                        spread([0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 2, size(run)), &
+                        spread(tau, 2, size(run)), options, method, history, stats, run_status, &
+                        run_message, loads, tracker)
+    do c = 1, size(run)
+      associate (j => run(c))
+        call free_results(tank, props, free(j), tau, loads(c), tracker(c), stats(c), &
+                          history(:, :, c), run_status(c), run_message(c), table(:, :, j), &
+                          peaks(:, j), instants(:, :, j), modal(:, :, j), status(j), message(j))
+      end associate
+    end do
+  end subroutine free_runs
+
+  !> A free run's results from its time history (its status run_status, run_message): the
+  !> 'seismic' table's rows 1..SEISMIC_FREE_WAVE, the loads' peaks, the roof verdict of the
+  !> free wave (the first time its height at the wall reaches the freeboard, its entries and
+  !> its largest height) and the accelerations at the load peaks; modal(:, n) the absolute
+  !> accelerations of the modes at the outputs. With one mode the peaks are the tracker's; with
   !> N > 1 modes the free wave at the wall is mode 1's plus the linear waves of modes 2..N
   !> driven by the free tank's acceleration (modal_responses), known at the output times: the
   !> peaks and the verdict are then read there (sampled_roof).
-  subroutine free_run(tank, props, free, tau, options, method, share, tau_contact, table, &
-                      peaks, instants, modal, status, message)
+  subroutine free_results(tank, props, free, tau, loads, tracker, stats, history, run_status, &
+                          run_message, table, peaks, instants, modal, status, message)
     type(tank_t), intent(in) :: tank
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: free
-    real(wp), intent(in) :: tau(:), share, tau_contact
-    type(ode_options), intent(in) :: options
-    integer, intent(in) :: method
+    real(wp), intent(in) :: tau(:), history(:, :)
+    type(tank_load_observation), intent(in) :: loads
+    type(peak_tracker), intent(in) :: tracker
+    type(ode_stats), intent(in) :: stats
+    integer, intent(in) :: run_status
+    character(len=message_len), intent(in) :: run_message
     real(wp), intent(inout) :: table(:, :), peaks(:), instants(:, :), modal(:, :)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(tank_load_observation) :: loads
-    type(peak_tracker) :: tracker
-    type(ode_stats) :: stats
-    real(wp), allocatable :: history(:, :)
     real(wp) :: freeboard
-    integer :: i, k, run_status
-    character(len=message_len) :: run_message
+    integer :: i, k
     integer, parameter :: peak_rows(PEAK_INSTANTS) = [SEISMIC_BASE_SHEAR, &
       SEISMIC_OVERTURNING_MOMENT, SEISMIC_OVERTURNING_MOMENT_IBP]
 
-    allocate (history(HISTORY_ROWS, size(tau)))
-    loads = tank_load_observation(tank, props, free, share, tau_contact)
-    allocate (tracker%level(LOAD_ROWS))
-    tracker%level = 0
-    ! x1 reaching 1: the free wave at the freeboard (none where theta0 is capped: the linear
-    ! wave cannot reach a freeboard above 2 R/(xi^2 - 1))
-    if (props%roof_reachable) tracker%level(LOAD_ROWS) = 1
-    tracker%keep_states = .true.
-    call time_history(free, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tau, options, method, &
-                      history, stats, run_status, run_message, loads, tracker)
+    status = run_status
+    message = run_message
     do i = 1, size(tau)
       if (tau(i) > stats%t_reached) exit
-      if (mod(i, outputs_per_poll) == 0) call check_cancel(run_status, run_message)
-      if (run_status == SD_CANCELLED) exit
+      if (mod(i, outputs_per_poll) == 0) call check_cancel(status, message)
+      if (status == SD_CANCELLED) exit
       call loads%values(tau(i), history(1:4, i), table(2:LOAD_ROWS + 1, i))
       table(1, i) = tau(i)/props%omega
       table(SEISMIC_X1:SEISMIC_X2, i) = history([1, 3], i)
       modal(i, 1) = table(SEISMIC_CONVECTIVE_ACCELERATION, i)
     end do
-    status = run_status
-    message = run_message
     if (status /= SD_OK) return
     freeboard = tank%freeboard
     do i = 1, LOAD_ROWS - 1
@@ -310,7 +394,7 @@ contains
       call loads%values(t, y, values)
       loads_at = values(row - 1)
     end function loads_at
-  end subroutine free_run
+  end subroutine free_results
 
   !> The restricted-sloshing method's roof loads of the largest free wave d at the wall
   !> (sloshdyn_roof): the head d - f, the uplift on the roof and the confined convective mass
@@ -335,43 +419,60 @@ contains
     end if
   end subroutine confined_convective_mass
 
-  !> The paper's impact model (roof_contact = 'impact': the tank's beta and delta, eq 4-5) over
-  !> the output times: its impact force b x1^(2n-1)/l [N] at the outputs, its peak, and whether
+  !> The paper's impact model (roof_contact = 'impact': the tank's beta and delta, eq 4-5) of
+  !> the members j = run(:) over the output times, together (tank_histories): its impact force
+  !> b x1^(2n-1)/l [N] at the outputs (table's row SEISMIC_IMPACT_FORCE), its peak, and whether
   !> the model's own loads would be sensitive to beta and delta (its wall force reaches
   !> beta_sensitive_force m g; docs/model.md, "Choice of beta and delta"). Labelled as the
   !> paper's model; it feeds no load, design row or calc sheet.
-  subroutine impact_run(tank, props, model, tau, options, method, force, peaks, status, message)
+  subroutine impact_runs(tank, props, models, tau, options, method, run, table, peaks, status, &
+                         message)
     type(tank_t), intent(in) :: tank
     type(tank_properties), intent(in) :: props
-    type(model_t), intent(in) :: model
+    type(model_t), intent(in) :: models(:)
     real(wp), intent(in) :: tau(:)
     type(ode_options), intent(in) :: options
-    integer, intent(in) :: method
-    real(wp), intent(out) :: force(:)
-    real(wp), intent(inout) :: peaks(:)
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    type(impact_observation) :: impact
-    type(peak_tracker) :: tracker
-    type(ode_stats) :: stats
-    real(wp) :: history(HISTORY_ROWS, size(tau)), value(1)
-    integer :: i
-    impact = impact_observation(props%impact_coefficient/props%pendulum_length, 2*model%n - 1)
-    call time_history(model, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tau, options, method, &
-                      history, stats, status, message, impact, tracker)
-    if (status /= SD_OK) then
-      message = 'the paper''s impact model (roof_contact = ''impact''): '//trim(message)
-      return
-    end if
-    do i = 1, size(tau)
-      call impact%values(tau(i), history(1:4, i), value)
-      force(i) = value(1)
+    integer, intent(in) :: method, run(:)
+    real(wp), intent(inout) :: table(:, :, :), peaks(:, :)
+    integer, intent(inout) :: status(:)
+    character(len=message_len), intent(inout) :: message(:)
+    type(impact_observation) :: impact(size(run))
+    type(peak_tracker) :: tracker(size(run))
+    type(ode_stats) :: stats(size(run))
+    real(wp), allocatable :: history(:, :, :)
+    real(wp) :: value(1)
+    integer :: c, i, run_status(size(run))
+    character(len=message_len) :: run_message(size(run))
+    if (size(run) == 0) return
+    allocate (history(HISTORY_ROWS, size(tau), size(run)))
+    do c = 1, size(run)
+      impact(c) = impact_observation(props%impact_coefficient/props%pendulum_length, &
+                                     2*models(run(c))%n - 1)
     end do
-    peaks(PEAKS_IMPACT_FORCE:PEAKS_IMPACT_FORCE + 1) = [tracker%peak(1), &
-                                                        tracker%time(1)/props%omega]
-    peaks(PEAKS_BETA_SENSITIVE) = merge(1.0_wp, 0.0_wp, tracker%peak(1) >= &
-                                        beta_sensitive_force*props%sloshing_mass*tank%gravity)
-  end subroutine impact_run
+    call tank_histories(models(run), spread(0.0_wp, 1, size(run)), &
+                        spread([0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 2, size(run)), &
+                        spread(tau, 2, size(run)), options, method, history, stats, &
+                        run_status, run_message, impact, tracker)
+    do c = 1, size(run)
+      associate (j => run(c))
+        status(j) = run_status(c)
+        if (status(j) /= SD_OK) then
+          message(j) = 'the paper''s impact model (roof_contact = ''impact''): '// &
+                       trim(run_message(c))
+          cycle
+        end if
+        do i = 1, size(tau)
+          call impact(c)%values(tau(i), history(1:4, i, c), value)
+          table(SEISMIC_IMPACT_FORCE, i, j) = value(1)
+        end do
+        peaks(PEAKS_IMPACT_FORCE:PEAKS_IMPACT_FORCE + 1, j) = [tracker(c)%peak(1), &
+                                                               tracker(c)%time(1)/props%omega]
+        peaks(PEAKS_BETA_SENSITIVE, j) = merge(1.0_wp, 0.0_wp, tracker(c)%peak(1) >= &
+                                               beta_sensitive_force*props%sloshing_mass* &
+                                               tank%gravity)
+      end associate
+    end do
+  end subroutine impact_runs
 
   !> What every seismic response sets up first (seismic_response, and sloshdyn_seismic_spatial's
   !> seismic_response_spatial): the tank's model driven by the ground motion, t_end > 0 [s],

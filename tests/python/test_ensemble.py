@@ -75,3 +75,31 @@ def test_a_failing_member_is_named_and_the_others_finish(fig12):
         except sloshdyn.IntegrationError as exc:
             alone = exc.partial
         assert _same(ens.y[i], alone.y) and ens.n_rhs[i] == alone.n_rhs
+
+
+def test_a_member_failing_the_checks_is_named_and_the_others_equal_single_runs(fig12):
+    """A start outside the state's range (time_history's check_initial_state): that member
+    reports simulate's own error and is not integrated (a zero history, no work), and the
+    members around it, integrated together, equal their single runs (read from the bridge:
+    Python raises the InputError without the partial ensemble)."""
+    from sloshdyn._core import sloshdyn_bridge_simulation as bridge
+    params, y0, t_end = _members(fig12, 3)
+    y0[1, 0] = 1.0e9
+    with pytest.raises(sloshdyn.InputError) as alone:
+        sloshdyn.simulate(params[1], t_end[1], y0[1], n_out=5)
+    with pytest.raises(sloshdyn.InputError, match="member 1"):
+        sloshdyn.simulate_ensemble(params, t_end, y0, n_out=5)
+    tau_out = np.stack([np.linspace(0, e, 5) for e in t_end])
+    arrays = [p.array() for p in params]
+    history, counts, status, message = bridge.simulate_ensemble(
+        np.stack([a[0] for a in arrays], axis=1), np.stack([a[1] for a in arrays], axis=1),
+        np.zeros(3), np.asfortranarray(y0.T), np.asfortranarray(tau_out.T),
+        Integration().array())
+    assert list(status != 0) == [False, True, False]
+    text = sloshdyn._errors.message_text(message)
+    assert text.startswith("member 1: y0(1) = 1e9 is out of range")
+    assert text[len("member 1: "):] in str(alone.value)
+    assert np.all(history[:, :, 1] == 0) and np.all(counts[:, 1] == 0)
+    for i in (0, 2):
+        single = sloshdyn.simulate(params[i], t_end[i], y0[i], tau_out=tau_out[i])
+        assert _same(history[0:4, :, i], single.y) and counts[0, i] == single.n_rhs

@@ -45,15 +45,27 @@ _FRAGILITY_LOADS = {
 }
 
 
+#: Runs of one record integrated together by the ensemble integrator (the core's
+#: seismic_responses) at most: chosen by measurement (benchmarks/README.md, "Ensembles",
+#: "The fragility study in blocks").
+ENSEMBLE_BLOCK = 10
+#: ... and outputs (n_out x runs) in a block at most: a member holds its tables, about 32
+#: numbers an output (256 MB for the block at this cap; a block of 10 runs reaches it only
+#: past 100 000 outputs a run)
+ENSEMBLE_OUTPUTS = 1_000_000
+
+
 def _fragility_task(tank, records, intensities, sa_factor, period, damping, integration):
     """One task of a fragility study: every (record, intensity) of the block, each record
     scaled to the spectral acceleration at `period`, then the seismic response from rest.
-    Runs on a worker; every number comes from the core (scale_ground, seismic_response).
+    Runs on a worker; every number comes from the core (scale_ground, seismic_peaks).
     Per record, its spectral acceleration and the run's length and output count (which depend
     on the record's step and duration only) are computed once: scaling to Sa is then the
     factor Sa/psa of the core's scale_to_sa, applied by scale_ground, so each run is that of
     the record scaled to Sa alone, to the bit (the response spectrum of the record was most of
-    a run's cost when recomputed per intensity)."""
+    a run's cost when recomputed per intensity). The runs of one record share its time grid:
+    they are handed to the core's ensemble integrator ENSEMBLE_BLOCK at a time, each equal to
+    its seismic_response alone, bit for bit (tests/python/test_fragility_ensemble.py)."""
     start = time.perf_counter()
     shape = (len(records), len(intensities))
     out = {name: np.full(shape, np.nan) for name in _FRAGILITY_LOADS}
@@ -64,6 +76,7 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
     out["message"] = np.full(shape, "", dtype=object)
     for i, (ground, samples) in enumerate(records):
         psa = chosen = None
+        runs = []       # (intensity index, scaled ground, scaled samples) ready to run
         for j, sa in enumerate(intensities):
             if psa is None:
                 # the first intensity as a single run would scale it (checks and messages
@@ -84,23 +97,57 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
                 if status != 0:
                     chosen = None
             if status == 0:
-                _, peaks, _, status, message = _bridge.seismic_response(
-                    tank, scaled, scaled_samples, float(chosen[0]), int(chosen[1]), integration)
-            out["status"][i, j] = status
-            if status != 0:
+                runs.append((j, scaled, scaled_samples))
+            else:
+                out["status"][i, j] = status
                 out["roof_impact"][i, j] = -1
                 out["message"][i, j] = message_text(message)
-                continue
-            values = dict(zip(_PEAKS, peaks))
-            for name in _FRAGILITY_LOADS:
-                out[name][i, j] = values[name]
-            out["roof_impact"][i, j] = int(values["roof_reached"] != 0)
-            out["roof_impacts"][i, j] = int(values["roof_impacts"])
-            peak_in = np.max(np.abs(samples)) if samples.size else ground[1]
-            peak_out = np.max(np.abs(scaled_samples)) if scaled_samples.size else scaled[1]
-            out["scale_factor"][i, j] = peak_out / peak_in
+        if not runs:
+            continue
+        block = max(1, min(ENSEMBLE_BLOCK, ENSEMBLE_OUTPUTS // int(chosen[1])))
+        for first in range(0, len(runs), block):
+            _run_block(tank, ground, samples, runs[first:first + block], chosen,
+                       integration, out, i)
     out[SECONDS] = time.perf_counter() - start
     return out
+
+
+def _run_block(tank, ground, samples, runs, chosen, integration, out, i):
+    """The seismic runs of record i (ground, samples) at the intensities of `runs` together
+    (the core's seismic_peaks), into out[...][i, j]."""
+    t_end, n_out = float(chosen[0]), int(chosen[1])
+    grounds = np.asfortranarray(np.stack([scaled for _, scaled, _ in runs], axis=1))
+    scaled_samples = np.asfortranarray(np.stack([s for _, _, s in runs], axis=1))
+    peaks, status, message = _bridge.seismic_peaks(tank, grounds, scaled_samples, t_end, n_out,
+                                                   integration)
+    failed = 0
+    for k, (j, scaled, member_samples) in enumerate(runs):
+        out["status"][i, j] = status[k]
+        if status[k] != 0:
+            # the first failure's message came back; the others are run again alone (the
+            # same computation, so the same failure)
+            if failed:
+                message = _bridge.seismic_response(tank, scaled, member_samples, t_end, n_out,
+                                                   integration)[-1]
+            failed += 1
+            out["roof_impact"][i, j] = -1
+            out["message"][i, j] = message_text(message)
+            continue
+        _store_run(out, (i, j), peaks[:, k], (ground, samples), (scaled, member_samples))
+
+
+def _store_run(out, where, peaks, record, scaled):
+    """The results of one run that succeeded (its 'seismic_peaks' row) into out[...][where];
+    record and scaled: (ground, samples) of the record and of the run."""
+    values = dict(zip(_PEAKS, peaks))
+    for name in _FRAGILITY_LOADS:
+        out[name][where] = values[name]
+    out["roof_impact"][where] = int(values["roof_reached"] != 0)
+    out["roof_impacts"][where] = int(values["roof_impacts"])
+    (ground, samples), (scaled_ground, scaled_samples) = record, scaled
+    peak_in = np.max(np.abs(samples)) if samples.size else ground[1]
+    peak_out = np.max(np.abs(scaled_samples)) if scaled_samples.size else scaled_ground[1]
+    out["scale_factor"][where] = peak_out / peak_in
 
 
 def _record_name(record, k):
