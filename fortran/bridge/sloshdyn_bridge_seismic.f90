@@ -255,7 +255,7 @@ contains
                                   t_end, integration(INTEGRATION_SIZE)
     real(c_double), intent(out) :: peaks(PEAKS_SIZE, k)
     integer(c_int), intent(out) :: status(k)
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(ground_motion_t) :: motions(k)
     real(c_double), allocatable :: table(:, :, :)
     real(c_double) :: instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS, k)
