@@ -65,10 +65,10 @@
 !>                          R4 (theta = pi/2): kappa, fold-NS: prod (mu_j - 1), flip-NS:
 !>                          prod (mu_j + 1) over the multipliers but the pair, Chenciner: the
 !>                          Neimark-Sacker coefficient d (sloshdyn_map_normal_form; |kappa| < 2)
-!> The normal-form coefficients (Kuznetsov 2004, secs 4.7, 5.4, 8.7.2, 9.5, 9.6: the generalised
-!> flip and Chenciner points are their zeros) are those of the one-parameter criticality, from
+!> The normal-form coefficients (Kuznetsov 2004, secs 4.7, 5.4 and 8.7.2; the generalised flip
+!> and Chenciner points, their zeros, ch. 9) are those of the one-parameter criticality, from
 !> the same routines; they exist for stroboscopic maps only (NaN, no test, for other maps) and
-!> cost 4 (c) and 8 (d) more monodromy matrices per point.
+!> cost 5 (c) and 9 (d) more monodromy matrices per point.
 !> A Neimark-Sacker curve ends at R1 and R2 (END_RESONANCE) unless curve_options%neutral_saddles.
 !> Not detected: double NS. curve%omega holds theta on NS curves (-acosh(|kappa|/2) = -ln|mu|
 !> on neutral-saddle parts), codim2_point%omega the angle of the point (R1 0, R2 and the
