@@ -61,10 +61,13 @@
 !>                          fold-flip          det(M - I)
 !>                          flip-NS            as fold-NS, without the multiplier nearest -1
 !>                          generalised flip   the flip coefficient c (sloshdyn_map_normal_form)
+!>                                             over the size of its terms; confirmed where it
+!>                                             is below 1e-3 (the terms cancel; not rounding)
 !>   NS curve (7 tests)     R1: kappa - 2, R2: kappa + 2, R3 (theta = 2 pi/3): kappa + 1,
 !>                          R4 (theta = pi/2): kappa, fold-NS: prod (mu_j - 1), flip-NS:
 !>                          prod (mu_j + 1) over the multipliers but the pair, Chenciner: the
 !>                          Neimark-Sacker coefficient d (sloshdyn_map_normal_form; |kappa| < 2)
+!>                          over the size of its terms, confirmed as the generalised flip
 !> The normal-form coefficients (Kuznetsov 2004, secs 4.7, 5.4 and 8.7.2; the generalised flip
 !> and Chenciner points, their zeros, ch. 9) are those of the one-parameter criticality, from
 !> the same routines; they exist for stroboscopic maps only (NaN, no test, for other maps) and
@@ -181,6 +184,11 @@ module sloshdyn_map_bifurcation
   !> |mu| - 1 within this (relative to max|mu|) counts as on the unit circle, an imaginary part
   !> above it as nonzero, when a fold-NS or flip-NS point is confirmed.
   real(wp), parameter :: circle_tol = 1.0e-6_wp
+  !> A zero of a normal-form coefficient (over the size of its terms) is a generalised flip or
+  !> Chenciner point if it is this small there: the terms cancel. A coefficient whose terms
+  !> are all rounding noise (a linear map's, identically 0) changes sign at random, its
+  !> located zeros as large as its values.
+  real(wp), parameter :: cancellation_tol = 1.0e-3_wp
 
 contains
 
@@ -501,6 +509,7 @@ contains
     real(wp), intent(in) :: re(:), im(:), tests(:)
     confirmed = .true.
     if (kind == CODIM2_FOLD_NS .or. kind == CODIM2_FLIP_NS) confirmed = circle_pair(re, im) > 0
+    if (kind == CODIM2_GF) confirmed = abs(tests(4)) <= cancellation_tol
   end function map_fold_confirm
 
   real(wp) function map_fold_codim2_frequency(self, kind, re, im, omega) result(angle)
@@ -547,16 +556,16 @@ contains
   end function pair_product_without
 
   !> The normal-form coefficient of the fixed point x at p, shared with the one-parameter
-  !> criticality (sloshdyn_map_normal_form): the flip coefficient c (kind
-  !> CURVE_PERIOD_DOUBLING) or the Neimark-Sacker coefficient d; NaN (no test) for a map that is
-  !> not a stroboscopic map, or where the coefficient fails.
+  !> criticality (sloshdyn_map_normal_form), over the size of its terms: the flip coefficient
+  !> c (kind CURVE_PERIOD_DOUBLING) or the Neimark-Sacker coefficient d, relative; NaN (no
+  !> test) for a map that is not a stroboscopic map, or where the coefficient fails.
   function normal_form_coefficient(field, kind, x, p) result(coefficient)
     class(two_parameter_field), intent(in) :: field
     integer, intent(in) :: kind
     real(wp), intent(in) :: x(:), p(2)
     real(wp) :: coefficient
     class(periodic_problem), allocatable :: problem
-    real(wp) :: q(size(x)), mu
+    real(wp) :: q(size(x)), mu, terms
     complex(wp) :: q_complex(size(x)), mu_complex
     integer :: status
     character(len=message_len) :: message
@@ -567,13 +576,18 @@ contains
       call field%problem(p, 1, problem)
       if (kind == CURVE_PERIOD_DOUBLING) then
         call period_doubling_coefficient(problem, x, field%periods, field%integration, &
-                                         field%method, coefficient, q, mu, status, message)
+                                         field%method, coefficient, q, mu, status, message, &
+                                         terms)
       else
         call neimark_sacker_coefficient(problem, x, field%periods, field%integration, &
                                         field%method, coefficient, q_complex, mu_complex, &
-                                        status, message)
+                                        status, message, terms)
       end if
-      if (status /= SD_OK) coefficient = ieee_value(1.0_wp, ieee_quiet_nan)
+      if (status /= SD_OK .or. .not. terms > 0) then
+        coefficient = ieee_value(1.0_wp, ieee_quiet_nan)
+      else
+        coefficient = coefficient/terms
+      end if
     end select
   end function normal_form_coefficient
 
@@ -705,6 +719,7 @@ contains
     real(wp), intent(in) :: re(:), im(:), tests(:)
     confirmed = .true.
     if (kind /= CODIM2_R1 .and. kind /= CODIM2_R2) confirmed = tests(1) < 0 .and. tests(2) > 0
+    if (kind == CODIM2_CH) confirmed = confirmed .and. abs(tests(7)) <= cancellation_tol
   end function ns_confirm
 
   real(wp) function ns_codim2_frequency(self, kind, re, im, omega) result(angle)
