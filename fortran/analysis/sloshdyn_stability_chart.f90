@@ -35,7 +35,7 @@ module sloshdyn_stability_chart
                                   CURVE_NEIMARK_SACKER, CODIM2_BT, &
                                   CODIM2_CUSP, CODIM2_ZH, CODIM2_GH, CODIM2_R1, CODIM2_R2, &
                                   CODIM2_R3, CODIM2_R4, CODIM2_FOLD_NS, CODIM2_FLIP_NS, &
-                                  FOLD_FLIP => CODIM2_FOLD_FLIP
+                                  CODIM2_GF, CODIM2_CH, FOLD_FLIP => CODIM2_FOLD_FLIP
   use sloshdyn_excitation, only: PARAMETER_RHO
   use sloshdyn_simulation, only: steady_options
   use sloshdyn_periodic_response, only: periodic_response_from_rest
@@ -54,7 +54,7 @@ module sloshdyn_stability_chart
                              CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, CODIM2_GENERALISED_HOPF, &
                              CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, CODIM2_RESONANCE_1_3, &
                              CODIM2_RESONANCE_1_4, CODIM2_FOLD_FLIP, CODIM2_FOLD_NEIMARK_SACKER, &
-                             CODIM2_FLIP_NEIMARK_SACKER
+                             CODIM2_FLIP_NEIMARK_SACKER, CODIM2_GENERALISED_FLIP, CODIM2_CHENCINER
   implicit none
   private
   public :: chart_settings, stability_chart, check_chart_settings, chart_tables, &
@@ -715,6 +715,8 @@ contains
     case (FOLD_FLIP);        chart_codim2_kind = CODIM2_FOLD_FLIP
     case (CODIM2_FOLD_NS);   chart_codim2_kind = CODIM2_FOLD_NEIMARK_SACKER
     case (CODIM2_FLIP_NS);   chart_codim2_kind = CODIM2_FLIP_NEIMARK_SACKER
+    case (CODIM2_GF);        chart_codim2_kind = CODIM2_GENERALISED_FLIP
+    case (CODIM2_CH);        chart_codim2_kind = CODIM2_CHENCINER
     case default;            chart_codim2_kind = CODIM2_NONE
     end select
   end function chart_codim2_kind

@@ -54,7 +54,8 @@ module sloshdyn_tables
             CODIM2_BOGDANOV_TAKENS, CODIM2_CUSP_POINT, CODIM2_FOLD_HOPF, &
             CODIM2_GENERALISED_HOPF, CODIM2_RESONANCE_1_1, CODIM2_RESONANCE_1_2, &
             CODIM2_RESONANCE_1_3, CODIM2_RESONANCE_1_4, CODIM2_FOLD_FLIP, &
-            CODIM2_FOLD_NEIMARK_SACKER, CODIM2_FLIP_NEIMARK_SACKER, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, &
+            CODIM2_FOLD_NEIMARK_SACKER, CODIM2_FLIP_NEIMARK_SACKER, CODIM2_GENERALISED_FLIP, &
+            CODIM2_CHENCINER, CHART_CURVE_ROWS, CHART_CODIM2_ROWS, CHART_END_ROWS, &
             CHART_GRID_ROWS
 
   !> Special points on branches (slow flow and periodic orbits).
@@ -78,10 +79,11 @@ module sloshdyn_tables
                         CODIM2_FOLD_HOPF = 3, CODIM2_GENERALISED_HOPF = 4, &
                         CODIM2_RESONANCE_1_1 = 5, CODIM2_RESONANCE_1_2 = 6, &
                         CODIM2_RESONANCE_1_3 = 7, CODIM2_RESONANCE_1_4 = 8, CODIM2_FOLD_FLIP = 9, &
-                        CODIM2_FOLD_NEIMARK_SACKER = 10, CODIM2_FLIP_NEIMARK_SACKER = 11
+                        CODIM2_FOLD_NEIMARK_SACKER = 10, CODIM2_FLIP_NEIMARK_SACKER = 11, &
+                        CODIM2_GENERALISED_FLIP = 12, CODIM2_CHENCINER = 13
   character(len=*), parameter :: codim2_kinds = 'none,bogdanov_takens,cusp,fold_hopf,'// &
     'generalised_hopf,resonance_1_1,resonance_1_2,resonance_1_3,resonance_1_4,fold_flip,'// &
-    'fold_neimark_sacker,flip_neimark_sacker'
+    'fold_neimark_sacker,flip_neimark_sacker,generalised_flip,chenciner'
   character(len=*), parameter :: curve_end_kinds = 'start,box,closed,x_max,bogdanov_takens,'// &
     'max_points,failed,resonance'
 

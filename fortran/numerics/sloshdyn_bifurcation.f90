@@ -114,7 +114,7 @@ module sloshdyn_bifurcation
             curve_crossings, check_curve_options, codim2_name, curve_end_name, curve_kind_name
   public :: CURVE_FOLD, CURVE_HOPF, CURVE_PERIOD_DOUBLING, CURVE_NEIMARK_SACKER, &
             CODIM2_BT, CODIM2_CUSP, CODIM2_ZH, CODIM2_GH, CODIM2_R1, CODIM2_R2, CODIM2_R3, &
-            CODIM2_R4, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS, CODIM2_FLIP_NS, &
+            CODIM2_R4, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS, CODIM2_FLIP_NS, CODIM2_GF, CODIM2_CH, &
             END_START, END_BOX, END_CLOSED, END_X_MAX, END_BT, END_MAX_POINTS, END_FAILED, &
             END_RESONANCE
   ! the extension interface (module header)
@@ -141,6 +141,8 @@ module sloshdyn_bifurcation
   integer, parameter :: CODIM2_FOLD_FLIP = 9   !< fold-flip: mu = +1 and mu = -1
   integer, parameter :: CODIM2_FOLD_NS = 10    !< fold-Neimark-Sacker: +1 and e^{+-i theta}
   integer, parameter :: CODIM2_FLIP_NS = 11    !< flip-Neimark-Sacker: -1 and e^{+-i theta}
+  integer, parameter :: CODIM2_GF = 12   !< generalised flip: the flip coefficient c = 0
+  integer, parameter :: CODIM2_CH = 13   !< Chenciner: the Neimark-Sacker coefficient d = 0
   !> How an end of a curve came about (curve_end_name gives the words).
   integer, parameter :: END_START = 0       !< the start point (a curve traced one way only)
   integer, parameter :: END_BOX = 1         !< on the boundary of the parameter box
@@ -153,7 +155,7 @@ module sloshdyn_bifurcation
   !> double +1 or -1)
   integer, parameter :: END_RESONANCE = 7
   !> The most test functions a defining system may have.
-  integer, parameter :: max_curve_tests = 6
+  integer, parameter :: max_curve_tests = 7
 
   !> A vector field f(x; p1, p2) with its derivatives. evaluate is required; the higher
   !> derivatives default to finite differences of the Jacobian (central, steps eps^(1/3) and
@@ -588,11 +590,11 @@ contains
   pure function codim2_name(kind) result(name)
     integer, intent(in) :: kind
     character(len=:), allocatable :: name
-    character(len=*), parameter :: names(0:CODIM2_FLIP_NS) = [character(len=19) :: 'regular', &
+    character(len=*), parameter :: names(0:CODIM2_CH) = [character(len=19) :: 'regular', &
       'Bogdanov-Takens', 'cusp', 'zero-Hopf', 'generalised Hopf', '1:1 resonance', &
       '1:2 resonance', '1:3 resonance', '1:4 resonance', 'fold-flip', 'fold-Neimark-Sacker', &
-      'flip-Neimark-Sacker']
-    name = trim(names(merge(kind, 0, kind >= 0 .and. kind <= CODIM2_FLIP_NS)))
+      'flip-Neimark-Sacker', 'generalised flip', 'Chenciner']
+    name = trim(names(merge(kind, 0, kind >= 0 .and. kind <= CODIM2_CH)))
   end function codim2_name
 
   !> Words for a CURVE_* code.

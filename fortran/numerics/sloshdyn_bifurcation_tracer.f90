@@ -34,8 +34,10 @@ submodule (sloshdyn_bifurcation) sloshdyn_bifurcation_tracer
   !> this large (the tangent is a unit vector in the scaled variables), so lambda is well defined.
   real(wp), parameter :: tangent_floor = 0.05_wp
   !> A located zero of a test function must be this small relative to the values at the ends of
-  !> its bracket (else the sign changed through a pole).
-  real(wp), parameter :: pole_ratio = 1.0e-6_wp
+  !> its bracket (else the sign changed through a pole, where Brent's last value is ~1e12 times
+  !> the ends'). Not smaller: the normal-form coefficients of maps (generalised flip, Chenciner)
+  !> come from differences of monodromy matrices, their located zeros ~1e-3 of the ends.
+  real(wp), parameter :: pole_ratio = 0.1_wp
 
 contains
 

@@ -57,17 +57,26 @@
 !>                          fold-NS            prod_{i<j} (mu_i mu_j - 1) over the multipliers but
 !>                                             the one nearest +1; confirmed by a pair on the
 !>                                             unit circle (not a real pair mu, 1/mu)
-!>   PD curve (3 tests)     1:2 resonance R2   <w, v> (a Jordan block at -1)
+!>   PD curve (4 tests)     1:2 resonance R2   <w, v> (a Jordan block at -1)
 !>                          fold-flip          det(M - I)
 !>                          flip-NS            as fold-NS, without the multiplier nearest -1
-!>   NS curve (6 tests)     R1: kappa - 2, R2: kappa + 2, R3 (theta = 2 pi/3): kappa + 1,
+!>                          generalised flip   the flip coefficient c (sloshdyn_map_normal_form)
+!>                                             over the size of its terms; confirmed where it
+!>                                             is below 1e-3 (the terms cancel; not rounding)
+!>   NS curve (7 tests)     R1: kappa - 2, R2: kappa + 2, R3 (theta = 2 pi/3): kappa + 1,
 !>                          R4 (theta = pi/2): kappa, fold-NS: prod (mu_j - 1), flip-NS:
-!>                          prod (mu_j + 1) over the multipliers but the pair
+!>                          prod (mu_j + 1) over the multipliers but the pair, Chenciner: the
+!>                          Neimark-Sacker coefficient d (sloshdyn_map_normal_form; |kappa| < 2)
+!>                          over the size of its terms, confirmed as the generalised flip
+!> The normal-form coefficients (Kuznetsov 2004, secs 4.7, 5.4 and 8.7.2; the generalised flip
+!> and Chenciner points, their zeros, ch. 9) are those of the one-parameter criticality, from
+!> the same routines; they exist for stroboscopic maps only (NaN, no test, for other maps) and
+!> cost 5 (c) and 9 (d) more monodromy matrices per point.
 !> A Neimark-Sacker curve ends at R1 and R2 (END_RESONANCE) unless curve_options%neutral_saddles.
-!> Not detected: Chenciner (the NS normal-form coefficient vanishes), generalised flip, double
-!> NS. curve%omega holds theta on NS curves (-acosh(|kappa|/2) = -ln|mu| on neutral-saddle
-!> parts), codim2_point%omega the angle of the point (R1 0, R2 pi, R3 2 pi/3, R4 pi/2, fold-NS
-!> and flip-NS theta), curve%eig_re/eig_im the multipliers, curve%l1 NaN.
+!> Not detected: double NS. curve%omega holds theta on NS curves (-acosh(|kappa|/2) = -ln|mu|
+!> on neutral-saddle parts), codim2_point%omega the angle of the point (R1 0, R2 and the
+!> generalised flip pi, R3 2 pi/3, R4 pi/2, fold-NS, flip-NS and Chenciner theta),
+!> curve%eig_re/eig_im the multipliers, curve%l1 NaN.
 !>
 !> Public: two_parameter_map (map: P, M and dP/dp; its evaluate is f = P - x), map_evaluate,
 !> stroboscopic_map (P by shooting a periodic_problem of sloshdyn_shooting over k forcing
@@ -91,8 +100,9 @@ module sloshdyn_map_bifurcation
                                   CURVE_FOLD, CURVE_HOPF, CURVE_PERIOD_DOUBLING, &
                                   CURVE_NEIMARK_SACKER, CODIM2_R1, CODIM2_R2, CODIM2_R3, &
                                   CODIM2_R4, CODIM2_CUSP, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS, &
-                                  CODIM2_FLIP_NS, END_RESONANCE
+                                  CODIM2_FLIP_NS, CODIM2_GF, CODIM2_CH, END_RESONANCE
   use sloshdyn_fold_hopf, only: fold_system, hopf_system
+  use sloshdyn_map_normal_form, only: period_doubling_coefficient, neimark_sacker_coefficient
   implicit none
   private
   public :: two_parameter_map, map_evaluate, stroboscopic_map, map_problem
@@ -174,6 +184,11 @@ module sloshdyn_map_bifurcation
   !> |mu| - 1 within this (relative to max|mu|) counts as on the unit circle, an imaginary part
   !> above it as nonzero, when a fold-NS or flip-NS point is confirmed.
   real(wp), parameter :: circle_tol = 1.0e-6_wp
+  !> A zero of a normal-form coefficient (over the size of its terms) is a generalised flip or
+  !> Chenciner point if it is this small there: the terms cancel. A coefficient whose terms
+  !> are all rounding noise (a linear map's, identically 0) changes sign at random, its
+  !> located zeros as large as its values.
+  real(wp), parameter :: cancellation_tol = 1.0e-3_wp
 
 contains
 
@@ -402,7 +417,7 @@ contains
                           [CODIM2_R1, CODIM2_CUSP, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS])
       else
         call setup_system(proto, field, kind, n, 0, p0, options, &
-                          [CODIM2_R2, CODIM2_FOLD_FLIP, CODIM2_FLIP_NS])
+                          [CODIM2_R2, CODIM2_FOLD_FLIP, CODIM2_FLIP_NS, CODIM2_GF])
       end if
       s0 = [x0, p0]
     case (CURVE_NEIMARK_SACKER)
@@ -436,7 +451,7 @@ contains
       end select
       ! the 1:1 and 1:2 resonances end the curve (the pair leaves the unit circle)
       call setup_system(proto, field, kind, n, n + 1, p0, options, [CODIM2_R1, CODIM2_R2, &
-                        CODIM2_R3, CODIM2_R4, CODIM2_FOLD_NS, CODIM2_FLIP_NS], &
+                        CODIM2_R3, CODIM2_R4, CODIM2_FOLD_NS, CODIM2_FLIP_NS, CODIM2_CH], &
                         ends=[END_RESONANCE, END_RESONANCE])
       s0 = [x0, v, 2*re(best)/radius, p0]
     case default
@@ -483,6 +498,7 @@ contains
     else
       tests(2) = fold_test(re, im)
       tests(3) = pair_product_without(re, im, -1.0_wp)
+      tests(4) = normal_form_coefficient(self%field, CURVE_PERIOD_DOUBLING, xx, p)
     end if
   end subroutine map_fold_diagnose
 
@@ -493,6 +509,7 @@ contains
     real(wp), intent(in) :: re(:), im(:), tests(:)
     confirmed = .true.
     if (kind == CODIM2_FOLD_NS .or. kind == CODIM2_FLIP_NS) confirmed = circle_pair(re, im) > 0
+    if (kind == CODIM2_GF) confirmed = abs(tests(4)) <= cancellation_tol
   end function map_fold_confirm
 
   real(wp) function map_fold_codim2_frequency(self, kind, re, im, omega) result(angle)
@@ -502,7 +519,7 @@ contains
     integer :: i
     angle = 0
     select case (kind)
-    case (CODIM2_R2)
+    case (CODIM2_R2, CODIM2_GF)
       angle = pi
     case (CODIM2_FOLD_NS, CODIM2_FLIP_NS)
       i = circle_pair(re, im)
@@ -537,6 +554,42 @@ contains
     end do
     product_value = real(prod)
   end function pair_product_without
+
+  !> The normal-form coefficient of the fixed point x at p, shared with the one-parameter
+  !> criticality (sloshdyn_map_normal_form), over the size of its terms: the flip coefficient
+  !> c (kind CURVE_PERIOD_DOUBLING) or the Neimark-Sacker coefficient d, relative; NaN (no
+  !> test) for a map that is not a stroboscopic map, or where the coefficient fails.
+  function normal_form_coefficient(field, kind, x, p) result(coefficient)
+    class(two_parameter_field), intent(in) :: field
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x(:), p(2)
+    real(wp) :: coefficient
+    class(periodic_problem), allocatable :: problem
+    real(wp) :: q(size(x)), mu, terms
+    complex(wp) :: q_complex(size(x)), mu_complex
+    integer :: status
+    character(len=message_len) :: message
+
+    coefficient = ieee_value(1.0_wp, ieee_quiet_nan)
+    select type (field)
+    class is (stroboscopic_map)
+      call field%problem(p, 1, problem)
+      if (kind == CURVE_PERIOD_DOUBLING) then
+        call period_doubling_coefficient(problem, x, field%periods, field%integration, &
+                                         field%method, coefficient, q, mu, status, message, &
+                                         terms)
+      else
+        call neimark_sacker_coefficient(problem, x, field%periods, field%integration, &
+                                        field%method, coefficient, q_complex, mu_complex, &
+                                        status, message, terms)
+      end if
+      if (status /= SD_OK .or. .not. terms > 0) then
+        coefficient = ieee_value(1.0_wp, ieee_quiet_nan)
+      else
+        coefficient = coefficient/terms
+      end if
+    end select
+  end function normal_form_coefficient
 
   ! ---- Neimark-Sacker curves ----------------------------------------------------------------
 
@@ -603,7 +656,8 @@ contains
     flambda(n + 1:2*n) = dp(:, l)*self%p_scale(l)
   end subroutine ns_evaluate
 
-  !> Multipliers; tests (R1, R2, R3, R4, fold-NS, flip-NS) of the module header; omega = theta.
+  !> Multipliers; tests (R1, R2, R3, R4, fold-NS, flip-NS, Chenciner) of the module header;
+  !> omega = theta.
   subroutine ns_diagnose(self, z, re, im, tests, omega, l1, status, message)
     class(neimark_sacker_system), intent(in) :: self
     real(wp), intent(in) :: z(:)
@@ -644,6 +698,8 @@ contains
     end do
     tests(5) = real(minus)
     tests(6) = real(plus)
+    if (abs(kappa) < 2) tests(7) = normal_form_coefficient(self%field, CURVE_NEIMARK_SACKER, &
+                                                           xx, p)
   end subroutine ns_diagnose
 
   !> theta = acos(kappa/2) for |kappa| <= 2; -acosh(|kappa|/2) = -ln|mu| beyond.
@@ -663,6 +719,7 @@ contains
     real(wp), intent(in) :: re(:), im(:), tests(:)
     confirmed = .true.
     if (kind /= CODIM2_R1 .and. kind /= CODIM2_R2) confirmed = tests(1) < 0 .and. tests(2) > 0
+    if (kind == CODIM2_CH) confirmed = confirmed .and. abs(tests(7)) <= cancellation_tol
   end function ns_confirm
 
   real(wp) function ns_codim2_frequency(self, kind, re, im, omega) result(angle)

@@ -48,10 +48,11 @@ contains
 
   !> The flip coefficient c (above) of the orbit of period k T through y at the problem's
   !> parameter (a period doubling point), with the critical eigenvector q (|q| = 1) and the
-  !> multiplier mu nearest -1 of M. Fails with SD_BAD_INPUT when no multiplier lies within
-  !> 1e-3 of -1.
+  !> multiplier mu nearest -1 of M, and (optional) the size of its terms, |<p, C>|/6 +
+  !> |<p, B>|/2 (c = 0 by their cancellation, or because both vanish, as for a linear map).
+  !> Fails with SD_BAD_INPUT when no multiplier lies within 1e-3 of -1.
   subroutine period_doubling_coefficient(problem, y, k, options, method, c, q, mu, status, &
-                                         message)
+                                         message, size_of_terms)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y(:)
     integer, intent(in) :: k, method
@@ -59,6 +60,7 @@ contains
     real(wp), intent(out) :: c, q(:), mu
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp), intent(out), optional :: size_of_terms
     real(wp) :: a(size(y), size(y)), shifted(size(y), size(y)), p(size(y)), y_end(size(y))
     real(wp) :: bqq(size(y)), cqqq(size(y)), w(size(y)), bqw(size(y)), h
     integer :: n, i
@@ -97,6 +99,8 @@ contains
     call mixed(w, bqw)
     if (status /= SD_OK) return
     c = dot_product(p, cqqq)/6 - dot_product(p, bqw)/2
+    if (present(size_of_terms)) size_of_terms = abs(dot_product(p, cqqq))/6 + &
+                                                abs(dot_product(p, bqw))/2
 
   contains
 
@@ -138,10 +142,11 @@ contains
 
   !> The Neimark-Sacker coefficient d (above) of the orbit of period k T through y at the
   !> problem's parameter, with the critical multiplier mu = |mu| e^{i theta} (Im mu > 0)
-  !> nearest the unit circle and its eigenvector q (unit length). Fails with SD_BAD_INPUT when no complex multiplier lies within
-  !> 1e-3 of the unit circle.
+  !> nearest the unit circle, its eigenvector q (unit length) and (optional) the size of its
+  !> terms, the sum of their moduli over 2. Fails with SD_BAD_INPUT when no complex multiplier
+  !> lies within 1e-3 of the unit circle.
   subroutine neimark_sacker_coefficient(problem, y, k, options, method, d, q, mu, status, &
-                                        message)
+                                        message, size_of_terms)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y(:)
     integer, intent(in) :: k, method
@@ -150,12 +155,13 @@ contains
     complex(wp), intent(out) :: q(:), mu
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp), intent(out), optional :: size_of_terms
     real(wp) :: a(size(y), size(y)), y_end(size(y)), wr(size(y)), wi(size(y)), h
     real(wp) :: big(2*size(y), 2*size(y)), x(2*size(y)), xl(2*size(y)), rhs(2*size(y))
     real(wp), dimension(size(y), size(y)) :: g_r, g_i, h_rr, h_ii, h_ri, h_w, g_w, m_plus, &
                                              m_minus, eye
     real(wp) :: w1(size(y))
-    complex(wp) :: p(size(y)), e, bqq(size(y)), w2(size(y)), term
+    complex(wp) :: p(size(y)), e, bqq(size(y)), w2(size(y)), terms(3)
     integer :: n, i, j
 
     n = size(y)
@@ -226,10 +232,11 @@ contains
     call solve_linear(big, rhs, status, message)
     if (status /= SD_OK) return
     w2 = cmplx(rhs(1:n), rhs(n + 1:), wp)
-    term = dot_product(p, matmul(cmplx(h_rr - h_ii, 2*h_ri, wp), conjg(q))) &
-           + 2*dot_product(p, matmul(cmplx(g_r, g_i, wp), cmplx(w1, 0.0_wp, wp))) &
-           + dot_product(p, matmul(cmplx(g_r, -g_i, wp), w2))
-    d = real(conjg(e)*term, wp)/2
+    terms = [dot_product(p, matmul(cmplx(h_rr - h_ii, 2*h_ri, wp), conjg(q))), &
+             2*dot_product(p, matmul(cmplx(g_r, g_i, wp), cmplx(w1, 0.0_wp, wp))), &
+             dot_product(p, matmul(cmplx(g_r, -g_i, wp), w2))]
+    d = real(conjg(e)*sum(terms), wp)/2
+    if (present(size_of_terms)) size_of_terms = sum(abs(terms))/2
 
   contains
 

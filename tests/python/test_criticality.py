@@ -10,7 +10,7 @@ the point.
 The case is the cascade of test_branch_switching (Fig 12's tank at rho = 1, gamma = 0.001):
 the period doubling at A = 0.96828 of the asymmetric branch. Its orbits have other multipliers
 outside the unit circle, so a direct simulation cannot show the doubled orbit as an attractor
-there; no stable period doubling of the full model was found in the time of this session."""
+there; test_criticality_simulation does, at a period doubling of stable orbits."""
 
 import math
 
