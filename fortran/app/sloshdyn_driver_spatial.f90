@@ -162,27 +162,11 @@ contains
     integer :: n_points, n_special, j, i
     logical :: complete
 
-    status = SD_OK
-    message = ''
     associate (r => config%response)
       j = r%switch_at
-      if (j > n_edges) then
-        status = SD_BAD_INPUT
-        message = '&response: switch_at = '//num2str(j)//' is out of range: the swirl band has '// &
-                  num2str(n_edges)//' edge(s)'
-      else if (nint(edges(8, j)) /= SPECIAL_BRANCH_POINT) then
-        status = SD_BAD_INPUT
-        message = '&response: switch_at = '//num2str(j)//' is a '// &
-                  special_kind_name(nint(edges(8, j)))//' edge: swirling orbits are born at '// &
-                  'a branch_point edge'
-      end if
+      call edge_at(config, 'switch_at', j, edges, n_edges, [SPECIAL_BRANCH_POINT], &
+                   'swirling orbits are born at a branch_point edge', at_edge, status, message)
       if (status /= SD_OK) return
-      at_edge = config%model
-      if (r%parameter == PARAMETER_RHO) then
-        at_edge%excitation%rho = edges(1, j)
-      else
-        at_edge%excitation%A = edges(1, j)
-      end if
       allocate (points(SWIRLING_BRANCH_ROWS, r%options%continuation%max_points), &
                 special(SWIRLING_SPECIAL_ROWS, 4*max(r%options%continuation%max_points, 1)))
       call swirling_branch(at_edge, r%parameter, edges(2:5, j), 1, r%start, r%stop, &
@@ -225,30 +209,18 @@ contains
     integer :: n_points, n_at, n_folds, j, kind, i
     logical :: complete
 
-    status = SD_OK
-    message = ''
     associate (r => config%response)
       j = r%curve_at
-      if (j > n_edges) then
-        status = SD_BAD_INPUT
-        message = '&response: curve_at = '//num2str(j)//' is out of range: the swirl band has '// &
-                  num2str(n_edges)//' edge(s)'
-        return
-      end if
+      call edge_at(config, 'curve_at', j, edges, n_edges, &
+                   [SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING], &
+                   'the curve follows a branch_point or a period_doubling edge', at_edge, &
+                   status, message)
+      if (status /= SD_OK) return
       kind = nint(edges(8, j))
-      if (kind /= SPECIAL_BRANCH_POINT .and. kind /= SPECIAL_PERIOD_DOUBLING) then
-        status = SD_BAD_INPUT
-        message = '&response: curve_at = '//num2str(j)//' is a '//special_kind_name(kind)// &
-                  ' edge: the curve follows a branch_point or a period_doubling edge'
-        return
-      end if
-      at_edge = config%model
       if (r%parameter == PARAMETER_RHO) then
-        at_edge%excitation%rho = edges(1, j)
         rho_range = [r%start, r%stop]
         A_range = [r%curve_start, r%curve_stop]
       else
-        at_edge%excitation%A = edges(1, j)
         rho_range = [r%curve_start, r%curve_stop]
         A_range = [r%start, r%stop]
       end if
@@ -288,6 +260,38 @@ contains
     if (status == SD_OK) call files%write_table('swirl_curve_folds.csv', 'swirl_curve_folds', &
                                                 folds(:, 1:n_folds), status, message)
   end subroutine run_swirl_curve
+
+  !> The model at swirl edge j of the band (edges(:, 1:n_edges), layout 'swirl_edges'), chosen
+  !> by &response's `key`: SD_BAD_INPUT unless the edge exists and its kind is one of `kinds`
+  !> (`rule` says why).
+  subroutine edge_at(config, key, j, edges, n_edges, kinds, rule, at_edge, status, message)
+    type(run_config), intent(in) :: config
+    character(len=*), intent(in) :: key, rule
+    integer, intent(in) :: j, n_edges, kinds(:)
+    real(wp), intent(in) :: edges(:, :)
+    type(model_t), intent(out) :: at_edge
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_BAD_INPUT
+    if (j > n_edges) then
+      message = '&response: '//key//' = '//num2str(j)//' is out of range: the swirl band has '// &
+                num2str(n_edges)//' edge(s)'
+      return
+    end if
+    if (all(kinds /= nint(edges(8, j)))) then
+      message = '&response: '//key//' = '//num2str(j)//' is a '// &
+                special_kind_name(nint(edges(8, j)))//' edge: '//rule
+      return
+    end if
+    status = SD_OK
+    message = ''
+    at_edge = config%model
+    if (config%response%parameter == PARAMETER_RHO) then
+      at_edge%excitation%rho = edges(1, j)
+    else
+      at_edge%excitation%A = edges(1, j)
+    end if
+  end subroutine edge_at
 
   !> Values separated by commas.
   pure function join_values(values) result(text)
