@@ -292,9 +292,13 @@ contains
                       num2str(rho_range(2))//']', status, message)
       call check_real('A', model%excitation%A, 0.0_wp, big, .true., .false., &
                       'the edge''s A must be > 0', status, message)
-      call check_real('A_range', model%excitation%A, A_range(1), A_range(2), .false., .false., &
-                      'A_range = ['//num2str(A_range(1))//', '//num2str(A_range(2))// &
-                      '] must contain the edge''s A', status, message)
+      if (status == SD_OK .and. (model%excitation%A < A_range(1) .or. &
+                                 model%excitation%A > A_range(2))) then
+        status = SD_BAD_INPUT
+        message = 'A_range = ['//num2str(A_range(1))//', '//num2str(A_range(2))// &
+                  '] is out of range: it must contain the edge''s A = '// &
+                  num2str(model%excitation%A)
+      end if
       call check_real('ds', settings%ds, 0.0_wp, big, .true., .false., 'ds must be > 0', &
                       status, message)
       call check_real('tol', settings%tol, 0.0_wp, big, .true., .false., 'tol must be > 0', &
