@@ -41,7 +41,7 @@ module sloshdyn_swirl
   use sloshdyn_spatial_system, only: spatial_tank_system
   implicit none
   private
-  public :: out_of_plane_multipliers, swirl_branch, swirl_orbit, orbit_measures, &
+  public :: out_of_plane_multipliers, swirl_branch, swirl_orbit, orbit_measures, edge_test, &
             stability_margin
 
   !> Newton shooting of the planar orbit at an edge candidate
@@ -357,18 +357,35 @@ contains
     real(wp), intent(out) :: fx
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: s, guess(4), monodromy(4, 4), re(4), im(4)
-    integer :: iterations
+    real(wp) :: s
     s = (x - self%lambda(1))/(self%lambda(2) - self%lambda(1))
-    guess = (1 - s)*self%y0(:, 1) + s*self%y0(:, 2)
     call self%planar%set_parameter(x)
-    call shooting_newton(self%planar, guess, self%k, self%options, self%method, newton_tol, &
-                         newton_iterations, self%y_orbit, monodromy, re, im, iterations, status, &
-                         message, self%max_x1)
-    fx = ieee_value(1.0_wp, ieee_quiet_nan)
-    if (status /= SD_OK) return
-    call out_of_plane_multipliers(self%planar%model, self%y_orbit, self%k, self%options, &
-                                  self%method, re, im, status, message)
-    if (status == SD_OK) fx = kind_test_value(self%kind, re, im)
+    call edge_test(self%planar, self%kind, (1 - s)*self%y0(:, 1) + s*self%y0(:, 2), self%k, &
+                   self%options, self%method, newton_tol, newton_iterations, self%y_orbit, &
+                   self%max_x1, fx, status, message)
   end subroutine swirl_margin_value
+
+  !> The edge test of kind `kind` (kind_test_value of the out-of-plane multipliers: det(M_b - I),
+  !> det(M_b + I), the complex pairs' moduli) on the planar orbit of period k T of `planar`
+  !> found by Newton shooting (to newton_tol, at most max_iter shots) from the guess; y_orbit
+  !> and its max|x1|. g is NaN when the shooting or the multipliers fail (status says why).
+  subroutine edge_test(planar, kind, guess, k, options, method, newton_tol, max_iter, y_orbit, &
+                       max_x1, g, status, message)
+    type(tank_system), intent(in) :: planar
+    integer, intent(in) :: kind, k, method, max_iter
+    real(wp), intent(in) :: guess(4), newton_tol
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: y_orbit(4), max_x1, g
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp) :: monodromy(4, 4), re(4), im(4)
+    integer :: iterations
+    g = ieee_value(1.0_wp, ieee_quiet_nan)
+    call shooting_newton(planar, guess, k, options, method, newton_tol, max_iter, y_orbit, &
+                         monodromy, re, im, iterations, status, message, max_x1)
+    if (status /= SD_OK) return
+    call out_of_plane_multipliers(planar%model, y_orbit, k, options, method, re, im, status, &
+                                  message)
+    if (status == SD_OK) g = kind_test_value(kind, re, im)
+  end subroutine edge_test
 end module sloshdyn_swirl

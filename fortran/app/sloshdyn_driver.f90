@@ -104,6 +104,14 @@ module sloshdyn_driver
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
     end subroutine run_swirling
+    module subroutine run_swirl_curve(config, files, edges, n_edges, status, message)
+      type(run_config), intent(in) :: config
+      type(result_files), intent(inout) :: files
+      real(wp), intent(in) :: edges(:, :)
+      integer, intent(in) :: n_edges
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine run_swirl_curve
     module subroutine run_seismic_spatial(config, files, status, message)
       type(run_config), intent(in) :: config
       type(result_files), intent(inout) :: files
@@ -803,6 +811,8 @@ contains
                                                 edges(:, 1:n_edges), status, message)
     if (status == SD_OK .and. config%response%switch_at > 0) &
       call run_swirling(config, files, edges, n_edges, status, message)
+    if (status == SD_OK .and. config%response%curve_at > 0) &
+      call run_swirl_curve(config, files, edges, n_edges, status, message)
   end subroutine run_swirl
 
   !> The swirl band of model along &response's range (sloshdyn_swirl's swirl_branch, from the

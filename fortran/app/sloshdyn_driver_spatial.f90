@@ -14,9 +14,11 @@ submodule (sloshdyn_driver) sloshdyn_driver_spatial
   use sloshdyn_simulation, only: spatial_time_history
   use sloshdyn_swirl, only: swirl_orbit
   use sloshdyn_swirling_branch, only: swirling_branch
+  use sloshdyn_swirl_curve, only: swirl_boundary_curve, curve_settings
   use sloshdyn_periodic_response, only: newton_tol_default, max_iter_default
   use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS, &
                              SWIRLING_BRANCH_ROWS, SWIRLING_SPECIAL_ROWS, SPECIAL_BRANCH_POINT, &
+                             SPECIAL_PERIOD_DOUBLING, SWIRL_CURVE_ROWS, SWIRL_CURVE_FOLD_ROWS, &
                              special_kind_name
   implicit none
 
@@ -160,27 +162,11 @@ contains
     integer :: n_points, n_special, j, i
     logical :: complete
 
-    status = SD_OK
-    message = ''
     associate (r => config%response)
       j = r%switch_at
-      if (j > n_edges) then
-        status = SD_BAD_INPUT
-        message = '&response: switch_at = '//num2str(j)//' is out of range: the swirl band has '// &
-                  num2str(n_edges)//' edge(s)'
-      else if (nint(edges(8, j)) /= SPECIAL_BRANCH_POINT) then
-        status = SD_BAD_INPUT
-        message = '&response: switch_at = '//num2str(j)//' is a '// &
-                  special_kind_name(nint(edges(8, j)))//' edge: swirling orbits are born at '// &
-                  'a branch_point edge'
-      end if
+      call edge_at(config, 'switch_at', j, edges, n_edges, [SPECIAL_BRANCH_POINT], &
+                   'swirling orbits are born at a branch_point edge', at_edge, status, message)
       if (status /= SD_OK) return
-      at_edge = config%model
-      if (r%parameter == PARAMETER_RHO) then
-        at_edge%excitation%rho = edges(1, j)
-      else
-        at_edge%excitation%A = edges(1, j)
-      end if
       allocate (points(SWIRLING_BRANCH_ROWS, r%options%continuation%max_points), &
                 special(SWIRLING_SPECIAL_ROWS, 4*max(r%options%continuation%max_points, 1)))
       call swirling_branch(at_edge, r%parameter, edges(2:5, j), 1, r%start, r%stop, &
@@ -203,6 +189,109 @@ contains
                                                 'swirling_special_points', &
                                                 special(:, 1:n_special), status, message)
   end subroutine run_swirling
+
+  !> With &response curve_at = j (kind = 'swirl'): edge j of the swirl band (a branch_point or
+  !> period_doubling edge) continued as a curve in (rho, A) (sloshdyn_swirl_curve, as Python's
+  !> sloshdyn.spatial.swirl_boundary_curve with its default ds and tol and &response's
+  !> max_points) in the box of &response's range times [curve_start, curve_stop] of the other
+  !> parameter: swirl_boundary_curve.csv and swirl_curve_folds.csv.
+  module subroutine run_swirl_curve(config, files, edges, n_edges, status, message)
+    type(run_config), intent(in) :: config
+    type(result_files), intent(inout) :: files
+    real(wp), intent(in) :: edges(:, :)
+    integer, intent(in) :: n_edges
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: at_edge
+    type(curve_settings) :: settings
+    real(wp) :: rho_range(2), A_range(2), no_values(0), at(SWIRL_CURVE_ROWS, 1)
+    real(wp), allocatable :: points(:, :), folds(:, :)
+    integer :: n_points, n_at, n_folds, j, kind, i
+    logical :: complete
+
+    associate (r => config%response)
+      j = r%curve_at
+      call edge_at(config, 'curve_at', j, edges, n_edges, &
+                   [SPECIAL_BRANCH_POINT, SPECIAL_PERIOD_DOUBLING], &
+                   'the curve follows a branch_point or a period_doubling edge', at_edge, &
+                   status, message)
+      if (status /= SD_OK) return
+      kind = nint(edges(8, j))
+      if (r%parameter == PARAMETER_RHO) then
+        rho_range = [r%start, r%stop]
+        A_range = [r%curve_start, r%curve_stop]
+      else
+        rho_range = [r%curve_start, r%curve_stop]
+        A_range = [r%start, r%stop]
+      end if
+      if (at_edge%excitation%A < A_range(1) .or. at_edge%excitation%A > A_range(2) .or. &
+          at_edge%excitation%rho < rho_range(1) .or. at_edge%excitation%rho > rho_range(2)) then
+        status = SD_BAD_INPUT
+        message = '&response: curve_start, curve_stop = '//num2str(r%curve_start)//', '// &
+                  num2str(r%curve_stop)//' must contain the edge''s '// &
+                  trim(merge('A  ', 'rho', r%parameter == PARAMETER_RHO))//' = '// &
+                  num2str(merge(at_edge%excitation%A, at_edge%excitation%rho, &
+                                r%parameter == PARAMETER_RHO))
+        return
+      end if
+      settings%max_points = r%options%continuation%max_points
+      settings%newton_tol = newton_tol_default
+      settings%max_iter = max_iter_default
+      allocate (points(SWIRL_CURVE_ROWS, 2*settings%max_points - 1), &
+                folds(SWIRL_CURVE_FOLD_ROWS, 2*settings%max_points))
+      call swirl_boundary_curve(at_edge, kind, at_edge%excitation%rho, edges(2:5, j), 1, &
+                                rho_range, A_range, no_values, settings, config%integration, &
+                                config%method, points, n_points, at, n_at, folds, n_folds, &
+                                complete, status, message)
+      call in_context('swirl boundary curve through swirl edge '//num2str(j), status, message)
+      if (status /= SD_OK) return
+      print '(/a)', 'The swirl boundary through edge '//num2str(j)//' ('// &
+                    special_kind_name(kind)//') in rho in ['//num2str(rho_range(1))//', '// &
+                    num2str(rho_range(2))//'] x A in ['//num2str(A_range(1))//', '// &
+                    num2str(A_range(2))//']: '//num2str(n_points)//' points; folds in A:'
+      if (n_folds == 0) print '(a)', '  none'
+      do i = 1, n_folds
+        print '(a)', '  '//trim(merge('closing', 'opening', folds(8, i) > 0))//' at rho = '// &
+                     pad(num2str(folds(1, i)), 14)//'A = '//num2str(folds(2, i))
+      end do
+    end associate
+    call files%write_table('swirl_boundary_curve.csv', 'swirl_boundary_curve', &
+                           points(:, 1:n_points), status, message)
+    if (status == SD_OK) call files%write_table('swirl_curve_folds.csv', 'swirl_curve_folds', &
+                                                folds(:, 1:n_folds), status, message)
+  end subroutine run_swirl_curve
+
+  !> The model at swirl edge j of the band (edges(:, 1:n_edges), layout 'swirl_edges'), chosen
+  !> by &response's `key`: SD_BAD_INPUT unless the edge exists and its kind is one of `kinds`
+  !> (`rule` says why).
+  subroutine edge_at(config, key, j, edges, n_edges, kinds, rule, at_edge, status, message)
+    type(run_config), intent(in) :: config
+    character(len=*), intent(in) :: key, rule
+    integer, intent(in) :: j, n_edges, kinds(:)
+    real(wp), intent(in) :: edges(:, :)
+    type(model_t), intent(out) :: at_edge
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_BAD_INPUT
+    if (j > n_edges) then
+      message = '&response: '//key//' = '//num2str(j)//' is out of range: the swirl band has '// &
+                num2str(n_edges)//' edge(s)'
+      return
+    end if
+    if (all(kinds /= nint(edges(8, j)))) then
+      message = '&response: '//key//' = '//num2str(j)//' is a '// &
+                special_kind_name(nint(edges(8, j)))//' edge: '//rule
+      return
+    end if
+    status = SD_OK
+    message = ''
+    at_edge = config%model
+    if (config%response%parameter == PARAMETER_RHO) then
+      at_edge%excitation%rho = edges(1, j)
+    else
+      at_edge%excitation%A = edges(1, j)
+    end if
+  end subroutine edge_at
 
   !> Values separated by commas.
   pure function join_values(values) result(text)

@@ -113,7 +113,8 @@ module sloshdyn_layouts
             'are followed; 0: none'), &
     field_t('curve_at', 'integer', 'periodic_response: the special point (1, 2, ...; a '// &
             'fold, period_doubling or neimark_sacker) whose two-parameter curve in (rho, A) '// &
-            'is traced; 0: none'), &
+            'is traced; swirl: the edge (1, 2, ...; a branch_point or period_doubling) '// &
+            'continued as a curve in (rho, A); 0: none'), &
     field_t('curve_start', doc='the curve''s range of the other parameter (A when the '// &
             'branch is in rho), lower end'), &
     field_t('curve_stop', doc='... upper end')]

@@ -23,7 +23,7 @@ module sloshdyn_tables
             SPECIAL_A1, SPECIAL_A2, SPECIAL_FREQUENCY, SPECIAL_COLUMN
   public :: SWIRL_BRANCH_ROWS, SWIRL_EDGE_ROWS, SEISMIC_SPATIAL_ROWS, SEISMIC_SPATIAL_PEAKS
   public :: SPATIAL_HISTORY_ROWS, SWIRL_ORBIT_ROWS, SWIRL_BOUNDARY_ROWS, SWIRLING_BRANCH_ROWS, &
-            SWIRLING_SPECIAL_ROWS
+            SWIRLING_SPECIAL_ROWS, SWIRL_CURVE_ROWS, SWIRL_CURVE_FOLD_ROWS
   public :: ROUTH_SIZE, COUNTS_SIZE, PERIODIC_POINT_ROWS, PERIODIC_MULTIPLIER_ROWS, &
             PERIODIC_SPECIAL_ROWS, PERIODIC_SPECIAL_KIND, PERIODIC_SPECIAL_LAMBDA, &
             PERIODIC_SPECIAL_MAX_X1
@@ -146,6 +146,10 @@ module sloshdyn_tables
   !> The swirling orbits born at a swirl edge (sloshdyn_swirling_branch: 'swirling_branch',
   !> 'swirling_special_points').
   integer, parameter :: SWIRLING_BRANCH_ROWS = 29, SWIRLING_SPECIAL_ROWS = 11
+  !> The swirl boundary in (rho, A) continued as a curve (sloshdyn_swirl_curve:
+  !> 'swirl_boundary_curve', its points with the planar orbit there; 'swirl_curve_folds', its
+  !> folds in A, closing 1: a least A of the band, where damping closes it, 0: a greatest A).
+  integer, parameter :: SWIRL_CURVE_ROWS = 7, SWIRL_CURVE_FOLD_ROWS = 8
 
   !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
   !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
@@ -360,6 +364,10 @@ contains
                'im_mu1,im_mu2,im_mu3,im_mu4,im_mu5,im_mu6,im_mu7,im_mu8'
     case ('swirling_special_points')
       header = 'kind,lambda,y1,y2,y3,y4,y5,y6,y7,y8,max_x1'
+    case ('swirl_boundary_curve')
+      header = 'rho,A,y1,y2,y3,y4,max_x1'
+    case ('swirl_curve_folds')
+      header = 'rho,A,y1,y2,y3,y4,max_x1,closing'
     case ('spatial_history')
       header = 'tau,x1,dx1,x2,dx2,y1,dy1,y2,dy2,tilt,tilt_azimuth'
     case ('swirl_orbit')
@@ -467,6 +475,8 @@ contains
       formats = 's'//repeat('r', 10)
     case ('swirl_boundary')
       formats = 'rrrrrrris'
+    case ('swirl_curve_folds')
+      formats = 'rrrrrrri'
     case ('simulation')
       formats = 'iiir'
     case ('lyapunov')

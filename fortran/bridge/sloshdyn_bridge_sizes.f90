@@ -18,7 +18,8 @@ program sloshdyn_bridge_sizes
                              SEISMIC_SPATIAL_PEAKS
   use sloshdyn_tables, only: WALL_PRESSURE_ROWS, BASE_PRESSURE_ROWS, PRESSURE_RESULTANT_ROWS, &
                              PRESSURE_INSTANT_ROWS
-  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, PEAK_INSTANT_ROWS, PEAK_INSTANTS
+  use sloshdyn_tables, only: SPATIAL_HISTORY_ROWS, PEAK_INSTANT_ROWS, PEAK_INSTANTS, &
+                             SWIRL_CURVE_ROWS, SWIRL_CURVE_FOLD_ROWS
   use sloshdyn_tank, only: max_modes
   use sloshdyn_layouts, only: INTEGRATION_SIZE, STEADY_SIZE, RESPONSE_SIZE, LYAPUNOV_SIZE, &
                               TANK_SIZE, GROUND_SIZE, CHART_SIZE, CHART_RANGE_SIZE, STUDY_SIZE, &
@@ -91,6 +92,8 @@ program sloshdyn_bridge_sizes
   call define('swirl_edge_rows', SWIRL_EDGE_ROWS)
   call define('swirling_branch_rows', SWIRLING_BRANCH_ROWS)
   call define('swirling_special_rows', SWIRLING_SPECIAL_ROWS)
+  call define('swirl_curve_rows', SWIRL_CURVE_ROWS)
+  call define('swirl_curve_fold_rows', SWIRL_CURVE_FOLD_ROWS)
   call define('seismic_spatial_rows', SEISMIC_SPATIAL_ROWS)
   call define('seismic_spatial_peaks', SEISMIC_SPATIAL_PEAKS)
   call define('natural_frequencies_size', NATURAL_FREQUENCIES_SIZE)

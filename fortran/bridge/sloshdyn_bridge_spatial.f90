@@ -185,6 +185,47 @@ contains
     status = code
   end subroutine swirling_branch
 
+  !> The swirl edge of kind `kind` (a SPECIAL_* code) at rho_edge through the planar orbit y_edge
+  !> of the model (at the edge's A) continued as a curve in rho_range x A_range
+  !> (sloshdyn_swirl_curve): points(SWIRL_CURVE_ROWS, capacity >= 2 max_points - 1) and at (its
+  !> points at the A of A_values) in the table 'swirl_boundary_curve', folds in
+  !> 'swirl_curve_folds'; complete = 0 if the curve stopped early (status then says why).
+  subroutine swirl_boundary_curve(rpar, ipar, kind, rho_edge, y_edge, k, rho_range, A_range, &
+                                  n_A, A_values, ds, max_points, tol, newton_tol, max_iter, &
+                                  integration, capacity, max_at, max_folds, points, n_points, &
+                                  at, n_at, folds, n_folds, complete, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_tables, only: SWIRL_CURVE_ROWS, SWIRL_CURVE_FOLD_ROWS
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_swirl_curve, only: curve_settings, core => swirl_boundary_curve
+    real(c_double), intent(in) :: rpar(n_real_params), rho_edge, y_edge(4), rho_range(2), &
+                                  A_range(2), A_values(n_A), ds, tol, newton_tol, &
+                                  integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), kind, k, n_A, max_points, max_iter, &
+                                  capacity, max_at, max_folds
+    real(c_double), intent(out) :: points(SWIRL_CURVE_ROWS, capacity), &
+                                   at(SWIRL_CURVE_ROWS, max_at), &
+                                   folds(SWIRL_CURVE_FOLD_ROWS, max_folds)
+    integer(c_int), intent(out) :: n_points, n_at, n_folds, complete, status
+    character(len=256), intent(out) :: message
+    type(model_t) :: model
+    integer :: code, found, found_at, found_folds
+    logical :: done
+    points = 0; at = 0; folds = 0; found = 0; found_at = 0; found_folds = 0; done = .false.
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call core(model, int(kind), rho_edge, y_edge, int(k), rho_range, A_range, &
+                             A_values, curve_settings(ds, int(max_points), tol, newton_tol, &
+                                                      int(max_iter)), &
+                             to_ode_options(integration), to_method(integration), points, found, &
+                             at, found_at, folds, found_folds, done, code, message)
+    n_points = found
+    n_at = found_at
+    n_folds = found_folds
+    complete = merge(1, 0, done)
+    status = code
+  end subroutine swirl_boundary_curve
+
   !> A periodic orbit of period k T of the spatial model (its excitation along spatial's azimuth,
   !> with its ellipticity) from y0 after `transient` k T of integration (sloshdyn_swirl's
   !> swirl_orbit): y_orbit, multipliers(2, 8) = (Re, Im), info(SWIRL_ORBIT_INFO_SIZE) (layout

@@ -39,9 +39,12 @@ module sloshdyn_continuation
   !> A system F(x, lambda) = 0 with its Jacobian; extend it with the parameters F depends on.
   !> n = size(x); f, flambda have size n and fx shape (n, n). F and its Jacobian come from one
   !> evaluation, so a system whose evaluation is costly (shooting) needs no cache.
+  !> residual_only (F alone, for the quasi-Newton iterations of newton_options%reuse_jacobian)
+  !> defaults to evaluate without its Jacobian; override it where F alone costs less.
   type, abstract :: parametrised_system
   contains
     procedure(system_evaluate), deferred :: evaluate
+    procedure :: residual_only => evaluate_residual_only
   end type parametrised_system
 
   abstract interface
@@ -106,6 +109,13 @@ module sloshdyn_continuation
     real(wp) :: x_tol = 1.0e-11_wp  !< relative step tolerance, > 0
     real(wp) :: f_tol = 1.0e-11_wp  !< absolute residual tolerance, > 0
     integer :: max_iter = 20        !< iterations (Jacobian solves), >= 1
+    !> quasi-Newton iterations: the Jacobian of the first iteration, or the last one evaluated
+    !> (a tangent's, in continue_branch and along a branch: the point's before), updated after
+    !> every step by Broyden's rank-one secant formula (Dennis & Schnabel, Numerical Methods
+    !> for Unconstrained Optimization and Nonlinear Equations, 1983, section 8.1), and F
+    !> alone evaluated (sys%residual_only): for systems whose Jacobian costs several F
+    !> (finite differences). Converges superlinearly, not quadratically.
+    logical :: reuse_jacobian = .false.
   end type newton_options
 
   !> Continuation settings. Steps are pseudo-arclength in the weighted norm (see the header).
@@ -140,6 +150,9 @@ module sloshdyn_continuation
   !> ds doubles after a step whose corrector needed at most fast_iterations iterations and whose
   !> tangent turned by less than acos(grow_turn_cos) (~8 deg).
   integer, parameter :: fast_iterations = 3
+  !> ... or reuse_fast_iterations for a quasi-Newton corrector (newton_options%reuse_jacobian),
+  !> which converges more slowly than Newton's
+  integer, parameter :: reuse_fast_iterations = 5
   real(wp), parameter :: grow_turn_cos = 0.99_wp
   !> locate_fold: |lambda-component of the unit tangent| at which the fold counts as found.
   real(wp), parameter :: fold_tol = 1.0e-10_wp
@@ -153,6 +166,8 @@ module sloshdyn_continuation
     real(wp), allocatable :: flambda(:)    !< dF/dlambda (n)
     real(wp), allocatable :: a(:, :)       !< bordered matrix (n+1, n+1)
     real(wp), allocatable :: r(:)          !< right-hand side, then solution (n+1)
+    real(wp), allocatable :: f_old(:)      !< F of the iteration before (quasi-Newton, n)
+    logical :: jacobian_ready = .false.    !< fx, flambda hold a branch point's (tangent_core)
   end type workspace
 
   !> A branch_test as a function of the pseudo-arclength s from a point (for brent_zero).
@@ -393,7 +408,9 @@ contains
         stop_reason = STOP_X_MAX
         exit
       end if
-      if (iterations <= fast_iterations .and. cos_turn >= grow_turn_cos) &
+      if (iterations <= merge(reuse_fast_iterations, fast_iterations, &
+                            options%newton%reuse_jacobian) &
+          .and. cos_turn >= grow_turn_cos) &
         ds = min(2*ds, options%ds_max)
     end do
 
@@ -699,7 +716,7 @@ contains
     message = ''
     f_norm = 0
     do iterations = 1, options%max_iter
-      call sys%evaluate(x, lambda, ws%f, ws%fx, ws%flambda)
+      call evaluate_for_newton(sys, x, lambda, options, iterations, ws)
       f_norm = maxval(abs(ws%f))
       if (.not. all(ieee_is_finite(ws%f))) then
         status = SD_NON_FINITE
@@ -708,6 +725,7 @@ contains
                                ', lambda = '//num2str(lambda)//', max|x| = '//num2str(maxval(abs(x)))
         return
       end if
+      if (options%reuse_jacobian .and. iterations > 1) call broyden_update(ws, ws%r(1:n), .false.)
       ws%r(1:n) = -ws%f
       call solve_linear(ws%fx, ws%r(1:n), status, message)
       if (status /= SD_OK .and. .not. numbers) return
@@ -756,7 +774,7 @@ contains
     message = ''
     f_norm = 0
     do iterations = 1, options%max_iter
-      call sys%evaluate(z(1:n), z(m), ws%f, ws%fx, ws%flambda)
+      call evaluate_for_newton(sys, z(1:n), z(m), options, iterations, ws)
       f_norm = maxval(abs(ws%f))
       if (.not. all(ieee_is_finite(ws%f))) then
         status = SD_NON_FINITE
@@ -764,6 +782,7 @@ contains
                   ', max|x| = '//num2str(maxval(abs(z(1:n))))
         return
       end if
+      if (options%reuse_jacobian .and. iterations > 1) call broyden_update(ws, ws%r, .true.)
       ws%a(1:n, 1:n) = ws%fx
       ws%a(1:n, m) = ws%flambda
       ws%a(m, :) = c
@@ -837,7 +856,53 @@ contains
       return
     end if
     t = ws%r/wnorm(ws%r, w)
+    ws%jacobian_ready = .true.
   end subroutine tangent_core
+
+  !> F (ws%f) at iteration `iteration` of a Newton method, and its Jacobian (ws%fx,
+  !> ws%flambda) unless a quasi-Newton iteration keeps the one there
+  !> (newton_options%reuse_jacobian).
+  subroutine evaluate_for_newton(sys, x, lambda, options, iteration, ws)
+    class(parametrised_system), intent(in) :: sys
+    real(wp), intent(in) :: x(:), lambda
+    type(newton_options), intent(in) :: options
+    integer, intent(in) :: iteration
+    type(workspace), intent(inout) :: ws
+    ws%f_old = ws%f
+    if (options%reuse_jacobian .and. (iteration > 1 .or. ws%jacobian_ready)) then
+      call sys%residual_only(x, lambda, ws%f)
+    else
+      call sys%evaluate(x, lambda, ws%f, ws%fx, ws%flambda)
+    end if
+  end subroutine evaluate_for_newton
+
+  !> Broyden's update of the Jacobian (ws%fx, and ws%flambda with_lambda) after the step
+  !> `step` (in x, or in (x, lambda)) took F from ws%f_old to ws%f: J + (dF - J s) s^T/(s^T s).
+  pure subroutine broyden_update(ws, step, with_lambda)
+    type(workspace), intent(inout) :: ws
+    real(wp), intent(in) :: step(:)
+    logical, intent(in) :: with_lambda
+    real(wp) :: miss(size(ws%f)), length2
+    integer :: n, j
+    n = size(ws%f)
+    length2 = sum(step**2)
+    if (.not. length2 > 0) return
+    miss = ws%f - ws%f_old - matmul(ws%fx, step(1:n))
+    if (with_lambda) miss = miss - ws%flambda*step(n + 1)
+    do j = 1, n
+      ws%fx(:, j) = ws%fx(:, j) + miss*step(j)/length2
+    end do
+    if (with_lambda) ws%flambda = ws%flambda + miss*step(n + 1)/length2
+  end subroutine broyden_update
+
+  !> F alone: evaluate, the Jacobian dropped.
+  subroutine evaluate_residual_only(self, x, lambda, f)
+    class(parametrised_system), intent(in) :: self
+    real(wp), intent(in) :: x(:), lambda
+    real(wp), intent(out) :: f(:)
+    real(wp) :: fx(size(x), size(x)), flambda(size(x))
+    call self%evaluate(x, lambda, f, fx, flambda)
+  end subroutine evaluate_residual_only
 
   !> Tangent at the start: the null vector of [dF/dx, dF/dlambda], found with a unit border row
   !> (lambda first, then each x-component, until the bordered matrix is regular), refined with
@@ -985,7 +1050,7 @@ contains
   pure subroutine setup_workspace(ws, n)
     type(workspace), intent(out) :: ws
     integer, intent(in) :: n
-    allocate (ws%f(n), ws%fx(n, n), ws%flambda(n), ws%a(n + 1, n + 1), ws%r(n + 1))
+    allocate (ws%f(n), ws%fx(n, n), ws%flambda(n), ws%a(n + 1, n + 1), ws%r(n + 1), ws%f_old(n))
   end subroutine setup_workspace
 
   !> Weighted norm sqrt(sum(w v^2)).

@@ -289,48 +289,25 @@ class SwirlBoundaryCurve:
     message: str                 #: why the continuation stopped early ('' if complete)
 
 
-class _EdgeFunction:
-    """g(rho, a) = det(M_b -+ I) on the planar orbit at (rho, A = a * scale), the orbit found
-    by Newton shooting from the last accepted one (y0)."""
-
-    def __init__(self, params, kind, y0, shooting, integration):
-        self.params, self.scale = params, params.A
-        self.sign = 1.0 if kind == "branch_point" else -1.0
-        self.shooting, self.integration, self.y0 = shooting, integration, np.asarray(y0, float)
-
-    def __call__(self, u):
-        params = self.params.replace(rho=float(u[0]), A=float(u[1] * self.scale))
-        orbit = periodic_orbit(params, self.y0, shooting=self.shooting,
-                               integration=self.integration)
-        nu = out_of_plane_multipliers(params, orbit.y0, integration=self.integration)
-        return float(np.prod(1 - self.sign * nu).real), orbit
-
-    def gradient(self, u, value, h=1e-7):
-        return np.array([(self(u + h * e)[0] - value) / h for e in np.eye(2)])
-
-    def point(self, u, orbit):
-        self.y0 = orbit.y0
-        return (float(u[0]), float(u[1]), orbit.y0, orbit.max_x1)
-
-
 def swirl_boundary_curve(params: Parameters, rho_range, A_range, *, edge=0, A_values=(),
                          ds=0.1, max_points=400, tol=1e-12, shooting: Shooting = Shooting(),
                          integration: Integration = Integration(),
                          **band_options) -> SwirlBoundaryCurve:
     """Continue swirl edge number ``edge`` of ``swirl_band(params, rho_range, **band_options)``
-    (at params.A) as a curve in (rho, A): pseudo-arclength in (rho, A/params.A) on
-    g(rho, A) = det(M_b - I) = 0 (det(M_b + I) for a period-doubling edge; M_b the out-of-plane
-    4x4 block of the planar orbit's monodromy, rods included), the planar orbit followed by
-    Newton shooting, both ways from the edge until the curve leaves rho_range x A_range (steps
-    at most ``ds``, at most max_points each way). The curve's points at each A of A_values are
-    located exactly (Newton in rho to ``tol``), and its folds in A, the codimension-2 points
-    where the band closes (damped: the least A with swirl) or opens, by successive parabolic
-    interpolation. Raises ConvergenceError (with ``partial``) if the curve is lost."""
+    (at params.A) as a curve in (rho, A) (the core's sloshdyn_swirl_curve): pseudo-arclength in
+    (rho, A/params.A) on g(rho, A) = det(M_b - I) = 0 (det(M_b + I) for a period-doubling edge;
+    M_b the out-of-plane 4x4 block of the planar orbit's monodromy, rods included), the planar
+    orbit followed by Newton shooting (``shooting``), both ways from the edge until the curve
+    leaves rho_range x A_range (steps at most ``ds``, the first ds/4, at most max_points each
+    way), a chord corrector to ``tol``. The curve's points at each A of A_values are located
+    exactly (Newton in rho), and its folds in A, the codimension-2 points where the band closes
+    (damped: the least A with swirl) or opens, where the curve's tangent turns in A. Raises
+    ConvergenceError (with ``partial``) if the curve stops early."""
     _checks.instance("params", params, Parameters)
-    rho_lo, rho_hi = sorted(_checks.real("rho_range", x) for x in rho_range)
-    A_lo, A_hi = sorted(_checks.real("A_range", x) for x in A_range)
-    if not A_lo <= params.A <= A_hi:
-        raise InputError(f"A_range = {tuple(A_range)}: must contain params.A = {params.A:g}")
+    _checks.instance("shooting", shooting, Shooting)
+    _checks.instance("integration", integration, Integration)
+    rho_range = sorted(_checks.real("rho_range", x) for x in rho_range)
+    A_range = sorted(_checks.real("A_range", x) for x in A_range)
     A_values = (_checks.reals("A_values", A_values, ndim=1) if len(A_values) else np.zeros(0))
     ds, tol = _checks.real("ds", ds), _checks.real("tol", tol)
     max_points = _checks.integer("max_points", max_points, 2)
@@ -343,128 +320,26 @@ def swirl_boundary_curve(params: Parameters, rho_range, A_range, *, edge=0, A_va
                          "'branch_point' or 'period_doubling' edge")
     kind = band.edges["kind"][edge]
     y_edge = np.array([band.edges[f"y{i}"][edge] for i in range(1, 5)])
-    g = _EdgeFunction(params, kind, y_edge, shooting, integration)
-    scale = params.A
-    box = (rho_lo, rho_hi, A_lo / scale, A_hi / scale)
-    halves, messages = [], []
-    for direction in (-1.0, 1.0):
-        g.y0 = y_edge
-        points, message = _continue_edge(g, (band.edges["rho"][edge], 1.0), direction, ds,
-                                         max_points, tol, box)
-        halves.append(points)
-        messages += [message] if message else []
-    points = halves[0][::-1] + halves[1][1:]
-    at = [_at_A(g, points, j, a / scale, tol) for a in A_values
-          for j in _crossings(points, a / scale)]
-    folds = [_fold(g, points, j, tol) for j in range(1, len(points) - 1)
-             if (points[j][1] - points[j - 1][1]) * (points[j + 1][1] - points[j][1]) < 0]
-    curve = SwirlBoundaryCurve(kind, _curve_table(points, scale), _curve_table(at, scale),
-                               [dict(zip(("rho", "A", "y0", "max_x1", "kind"),
-                                         (f[0], f[1] * scale, f[2], f[3], f[4])))
-                                for f in folds],
-                               not messages, "; ".join(messages))
-    if messages:
-        error = ConvergenceError(f"swirl boundary curve: {curve.message}")
-        error.partial = curve
-        raise error
-    return curve
+    capacity = _checks.output_size("max_points", 2 * max_points - 1,
+                                   len(_tables.columns("swirl_boundary_curve")))
+    points, n, at, n_at, folds, n_folds, complete, status, message = cancellable(
+        _bridge.swirl_boundary_curve, *params.array(), _tables.code("special", kind),
+        band.edges["rho"][edge], y_edge, 1, rho_range, A_range, A_values, ds, max_points, tol,
+        shooting.newton_tol, shooting.max_iter, integration.array(), capacity,
+        max(len(A_values) * (capacity - 1), 1), capacity)
+    fold_rows = dict(zip(_tables.columns("swirl_curve_folds"), folds[:, :n_folds]))
+    curve = SwirlBoundaryCurve(
+        kind, _curve_table(points[:, :n]), _curve_table(at[:, :n_at]),
+        [{"rho": float(fold_rows["rho"][j]), "A": float(fold_rows["A"][j]),
+          "y0": np.array([fold_rows[f"y{i}"][j] for i in range(1, 5)]),
+          "max_x1": float(fold_rows["max_x1"][j]),
+          "kind": "closing" if fold_rows["closing"][j] else "opening"} for j in range(n_folds)],
+        bool(complete), message_text(message))
+    return with_partial(curve, status, message, "swirl boundary curve")
 
 
-def _newton(g, u, equation, direction, tol, max_iterations=12):
-    """(point, iterations) solving g = 0 with the extra equation(v) = 0 (linear, normal
-    ``direction``) from u by chord Newton (g's gradient at u), or None if it fails."""
-    try:
-        value, orbit = g(u)
-        grad = g.gradient(u, value)
-        for iteration in range(1, max_iterations + 1):
-            du = np.linalg.solve(np.array([grad, direction]), -np.array([value, equation(u)]))
-            u = u + du
-            value, orbit = g(u)
-            if np.abs(du).max() <= tol:
-                return g.point(u, orbit), iteration
-    except (SloshdynError, np.linalg.LinAlgError):
-        pass
-    return None, max_iterations
-
-
-def _continue_edge(g, start, direction, ds, max_points, tol, box):
-    """The curve's points from the edge at start = (rho, a) one way (direction: +-1 along the
-    tangent (-dg/da, dg/drho)), and '' or why it stopped before leaving box."""
-    u = np.asarray(start, float)
-    value, orbit = g(u)
-    points = [g.point(u, orbit)]
-    grad = g.gradient(u, value)
-    tangent = direction * np.array([-grad[1], grad[0]]) / np.linalg.norm(grad)
-    step = ds / 4
-    while len(points) < max_points:
-        guess = u + step * tangent
-        point, iterations = _newton(g, guess, lambda v: tangent @ (v - guess), tangent, tol)
-        if point is None:
-            step /= 2
-            if step < 1e-9:
-                return points, f"lost the curve at rho = {u[0]:.10g}, A = {u[1] * g.scale:.6g}"
-            continue
-        v = np.array(point[:2])
-        value, _ = g(v)
-        grad = g.gradient(v, value)
-        new = np.array([-grad[1], grad[0]]) / np.linalg.norm(grad)
-        tangent = new if new @ tangent > 0 else -new
-        u = v
-        points.append(point)
-        if not (box[0] <= u[0] <= box[1] and box[2] <= u[1] <= box[3]):
-            return points, ""
-        step = min(ds, step * 1.5) if iterations <= 4 else step
-    return points, f"max_points = {max_points} reached before leaving the box"
-
-
-def _crossings(points, a):
-    return [j for j in range(len(points) - 1)
-            if (points[j][1] - a) * (points[j + 1][1] - a) <= 0 and points[j][1] != a]
-
-
-def _at_A(g, points, j, a, tol):
-    """The curve's point at A = a between points j and j + 1 (Newton in rho, a fixed)."""
-    (r0, a0, y0, _), (r1, a1) = points[j], points[j + 1][:2]
-    g.y0 = y0
-    guess = np.array([r0 + (r1 - r0) * (a - a0) / (a1 - a0), a])
-    point, _ = _newton(g, guess, lambda v: v[1] - a, np.array([0.0, 1.0]), tol)
-    if point is None:
-        raise ConvergenceError(f"swirl boundary curve: no point at A = {a * g.scale:g} "
-                               f"near rho = {guess[0]:.10g}")
-    return point
-
-
-def _fold(g, points, j, tol, max_iterations=20):
-    """The fold of the curve in A near point j (an extremum of A): successive parabolic
-    interpolation of A(rho) on the curve, each A at fixed rho by Newton."""
-    trio = [points[j - 1], points[j], points[j + 1]]
-    kind = "closing" if points[j][1] < points[j - 1][1] else "opening"
-    for _ in range(max_iterations):
-        r, a = np.array([p[0] for p in trio]), np.array([p[1] for p in trio])
-        c = np.polyfit(r - r[1], a, 2)
-        r_vertex = r[1] - c[1] / (2 * c[0])
-        g.y0 = trio[1][2]
-        guess = np.array([r_vertex, np.polyval(c, r_vertex - r[1])])
-        point, _ = _newton(g, guess, lambda v: v[0] - r_vertex, np.array([1.0, 0.0]), tol)
-        if point is None:
-            raise ConvergenceError(f"swirl boundary curve: the fold near rho = "
-                                   f"{r_vertex:.10g} not located")
-        done = abs(r_vertex - trio[1][0]) <= 1e3 * tol
-        worst = int(np.argmax(a)) if kind == "closing" else int(np.argmin(a))
-        trio[worst] = point
-        trio.sort(key=lambda p: p[0])
-        if done:
-            break
-    return (*point, kind)
-
-
-def _curve_table(points, scale):
-    table = {"rho": np.array([p[0] for p in points]),
-             "A": np.array([p[1] * scale for p in points])}
-    for i in range(4):
-        table[f"y{i + 1}"] = np.array([p[2][i] for p in points])
-    table["max_x1"] = np.array([p[3] for p in points])
-    return table
+def _curve_table(rows):
+    return {name: rows[i].copy() for i, name in enumerate(_tables.columns("swirl_boundary_curve"))}
 
 
 @dataclass(frozen=True)

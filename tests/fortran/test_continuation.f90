@@ -249,6 +249,7 @@ program test_continuation
 
   call test_newton()
   call test_circle()
+  call test_reuse_jacobian()
   call test_duffing()
   call test_stopping()
   call test_bad_input()
@@ -291,6 +292,46 @@ contains
       if (tangents(m, k)*tangents(m, k + 1) < 0) exit
     end do
   end function first_fold
+
+  !> Quasi-Newton iterations (newton_options%reuse_jacobian: the first or last Jacobian,
+  !> updated by Broyden's formula): Newton's root of x1^2 + x2^2 = 4, x1 = x2 (sqrt 2, sqrt 2),
+  !> and the circle x^2 + lambda^2 = 1 continued round to its start, every point on it.
+  subroutine test_reuse_jacobian()
+    type(circle_and_line) :: pair
+    type(circle) :: sys
+    type(newton_options) :: newton
+    type(continuation_options) :: opt
+    real(wp), allocatable :: points(:, :), tangents(:, :), arclength(:)
+    real(wp) :: x(2)
+    integer :: n_points, stop_reason, status, iterations
+    character(len=message_len) :: message
+
+    newton%reuse_jacobian = .true.
+    x = [1.0_wp, 0.5_wp]
+    call newton_solve(pair, x, 4.0_wp, newton, iterations, status, message)
+    call check_true('quasi-Newton converges: '//trim(message), status == SD_OK)
+    call check_close('quasi-Newton root x1 = sqrt(2)', x(1), sqrt(2.0_wp), 0.0_wp, 1.0e-11_wp)
+    call check_close('quasi-Newton root x2 = sqrt(2)', x(2), sqrt(2.0_wp), 0.0_wp, 1.0e-11_wp)
+
+    allocate (points(2, capacity), tangents(2, capacity), arclength(capacity))
+    opt%ds = 0.05_wp
+    opt%ds_max = 0.2_wp
+    opt%lambda_min = -2
+    opt%lambda_max = 2
+    opt%newton%reuse_jacobian = .true.
+    call continue_branch(sys, [1.0_wp], 0.0_wp, opt, points, tangents, arclength, n_points, &
+                         stop_reason, status, message)
+    print '(a)', '  circle, quasi-Newton corrector: '//num2str(n_points)//' points, '// &
+                 stop_reason_name(stop_reason)
+    call check_true('circle, quasi-Newton: continuation succeeds: '//trim(message), &
+                    status == SD_OK .and. stop_reason == STOP_CLOSED)
+    call check_close('circle, quasi-Newton: every point has x^2 + lambda^2 = 1', &
+                     maxval(abs(points(1, :n_points)**2 + points(2, :n_points)**2 - 1)), &
+                     0.0_wp, 0.0_wp, 1.0e-10_wp)
+    call check_true('circle, quasi-Newton: it visits x < 0 and lambda < 0', &
+                    minval(points(1, :n_points)) < -0.99_wp .and. &
+                    minval(points(2, :n_points)) < -0.99_wp)
+  end subroutine test_reuse_jacobian
 
   !> Newton on x1^2 + x2^2 = 4, x1 = x2 from (1, 0.5): the root (sqrt 2, sqrt 2), errors that
   !> square from one iteration to the next (quadratic convergence), and the failures.

@@ -3,9 +3,10 @@ damping closes the band (issue 41, item 4).
 
 Independent sources: the single-A swirl edges of ``swirl_band`` (the core's continuation in rho
 with Brent's method on det(M_b - I), a separate code path from the curve's pseudo-arclength in
-(rho, A) with Newton written in Python); and, for the closing point, a bisection on the damping
+(rho, A) with its quasi-Newton corrector, sloshdyn_swirl_curve); and, for the closing point, a bisection on the damping
 zeta at the closing amplitude, each step asking whether swirl exists at all: the largest
 out-of-plane multiplier modulus, maximized over rho by scipy's bounded scalar search, above 1.
+The executable's curve (kind = 'swirl', &response curve_at) against Python's, row by row.
 """
 
 import functools
@@ -16,6 +17,7 @@ from scipy.optimize import minimize_scalar
 
 import sloshdyn
 from sloshdyn import spatial
+from conftest import read_csv, run, write
 
 PARAMS = sloshdyn.Parameters(s1=1.0, mu1=0.01, kappa=1e3, theta0=1.4, beta=0.0, gamma=0.0,
                              delta=0.0, A=2.5e-4, rho=1.02, zeta=5e-4, n=6, p=2)
@@ -106,3 +108,40 @@ def test_a_curve_stopped_early_raises_with_the_curve_so_far():
         nu = spatial.out_of_plane_multipliers(params, [partial.table[f"y{i}"][j]
                                                        for i in range(1, 5)])
         assert np.abs(nu - 1).min() <= 1e-9
+
+
+CURVE_NML = ("&model s1 = 1.0, mu1 = 0.01, kappa = 1000, theta0 = 1.4, beta = 0, gamma = 0, "
+             "delta = 0, zeta = 5e-4, n = 6, p = 2, planar = .false. /\n"
+             "&excitation A = 0.001, rho = 1.0 /\n&analysis kind = 'swirl' /\n"
+             "&response parameter = 'rho', start = 1.0, stop = 1.02, curve_at = {edge}, "
+             "curve_start = {low}, curve_stop = 1.2e-3 /\n&output directory = 'out' /\n")
+
+
+def test_the_namelists_curve_at_is_the_python_swirl_boundary_curve(exe, tmp_path):
+    path = write(tmp_path, CURVE_NML.format(edge=1, low=5e-5))
+    result = run(exe, path.name, tmp_path)
+    assert result.returncode == 0, result.stderr
+    rows = read_csv(tmp_path / "out" / "swirl_boundary_curve.csv")
+    folds = read_csv(tmp_path / "out" / "swirl_curve_folds.csv")
+    inp = sloshdyn.read_namelist(path)
+    r = inp.response_range
+    curve = spatial.swirl_boundary_curve(inp.params, (r["start"], r["stop"]),
+                                         (r["curve_start"], r["curve_stop"]),
+                                         max_points=inp.response.max_points,
+                                         continuation=inp.response, integration=inp.integration)
+    assert len(rows) == len(curve.table["rho"]) > 5
+    for name in ("rho", "A", "y1", "y4", "max_x1"):
+        assert [row[name] for row in rows] == list(curve.table[name]), name
+    # the one fold is the closing point, the same as the test case's above (only A differs)
+    assert len(folds) == len(curve.folds) == 1 and folds[0]["closing"] == 1
+    assert curve.folds[0]["kind"] == "closing"
+    assert (folds[0]["rho"], folds[0]["A"]) == (curve.folds[0]["rho"], curve.folds[0]["A"])
+    assert folds[0]["A"] == pytest.approx(_curve().folds[0]["A"], rel=1e-8)
+
+
+@pytest.mark.parametrize("edge, low, name", [(5, 5e-5, "curve_at = 5"),
+                                             (1, 1.1e-3, "curve_start, curve_stop")])
+def test_the_namelists_bad_curve_values_are_named(exe, tmp_path, edge, low, name):
+    path = write(tmp_path, CURVE_NML.format(edge=edge, low=low))
+    result = run(exe, path.name, tmp_path)
+    assert result.returncode == 3 and name in result.stderr, result.stderr
