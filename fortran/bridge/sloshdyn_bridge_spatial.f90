@@ -208,7 +208,7 @@ contains
                                    at(SWIRL_CURVE_ROWS, max_at), &
                                    folds(SWIRL_CURVE_FOLD_ROWS, max_folds)
     integer(c_int), intent(out) :: n_points, n_at, n_folds, complete, status
-    character(len=256), intent(out) :: message
+    character(len=512), intent(out) :: message
     type(model_t) :: model
     integer :: code, found, found_at, found_folds
     logical :: done
