@@ -13,7 +13,8 @@ module sloshdyn_periodic_response
   use sloshdyn_half_period, only: locate_symmetry_breaking
   use sloshdyn_map_normal_form, only: period_doubling_coefficient, neimark_sacker_coefficient
   use sloshdyn_excitation, only: EXCITATION_HARMONIC
-  use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts
+  use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts, average_names, &
+                               AVERAGE_PLAIN
   use sloshdyn_simulation, only: steady_options, steady_state
   use sloshdyn_response, only: response_options, frequency_response
   use sloshdyn_linear, only: modal_matrix
@@ -48,6 +49,7 @@ module sloshdyn_periodic_response
     integer :: n_periods = 2000           !< measured; a multiple of renormalise_every
     integer :: renormalise_every = 1      !< periods between renormalisations of the tangent
     logical :: spectrum = .false.         !< all four exponents (QR method), not the largest only
+    integer :: average = AVERAGE_PLAIN    !< how the log growths are averaged (average_names)
   end type lyapunov_options
 
 contains
@@ -323,14 +325,22 @@ contains
     if (status /= SD_OK) return
     call check_lyapunov_counts(options%transient_periods, options%n_periods, &
                                options%renormalise_every, status, message)
+    if (status /= SD_OK) return
+    if (options%average < 1 .or. options%average > size(average_names)) then
+      status = SD_BAD_INPUT
+      message = 'average = '//num2str(options%average)//' is out of range: it must lie in '// &
+                '[1, '//num2str(size(average_names))//']'
+    end if
   end subroutine check_lyapunov
 
-  !> Largest Lyapunov exponent per unit tau from y0, with its running estimates (history).
+  !> Largest Lyapunov exponent per unit tau from y0, with its running estimates (history);
+  !> average: largest_lyapunov's.
   subroutine lyapunov_exponent(model, y0, transient_periods, n_periods, renormalise_every, &
-                               options, method, exponent, history, status, message)
+                               options, method, exponent, history, status, message, average)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y0(4)
     integer, intent(in) :: transient_periods, n_periods, renormalise_every, method
+    integer, intent(in), optional :: average
     type(ode_options), intent(in) :: options
     real(wp), intent(out) :: exponent, history(:)
     integer, intent(out) :: status
@@ -338,6 +348,6 @@ contains
     type(tank_system) :: system
     system%model = model
     call largest_lyapunov(system, y0, transient_periods, n_periods, renormalise_every, options, &
-                          method, exponent, history, status, message)
+                          method, exponent, history, status, message, average)
   end subroutine lyapunov_exponent
 end module sloshdyn_periodic_response

@@ -71,7 +71,7 @@ contains
     if (status /= SD_OK) return
     call lyapunov_spectrum(system, y0, options%transient_periods, options%n_periods, &
                            options%renormalise_every, ode, method, exponents, history, status, &
-                           message)
+                           message, options%average)
     if (status == SD_OK) dimension_ky = kaplan_yorke(exponents)
   end subroutine system_spectrum
 end module sloshdyn_tank_lyapunov

@@ -866,7 +866,7 @@ contains
       allocate (history(ly%n_periods/ly%renormalise_every))
       call lyapunov_exponent(config%model, config%simulation%y0(1:4), ly%transient_periods, &
                              ly%n_periods, ly%renormalise_every, config%integration, &
-                             config%method, exponent, history, status, message)
+                             config%method, exponent, history, status, message, ly%average)
       call in_context('Lyapunov exponent', status, message)
       if (status /= SD_OK) return
       print '(/a)', 'Largest Lyapunov exponent (per unit tau; '//used_method(config)// &

@@ -127,7 +127,11 @@ module sloshdyn_layouts
             'tangent vectors'), &
     field_t('spectrum', 'flag', 'the executable''s lyapunov analysis: all four exponents '// &
             '(QR method), not the largest only; from Python the call decides '// &
-            '(lyapunov_exponent or lyapunov_spectrum)')]
+            '(lyapunov_exponent or lyapunov_spectrum)'), &
+    field_t('average', 'code:averages', 'how the renormalisations'' log growths are '// &
+            'averaged into the exponents: ''plain'' (over the measured time) or '// &
+            '''weighted'' (the weighted Birkhoff average, super-convergent on quasi-periodic '// &
+            'growths; the history stays the plain running average)')]
   !> &tank: tank_t's components in order (sloshdyn_vessel; n, p, shape, modes and roof_contact
   !> as reals, shape a code of 'tank_shapes', roof_contact of 'roof_contacts')
   type(field_t), parameter :: tank_fields(*) = [ &
@@ -589,14 +593,15 @@ contains
   pure function to_lyapunov(a) result(options)
     real(wp), intent(in) :: a(LYAPUNOV_SIZE)
     type(lyapunov_options) :: options
-    options = lyapunov_options(to_int(a(1)), to_int(a(2)), to_int(a(3)), a(4) /= 0)
+    options = lyapunov_options(to_int(a(1)), to_int(a(2)), to_int(a(3)), a(4) /= 0, &
+                               to_int(a(5)))
   end function to_lyapunov
 
   pure function from_lyapunov(options) result(a)
     type(lyapunov_options), intent(in) :: options
     real(wp) :: a(LYAPUNOV_SIZE)
     a = real([options%transient_periods, options%n_periods, options%renormalise_every, &
-              merge(1, 0, options%spectrum)], wp)
+              merge(1, 0, options%spectrum), options%average], wp)
   end function from_lyapunov
 
   !> A continuation of periodic orbits or slow-flow cycles (its max_points set apart).

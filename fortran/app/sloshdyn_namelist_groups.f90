@@ -29,6 +29,7 @@ module sloshdyn_namelist_groups
   use sloshdyn_simulation, only: steady_options, max_simulation_outputs
   use sloshdyn_response, only: response_options, check_response_options
   use sloshdyn_periodic_response, only: lyapunov_options
+  use sloshdyn_lyapunov, only: average_names
   implicit none
   private
   public :: known_groups, namelist_reader, open_input, describe_groups, check_threads
@@ -613,11 +614,13 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: transient_periods
-    integer :: n_periods, renormalise_every
+    integer :: n_periods, renormalise_every, average_code, i
     logical :: spectrum
+    character(len=16) :: average
     type(namelist_reader) :: reader
-    namelist /lyapunov/ transient_periods, n_periods, renormalise_every, spectrum
+    namelist /lyapunov/ transient_periods, n_periods, renormalise_every, spectrum, average
     spectrum = options%spectrum
+    average = average_names(options%average)
     transient_periods = options%transient_periods
     n_periods = options%n_periods
     renormalise_every = options%renormalise_every
@@ -638,7 +641,17 @@ contains
       message = '&lyapunov: '//trim(message)
       return
     end if
-    options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every, spectrum)
+    average_code = -1
+    do i = 1, size(average_names)
+      if (average_names(i) == adjustl(average)) average_code = i
+    end do
+    if (average_code < 0) then
+      call fail(status, message, '&lyapunov: average = '''//trim(adjustl(average))//''' is '// &
+                'not known; allowed: '//join(average_names))
+      return
+    end if
+    options = lyapunov_options(nint(transient_periods), n_periods, renormalise_every, spectrum, &
+                               average_code)
   end subroutine read_lyapunov
 
   !> &chart: a stability chart of the slow flow (sloshdyn_stability_chart): the model, the

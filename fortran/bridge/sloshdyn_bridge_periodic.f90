@@ -223,7 +223,8 @@ contains
     call check_lyapunov(options, code, message)
     if (code == 0) call core(model, y0, options%transient_periods, options%n_periods, &
                              options%renormalise_every, to_ode_options(integration), &
-                             to_method(integration), exponent, history, code, message)
+                             to_method(integration), exponent, history, code, message, &
+                             options%average)
     status = code
   end subroutine lyapunov_exponent
 end module sloshdyn_bridge_periodic

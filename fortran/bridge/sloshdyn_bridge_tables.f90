@@ -34,6 +34,7 @@ contains
     use sloshdyn_design_loads, only: wall_pressure_names, WALL_PRESSURE_CODE
     use sloshdyn_tank_structure, only: material_names, anchorage_names, MATERIAL_STEEL, &
                                        ANCHORAGE_SELF
+    use sloshdyn_lyapunov, only: average_names, AVERAGE_PLAIN
     character(len=*), intent(in) :: list
     character(len=8192), intent(out) :: text
     integer(c_int), intent(out) :: first, status
@@ -43,7 +44,7 @@ contains
       'excitation_parameters,directions,study_kinds,worker_kinds,continuations,ground_kinds,'// &
       'resonances,tank_shapes,roof_contacts,pressure_combinations,design_spectra,ground_types,'// &
       'special,motion,verdict,source,curve,codim2,curve_end,design_source,wall_pressures,'// &
-      'materials,anchorages'
+      'materials,anchorages,averages'
     character(len=:), allocatable :: joined
     integer :: code
     status = 0
@@ -106,6 +107,9 @@ contains
       case ('anchorages')
         joined = join(anchorage_names, ',')
         code = ANCHORAGE_SELF
+      case ('averages')
+        joined = join(average_names, ',')
+        code = AVERAGE_PLAIN
       case default
         call kind_names(list, joined, code)
       end select

@@ -1,7 +1,8 @@
 !> Lyapunov exponents of a periodically forced system, by the integrator family: the largest
 !> (Benettin's method: the orbit and one tangent vector of the variational equations) and the
 !> spectrum (QR method: the orbit and m tangent vectors, orthonormalised by modified
-!> Gram-Schmidt), and the Kaplan-Yorke dimension.
+!> Gram-Schmidt), and the Kaplan-Yorke dimension. The exponents are the plain time average of
+!> the renormalisations' log growths, or their weighted Birkhoff average (average_names).
 module sloshdyn_lyapunov
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -14,20 +15,31 @@ module sloshdyn_lyapunov
   implicit none
   private
   public :: largest_lyapunov, lyapunov_spectrum, kaplan_yorke, check_lyapunov_counts
+  public :: average_names, AVERAGE_PLAIN, AVERAGE_WEIGHTED
 
   integer, parameter :: max_periods = 10000000
+  !> How the renormalisations' log growths are averaged (codes 1, 2): 'plain', sum log R(j, j)
+  !> / measured time; 'weighted', the weighted Birkhoff average with the weight
+  !> w(s) = exp(-1/(s (1 - s))) at the midpoint s in (0, 1) of each renormalisation interval
+  !> in the measured time, sum w log R(j, j) / sum w dt (Das, Saiki, Sander and Yorke,
+  !> Nonlinearity 30 (2017) 4111; Das and Yorke, Nonlinearity 31 (2018) 491): for a smooth
+  !> quasi-periodic log growth (a complex pair's frame turning by arg(mu) each period) its
+  !> error falls faster than any power of the measured time, the plain one's as 1/time.
+  character(len=*), parameter :: average_names(2) = [character(len=8) :: 'plain', 'weighted']
+  integer, parameter :: AVERAGE_PLAIN = 1, AVERAGE_WEIGHTED = 2
 
 contains
 
   !> Largest Lyapunov exponent (per unit tau) from y0 at tau = 0 (Benettin's method): the
   !> spectrum's first exponent, with one tangent vector (lyapunov_spectrum with one column).
   !> history(j) = the running estimate after measurement block j. On a periodic orbit it tends
-  !> to log(max|mu|)/(k T).
+  !> to log(max|mu|)/(k T). average: as lyapunov_spectrum's.
   subroutine largest_lyapunov(problem, y0, transient_periods, n_periods, renormalise_every, &
-                              options, method, exponent, history, status, message)
+                              options, method, exponent, history, status, message, average)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y0(:)
     integer, intent(in) :: transient_periods, n_periods, renormalise_every, method
+    integer, intent(in), optional :: average
     type(ode_options), intent(in) :: options
     real(wp), intent(out) :: exponent, history(:)
     integer, intent(out) :: status
@@ -35,7 +47,7 @@ contains
     real(wp) :: exponents(1), histories(1, size(history))
 
     call lyapunov_spectrum(problem, y0, transient_periods, n_periods, renormalise_every, &
-                           options, method, exponents, histories, status, message)
+                           options, method, exponents, histories, status, message, average)
     exponent = exponents(1)
     history = histories(1, :)
   end subroutine largest_lyapunov
@@ -53,21 +65,25 @@ contains
   !> (n_periods/renormalise_every blocks; later columns are NaN). The start frame is the
   !> orthonormalised first m columns of the Hilbert matrix (column 1 the direction 1/i of the
   !> one-vector method). On a periodic orbit exponents(j) tends to log|mu_j|/(k T); their sum
-  !> over all n is the mean of trace J along the run (Liouville).
+  !> over all n is the mean of trace J along the run (Liouville). average (default
+  !> AVERAGE_PLAIN): how the log growths are averaged into the exponents (average_names); the
+  !> history holds the plain running estimates either way (a weighted average is defined
+  !> only over the whole run), its last column the plain exponents.
   subroutine lyapunov_spectrum(problem, y0, transient_periods, n_periods, renormalise_every, &
-                               options, method, exponents, history, status, message)
+                               options, method, exponents, history, status, message, average)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y0(:)
     integer, intent(in) :: transient_periods, n_periods, renormalise_every, method
+    integer, intent(in), optional :: average
     type(ode_options), intent(in) :: options
     real(wp), intent(out) :: exponents(:), history(:, :)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(shooting_setup) :: setup
     class(rk_integrator), allocatable :: integ
-    real(wp), allocatable :: z(:), sum_log(:), growth(:)
-    real(wp) :: period, t_end, t_start
-    integer :: n, m, i, j, next_count, total, n_blocks, blocks_done
+    real(wp), allocatable :: z(:), sum_log(:), growth(:), weighted_log(:)
+    real(wp) :: period, t_end, t_start, t_last, s, weight_time
+    integer :: n, m, i, j, next_count, total, n_blocks, blocks_done, averaging
     integer, allocatable :: order(:)
     logical :: measuring
 
@@ -79,6 +95,14 @@ contains
     if (status /= SD_OK) return
     call check_lyapunov_counts(transient_periods, n_periods, renormalise_every, status, message)
     if (status /= SD_OK) return
+    averaging = AVERAGE_PLAIN
+    if (present(average)) averaging = average
+    if (averaging < 1 .or. averaging > size(average_names)) then
+      status = SD_BAD_INPUT
+      message = 'average = '//num2str(averaging)//' is out of range: it must lie in [1, '// &
+                num2str(size(average_names))//']'
+      return
+    end if
     if (m < 1 .or. m > n) then
       status = SD_BAD_INPUT
       message = 'the number of exponents is '//num2str(m)//'; it must lie in [1, size(y0) = '// &
@@ -105,7 +129,7 @@ contains
       setup%options%breakpoint_step = period
       setup%options%breakpoint_end = t_end
     end if
-    allocate (z(n*(m + 1)), sum_log(m), growth(m))
+    allocate (z(n*(m + 1)), sum_log(m), growth(m), weighted_log(m))
     z(1:n) = y0
     ! a generic start frame (not aligned with any coordinate): columns of the Hilbert matrix
     do j = 1, m
@@ -122,7 +146,10 @@ contains
 
     measuring = transient_periods == 0
     t_start = 0
+    t_last = t_start
     sum_log = 0
+    weighted_log = 0
+    weight_time = 0
     blocks_done = 0
     next_count = next_boundary(0)
     do while (integ%t < t_end)
@@ -145,7 +172,14 @@ contains
           return
         end if
       end do
-      if (measuring) sum_log = sum_log + log(growth)
+      if (measuring) then
+        sum_log = sum_log + log(growth)
+        ! the weight at the interval's midpoint s in the measured time (0 < s < 1)
+        s = ((t_last + integ%t)/2 - t_start)/(t_end - t_start)
+        weighted_log = weighted_log + exp(-1/(s*(1 - s)))*log(growth)
+        weight_time = weight_time + exp(-1/(s*(1 - s)))*(integ%t - t_last)
+      end if
+      t_last = integ%t
       do while (next_count <= total)
         if (next_count*period > integ%t) exit
         if (next_count > transient_periods) then
@@ -165,7 +199,11 @@ contains
         return
       end if
     end do
-    exponents = sum_log/(t_end - t_start)
+    if (averaging == AVERAGE_WEIGHTED) then
+      exponents = weighted_log/weight_time
+    else
+      exponents = sum_log/(t_end - t_start)
+    end if
     ! decreasing order, the history's rows with them
     allocate (order(m))
     call sort_index(-exponents, order)

@@ -296,7 +296,7 @@ def test_settings_groups_read_through_python_by_name(tmp_path):
         "&steady transient_periods = 11, settle_tol = 2e-6, max_transient_periods = 333, "
         "window_periods = 17, samples_per_period = 41, periodic_tol = 3e-5, shooting = .false. /\n"
         "&lyapunov transient_periods = 21, n_periods = 303, renormalise_every = 3, "
-        "spectrum = .true. /\n"
+        "spectrum = .true., average = 'weighted' /\n"
         "&simulation t_end = 12.5, n_out = 77, y0 = 0.1, 0.2, 0.3, 0.4 /\n"))
     assert inp.integration == Integration(rtol=1.5e-7, atol=2.5e-9, h_initial=0.03, h_max=0.4,
                                           h_min=5e-12, max_steps=123456, method="vern9")
@@ -304,9 +304,14 @@ def test_settings_groups_read_through_python_by_name(tmp_path):
                                 max_transient_periods=333.0, window_periods=17,
                                 samples_per_period=41, periodic_tol=3e-5, shooting=False)
     assert inp.lyapunov == Lyapunov(transient_periods=21, n_periods=303, renormalise_every=3,
-                                    spectrum=True)
+                                    spectrum=True, average="weighted")
     assert inp.simulation == {"t_end": 12.5, "n_out": 77, "y0": [0.1, 0.2, 0.3, 0.4]}
     assert inp.steady.array().tolist() == [11, 2e-6, 333, 17, 41, 3e-5, 0]
+
+
+def test_an_unknown_lyapunov_average_is_named(tmp_path):
+    with pytest.raises(sloshdyn.InputError, match="average = 'mean' is not known; allowed: plain"):
+        _read(tmp_path, MODEL + "&lyapunov average = 'mean' /\n")
 
 
 def test_a_tank_and_its_ground_motion_read_through_python_by_name(tmp_path):
