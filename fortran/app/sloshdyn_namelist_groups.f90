@@ -614,7 +614,7 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp) :: transient_periods
-    integer :: n_periods, renormalise_every, average_code, i
+    integer :: n_periods, renormalise_every, average_code
     logical :: spectrum
     character(len=16) :: average
     type(namelist_reader) :: reader
@@ -641,11 +641,8 @@ contains
       message = '&lyapunov: '//trim(message)
       return
     end if
-    average_code = -1
-    do i = 1, size(average_names)
-      if (average_names(i) == adjustl(average)) average_code = i
-    end do
-    if (average_code < 0) then
+    average_code = findloc_word(average_names, average)
+    if (average_code == 0) then
       call fail(status, message, '&lyapunov: average = '''//trim(adjustl(average))//''' is '// &
                 'not known; allowed: '//join(average_names))
       return
