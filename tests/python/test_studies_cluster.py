@@ -10,6 +10,7 @@ import os
 import signal
 import subprocess
 import sys
+import textwrap
 import time
 
 import numpy as np
@@ -38,6 +39,7 @@ SPEC = """
 #: a worker preload: sloshdyn is not importable in it, as on a node where it is not installed
 NO_SLOSHDYN = """
 import sys
+import textwrap
 
 
 class NotInstalled:
@@ -258,3 +260,35 @@ def test_ctrl_c_stops_the_point_a_worker_thread_is_computing(tmp_path):
     assert computing() == []
     # the flag is cleared: the next computation runs
     assert sloshdyn.steady_state(point.replace(rho=0.52)).motion
+
+
+def test_a_result_lost_with_its_worker_is_not_waited_for(dask_cluster):
+    """A task finished on a worker killed before its result was fetched: Dask reschedules it,
+    and fetching it would wait for ever with no worker left (a study hung so, past its grace
+    time, in CI). The engine's fetch gives up after a tick; the study's loop then resubmits
+    the block or fails after the grace time. (In a child: a lost fetch leaves CPython 3.11.7's
+    recursion count off, and the test process's later ast.parse would fail.)"""
+    process, address = dask_cluster.worker("w1")
+    child = subprocess.Popen([sys.executable, "-c", textwrap.dedent(f"""\
+        import sys, time
+        from distributed import Client
+        from sloshdyn.studies.engine import fetched
+        client = Client({dask_cluster.address!r}, timeout={PATIENCE})
+        future = client.submit(sum, [3, 4], pure=False, workers=[{address!r}],
+                               allow_other_workers=False)
+        deadline = time.monotonic() + {PATIENCE}
+        while future.status != "finished" and time.monotonic() < deadline:
+            time.sleep(0.02)
+        print(future.status, flush=True)
+        sys.stdin.readline()                    # the parent has killed the worker
+        print(repr(fetched(future)), flush=True)
+        """)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline() == "finished\n", child.stderr.read()
+        dask_cluster.kill(process)              # the result's only copy is gone
+        out, err = child.communicate("go\n", timeout=PATIENCE)
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    assert out.splitlines()[0] == "None", err[-3000:]

@@ -257,6 +257,16 @@ def _task_error(error, plan, block):
     return error
 
 
+def fetched(future):
+    """A finished task's result, or None when it cannot be fetched within a tick: its result
+    lived on a worker that left (Dask reschedules the task, and waiting on it would wait for
+    ever when no worker is left to run it, past the grace time)."""
+    try:
+        return future.result(timeout=cluster.TICK)
+    except TimeoutError:
+        return None
+
+
 def _run_tasks(c, plan, tasks, pool, writer, bar, check_interrupts):
     """Hand out the tasks in waves (TASKS_AHEAD_PER_THREAD per usable worker thread, each
     sized from the threads there at that moment, restricted to the usable workers), write
@@ -304,13 +314,16 @@ def _run_tasks(c, plan, tasks, pool, writer, bar, check_interrupts):
             except TimeoutError:
                 finished = ()
             for future in finished:
-                block, _ = pending.pop(future)
+                block, allowed = pending.pop(future)
                 if future.status == "cancelled":     # by the cluster (not by us): again
                     submit(block)
                     continue
                 if future.status != "finished":
                     raise _task_error(future.exception(), plan, block)
-                result = future.result()
+                result = fetched(future)
+                if result is None:                   # its data left with its worker: again
+                    pending[future] = (block, allowed)
+                    continue
                 seconds += result.get(SECONDS, 0.0)
                 writer.write(block, result)
                 computed += plan.block_size(block)
