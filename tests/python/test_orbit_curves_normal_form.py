@@ -112,3 +112,40 @@ def test_the_namelist_names_the_point_where_python_finds_it(tmp_path):
     assert abs(rows[0]["rho"] - curve.rho[found[0]]) < 1e-7
     assert abs(rows[0]["A"] - curve.A[found[0]]) < 1e-7
     assert rows[0]["omega"] == pytest.approx(curve.omega[found[0]], abs=1e-6)   # theta
+
+
+def test_the_chenciner_point_next_to_the_1_1_resonance_is_one():
+    """Fig 12's Neimark-Sacker curve (gamma = 0.001, through the point of the branch in rho at
+    A = 0.00075) has a Chenciner point at theta = 0.0166, close to the 1:1 resonance where the
+    normal form's (I - A)^-1 grows like 1/theta: d changes sign through a zero, not a pole
+    (measured -5.95 and +5.40 at the curve's neighbouring points, each from its own branch in
+    A), where brentq on d from independent branches in A finds it."""
+    from test_orbit_curve_input import FIG12, RHO, branch_at
+    branch = branch_at(FIG12.A)
+    start = [s for s in branch.special_points if s.kind == "neimark_sacker"][0]
+    curve = branch.curve(start, RHO, (1e-4, 1.5e-3), chart=sloshdyn.Chart(max_points=POINTS))
+    found = [i for i, k in enumerate(curve.codim2) if k == "chenciner"]
+    assert curve.complete and len(found) == 1, curve.codim2
+    i = found[0]
+    assert 0.01 < curve.omega[i] < 0.03                    # theta, next to the 1:1 resonance
+
+    def coefficient(rho):
+        """d at the Neimark-Sacker point of the branch in A at rho, grown from the curve's
+        orbit nearest in rho (within 3e-5 of its A: one crossing there)."""
+        k = int(np.argmin(np.abs(curve.rho[i - 2:i + 3] - rho))) + i - 2
+        lo = curve.A[k] - 3e-5
+        params = FIG12.replace(rho=rho, A=lo)
+        branch = sloshdyn.periodic_response(
+            params, A_range=(lo, lo + 6e-5),
+            y0=sloshdyn.periodic_orbit(params, curve.state[:, k]).y0)
+        points = [s for s in branch.special_points if s.kind == "neimark_sacker"]
+        assert len(points) == 1
+        coefficient.point = points[0]
+        return branch.criticality(points[0]).coefficient
+
+    before, after = coefficient(curve.rho[i - 1]), coefficient(curve.rho[i + 2])
+    assert before * after < 0 and min(abs(before), abs(after)) > 1     # a zero, not a pole
+    rho_star = brentq(coefficient, curve.rho[i + 2], curve.rho[i - 1], xtol=1e-12)
+    coefficient(rho_star)
+    assert abs(curve.rho[i] - rho_star) < 1e-8 and abs(curve.A[i] - coefficient.point.A) < 1e-8, (
+        curve.rho[i], curve.A[i], rho_star, coefficient.point.A)
