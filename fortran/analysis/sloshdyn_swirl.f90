@@ -36,7 +36,7 @@ module sloshdyn_swirl
   use sloshdyn_integrator, only: integrate
   use sloshdyn_roots, only: bracketed_function, brent_zero
   use sloshdyn_continuation, only: continuation_options
-  use sloshdyn_map_normal_form, only: pitchfork_coefficient, period_doubling_coefficient
+  use sloshdyn_map_normal_form, only: cubic_coefficient
   use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, periodic_branch, &
                                samples_per_period, kind_test_value, complex_pair_count, &
                                volume_preserving
@@ -427,13 +427,10 @@ contains
     call spatial_model(model, 0.0_wp, 0.0_wp, system%model, status, message)
     if (status /= SD_OK) return
     y = [y_orbit, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
-    if (kind == SPECIAL_BRANCH_POINT) then
-      call pitchfork_coefficient(system, y, k, options, method, c, vector, nu, status, message, &
-                                 size_of_terms)
-    else
-      call period_doubling_coefficient(system, y, k, options, method, c, vector, nu, status, &
-                                       message, size_of_terms)
-    end if
+    ! the pitchfork at nu = +1, the flip at -1
+    call cubic_coefficient(system, y, k, options, method, &
+                           merge(1, -1, kind == SPECIAL_BRANCH_POINT), c, vector, nu, status, &
+                           message, size_of_terms)
     if (status /= SD_OK) message = 'the swirl edge''s criticality: '//trim(message)
     if (present(q)) q = vector
   end subroutine edge_criticality

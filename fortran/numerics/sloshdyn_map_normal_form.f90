@@ -46,7 +46,7 @@ module sloshdyn_map_normal_form
   use sloshdyn_bifurcation, only: null_vectors
   implicit none
   private
-  public :: period_doubling_coefficient, pitchfork_coefficient, neimark_sacker_coefficient
+  public :: cubic_coefficient, neimark_sacker_coefficient
 
   !> the finite-difference step relative to 1 + max|y|
   real(wp), parameter :: step = 1.0e-4_wp
@@ -55,47 +55,14 @@ module sloshdyn_map_normal_form
 
 contains
 
-  !> The flip coefficient c (above) of the orbit of period k T through y at the problem's
-  !> parameter (a period doubling point), with the critical eigenvector q (|q| = 1) and the
-  !> multiplier mu nearest -1 of M, and (optional) the size of its terms, |<p, C>|/6 +
-  !> |<p, B>|/2 (c = 0 by their cancellation, or because both vanish, as for a linear map).
-  !> Fails with SD_BAD_INPUT when no multiplier lies within 1e-3 of -1.
-  subroutine period_doubling_coefficient(problem, y, k, options, method, c, q, mu, status, &
-                                         message, size_of_terms)
-    class(periodic_problem), intent(in) :: problem
-    real(wp), intent(in) :: y(:)
-    integer, intent(in) :: k, method
-    type(ode_options), intent(in) :: options
-    real(wp), intent(out) :: c, q(:), mu
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    real(wp), intent(out), optional :: size_of_terms
-    call cubic_coefficient(problem, y, k, options, method, -1, c, q, mu, status, message, &
-                           size_of_terms)
-  end subroutine period_doubling_coefficient
-
-  !> The pitchfork coefficient c (above) of the orbit of period k T through y at the problem's
-  !> parameter, a Z2-symmetric pitchfork (a multiplier +1 with an antisymmetric eigenvector q,
-  !> |q| = 1), with mu, the multiplier nearest +1, and (optional) the size of its terms, and
-  !> <p, B(q, q)> (zero by the symmetry: a measure of the differences' error). Fails with
-  !> SD_BAD_INPUT when no multiplier lies within 1e-3 of +1.
-  subroutine pitchfork_coefficient(problem, y, k, options, method, c, q, mu, status, message, &
-                                   size_of_terms, quadratic)
-    class(periodic_problem), intent(in) :: problem
-    real(wp), intent(in) :: y(:)
-    integer, intent(in) :: k, method
-    type(ode_options), intent(in) :: options
-    real(wp), intent(out) :: c, q(:), mu
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    real(wp), intent(out), optional :: size_of_terms, quadratic
-    call cubic_coefficient(problem, y, k, options, method, 1, c, q, mu, status, message, &
-                           size_of_terms, quadratic)
-  end subroutine pitchfork_coefficient
-
-  !> c (above) at the critical multiplier sigma = -1 (flip) or +1 (symmetric pitchfork).
+  !> The coefficient c (above) of the orbit of period k T through y at the problem's parameter,
+  !> at the critical multiplier sigma = -1 (a period doubling) or +1 (a Z2-symmetric
+  !> pitchfork, q antisymmetric), with the critical eigenvector q (|q| = 1), mu, the multiplier
+  !> nearest sigma, and (optional) the size of its terms, |<p, C>|/6 + |<p, B>|/2 (c = 0 by
+  !> their cancellation, or because both vanish, as for a linear map). Fails with SD_BAD_INPUT
+  !> when no multiplier lies within 1e-3 of sigma, or sigma is not -1 or +1.
   subroutine cubic_coefficient(problem, y, k, options, method, sigma, c, q, mu, status, &
-                               message, size_of_terms, quadratic)
+                               message, size_of_terms)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y(:)
     integer, intent(in) :: k, method, sigma
@@ -103,7 +70,7 @@ contains
     real(wp), intent(out) :: c, q(:), mu
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp), intent(out), optional :: size_of_terms, quadratic
+    real(wp), intent(out), optional :: size_of_terms
     real(wp) :: a(size(y), size(y)), shifted(size(y), size(y)), p(size(y)), y_end(size(y))
     real(wp) :: bqq(size(y)), cqqq(size(y)), w(size(y)), bqw(size(y)), h
     real(wp) :: bordered(size(y) + 1, size(y) + 1), wb(size(y) + 1)
@@ -115,7 +82,12 @@ contains
     c = ieee_value(1.0_wp, ieee_quiet_nan)
     mu = c
     q = c
-    if (present(quadratic)) quadratic = c
+    if (abs(sigma) /= 1) then
+      status = SD_BAD_INPUT
+      message = 'sigma = '//num2str(sigma)//' is out of range: the critical multiplier is -1 '// &
+                'or +1'
+      return
+    end if
     call monodromy_matrix(problem, y, k, options, method, y_end, a, status, message)
     if (status /= SD_OK) return
     shifted = a
@@ -159,7 +131,6 @@ contains
     c = dot_product(p, cqqq)/6 + dot_product(p, bqw)/2
     if (present(size_of_terms)) size_of_terms = abs(dot_product(p, cqqq))/6 + &
                                                 abs(dot_product(p, bqw))/2
-    if (present(quadratic)) quadratic = dot_product(p, bqq)
 
   contains
 
