@@ -84,13 +84,14 @@ program test_map_normal_form
   implicit none
   type(ode_options) :: options
   real(wp) :: c, q(2), mu, terms, k
+  real(wp), parameter :: k_values(3) = [3.0_wp, 0.5_wp, 1.0_wp]
   integer :: status, i
   character(len=message_len) :: message
 
   options%rtol = 1.0e-12_wp
   options%atol = 1.0e-14_wp
   do i = 1, 3
-    k = [3.0_wp, 0.5_wp, 1.0_wp](i)
+    k = k_values(i)
     call cubic_coefficient(mirror_flow(k=k, t_period=2.0_wp), [0.0_wp, 0.0_wp], 1, options, &
                            METHOD_DOP853, 1, c, q, mu, status, message, terms)
     call check_true('pitchfork k = '//trim(adjustl(label(k)))//': status 0 ('// &
