@@ -76,6 +76,7 @@ end module pitchfork_test_flow
 program test_map_normal_form
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
+  use sloshdyn_text, only: num2str
   use sloshdyn_ode, only: ode_options
   use sloshdyn_integrator, only: METHOD_DOP853
   use sloshdyn_map_normal_form, only: cubic_coefficient
@@ -94,17 +95,17 @@ program test_map_normal_form
     k = k_values(i)
     call cubic_coefficient(mirror_flow(k=k, t_period=2.0_wp), [0.0_wp, 0.0_wp], 1, options, &
                            METHOD_DOP853, 1, c, q, mu, status, message, terms)
-    call check_true('pitchfork k = '//trim(adjustl(label(k)))//': status 0 ('// &
+    call check_true('pitchfork k = '//num2str(k)//': status 0 ('// &
                     trim(message)//')', status == SD_OK)
-    call check_close('pitchfork k = '//trim(adjustl(label(k)))//': mu = 1', mu, 1.0_wp, &
+    call check_close('pitchfork k = '//num2str(k)//': mu = 1', mu, 1.0_wp, &
                      1.0e-10_wp)
-    call check_close('pitchfork k = '//trim(adjustl(label(k)))//': q along x', abs(q(1)), &
+    call check_close('pitchfork k = '//num2str(k)//': q along x', abs(q(1)), &
                      1.0_wp, 1.0e-10_wp)
     ! c = (k - 1) T: supercritical (c < 0) for k < 1, subcritical for k > 1, and at k = 1 the
     ! two terms cancel (a degenerate pitchfork)
-    call check_close('pitchfork k = '//trim(adjustl(label(k)))//': c = (k - 1) T', c, &
+    call check_close('pitchfork k = '//num2str(k)//': c = (k - 1) T', c, &
                      (k - 1)*2, 1.0e-6_wp, 1.0e-6_wp*terms)
-    call check_true('pitchfork k = '//trim(adjustl(label(k)))//': terms of size >= |c|', &
+    call check_true('pitchfork k = '//num2str(k)//': terms of size >= |c|', &
                     terms >= abs(c) .and. terms > 1)
   end do
 
@@ -118,12 +119,4 @@ program test_map_normal_form
   call check_true('no multiplier at -1 is named ('//trim(message)//')', &
                   status == SD_BAD_INPUT .and. index(message, 'nearest -1') > 0)
   call finish()
-
-contains
-
-  function label(x) result(text)
-    real(wp), intent(in) :: x
-    character(len=8) :: text
-    write (text, '(f8.2)') x
-  end function label
 end program test_map_normal_form
