@@ -11,7 +11,7 @@ module sloshdyn_periodic_response
   use sloshdyn_continuation, only: continuation_options
   use sloshdyn_shooting, only: shooting_newton, periodic_branch, switch_branch, monodromy_matrix
   use sloshdyn_half_period, only: locate_symmetry_breaking
-  use sloshdyn_map_normal_form, only: period_doubling_coefficient, neimark_sacker_coefficient
+  use sloshdyn_map_normal_form, only: cubic_coefficient, neimark_sacker_coefficient
   use sloshdyn_excitation, only: EXCITATION_HARMONIC
   use sloshdyn_lyapunov, only: largest_lyapunov, check_lyapunov_counts, average_names, &
                                AVERAGE_PLAIN
@@ -134,7 +134,7 @@ contains
     character(len=message_len), intent(out) :: message
     type(tank_system) :: system
     system%model = model
-    call period_doubling_coefficient(system, y, k, options, method, c, q, mu, status, message)
+    call cubic_coefficient(system, y, k, options, method, -1, c, q, mu, status, message)
   end subroutine period_doubling_criticality
 
   !> The criticality of the Neimark-Sacker point of the orbit of period k T through y at the

@@ -19,6 +19,13 @@
 !> planar_stable (1/0), max|nu|, Re nu(1:4), Im nu(1:4)]; 'swirl_edges' edges(:, j) = [lambda,
 !> y0(1:4), max|x1|, refined (1/0), kind (SPECIAL_BRANCH_POINT: nu = +1,
 !> SPECIAL_PERIOD_DOUBLING: nu = -1, SPECIAL_NEIMARK_SACKER: a complex pair)].
+!>
+!> The criticality of an edge (edge_criticality, issue 41): the cubic coefficient c of the
+!> spatial stroboscopic map on its centre manifold at the edge (sloshdyn_map_normal_form: the
+!> Z2-symmetric pitchfork at nu = +1, the flip at nu = -1). At a pitchfork c < 0: the swirling
+!> orbits are born stable where the planar orbit is unstable (a gentle onset of swirl,
+!> supercritical); c > 0: born unstable where it is stable, and entering the band the motion
+!> jumps to swirl (subcritical, hysteretic). At a flip the signs are the other way round.
 module sloshdyn_swirl
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -29,6 +36,7 @@ module sloshdyn_swirl
   use sloshdyn_integrator, only: integrate
   use sloshdyn_roots, only: bracketed_function, brent_zero
   use sloshdyn_continuation, only: continuation_options
+  use sloshdyn_map_normal_form, only: cubic_coefficient
   use sloshdyn_shooting, only: monodromy_matrix, shooting_newton, periodic_branch, &
                                samples_per_period, kind_test_value, complex_pair_count, &
                                volume_preserving
@@ -42,7 +50,7 @@ module sloshdyn_swirl
   implicit none
   private
   public :: out_of_plane_multipliers, swirl_branch, swirl_orbit, orbit_measures, edge_test, &
-            stability_margin
+            edge_criticality, stability_margin
 
   !> Newton shooting of the planar orbit at an edge candidate
   real(wp), parameter :: newton_tol = 1.0e-10_wp
@@ -388,4 +396,42 @@ contains
                                   message)
     if (status == SD_OK) g = kind_test_value(kind, re, im)
   end subroutine edge_test
+
+  !> The criticality c (module header) of the swirl edge of kind SPECIAL_BRANCH_POINT (nu = +1)
+  !> or SPECIAL_PERIOD_DOUBLING (nu = -1) through the planar orbit y_orbit (tau = 0, period
+  !> k T) of the planar model at the edge, from the spatial monodromy at (y_orbit, 0, 0, 0, 0),
+  !> with the critical multiplier nu, the size of c's terms and (optional) the unit critical
+  !> eigenvector q (8 states, out of the plane).
+  subroutine edge_criticality(model, kind, y_orbit, k, options, method, c, nu, size_of_terms, &
+                              status, message, q)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: kind, k, method
+    real(wp), intent(in) :: y_orbit(4)
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: c, nu, size_of_terms
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), intent(out), optional :: q(8)
+    type(spatial_tank_system) :: system
+    real(wp) :: y(8), vector(8)
+    c = ieee_value(1.0_wp, ieee_quiet_nan)
+    nu = c
+    size_of_terms = c
+    if (present(q)) q = c
+    if (kind /= SPECIAL_BRANCH_POINT .and. kind /= SPECIAL_PERIOD_DOUBLING) then
+      status = SD_BAD_INPUT
+      message = 'kind = '//num2str(kind)//': the criticality is of a branch_point or a '// &
+                'period_doubling edge'
+      return
+    end if
+    call spatial_model(model, 0.0_wp, 0.0_wp, system%model, status, message)
+    if (status /= SD_OK) return
+    y = [y_orbit, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
+    ! the pitchfork at nu = +1, the flip at -1
+    call cubic_coefficient(system, y, k, options, method, &
+                           merge(1, -1, kind == SPECIAL_BRANCH_POINT), c, vector, nu, status, &
+                           message, size_of_terms)
+    if (status /= SD_OK) message = 'the swirl edge''s criticality: '//trim(message)
+    if (present(q)) q = vector
+  end subroutine edge_criticality
 end module sloshdyn_swirl

@@ -14,9 +14,20 @@
 !> above a least A, the closing point. The curve's points at given A are found by Newton in rho
 !> at that A (newton_solve) from the points on either side.
 !>
-!> Layouts (sloshdyn_tables): 'swirl_boundary_curve' points(:, j) = [rho, A, y0(1:4), max|x1|]
-!> (the planar orbit at tau = 0) in arclength order; 'swirl_curve_folds' folds(:, j) = [the
-!> same, closing (1: a least A of the band, 0: a greatest A)].
+!> Along the curve, the edge's criticality c (sloshdyn_swirl's edge_criticality: the cubic
+!> coefficient of the spatial stroboscopic map on its centre manifold, Kuznetsov, Elements of
+!> Applied Bifurcation Theory, 3rd ed. 2004, sec 5.4 and 8.7) at every point; where it changes
+!> sign between two points, its zero located by Brent's method along the arclength
+!> (sloshdyn_continuation's locate_zero_on_branch) is the curve's other codimension-2 point, a
+!> degenerate pitchfork (at a branch_point edge; a degenerate flip at a period_doubling one):
+!> on one side the onset of swirl is supercritical (c < 0 at a pitchfork: stable swirling
+!> orbits born inside the band, a gentle onset), on the other subcritical (c > 0: unstable ones
+!> born outside it, and entering the band the motion jumps to swirl, with hysteresis).
+!>
+!> Layouts (sloshdyn_tables): 'swirl_boundary_curve' points(:, j) = [rho, A, y0(1:4), max|x1|,
+!> c] (the planar orbit at tau = 0) in arclength order; 'swirl_curve_folds' folds(:, j) = [the
+!> same, closing (1: a least A of the band, 0: a greatest A)]; 'swirl_curve_degenerate'
+!> degenerate(:, j) = [the same as points, c = 0 to the location's accuracy].
 module sloshdyn_swirl_curve
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -25,13 +36,13 @@ module sloshdyn_swirl_curve
   use sloshdyn_ode, only: ode_options
   use sloshdyn_continuation, only: parametrised_system, continuation_options, newton_options, &
                                    continue_branch, locate_fold, newton_solve, STOP_MAX_POINTS, &
-                                   STOP_CLOSED
+                                   STOP_CLOSED, branch_test, locate_zero_on_branch
   use sloshdyn_shooting, only: shooting_newton
   use sloshdyn_tables, only: SWIRL_CURVE_ROWS, SWIRL_CURVE_FOLD_ROWS, SPECIAL_BRANCH_POINT, &
                              SPECIAL_PERIOD_DOUBLING, special_kind_name
   use sloshdyn_model, only: model_t
   use sloshdyn_system, only: tank_system
-  use sloshdyn_swirl, only: edge_test
+  use sloshdyn_swirl, only: edge_test, edge_criticality
   implicit none
   private
   public :: swirl_boundary_curve, curve_settings
@@ -69,38 +80,50 @@ module sloshdyn_swirl_curve
     procedure :: at => edge_at
   end type edge_function
 
+  !> The criticality c along the curve (locate_zero_on_branch's test): at z, on the planar
+  !> orbit shot from the last one.
+  type, extends(branch_test) :: criticality_test
+    type(edge_function) :: f
+  contains
+    procedure :: value => criticality_value
+  end type criticality_test
+
 contains
 
   !> The swirl edge of kind `kind` at rho_edge through the planar orbit y_edge (x1, x1', x2, x2'
   !> at tau = 0, period k T) of model (at the edge's A, A_0 = model's A > 0) continued as a curve
   !> in rho_range x A_range (module header). points(SWIRL_CURVE_ROWS, >= 2 max_points - 1),
   !> at(SWIRL_CURVE_ROWS, any): the curve's points at each A of A_values, where it crosses it;
-  !> folds(SWIRL_CURVE_FOLD_ROWS, any). complete: both ways left the box (or closed) and every
-  !> point found was stored; otherwise status = SD_NOT_CONVERGED and message says why, the
-  !> points so far kept.
+  !> folds(SWIRL_CURVE_FOLD_ROWS, any), degenerate(SWIRL_CURVE_ROWS, any): the zeros of c.
+  !> complete: both ways left the box (or closed) and every point found was stored; otherwise
+  !> status = SD_NOT_CONVERGED and message says why, the points so far kept.
   subroutine swirl_boundary_curve(model, kind, rho_edge, y_edge, k, rho_range, A_range, &
                                   A_values, settings, options, method, points, n_points, at, &
-                                  n_at, folds, n_folds, complete, status, message)
+                                  n_at, folds, n_folds, degenerate, n_degenerate, complete, &
+                                  status, message)
     type(model_t), intent(in) :: model
     integer, intent(in) :: kind, k, method
     real(wp), intent(in) :: rho_edge, y_edge(4), rho_range(2), A_range(2), A_values(:)
     type(curve_settings), intent(in) :: settings
     type(ode_options), intent(in) :: options
-    real(wp), intent(out) :: points(:, :), at(:, :), folds(:, :)
-    integer, intent(out) :: n_points, n_at, n_folds, status
+    real(wp), intent(out) :: points(:, :), at(:, :), folds(:, :), degenerate(:, :)
+    integer, intent(out) :: n_points, n_at, n_folds, n_degenerate, status
     logical, intent(out) :: complete
     character(len=message_len), intent(out) :: message
     type(edge_function) :: f
     type(orbit_memory), target :: memory
     type(continuation_options) :: steps
+    type(criticality_test) :: criticality
     real(wp), allocatable :: z(:, :, :), t(:, :, :), arclength(:), orbits(:, :)
-    real(wp) :: z_fold(2), x(1), a, rho_guess
-    integer :: n(2), stop_reason, half, j, i, m, iterations, st
+    real(wp) :: z_fold(2), x(1), a, rho_guess, w(2)
+    integer :: n(2), stop_reason, half, j, i, i_next, m, iterations, st
     character(len=message_len) :: msg, why
 
     points = ieee_value(1.0_wp, ieee_quiet_nan)
     at = points(1, 1)
     folds = points(1, 1)
+    degenerate = points(1, 1)
+    n_degenerate = 0
     n_points = 0
     n_at = 0
     n_folds = 0
@@ -200,6 +223,34 @@ contains
       end do
     end do
 
+    ! the zeros of the criticality c, in each half between points where it differs in sign
+    criticality%f = f
+    w = [steps%x_scale**2, 1.0_wp]
+    do half = 1, 2
+      do j = 1, n(half) - 1
+        i = merge(n(1) + 1 - j, n(1) + j - 1, half == 1)
+        i_next = merge(n(1) - j, n(1) + j, half == 1)
+        if (.not. points(SWIRL_CURVE_ROWS, i)*points(SWIRL_CURVE_ROWS, i_next) < 0) cycle
+        memory%y = orbits(:, i)
+        call locate_zero_on_branch(f, z(:, j, half), t(:, j, half), &
+                                   sum(w*t(:, j, half)*(z(:, j + 1, half) - z(:, j, half))), &
+                                   criticality, z_fold, status, message, steps)
+        if (status /= SD_OK) then
+          message = 'the degenerate point near rho = '//num2str(f%rho_mid + z(1, j, half))// &
+                    ' not located: '//trim(message)
+          return
+        end if
+        if (n_degenerate == size(degenerate, 2)) then
+          call note('more degenerate points than the '//num2str(size(degenerate, 2))// &
+                    ' columns of degenerate')
+          exit
+        end if
+        n_degenerate = n_degenerate + 1
+        call orbit_row(z_fold, degenerate(:, n_degenerate))
+        if (status /= SD_OK) return
+      end do
+    end do
+
     ! the points at the A of A_values: Newton in rho at that A between the points around it
     do i = 1, size(A_values)
       a = A_values(i)
@@ -255,15 +306,15 @@ contains
       real(wp) :: row(SWIRL_CURVE_ROWS)
       call orbit_row(points(1:2, j), row)
       orbits(:, j) = row(3:6)
-      points(7, j) = row(7)
+      points(7:8, j) = row(7:8)
     end subroutine store_orbit
 
-    !> The row [rho, A, y0(1:4), max|x1|] of the curve's point zs = (x, lambda): the planar orbit
-    !> by shooting from the memory's guess, which it then replaces.
+    !> The row [rho, A, y0(1:4), max|x1|, c] of the curve's point zs = (x, lambda): the planar
+    !> orbit by shooting from the memory's guess, which it then replaces.
     subroutine orbit_row(zs, row)
       real(wp), intent(in) :: zs(2)
       real(wp), intent(out) :: row(SWIRL_CURVE_ROWS)
-      call f%at(zs(1), zs(2), row(3:6), row(7), status, message)
+      call edge_coefficient(f, zs(1), zs(2), row(3:6), row(7), row(8), status, message)
       row(1:2) = [f%rho_mid + zs(1), f%scale*zs(2)]
       if (status /= SD_OK) message = 'the planar orbit at rho = '//num2str(row(1))//', A = '// &
                                      num2str(row(2))//': '//trim(message)
@@ -310,10 +361,11 @@ contains
                   'be >= 2'
       else if (size(points, 1) /= SWIRL_CURVE_ROWS .or. size(at, 1) /= SWIRL_CURVE_ROWS .or. &
                size(folds, 1) /= SWIRL_CURVE_FOLD_ROWS .or. &
+               size(degenerate, 1) /= SWIRL_CURVE_ROWS .or. &
                size(points, 2) < 2*settings%max_points - 1) then
         status = SD_BAD_INPUT
         message = 'points must be '//num2str(SWIRL_CURVE_ROWS)//' x (2 max_points - 1), at '// &
-                  num2str(SWIRL_CURVE_ROWS)//' x any and folds '// &
+                  'and degenerate '//num2str(SWIRL_CURVE_ROWS)//' x any and folds '// &
                   num2str(SWIRL_CURVE_FOLD_ROWS)//' x any'
       end if
     end subroutine check_input
@@ -376,4 +428,35 @@ contains
                          status, message, max_x1)
     if (status == SD_OK) self%last%y = y
   end subroutine edge_at
+
+  !> The planar orbit y, its max|x1| and the edge's criticality c at (x, lambda), the orbit
+  !> shot from the last one, which it replaces.
+  subroutine edge_coefficient(f, x, lambda, y, max_x1, c, status, message)
+    class(edge_function), intent(in) :: f
+    real(wp), intent(in) :: x, lambda
+    real(wp), intent(out) :: y(4), max_x1, c
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(model_t) :: model
+    real(wp) :: nu, size_of_terms
+    c = ieee_value(1.0_wp, ieee_quiet_nan)
+    call f%at(x, lambda, y, max_x1, status, message)
+    if (status /= SD_OK) return
+    model = f%planar%model
+    model%excitation%rho = f%rho_mid + x
+    model%excitation%A = f%scale*lambda
+    call edge_criticality(model, f%kind, y, f%k, f%options, f%method, c, nu, size_of_terms, &
+                          status, message)
+  end subroutine edge_coefficient
+
+  !> c at the curve's point z (NaN if the shooting or the coefficient fails).
+  function criticality_value(self, z, t) result(g)
+    class(criticality_test), intent(in) :: self
+    real(wp), intent(in) :: z(:), t(:)
+    real(wp) :: g
+    real(wp) :: y(4), max_x1
+    integer :: status
+    character(len=message_len) :: message
+    call edge_coefficient(self%f, z(1), z(2), y, max_x1, g, status, message)
+  end function criticality_value
 end module sloshdyn_swirl_curve

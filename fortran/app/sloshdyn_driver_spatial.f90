@@ -194,7 +194,8 @@ contains
   !> period_doubling edge) continued as a curve in (rho, A) (sloshdyn_swirl_curve, as Python's
   !> sloshdyn.spatial.swirl_boundary_curve with its default ds and tol and &response's
   !> max_points) in the box of &response's range times [curve_start, curve_stop] of the other
-  !> parameter: swirl_boundary_curve.csv and swirl_curve_folds.csv.
+  !> parameter: swirl_boundary_curve.csv, swirl_curve_folds.csv and swirl_curve_degenerate.csv
+  !> (the degenerate pitchforks or flips, where the edge's criticality c changes sign).
   module subroutine run_swirl_curve(config, files, edges, n_edges, status, message)
     type(run_config), intent(in) :: config
     type(result_files), intent(inout) :: files
@@ -205,8 +206,8 @@ contains
     type(model_t) :: at_edge
     type(curve_settings) :: settings
     real(wp) :: rho_range(2), A_range(2), no_values(0), at(SWIRL_CURVE_ROWS, 1)
-    real(wp), allocatable :: points(:, :), folds(:, :)
-    integer :: n_points, n_at, n_folds, j, kind, i
+    real(wp), allocatable :: points(:, :), folds(:, :), degenerate(:, :)
+    integer :: n_points, n_at, n_folds, n_degenerate, j, kind, i
     logical :: complete
 
     associate (r => config%response)
@@ -238,11 +239,12 @@ contains
       settings%newton_tol = newton_tol_default
       settings%max_iter = max_iter_default
       allocate (points(SWIRL_CURVE_ROWS, 2*settings%max_points - 1), &
-                folds(SWIRL_CURVE_FOLD_ROWS, 2*settings%max_points))
+                folds(SWIRL_CURVE_FOLD_ROWS, 2*settings%max_points), &
+                degenerate(SWIRL_CURVE_ROWS, 2*settings%max_points))
       call swirl_boundary_curve(at_edge, kind, at_edge%excitation%rho, edges(2:5, j), 1, &
                                 rho_range, A_range, no_values, settings, config%integration, &
                                 config%method, points, n_points, at, n_at, folds, n_folds, &
-                                complete, status, message)
+                                degenerate, n_degenerate, complete, status, message)
       call in_context('swirl boundary curve through swirl edge '//num2str(j), status, message)
       if (status /= SD_OK) return
       print '(/a)', 'The swirl boundary through edge '//num2str(j)//' ('// &
@@ -251,14 +253,26 @@ contains
                     num2str(A_range(2))//']: '//num2str(n_points)//' points; folds in A:'
       if (n_folds == 0) print '(a)', '  none'
       do i = 1, n_folds
-        print '(a)', '  '//trim(merge('closing', 'opening', folds(8, i) > 0))//' at rho = '// &
+        print '(a)', '  '//trim(merge('closing', 'opening', &
+                                      folds(SWIRL_CURVE_FOLD_ROWS, i) > 0))//' at rho = '// &
                      pad(num2str(folds(1, i)), 14)//'A = '//num2str(folds(2, i))
+      end do
+      print '(a)', 'degenerate '//trim(merge('pitchforks', 'flips     ', &
+                                             kind == SPECIAL_BRANCH_POINT))// &
+                   ' (the onset of swirl turns between super- and subcritical):'
+      if (n_degenerate == 0) print '(a)', '  none'
+      do i = 1, n_degenerate
+        print '(a)', '  at rho = '//pad(num2str(degenerate(1, i)), 14)//'A = '// &
+                     num2str(degenerate(2, i))
       end do
     end associate
     call files%write_table('swirl_boundary_curve.csv', 'swirl_boundary_curve', &
                            points(:, 1:n_points), status, message)
     if (status == SD_OK) call files%write_table('swirl_curve_folds.csv', 'swirl_curve_folds', &
                                                 folds(:, 1:n_folds), status, message)
+    if (status == SD_OK) call files%write_table('swirl_curve_degenerate.csv', &
+                                                'swirl_curve_degenerate', &
+                                                degenerate(:, 1:n_degenerate), status, message)
   end subroutine run_swirl_curve
 
   !> The model at swirl edge j of the band (edges(:, 1:n_edges), layout 'swirl_edges'), chosen

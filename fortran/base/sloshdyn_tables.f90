@@ -148,8 +148,10 @@ module sloshdyn_tables
   integer, parameter :: SWIRLING_BRANCH_ROWS = 29, SWIRLING_SPECIAL_ROWS = 11
   !> The swirl boundary in (rho, A) continued as a curve (sloshdyn_swirl_curve:
   !> 'swirl_boundary_curve', its points with the planar orbit there; 'swirl_curve_folds', its
-  !> folds in A, closing 1: a least A of the band, where damping closes it, 0: a greatest A).
-  integer, parameter :: SWIRL_CURVE_ROWS = 7, SWIRL_CURVE_FOLD_ROWS = 8
+  !> folds in A, closing 1: a least A of the band, where damping closes it, 0: a greatest A;
+  !> 'swirl_curve_degenerate', its points where the edge's criticality c vanishes: degenerate
+  !> pitchforks, or flips, where the onset of swirl turns from super- to subcritical).
+  integer, parameter :: SWIRL_CURVE_ROWS = 8, SWIRL_CURVE_FOLD_ROWS = 9
 
   !> A branch of limit cycles of the slow flow (sloshdyn_slowflow_cycles): its points (the
   !> first 7 columns of 'cycle_branch': x = (Re B1, Im B1, Re B2, Im B2) where Re B1 is largest,
@@ -364,10 +366,10 @@ contains
                'im_mu1,im_mu2,im_mu3,im_mu4,im_mu5,im_mu6,im_mu7,im_mu8'
     case ('swirling_special_points')
       header = 'kind,lambda,y1,y2,y3,y4,y5,y6,y7,y8,max_x1'
-    case ('swirl_boundary_curve')
-      header = 'rho,A,y1,y2,y3,y4,max_x1'
+    case ('swirl_boundary_curve', 'swirl_curve_degenerate')
+      header = 'rho,A,y1,y2,y3,y4,max_x1,c'
     case ('swirl_curve_folds')
-      header = 'rho,A,y1,y2,y3,y4,max_x1,closing'
+      header = 'rho,A,y1,y2,y3,y4,max_x1,c,closing'
     case ('spatial_history')
       header = 'tau,x1,dx1,x2,dx2,y1,dy1,y2,dy2,tilt,tilt_azimuth'
     case ('swirl_orbit')
@@ -476,7 +478,7 @@ contains
     case ('swirl_boundary')
       formats = 'rrrrrrris'
     case ('swirl_curve_folds')
-      formats = 'rrrrrrri'
+      formats = 'rrrrrrrri'
     case ('simulation')
       formats = 'iiir'
     case ('lyapunov')

@@ -105,6 +105,30 @@ contains
     status = code
   end subroutine out_of_plane_multipliers
 
+  !> The criticality c of the swirl edge of kind `kind` (a SPECIAL_* code) through the planar
+  !> orbit y_orbit (period k T) of the model at the edge (sloshdyn_swirl's edge_criticality),
+  !> with the critical multiplier nu, the size of c's terms and the critical eigenvector q.
+  subroutine swirl_edge_criticality(rpar, ipar, kind, y_orbit, k, integration, c, nu, &
+                                    size_of_terms, q, status, message)
+    !f2py threadsafe
+    use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
+    use sloshdyn_layouts, only: INTEGRATION_SIZE, to_ode_options, to_method
+    use sloshdyn_swirl, only: edge_criticality
+    real(c_double), intent(in) :: rpar(n_real_params), y_orbit(4), integration(INTEGRATION_SIZE)
+    integer(c_int), intent(in) :: ipar(n_int_params), kind, k
+    real(c_double), intent(out) :: c, nu, size_of_terms, q(8)
+    integer(c_int), intent(out) :: status
+    character(len=512), intent(out) :: message
+    type(model_t) :: model
+    integer :: code
+    c = 0; nu = 0; size_of_terms = 0; q = 0
+    call model_from_arrays(rpar, int(ipar), model, code, message)
+    if (code == 0) call edge_criticality(model, int(kind), y_orbit, int(k), &
+                                         to_ode_options(integration), to_method(integration), &
+                                         c, nu, size_of_terms, code, message, q)
+    status = code
+  end subroutine swirl_edge_criticality
+
   !> The swirl band along the branch of planar orbits (period k T) through y0, continued in rho
   !> (which = 1) or A (which = 2) over [lambda_min, lambda_max] with settings = [ds, ds_min,
   !> ds_max, x_scale, direction] (sloshdyn_swirl's swirl_branch): points(SWIRL_BRANCH_ROWS, :)
@@ -189,11 +213,13 @@ contains
   !> of the model (at the edge's A) continued as a curve in rho_range x A_range
   !> (sloshdyn_swirl_curve): points(SWIRL_CURVE_ROWS, capacity >= 2 max_points - 1) and at (its
   !> points at the A of A_values) in the table 'swirl_boundary_curve', folds in
-  !> 'swirl_curve_folds'; complete = 0 if the curve stopped early (status then says why).
+  !> 'swirl_curve_folds', its degenerate pitchforks (or flips) in 'swirl_curve_degenerate';
+  !> complete = 0 if the curve stopped early (status then says why).
   subroutine swirl_boundary_curve(rpar, ipar, kind, rho_edge, y_edge, k, rho_range, A_range, &
                                   n_A, A_values, ds, max_points, tol, newton_tol, max_iter, &
                                   integration, capacity, max_at, max_folds, points, n_points, &
-                                  at, n_at, folds, n_folds, complete, status, message)
+                                  at, n_at, folds, n_folds, degenerate, n_degenerate, complete, &
+                                  status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_tables, only: SWIRL_CURVE_ROWS, SWIRL_CURVE_FOLD_ROWS
@@ -206,22 +232,26 @@ contains
                                   capacity, max_at, max_folds
     real(c_double), intent(out) :: points(SWIRL_CURVE_ROWS, capacity), &
                                    at(SWIRL_CURVE_ROWS, max_at), &
-                                   folds(SWIRL_CURVE_FOLD_ROWS, max_folds)
-    integer(c_int), intent(out) :: n_points, n_at, n_folds, complete, status
+                                   folds(SWIRL_CURVE_FOLD_ROWS, max_folds), &
+                                   degenerate(SWIRL_CURVE_ROWS, max_folds)
+    integer(c_int), intent(out) :: n_points, n_at, n_folds, n_degenerate, complete, status
     character(len=512), intent(out) :: message
     type(model_t) :: model
-    integer :: code, found, found_at, found_folds
+    integer :: code, found, found_at, found_folds, found_degenerate
     logical :: done
-    points = 0; at = 0; folds = 0; found = 0; found_at = 0; found_folds = 0; done = .false.
+    points = 0; at = 0; folds = 0; degenerate = 0; found = 0; found_at = 0; found_folds = 0
+    found_degenerate = 0; done = .false.
     call model_from_arrays(rpar, int(ipar), model, code, message)
     if (code == 0) call core(model, int(kind), rho_edge, y_edge, int(k), rho_range, A_range, &
                              A_values, curve_settings(ds, int(max_points), tol, newton_tol, &
                                                       int(max_iter)), &
                              to_ode_options(integration), to_method(integration), points, found, &
-                             at, found_at, folds, found_folds, done, code, message)
+                             at, found_at, folds, found_folds, degenerate, found_degenerate, &
+                             done, code, message)
     n_points = found
     n_at = found_at
     n_folds = found_folds
+    n_degenerate = found_degenerate
     complete = merge(1, 0, done)
     status = code
   end subroutine swirl_boundary_curve

@@ -102,7 +102,7 @@ module sloshdyn_map_bifurcation
                                   CODIM2_R4, CODIM2_CUSP, CODIM2_FOLD_FLIP, CODIM2_FOLD_NS, &
                                   CODIM2_FLIP_NS, CODIM2_GF, CODIM2_CH, END_RESONANCE
   use sloshdyn_fold_hopf, only: fold_system, hopf_system
-  use sloshdyn_map_normal_form, only: period_doubling_coefficient, neimark_sacker_coefficient
+  use sloshdyn_map_normal_form, only: cubic_coefficient, neimark_sacker_coefficient
   implicit none
   private
   public :: two_parameter_map, map_evaluate, stroboscopic_map, map_problem
@@ -575,9 +575,8 @@ contains
     class is (stroboscopic_map)
       call field%problem(p, 1, problem)
       if (kind == CURVE_PERIOD_DOUBLING) then
-        call period_doubling_coefficient(problem, x, field%periods, field%integration, &
-                                         field%method, coefficient, q, mu, status, message, &
-                                         terms)
+        call cubic_coefficient(problem, x, field%periods, field%integration, field%method, &
+                               -1, coefficient, q, mu, status, message, terms)
       else
         call neimark_sacker_coefficient(problem, x, field%periods, field%integration, &
                                         field%method, coefficient, q_complex, mu_complex, &

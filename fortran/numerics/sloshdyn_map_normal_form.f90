@@ -1,14 +1,23 @@
-!> The criticality of a period doubling (flip) of a periodic orbit (issue 42): the cubic
-!> normal-form coefficient of the stroboscopic map P (over k forcing periods) restricted to its
-!> centre manifold at a multiplier -1 (Kuznetsov, Elements of Applied Bifurcation Theory, 3rd
-!> ed. 2004, sec 5.4 and 8.7.2, eq 8.24):
-!>   c = 1/6 <p, C(q, q, q)> - 1/2 <p, B(q, (A - I)^-1 B(q, q))>,
-!> A = M (the monodromy matrix), A q = -q with |q| = 1, A^T p = -p with <p, q> = 1, and B, C the
-!> second and third derivatives of P. On the centre manifold x = eta q the map is
-!> eta -> -(1 + beta) eta + c eta^3 + ..., with mu = -(1 + beta) the critical multiplier: for
-!> c > 0 the doubled orbits are born where the orbit is unstable (beta > 0), stable, at
-!> |eta| = sqrt(beta/c) (supercritical); for c < 0 they are born unstable where the orbit is
-!> stable, and past the point the motion jumps away (subcritical).
+!> The criticality of a period doubling (flip, issue 42) or of a Z2-symmetric pitchfork (issue
+!> 41: a swirl edge, the out-of-plane mirror y -> -y) of a periodic orbit: the cubic normal-form
+!> coefficient of the stroboscopic map P (over k forcing periods) restricted to its centre
+!> manifold at a multiplier sigma = -1 or +1 (Kuznetsov, Elements of Applied Bifurcation Theory,
+!> 3rd ed. 2004, sec 5.4 and 8.7.2, eq 8.24), on x = eta q + eta^2 w/2 + ...:
+!>   c = 1/6 <p, C(q, q, q)> + 1/2 <p, B(q, w)>,   (I - A) w = B(q, q),
+!> A = M (the monodromy matrix), A q = sigma q with |q| = 1, A^T p = sigma p with <p, q> = 1,
+!> and B, C the second and third derivatives of P (for sigma = -1, w = -(A - I)^-1 B(q, q),
+!> Kuznetsov's eq 8.24). The map on the centre manifold is eta -> sigma (1 + beta) eta + c eta^3
+!> + ..., 1 + beta the modulus of the critical multiplier.
+!>   Flip (sigma = -1, I - A invertible): for c > 0 the doubled orbits are born where the orbit
+!> is unstable (beta > 0), stable, at |eta| = sqrt(beta/c) (supercritical); for c < 0 they are
+!> born unstable where the orbit is stable, and past the point the motion jumps away
+!> (subcritical).
+!>   Pitchfork (sigma = +1, symmetric: q antisymmetric, B(q, q) symmetric, so <p, B(q, q)> = 0,
+!> no eta^2 term): I - A is singular along q, and w is the solution with <p, w> = 0 of the
+!> bordered system [I - A, q; p^T, 0] [w; s] = [B(q, q); 0] (s = <p, B(q, q)>, zero by the
+!> symmetry up to the differences' error). The new fixed points are at eta^2 = -beta/c: for
+!> c < 0 they are born where the orbit is unstable (beta > 0), stable (supercritical: a gentle
+!> onset); for c > 0 unstable where it is stable (subcritical: past the point a jump away).
 !>
 !> B and C come from the monodromy matrices of the variational equations (never from second
 !> differences of P): B(q, u) = D(M q) u = (M(y + h u) q - M(y - h u) q)/(2 h) and C(q, q, q)
@@ -37,25 +46,26 @@ module sloshdyn_map_normal_form
   use sloshdyn_bifurcation, only: null_vectors
   implicit none
   private
-  public :: period_doubling_coefficient, neimark_sacker_coefficient
+  public :: cubic_coefficient, neimark_sacker_coefficient
 
   !> the finite-difference step relative to 1 + max|y|
   real(wp), parameter :: step = 1.0e-4_wp
-  !> the critical multiplier must lie within this of -1
+  !> the critical multiplier must lie within this of -1 (+1)
   real(wp), parameter :: max_distance = 1.0e-3_wp
 
 contains
 
-  !> The flip coefficient c (above) of the orbit of period k T through y at the problem's
-  !> parameter (a period doubling point), with the critical eigenvector q (|q| = 1) and the
-  !> multiplier mu nearest -1 of M, and (optional) the size of its terms, |<p, C>|/6 +
-  !> |<p, B>|/2 (c = 0 by their cancellation, or because both vanish, as for a linear map).
-  !> Fails with SD_BAD_INPUT when no multiplier lies within 1e-3 of -1.
-  subroutine period_doubling_coefficient(problem, y, k, options, method, c, q, mu, status, &
-                                         message, size_of_terms)
+  !> The coefficient c (above) of the orbit of period k T through y at the problem's parameter,
+  !> at the critical multiplier sigma = -1 (a period doubling) or +1 (a Z2-symmetric
+  !> pitchfork, q antisymmetric), with the critical eigenvector q (|q| = 1), mu, the multiplier
+  !> nearest sigma, and (optional) the size of its terms, |<p, C>|/6 + |<p, B>|/2 (c = 0 by
+  !> their cancellation, or because both vanish, as for a linear map). Fails with SD_BAD_INPUT
+  !> when no multiplier lies within 1e-3 of sigma, or sigma is not -1 or +1.
+  subroutine cubic_coefficient(problem, y, k, options, method, sigma, c, q, mu, status, &
+                               message, size_of_terms)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y(:)
-    integer, intent(in) :: k, method
+    integer, intent(in) :: k, method, sigma
     type(ode_options), intent(in) :: options
     real(wp), intent(out) :: c, q(:), mu
     integer, intent(out) :: status
@@ -63,42 +73,62 @@ contains
     real(wp), intent(out), optional :: size_of_terms
     real(wp) :: a(size(y), size(y)), shifted(size(y), size(y)), p(size(y)), y_end(size(y))
     real(wp) :: bqq(size(y)), cqqq(size(y)), w(size(y)), bqw(size(y)), h
+    real(wp) :: bordered(size(y) + 1, size(y) + 1), wb(size(y) + 1)
     integer :: n, i
+    character(len=2) :: critical
 
     n = size(y)
+    critical = merge('+1', '-1', sigma == 1)
     c = ieee_value(1.0_wp, ieee_quiet_nan)
     mu = c
     q = c
+    if (abs(sigma) /= 1) then
+      status = SD_BAD_INPUT
+      message = 'sigma = '//num2str(sigma)//' is out of range: the critical multiplier is -1 '// &
+                'or +1'
+      return
+    end if
     call monodromy_matrix(problem, y, k, options, method, y_end, a, status, message)
     if (status /= SD_OK) return
     shifted = a
     do i = 1, n
-      shifted(i, i) = shifted(i, i) + 1
+      shifted(i, i) = shifted(i, i) - sigma
     end do
     call null_vectors(shifted, q, p, status, message)
     if (status /= SD_OK) return
     mu = dot_product(q, matmul(a, q))
-    if (abs(mu + 1) > max_distance) then
+    if (abs(mu - sigma) > max_distance) then
       status = SD_BAD_INPUT
-      message = 'the multiplier nearest -1 is '//num2str(mu)//': not a period doubling '// &
-                '(it must lie within '//num2str(max_distance)//' of -1)'
+      message = 'the multiplier nearest '//critical//' is '//num2str(mu)//': not a '// &
+                trim(merge('pitchfork      ', 'period doubling', sigma == 1))// &
+                ' (it must lie within '//num2str(max_distance)//' of '//critical//')'
       return
     end if
     p = p/dot_product(p, q)
     h = step*(1 + maxval(abs(y)))
     call second_and_third(q, bqq, cqqq)
     if (status /= SD_OK) return
-    ! w = (A - I)^-1 B(q, q)
-    shifted = a
+    ! w: (I - A) w = B(q, q); at +1 the bordered system, <p, w> = 0 (module header)
+    shifted = -a
     do i = 1, n
-      shifted(i, i) = shifted(i, i) - 1
+      shifted(i, i) = shifted(i, i) + 1
     end do
-    w = bqq
-    call solve_linear(shifted, w, status, message)
+    if (sigma == 1) then
+      bordered = 0
+      bordered(1:n, 1:n) = shifted
+      bordered(1:n, n + 1) = q
+      bordered(n + 1, 1:n) = p
+      wb = [bqq, 0.0_wp]
+      call solve_linear(bordered, wb, status, message)
+      w = wb(1:n)
+    else
+      w = bqq
+      call solve_linear(shifted, w, status, message)
+    end if
     if (status /= SD_OK) return
     call mixed(w, bqw)
     if (status /= SD_OK) return
-    c = dot_product(p, cqqq)/6 - dot_product(p, bqw)/2
+    c = dot_product(p, cqqq)/6 + dot_product(p, bqw)/2
     if (present(size_of_terms)) size_of_terms = abs(dot_product(p, cqqq))/6 + &
                                                 abs(dot_product(p, bqw))/2
 
@@ -138,7 +168,7 @@ contains
       if (status /= SD_OK) return
       b = scale*(plus - minus)/(2*h)
     end subroutine mixed
-  end subroutine period_doubling_coefficient
+  end subroutine cubic_coefficient
 
   !> The Neimark-Sacker coefficient d (above) of the orbit of period k T through y at the
   !> problem's parameter, with the critical multiplier mu = |mu| e^{i theta} (Im mu > 0)

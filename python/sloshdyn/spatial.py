@@ -117,6 +117,41 @@ def out_of_plane_multipliers(params: Parameters, y_orbit, *, periods=1,
 
 
 @dataclass(frozen=True)
+class EdgeCriticality:
+    """The criticality of a swirl edge (``swirl_edge_criticality``)."""
+
+    c: float                     #: the cubic coefficient of the map on the centre manifold
+    nu: float                    #: the critical out-of-plane multiplier (+1 or -1)
+    size_of_terms: float         #: |<p, C(q,q,q)>|/6 + |<p, B(q, w)>|/2: the scale of c
+    q: np.ndarray                #: the critical eigenvector (8 states, out of the plane)
+    supercritical: bool          #: swirling orbits born stable where the planar orbit is
+                                 #: unstable (gentle onset); False: subcritical (a jump)
+
+
+def swirl_edge_criticality(params: Parameters, y_orbit, *, kind="branch_point", periods=1,
+                           integration: Integration = Integration()) -> EdgeCriticality:
+    """The criticality of the swirl edge at params (rho, A on the edge) through the planar
+    orbit y_orbit (x1, x1', x2, x2' at tau = 0, e.g. an edge of ``swirl_band``): the cubic
+    coefficient c of the spatial stroboscopic map on its centre manifold (the core's
+    sloshdyn_map_normal_form; Kuznetsov, Elements of Applied Bifurcation Theory, 3rd ed. 2004,
+    sec 5.4 and 8.7), at a 'branch_point' edge (nu = +1, the symmetric pitchfork eta ->
+    (1 + beta) eta + c eta^3: swirling orbits at eta^2 = -beta/c, supercritical for c < 0) or a
+    'period_doubling' one (nu = -1, the flip: supercritical for c > 0)."""
+    _checks.instance("params", params, Parameters)
+    _checks.instance("integration", integration, Integration)
+    if kind not in ("branch_point", "period_doubling"):
+        raise InputError(f"kind = {kind!r}: the criticality is of a 'branch_point' or a "
+                         "'period_doubling' edge")
+    c, nu, size, q, status, message = cancellable(
+        _bridge.swirl_edge_criticality, *params.array(), _tables.code("special", kind),
+        _checks.reals("y_orbit", y_orbit, (4,)), _checks.integer("periods", periods, 1),
+        integration.array())
+    check_status(status, message, "swirl edge criticality")
+    return EdgeCriticality(float(c), float(nu), float(size), np.array(q),
+                           bool(c < 0) if kind == "branch_point" else bool(c > 0))
+
+
+@dataclass(frozen=True)
 class SwirlBand:
     """A branch of planar periodic responses with their out-of-plane Floquet multipliers nu, and
     the edges of the swirl band (max|nu| = 1) on it."""
@@ -279,12 +314,17 @@ class SwirlBoundaryCurve:
     multiplier of the planar orbit is +1 (det(M_b - I) = 0; -1 for a period-doubling edge)."""
 
     kind: str                    #: the edge's kind: 'branch_point' or 'period_doubling'
-    table: dict                  #: rho, A, y1..y4 (the planar orbit at tau = 0), max_x1, along
+    table: dict                  #: rho, A, y1..y4 (the planar orbit at tau = 0), max_x1, c
+                                 #: (the edge's criticality, swirl_edge_criticality) along
                                  #: the curve (arclength order)
     at: dict                     #: the curve's points at the A of A_values, same columns
     folds: list                  #: the codimension-2 points, folds of the curve in A: dicts
-                                 #: rho, A, y0, max_x1, kind ('closing': a least A of the
+                                 #: rho, A, y0, max_x1, c, kind ('closing': a least A of the
                                  #: band, where damping closes it; 'opening': a greatest A)
+    degenerate: list             #: the codimension-2 points where c changes sign: dicts rho,
+                                 #: A, y0, max_x1, c (~0), kind ('degenerate_pitchfork' on a
+                                 #: branch_point curve, 'degenerate_flip'): on one side the
+                                 #: onset of swirl is supercritical, on the other subcritical
     complete: bool               #: both ends left the box rho_range x A_range
     message: str                 #: why the continuation stopped early ('' if complete)
 
@@ -301,7 +341,10 @@ def swirl_boundary_curve(params: Parameters, rho_range, A_range, *, edge=0, A_va
     leaves rho_range x A_range (steps at most ``ds``, the first ds/4, at most max_points each
     way), a chord corrector to ``tol``. The curve's points at each A of A_values are located
     exactly (Newton in rho), and its folds in A, the codimension-2 points where the band closes
-    (damped: the least A with swirl) or opens, where the curve's tangent turns in A. Raises
+    (damped: the least A with swirl) or opens, where the curve's tangent turns in A; the
+    edge's criticality c at every point (swirl_edge_criticality) and, where it changes sign,
+    the degenerate pitchforks (flips) between super- and subcritical onset, located by
+    Brent's method along the arclength. Raises
     ConvergenceError (with ``partial``) if the curve stops early."""
     _checks.instance("params", params, Parameters)
     _checks.instance("shooting", shooting, Shooting)
@@ -322,7 +365,8 @@ def swirl_boundary_curve(params: Parameters, rho_range, A_range, *, edge=0, A_va
     y_edge = np.array([band.edges[f"y{i}"][edge] for i in range(1, 5)])
     capacity = _checks.output_size("max_points", 2 * max_points - 1,
                                    len(_tables.columns("swirl_boundary_curve")))
-    points, n, at, n_at, folds, n_folds, complete, status, message = cancellable(
+    (points, n, at, n_at, folds, n_folds, degenerate, n_degenerate, complete, status,
+     message) = cancellable(
         _bridge.swirl_boundary_curve, *params.array(), _tables.code("special", kind),
         band.edges["rho"][edge], y_edge, 1, rho_range, A_range, A_values, ds, max_points, tol,
         shooting.newton_tol, shooting.max_iter, integration.array(), capacity,
@@ -332,8 +376,12 @@ def swirl_boundary_curve(params: Parameters, rho_range, A_range, *, edge=0, A_va
         kind, _curve_table(points[:, :n]), _curve_table(at[:, :n_at]),
         [{"rho": float(fold_rows["rho"][j]), "A": float(fold_rows["A"][j]),
           "y0": np.array([fold_rows[f"y{i}"][j] for i in range(1, 5)]),
-          "max_x1": float(fold_rows["max_x1"][j]),
+          "max_x1": float(fold_rows["max_x1"][j]), "c": float(fold_rows["c"][j]),
           "kind": "closing" if fold_rows["closing"][j] else "opening"} for j in range(n_folds)],
+        [{"rho": float(row[0]), "A": float(row[1]), "y0": row[2:6].copy(),
+          "max_x1": float(row[6]), "c": float(row[7]),
+          "kind": "degenerate_pitchfork" if kind == "branch_point" else "degenerate_flip"}
+         for row in degenerate[:, :n_degenerate].T],
         bool(complete), message_text(message))
     return with_partial(curve, status, message, "swirl boundary curve")
 

@@ -130,13 +130,20 @@ def test_the_namelists_curve_at_is_the_python_swirl_boundary_curve(exe, tmp_path
                                          max_points=inp.response.max_points,
                                          continuation=inp.response, integration=inp.integration)
     assert len(rows) == len(curve.table["rho"]) > 5
-    for name in ("rho", "A", "y1", "y4", "max_x1"):
+    for name in ("rho", "A", "y1", "y4", "max_x1", "c"):
         assert [row[name] for row in rows] == list(curve.table[name]), name
     # the one fold is the closing point, the same as the test case's above (only A differs)
     assert len(folds) == len(curve.folds) == 1 and folds[0]["closing"] == 1
     assert curve.folds[0]["kind"] == "closing"
     assert (folds[0]["rho"], folds[0]["A"]) == (curve.folds[0]["rho"], curve.folds[0]["A"])
     assert folds[0]["A"] == pytest.approx(_curve().folds[0]["A"], rel=1e-8)
+    # and its one degenerate pitchfork, where the edge's criticality c changes sign, is the
+    # test case's too (test_swirl_criticality.py checks it against single-A edges)
+    degenerate = read_csv(tmp_path / "out" / "swirl_curve_degenerate.csv")
+    assert len(degenerate) == len(curve.degenerate) == len(_curve().degenerate) == 1
+    assert ((degenerate[0]["rho"], degenerate[0]["A"])
+            == (curve.degenerate[0]["rho"], curve.degenerate[0]["A"]))
+    assert degenerate[0]["A"] == pytest.approx(_curve().degenerate[0]["A"], rel=1e-8)
 
 
 @pytest.mark.parametrize("edge, low, name", [(5, 5e-5, "curve_at = 5"),
