@@ -11,8 +11,11 @@ unstable: the branch leaves the edge subcritically, folds (square) and comes bac
 down to a Neimark-Sacker point (square) near ρ = 1.0007 below which the swirl is
 quasi-periodic. Right: the swirl boundary in (ρ, A) continued as one curve
 (``swirl_boundary_curve``: pseudo-arclength on det(M_b − I) = 0 from an edge at A = 2.5·10⁻⁴),
-through the band's low and high edges, with the codimension-2 point where damping closes the
-band (star: the least A with swirl), the single-A edges of ``swirl_boundary`` (circles) on it,
+through the band's low and high edges, solid where the onset of swirl is supercritical (the
+edge's criticality c < 0: stable swirling orbits are born inside the band) and dashed where it
+is subcritical (c > 0: entering the band the motion jumps to swirl), with its codimension-2
+points: where damping closes the band (star: the least A with swirl) and the degenerate
+pitchfork where c = 0 (diamond), the single-A edges of ``swirl_boundary`` (circles) on it,
 beside Miles' scaling ρ − 1 ∝ A^(2/3).
 """
 
@@ -37,6 +40,7 @@ curve = spatial.swirl_boundary_curve(params.replace(A=2.5e-4), (0.98, 1.03), (4e
 closing = curve.folds[0]
 print("edges of the band at A = 1e-3:", resonant.edges["rho"], resonant.edges["kind"])
 print("closing of the band:", closing["kind"], closing["rho"], closing["A"])
+print("degenerate pitchforks:", [(p["rho"], p["A"]) for p in curve.degenerate])
 print("fold of the swirling branch:", [(p.kind, round(p.rho, 6)) for p in swirling.special_points])
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.2))
@@ -65,9 +69,18 @@ left.legend(fontsize=8)
 left.set_title(r"A = $10^{-3}$, $\zeta = 5\cdot10^{-4}$", fontsize=9)
 
 edges = boundary.edges
-right.plot(curve.table["rho"], curve.table["A"], "-", color="C0", label="continued boundary")
+c = curve.table["c"]
+for sign, style, label in ((-1, "-", "boundary, supercritical onset"),
+                           (1, "--", "boundary, subcritical onset")):
+    # each point's segment to the next drawn in its own style, so the two styles meet
+    on = np.sign(c) == sign
+    on[1:] |= on[:-1]
+    right.plot(np.where(on, curve.table["rho"], np.nan), np.where(on, curve.table["A"], np.nan),
+               style, color="C0", label=label)
 right.plot(edges["rho"], edges["A"], "o", color="C1", mfc="none", label="edges (one band per A)")
 right.plot(closing["rho"], closing["A"], "k*", ms=10, label="closing (fold in A)")
+for point in curve.degenerate:
+    right.plot(point["rho"], point["A"], "kD", ms=6, mfc="none", label="degenerate pitchfork")
 upper = np.array([edges["rho"][edges["A"] == a].max() for a in A_values])
 scale = (upper[A_values == 1e-3][0] - 1) * (A_values / 1e-3) ** (2 / 3)
 right.plot(1 + scale, A_values, "k:", label=r"$\rho - 1 \propto A^{2/3}$")
