@@ -23,7 +23,8 @@ module sloshdyn_simulation
   use sloshdyn_shooting, only: shooting_newton, floquet_kind, FLOQUET_STABLE
   implicit none
   private
-  public :: time_history, spatial_time_history, steady_options, steady_state, steady_state_block, check_steady, parameter_sweep, &
+  public :: time_history, spatial_time_history, steady_options, steady_state, steady_state_block, &
+            check_steady, check_block, parameter_sweep, &
             independent_sweep, steady_orbit, max_period, max_tau_span, max_state, amplitudes
   public :: check_history, with_breakpoints, derive_history
 
@@ -717,6 +718,20 @@ contains
     end associate
   end subroutine measure_orbit
 
+  !> A block size of the studies: >= 1 points handed to steady_state_block together.
+  pure subroutine check_block(block, status, message)
+    integer, intent(in) :: block
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    if (block < 1) then
+      status = SD_BAD_INPUT
+      message = 'block = '//num2str(block)//' is out of range: the points go to the '// &
+                'ensemble block points at a time, block >= 1'
+    end if
+  end subroutine check_block
+
   !> The steady-state settings and a forcing frequency: the rules every reader applies.
   pure subroutine check_steady(model, steady, status, message)
     type(model_t), intent(in) :: model
@@ -873,12 +888,9 @@ contains
       status = SD_BAD_INPUT
       message = 'threads = '//num2str(n_threads)//' is out of range: it must be >= 1'
       return
-    else if (points < 1) then
-      status = SD_BAD_INPUT
-      message = 'block = '//num2str(points)//' is out of range: the points go to the '// &
-                'ensemble block points at a time, block >= 1'
-      return
     end if
+    call check_block(points, status, message)
+    if (status /= SD_OK) return
     point_status = SD_OK
     point_message = ''
     point_done = 0

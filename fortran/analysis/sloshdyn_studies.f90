@@ -21,7 +21,7 @@ module sloshdyn_studies
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_shooting, only: shooting_newton
   use sloshdyn_simulation, only: steady_options, steady_state, steady_state_block, steady_orbit, &
-                                 max_period
+                                 max_period, check_block
   use sloshdyn_tables, only: SUMMARY_SIZE, SUMMARY_MOTION, SUMMARY_PERIOD, MOTION_PERIODIC
   implicit none
   private
@@ -325,20 +325,6 @@ contains
       end do
     end do
   end subroutine attractor_points
-
-  !> A block size of the studies: >= 1 points handed to steady_state_block together.
-  pure subroutine check_block(block, status, message)
-    integer, intent(in) :: block
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    status = SD_OK
-    message = ''
-    if (block < 1) then
-      status = SD_BAD_INPUT
-      message = 'block = '//num2str(block)//' is out of range: the points go to the '// &
-                'ensemble block points at a time, block >= 1'
-    end if
-  end subroutine check_block
 
   !> Attractors of a set of runs: label(i) = the attractor run i reached, 1..n_attractors, in
   !> order of first appearance; 0 for failed runs (motion NaN). Periodic runs (orbit_points
