@@ -10,9 +10,11 @@ Timing as benchmarks/ensemble.py: one warm-up round of the sweep, then --repeats
 rounds, medians of the CPU time of the process (time.process_time) and of the wall clock;
 prints the processor model and the load. The basin's transient is --periods forcing periods
 (max_transient_periods too: the Fig 17 motion is irregular and never settles) plus a window
-of 32.
+of 32. With --before PATH (a site directory holding another build, e.g. main's) the single
+path, a loop of sloshdyn.steady_state over the basin's first 64 initial states, is timed on
+both builds side by side (and checked equal, bit for bit).
 
-    python benchmarks/steady_blocks.py --n 20 --periods 100 --repeats 2
+    python benchmarks/steady_blocks.py --n 20 --periods 100 --repeats 2 --before /tmp/main-site
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import sloshdyn                                            # noqa: E402
 from sloshdyn import _core                                 # noqa: E402
-from ensemble import timed                                 # noqa: E402
+from ensemble import load_before, timed                    # noqa: E402
 from run import cpu_model                                  # noqa: E402
 
 BLOCKS = (1, 4, 16, 64)
@@ -58,6 +60,18 @@ def sweep():
         *FIG12.array(), 1, values, np.zeros(4), integration, steady, 1, k)[:3]
 
 
+def single_loop(package, n, periods):
+    """steady_state of the basin's first 64 initial states, one call each, by `package`."""
+    p = package.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4,
+                           gamma=0.001, A=2.0, rho=0.513)
+    steady = package.Steady(transient_periods=periods, max_transient_periods=periods,
+                            window_periods=32)
+    x1, dx1 = np.meshgrid(np.linspace(-0.9, 0.9, n), np.linspace(-0.9, 0.9, n), indexing="ij")
+    starts = list(zip(x1.ravel(), dx1.ravel()))[:64]
+    return lambda: [package.steady_state(p, (a, b, 0.0, 0.0), steady=steady).y_end
+                    for a, b in starts]
+
+
 def same(a, b):
     return all(np.array_equal(x, y, equal_nan=True) for x, y in zip(a, b))
 
@@ -67,6 +81,7 @@ def main():
     ap.add_argument("--n", type=int, default=20)
     ap.add_argument("--periods", type=float, default=100)
     ap.add_argument("--repeats", type=int, default=2)
+    ap.add_argument("--before", help="site directory of another sloshdyn build")
     args = ap.parse_args()
     print(f"Machine: {cpu_model()}, {os.cpu_count()} cores; load average "
           f"{os.getloadavg()[0]:.2f} at start")
@@ -93,6 +108,22 @@ def main():
         for k in BLOCKS:
             c, w = float(np.median(cpu[k])), float(np.median(wall[k]))
             print(f"| {k} | {c:.3f} | {w:.3f} | {base / c:.2f}x |")
+    if args.before:
+        loops = {"this build": single_loop(sloshdyn, args.n, args.periods),
+                 "before": single_loop(load_before(args.before), args.n, args.periods)}
+        cpu = {k: [] for k in loops}
+        results = {}
+        for _ in range(args.repeats):
+            for name, run in loops.items():
+                c, _, results[name] = timed(run)
+                cpu[name].append(c)
+        assert same(results["this build"], results["before"]), "the single path changed"
+        print(f"\nSingle path: steady_state of 64 basin points, one call each (median of "
+              f"{args.repeats}; both builds equal bit for bit)")
+        print("| build | CPU s |")
+        print("|---|---:|")
+        for name in loops:
+            print(f"| {name} | {float(np.median(cpu[name])):.3f} |")
     print(f"\nload average {os.getloadavg()[0]:.2f} at the end")
 
 

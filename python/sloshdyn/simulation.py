@@ -363,8 +363,10 @@ def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady =
     start_from='previous' (default): each point starts from the previous point's final state,
     so jumps and hysteresis show; the points depend on each other and run on one thread
     (threads > 1 is refused: it would change the answer). start_from='y0': every point starts
-    from y0; the points are independent and `threads` threads share them out (OpenMP in the
-    core); the results are the same for any number of threads, bit for bit (y_final is None)."""
+    from y0; the points are independent, go to the core's ensemble integrator in blocks of
+    up to SWEEP_BLOCK and `threads` threads share the blocks out (OpenMP in the core); the
+    results are the same for any number of threads and any block, bit for bit (y_final is
+    None)."""
     return _sweep(params, "rho", rho_values, y0, steady, integration, progress, threads,
                   start_from)
 

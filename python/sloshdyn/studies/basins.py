@@ -37,9 +37,9 @@ def _basin_task(rpar, ipar, y0, integration, steady):
         rpar, ipar, flat, integration, steady, ENSEMBLE_BLOCK)
     impact = (summaries[SUMMARY_COLUMNS.index("max_x1")] >= 1).astype(np.int32)
     out = unpack(summaries, orbit, impact, status, shape)
-    out["message"] = point_messages(status, message, lambda i: _bridge.attractor_points(
+    alone = lambda i: _bridge.attractor_points(                       # noqa: E731
         rpar, ipar, np.asfortranarray(flat[:, i:i + 1]), integration, steady, 1)[-1]
-                                    ).reshape(shape)
+    out["message"] = point_messages(status, message, alone).reshape(shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
     rows = orbit_rows(orbit)
     out["orbit_found"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)
