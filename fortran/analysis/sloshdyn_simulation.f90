@@ -10,7 +10,8 @@ module sloshdyn_simulation
   use sloshdyn_excitation, only: excitation_t, forcing_period, breakpoint_step, record_end, &
                                  set_excitation_parameter
   use sloshdyn_linear, only: modal_matrix
-  use sloshdyn_system, only: tank_system
+  use sloshdyn_system, only: tank_system, tank_ensemble
+  use sloshdyn_ensemble, only: advance_members, member_watch
   use sloshdyn_spatial, only: spatial_model_t, pendulum_tilt
   use sloshdyn_spatial_system, only: spatial_tank_system
   use sloshdyn_ode, only: ode_options, ode_stats, rk_integrator, observed_quantities, &
@@ -22,7 +23,8 @@ module sloshdyn_simulation
   use sloshdyn_shooting, only: shooting_newton, floquet_kind, FLOQUET_STABLE
   implicit none
   private
-  public :: time_history, spatial_time_history, steady_options, steady_state, check_steady, parameter_sweep, &
+  public :: time_history, spatial_time_history, steady_options, steady_state, steady_state_block, &
+            check_steady, check_block, parameter_sweep, &
             independent_sweep, steady_orbit, max_period, max_tau_span, max_state, amplitudes
   public :: check_history, with_breakpoints, derive_history
 
@@ -83,6 +85,48 @@ module sloshdyn_simulation
   real(wp), parameter :: shoot_newton_tol = 1.0e-10_wp, stable_margin = 1.0e-6_wp, &
                          linear_tol = 0.1_wp
   integer, parameter :: shoot_max_iter = 10
+
+  !> The phases of a steady_run: the transient (whole forcing periods, the settling test and
+  !> the shooting attempts at each Poincare point), the window (its Poincare points and
+  !> maxima), done (finished or failed).
+  integer, parameter :: PHASE_DONE = 0, PHASE_TRANSIENT = 1, PHASE_WINDOW = 2
+
+  !> One steady state (steady_state) as a state machine, so that many of them can share one
+  !> ensemble: in each phase it asks for its integrator to be advanced to tau (steps while
+  !> integ%t < tau, as integ%step would take them), and steady_reached then reads the state at
+  !> tau and decides the next request. steady_state drives one run with its own integrator,
+  !> steady_state_block K runs through advance_members: the same requests, the same steps.
+  type :: steady_run
+    integer :: phase = PHASE_DONE
+    real(wp) :: tau = 0                     !< the time the run asks to be advanced to
+    integer :: status = SD_OK
+    character(len=message_len) :: message = ''
+    logical :: initialised = .false.        !< steady_init set up its integrator
+    type(tank_system) :: system
+    type(ode_options) :: options
+    integer :: method = 0
+    type(steady_options) :: steady
+    real(wp) :: y0(4) = 0, y(4) = 0, previous(4) = 0
+    real(wp) :: period = 0, p_inv(2, 2) = 0, maxima(4) = 0
+    real(wp) :: tau_window = 0, tau_end = 0, transient = 0
+    integer :: k = 0                        !< Poincare points of the transient so far
+    integer :: sample = 0                   !< the window's next sample (in 1/samples_per_period)
+    logical :: settled = .false., use_shooting = .false., watching = .false.
+    type(linear_observation) :: observed
+    type(peak_tracker) :: tracker
+    real(wp), allocatable :: poincare(:, :)
+    ! shooting: the last 2 max_period + 1 Poincare points (ring), the orbit found
+    real(wp) :: recent(4, 0:2*max_period) = 0, last_failed_gap = huge(1.0_wp)
+    integer :: last_failed_k = 0
+    type(steady_orbit) :: jump
+  end type steady_run
+
+  !> steady_state_block's runs, watched by advance_members after each accepted step.
+  type, extends(member_watch) :: steady_block_watch
+    type(steady_run), allocatable :: runs(:)
+  contains
+    procedure :: accepted => block_accepted
+  end type steady_block_watch
   !> A shot's step budget per forcing period: shoot_step_factor times the steps per period the
   !> integration has taken so far, at least shoot_min_steps.
   real(wp), parameter :: shoot_step_factor = 10, shoot_min_steps = 1000
@@ -275,132 +319,334 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(steady_orbit), intent(out), optional :: orbit
-    type(tank_system) :: system
-    class(rk_integrator), allocatable, target :: integ
-    real(wp) :: period, p_inv(2, 2), maxima(4), y(4), previous(4), spread, scale
-    real(wp) :: tau_window, tau_end, transient
-    integer :: k, sample, motion, repeat
-    logical :: settled, use_shooting, watching
-    type(linear_observation) :: observed
-    type(peak_tracker) :: tracker
-    ! shooting: the last 2 max_period + 1 Poincare points (ring), the orbit found
-    real(wp) :: recent(4, 0:2*max_period), last_failed_gap
-    integer :: last_failed_k
-    type(steady_orbit) :: jump
+    type(steady_run) :: run
+    class(rk_integrator), allocatable :: integ
 
     summary = 0
     poincare = 0
     y_end = y0
-    call check_steady(model, steady, status, message)
-    call check_initial_state(y0, status, message)
+    call steady_begin(run, model, y0, options, method, steady)
+    status = run%status
+    message = run%message
     if (status == SD_OK .and. (size(poincare, 1) /= 4 .or. size(poincare, 2) < steady%window_periods)) then
       status = SD_BAD_INPUT
       message = 'the Poincare array must be 4 x window_periods = 4 x '//num2str(steady%window_periods)
     end if
     if (status /= SD_OK) return
-    system%model = model
-    period = forcing_period(model%excitation)
-    call inverse_modal_matrix(model, p_inv)
-    observed = amplitudes(p_inv)
-    tracker%spacing = period/steady%samples_per_period
-    watching = .false.
-    ! one spare period: sample times computed in steps must not round past t_bound
     call new_integrator(method, options%rtol, integ, status, message)
-    if (status == SD_OK) &
-      call integ%init(system, 0.0_wp, y0, (max(steady%transient_periods, &
-                      steady%max_transient_periods) + steady%window_periods + 1)*period, &
-                      options, status, message)
     if (status /= SD_OK) return
-
-    ! transient: whole periods, then (optionally) until the Poincare map settles
-    k = 0
-    previous = y0
-    settled = steady%settle_tol <= 0
-    transient = steady%transient_periods
-    use_shooting = steady%shooting .and. steady%settle_tol > 0
-    recent(:, 0) = y0
-    last_failed_k = 0
-    last_failed_gap = huge(1.0_wp)
-    do
-      k = k + 1
-      call advance_to(k*period, y)
-      if (status /= SD_OK) exit
-      if (steady%settle_tol > 0) then
-        settled = norm2(y - previous) <= steady%settle_tol*max(norm2(y), tiny(1.0_wp))
-      end if
-      previous = y
-      if (use_shooting) then
-        recent(:, mod(k, 2*max_period + 1)) = y
-        if (k >= 2*max_period .and. jump%attempts < shoot_attempts) call try_orbit()
-        if (jump%found) exit
-      end if
-      if (k >= steady%transient_periods .and. (settled .or. k >= steady%max_transient_periods)) exit
-    end do
-    transient = k
-    if (status == SD_OK .and. jump%found) then
-      call measure_orbit()
-    else if (status == SD_OK) then
-      ! window: maxima between the steps, Poincare points at its period boundaries
-      tau_window = k*period
-      tau_end = tau_window + steady%window_periods*period
-      call tracker%start(observed, tau_window, y)
-      call tracker%watch(integ, observed, tau_window, tau_end, status, message)
-      watching = .true.
-      do sample = steady%samples_per_period, steady%window_periods*steady%samples_per_period, &
-                  steady%samples_per_period
-        if (status /= SD_OK) exit
-        call advance_to(tau_window + sample*period/steady%samples_per_period, y)
-        if (status /= SD_OK) exit
-        poincare(:, sample/steady%samples_per_period) = y
+    call steady_init(run, integ)
+    status = run%status
+    message = run%message
+    if (status /= SD_OK) return
+    do while (run%phase /= PHASE_DONE)
+      do while (integ%t < run%tau)
+        call integ%step(run%system, run%status, run%message)
+        if (run%status == SD_OK) call steady_watch(run, integ, run%status, run%message)
+        if (run%status /= SD_OK) exit
       end do
-      maxima = tracker%peak
-    end if
-    stats = integ%statistics()
-    if (present(orbit)) orbit = jump
-    if (status /= SD_OK) then
-      message = trim(message)//' (steady state at rho = '//num2str(model%excitation%rho)// &
-                ', A = '//num2str(model%excitation%A)//')'
+      call steady_reached(run, integ)
+    end do
+    call steady_finish(run, integ, summary, poincare, y_end, stats, status, message, orbit)
+  end subroutine steady_state
+
+  !> steady_state at K points at once: point i from y0(:, i) with models(i) (or models(1) for
+  !> all), its results in summaries(:, i), poincare(:, :, i), y_end(:, i), stats(i),
+  !> status(i), message(i), orbits(i). The points' integrations advance together through
+  !> advance_members (sloshdyn_ensemble) with their right-hand sides evaluated as one
+  !> tank_ensemble block; every point is steady_state's alone, bit for bit: each is the same
+  !> steady_run, asking for the same stretches, whose integrator steps as integ%step does
+  !> (the shots and the orbit's window run one point at a time, as in steady_state). A point
+  !> that fails does not stop the others.
+  subroutine steady_state_block(models, y0, options, method, steady, summaries, poincare, &
+                                y_end, stats, status, message, orbits)
+    type(model_t), intent(in) :: models(:)
+    real(wp), intent(in) :: y0(:, :)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(out) :: summaries(:, :), poincare(:, :, :), y_end(:, :)
+    type(ode_stats), intent(out) :: stats(:)
+    integer, intent(out) :: status(:)
+    character(len=message_len), intent(out) :: message(:)
+    type(steady_orbit), intent(out) :: orbits(:)
+    type(steady_block_watch) :: block
+    type(tank_ensemble) :: esys
+    class(rk_integrator), allocatable :: proto, integ(:)
+    integer, allocatable :: active(:), advance_status(:)
+    character(len=message_len), allocatable :: advance_message(:)
+    integer :: n, i, c, m, st
+    character(len=message_len) :: msg
+
+    n = size(y0, 2)
+    summaries = 0
+    poincare = 0
+    y_end = y0
+    if (size(y0, 1) /= 4 .or. size(summaries, 1) /= SUMMARY_SIZE .or. size(summaries, 2) /= n &
+        .or. size(poincare, 1) /= 4 .or. size(poincare, 2) < steady%window_periods .or. &
+        size(poincare, 3) /= n .or. any(shape(y_end) /= [4, n]) .or. size(stats) /= n .or. &
+        size(status) /= n .or. size(message) /= n .or. size(orbits) /= n .or. &
+        (size(models) /= 1 .and. size(models) /= n)) then
+      status = SD_BAD_INPUT
+      message = 'steady_state_block of '//num2str(n)//' points (size(y0, 2)): the arrays '// &
+                'must be y0(4, n), summaries('//num2str(SUMMARY_SIZE)//', n), poincare(4, '// &
+                'window_periods, n), y_end(4, n), stats, status, message and orbits(n), '// &
+                'models(1) or models(n)'
       return
     end if
-    if (jump%found) then
-      y_end = poincare(:, steady%window_periods)
-      settled = .true.
-    else
-      y_end = y
+    allocate (block%runs(n), esys%models(n), active(n))
+    do i = 1, n
+      call steady_begin(block%runs(i), models(min(i, size(models))), y0(:, i), options, method, &
+                        steady)
+      esys%models(i) = block%runs(i)%system%model
+    end do
+    st = SD_OK
+    msg = ''
+    if (any(block%runs%status == SD_OK)) call new_integrator(method, options%rtol, proto, st, msg)
+    if (st == SD_OK .and. n > 0 .and. any(block%runs%status == SD_OK)) then
+      allocate (integ(n), mold=proto)
+      do i = 1, n
+        if (block%runs(i)%status == SD_OK) call steady_init(block%runs(i), integ(i))
+      end do
+      ! every round takes each point still running to the time it asks for, then lets it go on
+      do
+        m = 0
+        do i = 1, n
+          if (block%runs(i)%phase == PHASE_DONE) cycle
+          m = m + 1
+          active(m) = i
+        end do
+        if (m == 0) exit
+        allocate (advance_status(m), advance_message(m))
+        call advance_members(esys, integ, active(1:m), block%runs(active(1:m))%tau, &
+                             advance_status, advance_message, block)
+        do c = 1, m
+          associate (run => block%runs(active(c)))
+            run%status = advance_status(c)
+            run%message = advance_message(c)
+            call steady_reached(run, integ(active(c)))
+          end associate
+        end do
+        deallocate (advance_status, advance_message)
+      end do
     end if
-    call classify(poincare(:, 1:steady%window_periods), steady%periodic_tol, motion, repeat, &
-                  spread, scale)
-    summary = [model%excitation%rho, model%excitation%A, maxima, real(motion, wp), real(repeat, wp), transient, &
-               spread, merge(1.0_wp, 0.0_wp, settled)]
+    do i = 1, n
+      associate (run => block%runs(i))
+        if (run%status == SD_OK .and. st /= SD_OK) then
+          status(i) = st
+          message(i) = msg
+        else if (run%status == SD_OK .or. run%initialised) then
+          call steady_finish(run, integ(i), summaries(:, i), poincare(:, :, i), y_end(:, i), &
+                             stats(i), status(i), message(i), orbits(i))
+        else
+          status(i) = run%status
+          message(i) = run%message
+        end if
+      end associate
+    end do
+  end subroutine steady_state_block
 
-  contains
+  !> steady_state's inputs checked and its quantities set up (run%status, run%message).
+  subroutine steady_begin(run, model, y0, options, method, steady)
+    type(steady_run), intent(out) :: run
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: y0(4)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method
+    type(steady_options), intent(in) :: steady
+    call check_steady(model, steady, run%status, run%message)
+    call check_initial_state(y0, run%status, run%message)
+    run%system%model = model
+    run%y0 = y0
+    run%options = options
+    run%method = method
+    run%steady = steady
+    if (run%status /= SD_OK) return
+    run%period = forcing_period(model%excitation)
+    call inverse_modal_matrix(model, run%p_inv)
+    run%observed = amplitudes(run%p_inv)
+    run%tracker%spacing = run%period/steady%samples_per_period
+    allocate (run%poincare(4, steady%window_periods))
+    run%poincare = 0
+  end subroutine steady_begin
 
-    !> Poincare point j (j >= k - 2 max_period) from the ring.
-    function recent_point(j) result(point)
-      integer, intent(in) :: j
-      real(wp) :: point(4)
-      point = recent(:, mod(j, 2*max_period + 1))
-    end function recent_point
+  !> The integrator set up at tau = 0 and the transient's first request (one forcing period).
+  subroutine steady_init(run, integ)
+    type(steady_run), intent(inout) :: run
+    class(rk_integrator), intent(inout) :: integ
+    ! one spare period: sample times computed in steps must not round past t_bound
+    call integ%init(run%system, 0.0_wp, run%y0, (max(run%steady%transient_periods, &
+                    run%steady%max_transient_periods) + run%steady%window_periods + 1)*run%period, &
+                    run%options, run%status, run%message)
+    run%initialised = run%status == SD_OK
+    if (run%status /= SD_OK) return
+    run%k = 1
+    run%tau = run%k*run%period
+    run%previous = run%y0
+    run%settled = run%steady%settle_tol <= 0
+    run%use_shooting = run%steady%shooting .and. run%steady%settle_tol > 0
+    run%recent(:, 0) = run%y0
+    run%phase = PHASE_TRANSIENT
+  end subroutine steady_init
 
-    !> A shooting attempt at period k (the current Poincare point y = P_k), when the map
-    !> contracts: the smallest p <= max_period with |P_k - P_(k-p)| <= shoot_trigger |P| and
-    !> shrinking (below |P_(k-p) - P_(k-2p)|). Accepted orbits end the transient (jump%found).
-    subroutine try_orbit()
-      real(wp) :: size_, gap, gap_before, y_orbit(4), monodromy(4, 4), re(4), im(4)
-      real(wp) :: from(4), to(4), error
-      integer :: p, j, iterations, shot_status
-      character(len=message_len) :: shot_message
-      type(ode_options) :: shot_options
+  !> After each accepted step of the run's integrator: in the window, the maxima between the
+  !> steps (peak_tracker).
+  subroutine steady_watch(run, integ, status, message)
+    type(steady_run), intent(inout) :: run
+    class(rk_integrator), intent(in) :: integ
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    if (run%watching) call run%tracker%watch(integ, run%observed, run%tau_window, &
+                                             run%tau_end, status, message)
+  end subroutine steady_watch
+
+  !> steady_block_watch's accepted: steady_watch of run j.
+  subroutine block_accepted(self, j, integ, status, message)
+    class(steady_block_watch), intent(inout) :: self
+    integer, intent(in) :: j
+    class(rk_integrator), intent(in) :: integ
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    call steady_watch(self%runs(j), integ, status, message)
+  end subroutine block_accepted
+
+  !> The run's integrator has passed run%tau (or failed, run%status): read the state at tau
+  !> by dense output and take the next phase's step of steady_state -- the transient's
+  !> settling test and shooting attempt, the window's Poincare point -- asking for the next
+  !> time, or PHASE_DONE.
+  subroutine steady_reached(run, integ)
+    type(steady_run), intent(inout) :: run
+    class(rk_integrator), intent(inout) :: integ
+    real(wp) :: y(4)
+    integer :: spp
+    if (run%status /= SD_OK) then
+      run%phase = PHASE_DONE
+      return
+    end if
+    call integ%dense(run%tau, y)
+    run%y = y
+    spp = run%steady%samples_per_period
+    select case (run%phase)
+    case (PHASE_TRANSIENT)
+      ! transient: whole periods, then (optionally) until the Poincare map settles
+      if (run%steady%settle_tol > 0) &
+        run%settled = norm2(y - run%previous) <= run%steady%settle_tol*max(norm2(y), tiny(1.0_wp))
+      run%previous = y
+      if (run%use_shooting) then
+        run%recent(:, mod(run%k, 2*max_period + 1)) = y
+        if (run%k >= 2*max_period .and. run%jump%attempts < shoot_attempts) &
+          call try_orbit(run, integ)
+        if (run%jump%found) then
+          run%transient = run%k
+          call measure_orbit(run)
+          run%phase = PHASE_DONE
+          return
+        end if
+      end if
+      if (run%k >= run%steady%transient_periods .and. &
+          (run%settled .or. run%k >= run%steady%max_transient_periods)) then
+        ! window: maxima between the steps, Poincare points at its period boundaries
+        run%transient = run%k
+        run%tau_window = run%k*run%period
+        run%tau_end = run%tau_window + run%steady%window_periods*run%period
+        call run%tracker%start(run%observed, run%tau_window, y)
+        call run%tracker%watch(integ, run%observed, run%tau_window, run%tau_end, run%status, &
+                               run%message)
+        run%watching = .true.
+        run%sample = spp
+        run%phase = PHASE_WINDOW
+        if (run%status /= SD_OK) run%phase = PHASE_DONE
+      else
+        run%k = run%k + 1
+        run%tau = run%k*run%period
+        return
+      end if
+    case (PHASE_WINDOW)
+      run%poincare(:, run%sample/spp) = y
+      run%sample = run%sample + spp
+    end select
+    if (run%phase /= PHASE_WINDOW) return
+    if (run%sample > run%steady%window_periods*spp) then
+      run%maxima = run%tracker%peak
+      run%phase = PHASE_DONE
+    else
+      run%tau = run%tau_window + run%sample*run%period/spp
+    end if
+  end subroutine steady_reached
+
+  !> steady_state's results from a finished run.
+  subroutine steady_finish(run, integ, summary, poincare, y_end, stats, status, message, orbit)
+    type(steady_run), intent(inout) :: run
+    class(rk_integrator), intent(in) :: integ
+    real(wp), intent(out) :: summary(SUMMARY_SIZE), poincare(:, :), y_end(4)
+    type(ode_stats), intent(out) :: stats
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    type(steady_orbit), intent(out), optional :: orbit
+    real(wp) :: spread, scale
+    integer :: motion, repeat
+    logical :: settled
+    associate (model => run%system%model, steady => run%steady)
+      summary = 0
+      poincare = 0
+      poincare(:, 1:steady%window_periods) = run%poincare
+      y_end = run%y0
+      status = run%status
+      message = run%message
+      stats = integ%statistics()
+      if (present(orbit)) orbit = run%jump
+      if (status /= SD_OK) then
+        message = trim(message)//' (steady state at rho = '//num2str(model%excitation%rho)// &
+                  ', A = '//num2str(model%excitation%A)//')'
+        return
+      end if
+      settled = run%settled
+      if (run%jump%found) then
+        y_end = run%poincare(:, steady%window_periods)
+        settled = .true.
+      else
+        y_end = run%y
+      end if
+      call classify(run%poincare, steady%periodic_tol, motion, repeat, spread, scale)
+      summary = [model%excitation%rho, model%excitation%A, run%maxima, real(motion, wp), &
+                 real(repeat, wp), run%transient, spread, merge(1.0_wp, 0.0_wp, settled)]
+    end associate
+  end subroutine steady_finish
+
+  !> Poincare point j (j >= k - 2 max_period) from the run's ring.
+  function recent_point(run, j) result(point)
+    type(steady_run), intent(in) :: run
+    integer, intent(in) :: j
+    real(wp) :: point(4)
+    point = run%recent(:, mod(j, 2*max_period + 1))
+  end function recent_point
+
+  !> A shooting attempt at period k (the current Poincare point y = P_k), when the map
+  !> contracts: the smallest p <= max_period with |P_k - P_(k-p)| <= shoot_trigger |P| and
+  !> shrinking (below |P_(k-p) - P_(k-2p)|). Accepted orbits end the transient (jump%found).
+  subroutine try_orbit(run, integ)
+    type(steady_run), intent(inout) :: run
+    class(rk_integrator), intent(in) :: integ
+    real(wp) :: size_, gap, gap_before, y_orbit(4), monodromy(4, 4), re(4), im(4)
+    real(wp) :: from(4), to(4), error
+    integer :: p, j, iterations, shot_status, k
+    character(len=message_len) :: shot_message
+    type(ode_options) :: shot_options
+    type(ode_stats) :: stats
+    k = run%k
+    associate (y => run%y, jump => run%jump, options => run%options)
       size_ = max(norm2(y), tiny(1.0_wp))
       do p = 1, max_period
-        gap = norm2(y - recent_point(k - p))
-        gap_before = norm2(recent_point(k - p) - recent_point(k - 2*p))
+        gap = norm2(y - recent_point(run, k - p))
+        gap_before = norm2(recent_point(run, k - p) - recent_point(run, k - 2*p))
         if (gap <= shoot_trigger*size_ .and. (gap < gap_before .or. gap <= 1.0e-12_wp*size_)) exit
       end do
       if (p > max_period) return
       ! after a failed attempt: wait until the gap has shrunk a lot or the transient doubled
-      if (last_failed_k > 0 .and. .not. (gap <= shoot_retry_factor*last_failed_gap .or. &
-                                         k >= 2*last_failed_k)) return
+      if (run%last_failed_k > 0 .and. .not. (gap <= shoot_retry_factor*run%last_failed_gap .or. &
+                                             k >= 2*run%last_failed_k)) return
       jump%attempts = jump%attempts + 1
       ! a shot may take shoot_step_factor times the steps the integration has needed per
       ! period so far (Newton iterates that wander into the stiff impact regime fail fast)
@@ -409,7 +655,7 @@ contains
       shot_options%max_steps = int(min(real(options%max_steps, wp), real(p, wp)* &
                                    max(shoot_min_steps, shoot_step_factor* &
                                    real(stats%n_accepted + stats%n_rejected, wp)/k)))
-      call shooting_newton(system, y, p, shot_options, method, shoot_newton_tol, &
+      call shooting_newton(run%system, y, p, shot_options, run%method, shoot_newton_tol, &
                            shoot_max_iter, y_orbit, monodromy, re, im, iterations, shot_status, &
                            shot_message)
       if (shot_status == SD_OK) then
@@ -417,8 +663,8 @@ contains
           ! the orbit's linearisation must describe the integration's last two steps
           shot_status = SD_OK
           do j = 0, 1
-            from = recent_point(k - (j + 1)*p) - y_orbit
-            to = recent_point(k - j*p) - y_orbit
+            from = recent_point(run, k - (j + 1)*p) - y_orbit
+            to = recent_point(run, k - j*p) - y_orbit
             error = norm2(to - matmul(monodromy, from))
             if (error > linear_tol*norm2(from) + 1.0e2_wp*shoot_newton_tol*size_) &
               shot_status = SD_BAD_INPUT
@@ -433,54 +679,58 @@ contains
           end if
         end if
       end if
-      last_failed_k = k
-      last_failed_gap = gap
-    end subroutine try_orbit
+      run%last_failed_k = k
+      run%last_failed_gap = gap
+    end associate
+  end subroutine try_orbit
 
-    !> The window on the orbit found: one orbit period (jump%periods forcing periods) from its
-    !> state at phase 0, sampled at the window's phases for the maxima; its Poincare points
-    !> repeated over the window.
-    subroutine measure_orbit()
-      class(rk_integrator), allocatable, target :: orbit_integ
-      real(wp) :: z(4), points(4, max_period), t_sample
-      integer :: p, i
+  !> The window on the orbit found: one orbit period (jump%periods forcing periods) from its
+  !> state at phase 0, sampled at the window's phases for the maxima; its Poincare points
+  !> repeated over the window (one point at a time, as it is short).
+  subroutine measure_orbit(run)
+    type(steady_run), intent(inout), target :: run
+    class(rk_integrator), allocatable, target :: orbit_integ
+    real(wp) :: z(4), points(4, max_period), t_sample
+    integer :: p, i
+    associate (jump => run%jump, steady => run%steady, period => run%period, &
+               status => run%status, message => run%message)
       p = jump%periods
-      call new_integrator(method, options%rtol, orbit_integ, status, message)
-      if (status == SD_OK) call orbit_integ%init(system, 0.0_wp, jump%y, (p + 1)*period, &
-                                                 options, status, message)
+      call new_integrator(run%method, run%options%rtol, orbit_integ, status, message)
+      if (status == SD_OK) call orbit_integ%init(run%system, 0.0_wp, jump%y, (p + 1)*period, &
+                                                 run%options, status, message)
       if (status /= SD_OK) return
-      call tracker%start(observed, 0.0_wp, jump%y)
+      call run%tracker%start(run%observed, 0.0_wp, jump%y)
       do i = 1, p
         t_sample = (i*steady%samples_per_period)*period/steady%samples_per_period
         do while (orbit_integ%t < t_sample)
-          call orbit_integ%step(system, status, message)
-          if (status == SD_OK) call tracker%watch(orbit_integ, observed, 0.0_wp, p*period, &
-                                                  status, message)
+          call orbit_integ%step(run%system, status, message)
+          if (status == SD_OK) call run%tracker%watch(orbit_integ, run%observed, 0.0_wp, &
+                                                      p*period, status, message)
           if (status /= SD_OK) return
         end do
         call orbit_integ%dense(t_sample, z)
         points(:, i) = z
       end do
-      maxima = tracker%peak
+      run%maxima = run%tracker%peak
       do i = 1, steady%window_periods
-        poincare(:, i) = points(:, mod(i - 1, p) + 1)
+        run%poincare(:, i) = points(:, mod(i - 1, p) + 1)
       end do
-    end subroutine measure_orbit
+    end associate
+  end subroutine measure_orbit
 
-    !> Step until the integrator passes tau, then read the state at tau by dense output (in the
-    !> window, every step is watched for the maxima).
-    subroutine advance_to(tau, y)
-      real(wp), intent(in) :: tau
-      real(wp), intent(out) :: y(4)
-      do while (integ%t < tau)
-        call integ%step(system, status, message)
-        if (status == SD_OK .and. watching) call tracker%watch(integ, observed, tau_window, &
-                                                               tau_end, status, message)
-        if (status /= SD_OK) return
-      end do
-      call integ%dense(tau, y)
-    end subroutine advance_to
-  end subroutine steady_state
+  !> A block size of the studies: >= 1 points handed to steady_state_block together.
+  pure subroutine check_block(block, status, message)
+    integer, intent(in) :: block
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    status = SD_OK
+    message = ''
+    if (block < 1) then
+      status = SD_BAD_INPUT
+      message = 'block = '//num2str(block)//' is out of range: the points go to the '// &
+                'ensemble block points at a time, block >= 1'
+    end if
+  end subroutine check_block
 
   !> The steady-state settings and a forcing frequency: the rules every reader applies.
   pure subroutine check_steady(model, steady, status, message)
@@ -609,12 +859,13 @@ contains
   end subroutine parameter_sweep
 
   !> Steady states at values of the parameter `which` (as parameter_sweep), each from the
-  !> same initial state y0: the points are independent, so n_threads threads (OpenMP) share them
-  !> out, one point at a time, and each point is computed exactly as by a single thread -- the
-  !> results do not depend on n_threads, bit for bit. n_done counts the points completed;
-  !> status and message are those of the first failing point (in the order of values).
+  !> same initial state y0: the points are independent, so they go to steady_state_block
+  !> `block` at a time (default 1) and n_threads threads (OpenMP) share out the blocks; each
+  !> point is computed exactly as by steady_state alone -- the results depend neither on
+  !> n_threads nor on block, bit for bit. n_done counts the points completed; status and
+  !> message are those of the first failing point (in the order of values).
   subroutine independent_sweep(model, which, values, y0, options, method, steady, n_threads, &
-                               summaries, n_done, status, message)
+                               summaries, n_done, status, message, block)
     type(model_t), intent(in) :: model
     integer, intent(in) :: which, method, n_threads
     real(wp), intent(in) :: values(:), y0(4)
@@ -623,33 +874,33 @@ contains
     real(wp), intent(out) :: summaries(SUMMARY_SIZE, size(values))
     integer, intent(out) :: n_done, status
     character(len=message_len), intent(out) :: message
-    integer :: i, point_status(size(values)), point_done(size(values)), one_status, one_done
-    character(len=message_len) :: point_message(size(values)), one_message
-    real(wp) :: y_final(4)
+    integer, intent(in), optional :: block
+    integer :: i, b, points, first, last, point_status(size(values)), point_done(size(values))
+    character(len=message_len) :: point_message(size(values))
 
     summaries = 0
     n_done = 0
     status = SD_OK
     message = ''
+    points = 1
+    if (present(block)) points = block
     if (n_threads < 1) then
       status = SD_BAD_INPUT
       message = 'threads = '//num2str(n_threads)//' is out of range: it must be >= 1'
       return
     end if
+    call check_block(points, status, message)
+    if (status /= SD_OK) return
     point_status = SD_OK
     point_message = ''
-    !$omp parallel do num_threads(n_threads) schedule(dynamic, 1) &
-    !$omp private(y_final, one_done, one_status, one_message)
-    do i = 1, size(values)
-      ! a thread's own status (the integrator writes it at every step): neighbouring entries
-      ! of point_status share a cache line, which two threads would pass to and fro (+11 % CPU)
-      ! (the chart's two loops repeat these three lines: kept, as a shared form would need a
-      ! callback per loop)
-      call parameter_sweep(model, which, values(i:i), y0, options, method, steady, &
-                           summaries(:, i:i), y_final, one_done, one_status, one_message)
-      point_done(i) = one_done
-      point_status(i) = one_status
-      point_message(i) = one_message
+    point_done = 0
+    !$omp parallel do num_threads(n_threads) schedule(dynamic, 1) private(first, last)
+    do b = 1, (size(values) + points - 1)/points
+      first = (b - 1)*points + 1
+      last = min(size(values), b*points)
+      call sweep_block(model, which, values(first:last), y0, options, method, steady, &
+                       summaries(:, first:last), point_done(first:last), &
+                       point_status(first:last), point_message(first:last))
     end do
     !$omp end parallel do
     n_done = sum(point_done)
@@ -661,4 +912,52 @@ contains
       end if
     end do
   end subroutine independent_sweep
+
+  !> independent_sweep's points values(:) as one steady_state_block (those whose value
+  !> set_excitation_parameter accepts): done(i) = 1 for a point completed, its status and
+  !> message. The block's results are kept in locals until it ends, so that threads working
+  !> on neighbouring blocks do not pass cache lines to and fro.
+  subroutine sweep_block(model, which, values, y0, options, method, steady, summaries, done, &
+                         status, message)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: which, method
+    real(wp), intent(in) :: values(:), y0(4)
+    type(ode_options), intent(in) :: options
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(inout) :: summaries(:, :)
+    integer, intent(out) :: done(:), status(:)
+    character(len=message_len), intent(out) :: message(:)
+    type(model_t) :: models(size(values))
+    integer :: members(size(values)), point_status(size(values)), block_status(size(values))
+    character(len=message_len) :: point_message(size(values)), block_message(size(values))
+    real(wp) :: block_summaries(SUMMARY_SIZE, size(values)), y_end(4, size(values)), &
+                poincare(4, max(steady%window_periods, 1), size(values))
+    type(ode_stats) :: stats(size(values))
+    type(steady_orbit) :: orbits(size(values))
+    integer :: i, m
+
+    m = 0
+    do i = 1, size(values)
+      models(i) = model
+      call set_excitation_parameter(models(i)%excitation, which, values(i), point_status(i), &
+                                    point_message(i))
+      if (point_status(i) /= SD_OK) cycle
+      m = m + 1
+      members(m) = i
+      models(m) = models(i)
+    end do
+    if (m > 0) then
+      call steady_state_block(models(1:m), spread(y0, 2, m), options, method, steady, &
+                              block_summaries(:, 1:m), poincare(:, :, 1:m), y_end(:, 1:m), &
+                              stats(1:m), block_status(1:m), block_message(1:m), orbits(1:m))
+      do i = 1, m
+        summaries(:, members(i)) = block_summaries(:, i)
+        point_status(members(i)) = block_status(i)
+        point_message(members(i)) = block_message(i)
+      end do
+    end if
+    done = merge(1, 0, point_status == SD_OK)
+    status = point_status
+    message = point_message
+  end subroutine sweep_block
 end module sloshdyn_simulation

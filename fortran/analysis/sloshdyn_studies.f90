@@ -20,7 +20,8 @@ module sloshdyn_studies
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_shooting, only: shooting_newton
-  use sloshdyn_simulation, only: steady_options, steady_state, steady_orbit, max_period
+  use sloshdyn_simulation, only: steady_options, steady_state, steady_state_block, steady_orbit, &
+                                 max_period, check_block
   use sloshdyn_tables, only: SUMMARY_SIZE, SUMMARY_MOTION, SUMMARY_PERIOD, MOTION_PERIODIC
   implicit none
   private
@@ -50,7 +51,7 @@ contains
   !> results; independent points go on, a carried path stops there (the rest get the same
   !> status). status and message are those of the first failure (SD_OK if none).
   subroutine steady_path(model, rho, A, y0, carry, options, method, steady, summaries, y_end, &
-                         orbit, point_status, status, message)
+                         orbit, point_status, status, message, block)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: rho(:), A(:), y0(:, :)
     logical, intent(in) :: carry
@@ -60,11 +61,12 @@ contains
     real(wp), intent(out) :: summaries(:, :), y_end(:, :), orbit(:, :)
     integer, intent(out) :: point_status(:), status
     character(len=message_len), intent(out) :: message
+    integer, intent(in), optional :: block
     type(model_t) :: point
     type(ode_stats) :: stats
     type(steady_orbit) :: found
     real(wp) :: start(4), poincare(4, max(steady%window_periods, 1))
-    integer :: i, n, info
+    integer :: i, n, info, points
     character(len=message_len) :: text
 
     n = size(rho)
@@ -85,36 +87,120 @@ contains
       point_status = status
       return
     end if
+    points = 1
+    if (present(block)) points = block
+    call check_block(points, status, message)
+    if (status /= SD_OK) then
+      point_status = status
+      return
+    end if
+    if (.not. carry) then
+      call independent_points(model, rho, A, y0, options, method, steady, points, summaries, &
+                              y_end, orbit, point_status, status, message)
+      return
+    end if
     start = y0(:, 1)
     do i = 1, n
-      info = SD_OK
-      text = ''
-      if (.not. carry) start = y0(:, i)
-      call check_real('rho', rho(i), 0.0_wp, huge(1.0_wp), .true., .true., &
-                      'a steady state needs a forcing frequency rho > 0', info, text)
-      call check_real('A', A(i), 0.0_wp, huge(1.0_wp), .false., .true., &
-                      'the forcing amplitude A must be >= 0 and finite', info, text)
-      if (info == SD_OK) then
-        point = model
-        point%excitation%rho = rho(i)
-        point%excitation%A = A(i)
+      call point_model(model, rho(i), A(i), point, info, text)
+      if (info == SD_OK) &
         call steady_state(point, start, options, method, steady, summaries(:, i), poincare, &
                           y_end(:, i), stats, info, text, found)
-      end if
       if (info /= SD_OK) then
-        call point_failed(i, info, 'point '//num2str(i)//' (rho = '//num2str(rho(i))// &
-                          ', A = '//num2str(A(i))//'): '//trim(text), summaries, y_end, &
-                          point_status, status, message)
-        if (carry) then
-          point_status(i:) = info
-          return
-        end if
-        cycle
+        call path_point_failed(i, rho(i), A(i), info, text, summaries, y_end, point_status, &
+                               status, message)
+        point_status(i:) = info
+        return
       end if
       orbit(:, i) = orbit_row(found, 0)
-      if (carry) start = y_end(:, i)
+      start = y_end(:, i)
     end do
   end subroutine steady_path
+
+  !> steady_path's independent points (carry = .false.): those with a valid (rho, A) go to
+  !> steady_state_block `block` at a time, each equal to its steady_state alone; the failures
+  !> are then reported in the order of the points.
+  subroutine independent_points(model, rho, A, y0, options, method, steady, block, summaries, &
+                                y_end, orbit, point_status, status, message)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: rho(:), A(:), y0(:, :)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method, block
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(inout) :: summaries(:, :), y_end(:, :), orbit(:, :)
+    integer, intent(inout) :: point_status(:), status
+    character(len=message_len), intent(inout) :: message
+    type(model_t) :: models(block)
+    type(ode_stats) :: stats(block)
+    type(steady_orbit) :: found(block)
+    integer :: infos(size(rho)), block_infos(block), members(block), i, c, nb, next
+    character(len=message_len) :: texts(size(rho)), block_texts(block)
+    real(wp) :: poincare(4, max(steady%window_periods, 1), block), &
+                block_summaries(SUMMARY_SIZE, block), block_y_end(4, block)
+
+    next = 1
+    do
+      ! the next block of valid points
+      nb = 0
+      do while (nb < block .and. next <= size(rho))
+        call point_model(model, rho(next), A(next), models(nb + 1), infos(next), texts(next))
+        if (infos(next) == SD_OK) then
+          nb = nb + 1
+          members(nb) = next
+        end if
+        next = next + 1
+      end do
+      if (nb == 0) exit
+      call steady_state_block(models(1:nb), y0(:, members(1:nb)), options, method, steady, &
+                              block_summaries(:, 1:nb), poincare(:, :, 1:nb), &
+                              block_y_end(:, 1:nb), stats(1:nb), block_infos(1:nb), &
+                              block_texts(1:nb), found(1:nb))
+      do c = 1, nb
+        i = members(c)
+        summaries(:, i) = block_summaries(:, c)
+        y_end(:, i) = block_y_end(:, c)
+        infos(i) = block_infos(c)
+        texts(i) = block_texts(c)
+        if (infos(i) == SD_OK) orbit(:, i) = orbit_row(found(c), 0)
+      end do
+    end do
+    do i = 1, size(rho)
+      if (infos(i) /= SD_OK) call path_point_failed(i, rho(i), A(i), infos(i), texts(i), &
+                                                    summaries, y_end, point_status, status, &
+                                                    message)
+    end do
+  end subroutine independent_points
+
+  !> The model at point (rho, A) of a path, or the status naming a bad rho or A.
+  subroutine point_model(model, rho, A, point, info, text)
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: rho, A
+    type(model_t), intent(out) :: point
+    integer, intent(out) :: info
+    character(len=message_len), intent(out) :: text
+    info = SD_OK
+    text = ''
+    call check_real('rho', rho, 0.0_wp, huge(1.0_wp), .true., .true., &
+                    'a steady state needs a forcing frequency rho > 0', info, text)
+    call check_real('A', A, 0.0_wp, huge(1.0_wp), .false., .true., &
+                    'the forcing amplitude A must be >= 0 and finite', info, text)
+    point = model
+    point%excitation%rho = rho
+    point%excitation%A = A
+  end subroutine point_model
+
+  !> point_failed for point i of a path, its message naming (rho, A).
+  subroutine path_point_failed(i, rho, A, info, text, summaries, y_end, point_status, status, &
+                               message)
+    integer, intent(in) :: i, info
+    real(wp), intent(in) :: rho, A
+    character(len=*), intent(in) :: text
+    real(wp), intent(inout) :: summaries(:, :), y_end(:, :)
+    integer, intent(inout) :: point_status(:), status
+    character(len=message_len), intent(inout) :: message
+    call point_failed(i, info, 'point '//num2str(i)//' (rho = '//num2str(rho)//', A = '// &
+                      num2str(A)//'): '//trim(text), summaries, y_end, point_status, status, &
+                      message)
+  end subroutine path_point_failed
 
   !> Point i failed with status info: its summaries and final state are NaN, and the first
   !> failure gives the status and the message (what: the point and the reason).
@@ -156,24 +242,26 @@ contains
   !> motion reached by integration (no jump) the orbit refined by shooting from the final state
   !> (period k T from the classification; kept if Newton converges within refine_distance of
   !> that state); orbit_points(:, j, i), j = 1..k, the orbit's Poincare points over one orbit
-  !> period (from the window), NaN beyond k and for other motions.
-  subroutine attractor_points(model, y0, options, method, steady, summaries, y_end, orbit, &
-                              orbit_points, point_status, status, message)
+  !> period (from the window), NaN beyond k and for other motions. The points go to
+  !> steady_state_block `block` at a time (>= 1), each equal to its steady_state alone.
+  subroutine attractor_points(model, y0, options, method, steady, block, summaries, y_end, &
+                              orbit, orbit_points, point_status, status, message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y0(:, :)
     type(ode_options), intent(in) :: options
-    integer, intent(in) :: method
+    integer, intent(in) :: method, block
     type(steady_options), intent(in) :: steady
     real(wp), intent(out) :: summaries(:, :), y_end(:, :), orbit(:, :), orbit_points(:, :, :)
     integer, intent(out) :: point_status(:), status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: point
-    type(ode_stats) :: stats
-    type(steady_orbit) :: found
+    type(ode_stats), allocatable :: stats(:)
+    type(steady_orbit), allocatable :: found(:)
+    integer, allocatable :: infos(:)
+    character(len=message_len), allocatable :: texts(:)
+    real(wp), allocatable :: poincare(:, :, :)
     type(tank_system) :: system
-    real(wp) :: poincare(4, max(steady%window_periods, 1)), y_orbit(4), monodromy(4, 4), &
-                re(4), im(4), scale
-    integer :: i, n, info, k, iterations
+    real(wp) :: y_orbit(4), monodromy(4, 4), re(4), im(4), scale
+    integer :: i, c, n, nb, first, info, k, iterations
     character(len=message_len) :: text
 
     n = size(y0, 2)
@@ -196,33 +284,45 @@ contains
       point_status = status
       return
     end if
-    point = model
+    call check_block(block, status, message)
+    if (status /= SD_OK) then
+      point_status = status
+      return
+    end if
     system%model = model
-    do i = 1, n
-      call steady_state(point, y0(:, i), options, method, steady, summaries(:, i), poincare, &
-                        y_end(:, i), stats, info, text, found)
-      if (info /= SD_OK) then
-        call point_failed(i, info, 'initial state '//num2str(i)//': '//trim(text), summaries, &
-                          y_end, point_status, status, message)
-        cycle
-      end if
-      orbit(:, i) = orbit_row(found, 0)
-      if (nint(summaries(SUMMARY_MOTION, i)) /= MOTION_PERIODIC) cycle
-      k = nint(summaries(SUMMARY_PERIOD, i))
-      orbit_points(:, 1:k, i) = poincare(:, 1:k)
-      if (found%found) cycle
-      ! reached by integration: refine the orbit by shooting from where the integration ended
-      call shooting_newton(system, y_end(:, i), k, options, method, refine_tol, &
-                           refine_max_iter, y_orbit, monodromy, re, im, iterations, info, text)
-      scale = max(norm2(y_end(:, i)), tiny(1.0_wp))
-      if (info == SD_OK .and. norm2(y_orbit - y_end(:, i)) <= refine_distance*scale) then
-        found%found = .true.
-        found%periods = k
-        found%y = y_orbit
-        found%multipliers_re = re
-        found%multipliers_im = im
-        orbit(:, i) = orbit_row(found, 2)
-      end if
+    allocate (stats(block), found(block), infos(block), texts(block), &
+              poincare(4, max(steady%window_periods, 1), block))
+    do first = 1, n, block
+      nb = min(block, n - first + 1)
+      call steady_state_block([model], y0(:, first:first + nb - 1), options, method, steady, &
+                              summaries(:, first:first + nb - 1), poincare(:, :, 1:nb), &
+                              y_end(:, first:first + nb - 1), stats(1:nb), infos(1:nb), &
+                              texts(1:nb), found(1:nb))
+      do c = 1, nb
+        i = first + c - 1
+        if (infos(c) /= SD_OK) then
+          call point_failed(i, infos(c), 'initial state '//num2str(i)//': '//trim(texts(c)), &
+                            summaries, y_end, point_status, status, message)
+          cycle
+        end if
+        orbit(:, i) = orbit_row(found(c), 0)
+        if (nint(summaries(SUMMARY_MOTION, i)) /= MOTION_PERIODIC) cycle
+        k = nint(summaries(SUMMARY_PERIOD, i))
+        orbit_points(:, 1:k, i) = poincare(:, 1:k, c)
+        if (found(c)%found) cycle
+        ! reached by integration: refine the orbit by shooting from where the integration ended
+        call shooting_newton(system, y_end(:, i), k, options, method, refine_tol, &
+                             refine_max_iter, y_orbit, monodromy, re, im, iterations, info, text)
+        scale = max(norm2(y_end(:, i)), tiny(1.0_wp))
+        if (info == SD_OK .and. norm2(y_orbit - y_end(:, i)) <= refine_distance*scale) then
+          found(c)%found = .true.
+          found(c)%periods = k
+          found(c)%y = y_orbit
+          found(c)%multipliers_re = re
+          found(c)%multipliers_im = im
+          orbit(:, i) = orbit_row(found(c), 2)
+        end if
+      end do
     end do
   end subroutine attractor_points
 

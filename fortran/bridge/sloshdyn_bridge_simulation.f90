@@ -144,9 +144,10 @@ contains
   end subroutine parameter_sweep
 
   !> Steady states at values of rho (which = 1) or A (which = 2), each from y0 (independent
-  !> points), shared out to n_threads threads; the results do not depend on n_threads.
+  !> points) in blocks of `block` points for the ensemble, the blocks shared out to n_threads
+  !> threads; the results depend neither on n_threads nor on block.
   subroutine independent_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
-                            summaries, n_done, status, message)
+                            block, summaries, n_done, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_tables, only: SUMMARY_SIZE
@@ -156,7 +157,7 @@ contains
     real(c_double), intent(in) :: rpar(n_real_params), values(n), y0(4), &
                                   integration(INTEGRATION_SIZE), &
                                   steady(STEADY_SIZE)
-    integer(c_int), intent(in) :: ipar(n_int_params), which, n, n_threads
+    integer(c_int), intent(in) :: ipar(n_int_params), which, n, n_threads, block
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n)
     integer(c_int), intent(out) :: n_done, status
     character(len=512), intent(out) :: message
@@ -166,7 +167,7 @@ contains
     call model_from_arrays(rpar, int(ipar), model, info, message)
     if (info == 0) call core(model, int(which), values, y0, to_ode_options(integration), &
                              to_method(integration), to_steady(steady), int(n_threads), &
-                             summaries, done, info, message)
+                             summaries, done, info, message, int(block))
     n_done = done
     status = info
   end subroutine independent_sweep

@@ -12,9 +12,10 @@ contains
   !> summaries(SUMMARY_SIZE, n) in the 'summary' layout, y_end(4, n), orbit(ORBIT_ROWS,
   !> n) in the layout of
   !> sloshdyn_studies, impact(n) = 1 where max|x1| >= 1 (the wall is reached), point_status(n);
-  !> status and message of the first failing point.
-  subroutine steady_path(rpar, ipar, n, rho, A, y0, carry, integration, steady, summaries, &
-                         y_end, orbit, impact, point_status, status, message)
+  !> status and message of the first failing point. Independent points go to the ensemble
+  !> block at a time (>= 1; the results do not depend on it).
+  subroutine steady_path(rpar, ipar, n, rho, A, y0, carry, integration, steady, block, &
+                         summaries, y_end, orbit, impact, point_status, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_studies, only: ORBIT_ROWS, core => steady_path, roof_impact
@@ -23,7 +24,7 @@ contains
                                 to_steady
     real(c_double), intent(in) :: rpar(n_real_params), rho(n), A(n), y0(4, n), &
                                   integration(INTEGRATION_SIZE), steady(STEADY_SIZE)
-    integer(c_int), intent(in) :: ipar(n_int_params), n, carry
+    integer(c_int), intent(in) :: ipar(n_int_params), n, carry, block
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n)
     integer(c_int), intent(out) :: impact(n), point_status(n), status
     character(len=512), intent(out) :: message
@@ -34,7 +35,7 @@ contains
     if (info == 0) then
       call core(model, rho, A, y0, carry /= 0, to_ode_options(integration), &
                 to_method(integration), to_steady(steady), summaries, y_end, orbit, statuses, &
-                info, message)
+                info, message, int(block))
     else
       statuses = info
     end if
@@ -45,9 +46,10 @@ contains
 
   !> Steady states from the initial states y0(:, i) at the excitation of rpar, with the orbit
   !> each periodic one settled on (sloshdyn_studies: orbit(ORBIT_ROWS, n), orbit_points(4,
-  !> MAX_ORBIT_PERIODS, n)).
-  subroutine attractor_points(rpar, ipar, n, y0, integration, steady, summaries, y_end, orbit, &
-                              orbit_points, point_status, status, message)
+  !> MAX_ORBIT_PERIODS, n)), the points going to the ensemble block at a time (>= 1; the
+  !> results do not depend on it).
+  subroutine attractor_points(rpar, ipar, n, y0, integration, steady, block, summaries, y_end, &
+                              orbit, orbit_points, point_status, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_simulation, only: MAX_ORBIT_PERIODS => max_period
@@ -57,7 +59,7 @@ contains
                                 to_steady
     real(c_double), intent(in) :: rpar(n_real_params), y0(4, n), integration(INTEGRATION_SIZE), &
                                   steady(STEADY_SIZE)
-    integer(c_int), intent(in) :: ipar(n_int_params), n
+    integer(c_int), intent(in) :: ipar(n_int_params), n, block
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n), &
                                    orbit_points(4, MAX_ORBIT_PERIODS, n)
     integer(c_int), intent(out) :: point_status(n), status
@@ -68,7 +70,8 @@ contains
     call model_from_arrays(rpar, int(ipar), model, info, message)
     if (info == 0) then
       call core(model, y0, to_ode_options(integration), to_method(integration), &
-                to_steady(steady), summaries, y_end, orbit, orbit_points, statuses, info, message)
+                to_steady(steady), int(block), summaries, y_end, orbit, orbit_points, statuses, &
+                info, message)
     else
       statuses = info
     end if

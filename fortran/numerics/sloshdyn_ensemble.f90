@@ -18,12 +18,13 @@ module sloshdyn_ensemble
   use sloshdyn_text, only: num2str
   use sloshdyn_cancel, only: check_cancel
   use sloshdyn_ode, only: ode_system, ode_options, ode_stats, rk_integrator, &
-                          observed_quantities, peak_tracker, method_properties, rk_begin_step, deliver_outputs, &
+                          observed_quantities, peak_tracker, rk_begin_step, deliver_outputs, &
                           check_outputs
   use sloshdyn_integrator, only: new_integrator, chosen_method
   implicit none
   private
-  public :: ensemble_system, block_rhs, shared_system, member_system, integrate_ensemble
+  public :: ensemble_system, block_rhs, shared_system, member_system, integrate_ensemble, &
+            advance_members, member_watch, accepted_step
 
   !> The right-hand sides of the members 1..K of an ensemble. rhs_block evaluates column c for
   !> member members(c) at (t(c), y(:, c)); each column must depend only on its own member and
@@ -60,6 +61,38 @@ module sloshdyn_ensemble
     procedure :: rhs => member_rhs
   end type member_system
 
+  !> A caller's look at the members of advance_members: accepted is called after every
+  !> accepted step of member j (integ = integ(j), at its new time); a status other than SD_OK
+  !> stops that member as a failed step would.
+  type, abstract :: member_watch
+  contains
+    procedure(accepted_step), deferred :: accepted
+  end type member_watch
+
+  abstract interface
+    subroutine accepted_step(self, j, integ, status, message)
+      import :: member_watch, rk_integrator, message_len
+      class(member_watch), intent(inout) :: self
+      integer, intent(in) :: j
+      class(rk_integrator), intent(in) :: integ
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine accepted_step
+  end interface
+
+  !> integrate_ensemble's watch: each member's outputs and peaks after its accepted steps.
+  !> observed is an allocatable copy: gfortran 12 miscompiles an element of a pointer to a
+  !> polymorphic array.
+  type, extends(member_watch) :: output_watch
+    real(wp), allocatable :: t0(:), t_out(:, :), y_out(:, :, :)
+    integer, allocatable :: next_out(:)
+    logical :: tracking = .false.
+    class(observed_quantities), allocatable :: observed(:)
+    type(peak_tracker), allocatable :: tracker(:)
+  contains
+    procedure :: accepted => outputs_accepted
+  end type output_watch
+
 contains
 
   subroutine shared_rhs_block(self, members, t, y, dydt)
@@ -82,6 +115,173 @@ contains
     dydt = f(:, 1)
   end subroutine member_rhs
 
+  !> Advance the members listed (indices into integ) each from its time integ(j)%t until it
+  !> passes its own target(c) (it steps while integ(j)%t < target(c), as the single path's
+  !> `do while (integ%t < tau); call integ%step(...)`), and stop there with its step size and
+  !> state kept, so that a caller can inspect the members (dense output up to integ(j)%t) and
+  !> advance them again by other stretches. Every member steps exactly as integ(j)%step would
+  !> alone: the same plan, stages, trial_error, judge, finish and conclude, one attempt per
+  !> round; only the stages of all members at one stage go in one esys%rhs_block, whose
+  !> column c is member members(c)'s right-hand side (ensemble_system's rule). watch%accepted
+  !> (optional) is called after each accepted step of a member. Failures are per member
+  !> (status(c), message(c); the member stays at its last accepted step). A Ctrl-C
+  !> (sloshdyn_cancel) stops all members still running, with its status. Members already at
+  !> or past their target on entry do nothing.
+  subroutine advance_members(esys, integ, members, target, status, message, watch)
+    class(ensemble_system), intent(in) :: esys
+    class(rk_integrator), intent(inout) :: integ(:)
+    integer, intent(in) :: members(:)
+    real(wp), intent(in) :: target(:)
+    integer, intent(out) :: status(:)
+    character(len=message_len), intent(out) :: message(:)
+    class(member_watch), intent(inout), optional :: watch
+    real(wp) :: h(size(integ)), t_new(size(integ)), err(size(integ)), h_new(size(integ)), &
+                goal(size(integ))
+    logical :: finite(size(integ)), go_on(size(integ)), fresh(size(integ)), arrived(size(members))
+    integer :: active(size(members)), slot(size(integ)), cols(size(members))
+    integer :: n, n_trial, i, m, st
+    character(len=message_len) :: msg
+    logical :: accepted
+
+    status = SD_OK
+    message = ''
+    m = 0
+    do i = 1, size(members)
+      slot(members(i)) = i
+      goal(members(i)) = target(i)
+      if (integ(members(i))%t >= target(i)) cycle
+      m = m + 1
+      active(m) = members(i)
+    end do
+    if (m == 0) return
+    n = size(integ(active(1))%y)
+    n_trial = integ(active(1))%trial_stages
+    fresh = .true.
+
+    ! rounds: every active member tries one step (the single path's rk_step, one attempt)
+    do while (m > 0)
+      st = SD_OK   ! check_cancel reports only into a status still SD_OK
+      call check_cancel(st, msg)
+      if (st /= SD_OK) then
+        status(slot(active(1:m))) = st
+        message(slot(active(1:m))) = msg
+        exit
+      end if
+      do i = 1, m
+        associate (j => active(i), c => slot(active(i)))
+          if (fresh(j)) call rk_begin_step(integ(j), status(c), message(c))
+          fresh(j) = .false.
+          if (status(c) == SD_OK) &
+            call integ(j)%plan(h(j), t_new(j), status(c), message(c))
+        end associate
+      end do
+      call leave_if(status(slot(active(1:m))) /= SD_OK)
+      if (m == 0) exit
+
+      call stages(active(1:m), 1, n_trial, cols(1:m))
+      do i = 1, m
+        associate (j => active(i))
+          integ(j)%n_rhs = integ(j)%n_rhs + integ(j)%trial_stages
+          call integ(j)%trial_error(h(j), err(j), finite(j))
+          call integ(j)%judge(h(j), err(j), finite(j), h_new(j), go_on(j))
+        end associate
+      end do
+      call finish_stages(pack(active(1:m), go_on(active(1:m)) .and. finite(active(1:m))))
+
+      do i = 1, m
+        associate (j => active(i), c => slot(active(i)))
+          if (.not. go_on(j)) cycle
+          call integ(j)%conclude(h(j), t_new(j), err(j), h_new(j), finite(j), accepted, &
+                                 status(c), message(c))
+          if (status(c) /= SD_OK .or. .not. accepted) cycle
+          fresh(j) = .true.
+          if (present(watch)) call watch%accepted(j, integ(j), status(c), message(c))
+        end associate
+      end do
+      do i = 1, m
+        arrived(i) = status(slot(active(i))) /= SD_OK .or. integ(active(i))%t >= goal(active(i))
+      end do
+      call leave_if(arrived(1:m))
+    end do
+
+  contains
+
+    !> The stages first..last of the members listed, stage by stage, one rhs_block per stage.
+    !> col(c): the k column of the last stage of member c.
+    subroutine stages(list, first, last, col)
+      integer, intent(in) :: list(:)
+      integer, intent(in) :: first, last
+      integer, intent(out) :: col(:)
+      real(wp) :: t_s(size(list)), y_s(n, size(list)), f_s(n, size(list))
+      integer :: s, c
+      do s = first, last
+        do c = 1, size(list)
+          associate (j => list(c))
+            call integ(j)%stage(s, h(j), t_new(j), t_s(c), col(c))
+            y_s(:, c) = integ(j)%y_stage
+          end associate
+        end do
+        call esys%rhs_block(list, t_s, y_s, f_s)
+        do c = 1, size(list)
+          integ(list(c))%k(:, col(c)) = f_s(:, c)
+        end do
+      end do
+    end subroutine stages
+
+    !> rk_finish for the members listed: stage after stage for those that need it and whose
+    !> stages so far are finite.
+    subroutine finish_stages(list)
+      integer, intent(in) :: list(:)
+      integer :: s, c, counts(size(list)), col(size(list))
+      logical :: going(size(list))
+      if (size(list) == 0) return
+      do c = 1, size(list)
+        counts(c) = integ(list(c))%finish_stages()
+      end do
+      going = counts > 0
+      s = 0
+      do while (any(going))
+        s = s + 1
+        call stages(pack(list, going), n_trial + s, n_trial + s, col(1:count(going)))
+        col = unpack(col(1:count(going)), going, col)
+        do c = 1, size(list)
+          if (.not. going(c)) cycle
+          associate (j => list(c))
+            integ(j)%n_rhs = integ(j)%n_rhs + 1
+            finite(j) = all(ieee_is_finite(integ(j)%k(:, col(c))))
+            going(c) = finite(j) .and. s < counts(c)
+          end associate
+        end do
+      end do
+    end subroutine finish_stages
+
+    !> Drop the active members flagged (arrived or failed), keeping the others' order.
+    subroutine leave_if(leaving)
+      logical, intent(in) :: leaving(:)
+      integer :: kept
+      kept = count(.not. leaving)
+      active(1:kept) = pack(active(1:m), .not. leaving)
+      m = kept
+    end subroutine leave_if
+  end subroutine advance_members
+
+  subroutine outputs_accepted(self, j, integ, status, message)
+    class(output_watch), intent(inout) :: self
+    integer, intent(in) :: j
+    class(rk_integrator), intent(in) :: integ
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    integer :: n_out
+    status = SD_OK
+    message = ''
+    n_out = size(self%t_out, 1)
+    if (self%tracking) call self%tracker(j)%watch(integ, self%observed(min(j, &
+                                                  size(self%observed))), self%t0(j), &
+                                                  self%t_out(n_out, j), status, message)
+    if (status /= SD_OK) return
+    call deliver_outputs(integ, self%t_out(:, j), self%next_out(j), self%y_out(:, :, j))
+  end subroutine outputs_accepted
+
   !> For every member i = 1..K (K = size(y0, 2)): y at the times t_out(:, i) (ascending, from
   !> t0(i)), y_out(:, j, i) = y(t_out(j, i)), by the method of code method (sloshdyn_integrator),
   !> exactly as integrate_with would give it alone with options(i) (or options(1) for all; the
@@ -89,7 +289,8 @@ contains
   !> observed(1)) and tracker(i): the peaks over [t0(i), t_out(n, i)]). Failures are
   !> per member: status(i), message(i), stats(i)%t_reached, and NaN in y_out beyond the
   !> outputs reached; the other members go on. A Ctrl-C (sloshdyn_cancel) stops all members
-  !> still running, with its status.
+  !> still running, with its status. The members go together through advance_members to
+  !> their last output times, an output_watch delivering their outputs and peaks.
   subroutine integrate_ensemble(method, esys, t0, y0, t_out, y_out, options, stats, status, &
                                 message, observed, tracker)
     integer, intent(in) :: method
@@ -104,18 +305,15 @@ contains
     type(peak_tracker), intent(inout), optional :: tracker(:)
     class(rk_integrator), allocatable :: proto, integ(:)
     type(member_system) :: alone
-    real(wp), allocatable :: h(:), t_new(:), err(:), h_new(:)
-    logical, allocatable :: finite(:), go_on(:), fresh(:)
-    integer, allocatable :: next_out(:), active(:), cols(:)
-    type(method_properties) :: info
-    integer :: n, n_members, n_out, i, m, st, n_trial
+    type(output_watch) :: watch
+    integer, allocatable :: active(:), run_status(:)
+    character(len=message_len), allocatable :: run_message(:)
+    integer :: n_members, n_out, i, m, st
     character(len=message_len) :: msg
-    logical :: tracking, accepted
 
-    n = size(y0, 1)
     n_members = size(y0, 2)
     n_out = size(t_out, 1)
-    tracking = present(observed) .and. present(tracker)
+    watch%tracking = present(observed) .and. present(tracker)
     status = SD_OK
     message = ''
     call check_shapes(st, msg)
@@ -127,149 +325,58 @@ contains
       return
     end if
     allocate (integ(n_members), mold=proto)
-    info = proto%properties()
-    n_trial = info%trial_stages
-    allocate (h(n_members), t_new(n_members), err(n_members), h_new(n_members), &
-              finite(n_members), go_on(n_members), fresh(n_members), next_out(n_members), &
-              active(n_members), cols(n_members))
+    allocate (active(n_members))
     alone%ensemble => esys
+    watch%t0 = t0
+    watch%t_out = t_out
+    allocate (watch%y_out(size(y_out, 1), n_out, n_members), watch%next_out(n_members))
+    if (watch%tracking) then
+      allocate (watch%observed, source=observed)
+      watch%tracker = tracker
+    end if
 
     ! set up every member as integrate_with does; those with a step to take become active
     m = 0
     do i = 1, n_members
       stats(i)%t_reached = t0(i)
-      call check_outputs(t0(i), y0(:, i), t_out(:, i), y_out(:, :, i), options_of(i), &
+      call check_outputs(t0(i), y0(:, i), t_out(:, i), watch%y_out(:, :, i), options_of(i), &
                          status(i), message(i))
       if (status(i) /= SD_OK) cycle
-      if (tracking) call tracker(i)%start(observed_of(i), t0(i), y0(:, i))
-      next_out(i) = 1
-      do while (next_out(i) <= n_out)
-        if (t_out(next_out(i), i) > t0(i)) exit
-        y_out(:, next_out(i), i) = y0(:, i)
-        next_out(i) = next_out(i) + 1
+      if (watch%tracking) call watch%tracker(i)%start(observed(min(i, size(observed))), t0(i), &
+                                                      y0(:, i))
+      watch%next_out(i) = 1
+      do while (watch%next_out(i) <= n_out)
+        if (t_out(watch%next_out(i), i) > t0(i)) exit
+        watch%y_out(:, watch%next_out(i), i) = y0(:, i)
+        watch%next_out(i) = watch%next_out(i) + 1
       end do
-      if (next_out(i) > n_out) cycle
+      if (watch%next_out(i) > n_out) cycle
       alone%member = i
       call integ(i)%init(alone, t0(i), y0(:, i), t_out(n_out, i), options_of(i), status(i), &
-                         message(i), dense_output=t_out(next_out(i), i) < t_out(n_out, i) &
-                         .or. tracking)
+                         message(i), dense_output=t_out(watch%next_out(i), i) < &
+                         t_out(n_out, i) .or. watch%tracking)
       if (status(i) /= SD_OK) then
         stats(i) = integ(i)%statistics()
         cycle
       end if
-      fresh(i) = .true.
       m = m + 1
       active(m) = i
     end do
 
-    ! rounds: every active member tries one step (the single path's rk_step, one attempt)
-    do while (m > 0)
-      call check_cancel(st, msg)
-      if (st /= SD_OK) then
-        status(active(1:m)) = st
-        message(active(1:m)) = msg
-        exit
-      end if
-      do i = 1, m
-        associate (j => active(i))
-          if (fresh(j)) call rk_begin_step(integ(j), status(j), message(j))
-          fresh(j) = .false.
-          if (status(j) == SD_OK) &
-            call integ(j)%plan(h(j), t_new(j), status(j), message(j))
-        end associate
-      end do
-      call leave_if(status(active(1:m)) /= SD_OK)
-      if (m == 0) exit
-
-      call stages(active(1:m), 1, n_trial, cols(1:m))
-      do i = 1, m
-        associate (j => active(i))
-          integ(j)%n_rhs = integ(j)%n_rhs + integ(j)%trial_stages
-          call integ(j)%trial_error(h(j), err(j), finite(j))
-          call integ(j)%judge(h(j), err(j), finite(j), h_new(j), go_on(j))
-        end associate
-      end do
-      call finish_stages(pack(active(1:m), go_on(active(1:m)) .and. finite(active(1:m))))
-
-      do i = 1, m
-        associate (j => active(i))
-          if (.not. go_on(j)) cycle
-          call integ(j)%conclude(h(j), t_new(j), err(j), h_new(j), finite(j), accepted, &
-                                 status(j), message(j))
-          if (status(j) /= SD_OK .or. .not. accepted) cycle
-          fresh(j) = .true.
-          if (tracking) call tracker(j)%watch(integ(j), observed_of(j), t0(j), &
-                                              t_out(n_out, j), status(j), message(j))
-          if (status(j) /= SD_OK) cycle
-          call deliver_outputs(integ(j), t_out(:, j), next_out(j), y_out(:, :, j))
-        end associate
-      end do
-      call leave_if(status(active(1:m)) /= SD_OK .or. next_out(active(1:m)) > n_out)
-    end do
+    if (m > 0) then
+      allocate (run_status(m), run_message(m))
+      call advance_members(esys, integ, active(1:m), t_out(n_out, active(1:m)), run_status, &
+                           run_message, watch)
+      status(active(1:m)) = run_status
+      message(active(1:m)) = run_message
+    end if
     do i = 1, n_members
       if (allocated(integ(i)%k)) stats(i) = integ(i)%statistics()
     end do
+    y_out = watch%y_out
+    if (watch%tracking) tracker = watch%tracker
 
   contains
-
-    !> The stages first..last of the members listed, stage by stage, one rhs_block per stage.
-    !> col(c): the k column of the last stage of member c.
-    subroutine stages(members, first, last, col)
-      integer, intent(in) :: members(:)
-      integer, intent(in) :: first, last
-      integer, intent(out) :: col(:)
-      real(wp) :: t_s(size(members)), y_s(n, size(members)), f_s(n, size(members))
-      integer :: s, c
-      do s = first, last
-        do c = 1, size(members)
-          associate (j => members(c))
-            call integ(j)%stage(s, h(j), t_new(j), t_s(c), col(c))
-            y_s(:, c) = integ(j)%y_stage
-          end associate
-        end do
-        call esys%rhs_block(members, t_s, y_s, f_s)
-        do c = 1, size(members)
-          integ(members(c))%k(:, col(c)) = f_s(:, c)
-        end do
-      end do
-    end subroutine stages
-
-    !> rk_finish for the members listed: stage after stage for those that need it and whose
-    !> stages so far are finite.
-    subroutine finish_stages(members)
-      integer, intent(in) :: members(:)
-      integer :: s, c, counts(size(members)), col(size(members))
-      logical :: going(size(members))
-      if (size(members) == 0) return
-      do c = 1, size(members)
-        counts(c) = integ(members(c))%finish_stages()
-      end do
-      going = counts > 0
-      s = 0
-      do while (any(going))
-        s = s + 1
-        call stages(pack(members, going), n_trial + s, n_trial + s, &
-                    col(1:count(going)))
-        col = unpack(col(1:count(going)), going, col)
-        do c = 1, size(members)
-          if (.not. going(c)) cycle
-          associate (j => members(c))
-            integ(j)%n_rhs = integ(j)%n_rhs + 1
-            finite(j) = all(ieee_is_finite(integ(j)%k(:, col(c))))
-            going(c) = finite(j) .and. s < counts(c)
-          end associate
-        end do
-      end do
-    end subroutine finish_stages
-
-    !> Drop the active members flagged (finished or failed), keeping the others' order.
-    subroutine leave_if(leaving)
-      logical, intent(in) :: leaving(:)
-      integer :: kept
-      kept = count(.not. leaving)
-      active(1:kept) = pack(active(1:m), .not. leaving)
-      m = kept
-    end subroutine leave_if
 
     !> The options of member j: options(j), or options(1) for all.
     function options_of(j) result(opt)
@@ -278,12 +385,6 @@ contains
       opt = options(min(j, size(options)))
     end function options_of
 
-    function observed_of(j) result(obs)
-      integer, intent(in) :: j
-      class(observed_quantities), pointer :: obs
-      obs => observed(min(j, size(observed)))
-    end function observed_of
-
     subroutine check_shapes(st, msg)
       integer, intent(out) :: st
       character(len=message_len), intent(out) :: msg
@@ -291,9 +392,9 @@ contains
       st = SD_OK
       msg = ''
       if (size(t0) /= n_members .or. size(t_out, 2) /= n_members .or. &
-          size(y_out, 1) /= n .or. size(y_out, 2) /= n_out .or. size(y_out, 3) /= n_members &
-          .or. size(stats) /= n_members .or. size(status) /= n_members .or. &
-          size(message) /= n_members .or. &
+          size(y_out, 1) /= size(y0, 1) .or. size(y_out, 2) /= n_out .or. &
+          size(y_out, 3) /= n_members .or. size(stats) /= n_members .or. &
+          size(status) /= n_members .or. size(message) /= n_members .or. &
           (size(options) /= 1 .and. size(options) /= n_members)) then
         st = SD_BAD_INPUT
         msg = 'ensemble of '//num2str(n_members)//' members (size(y0, 2)): t0, t_out(:, i), '// &
@@ -304,7 +405,7 @@ contains
         st = SD_BAD_INPUT
         msg = 'the members'' rtol pick different methods for method = '//num2str(method)// &
               ' (auto): give one method, or rtol on one side of the crossovers'
-      else if (tracking) then
+      else if (watch%tracking) then
         if (size(tracker) /= n_members .or. &
             (size(observed) /= 1 .and. size(observed) /= n_members)) then
           st = SD_BAD_INPUT

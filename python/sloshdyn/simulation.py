@@ -18,6 +18,11 @@ _bridge = _core.sloshdyn_bridge_simulation
 MOTIONS = _tables.codes("motion")
 METHODS = {name: code for code, name in _tables.codes("methods").items()}
 SUMMARY_COLUMNS = _tables.columns("summary")
+#: Independent points of a sweep handed to the core's ensemble integrator together, at most
+#: (fewer when the threads would otherwise not get a block each): each point is its steady
+#: state alone, bit for bit, whatever the block (tests/python/test_steady_blocks.py); the size
+#: by measurement (benchmarks/README.md, "Steady states in blocks").
+SWEEP_BLOCK = 16
 
 
 @dataclass(frozen=True)
@@ -298,7 +303,7 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
         else:
             summaries, n_done, status, message = cancellable(_bridge.independent_sweep,
                 *params.array(), which, chunk, y, integration.array(), steady.array(),
-                int(threads))
+                int(threads), max(1, min(SWEEP_BLOCK, -(-len(chunk) // int(threads)))))
         return summaries, None, y, status, message
 
     method = integration.method_used
@@ -328,8 +333,8 @@ def run_sweep(label, values, y0, progress, threads, start_from, run, partial, me
         bar = tqdm(total=len(values), desc=f"sweep in {label}", unit="point")
     try:
         # one point per Fortran call when the state is carried, so progress shows; independent
-        # points in one call, or four per thread when progress is shown
-        step = 1 if carry else (4 * int(threads) if bar else max(len(values), 1))
+        # points in one call, or a block per thread when progress is shown
+        step = 1 if carry else (SWEEP_BLOCK * int(threads) if bar else max(len(values), 1))
         for first in range(0, len(values), step):
             chunk = values[first:first + step]
             summaries, extra, y, status, message = run(chunk, y, carry)
@@ -358,8 +363,10 @@ def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady =
     start_from='previous' (default): each point starts from the previous point's final state,
     so jumps and hysteresis show; the points depend on each other and run on one thread
     (threads > 1 is refused: it would change the answer). start_from='y0': every point starts
-    from y0; the points are independent and `threads` threads share them out (OpenMP in the
-    core); the results are the same for any number of threads, bit for bit (y_final is None)."""
+    from y0; the points are independent, go to the core's ensemble integrator in blocks of
+    up to SWEEP_BLOCK and `threads` threads share the blocks out (OpenMP in the core); the
+    results are the same for any number of threads and any block, bit for bit (y_final is
+    None)."""
     return _sweep(params, "rho", rho_values, y0, steady, integration, progress, threads,
                   start_from)
 

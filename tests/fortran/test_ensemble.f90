@@ -6,7 +6,8 @@
 !> the work counts and the peak trackers (peaks, their times and states, level crossings) must
 !> equal the single runs bit for bit, for DOP853, Verner 9(8) and DOPRI5. A member that fails
 !> (step budget) must fail as it does alone, with the same partial output, while the others
-!> go on.
+!> go on. advance_members, resumed stretch after stretch with each member's own targets (some
+!> calls advancing only some members), must equal integ%step looped to the same targets.
 program test_ensemble
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use sloshdyn_kinds, only: wp, pi, message_len
@@ -14,8 +15,9 @@ program test_ensemble
   use sloshdyn_text, only: num2str
   use sloshdyn_ode, only: ode_options, ode_stats, linear_observation, peak_tracker
   use sloshdyn_integrator, only: integrate, method_name, METHOD_DOPRI5, METHOD_DOP853, &
-                                 METHOD_VERN9, METHOD_AUTO
-  use sloshdyn_ensemble, only: integrate_ensemble
+                                 METHOD_VERN9, METHOD_AUTO, new_integrator
+  use sloshdyn_ode, only: rk_integrator
+  use sloshdyn_ensemble, only: integrate_ensemble, advance_members
   use sloshdyn_model, only: model_t, model_from_arrays
   use sloshdyn_system, only: tank_system, tank_ensemble
   use checks, only: check_true, finish
@@ -33,6 +35,9 @@ program test_ensemble
   call compare(METHOD_VERN9, 8, 1.0e-12_wp, 0)
   ! a step budget that the longer members exhaust
   call compare(METHOD_DOP853, 8, 1.0e-9_wp, 450)
+  do method = METHOD_DOPRI5, METHOD_VERN9
+    call stretches(method)
+  end do
   call bad_inputs()
   call finish()
 
@@ -130,6 +135,64 @@ contains
       call check_true(label//': every member finished', all(status == SD_OK))
     end if
   end subroutine compare
+
+  !> K = 6 members advanced by advance_members in 5 stretches, member i to the targets
+  !> j (7.3 + 0.9 i), j = 1..5 (each stops just past its target, keeps its state and goes on
+  !> at the next call); in the even stretches only the odd members move. The state read by
+  !> dense output at every target and the work counts must equal a single integrator of the
+  !> same member stepped with integ%step while t < target.
+  subroutine stretches(method)
+    integer, intent(in) :: method
+    integer, parameter :: k = 6, n_stretches = 5
+    type(tank_ensemble) :: ens
+    type(tank_system) :: alone
+    type(ode_options) :: options
+    class(rk_integrator), allocatable :: proto, integ(:), single
+    real(wp) :: y0(4, k), t_end, target(k), z(4), z1(4)
+    integer :: status(k), i, j, st, moved(k), m
+    character(len=message_len) :: message(k), msg
+    logical :: same
+    options%rtol = 1.0e-9_wp
+    options%atol = 1.0e-12_wp
+    allocate (ens%models(k))
+    call new_integrator(method, options%rtol, proto, st, msg)
+    allocate (integ(k), mold=proto)
+    do i = 1, k
+      call member(i, ens%models(i), y0(:, i), t_end)
+      alone%model = ens%models(i)
+      call integ(i)%init(alone, 0.0_wp, y0(:, i), 100.0_wp, options, st, msg)
+    end do
+    same = .true.
+    target = 0
+    do j = 1, n_stretches
+      m = 0
+      do i = 1, k
+        if (mod(j, 2) == 0 .and. mod(i, 2) == 0) cycle
+        m = m + 1
+        moved(m) = i
+        target(i) = target(i) + 7.3_wp + 0.9_wp*i
+      end do
+      call advance_members(ens, integ, moved(1:m), target(moved(1:m)), status(1:m), &
+                           message(1:m))
+      same = same .and. all(status(1:m) == SD_OK)
+    end do
+    do i = 1, k
+      ! the single path: the same member to the same targets, one step call at a time
+      alone%model = ens%models(i)
+      call new_integrator(method, options%rtol, single, st, msg)
+      call single%init(alone, 0.0_wp, y0(:, i), 100.0_wp, options, st, msg)
+      do while (single%t < target(i))
+        call single%step(alone, st, msg)
+      end do
+      call single%dense(target(i), z1)
+      call integ(i)%dense(target(i), z)
+      same = same .and. bits_equal(z, z1) .and. bits_equal(integ(i)%y, single%y) .and. &
+             integ(i)%n_rhs == single%n_rhs .and. integ(i)%n_accepted == single%n_accepted .and. &
+             integ(i)%n_rejected == single%n_rejected .and. bits_equal([integ(i)%h], [single%h])
+    end do
+    call check_true(method_name(method)//': advance_members in stretches equals step '// &
+                    'looped to the same targets, bit for bit', same)
+  end subroutine stretches
 
   !> Inputs an ensemble cannot run are reported for every member, naming what is wrong: a
   !> y_out of the wrong shape, and members whose rtol would make 'auto' pick different

@@ -373,7 +373,7 @@ def test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables():
     _, _, orbit, _, _, status, _ = _core.sloshdyn_bridge_studies.steady_path(
         *params.array(), np.array([0.51]), np.array([0.00075]), np.zeros((4, 1), order="F"), 0,
         Integration().array(), Steady(transient_periods=20, settle_tol=0,
-                                      window_periods=16).array())
+                                      window_periods=16).array(), 1)
     assert status == 0 and orbit.shape == (len(_tables.columns("study_orbit")), 1)
     scalars, *_, status, _ = _core.sloshdyn_bridge_asymptotics.modal_expansion(*params.array())
     assert status == 0 and len(scalars) == len(_tables.layout("modal_scalars"))

@@ -20,6 +20,12 @@ from .points import (MAX_PERIOD, MOTIONS, SUMMARY_COLUMNS, common_attrs, orbit_r
 
 _bridge = _core.sloshdyn_bridge_studies
 
+#: Initial states of a task handed to the core's ensemble integrator together (attractor_points'
+#: block): each point is its steady state alone, bit for bit, whatever the block
+#: (tests/python/test_steady_blocks.py); the size by measurement (benchmarks/README.md,
+#: "Steady states in blocks").
+ENSEMBLE_BLOCK = 16
+
 
 def _basin_task(rpar, ipar, y0, integration, steady):
     """One task of a basin study: the block's initial states (4, n1, n2) to their attractors."""
@@ -28,11 +34,12 @@ def _basin_task(rpar, ipar, y0, integration, steady):
     n = int(np.prod(shape))
     flat = np.asfortranarray(y0.reshape(4, n))
     summaries, y_end, orbit, points, status, _, message = _bridge.attractor_points(
-        rpar, ipar, flat, integration, steady)
+        rpar, ipar, flat, integration, steady, ENSEMBLE_BLOCK)
     impact = (summaries[SUMMARY_COLUMNS.index("max_x1")] >= 1).astype(np.int32)
     out = unpack(summaries, orbit, impact, status, shape)
-    out["message"] = point_messages(status, message, lambda i: _bridge.attractor_points(
-        rpar, ipar, np.asfortranarray(flat[:, i:i + 1]), integration, steady)[-1]).reshape(shape)
+    alone = lambda i: _bridge.attractor_points(                       # noqa: E731
+        rpar, ipar, np.asfortranarray(flat[:, i:i + 1]), integration, steady, 1)[-1]
+    out["message"] = point_messages(status, message, alone).reshape(shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
     rows = orbit_rows(orbit)
     out["orbit_found"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)

@@ -21,6 +21,12 @@ from .points import (SUMMARY_COLUMNS, common_attrs, orbit_rows, point_messages,
 
 _bridge = _core.sloshdyn_bridge_studies
 
+#: Independent points of a task handed to the core's ensemble integrator together (steady_path's
+#: block): each point is its steady state alone, bit for bit, whatever the block
+#: (tests/python/test_steady_blocks.py); the size by measurement (benchmarks/README.md,
+#: "Steady states in blocks").
+ENSEMBLE_BLOCK = 16
+
 
 def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_grid=False):
     """One task of a response map: the block's points from rest, and (continuation) each
@@ -31,11 +37,12 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
     flat_rho = np.ascontiguousarray(rho.ravel())
     flat_a = np.ascontiguousarray(A.ravel())
     summaries, y_end, orbit, impact, status, _, message = _bridge.steady_path(
-        rpar, ipar, flat_rho, flat_a, np.zeros((4, n), order="F"), 0, integration, steady)
+        rpar, ipar, flat_rho, flat_a, np.zeros((4, n), order="F"), 0, integration, steady,
+        ENSEMBLE_BLOCK)
     out = unpack(summaries, orbit, impact, status, shape)
     out["message"] = point_messages(status, message, lambda i: _bridge.steady_path(
         rpar, ipar, flat_rho[i:i + 1], flat_a[i:i + 1], np.zeros((4, 1), order="F"), 0,
-        integration, steady)[-1]).reshape(shape)
+        integration, steady, 1)[-1]).reshape(shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
     rows = orbit_rows(orbit)
     out["shooting"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)
@@ -47,7 +54,7 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
             r = np.ascontiguousarray(rho[order, j])
             a = np.ascontiguousarray(A[order, j])
             s, _, o, imp, st, _, text = _bridge.steady_path(
-                rpar, ipar, r, a, np.zeros((4, len(r)), order="F"), 1, integration, steady)
+                rpar, ipar, r, a, np.zeros((4, len(r)), order="F"), 1, integration, steady, 1)
             part = unpack(s, o, imp, st, (len(r), 1), suffix=f"_{direction}")
             part[f"message_{direction}"] = point_messages(st, text, None, carried=True)[:, None]
             parts.append({k: v[order] for k, v in part.items()})
