@@ -19,9 +19,10 @@ MOTIONS = _tables.codes("motion")
 METHODS = {name: code for code, name in _tables.codes("methods").items()}
 SUMMARY_COLUMNS = _tables.columns("summary")
 #: Independent points of a sweep handed to the core's ensemble integrator together, at most
-#: (fewer when the threads would otherwise not get a block each): each point is its steady
-#: state alone, bit for bit, whatever the block (tests/python/test_steady_blocks.py); the size
-#: by measurement (benchmarks/README.md, "Steady states in blocks").
+#: (the core hands fewer where the threads would otherwise not get a block each; the
+#: namelist's sweeps take the core's default_sweep_block, the same): each point is its
+#: steady state alone, bit for bit, whatever the block (tests/python/test_steady_blocks.py);
+#: the size by measurement (benchmarks/README.md, "Steady states in blocks").
 SWEEP_BLOCK = 16
 
 
@@ -303,7 +304,7 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
         else:
             summaries, n_done, status, message = cancellable(_bridge.independent_sweep,
                 *params.array(), which, chunk, y, integration.array(), steady.array(),
-                int(threads), max(1, min(SWEEP_BLOCK, -(-len(chunk) // int(threads)))))
+                int(threads), SWEEP_BLOCK)
         return summaries, None, y, status, message
 
     method = integration.method_used
