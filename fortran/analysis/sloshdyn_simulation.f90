@@ -384,7 +384,7 @@ contains
     n = size(y0, 2)
     summaries = 0
     poincare = 0
-    y_end = y0
+    y_end = 0
     if (size(y0, 1) /= 4 .or. size(summaries, 1) /= SUMMARY_SIZE .or. size(summaries, 2) /= n &
         .or. size(poincare, 1) /= 4 .or. size(poincare, 2) < steady%window_periods .or. &
         size(poincare, 3) /= n .or. any(shape(y_end) /= [4, n]) .or. size(stats) /= n .or. &
@@ -397,6 +397,7 @@ contains
                 'models(1) or models(n)'
       return
     end if
+    y_end = y0
     allocate (block%runs(n), esys%models(n), active(n))
     do i = 1, n
       call steady_begin(block%runs(i), models(min(i, size(models))), y0(:, i), options, method, &

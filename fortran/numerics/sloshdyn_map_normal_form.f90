@@ -42,7 +42,7 @@ module sloshdyn_map_normal_form
   use sloshdyn_text, only: num2str
   use sloshdyn_lapack, only: solve_linear, eigenvalues
   use sloshdyn_ode, only: ode_options
-  use sloshdyn_shooting, only: periodic_problem, monodromy_matrix
+  use sloshdyn_shooting, only: periodic_problem, monodromy_matrix, volume_preserving
   use sloshdyn_bifurcation, only: null_vectors
   implicit none
   private
@@ -52,6 +52,8 @@ module sloshdyn_map_normal_form
   real(wp), parameter :: step = 1.0e-4_wp
   !> the critical multiplier must lie within this of -1 (+1)
   real(wp), parameter :: max_distance = 1.0e-3_wp
+  !> a symmetric map at +1: |<p, B(q, q)>| at most this relative to |p| |B(q, q)|
+  real(wp), parameter :: max_asymmetry = 1.0e-3_wp
 
 contains
 
@@ -60,7 +62,9 @@ contains
   !> pitchfork, q antisymmetric), with the critical eigenvector q (|q| = 1), mu, the multiplier
   !> nearest sigma, and (optional) the size of its terms, |<p, C>|/6 + |<p, B>|/2 (c = 0 by
   !> their cancellation, or because both vanish, as for a linear map). Fails with SD_BAD_INPUT
-  !> when no multiplier lies within 1e-3 of sigma, or sigma is not -1 or +1.
+  !> when no multiplier lies within 1e-3 of sigma, sigma is not -1 or +1, the map preserves
+  !> volume (no damping: the critical multiplier is double) or, at +1, it is not symmetric
+  !> (<p, B(q, q)> /= 0: a transcritical point).
   subroutine cubic_coefficient(problem, y, k, options, method, sigma, c, q, mu, status, &
                                message, size_of_terms)
     class(periodic_problem), intent(in) :: problem
@@ -73,7 +77,7 @@ contains
     real(wp), intent(out), optional :: size_of_terms
     real(wp) :: a(size(y), size(y)), shifted(size(y), size(y)), p(size(y)), y_end(size(y))
     real(wp) :: bqq(size(y)), cqqq(size(y)), w(size(y)), bqw(size(y)), h
-    real(wp) :: bordered(size(y) + 1, size(y) + 1), wb(size(y) + 1)
+    real(wp) :: bordered(size(y) + 1, size(y) + 1), wb(size(y) + 1), re(size(y)), im(size(y))
     integer :: n, i
     character(len=2) :: critical
 
@@ -104,6 +108,16 @@ contains
                 ' (it must lie within '//num2str(max_distance)//' of '//critical//')'
       return
     end if
+    ! a volume-preserving map (no damping) has its critical multipliers in a pair (mu, 1/mu),
+    ! a double one at the point, where the one-dimensional centre manifold does not hold
+    call eigenvalues(a, re, im, status, message)
+    if (status /= SD_OK) return
+    if (volume_preserving(re, im)) then
+      status = SD_BAD_INPUT
+      message = 'the map preserves volume (no damping): its multipliers at '//critical// &
+                ' come in a pair, and the cubic normal form of a simple one does not apply'
+      return
+    end if
     p = p/dot_product(p, q)
     h = step*(1 + maxval(abs(y)))
     call second_and_third(q, bqq, cqqq)
@@ -121,6 +135,12 @@ contains
       wb = [bqq, 0.0_wp]
       call solve_linear(bordered, wb, status, message)
       w = wb(1:n)
+      ! wb(n + 1) = <p, B(q, q)>, zero by the symmetry: else a transcritical point
+      if (status == SD_OK .and. abs(wb(n + 1)) > max_asymmetry*norm2(bqq)*norm2(p)) then
+        status = SD_BAD_INPUT
+        message = 'the map is not symmetric about the orbit: <p, B(q, q)> = '// &
+                  num2str(wb(n + 1))//' (a transcritical point, not a pitchfork)'
+      end if
     else
       w = bqq
       call solve_linear(shifted, w, status, message)

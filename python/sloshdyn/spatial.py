@@ -372,16 +372,18 @@ def swirl_boundary_curve(params: Parameters, rho_range, A_range, *, edge=0, A_va
         shooting.newton_tol, shooting.max_iter, integration.array(), capacity,
         max(len(A_values) * (capacity - 1), 1), capacity)
     fold_rows = dict(zip(_tables.columns("swirl_curve_folds"), folds[:, :n_folds]))
+    rows = dict(zip(_tables.columns("swirl_curve_degenerate"), degenerate[:, :n_degenerate]))
     curve = SwirlBoundaryCurve(
         kind, _curve_table(points[:, :n]), _curve_table(at[:, :n_at]),
         [{"rho": float(fold_rows["rho"][j]), "A": float(fold_rows["A"][j]),
           "y0": np.array([fold_rows[f"y{i}"][j] for i in range(1, 5)]),
           "max_x1": float(fold_rows["max_x1"][j]), "c": float(fold_rows["c"][j]),
           "kind": "closing" if fold_rows["closing"][j] else "opening"} for j in range(n_folds)],
-        [{"rho": float(row[0]), "A": float(row[1]), "y0": row[2:6].copy(),
-          "max_x1": float(row[6]), "c": float(row[7]),
+        [{"rho": float(rows["rho"][j]), "A": float(rows["A"][j]),
+          "y0": np.array([rows[f"y{i}"][j] for i in range(1, 5)]),
+          "max_x1": float(rows["max_x1"][j]), "c": float(rows["c"][j]),
           "kind": "degenerate_pitchfork" if kind == "branch_point" else "degenerate_flip"}
-         for row in degenerate[:, :n_degenerate].T],
+         for j in range(n_degenerate)],
         bool(complete), message_text(message))
     return with_partial(curve, status, message, "swirl boundary curve")
 

@@ -139,8 +139,8 @@ contains
   !> K = 6 members advanced by advance_members in 5 stretches, member i to the targets
   !> j (7.3 + 0.9 i), j = 1..5 (each stops just past its target, keeps its state and goes on
   !> at the next call); in the even stretches only the odd members move. The state read by
-  !> dense output at every target and the work counts must equal a single integrator of the
-  !> same member stepped with integ%step while t < target.
+  !> dense output at the last target and the work counts must equal a single integrator of
+  !> the same member stepped with integ%step while t < target, stretch after stretch.
   subroutine stretches(method)
     integer, intent(in) :: method
     integer, parameter :: k = 6, n_stretches = 5

@@ -137,3 +137,18 @@ def test_the_degenerate_pitchfork_is_where_c_at_the_single_A_edges_changes_sign(
 def test_bad_input_is_named(call, name):
     with pytest.raises(sloshdyn.InputError, match=name):
         call(_band())
+
+
+def test_an_undamped_edge_is_refused_not_given_a_coefficient():
+    """Without damping the out-of-plane map preserves volume: its multipliers at the edge come
+    in a pair (nu, 1/nu) that reaches +1 together, the one-dimensional centre manifold of the
+    cubic normal form does not exist, and the coefficient is refused by name (before the check
+    it came back as -7.4e4 at one undamped edge and 330 at another: artefacts of the
+    near-Jordan block)."""
+    undamped = PARAMS.replace(zeta=0.0, A=1e-3)
+    band = spatial.swirl_band(undamped, RHO_RANGE, from_end="high")
+    at_edge, y = _edge(band, 0, undamped)
+    nu = spatial.out_of_plane_multipliers(at_edge, sloshdyn.periodic_orbit(at_edge, y).y0)
+    assert abs(np.prod(np.abs(nu)) - 1) < 1e-6        # volume preserving (measured 1.05e-8)
+    with pytest.raises(sloshdyn.InputError, match="preserves volume"):
+        spatial.swirl_edge_criticality(at_edge, y)
