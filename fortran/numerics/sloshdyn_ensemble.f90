@@ -145,6 +145,21 @@ contains
 
     status = SD_OK
     message = ''
+    if (size(target) /= size(members) .or. size(status) /= size(members) .or. &
+        size(message) /= size(members)) then
+      status = SD_BAD_INPUT
+      message = 'advance_members: target, status and message need one entry per member ('// &
+                num2str(size(members))//')'
+      return
+    end if
+    do i = 1, size(members)
+      if (members(i) < 1 .or. members(i) > size(integ) .or. any(members(:i - 1) == members(i))) then
+        status = SD_BAD_INPUT
+        message = 'advance_members: members('//num2str(i)//') = '//num2str(members(i))// &
+                  ' must be a distinct index in [1, '//num2str(size(integ))//']'
+        return
+      end if
+    end do
     m = 0
     do i = 1, size(members)
       slot(members(i)) = i

@@ -192,6 +192,12 @@ contains
     end do
     call check_true(method_name(method)//': advance_members in stretches equals step '// &
                     'looped to the same targets, bit for bit', same)
+    ! a member listed twice would be stepped twice a round: refused, by name, nothing moved
+    z = integ(2)%y
+    call advance_members(ens, integ, [2, 2], [200.0_wp, 200.0_wp], status(1:2), message(1:2))
+    call check_true(method_name(method)//': advance_members refuses a member listed twice', &
+                    all(status(1:2) /= SD_OK) .and. index(message(1), 'members(2) = 2') > 0 &
+                    .and. bits_equal(integ(2)%y, z))
   end subroutine stretches
 
   !> Inputs an ensemble cannot run are reported for every member, naming what is wrong: a
