@@ -398,7 +398,7 @@ contains
       return
     end if
     y_end = y0
-    allocate (block%runs(n), esys%models(n), active(n))
+    allocate (block%runs(n), esys%models(n), active(n), advance_status(n), advance_message(n))
     do i = 1, n
       call steady_begin(block%runs(i), models(min(i, size(models))), y0(:, i), options, method, &
                         steady)
@@ -421,9 +421,8 @@ contains
           active(m) = i
         end do
         if (m == 0) exit
-        allocate (advance_status(m), advance_message(m))
         call advance_members(esys, integ, active(1:m), block%runs(active(1:m))%tau, &
-                             advance_status, advance_message, block)
+                             advance_status(1:m), advance_message(1:m), block)
         do c = 1, m
           associate (run => block%runs(active(c)))
             run%status = advance_status(c)
@@ -431,7 +430,6 @@ contains
             call steady_reached(run, integ(active(c)))
           end associate
         end do
-        deallocate (advance_status, advance_message)
       end do
     end if
     do i = 1, n

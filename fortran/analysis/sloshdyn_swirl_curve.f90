@@ -401,9 +401,7 @@ contains
     real(wp) :: y(4), max_x1
     integer :: status
     character(len=message_len) :: message
-    planar = self%planar
-    planar%model%excitation%rho = self%rho_mid + x
-    planar%model%excitation%A = self%scale*lambda
+    planar = planar_at(self, x, lambda)
     call edge_test(planar, self%kind, self%last%y, self%k, self%options, self%method, &
                    self%newton_tol, self%max_iter, y, max_x1, g, status, message)
     if (status == SD_OK .and. remember) self%last%y = y
@@ -420,14 +418,22 @@ contains
     type(tank_system) :: planar
     real(wp) :: monodromy(4, 4), re(4), im(4)
     integer :: iterations
-    planar = self%planar
-    planar%model%excitation%rho = self%rho_mid + x
-    planar%model%excitation%A = self%scale*lambda
+    planar = planar_at(self, x, lambda)
     call shooting_newton(planar, self%last%y, self%k, self%options, self%method, &
                          self%newton_tol, self%max_iter, y, monodromy, re, im, iterations, &
                          status, message, max_x1)
     if (status == SD_OK) self%last%y = y
   end subroutine edge_at
+
+  !> The planar system at (x, lambda): rho = rho_mid + x, A = A_0 lambda.
+  function planar_at(f, x, lambda) result(planar)
+    class(edge_function), intent(in) :: f
+    real(wp), intent(in) :: x, lambda
+    type(tank_system) :: planar
+    planar = f%planar
+    planar%model%excitation%rho = f%rho_mid + x
+    planar%model%excitation%A = f%scale*lambda
+  end function planar_at
 
   !> The planar orbit y, its max|x1| and the edge's criticality c at (x, lambda), the orbit
   !> shot from the last one, which it replaces.
@@ -437,16 +443,14 @@ contains
     real(wp), intent(out) :: y(4), max_x1, c
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    type(model_t) :: model
+    type(tank_system) :: planar
     real(wp) :: nu, size_of_terms
     c = ieee_value(1.0_wp, ieee_quiet_nan)
     call f%at(x, lambda, y, max_x1, status, message)
     if (status /= SD_OK) return
-    model = f%planar%model
-    model%excitation%rho = f%rho_mid + x
-    model%excitation%A = f%scale*lambda
-    call edge_criticality(model, f%kind, y, f%k, f%options, f%method, c, nu, size_of_terms, &
-                          status, message)
+    planar = planar_at(f, x, lambda)
+    call edge_criticality(planar%model, f%kind, y, f%k, f%options, f%method, c, nu, &
+                          size_of_terms, status, message)
   end subroutine edge_coefficient
 
   !> c at the curve's point z (NaN if the shooting or the coefficient fails).
