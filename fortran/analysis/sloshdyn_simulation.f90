@@ -24,8 +24,8 @@ module sloshdyn_simulation
   implicit none
   private
   public :: time_history, spatial_time_history, steady_options, steady_state, steady_state_block, &
-            check_steady, check_block, parameter_sweep, &
-            independent_sweep, steady_orbit, max_period, max_tau_span, max_state, amplitudes
+            check_steady, check_block, parameter_sweep, independent_sweep, steady_state_points, &
+            steady_orbit, max_period, max_tau_span, max_state, amplitudes
   public :: check_history, with_breakpoints, derive_history
 
   !> Longest span of one time history in tau = omega1 t: 1e7, about 1.6 million natural
@@ -87,7 +87,7 @@ module sloshdyn_simulation
   integer, parameter :: shoot_max_iter = 10
   !> independent_sweep's points a block at most, by default (benchmarks/README.md, "Steady
   !> states in blocks": 1.14x a 64-point sweep's CPU time at 16, 1.17x at 64)
-  integer, parameter :: default_sweep_block = 16
+  integer, parameter, public :: default_sweep_block = 16
 
   !> The phases of a steady_run: the transient (whole forcing periods, the settling test and
   !> the shooting attempts at each Poincare point), the window (its Poincare points and
@@ -862,7 +862,7 @@ contains
 
   !> Steady states at values of the parameter `which` (as parameter_sweep), each from the
   !> same initial state y0: the points are independent, so they go to steady_state_block
-  !> at most `block` at a time (default: default_sweep_block; fewer where the n_threads
+  !> at most `block` at a time (absent or 0: default_sweep_block; fewer where the n_threads
   !> threads would not get a block each) and the threads (OpenMP) share out the blocks; each
   !> point is computed exactly as by steady_state alone -- the results depend neither on
   !> n_threads nor on block, bit for bit. n_done counts the points completed; status and
@@ -886,14 +886,19 @@ contains
     status = SD_OK
     message = ''
     points = default_sweep_block
-    if (present(block)) points = block
+    if (present(block)) then
+      if (block /= 0) points = block
+    end if
     if (n_threads < 1) then
       status = SD_BAD_INPUT
       message = 'threads = '//num2str(n_threads)//' is out of range: it must be >= 1'
       return
     end if
     call check_block(points, status, message)
-    if (status /= SD_OK) return
+    if (status /= SD_OK) then
+      message = trim(message)//', or 0 for the default, '//num2str(default_sweep_block)
+      return
+    end if
     ! fewer points a block where the threads would otherwise not get one each
     points = max(1, min(points, (size(values) + n_threads - 1)/n_threads))
     point_status = SD_OK
@@ -920,8 +925,7 @@ contains
 
   !> independent_sweep's points values(:) as one steady_state_block (those whose value
   !> set_excitation_parameter accepts): done(i) = 1 for a point completed, its status and
-  !> message. The block's results are kept in locals until it ends, so that threads working
-  !> on neighbouring blocks do not pass cache lines to and fro.
+  !> message.
   subroutine sweep_block(model, which, values, y0, options, method, steady, summaries, done, &
                          status, message)
     type(model_t), intent(in) :: model
@@ -933,36 +937,64 @@ contains
     integer, intent(out) :: done(:), status(:)
     character(len=message_len), intent(out) :: message(:)
     type(model_t) :: models(size(values))
-    integer :: members(size(values)), point_status(size(values)), block_status(size(values))
-    character(len=message_len) :: point_message(size(values)), block_message(size(values))
-    real(wp) :: block_summaries(SUMMARY_SIZE, size(values)), y_end(4, size(values)), &
-                poincare(4, max(steady%window_periods, 1), size(values))
-    type(ode_stats) :: stats(size(values))
+    real(wp) :: y_end(4, size(values))
     type(steady_orbit) :: orbits(size(values))
-    integer :: i, m
+    integer :: i
 
-    m = 0
     do i = 1, size(values)
       models(i) = model
-      call set_excitation_parameter(models(i)%excitation, which, values(i), point_status(i), &
-                                    point_message(i))
-      if (point_status(i) /= SD_OK) cycle
-      m = m + 1
-      members(m) = i
-      models(m) = models(i)
+      call set_excitation_parameter(models(i)%excitation, which, values(i), status(i), &
+                                    message(i))
     end do
-    if (m > 0) then
-      call steady_state_block(models(1:m), spread(y0, 2, m), options, method, steady, &
-                              block_summaries(:, 1:m), poincare(:, :, 1:m), y_end(:, 1:m), &
-                              stats(1:m), block_status(1:m), block_message(1:m), orbits(1:m))
-      do i = 1, m
-        summaries(:, members(i)) = block_summaries(:, i)
-        point_status(members(i)) = block_status(i)
-        point_message(members(i)) = block_message(i)
-      end do
-    end if
-    done = merge(1, 0, point_status == SD_OK)
-    status = point_status
-    message = point_message
+    call steady_state_points(models, spread(y0, 2, size(values)), options, method, steady, &
+                             size(values), summaries, y_end, orbits, status, message)
+    done = merge(1, 0, status == SD_OK)
   end subroutine sweep_block
+
+  !> Steady states of the points i whose models(i) are built (status(i) = SD_OK on entry; the
+  !> others, whose model could not be made, keep their status and message), each from
+  !> y0(:, i), handed to steady_state_block `block` (>= 1) at a time in the order of the
+  !> points, each equal to its steady_state alone: summaries(:, i), y_end(:, i), orbits(i),
+  !> status(i) and message(i) of those points, the others' left as they were. The blocks'
+  !> results are kept in locals until each block ends, so that threads working on
+  !> neighbouring points (independent_sweep) do not pass cache lines to and fro.
+  subroutine steady_state_points(models, y0, options, method, steady, block, summaries, y_end, &
+                                 orbits, status, message)
+    type(model_t), intent(in) :: models(:)
+    real(wp), intent(in) :: y0(:, :)
+    type(ode_options), intent(in) :: options
+    integer, intent(in) :: method, block
+    type(steady_options), intent(in) :: steady
+    real(wp), intent(inout) :: summaries(:, :), y_end(:, :)
+    type(steady_orbit), intent(inout) :: orbits(:)
+    integer, intent(inout) :: status(:)
+    character(len=message_len), intent(inout) :: message(:)
+    integer, allocatable :: members(:)
+    integer :: block_status(min(block, size(models))), i, c, first, nb
+    character(len=message_len) :: block_message(min(block, size(models)))
+    real(wp) :: block_summaries(SUMMARY_SIZE, min(block, size(models))), &
+                block_y_end(4, min(block, size(models))), &
+                poincare(4, max(steady%window_periods, 1), min(block, size(models)))
+    type(ode_stats) :: stats(min(block, size(models)))
+    type(steady_orbit) :: block_orbits(min(block, size(models)))
+
+    members = pack([(i, i = 1, size(models))], status == SD_OK)
+    do first = 1, size(members), block
+      nb = min(block, size(members) - first + 1)
+      associate (points => members(first:first + nb - 1))
+        call steady_state_block(models(points), y0(:, points), options, method, steady, &
+                                block_summaries(:, 1:nb), poincare(:, :, 1:nb), &
+                                block_y_end(:, 1:nb), stats(1:nb), block_status(1:nb), &
+                                block_message(1:nb), block_orbits(1:nb))
+        do c = 1, nb
+          i = points(c)
+          summaries(:, i) = block_summaries(:, c)
+          y_end(:, i) = block_y_end(:, c)
+          orbits(i) = block_orbits(c)
+          status(i) = block_status(c)
+          message(i) = block_message(c)
+        end do
+      end associate
+    end do
+  end subroutine steady_state_points
 end module sloshdyn_simulation

@@ -20,8 +20,8 @@ module sloshdyn_studies
   use sloshdyn_system, only: tank_system
   use sloshdyn_ode, only: ode_options, ode_stats
   use sloshdyn_shooting, only: shooting_newton
-  use sloshdyn_simulation, only: steady_options, steady_state, steady_state_block, steady_orbit, &
-                                 max_period, check_block
+  use sloshdyn_simulation, only: steady_options, steady_state, steady_state_block, &
+                                 steady_state_points, steady_orbit, max_period, check_block
   use sloshdyn_tables, only: SUMMARY_SIZE, SUMMARY_MOTION, SUMMARY_PERIOD, MOTION_PERIODIC
   implicit none
   private
@@ -117,8 +117,8 @@ contains
   end subroutine steady_path
 
   !> steady_path's independent points (carry = .false.): those with a valid (rho, A) go to
-  !> steady_state_block `block` at a time, each equal to its steady_state alone; the failures
-  !> are then reported in the order of the points.
+  !> steady_state_block `block` at a time (steady_state_points), each equal to its
+  !> steady_state alone; the failures are then reported in the order of the points.
   subroutine independent_points(model, rho, A, y0, options, method, steady, block, summaries, &
                                 y_end, orbit, point_status, status, message)
     type(model_t), intent(in) :: model
@@ -129,44 +129,25 @@ contains
     real(wp), intent(inout) :: summaries(:, :), y_end(:, :), orbit(:, :)
     integer, intent(inout) :: point_status(:), status
     character(len=message_len), intent(inout) :: message
-    type(model_t) :: models(block)
-    type(ode_stats) :: stats(block)
-    type(steady_orbit) :: found(block)
-    integer :: infos(size(rho)), block_infos(block), members(block), i, c, nb, next
-    character(len=message_len) :: texts(size(rho)), block_texts(block)
-    real(wp) :: poincare(4, max(steady%window_periods, 1), block), &
-                block_summaries(SUMMARY_SIZE, block), block_y_end(4, block)
+    type(model_t), allocatable :: models(:)
+    type(steady_orbit), allocatable :: found(:)
+    integer, allocatable :: infos(:)
+    character(len=message_len), allocatable :: texts(:)
+    integer :: i
 
-    next = 1
-    do
-      ! the next block of valid points
-      nb = 0
-      do while (nb < block .and. next <= size(rho))
-        call point_model(model, rho(next), A(next), models(nb + 1), infos(next), texts(next))
-        if (infos(next) == SD_OK) then
-          nb = nb + 1
-          members(nb) = next
-        end if
-        next = next + 1
-      end do
-      if (nb == 0) exit
-      call steady_state_block(models(1:nb), y0(:, members(1:nb)), options, method, steady, &
-                              block_summaries(:, 1:nb), poincare(:, :, 1:nb), &
-                              block_y_end(:, 1:nb), stats(1:nb), block_infos(1:nb), &
-                              block_texts(1:nb), found(1:nb))
-      do c = 1, nb
-        i = members(c)
-        summaries(:, i) = block_summaries(:, c)
-        y_end(:, i) = block_y_end(:, c)
-        infos(i) = block_infos(c)
-        texts(i) = block_texts(c)
-        if (infos(i) == SD_OK) orbit(:, i) = orbit_row(found(c), 0)
-      end do
-    end do
+    allocate (models(size(rho)), found(size(rho)), infos(size(rho)), texts(size(rho)))
     do i = 1, size(rho)
-      if (infos(i) /= SD_OK) call path_point_failed(i, rho(i), A(i), infos(i), texts(i), &
-                                                    summaries, y_end, point_status, status, &
-                                                    message)
+      call point_model(model, rho(i), A(i), models(i), infos(i), texts(i))
+    end do
+    call steady_state_points(models, y0, options, method, steady, block, summaries, y_end, &
+                             found, infos, texts)
+    do i = 1, size(rho)
+      if (infos(i) == SD_OK) then
+        orbit(:, i) = orbit_row(found(i), 0)
+      else
+        call path_point_failed(i, rho(i), A(i), infos(i), texts(i), summaries, y_end, &
+                               point_status, status, message)
+      end if
     end do
   end subroutine independent_points
 

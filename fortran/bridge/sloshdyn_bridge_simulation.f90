@@ -144,8 +144,8 @@ contains
   end subroutine parameter_sweep
 
   !> Steady states at values of rho (which = 1) or A (which = 2), each from y0 (independent
-  !> points) in blocks of `block` points for the ensemble, the blocks shared out to n_threads
-  !> threads; the results depend neither on n_threads nor on block.
+  !> points) in blocks of `block` points for the ensemble (0: the core's default), the blocks
+  !> shared out to n_threads threads; the results depend neither on n_threads nor on block.
   subroutine independent_sweep(rpar, ipar, which, n, values, y0, integration, steady, n_threads, &
                             block, summaries, n_done, status, message)
     !f2py threadsafe
@@ -171,6 +171,14 @@ contains
     n_done = done
     status = info
   end subroutine independent_sweep
+
+  !> The core's number of independent sweep points a block by default (independent_sweep's
+  !> block = 0), for the callers that cut a sweep into calls of a block per thread.
+  subroutine default_sweep_block(block)
+    use sloshdyn_simulation, only: core => default_sweep_block
+    integer(c_int), intent(out) :: block
+    block = core
+  end subroutine default_sweep_block
 
   !> The rule for the threads of a sweep (carry = 1: the state is carried from point to point).
   subroutine sweep_threads(threads, carry, status, message)

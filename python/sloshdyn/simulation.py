@@ -18,12 +18,6 @@ _bridge = _core.sloshdyn_bridge_simulation
 MOTIONS = _tables.codes("motion")
 METHODS = {name: code for code, name in _tables.codes("methods").items()}
 SUMMARY_COLUMNS = _tables.columns("summary")
-#: Independent points of a sweep handed to the core's ensemble integrator together, at most
-#: (the core hands fewer where the threads would otherwise not get a block each; the
-#: namelist's sweeps take the core's default_sweep_block, the same): each point is its
-#: steady state alone, bit for bit, whatever the block (tests/python/test_steady_blocks.py);
-#: the size by measurement (benchmarks/README.md, "Steady states in blocks").
-SWEEP_BLOCK = 16
 
 
 @dataclass(frozen=True)
@@ -304,7 +298,7 @@ def _sweep(params, parameter, values, y0, steady, integration, progress, threads
         else:
             summaries, n_done, status, message = cancellable(_bridge.independent_sweep,
                 *params.array(), which, chunk, y, integration.array(), steady.array(),
-                int(threads), SWEEP_BLOCK)
+                int(threads), 0)
         return summaries, None, y, status, message
 
     method = integration.method_used
@@ -334,8 +328,10 @@ def run_sweep(label, values, y0, progress, threads, start_from, run, partial, me
         bar = tqdm(total=len(values), desc=f"sweep in {label}", unit="point")
     try:
         # one point per Fortran call when the state is carried, so progress shows; independent
-        # points in one call, or a block per thread when progress is shown
-        step = 1 if carry else (SWEEP_BLOCK * int(threads) if bar else max(len(values), 1))
+        # points in one call, or a block (the core's default size) per thread when progress
+        # is shown
+        step = (1 if carry else _bridge.default_sweep_block() * int(threads) if bar
+                else max(len(values), 1))
         for first in range(0, len(values), step):
             chunk = values[first:first + step]
             summaries, extra, y, status, message = run(chunk, y, carry)
@@ -365,9 +361,9 @@ def frequency_sweep(params: Parameters, rho_values, y0=None, *, steady: Steady =
     so jumps and hysteresis show; the points depend on each other and run on one thread
     (threads > 1 is refused: it would change the answer). start_from='y0': every point starts
     from y0; the points are independent, go to the core's ensemble integrator in blocks of
-    up to SWEEP_BLOCK and `threads` threads share the blocks out (OpenMP in the core); the
-    results are the same for any number of threads and any block, bit for bit (y_final is
-    None)."""
+    up to its default_sweep_block and `threads` threads share the blocks out (OpenMP in
+    the core); the results are the same for any number of threads and any block, bit for bit
+    (y_final is None)."""
     return _sweep(params, "rho", rho_values, y0, steady, integration, progress, threads,
                   start_from)
 

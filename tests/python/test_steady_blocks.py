@@ -157,18 +157,31 @@ def test_response_task_equals_its_block_1_path(monkeypatch):
     assert_tasks_equal(one, many)
 
 
-def test_independent_sweep_in_blocks_equals_block_1_and_steady_state_alone(monkeypatch):
+def test_independent_sweep_in_blocks_equals_block_1_and_steady_state_alone():
+    """Every block size (0: the core's default) and thread count of the core's sweep, and the
+    Python sweep (which passes 0), give each point's steady state alone."""
     values = np.linspace(0.50, 0.53, 7)
-    sweeps = {}
-    for block, threads in ((1, 1), (3, 1), (16, 2)):
-        monkeypatch.setattr(simulation, "SWEEP_BLOCK", block)
-        sweeps[block, threads] = sloshdyn.frequency_sweep(FIG12, values, steady=QUICK,
-                                                          start_from="y0", threads=threads)
+    args = (*FIG12.array(), 1, values, np.zeros(4), sloshdyn.Integration().array(),
+            QUICK.array())
     single = [sloshdyn.steady_state(FIG12.replace(rho=float(r)), steady=QUICK) for r in values]
-    for sweep in sweeps.values():
-        for point, alone_point in zip(sweep.points, single):
+    sweeps = [sloshdyn.frequency_sweep(FIG12, values, steady=QUICK, start_from="y0",
+                                       threads=2).points]
+    for block, threads in ((1, 1), (3, 1), (16, 2), (0, 1), (0, 2)):
+        summaries, n_done, status, message = SINGLE.independent_sweep(*args, threads, block)
+        assert status == 0 and n_done == len(values), message
+        sweeps.append([simulation._summary(summaries[:, k], single[k].method)
+                       for k in range(len(values))])
+    for points in sweeps:
+        for point, alone_point in zip(points, single, strict=True):
             for name in simulation.SUMMARY_COLUMNS:
                 assert same_bits(getattr(point, name), getattr(alone_point, name)), name
+
+
+def test_a_negative_sweep_block_is_refused_naming_it():
+    *_, status, message = SINGLE.independent_sweep(
+        *FIG12.array(), 1, np.array([0.5, 0.51]), np.zeros(4), sloshdyn.Integration().array(),
+        QUICK.array(), 1, -2)
+    assert status != 0 and b"block = -2" in message and b"or 0 for the default" in message
 
 
 def assert_tasks_equal(one, many):
