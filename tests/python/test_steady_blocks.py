@@ -177,6 +177,22 @@ def test_independent_sweep_in_blocks_equals_block_1_and_steady_state_alone():
                 assert same_bits(getattr(point, name), getattr(alone_point, name)), name
 
 
+def test_a_refused_sweep_value_inside_a_block_leaves_the_others_their_steady_states():
+    """A value set_excitation_parameter refuses (rho < 0) among the sweep's points: it gets the
+    status and message naming it, the points about it in the same block are their steady
+    states alone."""
+    values = np.array([0.50, -0.1, 0.52])
+    summaries, n_done, status, message = SINGLE.independent_sweep(
+        *FIG12.array(), 1, values, np.zeros(4), sloshdyn.Integration().array(), QUICK.array(),
+        1, 0)
+    assert status == 1 and n_done == 2 and b"rho = -0.1 is out of range" in message
+    for k in (0, 2):
+        alone_point = sloshdyn.steady_state(FIG12.replace(rho=float(values[k])), steady=QUICK)
+        point = simulation._summary(summaries[:, k], alone_point.method)
+        for name in simulation.SUMMARY_COLUMNS:
+            assert same_bits(getattr(point, name), getattr(alone_point, name)), name
+
+
 def test_a_negative_sweep_block_is_refused_naming_it():
     *_, status, message = SINGLE.independent_sweep(
         *FIG12.array(), 1, np.array([0.5, 0.51]), np.zeros(4), sloshdyn.Integration().array(),
