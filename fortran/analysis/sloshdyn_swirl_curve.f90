@@ -62,9 +62,13 @@ module sloshdyn_swirl_curve
   integer, parameter :: corrector_iterations = 12
   real(wp), parameter :: smallest_step = 1.0e-9_wp
 
-  !> The planar orbit last found: the shooting's guess at the next (rho, A).
+  !> The planar orbit last found: the shooting's guess at the next (rho, A). And the last
+  !> remembered edge test's point z = (x, lambda), its orbit and spatial monodromy: the
+  !> criticality at z takes them while y still holds that orbit (criticality_value).
   type :: orbit_memory
     real(wp) :: y(4) = 0
+    logical :: tested = .false.
+    real(wp) :: z(2) = 0, orbit(4) = 0, spatial(8, 8) = 0
   end type orbit_memory
 
   !> F(x, lambda) = g(rho_mid + x, A_0 lambda), n = 1.
@@ -398,13 +402,19 @@ contains
     real(wp), intent(in) :: x, lambda
     logical, intent(in) :: remember
     type(tank_system) :: planar
-    real(wp) :: y(4), max_x1
+    real(wp) :: y(4), max_x1, spatial(8, 8)
     integer :: status
     character(len=message_len) :: message
     planar = planar_at(self, x, lambda)
     call edge_test(planar, self%kind, self%last%y, self%k, self%options, self%method, &
-                   self%newton_tol, self%max_iter, y, max_x1, g, status, message)
-    if (status == SD_OK .and. remember) self%last%y = y
+                   self%newton_tol, self%max_iter, y, max_x1, g, status, message, spatial)
+    if (status == SD_OK .and. remember) then
+      self%last%y = y
+      self%last%tested = .true.
+      self%last%z = [x, lambda]
+      self%last%orbit = y
+      self%last%spatial = spatial
+    end if
   end function edge_value
 
   !> The planar orbit y (tau = 0) and its max|x1| at (x, lambda), shot from the last one, which
@@ -453,14 +463,26 @@ contains
                           size_of_terms, status, message)
   end subroutine edge_coefficient
 
-  !> c at the curve's point z (NaN if the shooting or the coefficient fails).
+  !> c at the curve's point z (NaN if the shooting or the coefficient fails). Past s = 0,
+  !> locate_zero_on_branch has just evaluated F at z for the tangent (a remembered edge test):
+  !> its orbit and spatial monodromy serve, instead of shooting and integrating them again.
   function criticality_value(self, z, t) result(g)
     class(criticality_test), intent(in) :: self
     real(wp), intent(in) :: z(:), t(:)
     real(wp) :: g
-    real(wp) :: y(4), max_x1
+    type(orbit_memory), pointer :: last
+    type(tank_system) :: planar
+    real(wp) :: y(4), max_x1, nu, size_of_terms
     integer :: status
     character(len=message_len) :: message
-    call edge_coefficient(self%f, z(1), z(2), y, max_x1, g, status, message)
+    last => self%f%last
+    if (last%tested .and. all(z == last%z) .and. all(last%y == last%orbit)) then
+      planar = planar_at(self%f, z(1), z(2))
+      call edge_criticality(planar%model, self%f%kind, last%y, self%f%k, self%f%options, &
+                            self%f%method, g, nu, size_of_terms, status, message, &
+                            spatial=last%spatial)
+    else
+      call edge_coefficient(self%f, z(1), z(2), y, max_x1, g, status, message)
+    end if
   end function criticality_value
 end module sloshdyn_swirl_curve
