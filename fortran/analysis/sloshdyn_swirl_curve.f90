@@ -18,9 +18,10 @@
 !> coefficient of the spatial stroboscopic map on its centre manifold, Kuznetsov, Elements of
 !> Applied Bifurcation Theory, 3rd ed. 2004, sec 5.4 and 8.7) at every point; where it changes
 !> sign between two points, its zero located by Brent's method along the arclength
-!> (sloshdyn_continuation's locate_zero_on_branch) is the curve's other codimension-2 point, a
-!> degenerate pitchfork (at a branch_point edge; a degenerate flip at a period_doubling one):
-!> on one side the onset of swirl is supercritical (c < 0 at a pitchfork: stable swirling
+!> (sloshdyn_continuation's locate_zero_on_branch; c at each trial point from the orbit and
+!> the spatial monodromy of the edge test its tangent has just made there, not shot and
+!> integrated again) is the curve's other codimension-2 point, a degenerate pitchfork (at a
+!> branch_point edge; a degenerate flip at a period_doubling one): on one side the onset of swirl is supercritical (c < 0 at a pitchfork: stable swirling
 !> orbits born inside the band, a gentle onset), on the other subcritical (c > 0: unstable ones
 !> born outside it, and entering the band the motion jumps to swirl, with hysteresis).
 !>

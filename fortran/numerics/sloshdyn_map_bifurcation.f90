@@ -71,7 +71,10 @@
 !> The normal-form coefficients (Kuznetsov 2004, secs 4.7, 5.4 and 8.7.2; the generalised flip
 !> and Chenciner points, their zeros, ch. 9) are those of the one-parameter criticality, from
 !> the same routines; they exist for stroboscopic maps only (NaN, no test, for other maps) and
-!> cost 5 (c) and 9 (d) more monodromy matrices per point.
+!> cost 4 (c) and 8 (d) more monodromy matrices per point: they take the tests' M. That M comes
+!> without dP/dp (fixed_point_monodromy; for a stroboscopic map one shot without the sensitivity
+!> columns, whose steps the coefficients' differences need), so the tests' multipliers differ
+!> from those of the corrector's M (with dP/dp) by the integration error.
 !> A Neimark-Sacker curve ends at R1 and R2 (END_RESONANCE) unless curve_options%neutral_saddles.
 !> Not detected: double NS. curve%omega holds theta on NS curves (-acosh(|kappa|/2) = -ln|mu|
 !> on neutral-saddle parts), codim2_point%omega the angle of the point (R1 0, R2 and the
