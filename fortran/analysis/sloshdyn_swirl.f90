@@ -80,9 +80,9 @@ contains
 
   !> The out-of-plane Floquet multipliers nu (re, im) of the planar orbit of period k T through
   !> y_orbit (at tau = 0) of the planar model: the eigenvalues of the out-of-plane block of the
-  !> spatial monodromy matrix from (y_orbit, 0, 0, 0, 0), which spatial (optional) receives.
+  !> spatial monodromy matrix from (y_orbit, 0, 0, 0, 0).
   subroutine out_of_plane_multipliers(model, y_orbit, k, options, method, re, im, status, &
-                                      message, spatial)
+                                      message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y_orbit(4)
     integer, intent(in) :: k, method
@@ -90,7 +90,6 @@ contains
     real(wp), intent(out) :: re(4), im(4)
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp), intent(out), optional :: spatial(8, 8)
     type(spatial_tank_system) :: system
     real(wp) :: y_end(8), monodromy(8, 8)
     re = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -103,7 +102,6 @@ contains
       message = 'out-of-plane multipliers: '//trim(message)
       return
     end if
-    if (present(spatial)) spatial = monodromy
     call eigenvalues(monodromy(5:8, 5:8), re, im, status, message)
     if (status /= SD_OK) message = 'out-of-plane multipliers: '//trim(message)
   end subroutine out_of_plane_multipliers
@@ -378,10 +376,9 @@ contains
   !> The edge test of kind `kind` (kind_test_value of the out-of-plane multipliers: det(M_b - I),
   !> det(M_b + I), the complex pairs' moduli) on the planar orbit of period k T of `planar`
   !> found by Newton shooting (to newton_tol, at most max_iter shots) from the guess; y_orbit
-  !> and its max|x1|, and (optional) the spatial monodromy at (y_orbit, 0, 0, 0, 0). g is NaN
-  !> when the shooting or the multipliers fail (status says why).
+  !> and its max|x1|. g is NaN when the shooting or the multipliers fail (status says why).
   subroutine edge_test(planar, kind, guess, k, options, method, newton_tol, max_iter, y_orbit, &
-                       max_x1, g, status, message, spatial)
+                       max_x1, g, status, message)
     type(tank_system), intent(in) :: planar
     integer, intent(in) :: kind, k, method, max_iter
     real(wp), intent(in) :: guess(4), newton_tol
@@ -389,7 +386,6 @@ contains
     real(wp), intent(out) :: y_orbit(4), max_x1, g
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp), intent(out), optional :: spatial(8, 8)
     real(wp) :: monodromy(4, 4), re(4), im(4)
     integer :: iterations
     g = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -397,7 +393,7 @@ contains
                          monodromy, re, im, iterations, status, message, max_x1)
     if (status /= SD_OK) return
     call out_of_plane_multipliers(planar%model, y_orbit, k, options, method, re, im, status, &
-                                  message, spatial)
+                                  message)
     if (status == SD_OK) g = kind_test_value(kind, re, im)
   end subroutine edge_test
 
@@ -405,10 +401,9 @@ contains
   !> or SPECIAL_PERIOD_DOUBLING (nu = -1) through the planar orbit y_orbit (tau = 0, period
   !> k T) of the planar model at the edge, from the spatial monodromy at (y_orbit, 0, 0, 0, 0),
   !> with the critical multiplier nu, the size of c's terms and (optional) the unit critical
-  !> eigenvector q (8 states, out of the plane). spatial (optional): that monodromy, as
-  !> edge_test gives it, then not recomputed.
+  !> eigenvector q (8 states, out of the plane).
   subroutine edge_criticality(model, kind, y_orbit, k, options, method, c, nu, size_of_terms, &
-                              status, message, q, spatial)
+                              status, message, q)
     type(model_t), intent(in) :: model
     integer, intent(in) :: kind, k, method
     real(wp), intent(in) :: y_orbit(4)
@@ -417,7 +412,6 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), intent(out), optional :: q(8)
-    real(wp), intent(in), optional :: spatial(8, 8)
     type(spatial_tank_system) :: system
     real(wp) :: y(8), vector(8)
     c = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -436,7 +430,7 @@ contains
     ! the pitchfork at nu = +1, the flip at -1
     call cubic_coefficient(system, y, k, options, method, &
                            merge(1, -1, kind == SPECIAL_BRANCH_POINT), c, vector, nu, status, &
-                           message, size_of_terms, spatial)
+                           message, size_of_terms)
     if (status /= SD_OK) message = 'the swirl edge''s criticality: '//trim(message)
     if (present(q)) q = vector
   end subroutine edge_criticality

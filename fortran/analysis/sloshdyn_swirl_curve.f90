@@ -18,10 +18,9 @@
 !> coefficient of the spatial stroboscopic map on its centre manifold, Kuznetsov, Elements of
 !> Applied Bifurcation Theory, 3rd ed. 2004, sec 5.4 and 8.7) at every point; where it changes
 !> sign between two points, its zero located by Brent's method along the arclength
-!> (sloshdyn_continuation's locate_zero_on_branch; c at each trial point from the orbit and
-!> the spatial monodromy of the edge test its tangent has just made there, not shot and
-!> integrated again) is the curve's other codimension-2 point, a degenerate pitchfork (at a
-!> branch_point edge; a degenerate flip at a period_doubling one): on one side the onset of swirl is supercritical (c < 0 at a pitchfork: stable swirling
+!> (sloshdyn_continuation's locate_zero_on_branch) is the curve's other codimension-2 point, a
+!> degenerate pitchfork (at a branch_point edge; a degenerate flip at a period_doubling one):
+!> on one side the onset of swirl is supercritical (c < 0 at a pitchfork: stable swirling
 !> orbits born inside the band, a gentle onset), on the other subcritical (c > 0: unstable ones
 !> born outside it, and entering the band the motion jumps to swirl, with hysteresis).
 !>
@@ -63,13 +62,9 @@ module sloshdyn_swirl_curve
   integer, parameter :: corrector_iterations = 12
   real(wp), parameter :: smallest_step = 1.0e-9_wp
 
-  !> The planar orbit last found: the shooting's guess at the next (rho, A). And the last
-  !> remembered edge test's point z = (x, lambda), its orbit and spatial monodromy: the
-  !> criticality at z takes them while y still holds that orbit (criticality_value).
+  !> The planar orbit last found: the shooting's guess at the next (rho, A).
   type :: orbit_memory
     real(wp) :: y(4) = 0
-    logical :: tested = .false.
-    real(wp) :: z(2) = 0, orbit(4) = 0, spatial(8, 8) = 0
   end type orbit_memory
 
   !> F(x, lambda) = g(rho_mid + x, A_0 lambda), n = 1.
@@ -403,19 +398,13 @@ contains
     real(wp), intent(in) :: x, lambda
     logical, intent(in) :: remember
     type(tank_system) :: planar
-    real(wp) :: y(4), max_x1, spatial(8, 8)
+    real(wp) :: y(4), max_x1
     integer :: status
     character(len=message_len) :: message
     planar = planar_at(self, x, lambda)
     call edge_test(planar, self%kind, self%last%y, self%k, self%options, self%method, &
-                   self%newton_tol, self%max_iter, y, max_x1, g, status, message, spatial)
-    if (status == SD_OK .and. remember) then
-      self%last%y = y
-      self%last%tested = .true.
-      self%last%z = [x, lambda]
-      self%last%orbit = y
-      self%last%spatial = spatial
-    end if
+                   self%newton_tol, self%max_iter, y, max_x1, g, status, message)
+    if (status == SD_OK .and. remember) self%last%y = y
   end function edge_value
 
   !> The planar orbit y (tau = 0) and its max|x1| at (x, lambda), shot from the last one, which
@@ -464,26 +453,14 @@ contains
                           size_of_terms, status, message)
   end subroutine edge_coefficient
 
-  !> c at the curve's point z (NaN if the shooting or the coefficient fails). Past s = 0,
-  !> locate_zero_on_branch has just evaluated F at z for the tangent (a remembered edge test):
-  !> its orbit and spatial monodromy serve, instead of shooting and integrating them again.
+  !> c at the curve's point z (NaN if the shooting or the coefficient fails).
   function criticality_value(self, z, t) result(g)
     class(criticality_test), intent(in) :: self
     real(wp), intent(in) :: z(:), t(:)
     real(wp) :: g
-    type(orbit_memory), pointer :: last
-    type(tank_system) :: planar
-    real(wp) :: y(4), max_x1, nu, size_of_terms
+    real(wp) :: y(4), max_x1
     integer :: status
     character(len=message_len) :: message
-    last => self%f%last
-    if (last%tested .and. all(z == last%z) .and. all(last%y == last%orbit)) then
-      planar = planar_at(self%f, z(1), z(2))
-      call edge_criticality(planar%model, self%f%kind, last%y, self%f%k, self%f%options, &
-                            self%f%method, g, nu, size_of_terms, status, message, &
-                            spatial=last%spatial)
-    else
-      call edge_coefficient(self%f, z(1), z(2), y, max_x1, g, status, message)
-    end if
+    call edge_coefficient(self%f, z(1), z(2), y, max_x1, g, status, message)
   end function criticality_value
 end module sloshdyn_swirl_curve
