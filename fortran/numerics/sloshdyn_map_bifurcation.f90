@@ -71,7 +71,10 @@
 !> The normal-form coefficients (Kuznetsov 2004, secs 4.7, 5.4 and 8.7.2; the generalised flip
 !> and Chenciner points, their zeros, ch. 9) are those of the one-parameter criticality, from
 !> the same routines; they exist for stroboscopic maps only (NaN, no test, for other maps) and
-!> cost 5 (c) and 9 (d) more monodromy matrices per point.
+!> cost 4 (c) and 8 (d) more monodromy matrices per point: they take the tests' M. That M comes
+!> without dP/dp (fixed_point_monodromy; for a stroboscopic map one shot without the sensitivity
+!> columns, whose steps the coefficients' differences need), so the tests' multipliers differ
+!> from those of the corrector's M (with dP/dp) by the integration error.
 !> A Neimark-Sacker curve ends at R1 and R2 (END_RESONANCE) unless curve_options%neutral_saddles.
 !> Not detected: double NS. curve%omega holds theta on NS curves (-acosh(|kappa|/2) = -ln|mu|
 !> on neutral-saddle parts), codim2_point%omega the angle of the point (R1 0, R2 and the
@@ -266,6 +269,26 @@ contains
     call map%map(x, p, px, mx, status, message)
     if (status /= SD_OK) mx = ieee_value(1.0_wp, ieee_quiet_nan)
   end subroutine monodromy_at
+
+  !> M (mx) and J = M - I (jx) of a map's fixed point x at p for the tests along a curve:
+  !> without dP/dp, which they do not need (for a stroboscopic map one shot, without the
+  !> sensitivity columns, and the M its normal-form coefficient takes: sloshdyn_map_normal_form);
+  !> NaN where the map fails.
+  subroutine fixed_point_monodromy(field, x, p, mx, jx)
+    class(two_parameter_field), intent(in) :: field
+    real(wp), intent(in) :: x(:), p(2)
+    real(wp), intent(out) :: mx(:, :), jx(:, :)
+    integer :: i
+    mx = ieee_value(1.0_wp, ieee_quiet_nan)
+    select type (field)
+    class is (two_parameter_map)
+      call monodromy_at(field, x, p, mx)
+    end select
+    jx = mx
+    do i = 1, size(x)
+      jx(i, i) = jx(i, i) - 1
+    end do
+  end subroutine fixed_point_monodromy
 
   !> hx = d(M u)/dx = (M(x + h u) - M(x - h u))/(2h), h = x_step/max|u|.
   subroutine monodromy_x_derivative(map, x, p, u, hx)
@@ -470,9 +493,8 @@ contains
     real(wp), intent(out) :: re(:), im(:), tests(max_curve_tests), omega, l1
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), &
-                mm(self%n, self%n), v(self%n), w(self%n), bvv(self%n)
-    integer :: i
+    real(wp) :: xx(self%n), p(2), jj(self%n, self%n), mm(self%n, self%n), v(self%n), &
+                w(self%n), bvv(self%n)
     logical :: is_fold
 
     tests = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -480,11 +502,7 @@ contains
     l1 = ieee_value(1.0_wp, ieee_quiet_nan)
     is_fold = self%kind == CURVE_FOLD
     call point_x_p(self, z, xx, p)
-    call self%field%evaluate(xx, p, ff, jj, fp)
-    mm = jj
-    do i = 1, self%n
-      mm(i, i) = mm(i, i) + 1
-    end do
+    call fixed_point_monodromy(self%field, xx, p, mm, jj)
     call eigenvalues(mm, re, im, status, message)
     if (status /= SD_OK) return
     call self%null_vectors(jj, v, w, status, message)
@@ -498,7 +516,7 @@ contains
     else
       tests(2) = fold_test(re, im)
       tests(3) = pair_product_without(re, im, -1.0_wp)
-      tests(4) = normal_form_coefficient(self%field, CURVE_PERIOD_DOUBLING, xx, p)
+      tests(4) = normal_form_coefficient(self%field, CURVE_PERIOD_DOUBLING, xx, p, mm)
     end if
   end subroutine map_fold_diagnose
 
@@ -558,11 +576,12 @@ contains
   !> The normal-form coefficient of the fixed point x at p, shared with the one-parameter
   !> criticality (sloshdyn_map_normal_form), over the size of its terms: the flip coefficient
   !> c (kind CURVE_PERIOD_DOUBLING) or the Neimark-Sacker coefficient d, relative; NaN (no
-  !> test) for a map that is not a stroboscopic map, or where the coefficient fails.
-  function normal_form_coefficient(field, kind, x, p) result(coefficient)
+  !> test) for a map that is not a stroboscopic map, or where the coefficient fails. mx: M at
+  !> (x, p) from fixed_point_monodromy, the one the coefficient would compute.
+  function normal_form_coefficient(field, kind, x, p, mx) result(coefficient)
     class(two_parameter_field), intent(in) :: field
     integer, intent(in) :: kind
-    real(wp), intent(in) :: x(:), p(2)
+    real(wp), intent(in) :: x(:), p(2), mx(:, :)
     real(wp) :: coefficient
     class(periodic_problem), allocatable :: problem
     real(wp) :: q(size(x)), mu, terms
@@ -576,11 +595,11 @@ contains
       call field%problem(p, 1, problem)
       if (kind == CURVE_PERIOD_DOUBLING) then
         call cubic_coefficient(problem, x, field%periods, field%integration, field%method, &
-                               -1, coefficient, q, mu, status, message, terms)
+                               -1, coefficient, q, mu, status, message, terms, mx)
       else
         call neimark_sacker_coefficient(problem, x, field%periods, field%integration, &
                                         field%method, coefficient, q_complex, mu_complex, &
-                                        status, message, terms)
+                                        status, message, terms, mx)
       end if
       if (status /= SD_OK .or. .not. terms > 0) then
         coefficient = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -663,7 +682,7 @@ contains
     real(wp), intent(out) :: re(:), im(:), tests(max_curve_tests), omega, l1
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
-    real(wp) :: xx(self%n), p(2), ff(self%n), jj(self%n, self%n), fp(self%n, 2), kappa
+    real(wp) :: xx(self%n), p(2), jj(self%n, self%n), mm(self%n, self%n), kappa
     complex(wp) :: mu(self%n), root, minus, plus
     integer :: n, i, first, second
 
@@ -673,11 +692,8 @@ contains
     call point_x_p(self, z, xx, p)
     kappa = z(2*n + 1)
     omega = kappa_angle(kappa)
-    call self%field%evaluate(xx, p, ff, jj, fp)
-    do i = 1, n
-      jj(i, i) = jj(i, i) + 1
-    end do
-    call eigenvalues(jj, re, im, status, message)
+    call fixed_point_monodromy(self%field, xx, p, mm, jj)
+    call eigenvalues(mm, re, im, status, message)
     if (status /= SD_OK) return
     tests(1) = kappa - 2
     tests(2) = kappa + 2
@@ -698,7 +714,7 @@ contains
     tests(5) = real(minus)
     tests(6) = real(plus)
     if (abs(kappa) < 2) tests(7) = normal_form_coefficient(self%field, CURVE_NEIMARK_SACKER, &
-                                                           xx, p)
+                                                           xx, p, mm)
   end subroutine ns_diagnose
 
   !> theta = acos(kappa/2) for |kappa| <= 2; -acosh(|kappa|/2) = -ln|mu| beyond.

@@ -35,6 +35,12 @@
 !> complex vectors by linearity, from the same monodromy matrices: B(q, z) = (D_qr M + i D_qi
 !> M) z and C(q, q, z) = (H_rr - H_ii + 2 i H_ri) z, q = qr + i qi, H_uv the second
 !> derivatives of M along u, v (H_ri by polarisation along qr + qi and qr - qi).
+!>
+!> A caller that already has M(y) passes it in (optional argument monodromy): it must be
+!> monodromy_matrix's at y for the same problem, k, options and method, without a parameter
+!> column (a sensitivity column changes the integrator's steps). M(y) enters the second
+!> differences beside M(y +- h u), and only with the same integration does their error cancel:
+!> an M off by delta gives C off by delta/h^2 (1e8 delta at h = 1e-4).
 module sloshdyn_map_normal_form
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use sloshdyn_kinds, only: wp, message_len
@@ -64,9 +70,10 @@ contains
   !> their cancellation, or because both vanish, as for a linear map). Fails with SD_BAD_INPUT
   !> when no multiplier lies within 1e-3 of sigma, sigma is not -1 or +1, the map preserves
   !> volume (no damping: the critical multiplier is double) or, at +1, it is not symmetric
-  !> (<p, B(q, q)> /= 0: a transcritical point).
+  !> (<p, B(q, q)> /= 0: a transcritical point). monodromy (optional): M(y), then not
+  !> recomputed (module header).
   subroutine cubic_coefficient(problem, y, k, options, method, sigma, c, q, mu, status, &
-                               message, size_of_terms)
+                               message, size_of_terms, monodromy)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y(:)
     integer, intent(in) :: k, method, sigma
@@ -75,7 +82,8 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), intent(out), optional :: size_of_terms
-    real(wp) :: a(size(y), size(y)), shifted(size(y), size(y)), p(size(y)), y_end(size(y))
+    real(wp), intent(in), optional :: monodromy(:, :)
+    real(wp) :: a(size(y), size(y)), shifted(size(y), size(y)), p(size(y))
     real(wp) :: bqq(size(y)), cqqq(size(y)), w(size(y)), bqw(size(y)), h
     real(wp) :: bordered(size(y) + 1, size(y) + 1), wb(size(y) + 1), re(size(y)), im(size(y))
     integer :: n, i
@@ -92,7 +100,7 @@ contains
                 'or +1'
       return
     end if
-    call monodromy_matrix(problem, y, k, options, method, y_end, a, status, message)
+    call central_monodromy(problem, y, k, options, method, a, status, message, monodromy)
     if (status /= SD_OK) return
     shifted = a
     do i = 1, n
@@ -194,9 +202,10 @@ contains
   !> problem's parameter, with the critical multiplier mu = |mu| e^{i theta} (Im mu > 0)
   !> nearest the unit circle, its eigenvector q (unit length) and (optional) the size of its
   !> terms, the sum of their moduli over 2. Fails with SD_BAD_INPUT when no complex multiplier
-  !> lies within 1e-3 of the unit circle.
+  !> lies within 1e-3 of the unit circle. monodromy (optional): M(y), then not recomputed
+  !> (module header).
   subroutine neimark_sacker_coefficient(problem, y, k, options, method, d, q, mu, status, &
-                                        message, size_of_terms)
+                                        message, size_of_terms, monodromy)
     class(periodic_problem), intent(in) :: problem
     real(wp), intent(in) :: y(:)
     integer, intent(in) :: k, method
@@ -206,7 +215,8 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), intent(out), optional :: size_of_terms
-    real(wp) :: a(size(y), size(y)), y_end(size(y)), wr(size(y)), wi(size(y)), h
+    real(wp), intent(in), optional :: monodromy(:, :)
+    real(wp) :: a(size(y), size(y)), wr(size(y)), wi(size(y)), h
     real(wp) :: big(2*size(y), 2*size(y)), x(2*size(y)), xl(2*size(y)), rhs(2*size(y))
     real(wp), dimension(size(y), size(y)) :: g_r, g_i, h_rr, h_ii, h_ri, h_w, g_w, m_plus, &
                                              m_minus, eye
@@ -218,7 +228,7 @@ contains
     d = ieee_value(1.0_wp, ieee_quiet_nan)
     mu = cmplx(d, d, wp)
     q = mu
-    call monodromy_matrix(problem, y, k, options, method, y_end, a, status, message)
+    call central_monodromy(problem, y, k, options, method, a, status, message, monodromy)
     if (status /= SD_OK) return
     call eigenvalues(a, wr, wi, status, message)
     if (status /= SD_OK) return
@@ -303,4 +313,31 @@ contains
       second = (m_plus - 2*a + m_minus)/h**2
     end subroutine derivatives
   end subroutine neimark_sacker_coefficient
+
+  !> M(y): the caller's (given) or by monodromy_matrix; a given one must have shape (n, n).
+  subroutine central_monodromy(problem, y, k, options, method, a, status, message, given)
+    class(periodic_problem), intent(in) :: problem
+    real(wp), intent(in) :: y(:)
+    integer, intent(in) :: k, method
+    type(ode_options), intent(in) :: options
+    real(wp), intent(out) :: a(:, :)
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    real(wp), intent(in), optional :: given(:, :)
+    real(wp) :: y_end(size(y))
+    if (.not. present(given)) then
+      call monodromy_matrix(problem, y, k, options, method, y_end, a, status, message)
+      return
+    end if
+    status = SD_OK
+    message = ''
+    if (any(shape(given) /= shape(a))) then
+      status = SD_BAD_INPUT
+      message = 'monodromy has shape ('//num2str(size(given, 1))//', '// &
+                num2str(size(given, 2))//'); it must be (n, n), n = size(y) = '// &
+                num2str(size(y))
+      return
+    end if
+    a = given
+  end subroutine central_monodromy
 end module sloshdyn_map_normal_form

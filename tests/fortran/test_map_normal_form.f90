@@ -72,7 +72,8 @@ contains
 end module pitchfork_test_flow
 
 !> sloshdyn_map_normal_form's cubic_coefficient at the multiplier +1 (a Z2-symmetric
-!> pitchfork) against the closed form of pitchfork_test_flow; bad input named.
+!> pitchfork) against the closed form of pitchfork_test_flow, also with the monodromy matrix
+!> passed in (the curve codes' path); bad input named.
 program test_map_normal_form
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
@@ -80,11 +81,13 @@ program test_map_normal_form
   use sloshdyn_ode, only: ode_options
   use sloshdyn_integrator, only: METHOD_DOP853
   use sloshdyn_map_normal_form, only: cubic_coefficient
+  use sloshdyn_shooting, only: monodromy_matrix
   use checks, only: check_close, check_true, finish
   use pitchfork_test_flow, only: mirror_flow
   implicit none
   type(ode_options) :: options
-  real(wp) :: c, q(2), mu, terms, k
+  real(wp) :: c, q(2), mu, terms, k, m(2, 2), y_end(2), c_given, q_given(2), mu_given, &
+              terms_given
   real(wp), parameter :: k_values(3) = [3.0_wp, 0.5_wp, 1.0_wp]
   integer :: status, i
   character(len=message_len) :: message
@@ -107,7 +110,32 @@ program test_map_normal_form
                      (k - 1)*2, 1.0e-6_wp, 1.0e-6_wp*terms)
     call check_true('pitchfork k = '//num2str(k)//': terms of size >= |c|', &
                     terms >= abs(c) .and. terms > 1)
+    ! M passed in, as monodromy_matrix gives it: the same integrations, so the same c to the bit
+    call monodromy_matrix(mirror_flow(k=k, t_period=2.0_wp), [0.0_wp, 0.0_wp], 1, options, &
+                          METHOD_DOP853, y_end, m, status, message)
+    call check_close('pitchfork k = '//num2str(k)//': M = diag(1, e^-T)', &
+                     maxval(abs(m - reshape([1.0_wp, 0.0_wp, 0.0_wp, exp(-2.0_wp)], [2, 2]))), &
+                     0.0_wp, 0.0_wp, 1.0e-10_wp)
+    call cubic_coefficient(mirror_flow(k=k, t_period=2.0_wp), [0.0_wp, 0.0_wp], 1, options, &
+                           METHOD_DOP853, 1, c_given, q_given, mu_given, status, message, &
+                           terms_given, m)
+    call check_true('pitchfork k = '//num2str(k)//', M given: status 0 and c, q, mu, terms '// &
+                    'equal to the bit ('//trim(message)//')', status == SD_OK .and. &
+                    c_given == c .and. all(q_given == q) .and. mu_given == mu .and. &
+                    terms_given == terms)
   end do
+
+  ! the given M is the one used: with its multiplier along x moved to 0.5 there is none at +1
+  m = reshape([0.5_wp, 0.0_wp, 0.0_wp, exp(-2.0_wp)], [2, 2])
+  call cubic_coefficient(mirror_flow(), [0.0_wp, 0.0_wp], 1, options, METHOD_DOP853, 1, c, &
+                         q, mu, status, message, terms, m)
+  call check_true('a given M without a multiplier at +1 is refused ('//trim(message)//')', &
+                  status == SD_BAD_INPUT .and. index(message, 'nearest +1') > 0 .and. mu < 0.9_wp)
+  call cubic_coefficient(mirror_flow(), [0.0_wp, 0.0_wp], 1, options, METHOD_DOP853, 1, c, &
+                         q, mu, status, message, terms, m(:, 1:1))
+  call check_true('a given M of shape (2, 1) is named ('//trim(message)//')', &
+                  status == SD_BAD_INPUT .and. index(message, 'monodromy has shape (2, 1)') > 0 &
+                  .and. c /= c)
 
   call cubic_coefficient(mirror_flow(), [0.0_wp, 0.0_wp], 1, options, METHOD_DOP853, 2, c, &
                          q, mu, status, message, terms)
