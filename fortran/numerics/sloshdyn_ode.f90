@@ -267,6 +267,10 @@ module sloshdyn_ode
   integer, parameter :: step_probes = 4, max_probes = 100000
   !> A maximum is located to this part of the step (its value then to ~1e-20 relative).
   real(wp), parameter :: locate_tol = 1.0e-10_wp
+  !> How far inside a step (a share of it) the tracker looks whether a quantity rises into the
+  !> step's end: a maximum closer to the end than this differs from the end's value by
+  !> ~ g'' (end_gap h)^2 / 2, below the integration's error
+  real(wp), parameter :: end_gap = 1.0e-6_wp
 
   !> |g_i| - level (sign = 1, for zeros) or -|g_i| (sign = -1, for the maximum) on the
   !> continuous extension of the last step at t = a + s (b - a), s in [0, 1].
@@ -705,7 +709,8 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(dense_quantity) :: f
-    real(wp), allocatable :: s(:), g(:, :), g_peak(:)
+    real(wp), allocatable :: s(:), g(:, :), g_peak(:), g_inside(:, :)
+    logical :: inside_known(0:1)
     real(wp) :: a, b, best, rise, s_best, f_best, s_left, s_right, s_root, f_root, v_left, v
     integer :: m, n, i, j, k, n_points
     integer, allocatable :: order(:)
@@ -724,7 +729,7 @@ contains
       n = 0
     end if
     ! the probes, and room for one refined maximum per quantity
-    allocate (s(0:n + 1), g(m, 0:n + 1), order(0:n + 1), g_peak(m))
+    allocate (s(0:n + 1), g(m, 0:n + 1), order(0:n + 1), g_peak(m), g_inside(m, 0:1))
     f%integ => integ
     f%obs => obs
     f%a = a
@@ -734,6 +739,7 @@ contains
       s(j) = real(j, wp)/max(n, 1)
       call state_at(s(j), g(:, j))
     end do
+    inside_known = .false.
     do i = 1, m
       f%i = i
       j = maxloc(abs(g(i, 0:n)), dim=1) - 1
@@ -744,7 +750,8 @@ contains
       if (j > 0) rise = max(rise, best - abs(g(i, j - 1)))
       if (j < n) rise = max(rise, best - abs(g(i, j + 1)))
       if (n > 0 .and. (best + rise >= self%peak(i) .or. &
-                       (self%level(i) > 0 .and. best + rise >= self%level(i)))) then
+                       (self%level(i) > 0 .and. best + rise >= self%level(i))) .and. &
+          .not. rises_to_end(j)) then
         s_left = s(max(j - 1, 0))
         s_right = s(min(j + 1, n))
         f%level = 0
@@ -800,6 +807,24 @@ contains
     end do
 
   contains
+
+    !> The best probe of quantity i is the step's end k (j = 0 or n) and |g_i| rises into it
+    !> (it is larger there than end_gap inside): then the largest value by that end is the
+    !> end itself, which the neighbouring step's scan sees too, and Brent's search, which
+    !> only approaches an end, would be discarded after ~30 evaluations. The values end_gap
+    !> inside are evaluated once per step, for all quantities, when first asked for.
+    logical function rises_to_end(k)
+      integer, intent(in) :: k
+      integer :: side
+      rises_to_end = .false.
+      if (k /= 0 .and. k /= n) return
+      side = merge(0, 1, k == 0)
+      if (.not. inside_known(side)) then
+        call state_at(merge(end_gap, 1 - end_gap, k == 0), g_inside(:, side))
+        inside_known(side) = .true.
+      end if
+      rises_to_end = abs(g_inside(i, side)) < abs(g(i, k))
+    end function rises_to_end
 
     !> g at s in [0, 1] of [a, b]: the state itself at the step's end (and that state, y_point).
     subroutine state_at(s_point, g_point, y_point)

@@ -21,6 +21,7 @@ program test_rk45
   call check_stepwise_api(METHOD_DOPRI5)
   call check_without_dense_output(METHOD_DOPRI5)
   call test_peak_tracker()
+  call test_peaks_by_a_steps_end()
   call check_failures(METHOD_DOPRI5)
   call check_bad_input(METHOD_DOPRI5)
   call finish()
@@ -141,5 +142,41 @@ contains
     call check_close('peak tracker: first entry at pi/6 (1e-9)', coarse%first_crossing(1), &
                      pi/6, 1.0e-9_wp)
   end subroutine test_peak_tracker
+
+  !> A maximum just inside a step's end is refined, one the quantity rises into is the end
+  !> itself: |sin t| (the oscillator above) started or stopped 1e-3 from its maximum at pi/2
+  !> (well inside the last and first probe interval of steps ~0.03 long), and stopped at 1,
+  !> still rising: the peaks 1, 1 and sin 1 (closed forms), the last at t = 1 exactly.
+  subroutine test_peaks_by_a_steps_end()
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
+    type(linear_observation) :: y2
+    type(peak_tracker) :: tracker
+    real(wp), parameter :: gap = 1.0e-3_wp
+    real(wp) :: y(2, 1)
+    integer :: status
+    character(len=message_len) :: message
+
+    opt%rtol = 1.0e-11_wp
+    opt%atol = 1.0e-13_wp
+    osc%force = 0
+    y2 = linear_observation(reshape([0.0_wp, 1.0_wp], [1, 2]))
+    call integrate(METHOD_DOPRI5, osc, 0.0_wp, [1.0_wp, 0.0_wp], [pi/2 + gap], y, opt, stats, &
+                   status, message, y2, tracker)
+    call check_true('peak by the end: runs: '//trim(message), status == SD_OK)
+    call check_close('peak 1e-3 before the last step''s end = 1 (1e-10)', tracker%peak(1), &
+                     1.0_wp, 1.0e-10_wp)
+    call integrate(METHOD_DOPRI5, osc, pi/2 - gap, [cos(pi/2 - gap), -sin(pi/2 - gap)], &
+                   [pi/2 + 1], y, opt, stats, status, message, y2, tracker)
+    call check_true('peak by the start: runs: '//trim(message), status == SD_OK)
+    call check_close('peak 1e-3 after the first step''s start = 1 (1e-10)', tracker%peak(1), &
+                     1.0_wp, 1.0e-10_wp)
+    call integrate(METHOD_DOPRI5, osc, 0.0_wp, [1.0_wp, 0.0_wp], [1.0_wp], y, opt, stats, &
+                   status, message, y2, tracker)
+    call check_true('rising to the end: the peak is |y2(1)| at t = 1 exactly, = sin 1 (1e-10)', &
+                    status == SD_OK .and. tracker%peak(1) == abs(y(2, 1)) .and. &
+                    tracker%time(1) == 1 .and. abs(tracker%peak(1) - sin(1.0_wp)) < 1.0e-10_wp)
+  end subroutine test_peaks_by_a_steps_end
 
 end program test_rk45
