@@ -41,7 +41,7 @@ module sloshdyn_vessel
   implicit none
   private
   public :: tank_t, tank_properties, tank_model, tank_loads, wave_height_factor
-  public :: standard_gravity, LOAD_ROWS, tank_acceleration, sloshing_mass_acceleration
+  public :: standard_gravity, LOAD_ROWS
   public :: roof_contact_names, ROOF_CONTACT_NONE, ROOF_CONTACT_IMPACT
 
   real(wp), parameter :: standard_gravity = 9.80665_wp   !< m/s^2
@@ -392,38 +392,19 @@ contains
     end if
   end subroutine check_shape
 
-  !> The horizontal acceleration of the tank [m/s^2], u'' + L (cos(phi) phi'' - sin(phi) phi'^2),
-  !> of the state y with rates dydt; ground_acceleration = u'' [m/s^2].
-  pure real(wp) function tank_acceleration(props, model, y, dydt, ground_acceleration)
-    type(tank_properties), intent(in) :: props
-    type(model_t), intent(in) :: model
-    real(wp), intent(in) :: y(4), dydt(4), ground_acceleration
-    tank_acceleration = ground_acceleration + swing(props, model, y, dydt, 3, props%rod_length)
-  end function tank_acceleration
-
-  !> The horizontal acceleration of the sloshing mass m [m/s^2], a_t + l (cos(theta) theta''
-  !> - sin(theta) theta'^2), of the state y with rates dydt; tank_accel = a_t [m/s^2].
-  pure real(wp) function sloshing_mass_acceleration(props, model, y, dydt, tank_accel)
-    type(tank_properties), intent(in) :: props
-    type(model_t), intent(in) :: model
-    real(wp), intent(in) :: y(4), dydt(4), tank_accel
-    sloshing_mass_acceleration = tank_accel + swing(props, model, y, dydt, 1, &
-                                                    props%pendulum_length)
-  end function sloshing_mass_acceleration
-
   !> arm (cos(a) a'' - sin(a) a'^2): the horizontal acceleration of the end of an arm swinging
-  !> by the angle a = theta0 y(k) (k = 1: theta, the pendulum; k = 3: phi, the rods).
-  pure real(wp) function swing(props, model, y, dydt, k, arm)
+  !> by the angle a = theta0 y(k) (k = 1: theta, the pendulum; k = 3: phi, the rods), with
+  !> cos_a = cos(a) and sin_a = sin(a) (computed once per state by the caller).
+  pure real(wp) function swing(props, model, y, dydt, k, arm, cos_a, sin_a)
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: model
-    real(wp), intent(in) :: y(4), dydt(4), arm
+    real(wp), intent(in) :: y(4), dydt(4), arm, cos_a, sin_a
     integer, intent(in) :: k
-    real(wp) :: a, a_d, a_dd
+    real(wp) :: a_d, a_dd
     associate (w => props%omega, t0 => model%theta0)
-      a = t0*y(k)
       a_d = w*t0*y(k + 1)
       a_dd = w**2*t0*dydt(k + 1)
-      swing = arm*(cos(a)*a_dd - sin(a)*a_d**2)
+      swing = arm*(cos_a*a_dd - sin_a*a_d**2)
     end associate
   end function swing
 
@@ -439,17 +420,21 @@ contains
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: tau, y(4), dydt(4), ground_acceleration, confined_share
     real(wp) :: row(LOAD_ROWS)
-    real(wp) :: theta, phi, tank_accel, convective_accel
+    real(wp) :: theta, phi, sin_theta, sin_phi, tank_accel, convective_accel
     associate (w => props%omega, t0 => model%theta0, pendulum => props%pendulum_length, &
                rod => props%rod_length, m => props%sloshing_mass)
       theta = t0*y(1)
       phi = t0*y(3)
-      ! horizontal accelerations of the tank and of the convective (sloshing) mass
-      tank_accel = tank_acceleration(props, model, y, dydt, ground_acceleration)
-      convective_accel = sloshing_mass_acceleration(props, model, y, dydt, tank_accel)
+      sin_theta = sin(theta)
+      sin_phi = sin(phi)
+      ! horizontal accelerations of the tank, u'' + L (cos(phi) phi'' - sin(phi) phi'^2), and
+      ! of the convective (sloshing) mass, a_t + l (cos(theta) theta'' - sin(theta) theta'^2)
+      tank_accel = ground_acceleration + swing(props, model, y, dydt, 3, rod, cos(phi), sin_phi)
+      convective_accel = tank_accel + swing(props, model, y, dydt, 1, pendulum, cos(theta), &
+                                            sin_theta)
       convective_accel = convective_accel + confined_share*(tank_accel - convective_accel)
-      row(1:8) = [tau/w, ground_acceleration, pendulum*sin(theta), props%wave_factor*sin(theta), &
-                  theta, rod*sin(phi), tank_accel, convective_accel]
+      row(1:8) = [tau/w, ground_acceleration, pendulum*sin_theta, props%wave_factor*sin_theta, &
+                  theta, rod*sin_phi, tank_accel, convective_accel]
       ! the base shear: the rate of the horizontal momentum (M - m) X_t' + m X_c'
       row(9) = (props%total_mass - m)*tank_accel + m*convective_accel
       ! the overturning moment about the tank bottom of the wall pressures and the shell's

@@ -258,6 +258,10 @@ module sloshdyn_ode
     !> > 0: probes at most this far apart (besides at least step_probes + 1 per step)
     real(wp) :: spacing = 0
     logical, allocatable :: above(:)
+    !> g at the last step's end (time, state, values): the next step's first probe, the same
+    !> state, is not evaluated again
+    real(wp) :: end_time = 0
+    real(wp), allocatable :: end_state(:), end_values(:)
   contains
     procedure :: start => tracker_start
     procedure :: watch => tracker_watch
@@ -690,6 +694,7 @@ contains
       self%level = 0
     end if
     call obs%values(t, y, g)
+    call remember_end(self, t, y, g)
     self%peak = abs(g)
     self%time = spread(t, 1, size(g))
     if (self%keep_states) self%state = spread(y, 2, size(g))
@@ -832,20 +837,37 @@ contains
       real(wp), intent(out) :: g_point(:)
       real(wp), intent(out), optional :: y_point(:)
       real(wp) :: t
+      logical :: same_as_end
       t = a + s_point*(b - a)
       if (s_point >= 1) then
         t = b
         if (b == integ%t) then
           call obs%values(t, integ%y, g_point)
+          call remember_end(self, t, integ%y, g_point)
           if (present(y_point)) y_point = integ%y
           return
         end if
       end if
       call integ%dense(t, f%y)
-      call obs%values(t, f%y, g_point)
+      same_as_end = t == self%end_time .and. allocated(self%end_state)
+      if (same_as_end) same_as_end = all(f%y == self%end_state)
+      if (same_as_end) then
+        g_point = self%end_values
+      else
+        call obs%values(t, f%y, g_point)
+      end if
       if (present(y_point)) y_point = f%y
     end subroutine state_at
   end subroutine tracker_watch
+
+  !> Keep g = g(t, y) of a step's end (or the start) for the next step's first probe.
+  pure subroutine remember_end(self, t, y, g)
+    class(peak_tracker), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:), g(:)
+    self%end_time = t
+    self%end_state = y
+    self%end_values = g
+  end subroutine remember_end
 
   subroutine dense_quantity_value(self, x, fx, status, message)
     class(dense_quantity), intent(inout) :: self
