@@ -18,7 +18,6 @@ module sloshdyn_seismic
   use sloshdyn_text, only: num2str
   use sloshdyn_model, only: model_t, set_coefficients
   use sloshdyn_motion, only: equations_of_motion
-  use sloshdyn_excitation, only: base_acceleration
   use sloshdyn_vessel, only: tank_t, tank_properties, tank_model, tank_loads, LOAD_ROWS, &
                             convective_damping, ROOF_CONTACT_IMPACT
   use sloshdyn_tank, only: SHAPE_CIRCULAR, max_modes
@@ -566,11 +565,10 @@ contains
     class(tank_load_observation), intent(in) :: self
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(out) :: g(:)
-    real(wp) :: dydt(4), row(LOAD_ROWS)
-    call equations_of_motion(self%model, t, y(1:4), dydt)
-    row = tank_loads(self%tank, self%props, self%model, t, y(1:4), dydt, &
-                     self%props%rod_length*self%props%omega**2* &
-                     base_acceleration(self%model%excitation, t), &
+    real(wp) :: dydt(4), angles(4), xdd, row(LOAD_ROWS)
+    call equations_of_motion(self%model, t, y(1:4), dydt, angles, xdd)
+    row = tank_loads(self%tank, self%props, self%model, t, y(1:4), dydt, angles, &
+                     self%props%rod_length*self%props%omega**2*xdd, &
                      merge(self%share, 0.0_wp, t >= self%tau_contact))
     g(1:LOAD_ROWS - 1) = row(2:LOAD_ROWS)
     g(LOAD_ROWS) = y(1)

@@ -94,16 +94,21 @@ contains
   end function forcing_from_terms
 
   !> First-order form of eq (15), Q'' = M^-1 F: dydt = (x1', x1'', x2', x2'').
-  pure subroutine equations_of_motion(model, tau, y, dydt)
+  !> With angles: also (cos, sin) of theta0 x1 and of theta0 x2, and with xdd X'', as the
+  !> right-hand side computed them (the tank's loads need them too).
+  pure subroutine equations_of_motion(model, tau, y, dydt, angles, xdd)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: tau, y(4)
     real(wp), intent(out) :: dydt(4)
+    real(wp), intent(out), optional :: angles(4), xdd
     type(state_terms) :: t
     real(wp) :: force(2), qdd(2)
     call evaluate_terms(model, tau, y, t)
     force = forcing_from_terms(model, y, t)
     qdd = solve_inertia(model, t%cos12, force)
     dydt = [y(2), qdd(1), y(4), qdd(2)]
+    if (present(angles)) angles = [t%cos1, t%sin1, t%cos2, t%sin2]
+    if (present(xdd)) xdd = t%xdd
   end subroutine equations_of_motion
 
   !> equations_of_motion for many states at once, column c of models(members(c)) at

@@ -409,32 +409,32 @@ contains
   end function swing
 
   !> The loads of the state y with rates dydt = (x1', x1'', x2', x2'') at tau, in SI (the rows
-  !> of LOAD_ROWS); ground_acceleration = u'' [m/s^2] at that time. confined_share: the share
-  !> phi of the convective mass that the roof confines (0 before the wave reaches the roof;
-  !> sloshdyn_seismic): it moves with the tank, so the convective mass's mean acceleration is
-  !> a_c = a_m + phi (a_t - a_m) (the restricted-sloshing method, docs/model.md "Roof loads").
-  pure function tank_loads(tank, props, model, tau, y, dydt, ground_acceleration, &
+  !> of LOAD_ROWS); angles = (cos, sin) of theta = theta0 x1 and of phi = theta0 x2 (as
+  !> equations_of_motion returns them); ground_acceleration = u'' [m/s^2] at that time.
+  !> confined_share: the share phi of the convective mass that the roof confines (0 before
+  !> the wave reaches the roof; sloshdyn_seismic): it moves with the tank, so the convective
+  !> mass's mean acceleration is a_c = a_m + phi (a_t - a_m) (the restricted-sloshing method,
+  !> docs/model.md "Roof loads").
+  pure function tank_loads(tank, props, model, tau, y, dydt, angles, ground_acceleration, &
                            confined_share) result(row)
     type(tank_t), intent(in) :: tank
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: model
-    real(wp), intent(in) :: tau, y(4), dydt(4), ground_acceleration, confined_share
+    real(wp), intent(in) :: tau, y(4), dydt(4), angles(4), ground_acceleration, confined_share
     real(wp) :: row(LOAD_ROWS)
-    real(wp) :: theta, phi, sin_theta, sin_phi, tank_accel, convective_accel
+    real(wp) :: tank_accel, convective_accel
     associate (w => props%omega, t0 => model%theta0, pendulum => props%pendulum_length, &
-               rod => props%rod_length, m => props%sloshing_mass)
-      theta = t0*y(1)
-      phi = t0*y(3)
-      sin_theta = sin(theta)
-      sin_phi = sin(phi)
+               rod => props%rod_length, m => props%sloshing_mass, &
+               cos_theta => angles(1), sin_theta => angles(2), &
+               cos_phi => angles(3), sin_phi => angles(4))
       ! horizontal accelerations of the tank, u'' + L (cos(phi) phi'' - sin(phi) phi'^2), and
       ! of the convective (sloshing) mass, a_t + l (cos(theta) theta'' - sin(theta) theta'^2)
-      tank_accel = ground_acceleration + swing(props, model, y, dydt, 3, rod, cos(phi), sin_phi)
-      convective_accel = tank_accel + swing(props, model, y, dydt, 1, pendulum, cos(theta), &
+      tank_accel = ground_acceleration + swing(props, model, y, dydt, 3, rod, cos_phi, sin_phi)
+      convective_accel = tank_accel + swing(props, model, y, dydt, 1, pendulum, cos_theta, &
                                             sin_theta)
       convective_accel = convective_accel + confined_share*(tank_accel - convective_accel)
       row(1:8) = [tau/w, ground_acceleration, pendulum*sin_theta, props%wave_factor*sin_theta, &
-                  theta, rod*sin_phi, tank_accel, convective_accel]
+                  t0*y(1), rod*sin_phi, tank_accel, convective_accel]
       ! the base shear: the rate of the horizontal momentum (M - m) X_t' + m X_c'
       row(9) = (props%total_mass - m)*tank_accel + m*convective_accel
       ! the overturning moment about the tank bottom of the wall pressures and the shell's
