@@ -31,7 +31,6 @@ module sloshdyn_ode
                              SD_NON_FINITE, check_real
   use sloshdyn_text, only: num2str
   use sloshdyn_cancel, only: check_cancel
-  use sloshdyn_roots, only: bracketed_function, brent_zero, brent_minimum
   implicit none
   private
   public :: ode_system, ode_rhs, ode_options, ode_stats, rk_integrator, method_properties
@@ -267,26 +266,26 @@ module sloshdyn_ode
     procedure :: watch => tracker_watch
   end type peak_tracker
 
-  !> Probe intervals per step at least, and at most, of a peak_tracker's scan.
-  integer, parameter :: step_probes = 4, max_probes = 100000
-  !> A maximum is located to this part of the step (its value then to ~1e-20 relative).
-  real(wp), parameter :: locate_tol = 1.0e-10_wp
-  !> How far inside a step (a share of it) the tracker looks whether a quantity rises into the
-  !> step's end: a maximum closer to the end than this differs from the end's value by
-  !> ~ g'' (end_gap h)^2 / 2, below the integration's error
-  real(wp), parameter :: end_gap = 1.0e-6_wp
+  interface
+    !> Begin tracking at (t, y): the peaks are |g(t, y)|; an |g_i| already at or above level_i
+    !> counts as an entry at t.
+    module subroutine tracker_start(self, obs, t, y)
+      class(peak_tracker), intent(inout) :: self
+      class(observed_quantities), intent(in) :: obs
+      real(wp), intent(in) :: t, y(:)
+    end subroutine tracker_start
 
-  !> |g_i| - level (sign = 1, for zeros) or -|g_i| (sign = -1, for the maximum) on the
-  !> continuous extension of the last step at t = a + s (b - a), s in [0, 1].
-  type, extends(bracketed_function) :: dense_quantity
-    class(rk_integrator), pointer :: integ => null()
-    class(observed_quantities), pointer :: obs => null()
-    real(wp) :: a = 0, b = 0, level = 0, sign = 1
-    integer :: i = 1
-    real(wp), allocatable :: y(:), g(:)
-  contains
-    procedure :: value => dense_quantity_value
-  end type dense_quantity
+    !> Take in the part [a, b] = [t_old, t] & [t_from, t_to] of the integrator's last accepted
+    !> step (see peak_tracker).
+    module subroutine tracker_watch(self, integ, obs, t_from, t_to, status, message)
+      class(peak_tracker), intent(inout) :: self
+      class(rk_integrator), intent(in), target :: integ
+      class(observed_quantities), intent(in), target :: obs
+      real(wp), intent(in) :: t_from, t_to
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine tracker_watch
+  end interface
 
   !> In fixed-step mode a remainder this much longer than the step (relative) is taken as one
   !> last step, so rounding in t never leaves a sliver step at t_bound.
@@ -682,207 +681,6 @@ contains
     linear_count = size(self%c, 1)
   end function linear_count
 
-  !> Begin tracking at (t, y): the peaks are |g(t, y)|; an |g_i| already at or above level_i
-  !> counts as an entry at t.
-  subroutine tracker_start(self, obs, t, y)
-    class(peak_tracker), intent(inout) :: self
-    class(observed_quantities), intent(in) :: obs
-    real(wp), intent(in) :: t, y(:)
-    real(wp) :: g(obs%count())
-    if (.not. allocated(self%level)) then
-      allocate (self%level(obs%count()))
-      self%level = 0
-    end if
-    call obs%values(t, y, g)
-    call remember_end(self, t, y, g)
-    self%peak = abs(g)
-    self%time = spread(t, 1, size(g))
-    if (self%keep_states) self%state = spread(y, 2, size(g))
-    self%above = self%level > 0 .and. abs(g) >= self%level
-    self%crossings = merge(1, 0, self%above)
-    self%first_crossing = merge(t, ieee_value(1.0_wp, ieee_quiet_nan), self%above)
-  end subroutine tracker_start
-
-  !> Take in the part [a, b] = [t_old, t] & [t_from, t_to] of the integrator's last accepted
-  !> step (see peak_tracker). The interpolant of a step taken without dense output is not
-  !> available: then only its end counts.
-  subroutine tracker_watch(self, integ, obs, t_from, t_to, status, message)
-    class(peak_tracker), intent(inout) :: self
-    class(rk_integrator), intent(in), target :: integ
-    class(observed_quantities), intent(in), target :: obs
-    real(wp), intent(in) :: t_from, t_to
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    type(dense_quantity) :: f
-    real(wp), allocatable :: s(:), g(:, :), g_peak(:), g_inside(:, :)
-    logical :: inside_known(0:1)
-    real(wp) :: a, b, best, rise, s_best, f_best, s_left, s_right, s_root, f_root, v_left, v
-    integer :: m, n, i, j, k, n_points
-    integer, allocatable :: order(:)
-
-    status = SD_OK
-    message = ''
-    if (integ%h_done == 0) return
-    a = max(integ%t_old, t_from)
-    b = min(integ%t, t_to)
-    if (b <= a) return
-    m = obs%count()
-    n = step_probes
-    if (self%spacing > 0) n = max(n, min(max_probes, ceiling((b - a)/self%spacing)))
-    if (.not. integ%dense_output) then
-      a = b
-      n = 0
-    end if
-    ! the probes, and room for one refined maximum per quantity
-    allocate (s(0:n + 1), g(m, 0:n + 1), order(0:n + 1), g_peak(m), g_inside(m, 0:1))
-    f%integ => integ
-    f%obs => obs
-    f%a = a
-    f%b = b
-    allocate (f%y(size(integ%y)), f%g(m))
-    do j = 0, n
-      s(j) = real(j, wp)/max(n, 1)
-      call state_at(s(j), g(:, j))
-    end do
-    inside_known = .false.
-    do i = 1, m
-      f%i = i
-      j = maxloc(abs(g(i, 0:n)), dim=1) - 1
-      best = abs(g(i, j))
-      s_best = s(j)
-      n_points = n
-      rise = 0
-      if (j > 0) rise = max(rise, best - abs(g(i, j - 1)))
-      if (j < n) rise = max(rise, best - abs(g(i, j + 1)))
-      if (n > 0 .and. (best + rise >= self%peak(i) .or. &
-                       (self%level(i) > 0 .and. best + rise >= self%level(i))) .and. &
-          .not. rises_to_end(j)) then
-        s_left = s(max(j - 1, 0))
-        s_right = s(min(j + 1, n))
-        f%level = 0
-        f%sign = -1
-        call brent_minimum(f, s_left, s_right, locate_tol, s_best, f_best, status, message)
-        if (status /= SD_OK) return
-        n_points = n + 1
-        s(n_points) = s_best
-        g(i, n_points) = -f_best
-        if (-f_best > best) then
-          best = -f_best
-        else
-          s_best = s(j)
-        end if
-      end if
-      if (best > self%peak(i)) then
-        self%peak(i) = best
-        self%time(i) = a + s_best*(b - a)
-        if (self%keep_states) call state_at(s_best, g_peak, self%state(:, i))
-      end if
-      if (.not. self%level(i) > 0) cycle
-      ! entries into [level, inf) along the probes and the refined maximum, in order
-      order(0:n_points) = [(k, k = 0, n_points)]
-      if (n_points > n) then
-        do k = n_points, 1, -1
-          if (s(order(k - 1)) <= s(n_points)) exit
-          order(k) = order(k - 1)
-          order(k - 1) = n_points
-        end do
-      end if
-      v_left = abs(g(i, order(0)))
-      if (n == 0) v_left = merge(self%level(i), 0.0_wp, self%above(i))
-      do k = merge(1, 0, n > 0), n_points
-        v = abs(g(i, order(k)))
-        if (v >= self%level(i) .and. .not. self%above(i)) then
-          self%crossings(i) = self%crossings(i) + 1
-          if (self%crossings(i) == 1) then
-            if (k == 0) then
-              s_root = s(order(k))
-            else
-              f%level = self%level(i)
-              f%sign = 1
-              call brent_zero(f, s(order(k - 1)), s(order(k)), v_left - self%level(i), &
-                              v - self%level(i), 0.0_wp, 0.0_wp, s_root, f_root, status, message)
-              if (status /= SD_OK) return
-            end if
-            self%first_crossing(i) = a + s_root*(b - a)
-          end if
-        end if
-        self%above(i) = v >= self%level(i)
-        v_left = v
-      end do
-    end do
-
-  contains
-
-    !> The best probe of quantity i is the step's end k (j = 0 or n) and |g_i| rises into it
-    !> (it is larger there than end_gap inside): then the largest value by that end is the
-    !> end itself, which the neighbouring step's scan sees too, and Brent's search, which
-    !> only approaches an end, would be discarded after ~30 evaluations. The values end_gap
-    !> inside are evaluated once per step, for all quantities, when first asked for.
-    logical function rises_to_end(k)
-      integer, intent(in) :: k
-      integer :: side
-      rises_to_end = .false.
-      if (k /= 0 .and. k /= n) return
-      side = merge(0, 1, k == 0)
-      if (.not. inside_known(side)) then
-        call state_at(merge(end_gap, 1 - end_gap, k == 0), g_inside(:, side))
-        inside_known(side) = .true.
-      end if
-      rises_to_end = abs(g_inside(i, side)) < abs(g(i, k))
-    end function rises_to_end
-
-    !> g at s in [0, 1] of [a, b]: the state itself at the step's end (and that state, y_point).
-    subroutine state_at(s_point, g_point, y_point)
-      real(wp), intent(in) :: s_point
-      real(wp), intent(out) :: g_point(:)
-      real(wp), intent(out), optional :: y_point(:)
-      real(wp) :: t
-      logical :: same_as_end
-      t = a + s_point*(b - a)
-      if (s_point >= 1) then
-        t = b
-        if (b == integ%t) then
-          call obs%values(t, integ%y, g_point)
-          call remember_end(self, t, integ%y, g_point)
-          if (present(y_point)) y_point = integ%y
-          return
-        end if
-      end if
-      call integ%dense(t, f%y)
-      same_as_end = t == self%end_time .and. allocated(self%end_state)
-      if (same_as_end) same_as_end = all(f%y == self%end_state)
-      if (same_as_end) then
-        g_point = self%end_values
-      else
-        call obs%values(t, f%y, g_point)
-      end if
-      if (present(y_point)) y_point = f%y
-    end subroutine state_at
-  end subroutine tracker_watch
-
-  !> Keep g = g(t, y) of a step's end (or the start) for the next step's first probe.
-  pure subroutine remember_end(self, t, y, g)
-    class(peak_tracker), intent(inout) :: self
-    real(wp), intent(in) :: t, y(:), g(:)
-    self%end_time = t
-    self%end_state = y
-    self%end_values = g
-  end subroutine remember_end
-
-  subroutine dense_quantity_value(self, x, fx, status, message)
-    class(dense_quantity), intent(inout) :: self
-    real(wp), intent(in) :: x
-    real(wp), intent(out) :: fx
-    integer, intent(out) :: status
-    character(len=message_len), intent(out) :: message
-    real(wp) :: t
-    status = SD_OK
-    message = ''
-    t = self%a + x*(self%b - self%a)
-    call self%integ%dense(t, self%y)
-    call self%obs%values(t, self%y, self%g)
-    fx = self%sign*(abs(self%g(self%i)) - self%level)
-  end subroutine dense_quantity_value
 
   !> Hairer's RMS error norm, scale sk = atol_i + rtol*max(|y0_i|, |y1_i|). Zero error terms are
   !> skipped so that a component with sk = 0 (atol_i = 0, y_i = 0) cannot give 0/0.
