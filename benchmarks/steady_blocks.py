@@ -15,6 +15,7 @@ path, a loop of sloshdyn.steady_state over the basin's first 64 initial states, 
 both builds side by side (and checked equal, bit for bit).
 
     python benchmarks/steady_blocks.py --n 20 --periods 100 --repeats 2 --before /tmp/main-site
+    python benchmarks/steady_blocks.py --shooting --n 10 --repeats 1   # shooting's share
 """
 
 from __future__ import annotations
@@ -38,11 +39,12 @@ FIG12 = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi /
                             gamma=0.001, A=0.00075, rho=0.50)
 
 
-def basin(n, periods):
-    """The Fig 17 basin's task: run(K) -> the core's outputs."""
+def basin(n, periods, shooting=True):
+    """The Fig 17 basin's task: run(K) -> the core's outputs (summaries, y_end, orbit, Poincare
+    points, status)."""
     p = FIG12.replace(rho=0.513, A=2.0)
     steady = sloshdyn.Steady(transient_periods=periods, max_transient_periods=periods,
-                             window_periods=32).array()
+                             window_periods=32, shooting=shooting).array()
     x1, dx1 = np.meshgrid(np.linspace(-0.9, 0.9, n), np.linspace(-0.9, 0.9, n), indexing="ij")
     y0 = np.zeros((4, n * n), order="F")
     y0[0], y0[1] = x1.ravel(), dx1.ravel()
@@ -82,9 +84,13 @@ def main():
     ap.add_argument("--periods", type=float, default=100)
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--before", help="site directory of another sloshdyn build")
+    ap.add_argument("--shooting", action="store_true",
+                    help="only the basin with and without shooting attempts (K = 16)")
     args = ap.parse_args()
     print(f"Machine: {cpu_model()}, {os.cpu_count()} cores; load average "
           f"{os.getloadavg()[0]:.2f} at start")
+    if args.shooting:
+        return shooting_cost(args)
     problems = {f"Fig 17 basin {args.n} x {args.n}, {args.periods:g} + 32 periods":
                 basin(args.n, args.periods),
                 "Fig 12 sweep, 64 independent rho": sweep()}
@@ -125,6 +131,24 @@ def main():
         for name in loops:
             print(f"| {name} | {float(np.median(cpu[name])):.3f} |")
     print(f"\nload average {os.getloadavg()[0]:.2f} at the end")
+
+
+def shooting_cost(args):
+    """The Fig 17 basin with Steady(shooting=True), the default, and shooting=False: the CPU
+    time, and whether the points' results (all but the orbit rows, which count the attempts)
+    are equal bit for bit."""
+    runs = {flag: basin(args.n, args.periods, flag) for flag in (True, False)}
+    cpu, out = {flag: [] for flag in runs}, {}
+    for _ in range(args.repeats):
+        for flag, run in runs.items():
+            c, _, out[flag] = timed(lambda: run(16))
+            cpu[flag].append(c)
+    equal = same([out[True][i] for i in (0, 1, 3, 4)], [out[False][i] for i in (0, 1, 3, 4)])
+    print(f"\nFig 17 basin {args.n} x {args.n}, {args.periods:g} + 32 periods, K = 16 (median of "
+          f"{args.repeats})\n| shooting | CPU s |\n|---|---:|")
+    for flag in runs:
+        print(f"| {flag} | {float(np.median(cpu[flag])):.3f} |")
+    print(f"\nsummaries, end states, Poincare points and status equal bit for bit: {equal}")
 
 
 if __name__ == "__main__":
