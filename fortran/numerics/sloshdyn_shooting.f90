@@ -237,7 +237,7 @@ contains
     real(wp), intent(out), optional :: max_abs_y1
     type(shooting_setup) :: setup
     type(shot) :: result
-    real(wp), allocatable :: y(:), g(:), jac(:, :)
+    real(wp), allocatable :: y(:), y_before(:), g(:), jac(:, :)
     real(wp) :: g_norm, step_norm, scale
     integer :: n, i
 
@@ -264,7 +264,7 @@ contains
     if (status /= SD_OK) return
 
     call make_setup(setup, problem, n, k, n, .false., options, method)
-    allocate (y(n), g(n), jac(n, n))
+    allocate (y(n), y_before(n), g(n), jac(n, n))
     y = y0
     g_norm = 0
     step_norm = 0
@@ -296,6 +296,7 @@ contains
         return
       end if
       step_norm = maxval(abs(g))
+      y_before = y
       y = y + g
       scale = newton_tol*(maxval(abs(y)) + scale_floor)
       if (g_norm <= scale .and. step_norm <= scale) then
@@ -306,6 +307,10 @@ contains
         if (status /= SD_OK) message = 'Floquet multipliers: '//trim(message)
         return
       end if
+      ! a step below the rounding of y (an M - I of huge norm, e.g. along an irregular motion)
+      ! leaves y as it was: every further iteration would repeat this one to the bit, and end
+      ! as the loop does
+      if (all(y == y_before)) exit
     end do
     iterations = max_iter
     y_orbit = y
