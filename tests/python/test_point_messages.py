@@ -5,27 +5,18 @@ message must be what the point's run alone says (the single-run bridge: steady_s
 seismic_response), whatever the task and the place in it, for points that fail for different
 reasons in one block: a step budget exhausted half-way, a value refused by the checks."""
 
-import importlib
-import math
 from collections import Counter
 
 import numpy as np
 import pytest
 
 import sloshdyn
-from sloshdyn import _core
 from sloshdyn._errors import message_text
 from sloshdyn.studies import fragility
 
 import test_fragility_ensemble as seismic_runs
+from test_steady_blocks import FIG12, SINGLE, basins, response
 
-SINGLE = _core.sloshdyn_bridge_simulation
-# the modules (sloshdyn.studies re-exports functions of the same names)
-basins = importlib.import_module("sloshdyn.studies.basins")
-response = importlib.import_module("sloshdyn.studies.response")
-
-FIG12 = sloshdyn.Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=math.pi / 4,
-                            gamma=0.001, A=0.00075, rho=0.52)
 STEADY = sloshdyn.Steady(max_transient_periods=300, window_periods=16)
 TOO_MANY_STEPS, BAD_INPUT = 6, 1     # sloshdyn_status codes
 

@@ -114,7 +114,8 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
 
 def _run_block(tank, ground, samples, runs, chosen, integration, out, i):
     """The seismic runs of record i (ground, samples) at the intensities of `runs` together
-    (the core's seismic_peaks), into out[...][i, j]."""
+    (the core's seismic_peaks, which returns every run's status and message: a failed run is
+    not run again), into out[...][i, j]."""
     t_end, n_out = float(chosen[0]), int(chosen[1])
     grounds = np.asfortranarray(np.stack([scaled for _, scaled, _ in runs], axis=1))
     scaled_samples = np.asfortranarray(np.stack([s for _, _, s in runs], axis=1))
