@@ -47,11 +47,14 @@ contains
   !> (independent points); carry = .true.: the first from y0(:, 1), each next one from the
   !> previous point's final state (a sweep along the path, so jumps and hysteresis show).
   !> summaries(:, i) in the 'summary' layout, y_end(:, i) the final state (forcing phase 0),
-  !> orbit(:, i) in the layout above. A point that fails gets point_status(i) /= 0 and NaN
-  !> results; independent points go on, a carried path stops there (the rest get the same
-  !> status). status and message are those of the first failure (SD_OK if none).
+  !> orbit(:, i) in the layout above. A point that fails gets point_status(i) /= 0, NaN
+  !> results and point_message(i) = what its run alone says (no point number: the same in any
+  !> task); independent points go on, a carried path stops there (the rest get the same status
+  !> and point_message ''). status and message are those of the first failure (SD_OK if none),
+  !> the message naming the point; a call refused as a whole gives every point its status and
+  !> message.
   subroutine steady_path(model, rho, A, y0, carry, options, method, steady, summaries, y_end, &
-                         orbit, point_status, status, message, block)
+                         orbit, point_status, point_message, status, message, block)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: rho(:), A(:), y0(:, :)
     logical, intent(in) :: carry
@@ -60,7 +63,7 @@ contains
     type(steady_options), intent(in) :: steady
     real(wp), intent(out) :: summaries(:, :), y_end(:, :), orbit(:, :)
     integer, intent(out) :: point_status(:), status
-    character(len=message_len), intent(out) :: message
+    character(len=message_len), intent(out) :: point_message(:), message
     integer, intent(in), optional :: block
     type(model_t) :: point
     type(ode_stats) :: stats
@@ -76,27 +79,29 @@ contains
     y_end = ieee_value(1.0_wp, ieee_quiet_nan)
     orbit = ieee_value(1.0_wp, ieee_quiet_nan)
     point_status = SD_OK
+    point_message = ''
     if (size(A) /= n .or. size(y0, 1) /= 4 .or. (size(y0, 2) /= n .and. .not. carry) .or. &
         (carry .and. size(y0, 2) < 1) .or. size(summaries, 1) /= SUMMARY_SIZE .or. &
         size(summaries, 2) /= n .or. any(shape(y_end) /= [4, n]) .or. &
-        any(shape(orbit) /= [ORBIT_ROWS, n]) .or. size(point_status) /= n) then
+        any(shape(orbit) /= [ORBIT_ROWS, n]) .or. size(point_status) /= n .or. &
+        size(point_message) /= n) then
       status = SD_BAD_INPUT
       message = 'steady_path: the arrays must be rho(n), A(n), y0(4, n), summaries('// &
                 num2str(SUMMARY_SIZE)//', n), y_end(4, n), orbit('//num2str(ORBIT_ROWS)// &
-                ', n), point_status(n); n = '//num2str(n)
-      point_status = status
+                ', n), point_status(n), point_message(n); n = '//num2str(n)
+      call all_failed(status, message, point_status, point_message)
       return
     end if
     points = 1
     if (present(block)) points = block
     call check_block(points, status, message)
     if (status /= SD_OK) then
-      point_status = status
+      call all_failed(status, message, point_status, point_message)
       return
     end if
     if (.not. carry) then
       call independent_points(model, rho, A, y0, options, method, steady, points, summaries, &
-                              y_end, orbit, point_status, status, message)
+                              y_end, orbit, point_status, point_message, status, message)
       return
     end if
     start = y0(:, 1)
@@ -107,7 +112,7 @@ contains
                           y_end(:, i), stats, info, text, found)
       if (info /= SD_OK) then
         call path_point_failed(i, rho(i), A(i), info, text, summaries, y_end, point_status, &
-                               status, message)
+                               point_message, status, message)
         point_status(i:) = info
         return
       end if
@@ -120,7 +125,7 @@ contains
   !> steady_state_block `block` at a time (steady_state_points), each equal to its
   !> steady_state alone; the failures are then reported in the order of the points.
   subroutine independent_points(model, rho, A, y0, options, method, steady, block, summaries, &
-                                y_end, orbit, point_status, status, message)
+                                y_end, orbit, point_status, point_message, status, message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: rho(:), A(:), y0(:, :)
     type(ode_options), intent(in) :: options
@@ -128,7 +133,7 @@ contains
     type(steady_options), intent(in) :: steady
     real(wp), intent(inout) :: summaries(:, :), y_end(:, :), orbit(:, :)
     integer, intent(inout) :: point_status(:), status
-    character(len=message_len), intent(inout) :: message
+    character(len=message_len), intent(inout) :: point_message(:), message
     type(model_t), allocatable :: models(:)
     type(steady_orbit), allocatable :: found(:)
     integer, allocatable :: infos(:)
@@ -146,7 +151,7 @@ contains
         orbit(:, i) = orbit_row(found(i), 0)
       else
         call path_point_failed(i, rho(i), A(i), infos(i), texts(i), summaries, y_end, &
-                               point_status, status, message)
+                               point_status, point_message, status, message)
       end if
     end do
   end subroutine independent_points
@@ -170,35 +175,48 @@ contains
   end subroutine point_model
 
   !> point_failed for point i of a path, its message naming (rho, A).
-  subroutine path_point_failed(i, rho, A, info, text, summaries, y_end, point_status, status, &
-                               message)
+  subroutine path_point_failed(i, rho, A, info, text, summaries, y_end, point_status, &
+                               point_message, status, message)
     integer, intent(in) :: i, info
     real(wp), intent(in) :: rho, A
     character(len=*), intent(in) :: text
     real(wp), intent(inout) :: summaries(:, :), y_end(:, :)
     integer, intent(inout) :: point_status(:), status
-    character(len=message_len), intent(inout) :: message
+    character(len=message_len), intent(inout) :: point_message(:), message
     call point_failed(i, info, 'point '//num2str(i)//' (rho = '//num2str(rho)//', A = '// &
-                      num2str(A)//'): '//trim(text), summaries, y_end, point_status, status, &
-                      message)
+                      num2str(A)//')', text, summaries, y_end, point_status, point_message, &
+                      status, message)
   end subroutine path_point_failed
 
-  !> Point i failed with status info: its summaries and final state are NaN, and the first
-  !> failure gives the status and the message (what: the point and the reason).
-  pure subroutine point_failed(i, info, what, summaries, y_end, point_status, status, message)
+  !> Point i failed with status info and message text (its run's alone): its summaries and
+  !> final state are NaN, point_message(i) = text, and the first failure gives the status and
+  !> the message (point: what names the point, before the reason).
+  pure subroutine point_failed(i, info, point, text, summaries, y_end, point_status, &
+                               point_message, status, message)
     integer, intent(in) :: i, info
-    character(len=*), intent(in) :: what
+    character(len=*), intent(in) :: point, text
     real(wp), intent(inout) :: summaries(:, :), y_end(:, :)
     integer, intent(inout) :: point_status(:), status
-    character(len=message_len), intent(inout) :: message
+    character(len=message_len), intent(inout) :: point_message(:), message
     summaries(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
     y_end(:, i) = ieee_value(1.0_wp, ieee_quiet_nan)
     point_status(i) = info
+    point_message(i) = text
     if (status == SD_OK) then
       status = info
-      message = what
+      message = point//': '//trim(text)
     end if
   end subroutine point_failed
+
+  !> A call refused as a whole (status, message): every point has its status and message.
+  pure subroutine all_failed(status, message, point_status, point_message)
+    integer, intent(in) :: status
+    character(len=*), intent(in) :: message
+    integer, intent(out) :: point_status(:)
+    character(len=message_len), intent(out) :: point_message(:)
+    point_status = status
+    point_message = message
+  end subroutine all_failed
 
   !> The orbit layout of a steady_orbit (found = 1), or NaN with found = 0; kind overrides the
   !> found code when > 0.
@@ -224,9 +242,10 @@ contains
   !> (period k T from the classification; kept if Newton converges within refine_distance of
   !> that state); orbit_points(:, j, i), j = 1..k, the orbit's Poincare points over one orbit
   !> period (from the window), NaN beyond k and for other motions. The points go to
-  !> steady_state_block `block` at a time (>= 1), each equal to its steady_state alone.
+  !> steady_state_block `block` at a time (>= 1), each equal to its steady_state alone; a
+  !> failed point's point_message as steady_path's.
   subroutine attractor_points(model, y0, options, method, steady, block, summaries, y_end, &
-                              orbit, orbit_points, point_status, status, message)
+                              orbit, orbit_points, point_status, point_message, status, message)
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: y0(:, :)
     type(ode_options), intent(in) :: options
@@ -234,7 +253,7 @@ contains
     type(steady_options), intent(in) :: steady
     real(wp), intent(out) :: summaries(:, :), y_end(:, :), orbit(:, :), orbit_points(:, :, :)
     integer, intent(out) :: point_status(:), status
-    character(len=message_len), intent(out) :: message
+    character(len=message_len), intent(out) :: point_message(:), message
     type(ode_stats), allocatable :: stats(:)
     type(steady_orbit), allocatable :: found(:)
     integer, allocatable :: infos(:)
@@ -253,21 +272,23 @@ contains
     orbit = ieee_value(1.0_wp, ieee_quiet_nan)
     orbit_points = ieee_value(1.0_wp, ieee_quiet_nan)
     point_status = SD_OK
+    point_message = ''
     if (size(y0, 1) /= 4 .or. size(summaries, 1) /= SUMMARY_SIZE .or. &
         size(summaries, 2) /= n .or. any(shape(y_end) /= [4, n]) .or. &
         any(shape(orbit) /= [ORBIT_ROWS, n]) .or. &
-        any(shape(orbit_points) /= [4, max_period, n]) .or. size(point_status) /= n) then
+        any(shape(orbit_points) /= [4, max_period, n]) .or. size(point_status) /= n .or. &
+        size(point_message) /= n) then
       status = SD_BAD_INPUT
       message = 'attractor_points: the arrays must be y0(4, n), summaries('// &
                 num2str(SUMMARY_SIZE)//', n), y_end(4, n), orbit('//num2str(ORBIT_ROWS)// &
-                ', n), orbit_points(4, '//num2str(max_period)//', n), point_status(n); n = '// &
-                num2str(n)
-      point_status = status
+                ', n), orbit_points(4, '//num2str(max_period)//', n), point_status(n), '// &
+                'point_message(n); n = '//num2str(n)
+      call all_failed(status, message, point_status, point_message)
       return
     end if
     call check_block(block, status, message)
     if (status /= SD_OK) then
-      point_status = status
+      call all_failed(status, message, point_status, point_message)
       return
     end if
     system%model = model
@@ -282,8 +303,8 @@ contains
       do c = 1, nb
         i = first + c - 1
         if (infos(c) /= SD_OK) then
-          call point_failed(i, infos(c), 'initial state '//num2str(i)//': '//trim(texts(c)), &
-                            summaries, y_end, point_status, status, message)
+          call point_failed(i, infos(c), 'initial state '//num2str(i), texts(c), summaries, &
+                            y_end, point_status, point_message, status, message)
           cycle
         end if
         orbit(:, i) = orbit_row(found(c), 0)

@@ -240,11 +240,11 @@ contains
   !> The peaks of seismic_response for k ground motions of one time grid (every record of n
   !> samples; sloshdyn_seismic's seismic_responses, the runs integrated together by the ensemble
   !> integrator; issue 43): member i is grounds(:, i), samples(:, i); peaks(:, i) and status(i)
-  !> are seismic_response's for it alone, bit for bit. message is the first failure's.
+  !> are seismic_response's for it alone, bit for bit, and messages(i) its message ('' where it
+  !> succeeded).
   subroutine seismic_peaks(tank, k, grounds, n, samples, t_end, n_out, integration, peaks, &
-                           status, message)
+                           status, messages)
     !f2py threadsafe
-    use sloshdyn_kinds, only: message_len
     use sloshdyn_tables, only: SEISMIC_ROWS, PEAKS_SIZE, PEAK_INSTANT_ROWS, PEAK_INSTANTS
     use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE, to_tank, to_ground, &
                                 to_ode_options, to_method
@@ -255,12 +255,11 @@ contains
                                   t_end, integration(INTEGRATION_SIZE)
     real(c_double), intent(out) :: peaks(PEAKS_SIZE, k)
     integer(c_int), intent(out) :: status(k)
-    character(len=512), intent(out) :: message
+    character(len=512), intent(out) :: messages(k)
     type(ground_motion_t) :: motions(k)
     real(c_double), allocatable :: table(:, :, :)
     real(c_double) :: instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS, k)
     integer :: info(k), i
-    character(len=message_len) :: messages(k)
     do i = 1, k
       motions(i) = to_ground(grounds(:, i), samples(:, i))
     end do
@@ -269,12 +268,6 @@ contains
                            to_ode_options(integration), to_method(integration), table, peaks, &
                            instants, info, messages)
     status = info
-    message = ''
-    do i = 1, k
-      if (info(i) == 0) cycle
-      message = messages(i)
-      exit
-    end do
   end subroutine seismic_peaks
 
   !> Steady states of the tank under harmonic ground motion of the ground's peak acceleration

@@ -11,11 +11,14 @@ contains
   !> or, carry = 1, the first from y0(:, 1) and each next from the previous final state.
   !> summaries(SUMMARY_SIZE, n) in the 'summary' layout, y_end(4, n), orbit(ORBIT_ROWS,
   !> n) in the layout of
-  !> sloshdyn_studies, impact(n) = 1 where max|x1| >= 1 (the wall is reached), point_status(n);
-  !> status and message of the first failing point. Independent points go to the ensemble
-  !> block at a time (>= 1; the results do not depend on it).
+  !> sloshdyn_studies, impact(n) = 1 where max|x1| >= 1 (the wall is reached), point_status(n)
+  !> and point_message(n) (each failed point's message, what its run alone says; '' where it
+  !> succeeded, and after a carried path's failure); status and message of the first failing
+  !> point. Independent points go to the ensemble block at a time (>= 1; the results do not
+  !> depend on it).
   subroutine steady_path(rpar, ipar, n, rho, A, y0, carry, integration, steady, block, &
-                         summaries, y_end, orbit, impact, point_status, status, message)
+                         summaries, y_end, orbit, impact, point_status, point_message, status, &
+                         message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_studies, only: ORBIT_ROWS, core => steady_path, roof_impact
@@ -27,7 +30,7 @@ contains
     integer(c_int), intent(in) :: ipar(n_int_params), n, carry, block
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n)
     integer(c_int), intent(out) :: impact(n), point_status(n), status
-    character(len=512), intent(out) :: message
+    character(len=512), intent(out) :: point_message(n), message
     type(model_t) :: model
     integer :: info, statuses(n)
     summaries = 0; y_end = 0; orbit = 0; impact = 0; statuses = 0
@@ -35,9 +38,10 @@ contains
     if (info == 0) then
       call core(model, rho, A, y0, carry /= 0, to_ode_options(integration), &
                 to_method(integration), to_steady(steady), summaries, y_end, orbit, statuses, &
-                info, message, int(block))
+                point_message, info, message, int(block))
     else
       statuses = info
+      point_message = message
     end if
     impact = merge(1, 0, roof_impact(summaries(3, :)))
     point_status = statuses
@@ -47,9 +51,9 @@ contains
   !> Steady states from the initial states y0(:, i) at the excitation of rpar, with the orbit
   !> each periodic one settled on (sloshdyn_studies: orbit(ORBIT_ROWS, n), orbit_points(4,
   !> MAX_ORBIT_PERIODS, n)), the points going to the ensemble block at a time (>= 1; the
-  !> results do not depend on it).
+  !> results do not depend on it); point_status and point_message as steady_path's.
   subroutine attractor_points(rpar, ipar, n, y0, integration, steady, block, summaries, y_end, &
-                              orbit, orbit_points, point_status, status, message)
+                              orbit, orbit_points, point_status, point_message, status, message)
     !f2py threadsafe
     use sloshdyn_model, only: n_real_params, n_int_params, model_t, model_from_arrays
     use sloshdyn_simulation, only: MAX_ORBIT_PERIODS => max_period
@@ -63,7 +67,7 @@ contains
     real(c_double), intent(out) :: summaries(SUMMARY_SIZE, n), y_end(4, n), orbit(ORBIT_ROWS, n), &
                                    orbit_points(4, MAX_ORBIT_PERIODS, n)
     integer(c_int), intent(out) :: point_status(n), status
-    character(len=512), intent(out) :: message
+    character(len=512), intent(out) :: point_message(n), message
     type(model_t) :: model
     integer :: info, statuses(n)
     summaries = 0; y_end = 0; orbit = 0; orbit_points = 0; statuses = 0
@@ -71,9 +75,10 @@ contains
     if (info == 0) then
       call core(model, y0, to_ode_options(integration), to_method(integration), &
                 to_steady(steady), int(block), summaries, y_end, orbit, orbit_points, statuses, &
-                info, message)
+                point_message, info, message)
     else
       statuses = info
+      point_message = message
     end if
     point_status = statuses
     status = info

@@ -370,7 +370,7 @@ def test_bridge_result_arrays_have_the_sizes_of_their_layouts_and_tables():
     cycles and its special points have exactly as many rows as the core's names."""
     params = Parameters(s1=1.5, mu1=0.5, kappa=1.804897259, theta0=0.7853981633974483,
                         gamma=0.001, A=0.00075, rho=0.51)
-    _, _, orbit, _, _, status, _ = _core.sloshdyn_bridge_studies.steady_path(
+    _, _, orbit, _, _, _, status, _ = _core.sloshdyn_bridge_studies.steady_path(
         *params.array(), np.array([0.51]), np.array([0.00075]), np.zeros((4, 1), order="F"), 0,
         Integration().array(), Steady(transient_periods=20, settle_tol=0,
                                       window_periods=16).array(), 1)

@@ -71,7 +71,7 @@ def singles(request):
 @pytest.mark.parametrize("block", BLOCKS)
 def test_basin_points_in_blocks_are_their_steady_states_alone_bit_for_bit(singles, block):
     params, steady, y0, runs = singles
-    summaries, y_end, orbit, _, point_status, _, _ = STUDIES.attractor_points(
+    summaries, y_end, orbit, _, point_status, _, _, _ = STUDIES.attractor_points(
         *params.array(), y0, sloshdyn.Integration().array(), steady.array(), block)
     for i, (summary, end, _, status, _) in enumerate(runs):
         assert point_status[i] == status
@@ -113,7 +113,7 @@ def test_points_failing_mid_run_and_of_different_periods_inside_a_block():
     motions = {int(r[0][simulation.SUMMARY_COLUMNS.index("motion")]) for r in free if r[3] == 0}
     assert len(motions) >= 2          # periodic and irregular among them
     for block in BLOCKS:
-        summaries, y_end, orbit, _, point_status, status, message = STUDIES.steady_path(
+        summaries, y_end, orbit, _, point_status, _, status, message = STUDIES.steady_path(
             *FIG12.array(), rho, A, np.zeros((4, len(rho)), order="F"), 0,
             integration.array(), steady.array(), block)
         assert list(point_status) == statuses

@@ -15,8 +15,7 @@ from ..parameters import Parameters
 from ..options import Integration, Steady
 from .engine import SECONDS, Plan, Variable, positive_int, run_plan, version
 from .points import (MAX_PERIOD, MOTIONS, SUMMARY_COLUMNS, common_attrs, orbit_rows,
-                     point_messages,
-                     settings_arrays, summary_variables, unpack)
+                     point_messages, settings_arrays, summary_variables, unpack)
 
 _bridge = _core.sloshdyn_bridge_studies
 
@@ -33,13 +32,11 @@ def _basin_task(rpar, ipar, y0, integration, steady):
     shape = y0.shape[1:]
     n = int(np.prod(shape))
     flat = np.asfortranarray(y0.reshape(4, n))
-    summaries, y_end, orbit, points, status, _, message = _bridge.attractor_points(
+    summaries, y_end, orbit, points, status, messages, _, _ = _bridge.attractor_points(
         rpar, ipar, flat, integration, steady, ENSEMBLE_BLOCK)
     impact = (summaries[SUMMARY_COLUMNS.index("max_x1")] >= 1).astype(np.int32)
     out = unpack(summaries, orbit, impact, status, shape)
-    alone = lambda i: _bridge.attractor_points(                       # noqa: E731
-        rpar, ipar, np.asfortranarray(flat[:, i:i + 1]), integration, steady, 1)[-1]
-    out["message"] = point_messages(status, message, alone).reshape(shape)
+    out["message"] = point_messages(status, messages).reshape(shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
     rows = orbit_rows(orbit)
     out["orbit_found"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)

@@ -114,24 +114,18 @@ def _fragility_task(tank, records, intensities, sa_factor, period, damping, inte
 
 def _run_block(tank, ground, samples, runs, chosen, integration, out, i):
     """The seismic runs of record i (ground, samples) at the intensities of `runs` together
-    (the core's seismic_peaks), into out[...][i, j]."""
+    (the core's seismic_peaks, which returns every run's status and message: a failed run is
+    not run again), into out[...][i, j]."""
     t_end, n_out = float(chosen[0]), int(chosen[1])
     grounds = np.asfortranarray(np.stack([scaled for _, scaled, _ in runs], axis=1))
     scaled_samples = np.asfortranarray(np.stack([s for _, _, s in runs], axis=1))
-    peaks, status, message = _bridge.seismic_peaks(tank, grounds, scaled_samples, t_end, n_out,
-                                                   integration)
-    failed = 0
+    peaks, status, messages = _bridge.seismic_peaks(tank, grounds, scaled_samples, t_end,
+                                                    n_out, integration)
     for k, (j, scaled, member_samples) in enumerate(runs):
         out["status"][i, j] = status[k]
         if status[k] != 0:
-            # the first failure's message came back; the others are run again alone (the
-            # same computation, so the same failure)
-            if failed:
-                message = _bridge.seismic_response(tank, scaled, member_samples, t_end, n_out,
-                                                   integration)[-1]
-            failed += 1
             out["roof_impact"][i, j] = -1
-            out["message"][i, j] = message_text(message)
+            out["message"][i, j] = message_text(messages[k])
             continue
         _store_run(out, (i, j), peaks[:, k], (ground, samples), (scaled, member_samples))
 

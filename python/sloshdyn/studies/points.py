@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import re
 
 import numpy as np
 
@@ -100,28 +99,19 @@ def unpack(summaries, orbit, impact, status, shape, suffix="", order="C"):
 
 
 
-#: the core's prefix that numbers a failed point within its task (sloshdyn_studies'
-#: steady_path and attractor_points): cut, so that a point's message is the same whatever the
-#: task it ran in
-_POINT_PREFIX = re.compile(r"^(point \d+ \([^)]*\)|initial state \d+): ")
-
-
-def point_messages(status, message, rerun, carried=False):
+def point_messages(status, messages, carried=False):
     """The message of each point of a task (an object array of text, '' where the status is
-    0): the bridge returns the first failed point's message only, so every other failed point
-    is run again alone (rerun(i) -> its message; the same computation, so the same failure).
+    0) from the bridge's point_message: what each failed point's run alone says (the core
+    leaves out the point's number, so it is the same whatever the task it ran in).
     carried: a sweep that carries its state stops at its first failure; the points after it
     say so."""
     status = np.asarray(status).ravel()
     out = np.full(status.shape, "", dtype=object)
     failed = np.nonzero(status != 0)[0]
     for k, i in enumerate(failed):
-        if k == 0:
-            text = message_text(message)
-        elif carried:
-            text = (f"not computed: the sweep carrying the state stopped at the failure of "
-                    f"the point before ({out[failed[0]]})")
+        if carried and k > 0:
+            out[i] = (f"not computed: the sweep carrying the state stopped at the failure of "
+                      f"the point before ({out[failed[0]]})")
         else:
-            text = message_text(rerun(i))
-        out[i] = _POINT_PREFIX.sub("", text)
+            out[i] = message_text(messages[i])
     return out

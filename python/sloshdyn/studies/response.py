@@ -36,13 +36,11 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
     n = rho.size
     flat_rho = np.ascontiguousarray(rho.ravel())
     flat_a = np.ascontiguousarray(A.ravel())
-    summaries, y_end, orbit, impact, status, _, message = _bridge.steady_path(
+    summaries, y_end, orbit, impact, status, messages, _, _ = _bridge.steady_path(
         rpar, ipar, flat_rho, flat_a, np.zeros((4, n), order="F"), 0, integration, steady,
         ENSEMBLE_BLOCK)
     out = unpack(summaries, orbit, impact, status, shape)
-    out["message"] = point_messages(status, message, lambda i: _bridge.steady_path(
-        rpar, ipar, flat_rho[i:i + 1], flat_a[i:i + 1], np.zeros((4, 1), order="F"), 0,
-        integration, steady, 1)[-1]).reshape(shape)
+    out["message"] = point_messages(status, messages).reshape(shape)
     out["transient_periods"] = summaries[SUMMARY_COLUMNS.index("transient_periods")].reshape(shape)
     rows = orbit_rows(orbit)
     out["shooting"] = np.where(status == 0, rows["found"], -1).astype(np.int8).reshape(shape)
@@ -53,10 +51,10 @@ def _response_task(rpar, ipar, rho, A, integration, steady, continuation, with_g
             order = slice(None) if direction == "up" else slice(None, None, -1)
             r = np.ascontiguousarray(rho[order, j])
             a = np.ascontiguousarray(A[order, j])
-            s, _, o, imp, st, _, text = _bridge.steady_path(
+            s, _, o, imp, st, texts, _, _ = _bridge.steady_path(
                 rpar, ipar, r, a, np.zeros((4, len(r)), order="F"), 1, integration, steady, 1)
             part = unpack(s, o, imp, st, (len(r), 1), suffix=f"_{direction}")
-            part[f"message_{direction}"] = point_messages(st, text, None, carried=True)[:, None]
+            part[f"message_{direction}"] = point_messages(st, texts, carried=True)[:, None]
             parts.append({k: v[order] for k, v in part.items()})
         for k in parts[0]:
             out[k] = np.concatenate([p[k] for p in parts], axis=1)
