@@ -131,8 +131,11 @@ module sloshdyn_simulation
     procedure :: accepted => block_accepted
   end type steady_block_watch
   !> A shot's step budget per forcing period: shoot_step_factor times the steps per period the
-  !> integration has taken so far, at least shoot_min_steps.
-  real(wp), parameter :: shoot_step_factor = 10, shoot_min_steps = 1000
+  !> integration has taken so far, at least shoot_min_steps. A shot near the attractor follows
+  !> the integration's path (1.5 changed no result of benchmarks/same_bits.py, the Fig 15-17
+  !> amplitude sweep or the Fig 17 basin); where the motion is irregular most attempts fail,
+  !> many by this budget (3 instead of 10: the Fig 17 basin 1.4x cheaper, benchmarks/README.md).
+  real(wp), parameter :: shoot_step_factor = 3, shoot_min_steps = 1000
 
 contains
 
