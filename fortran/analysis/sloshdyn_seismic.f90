@@ -193,9 +193,12 @@ contains
     character(len=message_len), intent(out) :: message(:)
     type(model_t) :: models(size(grounds)), free(size(grounds))
     type(tank_properties) :: props, member_props
-    real(wp), allocatable :: tau(:), member_tau(:), modal(:, :, :)
+    real(wp), allocatable :: tau(:), member_tau(:), modal(:, :, :), history(:, :, :)
     real(wp) :: share(size(grounds)), contact(size(grounds))
+    type(peak_tracker), allocatable :: tracker(:)
+    type(ode_stats), allocatable :: stats(:)
     integer :: i, j, members(size(grounds))
+    integer, allocatable :: run(:)
 
     table = ieee_value(1.0_wp, ieee_quiet_nan)
     peaks = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -214,8 +217,10 @@ contains
     allocate (modal(n_out, props%modes, size(grounds)))
     share = 0
     contact = huge(1.0_wp)
-    call free_runs(tank, props, free, tau, options, method, share, contact, &
-                   pack(members, status == SD_OK), table, peaks, instants, modal, status, message)
+    run = pack(members, status == SD_OK)
+    allocate (history(HISTORY_ROWS, n_out, size(run)), tracker(size(run)), stats(size(run)))
+    call free_runs(tank, props, free, tau, options, method, run, history, tracker, stats, table, &
+                   peaks, instants, modal, status, message)
     ! the roof: where the free wave reaches it, the confined mass of its largest height
     do i = 1, size(grounds)
       if (status(i) /= SD_OK) cycle
@@ -230,9 +235,9 @@ contains
         peaks(PEAKS_ROOF_HEAD:PEAKS_CONFINED_MASS, i) = 0
       end if
     end do
-    call free_runs(tank, props, free, tau, options, method, share, contact, &
-                   pack(members, status == SD_OK .and. share > 0), table, peaks, instants, &
-                   modal, status, message)
+    call confined_runs(tank, props, free, tau, share, contact, &
+                       pack(members, status == SD_OK .and. share > 0), run, history, tracker, &
+                       stats, table, peaks, instants, modal, status, message)
     do i = 1, size(grounds)
       if (status(i) /= SD_OK) cycle
       ! the wave with the roof: the free wave, capped at the freeboard
@@ -264,41 +269,35 @@ contains
   end function contact_free
 
   !> The free tanks' runs (models free(j)) over the output times tau of the members j =
-  !> run(:), together (tank_histories): for each, free_results into table(:, :, j), peaks(:, j),
-  !> instants(:, :, j), modal(:, :, j); from tau_contact(j) on, the share share(j) of the
-  !> convective mass moves with the tank (tank_loads' confined_share; 0: none, the verdict's
-  !> run). With one mode the peaks and the first contact are located between the integrator's
-  !> steps (peak_tracker) of the loads and of x1 reaching 1 (the free wave at the freeboard;
-  !> none where theta0 is capped: the linear wave cannot reach a freeboard above
-  !> 2 R/(xi^2 - 1)).
-  subroutine free_runs(tank, props, free, tau, options, method, share, tau_contact, run, table, &
-                       peaks, instants, modal, status, message)
+  !> run(c), together (tank_histories), their time histories into history(:, :, c) and their
+  !> trackers, with the steps they took in, into tracker(c) (for confined_runs); for each,
+  !> free_results into table(:, :, j), peaks(:, j), instants(:, :, j), modal(:, :, j). With one
+  !> mode the peaks and the first contact are located between the integrator's steps
+  !> (peak_tracker) of the loads and of x1 reaching 1 (the free wave at the freeboard; none
+  !> where theta0 is capped: the linear wave cannot reach a freeboard above 2 R/(xi^2 - 1)).
+  subroutine free_runs(tank, props, free, tau, options, method, run, history, tracker, stats, &
+                       table, peaks, instants, modal, status, message)
     type(tank_t), intent(in) :: tank
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: free(:)
-    real(wp), intent(in) :: tau(:), share(:), tau_contact(:)
+    real(wp), intent(in) :: tau(:)
     type(ode_options), intent(in) :: options
     integer, intent(in) :: method, run(:)
+    real(wp), intent(out) :: history(:, :, :)
+    type(peak_tracker), intent(out) :: tracker(:)
+    type(ode_stats), intent(out) :: stats(:)
     real(wp), intent(inout) :: table(:, :, :), peaks(:, :), instants(:, :, :), modal(:, :, :)
     integer, intent(inout) :: status(:)
     character(len=message_len), intent(inout) :: message(:)
     type(tank_load_observation) :: loads(size(run))
-    type(peak_tracker) :: tracker(size(run))
-    type(ode_stats) :: stats(size(run))
-    real(wp), allocatable :: history(:, :, :)
     integer :: c, run_status(size(run))
     character(len=message_len) :: run_message(size(run))
 
     if (size(run) == 0) return
-    allocate (history(HISTORY_ROWS, size(tau), size(run)))
     do c = 1, size(run)
-      associate (j => run(c))
-        loads(c) = tank_load_observation(tank, props, free(j), share(j), tau_contact(j))
-        allocate (tracker(c)%level(LOAD_ROWS))
-        tracker(c)%level = 0
-        if (props%roof_reachable) tracker(c)%level(LOAD_ROWS) = 1
-        tracker(c)%keep_states = .true.
-      end associate
+      loads(c) = tank_load_observation(tank, props, free(run(c)), 0.0_wp, huge(1.0_wp))
+      call prepare_tracker(props, tracker(c))
+      tracker(c)%record_steps = .true.
     end do
     call tank_histories(free(run), spread(0.0_wp, 1, size(run)), &
                         spread([0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 2, size(run)), &
@@ -312,6 +311,54 @@ contains
       end associate
     end do
   end subroutine free_runs
+
+  !> The free runs of the members j = run(:) again with the share share(j) of the convective
+  !> mass moving with the tank from tau_contact(j) on (tank_loads' confined_share): the
+  !> tank's motion is the free run's, only the loads change, so the steps that free_runs'
+  !> tracker took in (tracker(c) of member first(c) = j) are observed again with these loads
+  !> (peak_tracker's replay), bit for bit integrating again, and free_results takes the free
+  !> run's history and statistics.
+  subroutine confined_runs(tank, props, free, tau, share, tau_contact, run, first, history, &
+                           tracker, stats, table, peaks, instants, modal, status, message)
+    type(tank_t), intent(in) :: tank
+    type(tank_properties), intent(in) :: props
+    type(model_t), intent(in) :: free(:)
+    real(wp), intent(in) :: tau(:), share(:), tau_contact(:), history(:, :, :)
+    integer, intent(in) :: run(:), first(:)
+    type(peak_tracker), intent(in) :: tracker(:)
+    type(ode_stats), intent(in) :: stats(:)
+    real(wp), intent(inout) :: table(:, :, :), peaks(:, :), instants(:, :, :), modal(:, :, :)
+    integer, intent(inout) :: status(:)
+    character(len=message_len), intent(inout) :: message(:)
+    type(tank_load_observation) :: loads
+    type(peak_tracker) :: confined
+    integer :: c, i, replay_status
+    character(len=message_len) :: replay_message
+
+    do i = 1, size(run)
+      associate (j => run(i))
+        c = findloc(first, j, dim=1)
+        loads = tank_load_observation(tank, props, free(j), share(j), tau_contact(j))
+        call prepare_tracker(props, confined)
+        call confined%replay(tracker(c)%steps, loads, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
+                             0.0_wp, tau(size(tau)), replay_status, replay_message)
+        call free_results(tank, props, free(j), tau, loads, confined, stats(c), &
+                          history(:, :, c), replay_status, replay_message, table(:, :, j), &
+                          peaks(:, j), instants(:, :, j), modal(:, :, j), status(j), message(j))
+      end associate
+    end do
+  end subroutine confined_runs
+
+  !> A tracker of a free run's loads (tank_load_observation), with the state at each peak and
+  !> the level 1 of x1 (the wave at the freeboard) where the roof can be reached.
+  subroutine prepare_tracker(props, tracker)
+    type(tank_properties), intent(in) :: props
+    type(peak_tracker), intent(out) :: tracker
+    allocate (tracker%level(LOAD_ROWS))
+    tracker%level = 0
+    if (props%roof_reachable) tracker%level(LOAD_ROWS) = 1
+    tracker%keep_states = .true.
+  end subroutine prepare_tracker
 
   !> A free run's results from its time history (its status run_status, run_message): the
   !> 'seismic' table's rows 1..SEISMIC_FREE_WAVE, the loads' peaks, the roof verdict of the

@@ -82,13 +82,14 @@ module sloshdyn_ensemble
 
   !> integrate_ensemble's watch: each member's outputs and peaks after its accepted steps.
   !> observed is an allocatable copy: gfortran 12 miscompiles an element of a pointer to a
-  !> polymorphic array.
+  !> polymorphic array; tracker points to the caller's (not copied: a tracker that records its
+  !> steps holds megabytes).
   type, extends(member_watch) :: output_watch
     real(wp), allocatable :: t0(:), t_out(:, :), y_out(:, :, :)
     integer, allocatable :: next_out(:)
     logical :: tracking = .false.
     class(observed_quantities), allocatable :: observed(:)
-    type(peak_tracker), allocatable :: tracker(:)
+    type(peak_tracker), pointer :: tracker(:) => null()
   contains
     procedure :: accepted => outputs_accepted
   end type output_watch
@@ -317,7 +318,7 @@ contains
     integer, intent(out) :: status(:)
     character(len=message_len), intent(out) :: message(:)
     class(observed_quantities), intent(in), optional, target :: observed(:)
-    type(peak_tracker), intent(inout), optional :: tracker(:)
+    type(peak_tracker), intent(inout), optional, target :: tracker(:)
     class(rk_integrator), allocatable :: proto, integ(:)
     type(member_system) :: alone
     type(output_watch) :: watch
@@ -347,7 +348,7 @@ contains
     allocate (watch%y_out(size(y_out, 1), n_out, n_members), watch%next_out(n_members))
     if (watch%tracking) then
       allocate (watch%observed, source=observed)
-      watch%tracker = tracker
+      watch%tracker => tracker
     end if
 
     ! set up every member as integrate_with does; those with a step to take become active
@@ -389,7 +390,6 @@ contains
       if (allocated(integ(i)%k)) stats(i) = integ(i)%statistics()
     end do
     y_out = watch%y_out
-    if (watch%tracking) tracker = watch%tracker
 
   contains
 

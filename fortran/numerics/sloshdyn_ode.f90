@@ -37,7 +37,7 @@ module sloshdyn_ode
   public :: check_options, integrate_with, rms_error_norm, dense_from_state, rk_begin_step
   public :: deliver_outputs, check_outputs
   public :: default_rtol, default_atol, default_max_steps
-  public :: observed_quantities, linear_observation, peak_tracker
+  public :: observed_quantities, linear_observation, peak_tracker, recorded_steps
 
   real(wp), parameter :: default_rtol = 1.0e-9_wp   !< relative tolerance unless given
   real(wp), parameter :: default_atol = 1.0e-12_wp  !< absolute tolerance unless given
@@ -237,6 +237,16 @@ module sloshdyn_ode
     procedure :: count => linear_count
   end type linear_observation
 
+  !> The accepted steps a peak_tracker took in (its record_steps): column k of data holds step
+  !> k's t_old, t, h_done, its end state y and the coefficients of its continuous extension
+  !> (cont); mold is an integrator of the run's method, whose dense output reads them. With
+  !> them tracker_replay observes the run again, other quantities, without integrating it.
+  type :: recorded_steps
+    integer :: n = 0
+    real(wp), allocatable :: data(:, :)
+    class(rk_integrator), allocatable :: mold
+  end type recorded_steps
+
   !> The largest |g_i| of observed quantities over an integration (or a window [t_from, t_to]
   !> of it), located between the steps: after each accepted step `watch` scans the continuous
   !> extension over the step at probe points, and where the best probe could hide a larger
@@ -261,9 +271,13 @@ module sloshdyn_ode
     !> state, is not evaluated again
     real(wp) :: end_time = 0
     real(wp), allocatable :: end_state(:), end_values(:)
+    !> with record_steps (set before start), the steps taken in, for tracker_replay
+    logical :: record_steps = .false.
+    type(recorded_steps) :: steps
   contains
     procedure :: start => tracker_start
     procedure :: watch => tracker_watch
+    procedure :: replay => tracker_replay
   end type peak_tracker
 
   interface
@@ -285,6 +299,19 @@ module sloshdyn_ode
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
     end subroutine tracker_watch
+
+    !> Start at (t0, y0) and take in the recorded steps of another tracker's run (its
+    !> record_steps) with the quantities obs, over the same [t_from, t_to]: the peaks, their
+    !> states and crossings of obs along that run, bit for bit those of tracking obs while
+    !> integrating it again, without integrating. Set level and keep_states before.
+    module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message)
+      class(peak_tracker), intent(inout) :: self
+      type(recorded_steps), intent(in) :: steps
+      class(observed_quantities), intent(in) :: obs
+      real(wp), intent(in) :: t0, y0(:), t_from, t_to
+      integer, intent(out) :: status
+      character(len=message_len), intent(out) :: message
+    end subroutine tracker_replay
   end interface
 
   !> In fixed-step mode a remainder this much longer than the step (relative) is taken as one

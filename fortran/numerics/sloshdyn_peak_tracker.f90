@@ -8,6 +8,7 @@ submodule (sloshdyn_ode) sloshdyn_peak_tracker
   use sloshdyn_kinds, only: wp, message_len
   use sloshdyn_status, only: SD_OK
   use sloshdyn_roots, only: bracketed_function, brent_zero, brent_minimum
+  use sloshdyn_cancel, only: check_cancel
   implicit none
 
   !> Probe intervals per step at least, and at most, of a peak_tracker's scan.
@@ -18,6 +19,11 @@ submodule (sloshdyn_ode) sloshdyn_peak_tracker
   !> step's end: a maximum closer to the end than this differs from the end's value by
   !> ~ g'' (end_gap h)^2 / 2, below the integration's error
   real(wp), parameter :: end_gap = 1.0e-6_wp
+  !> Recorded steps a replay takes in between two looks for a Ctrl-C (sloshdyn_cancel)
+  integer, parameter :: replay_poll = 256
+  !> Steps recorded before the record first grows: its pages are touched only as steps come,
+  !> so a short run costs no more than its own steps, and most seismic runs never copy theirs
+  integer, parameter :: first_capacity = 16384
 
   !> |g_i| - level (sign = 1, for zeros) or -|g_i| (sign = -1, for the maximum) on the
   !> continuous extension of the last step at t = a + s (b - a), s in [0, 1].
@@ -46,6 +52,10 @@ contains
     end if
     call obs%values(t, y, g)
     call remember_end(self, t, y, g)
+    if (self%record_steps) then
+      self%steps%n = 0
+      if (allocated(self%steps%mold)) deallocate (self%steps%mold)
+    end if
     self%peak = abs(g)
     self%time = spread(t, 1, size(g))
     if (self%keep_states) self%state = spread(y, 2, size(g))
@@ -77,6 +87,7 @@ contains
     a = max(integ%t_old, t_from)
     b = min(integ%t, t_to)
     if (b <= a) return
+    if (self%record_steps) call record_step(self%steps, integ)
     m = obs%count()
     n = step_probes
     if (self%spacing > 0) n = max(n, min(max_probes, ceiling((b - a)/self%spacing)))
@@ -211,6 +222,66 @@ contains
       if (present(y_point)) y_point = f%y
     end subroutine state_at
   end subroutine tracker_watch
+
+  module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message)
+    class(peak_tracker), intent(inout) :: self
+    type(recorded_steps), intent(in) :: steps
+    class(observed_quantities), intent(in) :: obs
+    real(wp), intent(in) :: t0, y0(:), t_from, t_to
+    integer, intent(out) :: status
+    character(len=message_len), intent(out) :: message
+    class(rk_integrator), allocatable, target :: integ
+    integer :: k, n, columns
+
+    status = SD_OK
+    message = ''
+    call self%start(obs, t0, y0)
+    if (steps%n == 0) return
+    allocate (integ, source=steps%mold)
+    n = size(y0)
+    columns = (size(steps%data, 1) - 3 - n)/n
+    do k = 1, steps%n
+      if (mod(k, replay_poll) == 0) call check_cancel(status, message)
+      if (status /= SD_OK) return
+      ! what watch and the method's dense output read of the integrator after step k
+      integ%t_old = steps%data(1, k)
+      integ%t = steps%data(2, k)
+      integ%h_done = steps%data(3, k)
+      integ%y = steps%data(4:3 + n, k)
+      if (integ%dense_output) integ%cont = reshape(steps%data(4 + n:, k), [n, columns])
+      call self%watch(integ, obs, t_from, t_to, status, message)
+      if (status /= SD_OK) return
+    end do
+  end subroutine tracker_replay
+
+  !> Append the integrator's last accepted step to steps (recorded_steps).
+  subroutine record_step(steps, integ)
+    type(recorded_steps), intent(inout) :: steps
+    class(rk_integrator), intent(in) :: integ
+    real(wp), allocatable :: grown(:, :)
+    integer :: n, width
+    n = size(integ%y)
+    if (.not. allocated(steps%mold)) then
+      allocate (steps%mold, mold=integ)
+      steps%mold%dense_output = integ%dense_output
+      width = 3 + n
+      if (integ%dense_output) width = width + size(integ%cont)
+      if (allocated(steps%data)) deallocate (steps%data)
+      allocate (steps%data(width, first_capacity))
+      steps%n = 0
+    end if
+    if (steps%n == size(steps%data, 2)) then
+      allocate (grown(size(steps%data, 1), 2*steps%n))
+      grown(:, :steps%n) = steps%data
+      call move_alloc(grown, steps%data)
+    end if
+    steps%n = steps%n + 1
+    associate (column => steps%data(:, steps%n))
+      column(1:3) = [integ%t_old, integ%t, integ%h_done]
+      column(4:3 + n) = integ%y
+      if (integ%dense_output) column(4 + n:) = reshape(integ%cont, [size(integ%cont)])
+    end associate
+  end subroutine record_step
 
   !> Keep g = g(t, y) of a step's end (or the start) for the next step's first probe.
   pure subroutine remember_end(self, t, y, g)

@@ -9,14 +9,15 @@ module rk_checks
   use sloshdyn_status, only: SD_OK, SD_BAD_INPUT, SD_STEP_TOO_SMALL, SD_TOO_MANY_STEPS, &
                              SD_NON_FINITE
   use sloshdyn_text, only: num2str
-  use sloshdyn_ode, only: ode_system, ode_options, ode_stats, rk_integrator
+  use sloshdyn_ode, only: ode_system, ode_options, ode_stats, rk_integrator, linear_observation, &
+                         peak_tracker
   use sloshdyn_integrator, only: integrate, new_integrator, method_name
   use checks, only: check_close, check_true
   implicit none
   private
   public :: riccati, oscillator, van_der_pol, nan_beyond
   public :: check_orders, fixed_step_errors, dense_output_errors, check_stepwise_api, &
-            check_failures, check_bad_input, check_without_dense_output
+            check_failures, check_bad_input, check_without_dense_output, check_replay
 
   !> y' = -a t y**2, y(0) = 1: y = 1/(1 + a t**2/2) (nonautonomous, nonlinear)
   type, extends(ode_system) :: riccati
@@ -288,6 +289,54 @@ contains
     call integ%dense((integ%t_old + integ%t)/2, y)
     call check_true(name//', dense_output = .false.: NaN inside the step', all(ieee_is_nan(y)))
   end subroutine check_without_dense_output
+
+  !> A run observed again from its recorded steps (peak_tracker's record_steps and replay)
+  !> equals tracking the other quantities while integrating it again, bit for bit: the forced
+  !> oscillator over [0, 20] (several dozen steps) recorded while tracking y1, then y2 and
+  !> y1 + y2 with crossing levels, replayed against integrated again (peaks, their times and
+  !> states, the crossings and the first of each); and the record holds every accepted step.
+  subroutine check_replay(method)
+    integer, intent(in) :: method
+    type(oscillator) :: osc
+    type(ode_options) :: opt
+    type(ode_stats) :: stats
+    type(linear_observation) :: first, other
+    type(peak_tracker) :: recording, again, replayed
+    character(len=:), allocatable :: name
+    real(wp) :: y(2, 3)
+    integer :: status, replay_status
+    character(len=message_len) :: message, replay_message
+
+    name = method_name(method)
+    opt%rtol = 1.0e-9_wp
+    opt%atol = 1.0e-11_wp
+    first = linear_observation(reshape([1.0_wp, 0.0_wp], [1, 2]))
+    other = linear_observation(reshape([0.0_wp, 1.0_wp, 1.0_wp, 1.0_wp], [2, 2]))
+    recording%record_steps = .true.
+    call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [5.0_wp, 12.0_wp, 20.0_wp], y, opt, &
+                   stats, status, message, first, recording)
+    call check_true(name//', replay: the recorded run runs: '//trim(message), status == SD_OK)
+    call check_true(name//', replay: '//num2str(recording%steps%n)//' steps recorded, one per '// &
+                    'accepted step ('//num2str(stats%n_accepted)//')', &
+                    recording%steps%n == stats%n_accepted .and. stats%n_accepted > 20)
+    again%level = [0.5_wp, 1.2_wp]
+    again%keep_states = .true.
+    replayed%level = again%level
+    replayed%keep_states = .true.
+    call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [5.0_wp, 12.0_wp, 20.0_wp], y, opt, &
+                   stats, status, message, other, again)
+    call replayed%replay(recording%steps, other, 0.0_wp, osc%exact(0.0_wp), 0.0_wp, 20.0_wp, &
+                         replay_status, replay_message)
+    call check_true(name//', replay: runs: '//trim(replay_message), replay_status == SD_OK)
+    call check_true(name//', replay: the peaks, their times and states as integrating again', &
+                    all(replayed%peak == again%peak) .and. all(replayed%time == again%time) &
+                    .and. all(replayed%state == again%state))
+    call check_true(name//', replay: the crossings ('//num2str(again%crossings(1))//', '// &
+                    num2str(again%crossings(2))//') and the first of each as integrating again', &
+                    all(replayed%crossings == again%crossings) .and. &
+                    all(replayed%first_crossing == again%first_crossing) .and. &
+                    all(again%crossings > 1))
+  end subroutine check_replay
 
   !> Failures during the integration: partial output, NaN after, the time reached.
   subroutine check_failures(method)

@@ -11,7 +11,7 @@ program test_dop853
                                  METHOD_VERN9, METHOD_AUTO
   use rk_checks, only: riccati, oscillator, van_der_pol, check_orders, fixed_step_errors, &
                        dense_output_errors, check_stepwise_api, check_failures, check_bad_input, &
-                       check_without_dense_output
+                       check_without_dense_output, check_replay
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -22,6 +22,8 @@ program test_dop853
   call check_stepwise_api(METHOD_DOP853)
   call check_without_dense_output(METHOD_DOP853)
   call check_without_dense_output(METHOD_VERN9)
+  call check_replay(METHOD_DOP853)
+  call check_replay(METHOD_VERN9)
   call check_failures(METHOD_DOP853)
   call check_bad_input(METHOD_DOP853)
   call test_vern9_dense_output_order()

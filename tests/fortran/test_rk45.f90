@@ -9,7 +9,7 @@ program test_rk45
   use sloshdyn_integrator, only: integrate, METHOD_DOPRI5
   use rk_checks, only: riccati, oscillator, check_orders, fixed_step_errors, dense_output_errors, &
                        check_stepwise_api, check_failures, check_bad_input, &
-                       check_without_dense_output
+                       check_without_dense_output, check_replay
   use checks, only: check_close, check_true, finish
   implicit none
 
@@ -22,6 +22,7 @@ program test_rk45
   call check_without_dense_output(METHOD_DOPRI5)
   call test_peak_tracker()
   call test_peaks_by_a_steps_end()
+  call check_replay(METHOD_DOPRI5)
   call check_failures(METHOD_DOPRI5)
   call check_bad_input(METHOD_DOPRI5)
   call finish()
