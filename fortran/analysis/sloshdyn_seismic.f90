@@ -164,7 +164,6 @@ contains
     real(wp) :: member_peaks(PEAKS_SIZE, 1), member_instants(PEAK_INSTANT_ROWS, PEAK_INSTANTS, 1)
     integer :: member_status(1)
     character(len=message_len) :: member_message(1)
-    allocate (tables(SEISMIC_ROWS, max(n_out, 0), 1))
     call seismic_responses(tank, [ground], t_end, n_out, options, method, tables, member_peaks, &
                            member_instants, member_status, member_message)
     table = tables(:, :, 1)
@@ -181,16 +180,22 @@ contains
   !> the roof with their confined mass, then (roof_contact = 'impact') the paper's model -- and
   !> each phase's runs go through the ensemble integrator together (tank_histories); a member
   !> that fails leaves, the others go on. One member runs by the single path.
+  !> With ends_only (for callers that want the peaks alone) a tank of one mode is run with
+  !> outputs at the start and the end alone, table(:, 1:2, i): its peaks and instants are the
+  !> same bit for bit (the trackers' depend on the steps, which the outputs never change, and
+  !> on the run's end, the last output kept), without the loads at every output.
   subroutine seismic_responses(tank, grounds, t_end, n_out, options, method, table, peaks, &
-                               instants, status, message)
+                               instants, status, message, ends_only)
     type(tank_t), intent(in) :: tank
     type(ground_motion_t), intent(in) :: grounds(:)
     real(wp), intent(in) :: t_end
     integer, intent(in) :: n_out, method
     type(ode_options), intent(in) :: options
-    real(wp), intent(out) :: table(:, :, :), peaks(:, :), instants(:, :, :)
+    real(wp), allocatable, intent(out) :: table(:, :, :)
+    real(wp), intent(out) :: peaks(:, :), instants(:, :, :)
     integer, intent(out) :: status(:)
     character(len=message_len), intent(out) :: message(:)
+    logical, intent(in), optional :: ends_only
     type(model_t) :: models(size(grounds)), free(size(grounds))
     type(tank_properties) :: props, member_props
     real(wp), allocatable :: tau(:), member_tau(:), modal(:, :, :), history(:, :, :)
@@ -199,7 +204,11 @@ contains
     type(ode_stats), allocatable :: stats(:)
     integer :: i, j, members(size(grounds))
     integer, allocatable :: run(:)
+    logical :: keep_ends
 
+    keep_ends = .false.
+    if (present(ends_only)) keep_ends = ends_only .and. tank%modes == 1 .and. n_out > 2
+    allocate (table(SEISMIC_ROWS, merge(2, max(n_out, 0), keep_ends), size(grounds)))
     table = ieee_value(1.0_wp, ieee_quiet_nan)
     peaks = ieee_value(1.0_wp, ieee_quiet_nan)
     instants = 0
@@ -214,11 +223,12 @@ contains
       tau = member_tau
     end do
     if (all(status /= SD_OK)) return
-    allocate (modal(n_out, props%modes, size(grounds)))
+    if (keep_ends) tau = [tau(1), tau(size(tau))]
+    allocate (modal(size(tau), props%modes, size(grounds)))
     share = 0
     contact = huge(1.0_wp)
     run = pack(members, status == SD_OK)
-    allocate (history(HISTORY_ROWS, n_out, size(run)), tracker(size(run)), stats(size(run)))
+    allocate (history(HISTORY_ROWS, size(tau), size(run)), tracker(size(run)), stats(size(run)))
     call free_runs(tank, props, free, tau, options, method, run, history, tracker, stats, table, &
                    peaks, instants, modal, status, message)
     ! the roof: where the free wave reaches it, the confined mass of its largest height
@@ -241,7 +251,7 @@ contains
     do i = 1, size(grounds)
       if (status(i) /= SD_OK) cycle
       ! the wave with the roof: the free wave, capped at the freeboard
-      do j = 1, n_out
+      do j = 1, size(tau)
         table(SEISMIC_WAVE_HEIGHT, j, i) = sign(min(abs(table(SEISMIC_FREE_WAVE, j, i)), &
                                                     tank%freeboard), table(SEISMIC_FREE_WAVE, j, i))
       end do

@@ -241,11 +241,12 @@ contains
   !> samples; sloshdyn_seismic's seismic_responses, the runs integrated together by the ensemble
   !> integrator; issue 43): member i is grounds(:, i), samples(:, i); peaks(:, i) and status(i)
   !> are seismic_response's for it alone, bit for bit, and messages(i) its message ('' where it
-  !> succeeded).
+  !> succeeded). No table is returned, so a tank of one mode runs with its start and end as
+  !> the only outputs (seismic_responses' ends_only).
   subroutine seismic_peaks(tank, k, grounds, n, samples, t_end, n_out, integration, peaks, &
                            status, messages)
     !f2py threadsafe
-    use sloshdyn_tables, only: SEISMIC_ROWS, PEAKS_SIZE, PEAK_INSTANT_ROWS, PEAK_INSTANTS
+    use sloshdyn_tables, only: PEAKS_SIZE, PEAK_INSTANT_ROWS, PEAK_INSTANTS
     use sloshdyn_layouts, only: INTEGRATION_SIZE, TANK_SIZE, GROUND_SIZE, to_tank, to_ground, &
                                 to_ode_options, to_method
     use sloshdyn_ground, only: ground_motion_t
@@ -263,10 +264,9 @@ contains
     do i = 1, k
       motions(i) = to_ground(grounds(:, i), samples(:, i))
     end do
-    allocate (table(SEISMIC_ROWS, max(n_out, 0), k))
     call seismic_responses(to_tank(tank), motions, t_end, int(n_out), &
                            to_ode_options(integration), to_method(integration), table, peaks, &
-                           instants, info, messages)
+                           instants, info, messages, ends_only=.true.)
     status = info
   end subroutine seismic_peaks
 
