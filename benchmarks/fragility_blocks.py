@@ -6,7 +6,9 @@ integrator in blocks of K (fragility.ENSEMBLE_BLOCK = K) and, side by side in th
 with the path before this change: every run one bridge call of seismic_response (the old
 _fragility_task's loop). Every block size's results are checked equal to the old path's, bit
 for bit. With --before PATH (a site directory holding another build, e.g. main's) the single
-path, sloshdyn.seismic_response of one run, is timed on both builds side by side too.
+path, sloshdyn.seismic_response of one run, and the task itself at the default block size
+(the other build's _fragility_task on the same inputs, its results checked equal) are timed on
+both builds side by side too.
 
 Timing as benchmarks/ensemble.py: one warm-up, then --repeats interleaved rounds, medians of
 the CPU time of the process (time.process_time) and of the wall clock; prints the processor
@@ -18,6 +20,7 @@ model and the load.
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import sys
 import time
@@ -65,6 +68,7 @@ def main():
                  sloshdyn.acceleration_factor("g"), tank.sloshing_period, 0.005,
                  integration.array())
     new_run_block = fragility._run_block
+    task_before_name = f"task at K = {fragility.ENSEMBLE_BLOCK}, before"
 
     def study(block):
         def run():
@@ -93,6 +97,8 @@ def main():
             lambda: sloshdyn.seismic_response(tank, one).peak_table)
         solvers["single run: seismic_response, before"] = (
             lambda: before.seismic_response(tank_before, one_before).peak_table)
+        before_task = importlib.import_module("sloshdyn_before.studies.fragility")._fragility_task
+        solvers[task_before_name] = lambda: before_task(*task_args)
     results = {name: run() for name, run in solvers.items()}        # warm-up
     reference = results["before: one seismic_response call a run"]
     for name, out in results.items():
@@ -104,6 +110,10 @@ def main():
         single = [results[n] for n in solvers if n.startswith("single")]
         assert all(np.array_equal(single[0][k], single[1][k], equal_nan=True)
                    for k in single[0]), "the single run differs between the builds"
+        task_before = results[task_before_name]
+        assert all(np.array_equal(task_before[k], reference[k], equal_nan=True)
+                   for k in reference if k not in (fragility.SECONDS, "message")), \
+            "the task differs between the builds"
     times = {name: [] for name in solvers}
     for _ in range(args.repeats):
         for name, run in solvers.items():
