@@ -81,10 +81,12 @@ def test_fragility_runs_in_blocks_are_the_single_runs_bit_for_bit(block, monkeyp
 
 
 def test_fragility_blocks_are_capped_by_their_outputs(monkeypatch):
-    """ENSEMBLE_OUTPUTS bounds a block's outputs (n_out x runs): at 3 runs' worth, the 5
-    intensities of a record go in blocks of 3 and 2, with the single runs' results."""
+    """ENSEMBLE_OUTPUTS bounds a block's outputs (n_out x runs): with blocks of up to 10
+    runs and outputs of 3 runs' worth, the 5 intensities of a record go in blocks of 3 and 2,
+    with the single runs' results."""
     t, motions, integration = tank(), records()[:1], sloshdyn.Integration()
     n_out = sloshdyn.seismic_defaults(t, motions[0]).n_out
+    monkeypatch.setattr(fragility, "ENSEMBLE_BLOCK", 10)
     monkeypatch.setattr(fragility, "ENSEMBLE_OUTPUTS", 3 * n_out + 1)
     sizes, run_block = [], fragility._run_block
 
@@ -148,3 +150,13 @@ def test_a_record_none_of_whose_runs_can_be_scaled_leaves_no_block():
                for m in out["message"][0])
     second = {k: v[1:] for k, v in out.items() if k != fragility.SECONDS}
     assert_same_runs(second, single_path(t, [base], sloshdyn.Integration()))
+
+
+def test_fragility_runs_of_a_tank_of_three_modes_are_the_single_runs():
+    """With modes 2..3 the peaks are read at the output times (the single run's table), so the
+    block's runs keep every output (seismic_peaks' ends_only is for one mode alone): every
+    peak equals the single run's, both phases (roof reached or not) among them."""
+    t, motions, integration = tank(modes=3), records()[:1], sloshdyn.Integration()
+    out = task(t, motions, integration)
+    assert (out["roof_impact"] == 1).any() and (out["roof_impact"] == 0).any()
+    assert_same_runs(out, single_path(t, motions, integration))
