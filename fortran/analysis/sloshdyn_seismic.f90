@@ -176,10 +176,11 @@ contains
   !> seismic_response of the tank for every ground motion grounds(i) (one t_end and n_out for
   !> all; issue 43): table(:, :, i), peaks(:, i), instants(:, :, i), status(i) and message(i),
   !> bit for bit those of seismic_response(grounds(i)) alone. The runs are made phase by phase
-  !> for all members together -- the free runs, then those of the members whose wave reached
-  !> the roof with their confined mass, then (roof_contact = 'impact') the paper's model -- and
-  !> each phase's runs go through the ensemble integrator together (tank_histories); a member
-  !> that fails leaves, the others go on. One member runs by the single path.
+  !> for all members together -- the free runs, through the ensemble integrator together
+  !> (tank_histories); then the loads with the confined mass of the members whose wave reached
+  !> the roof, along the free runs' recorded steps (confined_runs: the motion is the same);
+  !> then (roof_contact = 'impact') the paper's model, through the ensemble integrator again --
+  !> and a member that fails leaves, the others go on. One member runs by the single path.
   !> With ends_only (for callers that want the peaks alone) a tank of one mode is run with
   !> outputs at the start and the end alone, table(:, 1:2, i): its peaks and instants are the
   !> same bit for bit (the trackers' depend on the steps, which the outputs never change, and
@@ -307,7 +308,8 @@ contains
     do c = 1, size(run)
       loads(c) = tank_load_observation(tank, props, free(run(c)), 0.0_wp, huge(1.0_wp))
       call prepare_tracker(props, tracker(c))
-      tracker(c)%record_steps = .true.
+      ! for confined_runs, where the roof can be reached (one mode: the tracker's level of x1)
+      tracker(c)%record_steps = props%roof_reachable .or. props%modes > 1
     end do
     call tank_histories(free(run), spread(0.0_wp, 1, size(run)), &
                         spread([0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 2, size(run)), &
@@ -325,16 +327,16 @@ contains
   !> The free runs of the members j = run(:) again with the share share(j) of the convective
   !> mass moving with the tank from tau_contact(j) on (tank_loads' confined_share): the
   !> tank's motion is the free run's, only the loads change, so the steps that free_runs'
-  !> tracker took in (tracker(c) of member first(c) = j) are observed again with these loads
-  !> (peak_tracker's replay), bit for bit integrating again, and free_results takes the free
-  !> run's history and statistics.
-  subroutine confined_runs(tank, props, free, tau, share, tau_contact, run, first, history, &
+  !> tracker took in (tracker(c) of member free_run(c) = j) are observed again with these loads
+  !> (peak_tracker's replay), bit for bit as integrating again, and free_results takes the
+  !> free run's history and statistics (up to the step a failed replay reached).
+  subroutine confined_runs(tank, props, free, tau, share, tau_contact, run, free_run, history, &
                            tracker, stats, table, peaks, instants, modal, status, message)
     type(tank_t), intent(in) :: tank
     type(tank_properties), intent(in) :: props
     type(model_t), intent(in) :: free(:)
     real(wp), intent(in) :: tau(:), share(:), tau_contact(:), history(:, :, :)
-    integer, intent(in) :: run(:), first(:)
+    integer, intent(in) :: run(:), free_run(:)
     type(peak_tracker), intent(in) :: tracker(:)
     type(ode_stats), intent(in) :: stats(:)
     real(wp), intent(inout) :: table(:, :, :), peaks(:, :), instants(:, :, :), modal(:, :, :)
@@ -342,17 +344,21 @@ contains
     character(len=message_len), intent(inout) :: message(:)
     type(tank_load_observation) :: loads
     type(peak_tracker) :: confined
+    type(ode_stats) :: reached
     integer :: c, i, replay_status
     character(len=message_len) :: replay_message
 
     do i = 1, size(run)
       associate (j => run(i))
-        c = findloc(first, j, dim=1)
+        c = findloc(free_run, j, dim=1)
         loads = tank_load_observation(tank, props, free(j), share(j), tau_contact(j))
         call prepare_tracker(props, confined)
+        reached = stats(c)
+        ! from rest at tau = 0 over [0, tau(end)], as free_runs' tank_histories
         call confined%replay(tracker(c)%steps, loads, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
-                             0.0_wp, tau(size(tau)), replay_status, replay_message)
-        call free_results(tank, props, free(j), tau, loads, confined, stats(c), &
+                             0.0_wp, tau(size(tau)), replay_status, replay_message, &
+                             reached%t_reached)
+        call free_results(tank, props, free(j), tau, loads, confined, reached, &
                           history(:, :, c), replay_status, replay_message, table(:, :, j), &
                           peaks(:, j), instants(:, :, j), modal(:, :, j), status(j), message(j))
       end associate

@@ -242,7 +242,7 @@ module sloshdyn_ode
   !> (cont); mold is an integrator of the run's method, whose dense output reads them. With
   !> them tracker_replay observes the run again, other quantities, without integrating it.
   type :: recorded_steps
-    integer :: n = 0
+    integer :: n = 0, state_size = 0
     real(wp), allocatable :: data(:, :)
     class(rk_integrator), allocatable :: mold
   end type recorded_steps
@@ -303,14 +303,18 @@ module sloshdyn_ode
     !> Start at (t0, y0) and take in the recorded steps of another tracker's run (its
     !> record_steps) with the quantities obs, over the same [t_from, t_to]: the peaks, their
     !> states and crossings of obs along that run, bit for bit those of tracking obs while
-    !> integrating it again, without integrating. Set level and keep_states before.
-    module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message)
+    !> integrating it again, without integrating. Set level and keep_states before. t_reached:
+    !> the end of the last step taken in (t0 before the first), where integrating again would
+    !> have stopped had a step failed.
+    module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message, &
+                                     t_reached)
       class(peak_tracker), intent(inout) :: self
       type(recorded_steps), intent(in) :: steps
       class(observed_quantities), intent(in) :: obs
       real(wp), intent(in) :: t0, y0(:), t_from, t_to
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
+      real(wp), intent(out), optional :: t_reached
     end subroutine tracker_replay
   end interface
 

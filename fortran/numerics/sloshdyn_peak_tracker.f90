@@ -6,7 +6,7 @@ submodule (sloshdyn_ode) sloshdyn_peak_tracker
   ! by use, not only from the parent: meson rebuilds a submodule when a module it uses changes,
   ! not when one its parent uses does (a stale object then calls the old interfaces)
   use sloshdyn_kinds, only: wp, message_len
-  use sloshdyn_status, only: SD_OK
+  use sloshdyn_status, only: SD_OK, SD_BAD_INPUT
   use sloshdyn_roots, only: bracketed_function, brent_zero, brent_minimum
   use sloshdyn_cancel, only: check_cancel
   implicit none
@@ -223,26 +223,36 @@ contains
     end subroutine state_at
   end subroutine tracker_watch
 
-  module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message)
+  module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message, &
+                                   t_reached)
     class(peak_tracker), intent(inout) :: self
     type(recorded_steps), intent(in) :: steps
     class(observed_quantities), intent(in) :: obs
     real(wp), intent(in) :: t0, y0(:), t_from, t_to
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
+    real(wp), intent(out), optional :: t_reached
     class(rk_integrator), allocatable, target :: integ
     integer :: k, n, columns
 
     status = SD_OK
     message = ''
+    if (present(t_reached)) t_reached = t0
+    n = size(y0)
+    if (steps%n > 0 .and. steps%state_size /= n) then
+      status = SD_BAD_INPUT
+      message = 'tracker_replay: y0 has '//num2str(n)//' components, the recorded run''s '// &
+                'state has '//num2str(steps%state_size)
+      return
+    end if
     call self%start(obs, t0, y0)
     if (steps%n == 0) return
     allocate (integ, source=steps%mold)
-    n = size(y0)
     columns = (size(steps%data, 1) - 3 - n)/n
     do k = 1, steps%n
       if (mod(k, replay_poll) == 0) call check_cancel(status, message)
       if (status /= SD_OK) return
+      if (present(t_reached)) t_reached = steps%data(2, k)
       ! what watch and the method's dense output read of the integrator after step k
       integ%t_old = steps%data(1, k)
       integ%t = steps%data(2, k)
@@ -264,6 +274,7 @@ contains
     if (.not. allocated(steps%mold)) then
       allocate (steps%mold, mold=integ)
       steps%mold%dense_output = integ%dense_output
+      steps%state_size = n
       width = 3 + n
       if (integ%dense_output) width = width + size(integ%cont)
       if (allocated(steps%data)) deallocate (steps%data)

@@ -303,7 +303,7 @@ contains
     type(linear_observation) :: first, other
     type(peak_tracker) :: recording, again, replayed
     character(len=:), allocatable :: name
-    real(wp) :: y(2, 3)
+    real(wp) :: y(2, 3), t_reached
     integer :: status, replay_status
     character(len=message_len) :: message, replay_message
 
@@ -326,8 +326,9 @@ contains
     call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [5.0_wp, 12.0_wp, 20.0_wp], y, opt, &
                    stats, status, message, other, again)
     call replayed%replay(recording%steps, other, 0.0_wp, osc%exact(0.0_wp), 0.0_wp, 20.0_wp, &
-                         replay_status, replay_message)
-    call check_true(name//', replay: runs: '//trim(replay_message), replay_status == SD_OK)
+                         replay_status, replay_message, t_reached)
+    call check_true(name//', replay: runs to the run''s end, 20: '//trim(replay_message), &
+                    replay_status == SD_OK .and. t_reached == 20)
     call check_true(name//', replay: the peaks, their times and states as integrating again', &
                     all(replayed%peak == again%peak) .and. all(replayed%time == again%time) &
                     .and. all(replayed%state == again%state))
@@ -336,6 +337,10 @@ contains
                     all(replayed%crossings == again%crossings) .and. &
                     all(replayed%first_crossing == again%first_crossing) .and. &
                     all(again%crossings > 1))
+    call replayed%replay(recording%steps, other, 0.0_wp, [1.0_wp], 0.0_wp, 20.0_wp, &
+                         replay_status, replay_message)
+    call check_true(name//', replay: a y0 of another size is refused: '//trim(replay_message), &
+                    replay_status == SD_BAD_INPUT .and. index(replay_message, 'y0') > 0)
   end subroutine check_replay
 
   !> Failures during the integration: partial output, NaN after, the time reached.

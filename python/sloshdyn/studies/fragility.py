@@ -48,12 +48,12 @@ _FRAGILITY_LOADS = {
 #: Runs of one record integrated together by the ensemble integrator (the core's
 #: seismic_responses) at most: chosen by measurement (benchmarks/README.md, "Ensembles",
 #: "The fragility study in blocks", and "A run that reaches the roof observed again"): 1
-#: since each run keeps its recorded steps, megabytes, which a block of runs asks of the
-#: system afresh every block while one run's are reused from the last.
+#: since each run keeps its recorded steps, megabytes, which glibc's allocator hands a block
+#: of runs afresh every block while one run's are reused from the last.
 ENSEMBLE_BLOCK = 1
-#: ... and outputs (n_out x runs) in a block at most: a member holds its tables, about 32
-#: numbers an output (256 MB for the block at this cap; a block of 10 runs reaches it only
-#: past 100 000 outputs a run)
+#: ... and outputs (n_out x runs) in a block at most, for a larger block: a member of a tank
+#: of several modes holds its tables, about 32 numbers an output (256 MB for the block at this
+#: cap; a block of 10 runs reaches it only past 100 000 outputs a run)
 ENSEMBLE_OUTPUTS = 1_000_000
 
 
