@@ -274,6 +274,11 @@ module sloshdyn_ode
     !> with record_steps (set before start), the steps taken in, for tracker_replay
     logical :: record_steps = .false.
     type(recorded_steps) :: steps
+    !> watch's work arrays, kept from step to step (allocating them at every step cost ~4 %
+    !> of a seismic run): the probes' positions, values and order, the values just inside the
+    !> step's ends, and the state and values at one point of the step
+    real(wp), allocatable :: probe_s(:), probe_g(:, :), inside_g(:, :), point_y(:), point_g(:)
+    integer, allocatable :: probe_order(:)
   contains
     procedure :: start => tracker_start
     procedure :: watch => tracker_watch
@@ -292,7 +297,7 @@ module sloshdyn_ode
     !> Take in the part [a, b] = [t_old, t] & [t_from, t_to] of the integrator's last accepted
     !> step (see peak_tracker).
     module subroutine tracker_watch(self, integ, obs, t_from, t_to, status, message)
-      class(peak_tracker), intent(inout) :: self
+      class(peak_tracker), intent(inout), target :: self
       class(rk_integrator), intent(in), target :: integ
       class(observed_quantities), intent(in), target :: obs
       real(wp), intent(in) :: t_from, t_to

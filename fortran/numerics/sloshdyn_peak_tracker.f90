@@ -32,7 +32,7 @@ submodule (sloshdyn_ode) sloshdyn_peak_tracker
     class(observed_quantities), pointer :: obs => null()
     real(wp) :: a = 0, b = 0, level = 0, sign = 1
     integer :: i = 1
-    real(wp), allocatable :: y(:), g(:)
+    real(wp), pointer :: y(:) => null(), g(:) => null()   !< the tracker's point_y, point_g
   contains
     procedure :: value => dense_quantity_value
   end type dense_quantity
@@ -68,18 +68,18 @@ contains
   !> step (see peak_tracker). The interpolant of a step taken without dense output is not
   !> available: then only its end counts.
   module subroutine tracker_watch(self, integ, obs, t_from, t_to, status, message)
-    class(peak_tracker), intent(inout) :: self
+    class(peak_tracker), intent(inout), target :: self
     class(rk_integrator), intent(in), target :: integ
     class(observed_quantities), intent(in), target :: obs
     real(wp), intent(in) :: t_from, t_to
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(dense_quantity) :: f
-    real(wp), allocatable :: s(:), g(:, :), g_peak(:), g_inside(:, :)
+    real(wp), pointer :: s(:), g(:, :), g_peak(:), g_inside(:, :)
     logical :: inside_known(0:1), refine
     real(wp) :: a, b, best, rise, s_best, f_best, s_left, s_right, s_root, f_root, v_left, v
     integer :: m, n, i, j, k, n_points
-    integer, allocatable :: order(:)
+    integer, pointer :: order(:)
 
     status = SD_OK
     message = ''
@@ -95,13 +95,19 @@ contains
       a = b
       n = 0
     end if
+    call prepare_work(self, m, n, size(integ%y))
     ! the probes, and room for one refined maximum per quantity
-    allocate (s(0:n + 1), g(m, 0:n + 1), order(0:n + 1), g_peak(m), g_inside(m, 0:1))
+    s(0:n + 1) => self%probe_s
+    g(1:m, 0:n + 1) => self%probe_g
+    order(0:n + 1) => self%probe_order
+    g_inside(1:m, 0:1) => self%inside_g
+    f%y => self%point_y
+    f%g => self%point_g
+    g_peak => self%point_g          ! free while no search runs: state_at's values at a peak
     f%integ => integ
     f%obs => obs
     f%a = a
     f%b = b
-    allocate (f%y(size(integ%y)), f%g(m))
     do j = 0, n
       s(j) = real(j, wp)/max(n, 1)
       call state_at(s(j), g(:, j))
@@ -233,7 +239,7 @@ contains
     character(len=message_len), intent(out) :: message
     real(wp), intent(out), optional :: t_reached
     class(rk_integrator), allocatable, target :: integ
-    integer :: k, n, columns
+    integer :: k, n, c, columns
 
     status = SD_OK
     message = ''
@@ -249,6 +255,10 @@ contains
     if (steps%n == 0) return
     allocate (integ, source=steps%mold)
     columns = (size(steps%data, 1) - 3 - n)/n
+    if (integ%dense_output) then           ! the mold has no arrays: its type and settings only
+      if (allocated(integ%cont)) deallocate (integ%cont)
+      allocate (integ%cont(n, columns))
+    end if
     do k = 1, steps%n
       if (mod(k, replay_poll) == 0) call check_cancel(status, message)
       if (status /= SD_OK) return
@@ -258,7 +268,11 @@ contains
       integ%t = steps%data(2, k)
       integ%h_done = steps%data(3, k)
       integ%y = steps%data(4:3 + n, k)
-      if (integ%dense_output) integ%cont = reshape(steps%data(4 + n:, k), [n, columns])
+      if (integ%dense_output) then
+        do c = 1, columns        ! not reshape: it copies through a temporary
+          integ%cont(:, c) = steps%data(4 + c*n:3 + (c + 1)*n, k)
+        end do
+      end if
       call self%watch(integ, obs, t_from, t_to, status, message)
       if (status /= SD_OK) return
     end do
@@ -269,7 +283,7 @@ contains
     type(recorded_steps), intent(inout) :: steps
     class(rk_integrator), intent(in) :: integ
     real(wp), allocatable :: grown(:, :)
-    integer :: n, width
+    integer :: n, width, c
     n = size(integ%y)
     if (.not. allocated(steps%mold)) then
       allocate (steps%mold, mold=integ)
@@ -290,9 +304,29 @@ contains
     associate (column => steps%data(:, steps%n))
       column(1:3) = [integ%t_old, integ%t, integ%h_done]
       column(4:3 + n) = integ%y
-      if (integ%dense_output) column(4 + n:) = reshape(integ%cont, [size(integ%cont)])
+      if (integ%dense_output) then
+        do c = 1, size(integ%cont, 2)       ! not reshape: it copies through a temporary
+          column(4 + c*n:3 + (c + 1)*n) = integ%cont(:, c)
+        end do
+      end if
     end associate
   end subroutine record_step
+
+  !> watch's work arrays (peak_tracker's probe_s ... point_g) for m quantities, n + 1 probes
+  !> and a state of size n_y, allocated when missing or too small.
+  subroutine prepare_work(self, m, n, n_y)
+    class(peak_tracker), intent(inout) :: self
+    integer, intent(in) :: m, n, n_y
+    logical :: fits
+    fits = allocated(self%probe_g)
+    if (fits) fits = size(self%probe_g, 1) == m .and. size(self%probe_s) >= n + 2 .and. &
+                     size(self%point_y) == n_y
+    if (fits) return
+    if (allocated(self%probe_g)) deallocate (self%probe_s, self%probe_g, self%probe_order, &
+                                             self%inside_g, self%point_y, self%point_g)
+    allocate (self%probe_s(n + 2), self%probe_g(m, n + 2), self%probe_order(n + 2), &
+              self%inside_g(m, 2), self%point_y(n_y), self%point_g(m))
+  end subroutine prepare_work
 
   !> Keep g = g(t, y) of a step's end (or the start) for the next step's first probe.
   pure subroutine remember_end(self, t, y, g)
