@@ -53,6 +53,7 @@ contains
     real(wp), intent(in) :: x(:)
     real(wp), intent(out) :: s(:), c(:)
     integer :: i
+    real(wp) :: big
     real(wp) :: fn, q, odd, a, r1, e1, r2, e2, lo, y0, y1, ks, kc, swapped_s, swapped_c
     do i = 1, size(x)
       fn = (x(i)*two_over_pi + round_shift) - round_shift
@@ -73,7 +74,13 @@ contains
       s(i) = merge(-swapped_s, swapped_s, q > 1.5_wp)
       c(i) = merge(-swapped_c, swapped_c, abs(q - 1.5_wp) < 1)
     end do
-    !GCC$ novector
+    ! (prototype's change: a vectorisable test for arguments out of range, then the scalar
+    ! redo only if there is one; the bits are those of the original)
+    big = 0
+    do i = 1, size(x)
+      big = big + merge(1.0_wp, 0.0_wp, .not. abs(x(i)) <= REDUCTION_LIMIT)
+    end do
+    if (big == 0) return
     do i = 1, size(x)
       if (.not. abs(x(i)) <= REDUCTION_LIMIT) then
         s(i) = sin(x(i))
