@@ -3,8 +3,14 @@
 !> looped? Standalone: no dependency on the sloshdyn library. benchmarks/ensemble_soa.py builds
 !> it (gfortran -O3 -ffp-contract=off, SSE2 and -mavx2 -mno-fma), checks it and times it.
 !>
-!> The sine-cosine kernels below are benchmarks/sincos_kernels.f90's module, copied verbatim
-!> (fdlibm's polynomials, branch-free reduction: the same bits scalar and vectorised).
+!> The sine-cosine kernels below are benchmarks/sincos_kernels.f90's module (fdlibm's
+!> polynomials, branch-free reduction: the same bits scalar and vectorised), copied with two
+!> changes that keep its bits: the test for arguments beyond the reduction's range is a
+!> vectorised pass, and a call whose arguments are all below pi/4 skips the reduction (which
+!> gives n = 0 and the argument itself there). The right-hand side makes two calls, one for its
+!> three small angles (pendulum angles and their sum: below pi/4 in the Fig 14 case), one for
+!> the forcing phase rho tau. Built with -cpp -DFULL_REDUCTION, every call takes the full path
+!> (the kernels as in sincos_kernels.f90), for comparison.
 !> The sine and cosine kernels of issue 43's experiment (2026-12-03), kept here as a benchmark:
 !> fdlibm's method (FreeBSD msun k_sin.c, k_cos.c, e_rem_pio2.c) with the reduction's branches
 !> replaced by exact two-sums and the quadrant chosen by rounding, so that a loop over many
@@ -19,6 +25,8 @@ module sincos_kernels
 
   !> |x| up to which the kernels' reduction is exact (fdlibm's medium range, 2^20 pi/2 ~ 1.647e6).
   real(wp), parameter :: REDUCTION_LIMIT = 1.6e6_wp
+  !> |x| below which x*2/pi rounds to n = 0 with room to spare (pi/4 = 0.785398...)
+  real(wp), parameter :: SMALL_LIMIT = 0.78_wp
 
   real(wp), parameter :: two_over_pi = 6.36619772367581382433e-01_wp
   !> pi/2 = pio2_1 + pio2_2 + pio2_3 + pio2_3t (e_rem_pio2.c: 33 + 33 + 33 + 53 bits)
@@ -55,6 +63,23 @@ contains
     integer :: i
     real(wp) :: big
     real(wp) :: fn, q, odd, a, r1, e1, r2, e2, lo, y0, y1, ks, kc, swapped_s, swapped_c
+    ! (prototype's addition: when every argument is below pi/4, fdlibm's own first case, the
+    ! reduction below would give n = 0, y0 = x + 0, y1 = +0 exactly, so it is skipped; the
+    ! test is one vectorised pass and the bits are those of the full path)
+#ifndef FULL_REDUCTION
+    big = 0
+    do i = 1, size(x)
+      big = big + merge(0.0_wp, 1.0_wp, abs(x(i)) <= SMALL_LIMIT)
+    end do
+    if (big == 0) then
+      do i = 1, size(x)
+        y0 = x(i) + 0.0_wp
+        s(i) = kernel_sin(y0, 0.0_wp)
+        c(i) = kernel_cos(y0, 0.0_wp)
+      end do
+      return
+    end if
+#endif
     do i = 1, size(x)
       fn = (x(i)*two_over_pi + round_shift) - round_shift
       ! q = n mod 4 and odd = n mod 2 by the same rounding (floor(v) = round(v - 3/8) for v in Z/4)
@@ -200,7 +225,8 @@ contains
       ang(2*m + i) = ang(i) + ang(m + i)
       ang(3*m + i) = p%rho*tau(i)
     end do
-    call sin_cos_many(ang, s, c)
+    call sin_cos_many(ang(1:3*m), s(1:3*m), c(1:3*m))        ! small angles: no reduction
+    call sin_cos_many(ang(3*m + 1:), s(3*m + 1:), c(3*m + 1:))   ! the forcing phase
     call int_power(m, y(1:m, 1), p%n_imp, pimp)
     call int_power(m, y(1:m, 1), p%n_dis, pdis)
     do i = 1, m

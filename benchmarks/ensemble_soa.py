@@ -2,8 +2,9 @@
 and cosine (benchmarks/ensemble_soa.f90, standalone Fortran) against numbalsoda's dop853 looped.
 
 Builds ensemble_soa.f90 with gfortran into a temporary directory (portable SSE2:
--O3 -ffp-contract=off -fstack-arrays; and, where the processor has AVX2, the same with
--mavx2 -mno-fma), then on the 64 trajectories of benchmarks/ensemble.py (Fig 14 parameters,
+-cpp -O3 -ffp-contract=off -fstack-arrays; and, where the processor has AVX2, the same with
+-mavx2 -mno-fma; and for comparison each without the kernels' small-argument path
+(-DFULL_REDUCTION), and SSE2 without vectorisation), then on the 64 trajectories of benchmarks/ensemble.py (Fig 14 parameters,
 the paper's y0 = (0.01, 0, 0.01, 0) and 63 uniform in +-0.02, seed 43; 100 forcing periods,
 output at the end only) at rtol 1e-6, 1e-9, 1e-12 (atol = 1e-3 rtol) times, interleaved,
 medians of --repeats rounds of CPU time:
@@ -46,8 +47,15 @@ from peers import Numba, fig14_parameters, python_rhs         # noqa: E402
 from run import cpu_model                                     # noqa: E402
 
 SOURCE = HERE / "ensemble_soa.f90"
-BASE_FLAGS = ["-O3", "-ffp-contract=off", "-fstack-arrays"]
-BUILDS = {"SSE2": [], "AVX2": ["-mavx2", "-mno-fma"]}
+BASE_FLAGS = ["-cpp", "-O3", "-ffp-contract=off", "-fstack-arrays"]
+AVX2 = ["-mavx2", "-mno-fma"]
+#: name: (extra flags, also timed with K = 1). FULL_REDUCTION: the kernels without the
+#: small-argument path (as in sincos_kernels.f90); no SIMD: member-fastest without vectors.
+BUILDS = {"SSE2": ([], True),
+          "SSE2 full reduction": (["-DFULL_REDUCTION"], False),
+          "SSE2 no SIMD": (["-fno-tree-vectorize", "-fno-tree-slp-vectorize"], False),
+          "AVX2": (AVX2, True),
+          "AVX2 full reduction": (AVX2 + ["-DFULL_REDUCTION"], False)}
 
 
 def has_avx2():
@@ -60,10 +68,10 @@ def has_avx2():
 def build(directory):
     """{build name: (path of the executable, command line)}."""
     exes = {}
-    for name, extra in BUILDS.items():
-        if extra and not has_avx2():
+    for name, (extra, _) in BUILDS.items():
+        if "-mavx2" in extra and not has_avx2():
             continue
-        exe = Path(directory) / f"ensemble_soa_{name.lower()}"
+        exe = Path(directory) / f"ensemble_soa_{name.lower().replace(' ', '_')}"
         cmd = ["gfortran", *BASE_FLAGS, *extra, "-o", str(exe), str(SOURCE)]
         subprocess.run(cmd, check=True, cwd=directory)
         exes[name] = (exe, " ".join(["gfortran", *BASE_FLAGS, *extra, "-o", exe.name,
@@ -137,7 +145,8 @@ def main():
         solvers = {"numbalsoda dop853, loop of 64": None}
         for name in exes:
             solvers[f"prototype {name}, K = 64"] = (name, n)
-            solvers[f"prototype {name}, K = 1 x 64"] = (name, 1)
+            if BUILDS[name][1]:
+                solvers[f"prototype {name}, K = 1 x 64"] = (name, 1)
         ref = [nb.integrate(p, y, t_end, rtol, atol, count=True) for y in states]  # warm-up
         y_nb = np.array([r[0] for r in ref])
         nfev_nb = sum(r[1] for r in ref)
