@@ -1,9 +1,11 @@
-!> The sine and cosine kernels of issue 43's experiment (2026-12-03), kept here as a benchmark:
-!> fdlibm's method (FreeBSD msun k_sin.c, k_cos.c, e_rem_pio2.c) with the reduction's branches
-!> replaced by exact two-sums and the quadrant chosen by rounding, so that a loop over many
-!> arguments vectorises with the bits of one argument at a time. benchmarks/sincos_kernels.py
-!> builds this file several ways, checks the bits and the accuracy and times it against libm.
-!> Not used by the core (see benchmarks/README.md, "Own sine and cosine kernels").
+!> The sine and cosine kernels of issue 43's experiments (2026-12-03, 2026-12-07), kept as
+!> benchmarks (not used by the core; benchmarks/README.md, "Own sine and cosine kernels" and
+!> "A member-fastest ensemble, prototyped"): fdlibm's method (FreeBSD msun k_sin.c, k_cos.c,
+!> e_rem_pio2.c) with the reduction's branches replaced by exact two-sums and the quadrant
+!> chosen by rounding, so that a loop over many arguments vectorises with the bits of one
+!> argument at a time. Preprocess it (-cpp); -DFULL_REDUCTION takes the reduction for every
+!> call (the 2026-12-03 kernels). Used by sincos_bench.f90 (sincos_kernels.py) and
+!> ensemble_soa.f90 (ensemble_soa.py).
 module sincos_kernels
   use, intrinsic :: iso_fortran_env, only: wp => real64
   implicit none
@@ -12,6 +14,8 @@ module sincos_kernels
 
   !> |x| up to which the kernels' reduction is exact (fdlibm's medium range, 2^20 pi/2 ~ 1.647e6).
   real(wp), parameter :: REDUCTION_LIMIT = 1.6e6_wp
+  !> |x| below which x*2/pi rounds to n = 0 with room to spare (pi/4 = 0.785398...)
+  real(wp), parameter :: SMALL_LIMIT = 0.78_wp
 
   real(wp), parameter :: two_over_pi = 6.36619772367581382433e-01_wp
   !> pi/2 = pio2_1 + pio2_2 + pio2_3 + pio2_3t (e_rem_pio2.c: 33 + 33 + 33 + 53 bits)
@@ -46,7 +50,25 @@ contains
     real(wp), intent(in) :: x(:)
     real(wp), intent(out) :: s(:), c(:)
     integer :: i
+    real(wp) :: big
     real(wp) :: fn, q, odd, a, r1, e1, r2, e2, lo, y0, y1, ks, kc, swapped_s, swapped_c
+    ! (prototype's addition: when every argument is below pi/4, fdlibm's own first case, the
+    ! reduction below would give n = 0, y0 = x + 0, y1 = +0 exactly, so it is skipped; the
+    ! test is one vectorised pass and the bits are those of the full path)
+#ifndef FULL_REDUCTION
+    big = 0
+    do i = 1, size(x)
+      big = big + merge(0.0_wp, 1.0_wp, abs(x(i)) <= SMALL_LIMIT)
+    end do
+    if (big == 0) then
+      do i = 1, size(x)
+        y0 = x(i) + 0.0_wp
+        s(i) = kernel_sin(y0, 0.0_wp)
+        c(i) = kernel_cos(y0, 0.0_wp)
+      end do
+      return
+    end if
+#endif
     do i = 1, size(x)
       fn = (x(i)*two_over_pi + round_shift) - round_shift
       ! q = n mod 4 and odd = n mod 2 by the same rounding (floor(v) = round(v - 3/8) for v in Z/4)
@@ -66,7 +88,13 @@ contains
       s(i) = merge(-swapped_s, swapped_s, q > 1.5_wp)
       c(i) = merge(-swapped_c, swapped_c, abs(q - 1.5_wp) < 1)
     end do
-    !GCC$ novector
+    ! (prototype's change: a vectorisable test for arguments out of range, then the scalar
+    ! redo only if there is one; the bits are those of the original)
+    big = 0
+    do i = 1, size(x)
+      big = big + merge(1.0_wp, 0.0_wp, .not. abs(x(i)) <= REDUCTION_LIMIT)
+    end do
+    if (big == 0) return
     do i = 1, size(x)
       if (.not. abs(x(i)) <= REDUCTION_LIMIT) then
         s(i) = sin(x(i))
@@ -109,96 +137,3 @@ contains
   end function kernel_cos
 
 end module sincos_kernels
-
-program sincos_bench
-  use, intrinsic :: iso_fortran_env, only: wp => real64, int64
-  use sincos_kernels, only: sin_cos, sin_cos_many
-  implicit none
-  character(len=256) :: mode, path
-  integer :: n, u, i, r
-  real(wp), allocatable :: x(:), s(:), c(:), s1(:), c1(:)
-  call get_command_argument(1, mode)
-  call get_command_argument(2, path)
-  if (mode == 'values') then
-    open (newunit=u, file=trim(path), access='stream', form='unformatted', status='old')
-    read (u) n
-    allocate (x(n), s(n), c(n), s1(n), c1(n))
-    read (u) x
-    close (u)
-    call sin_cos_many(x, s, c)
-    do i = 1, n
-      call sin_cos(x(i), s1(i), c1(i))
-    end do
-    if (any(transfer(s, 1_int64, n) /= transfer(s1, 1_int64, n)) .or. &
-        any(transfer(c, 1_int64, n) /= transfer(c1, 1_int64, n))) then
-      print '(a)', 'scalar and vectorised calls differ'
-    else
-      print '(a)', 'scalar and vectorised calls agree'
-    end if
-    open (newunit=u, file=trim(path)//'.out', access='stream', form='unformatted', status='replace')
-    write (u) s, c
-    close (u)
-  else
-    call timings()
-  end if
-contains
-  !> ns per (sine, cosine) pair: 192 pendulum-sized angles at once; and three angles at a time,
-  !> as one right-hand side of the tank model needs them (two small, one forcing phase).
-  subroutine timings()
-    integer, parameter :: m = 192, reps = 20000
-    real(wp) :: a(m), sa(m), ca(m), y(3), sy(3), cy(3), acc, t0, t1
-    integer :: j
-    call random_number(a)
-    a = (a - 0.5_wp)*0.6_wp
-    acc = 0
-    call cpu_time(t0)
-    do r = 1, reps
-      a(1) = a(1) + 1e-12_wp*acc
-      call sin_cos_many(a, sa, ca)
-      acc = acc + sa(7) + ca(9)
-    end do
-    call cpu_time(t1)
-    print '(a, f8.3)', 'kernels, 192 arguments per call: ', (t1 - t0)/(m*real(reps, wp))*1e9_wp
-    call cpu_time(t0)
-    do r = 1, reps
-      a(1) = a(1) + 1e-12_wp*acc
-      do j = 1, m
-        sa(j) = sin(a(j))
-        ca(j) = cos(a(j))
-      end do
-      acc = acc + sa(7) + ca(9)
-    end do
-    call cpu_time(t1)
-    print '(a, f8.3)', 'libm, 192 arguments in a loop: ', (t1 - t0)/(m*real(reps, wp))*1e9_wp
-    call cpu_time(t0)
-    do r = 1, reps*m/3
-      y = [0.21_wp, -0.13_wp, 700.0_wp] + r*1e-9_wp + acc*1e-30_wp
-      call sin_cos_many(y, sy, cy)
-      acc = acc + sy(1) + cy(3)
-    end do
-    call cpu_time(t1)
-    print '(a, f8.3)', 'kernels, 3 arguments per call: ', (t1 - t0)/(m*real(reps, wp))*1e9_wp
-    call cpu_time(t0)
-    do r = 1, reps*m/3
-      y = [0.21_wp, -0.13_wp, 700.0_wp] + r*1e-9_wp + acc*1e-30_wp
-      do j = 1, 3
-        call sin_cos(y(j), sy(j), cy(j))
-      end do
-      acc = acc + sy(1) + cy(3)
-    end do
-    call cpu_time(t1)
-    print '(a, f8.3)', 'kernels, 3 scalar calls: ', (t1 - t0)/(m*real(reps, wp))*1e9_wp
-    call cpu_time(t0)
-    do r = 1, reps*m/3
-      y = [0.21_wp, -0.13_wp, 700.0_wp] + r*1e-9_wp + acc*1e-30_wp
-      do j = 1, 3
-        sy(j) = sin(y(j))
-        cy(j) = cos(y(j))
-      end do
-      acc = acc + sy(1) + cy(3)
-    end do
-    call cpu_time(t1)
-    print '(a, f8.3)', 'libm, 3 arguments: ', (t1 - t0)/(m*real(reps, wp))*1e9_wp
-    if (acc /= acc) print '(a)', 'NaN'
-  end subroutine timings
-end program sincos_bench

@@ -1,9 +1,9 @@
 """Own sine and cosine kernels against libm (issue 43, 2026-12-03): benchmarks/sincos_kernels.f90
-built with gfortran four ways (-O0; -O3 portable, i.e. SSE2; -O3 -mavx2 -mno-fma; -O3
--march=native), all with -ffp-contract=off. For each build: whether its vectorised and scalar
-calls give the same bits, and a fingerprint of its values on the test arguments (the same
-fingerprint for every build = the same bits on every vector width); the worst error against
-mpmath at 40 digits in units in the last place; and the CPU time per (sine, cosine) pair of the
+as on that day (-DFULL_REDUCTION) with the program sincos_bench.f90, built with gfortran four
+ways (-O0; -O3 portable, i.e. SSE2; -O3 -mavx2 -mno-fma; -O3 -march=native), all with
+-ffp-contract=off. For each build: whether its vectorised and scalar calls give the same
+bits, and a fingerprint of its values on the test arguments (the same fingerprint for every
+build = the same bits on every vector width); the worst error against mpmath at 40 digits in units in the last place; and the CPU time per (sine, cosine) pair of the
 kernels and of libm's sin and cos in the same process, for 192 pendulum-sized angles per call and
 for the three angles of one right-hand side (two small, one forcing phase). Prints the processor
 model and the load. Builds that the processor cannot run (e.g. -mavx2 without AVX2) are reported
@@ -28,7 +28,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from run import cpu_model                                  # noqa: E402
 
-SOURCE = Path(__file__).resolve().parent / "sincos_kernels.f90"
+#: the kernels (their 2026-12-03 form: -DFULL_REDUCTION) and the program that checks and times them
+SOURCES = [Path(__file__).resolve().parent / name for name in ("sincos_kernels.f90", "sincos_bench.f90")]
 BUILDS = {"-O0": ["-O0"], "-O3 (portable: SSE2)": ["-O3"],
           "-O3 -mavx2 -mno-fma": ["-O3", "-mavx2", "-mno-fma"],
           "-O3 -march=native": ["-O3", "-march=native"]}
@@ -80,7 +81,8 @@ def main():
             x.tofile(f)
         for name, flags in BUILDS.items():
             exe = Path(tmp) / "bench"
-            subprocess.run(["gfortran", *flags, "-ffp-contract=off", str(SOURCE), "-o", str(exe)],
+            subprocess.run(["gfortran", "-cpp", "-DFULL_REDUCTION", *flags, "-ffp-contract=off",
+                            *map(str, SOURCES), "-o", str(exe)],
                            check=True, cwd=tmp)
             run = subprocess.run([str(exe), "values", str(data)], capture_output=True, text=True)
             if run.returncode != 0:
