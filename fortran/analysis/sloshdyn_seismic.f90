@@ -308,8 +308,10 @@ contains
     do c = 1, size(run)
       loads(c) = tank_load_observation(tank, props, free(run(c)), 0.0_wp, huge(1.0_wp))
       call prepare_tracker(props, tracker(c))
-      ! for confined_runs, where the roof can be reached (one mode: the tracker's level of x1)
+      ! for confined_runs, where the roof can be reached (one mode: the tracker's level of x1,
+      ! whose first entry is the contact: before it the confined run's loads are these)
       tracker(c)%record_steps = props%roof_reachable .or. props%modes > 1
+      if (props%roof_reachable .and. props%modes == 1) tracker(c)%rewind_quantity = LOAD_ROWS
     end do
     call tank_histories(free(run), spread(0.0_wp, 1, size(run)), &
                         spread([0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 2, size(run)), &
@@ -357,7 +359,7 @@ contains
         ! from rest at tau = 0 over [0, tau(end)], as free_runs' tank_histories
         call confined%replay(tracker(c)%steps, loads, 0.0_wp, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
                              0.0_wp, tau(size(tau)), replay_status, replay_message, &
-                             reached%t_reached)
+                             reached%t_reached, before=tau_contact(j))
         call free_results(tank, props, free(j), tau, loads, confined, reached, &
                           history(:, :, c), replay_status, replay_message, table(:, :, j), &
                           peaks(:, j), instants(:, :, j), modal(:, :, j), status(j), message(j))

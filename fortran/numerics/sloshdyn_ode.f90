@@ -241,10 +241,25 @@ module sloshdyn_ode
   !> k's t_old, t, h_done, its end state y and the coefficients of its continuous extension
   !> (cont); mold is an integrator of the run's method, whose dense output reads them. With
   !> them tracker_replay observes the run again, other quantities, without integrating it.
+  !> A peak_tracker's findings after the steps of a record before `at` (peak_tracker's fields
+  !> of the same names), taken at time t, the end of those steps (at = -1: none taken).
+  type :: tracker_checkpoint
+    integer :: at = -1
+    real(wp) :: t = 0, end_time = 0
+    real(wp), allocatable :: peak(:), time(:), state(:, :), first_crossing(:), end_state(:), &
+                             end_values(:)
+    integer, allocatable :: crossings(:)
+    logical, allocatable :: above(:)
+  end type tracker_checkpoint
+
   type :: recorded_steps
     integer :: n = 0, state_size = 0
     real(wp), allocatable :: data(:, :)
     class(rk_integrator), allocatable :: mold
+    !> with the tracker's rewind_quantity: the last two checkpoints (1 the older); the steps
+    !> before checkpoint 1 are no longer in data (dropped: how many runs' steps were taken out)
+    type(tracker_checkpoint) :: checkpoint(2)
+    integer :: dropped = 0
   end type recorded_steps
 
   !> The largest |g_i| of observed quantities over an integration (or a window [t_from, t_to]
@@ -274,6 +289,12 @@ module sloshdyn_ode
     !> with record_steps (set before start), the steps taken in, for tracker_replay
     logical :: record_steps = .false.
     type(recorded_steps) :: steps
+    !> with record_steps, i > 0 (set before start): until |g_i| first reaches level_i the
+    !> record keeps only the steps since the older of two checkpoints of the tracker, taken
+    !> every checkpoint_interval steps (a replay from the older one repeats at most twice as
+    !> many steps, and the record holds as many); a replay whose quantities equal these up to
+    !> a time (its `before`) starts at the latest checkpoint before it
+    integer :: rewind_quantity = 0, checkpoint_interval = 256
     !> watch's work arrays, kept from step to step (allocating them at every step cost ~4 %
     !> of a seismic run): the probes' positions, values and order, the values just inside the
     !> step's ends, and the state and values at one point of the step
@@ -310,9 +331,12 @@ module sloshdyn_ode
     !> states and crossings of obs along that run, bit for bit those of tracking obs while
     !> integrating it again, without integrating. Set level and keep_states before. t_reached:
     !> the end of the last step taken in (t0 before the first), where integrating again would
-    !> have stopped had a step failed.
+    !> have stopped had a step failed. before: obs equals the recorded run's quantities at
+    !> every t < before (its levels and keep_states too): the replay may start at the record's
+    !> latest checkpoint taken before it (rewind_quantity), else from (t0, y0) -- refused if
+    !> the record dropped the steps that needs.
     module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message, &
-                                     t_reached)
+                                     t_reached, before)
       class(peak_tracker), intent(inout) :: self
       type(recorded_steps), intent(in) :: steps
       class(observed_quantities), intent(in) :: obs
@@ -320,6 +344,7 @@ module sloshdyn_ode
       integer, intent(out) :: status
       character(len=message_len), intent(out) :: message
       real(wp), intent(out), optional :: t_reached
+      real(wp), intent(in), optional :: before
     end subroutine tracker_replay
   end interface
 

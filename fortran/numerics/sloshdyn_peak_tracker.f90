@@ -54,6 +54,8 @@ contains
     call remember_end(self, t, y, g)
     if (self%record_steps) then
       self%steps%n = 0
+      self%steps%dropped = 0
+      self%steps%checkpoint%at = -1
       if (allocated(self%steps%mold)) deallocate (self%steps%mold)
     end if
     self%peak = abs(g)
@@ -87,7 +89,10 @@ contains
     a = max(integ%t_old, t_from)
     b = min(integ%t, t_to)
     if (b <= a) return
-    if (self%record_steps) call record_step(self%steps, integ)
+    if (self%record_steps) then
+      if (self%rewind_quantity > 0) call take_checkpoint(self, integ%t_old)
+      call record_step(self%steps, integ)
+    end if
     m = obs%count()
     n = step_probes
     if (self%spacing > 0) n = max(n, min(max_probes, ceiling((b - a)/self%spacing)))
@@ -230,7 +235,7 @@ contains
   end subroutine tracker_watch
 
   module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message, &
-                                   t_reached)
+                                   t_reached, before)
     class(peak_tracker), intent(inout) :: self
     type(recorded_steps), intent(in) :: steps
     class(observed_quantities), intent(in) :: obs
@@ -238,8 +243,9 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     real(wp), intent(out), optional :: t_reached
+    real(wp), intent(in), optional :: before
     class(rk_integrator), allocatable, target :: integ
-    integer :: k, n, c, columns
+    integer :: k, n, c, columns, from, first
 
     status = SD_OK
     message = ''
@@ -252,6 +258,26 @@ contains
       return
     end if
     call self%start(obs, t0, y0)
+    ! the latest checkpoint before `before`, if any (0: from the start)
+    from = 0
+    if (present(before)) then
+      do from = 2, 1, -1
+        if (steps%checkpoint(from)%at >= 0) then
+          if (steps%checkpoint(from)%t < before) exit
+        end if
+      end do
+    end if
+    first = 1
+    if (from > 0) then
+      call restore_checkpoint(self, steps%checkpoint(from))
+      if (present(t_reached)) t_reached = steps%checkpoint(from)%t
+      first = steps%checkpoint(from)%at + 1
+    else if (steps%dropped > 0) then
+      status = SD_BAD_INPUT
+      message = 'tracker_replay: the record dropped its first '//num2str(steps%dropped)// &
+                ' steps, and before is missing or not after its checkpoints'
+      return
+    end if
     if (steps%n == 0) return
     allocate (integ, source=steps%mold)
     columns = (size(steps%data, 1) - 3 - n)/n
@@ -259,7 +285,7 @@ contains
       if (allocated(integ%cont)) deallocate (integ%cont)
       allocate (integ%cont(n, columns))
     end if
-    do k = 1, steps%n
+    do k = first, steps%n
       if (mod(k, replay_poll) == 0) call check_cancel(status, message)
       if (status /= SD_OK) return
       if (present(t_reached)) t_reached = steps%data(2, k)
@@ -311,6 +337,56 @@ contains
       end if
     end associate
   end subroutine record_step
+
+  !> Before a step starting at t is recorded: while the rewind quantity has not reached its
+  !> level, a checkpoint every checkpoint_interval steps; the record then keeps the steps
+  !> from the older checkpoint on (the newer one before the new becomes the older one).
+  subroutine take_checkpoint(self, t)
+    class(peak_tracker), intent(inout) :: self
+    real(wp), intent(in) :: t
+    integer :: c, moved
+    if (self%crossings(self%rewind_quantity) > 0) return
+    associate (steps => self%steps, older => self%steps%checkpoint(1), &
+               newer => self%steps%checkpoint(2))
+      if (steps%n - max(newer%at, 0) < self%checkpoint_interval) return
+      if (newer%at > 0) then
+        moved = newer%at
+        do c = 1, steps%n - moved            ! forward: the columns overlap
+          steps%data(:, c) = steps%data(:, moved + c)
+        end do
+        steps%n = steps%n - moved
+        steps%dropped = steps%dropped + moved
+        older = newer
+        older%at = 0
+      end if
+      newer%at = steps%n
+      newer%t = t
+      newer%end_time = self%end_time
+      newer%peak = self%peak
+      newer%time = self%time
+      if (self%keep_states) newer%state = self%state
+      newer%first_crossing = self%first_crossing
+      newer%crossings = self%crossings
+      newer%above = self%above
+      newer%end_state = self%end_state
+      newer%end_values = self%end_values
+    end associate
+  end subroutine take_checkpoint
+
+  !> The tracker's findings as at a checkpoint (take_checkpoint).
+  subroutine restore_checkpoint(self, point)
+    class(peak_tracker), intent(inout) :: self
+    type(tracker_checkpoint), intent(in) :: point
+    self%end_time = point%end_time
+    self%peak = point%peak
+    self%time = point%time
+    if (self%keep_states) self%state = point%state
+    self%first_crossing = point%first_crossing
+    self%crossings = point%crossings
+    self%above = point%above
+    self%end_state = point%end_state
+    self%end_values = point%end_values
+  end subroutine restore_checkpoint
 
   !> watch's work arrays (peak_tracker's probe_s ... point_g) for m quantities, n + 1 probes
   !> and a state of size n_y, allocated when missing or too small.

@@ -10,7 +10,7 @@ module rk_checks
                              SD_NON_FINITE
   use sloshdyn_text, only: num2str
   use sloshdyn_ode, only: ode_system, ode_options, ode_stats, rk_integrator, linear_observation, &
-                         peak_tracker
+                         observed_quantities, peak_tracker
   use sloshdyn_integrator, only: integrate, new_integrator, method_name
   use checks, only: check_close, check_true
   implicit none
@@ -35,6 +35,16 @@ module rk_checks
     procedure :: rhs => oscillator_rhs
     procedure :: exact => oscillator_exact
   end type oscillator
+
+  !> g = (y1, y2) before t_switch, (2 y1, y2) from it on: quantities that equal (y1, y2) until
+  !> a time (as a seismic run's loads with the confined mass equal the free ones until the
+  !> first contact)
+  type, extends(observed_quantities) :: switched_observation
+    real(wp) :: t_switch = huge(1.0_wp)
+  contains
+    procedure :: values => switched_values
+    procedure :: count => switched_count
+  end type switched_observation
 
   !> Van der Pol y1' = y2, y2' = mu (1 - y1**2) y2 - y1 (no closed form)
   type, extends(ode_system) :: van_der_pol
@@ -64,6 +74,19 @@ contains
     real(wp), intent(in) :: t
     y = 1/(1 + self%a*t**2/2)
   end function riccati_exact
+
+  pure subroutine switched_values(self, t, y, g)
+    class(switched_observation), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: g(:)
+    g(1) = merge(2.0_wp, 1.0_wp, t >= self%t_switch)*y(1)
+    g(2) = y(2)
+  end subroutine switched_values
+
+  pure integer function switched_count(self)
+    class(switched_observation), intent(in) :: self
+    switched_count = 2
+  end function switched_count
 
   subroutine oscillator_rhs(self, t, y, dydt)
     class(oscillator), intent(in) :: self
@@ -341,7 +364,68 @@ contains
                          replay_status, replay_message)
     call check_true(name//', replay: a y0 of another size is refused: '//trim(replay_message), &
                     replay_status == SD_BAD_INPUT .and. index(replay_message, 'y0') > 0)
+    call check_rewind(name, method, osc, opt)
   end subroutine check_replay
+
+  !> A record that rewinds to checkpoints until |y1| first reaches 1.3 (near t = pi; |y1| <=
+  !> 4/3), a checkpoint every 4 steps: replayed with quantities that equal (y1, y2) until that
+  !> first crossing (switched_observation) from the latest checkpoint before it, the peaks,
+  !> their times and states and the crossings are those of integrating again with these
+  !> quantities -- |y2| first reaches 1 near t = 1.4, before the checkpoints of rk45 and
+  !> dop853, whose state alone then carries it.
+  subroutine check_rewind(name, method, osc, opt)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: method
+    type(oscillator), intent(in) :: osc
+    type(ode_options), intent(in) :: opt
+    type(ode_stats) :: stats
+    type(switched_observation) :: first, switched
+    type(peak_tracker) :: recording, again, replayed
+    real(wp) :: y(2, 1), t_reached
+    integer :: status, replay_status
+    character(len=message_len) :: message, replay_message
+
+    recording%record_steps = .true.
+    recording%rewind_quantity = 1
+    recording%checkpoint_interval = 4
+    recording%level = [1.3_wp, 1.0_wp]
+    recording%keep_states = .true.
+    call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [20.0_wp], y, opt, stats, status, &
+                   message, first, recording)
+    call check_true(name//', rewind: the run runs and |y1| reaches 1.3 first at '// &
+                    num2str(recording%first_crossing(1))//' (near pi)', status == SD_OK .and. &
+                    abs(recording%first_crossing(1) - acos(-1.0_wp)) < 0.5_wp)
+    call check_true(name//', rewind: '//num2str(recording%steps%dropped)//' steps dropped '// &
+                    'before the older checkpoint, at '//num2str(recording%steps%checkpoint(1)%t)// &
+                    '; the others kept ('//num2str(stats%n_accepted)//' in all)', &
+                    recording%steps%dropped > 0 .and. &
+                    recording%steps%checkpoint(1)%t < recording%first_crossing(1) .and. &
+                    recording%steps%n + recording%steps%dropped == stats%n_accepted)
+    switched%t_switch = recording%first_crossing(1)
+    again%level = recording%level
+    again%keep_states = .true.
+    call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [20.0_wp], y, opt, stats, status, &
+                   message, switched, again)
+    replayed%level = recording%level
+    replayed%keep_states = .true.
+    call replayed%replay(recording%steps, switched, 0.0_wp, osc%exact(0.0_wp), 0.0_wp, 20.0_wp, &
+                         replay_status, replay_message, t_reached, before=switched%t_switch)
+    call check_true(name//', rewind: the replay from a checkpoint runs to 20: '// &
+                    trim(replay_message), replay_status == SD_OK .and. t_reached == 20)
+    call check_true(name//', rewind: its peak ('//num2str(replayed%peak(1))//' at '// &
+                    num2str(replayed%time(1))//', after the switch), state, crossings and '// &
+                    'first crossing as integrating again', &
+                    all(replayed%peak == again%peak) .and. all(replayed%time == again%time) .and. &
+                    all(replayed%state == again%state) .and. &
+                    all(replayed%crossings == again%crossings) .and. &
+                    all(replayed%first_crossing == again%first_crossing) .and. &
+                    again%time(1) > switched%t_switch .and. again%crossings(2) > 1)
+    call replayed%replay(recording%steps, switched, 0.0_wp, osc%exact(0.0_wp), 0.0_wp, 20.0_wp, &
+                         replay_status, replay_message, before=0.0_wp)
+    call check_true(name//', rewind: from the start, whose steps are dropped, refused: '// &
+                    trim(replay_message), replay_status == SD_BAD_INPUT .and. &
+                    index(replay_message, 'dropped') > 0)
+  end subroutine check_rewind
 
   !> Failures during the integration: partial output, NaN after, the time reached.
   subroutine check_failures(method)
