@@ -241,8 +241,8 @@ module sloshdyn_ode
   !> k's t_old, t, h_done, its end state y and the coefficients of its continuous extension
   !> (cont); mold is an integrator of the run's method, whose dense output reads them. With
   !> them tracker_replay observes the run again, other quantities, without integrating it.
-  !> A peak_tracker's findings after the steps of a record before `at` (peak_tracker's fields
-  !> of the same names), taken at time t, the end of those steps (at = -1: none taken).
+  !> A peak_tracker's findings after steps 1..at of a record (peak_tracker's fields of the
+  !> same names), taken at time t, the end of step at (at = -1: none taken).
   type :: tracker_checkpoint
     integer :: at = -1
     real(wp) :: t = 0, end_time = 0
@@ -257,7 +257,7 @@ module sloshdyn_ode
     real(wp), allocatable :: data(:, :)
     class(rk_integrator), allocatable :: mold
     !> with the tracker's rewind_quantity: the last two checkpoints (1 the older); the steps
-    !> before checkpoint 1 are no longer in data (dropped: how many runs' steps were taken out)
+    !> before checkpoint 1 are no longer in data (dropped: how many of the run's steps)
     type(tracker_checkpoint) :: checkpoint(2)
     integer :: dropped = 0
   end type recorded_steps
@@ -293,7 +293,8 @@ module sloshdyn_ode
     !> record keeps only the steps since the older of two checkpoints of the tracker, taken
     !> every checkpoint_interval steps (a replay from the older one repeats at most twice as
     !> many steps, and the record holds as many); a replay whose quantities equal these up to
-    !> a time (its `before`) starts at the latest checkpoint before it
+    !> a time (its `before`) starts at the latest checkpoint before it. No checkpoints where
+    !> i is not a quantity with a level_i > 0 or checkpoint_interval < 1.
     integer :: rewind_quantity = 0, checkpoint_interval = 256
     !> watch's work arrays, kept from step to step (allocating them at every step cost ~4 %
     !> of a seismic run): the probes' positions, values and order, the values just inside the
@@ -332,9 +333,10 @@ module sloshdyn_ode
     !> integrating it again, without integrating. Set level and keep_states before. t_reached:
     !> the end of the last step taken in (t0 before the first), where integrating again would
     !> have stopped had a step failed. before: obs equals the recorded run's quantities at
-    !> every t < before (its levels and keep_states too): the replay may start at the record's
-    !> latest checkpoint taken before it (rewind_quantity), else from (t0, y0) -- refused if
-    !> the record dropped the steps that needs.
+    !> every t < before, and self the recorded tracker in levels, keep_states, spacing, window
+    !> and start (t0, y0): the replay may start at the record's latest checkpoint taken before
+    !> it (rewind_quantity), else from (t0, y0) -- refused if the record dropped the steps
+    !> that needs, or if its checkpoint has other quantities or keeps no states.
     module subroutine tracker_replay(self, steps, obs, t0, y0, t_from, t_to, status, message, &
                                      t_reached, before)
       class(peak_tracker), intent(inout) :: self

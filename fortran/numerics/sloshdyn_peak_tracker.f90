@@ -269,6 +269,16 @@ contains
     end if
     first = 1
     if (from > 0) then
+      if (size(steps%checkpoint(from)%peak) /= size(self%peak) .or. &
+          (self%keep_states .neqv. allocated(steps%checkpoint(from)%state))) then
+        status = SD_BAD_INPUT
+        message = 'tracker_replay: the record''s checkpoint holds '// &
+                  num2str(size(steps%checkpoint(from)%peak))//' quantities'// &
+                  trim(merge(' and states   ', ' and no states', &
+                             allocated(steps%checkpoint(from)%state)))//', obs has '// &
+                  num2str(size(self%peak))//' (keep_states must be the same)'
+        return
+      end if
       call restore_checkpoint(self, steps%checkpoint(from))
       if (present(t_reached)) t_reached = steps%checkpoint(from)%t
       first = steps%checkpoint(from)%at + 1
@@ -345,6 +355,8 @@ contains
     class(peak_tracker), intent(inout) :: self
     real(wp), intent(in) :: t
     integer :: c, moved
+    if (self%rewind_quantity > size(self%level) .or. self%checkpoint_interval < 1) return
+    if (.not. self%level(self%rewind_quantity) > 0) return
     if (self%crossings(self%rewind_quantity) > 0) return
     associate (steps => self%steps, older => self%steps%checkpoint(1), &
                newer => self%steps%checkpoint(2))

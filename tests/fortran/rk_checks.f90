@@ -420,11 +420,30 @@ contains
                     all(replayed%crossings == again%crossings) .and. &
                     all(replayed%first_crossing == again%first_crossing) .and. &
                     again%time(1) > switched%t_switch .and. again%crossings(2) > 1)
+    ! quantities that change at the newer checkpoint itself: the older one must be taken
+    switched%t_switch = recording%steps%checkpoint(2)%t
+    call integrate(method, osc, 0.0_wp, osc%exact(0.0_wp), [20.0_wp], y, opt, stats, status, &
+                   message, switched, again)
+    call replayed%replay(recording%steps, switched, 0.0_wp, osc%exact(0.0_wp), 0.0_wp, 20.0_wp, &
+                         replay_status, replay_message, before=switched%t_switch)
+    call check_true(name//', rewind: quantities changing at the newer checkpoint ('// &
+                    num2str(switched%t_switch)//'): replayed from the older one as '// &
+                    'integrating again', replay_status == SD_OK .and. &
+                    all(replayed%peak == again%peak) .and. all(replayed%time == again%time) .and. &
+                    all(replayed%state == again%state) .and. &
+                    all(replayed%crossings == again%crossings) .and. &
+                    all(replayed%first_crossing == again%first_crossing))
     call replayed%replay(recording%steps, switched, 0.0_wp, osc%exact(0.0_wp), 0.0_wp, 20.0_wp, &
                          replay_status, replay_message, before=0.0_wp)
     call check_true(name//', rewind: from the start, whose steps are dropped, refused: '// &
                     trim(replay_message), replay_status == SD_BAD_INPUT .and. &
                     index(replay_message, 'dropped') > 0)
+    replayed%keep_states = .false.
+    call replayed%replay(recording%steps, switched, 0.0_wp, osc%exact(0.0_wp), 0.0_wp, 20.0_wp, &
+                         replay_status, replay_message, before=20.0_wp)
+    call check_true(name//', rewind: a tracker without the states of the record''s '// &
+                    'checkpoints refused: '//trim(replay_message), &
+                    replay_status == SD_BAD_INPUT .and. index(replay_message, 'keep_states') > 0)
   end subroutine check_rewind
 
   !> Failures during the integration: partial output, NaN after, the time reached.
