@@ -55,7 +55,7 @@ contains
     if (self%record_steps) then
       self%steps%n = 0
       self%steps%dropped = 0
-      self%steps%checkpoint%at = -1
+      self%steps%checkpoint = tracker_checkpoint()     ! none, and no arrays of a run before
       if (allocated(self%steps%mold)) deallocate (self%steps%mold)
     end if
     self%peak = abs(g)
