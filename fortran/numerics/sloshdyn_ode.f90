@@ -237,10 +237,6 @@ module sloshdyn_ode
     procedure :: count => linear_count
   end type linear_observation
 
-  !> The accepted steps a peak_tracker took in (its record_steps): column k of data holds step
-  !> k's t_old, t, h_done, its end state y and the coefficients of its continuous extension
-  !> (cont); mold is an integrator of the run's method, whose dense output reads them. With
-  !> them tracker_replay observes the run again, other quantities, without integrating it.
   !> A peak_tracker's findings after steps 1..at of a record (peak_tracker's fields of the
   !> same names), taken at time t, the end of step at (at = -1: none taken).
   type :: tracker_checkpoint
@@ -252,6 +248,10 @@ module sloshdyn_ode
     logical, allocatable :: above(:)
   end type tracker_checkpoint
 
+  !> The accepted steps a peak_tracker took in (its record_steps): column k of data holds step
+  !> k's t_old, t, h_done, its end state y and the coefficients of its continuous extension
+  !> (cont); mold is an integrator of the run's method, whose dense output reads them. With
+  !> them tracker_replay observes the run again, other quantities, without integrating it.
   type :: recorded_steps
     integer :: n = 0, state_size = 0
     real(wp), allocatable :: data(:, :)
@@ -296,9 +296,9 @@ module sloshdyn_ode
     !> a time (its `before`) starts at the latest checkpoint before it. No checkpoints where
     !> i is not a quantity with a level_i > 0 or checkpoint_interval < 1.
     integer :: rewind_quantity = 0, checkpoint_interval = 256
-    !> watch's work arrays, kept from step to step (allocating them at every step cost ~4 %
-    !> of a seismic run): the probes' positions, values and order, the values just inside the
-    !> step's ends, and the state and values at one point of the step
+    !> watch's work arrays, kept from step to step (allocating them at every step cost ~2 %
+    !> of a seismic run's instructions): the probes' positions, values and order, the values
+    !> just inside the step's ends, and the state and values at one point of the step
     real(wp), allocatable :: probe_s(:), probe_g(:, :), inside_g(:, :), point_y(:), point_g(:)
     integer, allocatable :: probe_order(:)
   contains
