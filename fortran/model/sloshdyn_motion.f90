@@ -16,8 +16,8 @@ module sloshdyn_motion
     real(wp) :: cos12, sin12       !< cos, sin of theta0 (x1 + x2)
     real(wp) :: cos1, sin1         !< cos, sin of theta0 x1
     real(wp) :: cos2, sin2         !< cos, sin of theta0 x2
-    real(wp) :: impact_pow         !< x1^(2n-1)
-    real(wp) :: dissipation_pow    !< x1^(2p)
+    real(wp) :: impact_pow         !< x1^(2n-1) (a zero of its sign where beta = 0)
+    real(wp) :: dissipation_pow    !< x1^(2p) (0 where delta = 0)
     real(wp) :: xdd                !< base acceleration X''
   end type state_terms
 
@@ -35,8 +35,19 @@ contains
     ! angle addition instead of a third sine/cosine pair: the right-hand side's costliest part
     t%cos12 = t%cos1*t%cos2 - t%sin1*t%sin2
     t%sin12 = t%sin1*t%cos2 + t%cos1*t%sin2
-    t%impact_pow = integer_power(y(1), 2*model%n - 1)
-    t%dissipation_pow = integer_power(y(1), 2*model%p)
+    ! the contact-free models (beta = delta = 0, e.g. a tank's below the roof) skip the powers
+    ! where their coefficient's zero times them is a zero of the same sign: x1^(2n-1) has the
+    ! sign of x1, x1^(2p) >= +0, and both are finite while |x1| <= 1
+    if (model%a_coef(4) == 0 .and. abs(y(1)) <= 1) then
+      t%impact_pow = sign(0.0_wp, y(1))
+    else
+      t%impact_pow = integer_power(y(1), 2*model%n - 1)
+    end if
+    if (model%a_coef(5) == 0 .and. abs(y(1)) <= 1) then
+      t%dissipation_pow = 0
+    else
+      t%dissipation_pow = integer_power(y(1), 2*model%p)
+    end if
     t%xdd = base_acceleration(model%excitation, tau)
   end subroutine evaluate_terms
 
