@@ -300,6 +300,8 @@ module sloshdyn_ode
     !> of a seismic run's instructions): the probes' positions, values and order, the values
     !> just inside the step's ends, and the state and values at one point of the step
     real(wp), allocatable :: probe_s(:), probe_g(:, :), inside_g(:, :), point_y(:), point_g(:)
+    !> the probes' states (a new peak at a probe takes its state from there)
+    real(wp), allocatable :: probe_y(:, :)
     integer, allocatable :: probe_order(:)
   contains
     procedure :: start => tracker_start

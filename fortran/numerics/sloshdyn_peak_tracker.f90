@@ -77,8 +77,8 @@ contains
     integer, intent(out) :: status
     character(len=message_len), intent(out) :: message
     type(dense_quantity) :: f
-    real(wp), pointer :: s(:), g(:, :), g_peak(:), g_inside(:, :)
-    logical :: inside_known(0:1), refine
+    real(wp), pointer :: s(:), g(:, :), g_peak(:), g_inside(:, :), y_probe(:, :)
+    logical :: inside_known(0:1), refine, at_probe
     real(wp) :: a, b, best, rise, s_best, f_best, s_left, s_right, s_root, f_root, v_left, v
     integer :: m, n, i, j, k, n_points
     integer, pointer :: order(:)
@@ -106,6 +106,7 @@ contains
     g(1:m, 0:n + 1) => self%probe_g
     order(0:n + 1) => self%probe_order
     g_inside(1:m, 0:1) => self%inside_g
+    y_probe(1:size(integ%y), 0:n + 1) => self%probe_y
     f%y => self%point_y
     f%g => self%point_g
     g_peak => self%point_g          ! free while no search runs: state_at's values at a peak
@@ -115,16 +116,30 @@ contains
     f%b = b
     do j = 0, n
       s(j) = real(j, wp)/max(n, 1)
-      call state_at(s(j), g(:, j))
+      call state_at(s(j), g(:, j), y_probe(:, j))
     end do
     inside_known = .false.
     do i = 1, m
       f%i = i
-      j = maxloc(abs(g(i, 0:n)), dim=1) - 1
-      best = abs(g(i, j))
+      ! maxloc(abs(g(i, 0:n)), dim=1) - 1: the first largest, NaNs skipped (0 if all are)
+      j = 0
+      best = abs(g(i, 0))
+      do k = 1, n
+        v = abs(g(i, k))
+        if (v > best) then
+          j = k
+          best = v
+        else if (best /= best) then   ! NaNs so far (maxloc skips them): this one if it is none
+          if (v == v) then
+            j = k
+            best = v
+          end if
+        end if
+      end do
       s_best = s(j)
       n_points = n
       rise = 0
+      at_probe = .true.
       if (j > 0) rise = max(rise, best - abs(g(i, j - 1)))
       if (j < n) rise = max(rise, best - abs(g(i, j + 1)))
       refine = n > 0 .and. (best + rise >= self%peak(i) .or. &
@@ -142,6 +157,7 @@ contains
         g(i, n_points) = -f_best
         if (-f_best > best) then
           best = -f_best
+          at_probe = .false.
         else
           s_best = s(j)
         end if
@@ -149,11 +165,19 @@ contains
       if (best > self%peak(i)) then
         self%peak(i) = best
         self%time(i) = a + s_best*(b - a)
-        if (self%keep_states) call state_at(s_best, g_peak, self%state(:, i))
+        if (self%keep_states) then
+          if (at_probe) then            ! the probe's state, as state_at(s(j)) gave it
+            self%state(:, i) = y_probe(:, j)
+          else
+            call state_at(s_best, g_peak, self%state(:, i))
+          end if
+        end if
       end if
       if (.not. self%level(i) > 0) cycle
       ! entries into [level, inf) along the probes and the refined maximum, in order
-      order(0:n_points) = [(k, k = 0, n_points)]
+      do k = 0, n_points                ! not [(k, k = 0, n_points)]: a malloc'ed temporary
+        order(k) = k
+      end do
       if (n_points > n) then
         do k = n_points, 1, -1
           if (s(order(k - 1)) <= s(n_points)) exit
@@ -199,7 +223,7 @@ contains
       if (k /= 0 .and. k /= n) return
       side = merge(0, 1, k == 0)
       if (.not. inside_known(side)) then
-        call state_at(merge(end_gap, 1 - end_gap, k == 0), g_inside(:, side))
+        call state_at(merge(end_gap, 1 - end_gap, k == 0), g_inside(:, side), f%y)
         inside_known(side) = .true.
       end if
       rises_to_end = abs(g_inside(i, side)) < abs(g(i, k))
@@ -208,8 +232,7 @@ contains
     !> g at s in [0, 1] of [a, b]: the state itself at the step's end (and that state, y_point).
     subroutine state_at(s_point, g_point, y_point)
       real(wp), intent(in) :: s_point
-      real(wp), intent(out) :: g_point(:)
-      real(wp), intent(out), optional :: y_point(:)
+      real(wp), intent(out) :: g_point(:), y_point(:)
       real(wp) :: t
       logical :: same_as_end
       t = a + s_point*(b - a)
@@ -218,19 +241,18 @@ contains
         if (b == integ%t) then
           call obs%values(t, integ%y, g_point)
           call remember_end(self, t, integ%y, g_point)
-          if (present(y_point)) y_point = integ%y
+          y_point = integ%y
           return
         end if
       end if
-      call integ%dense(t, f%y)
+      call integ%dense(t, y_point)
       same_as_end = t == self%end_time .and. allocated(self%end_state)
-      if (same_as_end) same_as_end = all(f%y == self%end_state)
+      if (same_as_end) same_as_end = all(y_point == self%end_state)
       if (same_as_end) then
         g_point = self%end_values
       else
-        call obs%values(t, f%y, g_point)
+        call obs%values(t, y_point, g_point)
       end if
-      if (present(y_point)) y_point = f%y
     end subroutine state_at
   end subroutine tracker_watch
 
@@ -411,9 +433,10 @@ contains
                      size(self%point_y) == n_y
     if (fits) return
     if (allocated(self%probe_g)) deallocate (self%probe_s, self%probe_g, self%probe_order, &
-                                             self%inside_g, self%point_y, self%point_g)
+                                             self%inside_g, self%point_y, self%point_g, &
+                                             self%probe_y)
     allocate (self%probe_s(n + 2), self%probe_g(m, n + 2), self%probe_order(n + 2), &
-              self%inside_g(m, 2), self%point_y(n_y), self%point_g(m))
+              self%inside_g(m, 2), self%point_y(n_y), self%point_g(m), self%probe_y(n_y, n + 2))
   end subroutine prepare_work
 
   !> Keep g = g(t, y) of a step's end (or the start) for the next step's first probe.
