@@ -289,6 +289,72 @@ def test_a_worker_killed_mid_study_changes_nothing(tmp_path):
     assert_equals_serial(ds, serial(SLOW_F, [0.00075], SLOW))
 
 
+
+def test_a_result_lost_between_wait_and_fetch_is_waited_for_again(monkeypatch):
+    """A task's future that wait reported done and that is no longer finished when the loop
+    looks (its result left with a killed worker in between: Dask computes it again, status
+    'lost' or 'pending') is waited for again, not raised as the task's error (it has none:
+    the loop raised None, a TypeError, in the killed-worker test above). Stand-ins for the
+    client, the plan, the tasks and the workers; the future is lost on the first wait only."""
+    import distributed
+    from sloshdyn.studies import engine
+
+    class Future:
+        status, waits = "pending", 0
+
+        def result(self, timeout=None):
+            return {"x": 1.0}
+
+        def exception(self):
+            return None
+
+        def cancel(self):
+            pass
+
+    future = Future()
+
+    def fake_wait(futures, timeout, return_when):
+        future.waits += 1
+        future.status = "lost" if future.waits == 1 else "finished"
+        return type("Done", (), {"done": set(futures)})()
+
+    class Plan:
+        points_per_task = 1
+
+        def task(self, block):
+            return sum, ([1],)
+
+        def block_size(self, block):
+            return 1
+
+    class Tasks:
+        free = np.array([True])
+
+        def points_left(self):
+            return int(self.free.sum())
+
+        def take(self, points):
+            if not self.free.any():
+                return None
+            self.free[:] = False
+            return (slice(0, 1),)
+
+    class Pool:
+        usable = ["worker"]
+
+        def check_alive(self):
+            pass
+
+        def threads(self):
+            return 1
+
+    written = []
+    client = type("Client", (), {"submit": lambda self, *a, **k: future})()
+    writer = type("Writer", (), {"write": lambda self, block, result: written.append(result)})()
+    monkeypatch.setattr(distributed, "wait", fake_wait)
+    computed, _ = engine._run_tasks(client, Plan(), Tasks(), Pool(), writer, None, lambda: None)
+    assert (computed, written, future.waits) == (1, [{"x": 1.0}], 2)
+
 # ---- basins ----------------------------------------------------------------------------------
 
 @pytest.fixture(scope="module")

@@ -318,9 +318,11 @@ def _run_tasks(c, plan, tasks, pool, writer, bar, check_interrupts):
                 if future.status == "cancelled":     # by the cluster (not by us): again
                     submit(block)
                     continue
-                if future.status != "finished":
+                if future.status == "error":
                     raise _task_error(future.exception(), plan, block)
-                result = fetched(future)
+                # finished, or (pending, lost) its result left with its worker between wait and
+                # here: Dask reschedules it; fetched waits a tick at most, then the loop again
+                result = fetched(future) if future.status == "finished" else None
                 if result is None:                   # its data left with its worker: again
                     pending[future] = (block, allowed)
                     continue
