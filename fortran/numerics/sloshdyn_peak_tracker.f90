@@ -126,14 +126,10 @@ contains
       best = abs(g(i, 0))
       do k = 1, n
         v = abs(g(i, k))
-        if (v > best) then
+        ! NaNs so far (maxloc skips them): this one if it is none
+        if (v > best .or. (best /= best .and. v == v)) then
           j = k
           best = v
-        else if (best /= best) then   ! NaNs so far (maxloc skips them): this one if it is none
-          if (v == v) then
-            j = k
-            best = v
-          end if
         end if
       end do
       s_best = s(j)

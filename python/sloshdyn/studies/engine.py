@@ -315,14 +315,15 @@ def _run_tasks(c, plan, tasks, pool, writer, bar, check_interrupts):
                 finished = ()
             for future in finished:
                 block, allowed = pending.pop(future)
-                if future.status == "cancelled":     # by the cluster (not by us): again
+                status = future.status               # read once: a worker may leave meanwhile
+                if status == "cancelled":            # by the cluster (not by us): again
                     submit(block)
                     continue
-                if future.status == "error":
+                if status == "error":
                     raise _task_error(future.exception(), plan, block)
-                # finished, or (pending, lost) its result left with its worker between wait and
-                # here: Dask reschedules it; fetched waits a tick at most, then the loop again
-                result = fetched(future) if future.status == "finished" else None
+                # lost or pending: its result left with its worker since wait (Dask computes it
+                # again)
+                result = fetched(future) if status == "finished" else None
                 if result is None:                   # its data left with its worker: again
                     pending[future] = (block, allowed)
                     continue
