@@ -163,7 +163,9 @@ contains
         self%time(i) = a + s_best*(b - a)
         if (self%keep_states) then
           if (at_probe) then            ! the probe's state, as state_at(s(j)) gave it
-            self%state(:, i) = y_probe(:, j)
+            do k = 1, size(y_probe, 1)  ! not an array assignment: a malloc'ed temporary
+              self%state(k, i) = y_probe(k, j)
+            end do
           else
             call state_at(s_best, g_peak, self%state(:, i))
           end if
