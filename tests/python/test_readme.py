@@ -105,7 +105,10 @@ def test_python_guide_examples_run_and_state_what_they_give(tmp_path, monkeypatc
     others = sorted(abs(g.beat.multipliers))[:-1]          # one multiplier is 1
     assert abs(sorted(abs(g.beat.multipliers))[-1] - 1) < 1e-6 and max(others) < 1
     # Lyapunov exponents: chaotic at beta = 10 (Fig 17), periodic at p's beta = 1
-    assert g.lyap.exponent > 0 and round(g.lyap.exponent, 2) == 0.15
+    # chaotic (the paper's Fig 17); the value is a 500-period estimate that the last bits move
+    # (0.147 here, 0.152 with glibc's sine for processors without FMA, 0.179 with a sine 1 ulp
+    # apart): within 25 % of the 2000-period estimates of docs/model.md, 0.153 and 0.170
+    assert g.lyap.exponent > 0 and abs(g.lyap.exponent - 0.16) < 0.04
     assert g.calm.exponent < 0 and round(g.calm.exponent, 4) == -0.0021
     exponents, dimension = shown["spectrum.exponents, spectrum.kaplan_yorke"]
     exponents = np.sort(exponents)
