@@ -109,12 +109,19 @@ def test_python_guide_examples_run_and_state_what_they_give(tmp_path, monkeypatc
     # (0.147 here, 0.152 with glibc's sine for processors without FMA, 0.179 with a sine 1 ulp
     # apart): within 25 % of the 2000-period estimates of docs/model.md, 0.153 and 0.170
     assert g.lyap.exponent > 0 and abs(g.lyap.exponent - 0.16) < 0.04
-    assert g.calm.exponent < 0 and round(g.calm.exponent, 4) == -0.0021
+    # periodic at beta = 1: the 500-period estimate approaches its orbit's Floquet rate
+    # ln|mu|/T (shooting and LAPACK, an independent method), -0.00214; it is -0.00213 here and
+    # -0.00221 with glibc's sine for processors without FMA
+    orbit = sloshdyn.periodic_orbit(g.p.replace(rho=0.513, A=2.0))
+    floquet = np.log(np.max(np.abs(orbit.multipliers))) / (orbit.periods * 2 * np.pi / 0.513)
+    assert g.calm.exponent < 0 and abs(g.calm.exponent - floquet) < 2e-4
     exponents, dimension = shown["spectrum.exponents, spectrum.kaplan_yorke"]
     exponents = np.sort(exponents)
     assert exponents[-2] > 0 and exponents[0] < 0 and np.sum(exponents) < 0   # dissipative
     assert dimension == approx(kaplan_yorke(exponents), rel=1e-12)
-    assert round(dimension, 2) == 3.88
+    # a 300-period estimate, moved by the last bits as the exponent above (3.882 here, 3.895
+    # with glibc's sine for processors without FMA): near docs/model.md's 2000-period D = 3.89
+    assert abs(dimension - 3.89) < 0.05
     assert g.doubled.periods == 2
     # the tank (sec 2) and its seismic response
     tank = g.tank
